@@ -1,0 +1,12 @@
+"""Pad geometry: module numbering, centres, 8-neighbour adjacency, units and frames.
+
+Conventions (DESIGN.md, thesis Fig. 6.4a): modules are numbered 1..R*C row-major from the
+top-left seen from above; module ``k`` sits in row ``r = (k-1)//C`` (0 = top) and column
+``c = (k-1)%C`` with centre ``(c + 0.5, (R-1-r) + 0.5)`` in module units. The pad frame has
+its origin at the bottom-left corner, x to the right, y up the columns, z out of the pad.
+"""
+
+from softpad.layout._grid import PadLayout, parse_layout
+from softpad.layout._pose import PadPose
+
+__all__ = ["PadLayout", "PadPose", "parse_layout"]

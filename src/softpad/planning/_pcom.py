@@ -1,0 +1,41 @@
+"""Pressure-based centre of mass (PCOM), Eq. (6.1) of the seed."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from softpad.errors import InputError
+from softpad.layout import PadLayout
+
+
+def pcom(delta_pa: ArrayLike, modules: Sequence[int], layout: PadLayout) -> tuple[float, float]:
+    """Weighted mean of the module centres, weights dP_i (Eq. 6.1).
+
+    ``x_PCOM = sum(dP_i x_i) / sum(dP_i)`` over the object's modules, likewise y.
+
+    Parameters
+    ----------
+    delta_pa
+        Increments of every module of the layout, pascals (module order 1..N).
+    modules
+        1-based module numbers of the object.
+    layout
+        Pad geometry.
+
+    Returns
+    -------
+    (x, y) in module units.
+    """
+    d = np.asarray(delta_pa, dtype=float)
+    idx = np.array([layout.check_module(m) - 1 for m in modules], dtype=int)
+    if idx.size == 0:
+        raise InputError("an object needs at least one module to compute its PCOM")
+    w = d[idx]
+    total = float(w.sum())
+    if not np.isfinite(total) or total <= 0:
+        raise InputError(f"increments of modules {list(modules)} must sum to > 0 Pa, got {total:g}")
+    c = layout.centers[idx]
+    return float(w @ c[:, 0] / total), float(w @ c[:, 1] / total)

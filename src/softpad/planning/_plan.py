@@ -1,0 +1,80 @@
+"""Planner entry points: objects from increments, one plan per object."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from numpy.typing import ArrayLike
+
+from softpad.errors import InputError
+from softpad.layout import PadLayout
+from softpad.planning._records import GraspPlan
+from softpad.sensing._objects import (
+    DEFAULT_OBJECT_THRESHOLD_PA,
+    check_increments,
+    check_threshold,
+    detect_objects,
+)
+
+#: c_s in the thesis: safety shift for corner-shaped objects, module units (Section 6.2.1.3).
+DEFAULT_SAFETY_SHIFT = 0.2
+
+
+@dataclass(frozen=True)
+class PlannerParams:
+    """Parameters of the grasp planner.
+
+    Parameters
+    ----------
+    object_threshold_pa
+        t_o: a module is touched when dP > t_o (pascals), 50 Pa in the thesis.
+    safety_shift
+        c_s: shift away from the corner of corner-shaped objects, module units, 0.2 in the thesis.
+    default_theta
+        Direction used when the shape gives none (N = 1, 2x2 square), radians.
+    """
+
+    object_threshold_pa: float = DEFAULT_OBJECT_THRESHOLD_PA
+    safety_shift: float = DEFAULT_SAFETY_SHIFT
+    default_theta: float = 0.0
+
+    def __post_init__(self) -> None:
+        check_threshold(self.object_threshold_pa, "object threshold")
+        if not (0.0 <= self.safety_shift < 0.5):
+            raise InputError(f"safety shift must be in [0, 0.5) module units, got {self.safety_shift!r}")
+
+
+def plan_object(
+    delta_pa: ArrayLike,
+    modules: tuple[int, ...],
+    layout: PadLayout,
+    params: PlannerParams | None = None,
+) -> GraspPlan:
+    """Plan the grasp of one object that touches ``modules``."""
+    from softpad.planning._thesis_rules import plan_with_rules
+
+    d = check_increments(delta_pa, layout)
+    return plan_with_rules(d, tuple(sorted(modules)), layout, params or PlannerParams())
+
+
+def plan_grasps(
+    delta_pa: ArrayLike,
+    layout: PadLayout | None = None,
+    params: PlannerParams | None = None,
+) -> list[GraspPlan]:
+    """Detect the objects on the pad and plan a grasp for each, in module order.
+
+    Parameters
+    ----------
+    delta_pa
+        Increment dP_i of every module over its reference, pascals, module order 1..N.
+    layout
+        Pad geometry (2 x 3, 45 mm by default).
+    params
+        Planner parameters (thesis defaults).
+    """
+    layout = layout or PadLayout()
+    params = params or PlannerParams()
+    d = check_increments(delta_pa, layout)
+    groups = detect_objects(d, layout, params.object_threshold_pa)
+    return [plan_object(d, g, layout, params) for g in groups]

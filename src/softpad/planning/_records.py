@@ -1,0 +1,63 @@
+"""Grasp plan record."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+from softpad.layout import PadLayout
+
+
+@dataclass(frozen=True)
+class GraspPlan:
+    """A planned top grasp for one object.
+
+    Attributes
+    ----------
+    modules
+        1-based numbers of the modules the object touches (dP > t_o).
+    pcom
+        Pressure-based centre of mass (x, y), module units (Eq. 6.1).
+    cog
+        Centre of grasp (x, y), module units.
+    theta
+        Direction of grasp (the direction the jaws close), radians, in (-pi/2, pi/2].
+    rule
+        Name of the planning rule that produced the plan (see docs/planner.md).
+    reduced_modules
+        Modules the rule kept after dropping some (equal to ``modules`` when none was dropped).
+    """
+
+    modules: tuple[int, ...]
+    pcom: tuple[float, float]
+    cog: tuple[float, float]
+    theta: float
+    rule: str
+    reduced_modules: tuple[int, ...]
+
+    def cog_m(self, layout: PadLayout) -> tuple[float, float]:
+        """Centre of grasp in metres in the pad frame (COG times the module pitch)."""
+        x, y = layout.to_metres(self.cog)
+        return float(x), float(y)
+
+    def to_dict(self, layout: PadLayout) -> dict[str, Any]:
+        """JSON-ready dict with the keys of ``softpad plan --json``."""
+        return {
+            "modules": list(self.modules),
+            "pcom": [round(self.pcom[0], 6), round(self.pcom[1], 6)],
+            "cog": [round(self.cog[0], 6), round(self.cog[1], 6)],
+            "theta": round(self.theta, 9),
+            "rule": self.rule,
+            "cog_m": [round(v, 9) for v in self.cog_m(layout)],
+        }
+
+
+def normalize_theta(theta: float) -> float:
+    """Map an angle to (-pi/2, pi/2]: a parallel-jaw grasp is the same under theta + pi."""
+    t = math.fmod(theta, math.pi)
+    if t <= -math.pi / 2 + 1e-12:
+        t += math.pi
+    elif t > math.pi / 2 + 1e-12:
+        t -= math.pi
+    return t
