@@ -1,0 +1,105 @@
+"""Finite-element design model of a SoftPad module on FElupe (thesis chapter 7, Section 6.1.2).
+
+The upper silicone layer of one module (default 45 x 45 x 1.5 mm, EcoFlex 00-30) is modelled
+as a nearly incompressible hyperelastic block with fixed lateral faces and a follower
+pressure on its lower face; a quarter model uses both symmetry planes. On top of the model:
+material presets of thesis Table 7.1, inflation / design / stiffness / sensitive-area /
+sealed-chamber studies, parameter fitting to measured (pressure, height) pairs, and the
+module characteristic (volume and height against pressure and load) used by ``softpad.sim``.
+
+FElupe, tensortrax, scipy and matplotlib are imported lazily inside the functions.
+"""
+
+from softpad.fem._chamber import (
+    ATMOSPHERIC_PRESSURE_PA,
+    DEFAULT_DEAD_VOLUME_M3,
+    ChamberResult,
+    sealed_chamber_study,
+)
+from softpad.fem._characteristic import (
+    CHARACTERISTIC_PATH,
+    ModuleCharacteristic,
+    load_characteristic,
+    module_characteristic,
+)
+from softpad.fem._fitting import (
+    ComparisonResult,
+    FitResult,
+    compare_models,
+    fit_material,
+    read_measurements,
+)
+from softpad.fem._geometry import (
+    DEFAULT_MESH,
+    DEFAULT_THICKNESS_M,
+    DEFAULT_WIDTH_M,
+    LoadPatch,
+    MeshOptions,
+    ModuleGeometry,
+)
+from softpad.fem._materials import (
+    BULK_TO_SHEAR,
+    MATERIAL_PRESETS,
+    MODEL_NAMES,
+    MaterialModel,
+    get_material,
+)
+from softpad.fem._model import (
+    ConvergenceError,
+    ModuleModel,
+    ModuleState,
+    ProgressCallback,
+    SolverOptions,
+)
+from softpad.fem._studies import (
+    DesignResult,
+    InflationResult,
+    SensitivityResult,
+    StiffnessResult,
+    design_sweep,
+    inflation_sweep,
+    sensitive_area_study,
+    stiffness_study,
+)
+from softpad.fem._verification import plate_center_deflection_m
+
+__all__ = [
+    "ATMOSPHERIC_PRESSURE_PA",
+    "BULK_TO_SHEAR",
+    "CHARACTERISTIC_PATH",
+    "DEFAULT_DEAD_VOLUME_M3",
+    "DEFAULT_MESH",
+    "DEFAULT_THICKNESS_M",
+    "DEFAULT_WIDTH_M",
+    "MATERIAL_PRESETS",
+    "MODEL_NAMES",
+    "ChamberResult",
+    "ComparisonResult",
+    "ConvergenceError",
+    "DesignResult",
+    "FitResult",
+    "InflationResult",
+    "LoadPatch",
+    "MaterialModel",
+    "MeshOptions",
+    "ModuleCharacteristic",
+    "ModuleGeometry",
+    "ModuleModel",
+    "ModuleState",
+    "ProgressCallback",
+    "SensitivityResult",
+    "SolverOptions",
+    "StiffnessResult",
+    "compare_models",
+    "design_sweep",
+    "fit_material",
+    "get_material",
+    "inflation_sweep",
+    "load_characteristic",
+    "module_characteristic",
+    "plate_center_deflection_m",
+    "read_measurements",
+    "sealed_chamber_study",
+    "sensitive_area_study",
+    "stiffness_study",
+]

@@ -1,0 +1,64 @@
+"""Shared helpers of the study result objects (CSV writing, lazy matplotlib)."""
+
+from __future__ import annotations
+
+import csv
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+
+def write_csv(path: str | Path, header: Sequence[str], rows: Sequence[Sequence[Any]]) -> Path:
+    """Write ``rows`` under ``header`` to ``path`` (parent folders created); return the path."""
+    out = Path(path)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    with out.open("w", newline="") as fh:
+        writer = csv.writer(fh)
+        writer.writerow(list(header))
+        for row in rows:
+            writer.writerow([_fmt(v) for v in row])
+    return out
+
+
+def _fmt(value: Any) -> Any:
+    if isinstance(value, float | np.floating):
+        return f"{float(value):.6g}"
+    return value
+
+
+def new_axes(ax: Any = None) -> Any:
+    """Return ``ax`` or a fresh matplotlib axes (matplotlib imported lazily)."""
+    if ax is not None:
+        return ax
+    import matplotlib
+
+    if matplotlib.get_backend().lower() not in ("agg", "pdf", "svg", "ps", "cairo"):
+        try:
+            import matplotlib.pyplot as plt
+        except Exception:  # pragma: no cover - headless fallback
+            matplotlib.use("Agg")
+            import matplotlib.pyplot as plt
+    else:
+        import matplotlib.pyplot as plt
+    _, axes = plt.subplots(figsize=(6.0, 4.0))
+    return axes
+
+
+def save_figure(ax: Any, path: str | Path) -> Path:
+    """Save the figure of ``ax`` as an image at ``path`` and close it."""
+    import matplotlib.pyplot as plt
+
+    out = Path(path)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    fig = ax.figure
+    fig.tight_layout()
+    fig.savefig(out, dpi=120)
+    plt.close(fig)
+    return out
+
+
+def as_list(values: np.ndarray, scale: float = 1.0, digits: int = 6) -> list[float]:
+    """Array times ``scale`` as a list of floats rounded to ``digits`` significant digits."""
+    return [float(f"{v * scale:.{digits}g}") for v in np.asarray(values, dtype=float).ravel()]
