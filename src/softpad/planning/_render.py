@@ -35,12 +35,9 @@ def ascii_pad(
             canvas[y][c * cell] = "+" if y % h == 0 else "|"
     for m in layout.modules:
         r, c = layout.row_col(m)
-        label = f"{m}"
-        value = f"{d[m - 1] / 1e3:.3f}" if d[m - 1] else ""
-        for i, ch in enumerate(label):
+        label = f"{m} {d[m - 1] / 1e3:.3f}" if d[m - 1] else f"{m}"
+        for i, ch in enumerate(label[: cell - 1]):
             canvas[r * h + 1][c * cell + 1 + i] = ch
-        for i, ch in enumerate(value[: cell - 1]):
-            canvas[r * h + 2][c * cell + 1 + i] = ch
 
     def mark(p: tuple[float, float], ch: str) -> None:
         x = min(round(p[0] * cell), width - 1)

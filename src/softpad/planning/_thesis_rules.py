@@ -48,14 +48,18 @@ class _Object:
         self.modules = modules
         self.layout = layout
         self.pcom = compute_pcom(delta, modules, layout)
+        self._cells = {m: self._cell(m) for m in modules}
 
     def c(self, m: int) -> Point:
         return self.layout.center(m)
 
-    def cell(self, m: int) -> tuple[int, int]:
-        """(column, row counted from the bottom) of a module."""
+    def _cell(self, m: int) -> tuple[int, int]:
         r, col = self.layout.row_col(m)
         return col, self.layout.rows - 1 - r
+
+    def cell(self, m: int) -> tuple[int, int]:
+        """(column, row counted from the bottom) of a module."""
+        return self._cells[m] if m in self._cells else self._cell(m)
 
     def edge_adjacent(self, a: int, b: int) -> bool:
         (ca, ra), (cb, rb) = self.cell(a), self.cell(b)
