@@ -1,0 +1,586 @@
+"""``softpad fem ...``: finite-element design studies of one module (thesis chapter 7)."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from typing import Any
+
+from softpad.cli._args import finite_float
+from softpad.errors import InputError
+
+_MODELS = ("neo-hookean", "mooney-rivlin", "ogden-1", "ogden-2", "varga", "yeoh")
+
+_EPILOG = """examples:
+  softpad fem sweep --model yeoh --json
+  softpad fem sweep --model neo-hookean --thickness-mm 2 --csv h.csv --png h.png --vtu module.vtu
+  softpad fem design --parameter thickness --values-mm 1,1.5,2,2.5,3
+  softpad fem stiffness --forces-n 0.2,0.5,0.8 --radius-mm 10
+  softpad fem sensitivity --pressures-kpa 0.5,1.1,2,2.8
+  softpad fem chamber --pressure-kpa 1.1 --footprint-mm 42x31 --masses-g 6,12.6,50
+  softpad fem fit --data measurements.csv --model yeoh
+  softpad fem compare --data measurements.csv
+  softpad fem characteristic --out module_characteristic.npz
+
+models: neo-hookean, mooney-rivlin, ogden-1, ogden-2, varga, yeoh (thesis Table 7.1).
+measurement CSV: header pressure_kpa,height_mm; one row per measured point.
+"""
+
+
+def _numbers(text: str, flag: str, scale: float = 1.0, positive: bool = False) -> list[float]:
+    """Parse ``"1,1.5,2"`` times ``scale``, naming the flag and the bad item on error."""
+    items = [s.strip() for s in str(text).replace(";", ",").split(",")]
+    if items == [""]:
+        raise InputError(f"{flag} needs comma-separated numbers, got an empty value")
+    out = []
+    for i, s in enumerate(items, 1):
+        try:
+            v = float(s)
+        except ValueError:
+            raise InputError(f"{flag}: item {i} {s!r} is not a number") from None
+        if not math.isfinite(v):
+            raise InputError(f"{flag}: item {i} must be finite, got {s!r}")
+        if positive and v <= 0:
+            raise InputError(f"{flag}: item {i} must be > 0, got {s!r}")
+        out.append(v * scale)
+    return out
+
+
+def _model_name(text: str) -> str:
+    name = str(text).strip().lower()
+    if name not in _MODELS:
+        raise argparse.ArgumentTypeError(
+            f"unknown model {text!r}; choose from {', '.join(_MODELS)}"
+        )
+    return name
+
+
+def _add_common(p: argparse.ArgumentParser, model: bool = True, geometry: bool = True) -> None:
+    if model:
+        p.add_argument(
+            "--model",
+            type=_model_name,
+            default="neo-hookean",
+            help="material preset (default neo-hookean): " + ", ".join(_MODELS),
+        )
+    if geometry:
+        p.add_argument(
+            "--thickness-mm",
+            type=finite_float("--thickness-mm", unit="mm"),
+            default=1.5,
+            help="upper-layer thickness in mm (default 1.5)",
+        )
+        p.add_argument(
+            "--width-mm",
+            type=finite_float("--width-mm", unit="mm"),
+            default=45.0,
+            help="module width in mm (default 45)",
+        )
+    p.add_argument(
+        "--mesh",
+        choices=("coarse", "default", "fine"),
+        default="default",
+        help="discretisation: coarse (6x6x1), default (10x10x2), fine (16x16x2) quarter cells",
+    )
+    p.add_argument("--csv", metavar="PATH", help="write the results as CSV")
+    p.add_argument("--png", metavar="PATH", help="write a plot as PNG")
+    p.add_argument("--json", action="store_true", help="print the results as JSON")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
+
+
+def register(sub: Any) -> None:
+    p = sub.add_parser(
+        "fem",
+        help="finite-element design studies of one module (FElupe)",
+        description=(
+            "Finite-element model of one SoftPad module: the upper silicone layer (quarter "
+            "model, lateral faces fixed, follower pressure on the lower face, nearly "
+            "incompressible hyperelastic material of thesis Table 7.1)."
+        ),
+        epilog=_EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    fem_sub = p.add_subparsers(dest="fem_command", metavar="STUDY")
+    p.set_defaults(handler=lambda args: _usage(p))
+
+    s = fem_sub.add_parser("sweep", help="centre height against pressure (Fig. 7.2b)")
+    _add_common(s)
+    s.add_argument(
+        "--max-pressure-kpa",
+        type=finite_float("--max-pressure-kpa", lo=0.0, hi=10.0, unit="kPa"),
+        default=3.0,
+        help="highest pressure in kPa (default 3)",
+    )
+    s.add_argument("--points", type=int, default=13, help="number of pressures (default 13)")
+    s.add_argument("--vtu", metavar="PATH", help="write the deformed module at the last pressure")
+    s.set_defaults(handler=_sweep)
+
+    d = fem_sub.add_parser("design", help="height at 1 kPa against thickness or width (Fig. 7.3)")
+    _add_common(d, model=False)
+    d.add_argument("--parameter", choices=("thickness", "width"), default="thickness")
+    d.add_argument(
+        "--values-mm",
+        metavar="V1,...",
+        help="parameter values in mm (default thickness 1..3, width 35..55)",
+    )
+    d.add_argument(
+        "--models",
+        default="neo-hookean,yeoh",
+        help="comma-separated presets (default neo-hookean,yeoh)",
+    )
+    d.add_argument(
+        "--pressure-kpa",
+        type=finite_float("--pressure-kpa", lo=0.0, hi=10.0, unit="kPa"),
+        default=1.0,
+        help="inflating pressure in kPa (default 1)",
+    )
+    d.set_defaults(handler=_design)
+
+    k = fem_sub.add_parser(
+        "stiffness", help="equivalent stiffness under a central load (Fig. 6.3c)"
+    )
+    _add_common(k)
+    k.add_argument(
+        "--pressures-kpa", default="0.5,0.96,1.42,1.88,2.34,2.8", help="pressures in kPa"
+    )
+    k.add_argument("--forces-n", default="0.2,0.5,0.8", help="loads in N (default 0.2,0.5,0.8)")
+    k.add_argument(
+        "--radius-mm",
+        type=finite_float("--radius-mm", unit="mm"),
+        default=10.0,
+        help="radius of the loaded central disc in mm (default 10)",
+    )
+    k.set_defaults(handler=_stiffness)
+
+    a = fem_sub.add_parser("sensitivity", help="sensitive area against pressure (Section 6.1.2)")
+    _add_common(a)
+    a.add_argument(
+        "--pressures-kpa", default="0.5,0.96,1.42,1.88,2.34,2.8", help="pressures in kPa"
+    )
+    a.add_argument(
+        "--fraction",
+        type=finite_float("--fraction", lo=0.0, hi=1.0),
+        default=0.5,
+        help="response threshold relative to the centre (default 0.5)",
+    )
+    a.set_defaults(handler=_sensitivity)
+
+    c = fem_sub.add_parser("chamber", help="sealed chamber: pressure rise of a load, minimum mass")
+    _add_common(c)
+    c.add_argument(
+        "--pressure-kpa",
+        type=finite_float("--pressure-kpa", lo=0.0, hi=10.0, unit="kPa"),
+        default=1.1,
+        help="pressure when the valves close, kPa (default 1.1)",
+    )
+    c.add_argument(
+        "--footprint-mm",
+        default="42x31",
+        help="object footprint WxH in mm, or a disc diameter as dD (default 42x31: Duplo brick)",
+    )
+    c.add_argument(
+        "--masses-g", default="6,12.6,50,100", help="masses in g (default 6,12.6,50,100)"
+    )
+    c.add_argument(
+        "--dead-volume-ml",
+        type=finite_float("--dead-volume-ml", lo=0.0, unit="mL"),
+        default=3.1416,
+        help="tubing and sensor dead volume in mL (default 3.14: 1 m of 2 mm tubing)",
+    )
+    c.add_argument(
+        "--threshold-kpa",
+        type=finite_float("--threshold-kpa", lo=0.0, unit="kPa"),
+        default=0.05,
+        help="detection threshold in kPa (default 0.05, thesis t_o)",
+    )
+    c.add_argument(
+        "--noise-kpa",
+        type=finite_float("--noise-kpa", lo=0.0, unit="kPa"),
+        help="sensor noise (rms) in kPa; if given the threshold is N_SIGMA times it",
+    )
+    c.add_argument(
+        "--n-sigma",
+        type=finite_float("--n-sigma", lo=0.0),
+        default=3.0,
+        help="threshold in noise rms units with --noise-kpa (default 3)",
+    )
+    c.set_defaults(handler=_chamber)
+
+    f = fem_sub.add_parser("fit", help="fit a model's parameters to measured heights")
+    _add_common(f)
+    f.add_argument("--data", required=True, metavar="CSV", help="pressure_kpa,height_mm file")
+    f.add_argument("--free", metavar="NAMES", help="parameters to fit (default: all moduli)")
+    f.add_argument("--max-evals", type=int, default=60, help="budget of sweeps (default 60)")
+    f.set_defaults(handler=_fit)
+
+    m = fem_sub.add_parser("compare", help="rank the presets by RMSE on measured heights")
+    _add_common(m, model=False)
+    m.add_argument("--data", required=True, metavar="CSV", help="pressure_kpa,height_mm file")
+    m.add_argument("--models", default=",".join(_MODELS), help="presets to compare (default all)")
+    m.set_defaults(handler=_compare)
+
+    t = fem_sub.add_parser(
+        "characteristic", help="tabulate volume and height against pressure and load (.npz)"
+    )
+    _add_common(t)
+    t.add_argument("--out", metavar="PATH", help="output file (default: the shipped data file)")
+    t.add_argument("--loads-n", help="loads in N starting at 0 (default 0..3 N, 15 values)")
+    t.add_argument(
+        "--pressures-kpa", help="pressures in kPa starting at 0 (default 0..3 every 0.1)"
+    )
+    t.set_defaults(handler=_characteristic)
+
+
+def _usage(p: argparse.ArgumentParser) -> int:
+    p.print_help(sys.stderr)
+    return 2
+
+
+# ---------------------------------------------------------------------------- helpers
+def _geometry(args: argparse.Namespace) -> Any:
+    from softpad.fem import ModuleGeometry
+
+    if args.thickness_mm <= 0:
+        raise InputError(f"--thickness-mm must be > 0 mm, got {args.thickness_mm:g} mm")
+    if args.width_mm <= 0:
+        raise InputError(f"--width-mm must be > 0 mm, got {args.width_mm:g} mm")
+    return ModuleGeometry(args.width_mm * 1e-3, args.thickness_mm * 1e-3)
+
+
+def _mesh(args: argparse.Namespace) -> Any:
+    from softpad.fem import MeshOptions
+
+    return {
+        "coarse": MeshOptions(6, 1),
+        "default": MeshOptions(),
+        "fine": MeshOptions(16, 2),
+    }[args.mesh]
+
+
+def _models(text: str) -> list[str]:
+    names = [s.strip().lower() for s in text.split(",") if s.strip()]
+    if not names:
+        raise InputError("--models needs at least one model name")
+    for n in names:
+        if n not in _MODELS:
+            raise InputError(f"unknown model {n!r}; choose from {', '.join(_MODELS)}")
+    return names
+
+
+@contextmanager
+def _progress(args: argparse.Namespace, label: str) -> Iterator[Callable[[int, int], None] | None]:
+    """A tqdm bar on stderr driven by the studies' ``progress(done, total)`` callback."""
+    if args.no_progress or not sys.stderr.isatty():
+        yield None
+        return
+    from tqdm import tqdm
+
+    bar = tqdm(desc=label, unit="step", file=sys.stderr, leave=False)
+
+    def update(done: int, total: int) -> None:
+        bar.total = total
+        bar.n = done
+        bar.refresh()
+
+    try:
+        yield update
+    finally:
+        bar.close()
+
+
+def _outputs(args: argparse.Namespace, result: Any) -> None:
+    if args.csv:
+        result.to_csv(args.csv)
+    if args.png:
+        from softpad.fem._results import save_figure
+
+        save_figure(result.plot(), args.png)
+
+
+# ---------------------------------------------------------------------------- handlers
+def _sweep(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from softpad.fem import ModuleModel, inflation_sweep
+
+    if args.points < 2:
+        raise InputError(f"--points must be >= 2, got {args.points}")
+    if args.max_pressure_kpa <= 0:
+        raise InputError(f"--max-pressure-kpa must be > 0 kPa, got {args.max_pressure_kpa:g}")
+    pressures = np.linspace(0.0, args.max_pressure_kpa * 1e3, args.points)
+    model = ModuleModel(args.model, geometry=_geometry(args), mesh=_mesh(args), contact=False)
+    with _progress(args, f"sweep {args.model}") as progress:
+        result = inflation_sweep(pressures_pa=pressures, model=model, progress=progress)
+    _outputs(args, result)
+    if args.vtu:
+        from pathlib import Path
+
+        Path(args.vtu).parent.mkdir(parents=True, exist_ok=True)
+        model.write_vtu(args.vtu)
+    if args.json:
+        print(json.dumps(result.to_json_dict()))
+        return 0
+    print(f"model {result.model}: centre height against pressure")
+    print("pressure_kpa  height_mm  volume_ml")
+    for p, h, v in zip(result.pressure_pa, result.height_m, result.volume_m3, strict=True):
+        print(f"{p * 1e-3:12.3f}  {h * 1e3:9.3f}  {v * 1e6:9.3f}")
+    return 0
+
+
+def _design(args: argparse.Namespace) -> int:
+    from softpad.fem import design_sweep
+
+    defaults = {"thickness": "1,1.5,2,2.5,3", "width": "35,40,45,50,55"}
+    values = _numbers(
+        args.values_mm or defaults[args.parameter], "--values-mm", 1e-3, positive=True
+    )
+    with _progress(args, f"design {args.parameter}") as progress:
+        result = design_sweep(
+            args.parameter,
+            values,
+            materials=_models(args.models),
+            pressure_pa=args.pressure_kpa * 1e3,
+            geometry=_geometry(args),
+            mesh=_mesh(args),
+            progress=progress,
+        )
+    _outputs(args, result)
+    if args.json:
+        print(json.dumps(result.to_dict()))
+        return 0
+    print(f"centre height (mm) at {args.pressure_kpa:g} kPa against {args.parameter}")
+    print(f"{args.parameter}_mm  " + "  ".join(f"{m:>13}" for m in result.models))
+    for j, v in enumerate(result.values_m):
+        print(f"{v * 1e3:12.3f}  " + "  ".join(f"{h * 1e3:13.3f}" for h in result.height_m[:, j]))
+    return 0
+
+
+def _stiffness(args: argparse.Namespace) -> int:
+    from softpad.fem import stiffness_study
+
+    pressures = _numbers(args.pressures_kpa, "--pressures-kpa", 1e3, positive=True)
+    forces = _numbers(args.forces_n, "--forces-n", positive=True)
+    if args.radius_mm <= 0:
+        raise InputError(f"--radius-mm must be > 0 mm, got {args.radius_mm:g}")
+    with _progress(args, "stiffness") as progress:
+        result = stiffness_study(
+            args.model,
+            pressures,
+            forces,
+            args.radius_mm * 1e-3,
+            geometry=_geometry(args),
+            mesh=_mesh(args),
+            progress=progress,
+        )
+    _outputs(args, result)
+    if args.json:
+        print(json.dumps(result.to_dict()))
+        return 0
+    k = result.stiffness_n_per_m * 1e-3
+    print(f"model {result.model}: equivalent stiffness (N/mm); * = layer touches the base")
+    print("pressure_kpa  " + "  ".join(f"F={f:g}N".rjust(10) for f in result.force_n))
+    for i, p in enumerate(result.pressure_pa):
+        cells = [
+            f"{k[i, j]:9.4f}{'*' if result.touches_base[i, j] else ' '}"
+            for j in range(len(result.force_n))
+        ]
+        print(f"{p * 1e-3:12.3f}  " + "  ".join(cells))
+    return 0
+
+
+def _sensitivity(args: argparse.Namespace) -> int:
+    from softpad.fem import sensitive_area_study
+
+    pressures = _numbers(args.pressures_kpa, "--pressures-kpa", 1e3, positive=True)
+    with _progress(args, "sensitivity") as progress:
+        result = sensitive_area_study(
+            args.model,
+            pressures,
+            fraction=args.fraction,
+            geometry=_geometry(args),
+            mesh=_mesh(args),
+            progress=progress,
+        )
+    _outputs(args, result)
+    if args.json:
+        print(json.dumps(result.to_dict()))
+        return 0
+    print(
+        f"model {result.model}: sensitive area = top-face region where a small load changes the "
+        f"chamber volume by >= {result.fraction:g} x its effect at the centre"
+    )
+    print("pressure_kpa  side_mm  area_mm2  centre_dV/dF_ml_per_n")
+    for p, s, ar, c in zip(
+        result.pressure_pa,
+        result.side_m,
+        result.area_m2,
+        result.centre_response_m3_per_n,
+        strict=True,
+    ):
+        print(f"{p * 1e-3:12.3f}  {s * 1e3:7.2f}  {ar * 1e6:8.1f}  {c * 1e6:21.3f}")
+    return 0
+
+
+def _footprint(text: str) -> Any:
+    from softpad.fem import LoadPatch
+
+    t = text.strip().lower()
+    if t.startswith("d"):
+        (d,) = _numbers(t[1:], "--footprint-mm", 1e-3, positive=True)
+        return LoadPatch("disc", d, d)
+    parts = t.split("x")
+    if len(parts) != 2:
+        raise InputError(f"--footprint-mm must be WxH or dD in mm, got {text!r}")
+    w, h = (_numbers(s, "--footprint-mm", 1e-3, positive=True)[0] for s in parts)
+    return LoadPatch("rectangle", w, h)
+
+
+def _chamber(args: argparse.Namespace) -> int:
+    from softpad.fem import sealed_chamber_study
+
+    masses = _numbers(args.masses_g, "--masses-g", 1e-3, positive=True)
+    if args.pressure_kpa <= 0:
+        raise InputError(f"--pressure-kpa must be > 0 kPa, got {args.pressure_kpa:g}")
+    threshold = args.threshold_kpa * 1e3
+    if args.noise_kpa is not None:
+        threshold = args.n_sigma * args.noise_kpa * 1e3
+    if threshold <= 0:
+        raise InputError(f"detection threshold must be > 0 kPa, got {threshold * 1e-3:g}")
+    with _progress(args, "chamber") as progress:
+        result = sealed_chamber_study(
+            args.model,
+            args.pressure_kpa * 1e3,
+            masses,
+            footprint=_footprint(args.footprint_mm),
+            dead_volume_m3=args.dead_volume_ml * 1e-6,
+            geometry=_geometry(args),
+            mesh=_mesh(args),
+            progress=progress,
+        )
+    if args.csv:
+        result.to_csv(args.csv)
+    if args.png:
+        from softpad.fem._results import save_figure
+
+        save_figure(result.plot(threshold_pa=threshold), args.png)
+    info = result.to_dict(threshold)
+    if args.json:
+        print(json.dumps(info))
+        return 0
+    print(
+        f"model {result.model}: sealed at {info['initial_pressure_kpa']:g} kPa, chamber "
+        f"{info['initial_volume_ml']:.3f} mL + dead volume {info['dead_volume_ml']:.3f} mL, "
+        f"footprint {info['footprint']}"
+    )
+    print("mass_g  rise_kpa  volume_ml  height_mm")
+    for m, dp, v, h in zip(
+        info["mass_g"],
+        info["delta_pressure_kpa"],
+        info["volume_ml"],
+        info["height_mm"],
+        strict=True,
+    ):
+        print(f"{m:6.1f}  {dp:8.4f}  {v:9.3f}  {h:9.3f}")
+    print(
+        f"small-load slope {info['rise_kpa_per_g'] * 1e3:.3f} Pa/g; minimum detectable mass "
+        f"{info['min_detectable_mass_g']:.2f} g at threshold {threshold * 1e-3:g} kPa"
+    )
+    return 0
+
+
+def _fit(args: argparse.Namespace) -> int:
+    from softpad.fem import fit_material, read_measurements
+
+    pressure, height = read_measurements(args.data)
+    free = [s.strip() for s in args.free.split(",") if s.strip()] if args.free else None
+    if args.max_evals < 1:
+        raise InputError(f"--max-evals must be >= 1, got {args.max_evals}")
+    with _progress(args, f"fit {args.model}") as progress:
+        result = fit_material(
+            pressure,
+            height,
+            args.model,
+            free=free,
+            geometry=_geometry(args),
+            mesh=_mesh(args),
+            max_evaluations=args.max_evals,
+            progress=progress,
+        )
+    _outputs(args, result)
+    info = result.to_dict()
+    if args.json:
+        print(json.dumps(info))
+        return 0
+    print(f"model {args.model}: RMSE {info['initial_rmse_mm']:.4f} mm -> {info['rmse_mm']:.4f} mm")
+    for name, value in info["parameters"].items():
+        print(f"  {name} = {value:.6g} (was {info['initial_parameters'][name]:.6g})")
+    return 0
+
+
+def _compare(args: argparse.Namespace) -> int:
+    from softpad.fem import compare_models, read_measurements
+
+    pressure, height = read_measurements(args.data)
+    with _progress(args, "compare") as progress:
+        result = compare_models(
+            pressure,
+            height,
+            _models(args.models),
+            geometry=_geometry(args),
+            mesh=_mesh(args),
+            progress=progress,
+        )
+    _outputs(args, result)
+    if args.json:
+        print(json.dumps(result.to_dict()))
+        return 0
+    print("rank  model           RMSE_mm")
+    for i, (name, err) in enumerate(zip(result.models, result.rmse_m, strict=True), 1):
+        print(f"{i:4d}  {name:14s}  {err * 1e3:7.4f}")
+    return 0
+
+
+def _characteristic(args: argparse.Namespace) -> int:
+    from softpad.fem import CHARACTERISTIC_PATH, module_characteristic
+
+    pressures = _numbers(args.pressures_kpa, "--pressures-kpa", 1e3) if args.pressures_kpa else None
+    loads = _numbers(args.loads_n, "--loads-n") if args.loads_n else None
+    with _progress(args, "characteristic") as progress:
+        result = module_characteristic(
+            args.model,
+            pressures_pa=pressures,
+            loads_n=loads,
+            geometry=_geometry(args),
+            mesh=_mesh(args),
+            progress=progress,
+        )
+    out = result.to_npz(args.out or CHARACTERISTIC_PATH)
+    if args.csv or args.png:
+        if args.png:
+            from softpad.fem._results import save_figure
+
+            save_figure(result.plot(), args.png)
+        if args.csv:
+            _characteristic_csv(result, args.csv)
+    if args.json:
+        print(json.dumps({"path": str(out), **result.to_dict()}))
+        return 0
+    print(
+        f"wrote {out}: {len(result.pressure_pa)} pressures x {len(result.load_n)} loads "
+        f"({result.meta['model']}, {result.meta['load_patch'].split(' on ')[0]})"
+    )
+    return 0
+
+
+def _characteristic_csv(result: Any, path: str) -> None:
+    from softpad.fem._results import write_csv
+
+    rows = []
+    for i, p in enumerate(result.pressure_pa):
+        for j, f in enumerate(result.load_n):
+            rows.append([p * 1e-3, f, result.volume_m3[i, j] * 1e6, result.height_m[i, j] * 1e3])
+    write_csv(path, ["pressure_kpa", "load_n", "volume_ml", "height_mm"], rows)
