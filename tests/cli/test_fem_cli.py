@@ -1,0 +1,108 @@
+"""``softpad fem ...`` end to end on coarse meshes: JSON contract, outputs, bad input."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from softpad.cli.main import main
+
+
+def run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
+    try:
+        code = main(list(argv))
+    except SystemExit as exc:
+        code = int(exc.code or 0)
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_sweep_json_has_exactly_the_documented_keys(capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, _ = run(
+        capsys,
+        "fem", "sweep", "--model", "yeoh", "--mesh", "coarse", "--points", "3",
+        "--max-pressure-kpa", "1", "--json",
+    )  # fmt: skip
+    assert code == 0
+    payload = json.loads(out)
+    assert list(payload) == ["model", "pressure_kpa", "height_mm"]
+    assert payload["model"] == "yeoh"
+    assert payload["pressure_kpa"] == [0.0, 0.5, 1.0]
+    assert payload["height_mm"][0] == 0.0 and 8.0 < payload["height_mm"][2] < 10.0
+
+
+def test_sweep_writes_csv_png_vtu(tmp_path, capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, _ = run(
+        capsys,
+        "fem", "sweep", "--mesh", "coarse", "--points", "3", "--max-pressure-kpa", "0.6",
+        "--thickness-mm", "2", "--csv", str(tmp_path / "h.csv"), "--png", str(tmp_path / "h.png"),
+        "--vtu", str(tmp_path / "m.vtu"),
+    )  # fmt: skip
+    assert code == 0 and "height_mm" in out
+    for name in ("h.csv", "h.png", "m.vtu"):
+        assert (tmp_path / name).stat().st_size > 0
+
+
+def test_characteristic_writes_a_loadable_table(tmp_path, capsys) -> None:
+    from softpad.fem import ModuleCharacteristic
+
+    out_path = tmp_path / "c.npz"
+    code, out, _ = run(
+        capsys,
+        "fem", "characteristic", "--mesh", "coarse", "--pressures-kpa", "0,1",
+        "--loads-n", "0,0.2", "--out", str(out_path),
+    )  # fmt: skip
+    assert code == 0 and "2 pressures x 2 loads" in out
+    table = ModuleCharacteristic.from_npz(out_path)
+    np.testing.assert_allclose(table.pressure_pa, [0.0, 1000.0])
+
+
+def test_fit_from_a_csv(tmp_path, capsys: pytest.CaptureFixture[str]) -> None:
+    data = tmp_path / "m.csv"
+    data.write_text("pressure_kpa,height_mm\n0.5,5.0\n1.0,6.6\n")
+    code, out, _ = run(
+        capsys, "fem", "fit", "--data", str(data), "--model", "neo-hookean", "--mesh", "coarse",
+        "--max-evals", "4", "--json",
+    )  # fmt: skip
+    assert code == 0
+    info = json.loads(out)
+    assert info["rmse_mm"] <= info["initial_rmse_mm"]
+
+
+@pytest.mark.parametrize(
+    ("argv", "fragment"),
+    [
+        (["fem", "sweep", "--thickness-mm", "0"], "got 0 mm"),
+        (["fem", "sweep", "--thickness-mm", "-1.5"], "-1.5"),
+        (["fem", "sweep", "--width-mm", "nan"], "nan"),
+        (["fem", "sweep", "--model", "rubber"], "'rubber'"),
+        (["fem", "sweep", "--max-pressure-kpa", "50"], "<= 10 kPa"),
+        (["fem", "chamber", "--masses-g", "6,abc"], "'abc'"),
+        (["fem", "chamber", "--footprint-mm", "42by31"], "'42by31'"),
+        (["fem", "stiffness", "--forces-n", "0.2,-1"], "'-1'"),
+        (["fem", "design", "--models", "neo-hookean,foam"], "'foam'"),
+        (["fem", "fit", "--data", "/nonexistent/m.csv"], "does not exist"),
+    ],
+    ids=[
+        "zero-thickness",
+        "negative-thickness",
+        "nan-width",
+        "unknown-model",
+        "pressure-too-high",
+        "bad-mass",
+        "bad-footprint",
+        "negative-force",
+        "unknown-design-model",
+        "missing-data",
+    ],
+)
+def test_bad_input_is_one_line_and_exit_2(
+    capsys: pytest.CaptureFixture[str], argv: list[str], fragment: str
+) -> None:
+    code, _, err = run(capsys, *argv)
+    assert code == 2
+    assert fragment in err
+    assert len(err.strip().splitlines()) == 1
+    assert "Traceback" not in err
