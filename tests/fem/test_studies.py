@@ -160,7 +160,7 @@ def test_tiny_characteristic_table_and_round_trip(tmp_path) -> None:
 def test_corrupt_characteristic_file_is_an_input_error(tmp_path) -> None:
     bad = tmp_path / "bad.npz"
     bad.write_bytes(b"not a zip")
-    with pytest.raises(InputError, match="bad.npz"):
+    with pytest.raises(InputError, match=r"bad\.npz"):
         ModuleCharacteristic.from_npz(bad)
     with pytest.raises(InputError, match="does not exist"):
         ModuleCharacteristic.from_npz(tmp_path / "missing.npz")
