@@ -167,6 +167,18 @@ def register(sub: Any) -> None:
         default=0.5,
         help="response threshold relative to the centre (default 0.5)",
     )
+    a.add_argument(
+        "--probe-g",
+        type=finite_float("--probe-g", lo=0.0, unit="g"),
+        default=12.6,
+        help="probe mass of the absolute (sealed-chamber) definition in g (default 12.6)",
+    )
+    a.add_argument(
+        "--threshold-kpa",
+        type=finite_float("--threshold-kpa", lo=0.0, unit="kPa"),
+        default=0.05,
+        help="detection threshold of the absolute definition in kPa (default 0.05, t_o)",
+    )
     a.set_defaults(handler=_sensitivity)
 
     c = fem_sub.add_parser("chamber", help="sealed chamber: pressure rise of a load, minimum mass")
@@ -404,6 +416,8 @@ def _sensitivity(args: argparse.Namespace) -> int:
             geometry=_geometry(args),
             mesh=_mesh(args),
             progress=progress,
+            probe_mass_kg=args.probe_g * 1e-3,
+            threshold_pa=args.threshold_kpa * 1e3,
         )
     _outputs(args, result)
     if args.json:

@@ -450,6 +450,13 @@ class SensitivityResult:
         Sensitive area, m^2.
     centre_response_m3_per_n
         ``-dV/dF`` for a force at the centre, m^3/N.
+    probe_mass_kg, threshold_pa
+        Second, absolute definition: a small probe of this mass (kg) resting at ``x`` on a
+        sealed module (valves closed, tubing dead volume included) raises the pressure by
+        ``m g s(x) / (dV/dp + (V + V_dead) / (p_atm + p))``; the detectable area is where
+        that rise reaches ``threshold_pa`` (Pa, thesis t_o = 50 Pa).
+    detectable_area_m2
+        Area of the top face where the probe is detected, m^2.
     """
 
     model: str
@@ -457,6 +464,9 @@ class SensitivityResult:
     fraction: float
     area_m2: np.ndarray
     centre_response_m3_per_n: np.ndarray
+    probe_mass_kg: float = 0.0126
+    threshold_pa: float = 50.0
+    detectable_area_m2: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     @property
     def side_m(self) -> np.ndarray:
@@ -472,6 +482,9 @@ class SensitivityResult:
             "area_mm2": as_list(self.area_m2, 1e6),
             "side_mm": as_list(self.side_m, 1e3),
             "centre_response_ml_per_n": as_list(self.centre_response_m3_per_n, 1e6),
+            "probe_mass_g": self.probe_mass_kg * 1e3,
+            "threshold_kpa": self.threshold_pa * 1e-3,
+            "detectable_side_mm": as_list(np.sqrt(self.detectable_area_m2), 1e3),
         }
 
     def to_csv(self, path: str | Path) -> Path:
@@ -481,18 +494,35 @@ class SensitivityResult:
             self.area_m2 * 1e6,
             self.side_m * 1e3,
             self.centre_response_m3_per_n * 1e6,
+            np.sqrt(self.detectable_area_m2) * 1e3,
             strict=True,
         )
-        return write_csv(
-            path, ["pressure_kpa", "area_mm2", "side_mm", "centre_response_ml_per_n"], list(rows)
-        )
+        header = [
+            "pressure_kpa",
+            "area_mm2",
+            "side_mm",
+            "centre_response_ml_per_n",
+            "detectable_side_mm",
+        ]
+        return write_csv(path, header, list(rows))
 
     def plot(self, ax: Any = None) -> Any:
         """Plot the side of the sensitive square (mm) against pressure (kPa)."""
         ax = new_axes(ax)
-        ax.plot(self.pressure_pa * 1e-3, self.side_m * 1e3, marker="o", label=self.model)
+        ax.plot(
+            self.pressure_pa * 1e-3,
+            self.side_m * 1e3,
+            marker="o",
+            label=f"response >= {self.fraction:g} x centre",
+        )
+        ax.plot(
+            self.pressure_pa * 1e-3,
+            np.sqrt(self.detectable_area_m2) * 1e3,
+            marker="s",
+            label=f"{self.probe_mass_kg * 1e3:g} g probe detected at {self.threshold_pa:g} Pa",
+        )
         ax.set_xlabel("pressure (kPa)")
-        ax.set_ylabel(f"sensitive side (mm), response >= {self.fraction:g} x centre")
+        ax.set_ylabel(f"side of the sensitive square (mm), {self.model}")
         ax.grid(True, alpha=0.3)
         ax.legend()
         return ax
@@ -505,6 +535,9 @@ def sensitive_area_study(
     geometry: ModuleGeometry | None = None,
     mesh: MeshOptions | None = None,
     progress: ProgressCallback | None = None,
+    probe_mass_kg: float = 0.0126,
+    threshold_pa: float = 50.0,
+    dead_volume_m3: float | None = None,
 ) -> SensitivityResult:
     """Sensitive area against pressure (thesis Section 6.1.2; definition in the result).
 
@@ -518,8 +551,29 @@ def sensitive_area_study(
         Response threshold relative to the centre, in (0, 1).
     geometry, mesh, progress
         As in :func:`inflation_sweep`.
+    probe_mass_kg
+        Probe mass of the absolute definition, kg (default 12.6 g, the thesis's brick).
+    threshold_pa
+        Detection threshold of the absolute definition, Pa (default t_o = 50 Pa).
+    dead_volume_m3
+        Tubing dead volume, m^3 (default :data:`~softpad.fem.DEFAULT_DEAD_VOLUME_M3`).
     """
+    from softpad.fem._chamber import (
+        ATMOSPHERIC_PRESSURE_PA,
+        DEFAULT_DEAD_VOLUME_M3,
+        GRAVITY_M_PER_S2,
+    )
+
     p = _pressures(np.linspace(500.0, 2800.0, 6) if pressures_pa is None else pressures_pa)
+    probe = check_finite("probe_mass_kg", probe_mass_kg)
+    thr = check_finite("threshold_pa", threshold_pa)
+    if probe <= 0 or thr <= 0:
+        raise InputError(f"probe mass and threshold must be > 0, got {probe!r} kg, {thr!r} Pa")
+    vd = (
+        DEFAULT_DEAD_VOLUME_M3
+        if dead_volume_m3 is None
+        else check_finite("dead_volume", dead_volume_m3)
+    )
     if p[0] <= 0:
         raise InputError("sensitive area needs pressures > 0 Pa (the flat layer has no dome)")
     frac = check_finite("fraction", fraction)
@@ -529,13 +583,26 @@ def sensitive_area_study(
     points = model.mesh.points
     top = np.abs(points[:, 2] - model.geometry.thickness_m) < 1e-9 * model.geometry.width_m
     area_weights = model._lumped_area(model._top_region)
-    areas, centre = [], []
+    areas, centre, detectable = [], [], []
     for i, pi in enumerate(p):
         model.solve(float(pi), 0.0)
-        dw = model.pressure_sensitivity()[:, 2]
+        dudp, compliance = model.pressure_sensitivity(with_compliance=True)
+        dw = dudp[:, 2]
         c = dw[model._centre_top]
         sensitive = top & (dw >= frac * c)
         areas.append(4.0 * float(area_weights[sensitive].sum()))
         centre.append(float(c))
+        gas = (model.volume_m3() + vd) / (ATMOSPHERIC_PRESSURE_PA + float(pi))
+        rise = probe * GRAVITY_M_PER_S2 * dw / (compliance + gas)
+        detectable.append(4.0 * float(area_weights[top & (rise >= thr)].sum()))
         _tick(progress, i + 1, len(p))
-    return SensitivityResult(model.material.name, p, frac, np.array(areas), np.array(centre))
+    return SensitivityResult(
+        model.material.name,
+        p,
+        frac,
+        np.array(areas),
+        np.array(centre),
+        probe,
+        thr,
+        np.array(detectable),
+    )
