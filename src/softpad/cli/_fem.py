@@ -84,7 +84,7 @@ def _add_common(p: argparse.ArgumentParser, model: bool = True, geometry: bool =
         "--mesh",
         choices=("coarse", "default", "fine"),
         default="default",
-        help="discretisation: coarse (6x6x1), default (10x10x2), fine (16x16x2) quarter cells",
+        help="discretisation: coarse (6x6x1), default (12x12x2), fine (16x16x2) quarter cells",
     )
     p.add_argument("--csv", metavar="PATH", help="write the results as CSV")
     p.add_argument("--png", metavar="PATH", help="write a plot as PNG")

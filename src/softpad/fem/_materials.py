@@ -164,8 +164,18 @@ class MaterialModel:
         """
         return _isochoric_energy(self.kind, dict(self.parameters))
 
-    def felupe_material(self) -> Any:
-        """The isochoric part as a FElupe material (tensortrax automatic differentiation)."""
+    def felupe_material(self, automatic_differentiation: bool = False) -> Any:
+        """The isochoric part as a FElupe material.
+
+        Every model is written with tensortrax (automatic differentiation) in the thesis's
+        form. The neo-Hookean model, whose FElupe hand-coded ``NeoHooke(mu)`` without bulk
+        modulus is exactly ``mu/2 (I1_bar - 3)``, uses that faster implementation unless
+        ``automatic_differentiation`` is set (the tests check both agree).
+        """
+        if self.kind == "neo-hookean" and not automatic_differentiation:
+            import felupe as fem
+
+            return fem.NeoHooke(mu=self.parameters["mu"])
         import felupe.constitution.tensortrax as mat
 
         return mat.Hyperelastic(self.isochoric_energy())

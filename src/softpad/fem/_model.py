@@ -331,31 +331,43 @@ class ModuleModel:
         self, pressure_pa: float, load_n: float, matrix: bool = True
     ) -> tuple[np.ndarray, Any]:
         """Residual vector and (optionally) tangent matrix at the current field."""
-        K: Any = None
+        r = self._residual(pressure_pa, load_n)
+        return r, (self._tangent() if matrix else None)
+
+    def _contact_terms(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Degrees of freedom, penalty stiffnesses and active flags of the base contact."""
+        uz = self.field[0].values[self._contact_points, 2]
+        k = self.solver.contact_stiffness_pa_per_m * self._contact_area
+        return 3 * self._contact_points + 2, k, uz < 0.0
+
+    def _residual(self, pressure_pa: float, load_n: float) -> np.ndarray:
+        """Out-of-balance force vector at the current field (updates the kinematics), N."""
         solid, pres = self._solid, self._pressure
         self._bottom_field.link(self.field)
         pres.update(pressure_pa)
         r = np.asarray(solid.assemble.vector(self.field).toarray()).ravel()
         r[: self._ndisp] -= np.asarray(pres.assemble.vector(self._bottom_field).toarray()).ravel()
         r[: self._ndisp] -= load_n * self._load_unit
-        if matrix:
-            K = solid.assemble.matrix().tocsr()
-            Kp = pres.assemble.matrix().tocsr()
-            Kp.resize(K.shape)
-            K = K - Kp
         if self.contact and len(self._contact_points):
+            dofs, k, active = self._contact_terms()
             uz = self.field[0].values[self._contact_points, 2]
-            active = uz < 0.0
-            k = self.solver.contact_stiffness_pa_per_m * self._contact_area
-            dofs = 3 * self._contact_points + 2
             r[dofs] += np.where(active, k * uz, 0.0)
-            if K is not None:
-                from scipy.sparse import diags
+        return r
 
-                diag = np.zeros(K.shape[0])
-                diag[dofs] = np.where(active, k, 0.0)
-                K = K + diags(diag)
-        return r, K
+    def _tangent(self) -> Any:
+        """Tangent matrix at the kinematics of the last :meth:`_residual` call."""
+        K = self._solid.assemble.matrix().tocsr()
+        Kp = self._pressure.assemble.matrix().tocsr()
+        Kp.resize(K.shape)
+        K = K - Kp
+        if self.contact and len(self._contact_points):
+            from scipy.sparse import diags
+
+            dofs, k, active = self._contact_terms()
+            diag = np.zeros(K.shape[0])
+            diag[dofs] = np.where(active, k, 0.0)
+            K = K + diags(diag)
+        return K
 
     def _apply(self, du: np.ndarray, alpha: float) -> None:
         offset = 0
@@ -365,6 +377,11 @@ class ModuleModel:
             offset += size
 
     def _newton(self, pressure_pa: float, load_n: float) -> int:
+        # a diverging trial (later halved) may pass through inverted cells; keep NumPy quiet
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            return self._newton_iterations(pressure_pa, load_n)
+
+    def _newton_iterations(self, pressure_pa: float, load_n: float) -> int:
         """Iterate to equilibrium at fixed loads; return iterations or -1 on failure.
 
         Newton-Raphson; an increment whose largest displacement exceeds the layer thickness
@@ -377,7 +394,7 @@ class ModuleModel:
         scale = abs(pressure_pa) * self.geometry.half_width_m**2 + 0.25 * abs(load_n)
         scale = max(scale, 1e-3 * self.material.shear_modulus_pa * self.geometry.thickness_m**2)
         tol = self.solver.relative_tolerance * scale
-        r, K = self._system(pressure_pa, load_n)
+        r = self._residual(pressure_pa, load_n)
         rnorm = float(np.linalg.norm(r[dof1]))
         step_norm = np.inf
         for iteration in range(self.solver.max_iterations + 1):
@@ -389,6 +406,7 @@ class ModuleModel:
                 return iteration
             if iteration == self.solver.max_iterations:
                 break
+            K = self._tangent()
             du = np.zeros_like(r)
             du[dof1] = splu(K[dof1][:, dof1].tocsc()).solve(-r[dof1])
             if not np.all(np.isfinite(du)):
@@ -399,7 +417,7 @@ class ModuleModel:
             step_norm = umax
             cap = self.geometry.thickness_m
             self._apply(du, 1.0 if umax <= cap else cap / umax)
-            r, K = self._system(pressure_pa, load_n)
+            r = self._residual(pressure_pa, load_n)
             rnorm = float(np.linalg.norm(r[dof1]))
         return -1
 
