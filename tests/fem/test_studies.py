@@ -178,9 +178,13 @@ def test_shipped_characteristic_file() -> None:
     p, f = table.pressure_pa, table.load_n
     assert p[0] == 0.0 and p[-1] == 3000.0 and f[0] == 0.0 and f[-1] >= 3.0
     assert table.volume_m3.shape == (p.size, f.size)
-    # volume grows with pressure and shrinks with load (small tolerance for contact noise)
+    # volume grows with pressure and shrinks with load; once the layer is pressed flat on the
+    # base, micron-sized pockets beside the patch change by a few uL, hence 0.01 mL tolerance
     assert np.all(np.diff(table.volume_m3[:, 0]) > 0)
-    assert np.all(np.diff(table.volume_m3, axis=1) < 1e-9)
+    assert np.all(np.diff(table.volume_m3, axis=1) < 1e-8)
+    inflated = table.pressure_pa >= 1000.0
+    light = table.load_n <= 0.5
+    assert np.all(np.diff(table.volume_m3[np.ix_(inflated, light)], axis=1) < 0)
     # issue 5 scale: ~8 mL under the layer and ~8.3 mm at 1.1 kPa, ~3.8 mL per kPa
     np.testing.assert_allclose(table.height_at(1100.0), 8.3e-3, rtol=0.05)
     np.testing.assert_allclose(table.volume_at(1100.0), 8.0e-6, rtol=0.1)
