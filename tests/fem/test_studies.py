@@ -188,3 +188,12 @@ def test_shipped_characteristic_file() -> None:
     # issue 5 scale: ~8 mL under the layer and ~8.3 mm at 1.1 kPa, ~3.8 mL per kPa
     np.testing.assert_allclose(table.height_at(1100.0), 8.3e-3, rtol=0.05)
     np.testing.assert_allclose(table.volume_at(1100.0), 8.0e-6, rtol=0.1)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", MODEL_NAMES, ids=MODEL_NAMES)
+def test_every_preset_converges_from_0_to_3_kpa(name: str) -> None:
+    """Issue 5: with the thesis's forms every model inflates monotonically to 3 kPa."""
+    result = inflation_sweep(name, [0.0, 1000.0, 2000.0, 3000.0], mesh=MeshOptions(4, 1))
+    assert np.all(np.diff(result.height_m) > 0)
+    assert np.all(np.diff(result.volume_m3) > 0)
