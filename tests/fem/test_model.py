@@ -81,7 +81,7 @@ def test_volume_change_of_a_small_load_follows_reciprocity(inflated: ModuleModel
     saved = inflated.checkpoint()
     v0 = inflated.volume_m3()
     dwdp = inflated.pressure_sensitivity()[:, 2]
-    weights = -inflated._load_unit[2::3] / 0.25
+    weights = inflated.load_patch_weights
     np.testing.assert_allclose(weights.sum(), 1.0, rtol=1e-12)
     force = 0.01
     predicted = -force * float(np.dot(weights, dwdp))

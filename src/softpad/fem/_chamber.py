@@ -159,7 +159,7 @@ def sealed_rise_per_force(
     rise_pa_per_n, compliance_m3_per_pa
     """
     dwdp, compliance = model.pressure_sensitivity(with_compliance=True)
-    weights = -model._load_unit[2::3] / 0.25  # patch weights, summing to one
+    weights = model.load_patch_weights
     s = float(np.dot(weights, dwdp[:, 2]))
     volume = model.volume_m3()
     gas = (volume + dead_volume_m3) / (atmospheric_pa + model.pressure_pa)

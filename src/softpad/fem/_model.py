@@ -255,6 +255,25 @@ class ModuleModel:
         return np.asarray(self.field[0].values)
 
     @property
+    def centre_top_point(self) -> int:
+        """Index of the mesh point at the centre of the top face."""
+        return self._centre_top
+
+    def top_face_area_weights(self) -> np.ndarray:
+        """Reference area (m^2) attributed to each point of the quarter's top face, 0 elsewhere."""
+        weights = self._lumped_area(self._top_region)
+        top = (
+            np.abs(self.mesh.points[:, 2] - self.geometry.thickness_m)
+            < 1e-9 * self.geometry.width_m
+        )
+        return np.where(top, weights, 0.0)
+
+    @property
+    def load_patch_weights(self) -> np.ndarray:
+        """Share of the quarter's load carried by each point (sums to one), shape (npoints,)."""
+        return -self._load_unit[2::3] / 0.25
+
+    @property
     def height_m(self) -> float:
         """Vertical displacement of the top-face centre, m."""
         return float(self.field[0].values[self._centre_top, 2])

@@ -580,15 +580,14 @@ def sensitive_area_study(
     if not 0.0 < frac < 1.0:
         raise InputError(f"fraction must be in (0, 1), got {frac!r}")
     model = ModuleModel(material, geometry=geometry, mesh=mesh, contact=False)
-    points = model.mesh.points
-    top = np.abs(points[:, 2] - model.geometry.thickness_m) < 1e-9 * model.geometry.width_m
-    area_weights = model._lumped_area(model._top_region)
+    area_weights = model.top_face_area_weights()
+    top = area_weights > 0
     areas, centre, detectable = [], [], []
     for i, pi in enumerate(p):
         model.solve(float(pi), 0.0)
         dudp, compliance = model.pressure_sensitivity(with_compliance=True)
         dw = dudp[:, 2]
-        c = dw[model._centre_top]
+        c = dw[model.centre_top_point]
         sensitive = top & (dw >= frac * c)
         areas.append(4.0 * float(area_weights[sensitive].sum()))
         centre.append(float(c))
