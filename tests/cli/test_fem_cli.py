@@ -72,6 +72,43 @@ def test_fit_from_a_csv(tmp_path, capsys: pytest.CaptureFixture[str]) -> None:
 
 
 @pytest.mark.parametrize(
+    ("argv", "key"),
+    [
+        (["design", "--values-mm", "1.5,2", "--models", "neo-hookean"], "height_mm"),
+        (
+            ["stiffness", "--pressures-kpa", "0.5,1.5", "--forces-n", "0.2,0.8"],
+            "stiffness_n_per_mm",
+        ),
+        (["sensitivity", "--pressures-kpa", "0.5,2"], "side_mm"),
+        (["chamber", "--masses-g", "6,12.6"], "min_detectable_mass_g"),
+    ],
+    ids=["design", "stiffness", "sensitivity", "chamber"],
+)
+def test_study_commands_write_json_csv_png(
+    tmp_path, capsys: pytest.CaptureFixture[str], argv: list[str], key: str
+) -> None:
+    csv, png = tmp_path / "r.csv", tmp_path / "r.png"
+    code, out, _ = run(
+        capsys, "fem", *argv, "--mesh", "coarse", "--json", "--csv", str(csv), "--png", str(png)
+    )
+    assert code == 0
+    assert key in json.loads(out)
+    assert csv.stat().st_size > 0 and png.stat().st_size > 0
+
+
+def test_compare_ranks_models_from_a_csv(tmp_path, capsys: pytest.CaptureFixture[str]) -> None:
+    data = tmp_path / "m.csv"
+    data.write_text("pressure_kpa,height_mm\n0.5,6.1\n1.0,8.0\n2.0,11.2\n")
+    code, out, _ = run(
+        capsys, "fem", "compare", "--data", str(data), "--models", "yeoh,neo-hookean",
+        "--mesh", "coarse",
+    )  # fmt: skip
+    assert code == 0
+    lines = out.strip().splitlines()
+    assert lines[1].split()[1] == "neo-hookean" and lines[2].split()[1] == "yeoh"
+
+
+@pytest.mark.parametrize(
     ("argv", "fragment"),
     [
         (["fem", "sweep", "--thickness-mm", "0"], "got 0 mm"),

@@ -427,15 +427,23 @@ def _sensitivity(args: argparse.Namespace) -> int:
         f"model {result.model}: sensitive area = top-face region where a small load changes the "
         f"chamber volume by >= {result.fraction:g} x its effect at the centre"
     )
-    print("pressure_kpa  side_mm  area_mm2  centre_dV/dF_ml_per_n")
-    for p, s, ar, c in zip(
+    print(
+        f"detectable side: where a {args.probe_g:g} g probe raises the sealed pressure by >= "
+        f"{args.threshold_kpa:g} kPa"
+    )
+    print("pressure_kpa  side_mm  area_mm2  centre_dV/dF_ml_per_n  detectable_side_mm")
+    for p, s, ar, c, d in zip(
         result.pressure_pa,
         result.side_m,
         result.area_m2,
         result.centre_response_m3_per_n,
+        result.detectable_area_m2,
         strict=True,
     ):
-        print(f"{p * 1e-3:12.3f}  {s * 1e3:7.2f}  {ar * 1e6:8.1f}  {c * 1e6:21.3f}")
+        print(
+            f"{p * 1e-3:12.3f}  {s * 1e3:7.2f}  {ar * 1e6:8.1f}  {c * 1e6:21.3f}  "
+            f"{d**0.5 * 1e3:18.2f}"
+        )
     return 0
 
 
