@@ -53,7 +53,14 @@ def test_mooney_rivlin_and_varga_follow_neo_hookean(
 
 
 def test_inflation_result_outputs(tmp_path) -> None:
-    result = inflation_sweep("neo-hookean", [0.0, 400.0, 800.0], mesh=MeshOptions(3, 1))
+    calls: list[tuple[int, int]] = []
+    result = inflation_sweep(
+        "neo-hookean",
+        [0.0, 400.0, 800.0],
+        mesh=MeshOptions(3, 1),
+        progress=lambda done, total: calls.append((done, total)),
+    )
+    assert calls == [(1, 3), (2, 3), (3, 3)]
     payload = result.to_json_dict()
     assert list(payload) == ["model", "pressure_kpa", "height_mm"]
     assert payload["pressure_kpa"] == [0.0, 0.4, 0.8]

@@ -289,9 +289,19 @@ def _progress(args: argparse.Namespace, label: str) -> Iterator[Callable[[int, i
     if args.no_progress or not sys.stderr.isatty():
         yield None
         return
+    import shutil
+
     from tqdm import tqdm
 
-    bar = tqdm(desc=label, unit="step", file=sys.stderr, leave=False)
+    # some pseudo-terminals report a zero width, which would make tqdm print nothing
+    columns = shutil.get_terminal_size((80, 20)).columns
+    bar = tqdm(
+        desc=label,
+        unit="step",
+        file=sys.stderr,
+        leave=False,
+        ncols=columns if columns > 20 else 80,
+    )
 
     def update(done: int, total: int) -> None:
         bar.total = total
