@@ -64,7 +64,14 @@ class InflationParams:
     max_drift_pa_s: float = 25.0
 
     def __post_init__(self) -> None:
-        for n in ("target_pa", "tolerance_pa", "max_pressure_pa", "timeout_s", "settle_s", "max_drift_pa_s"):
+        for n in (
+            "target_pa",
+            "tolerance_pa",
+            "max_pressure_pa",
+            "timeout_s",
+            "settle_s",
+            "max_drift_pa_s",
+        ):
             v = getattr(self, n)
             if not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
                 raise InputError(f"inflation {n} must be a positive number, got {v!r}")
@@ -74,7 +81,9 @@ class InflationParams:
                 f"{self.max_pressure_pa / 1e3:g} kPa"
             )
         if not (isinstance(self.reference_reads, int) and self.reference_reads >= 1):
-            raise InputError(f"reference reads must be an integer >= 1, got {self.reference_reads!r}")
+            raise InputError(
+                f"reference reads must be an integer >= 1, got {self.reference_reads!r}"
+            )
 
 
 @dataclass(frozen=True)
@@ -104,7 +113,9 @@ class AdjustmentResult:
         }
 
 
-def check_frame(frame: PressureFrame, n_modules: int, max_pressure_pa: float, floor_pa: float = -500.0) -> NDArray[np.float64]:
+def check_frame(
+    frame: PressureFrame, n_modules: int, max_pressure_pa: float, floor_pa: float = -500.0
+) -> NDArray[np.float64]:
     """Module pressures of a frame, or HardwareFault naming a bad channel.
 
     A NaN reading is a sensor fault; a reading below ``floor_pa`` (a module cannot be
@@ -115,7 +126,9 @@ def check_frame(frame: PressureFrame, n_modules: int, max_pressure_pa: float, fl
     bad = ~np.isfinite(p)
     if bad.any():
         ch = int(np.argmax(bad)) + 1
-        raise HardwareFault(f"channel {ch}: pressure sensor gives no valid reading (NaN) at t = {frame.t_s:.2f} s")
+        raise HardwareFault(
+            f"channel {ch}: pressure sensor gives no valid reading (NaN) at t = {frame.t_s:.2f} s"
+        )
     low = p < floor_pa
     if low.any():
         ch = int(np.argmax(low)) + 1
@@ -133,7 +146,13 @@ def check_frame(frame: PressureFrame, n_modules: int, max_pressure_pa: float, fl
     return p
 
 
-def make_safe(box: Box, n_modules: int, max_pressure_pa: float, timeout_s: float = 5.0, on_frame: FrameHook | None = None) -> None:
+def make_safe(
+    box: Box,
+    n_modules: int,
+    max_pressure_pa: float,
+    timeout_s: float = 5.0,
+    on_frame: FrameHook | None = None,
+) -> None:
     """Put the box in its safe state: inflation valves closed, no module above the maximum.
 
     Closes every valve, then vents (deflation valve open) any module whose reading is above
@@ -204,7 +223,13 @@ def inflate_and_adjust(
 
     def apply(k: int, s: int) -> None:
         if state[k] != s:
-            cmd = ValveCommand.INFLATE if s > 0 else ValveCommand.DEFLATE if s < 0 else ValveCommand.CLOSED
+            cmd = (
+                ValveCommand.INFLATE
+                if s > 0
+                else ValveCommand.DEFLATE
+                if s < 0
+                else ValveCommand.CLOSED
+            )
             box.set_valve(k + 1, cmd)
             state[k] = s
 

@@ -67,7 +67,7 @@ class GripperSpec:
     finger_length_m: float = 0.095
     tip_thickness_m: float = 0.008
     tip_width_m: float = 0.016
-    tip_stiffness_n_m: float = 190.0
+    tip_stiffness_n_m: float = 125.0
     grip_force_n: float = 20.0
     friction: float = 0.5
 

@@ -12,8 +12,10 @@ Model (documented in docs/box-and-simulator.md):
   ``q = a + b (x - x_c) + c (y - y_c)``, with ``a, b, c`` fixed by force and moment balance
   about the centre of mass (x_c, y_c); where q would be negative the object lifts off and the
   points are dropped (a few active-set iterations). Heavier parts thus load their modules more.
-* The load on a module is the integral of q over the part of the footprint that lies on its
-  sensitive square; what lies on a line is carried by the walls and sensed by no module.
+* Only the modules' sensitive squares support the object: between inflated modules the
+  non-sensitive lines are valleys about a module height deep, which an object bridging them
+  does not touch. The load on a module is the integral of q over the footprint on its square.
+  (A fingertip, being small, does reach down into a valley: see ``fingertip_overlap``.)
 """
 
 from __future__ import annotations
@@ -107,6 +109,33 @@ class PadSurface:
         row = self.layout.rows - 1 - row_from_bottom
         idx = row * self.layout.cols + col
         return np.where(ok, idx, -1)
+
+    def module_coverage(
+        self, points_m: NDArray[np.float64], cell_m: float
+    ) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
+        """Module of each sample cell and the fraction of the cell on its sensitive square.
+
+        Each point stands for an axis-aligned square cell of side ``cell_m`` (smaller than the
+        line width, so a cell never reaches two sensitive squares); the fraction is exact for
+        such cells and makes loads vary smoothly with an object's position.
+
+        Returns
+        -------
+        index, fraction
+            0-based module (-1 off the pad) and covered fraction in [0, 1] per point.
+        """
+        pitch, half_line, h = self.layout.pitch_m, 0.5 * self.line_width_m, 0.5 * cell_m
+        col = np.floor(points_m[:, 0] / pitch).astype(np.int64)
+        rb = np.floor(points_m[:, 1] / pitch).astype(np.int64)
+        ok = (col >= 0) & (col < self.layout.cols) & (rb >= 0) & (rb < self.layout.rows)
+
+        def cover(x: NDArray[np.float64], k: NDArray[np.int64]) -> NDArray[np.float64]:
+            lo, hi = k * pitch + half_line, (k + 1) * pitch - half_line
+            return np.clip(np.minimum(x + h, hi) - np.maximum(x - h, lo), 0.0, None) / cell_m
+
+        frac = np.where(ok, cover(points_m[:, 0], col) * cover(points_m[:, 1], rb), 0.0)
+        idx = np.where(ok, (self.layout.rows - 1 - rb) * self.layout.cols + col, -1)
+        return idx, frac
 
     def on_pad(self, points_m: NDArray[np.float64]) -> NDArray[np.bool_]:
         """True for points over the pad (lines included)."""
@@ -239,8 +268,12 @@ def object_footprint(
         area_list.append(np.full(len(p), a))
     pts = to_pad_frame(np.vstack(pts_list), placement)
     areas = np.concatenate(area_list)
-    keep = surface.on_pad(pts)
-    pts, areas = pts[keep], areas[keep]
+    # only the modules' sensitive squares support the object: the lines between inflated
+    # modules are valleys an object bridges without touching (and the pad's border is a wall
+    # at the base level, below the inflated modules)
+    idx_all, cover = surface.module_coverage(pts, step_m)
+    keep = cover > 0
+    pts, areas, idx = pts[keep], areas[keep] * cover[keep], idx_all[keep]
     com = to_pad_frame(np.array([spec.com_m[:2]]), placement)[0]
     weight = spec.mass_kg * GRAVITY_M_S2
     active = np.ones(len(pts), dtype=bool)
@@ -274,10 +307,8 @@ def object_footprint(
             f"object {spec.name!r} at ({placement.x_m * 1e3:.1f}, {placement.y_m * 1e3:.1f}) mm is not "
             "supported by the pad (its centre of mass is outside its footprint on the pad)"
         )
-    idx = surface.module_index(pts)
     frac = np.zeros(surface.layout.n_modules)
-    on = idx >= 0
-    np.add.at(frac, idx[on], q[on] * areas[on])
+    np.add.at(frac, idx, q * areas)
     return ObjectFootprint(pts, q, areas, idx, frac / weight)
 
 
@@ -308,6 +339,7 @@ def fingertip_overlap(
     """
     local = _rect_points(tip_size_m[0], tip_size_m[1], step_m)
     pts = to_pad_frame(local, Placement(center_m[0], center_m[1], yaw_rad))
-    idx = surface.module_index(pts)
-    frac = np.bincount(idx[idx >= 0], minlength=surface.layout.n_modules).astype(float)
+    idx, cover = surface.module_coverage(pts, step_m)
+    on = idx >= 0
+    frac = np.bincount(idx[on], weights=cover[on], minlength=surface.layout.n_modules)
     return frac / len(local)

@@ -75,7 +75,9 @@ class PneumaticParams:
             if not (math.isfinite(v) and v > 0):
                 raise InputError(f"pneumatic {n} must be a positive number, got {v!r}")
         if not (math.isfinite(self.supply_pa) and 0 <= self.supply_pa <= 500e3):
-            raise InputError(f"supply pressure must be within 0..500 kPa, got {self.supply_pa / 1e3:g} kPa")
+            raise InputError(
+                f"supply pressure must be within 0..500 kPa, got {self.supply_pa / 1e3:g} kPa"
+            )
 
     @property
     def gas_constant_rt(self) -> float:
@@ -125,7 +127,9 @@ class ChamberBank:
         rho = self.params.air_density_kg_m3
         self._k = self.params.gas_constant_rt * math.sqrt(2 * rho)
 
-    def set_state(self, pressure_pa: NDArray[np.float64], loads_n: NDArray[np.float64] | None = None) -> None:
+    def set_state(
+        self, pressure_pa: NDArray[np.float64], loads_n: NDArray[np.float64] | None = None
+    ) -> None:
         """Set module pressures (and loads) directly, e.g. to start already inflated."""
         p = np.asarray(pressure_pa, dtype=float)[: self.n_modules]
         if loads_n is not None:
@@ -134,7 +138,9 @@ class ChamberBank:
         self.amount = (self.params.atmosphere_pa + p) * (v + self.params.tubing_volume_m3)
         self.pressure_pa[: self.n_modules] = p
 
-    def _orifice(self, area: NDArray[np.float64] | float, dp: NDArray[np.float64]) -> NDArray[np.float64]:
+    def _orifice(
+        self, area: NDArray[np.float64] | float, dp: NDArray[np.float64]
+    ) -> NDArray[np.float64]:
         return self._k * area * dp / np.sqrt(np.abs(dp) + self.params.laminar_pa)
 
     def step(
@@ -185,7 +191,12 @@ class ChamberBank:
 
     def _solve(self, p: NDArray[np.float64]) -> NDArray[np.float64]:
         """Gauge pressure with ``(p_atm + p)(V(p, F) + V_t) = n`` (Newton, warm start)."""
-        patm, vt, n, f = self.params.atmosphere_pa, self.params.tubing_volume_m3, self.amount, self.loads_n
+        patm, vt, n, f = (
+            self.params.atmosphere_pa,
+            self.params.tubing_volume_m3,
+            self.amount,
+            self.loads_n,
+        )
         for _ in range(8):
             if self._vol_slope is not None:
                 v, dv = self._vol_slope(p, f)

@@ -59,7 +59,13 @@ class SensorParams:
     supply_noise_std_pa: float = 20.0
 
     def __post_init__(self) -> None:
-        for n in ("noise_std_pa", "drift_std_pa", "quantization_pa", "offset_std_pa", "supply_noise_std_pa"):
+        for n in (
+            "noise_std_pa",
+            "drift_std_pa",
+            "quantization_pa",
+            "offset_std_pa",
+            "supply_noise_std_pa",
+        ):
             v = getattr(self, n)
             if not (math.isfinite(v) and v >= 0):
                 raise InputError(f"sensor {n} must be a finite number >= 0, got {v!r}")
@@ -92,22 +98,39 @@ class SensorBank:
     """
 
     def __init__(
-        self, n_channels: int, dt_s: float, params: SensorParams, rng: np.random.Generator, block: int = 4096
+        self,
+        n_channels: int,
+        dt_s: float,
+        params: SensorParams,
+        rng: np.random.Generator,
+        block: int = 4096,
     ) -> None:
         self.params = params
         self.n = n_channels
         self.rng = rng
         self.block = block
-        self.offset_pa = rng.normal(0.0, params.offset_std_pa, n_channels) if params.offset_std_pa else np.zeros(n_channels)
+        self.offset_pa = (
+            rng.normal(0.0, params.offset_std_pa, n_channels)
+            if params.offset_std_pa
+            else np.zeros(n_channels)
+        )
         self._a = math.exp(-dt_s / params.drift_time_s)
         self._drift_innov = params.drift_std_pa * math.sqrt(1 - self._a**2)
-        self._drift = rng.normal(0.0, params.drift_std_pa, n_channels) if params.drift_std_pa else np.zeros(n_channels)
+        self._drift = (
+            rng.normal(0.0, params.drift_std_pa, n_channels)
+            if params.drift_std_pa
+            else np.zeros(n_channels)
+        )
         self._q = params.quantization_pa
         self._inv_q = 1.0 / self._q if self._q else 0.0
         self._i = block
         self._noise = np.zeros((block, n_channels))
         self._supply_noise = np.zeros(block)
-        self._quiet = params.noise_std_pa == 0 and params.drift_std_pa == 0 and params.supply_noise_std_pa == 0
+        self._quiet = (
+            params.noise_std_pa == 0
+            and params.drift_std_pa == 0
+            and params.supply_noise_std_pa == 0
+        )
 
     def _refill(self) -> None:
         p, n, b = self.params, self.n, self.block
@@ -116,7 +139,9 @@ class SensorBank:
             from scipy.signal import lfilter
 
             innov = self.rng.normal(0.0, self._drift_innov, (b, n))
-            drift, zf = lfilter([1.0], [1.0, -self._a], innov, axis=0, zi=(self._a * self._drift)[None, :])
+            drift, _zf = lfilter(
+                [1.0], [1.0, -self._a], innov, axis=0, zi=(self._a * self._drift)[None, :]
+            )
             self._drift = drift[-1]
             noise += drift
         self._noise = noise + self.offset_pa
@@ -125,7 +150,9 @@ class SensorBank:
         )
         self._i = 0
 
-    def sample(self, true_pa: NDArray[np.float64], supply_pa: float) -> tuple[NDArray[np.float64], float]:
+    def sample(
+        self, true_pa: NDArray[np.float64], supply_pa: float
+    ) -> tuple[NDArray[np.float64], float]:
         """One reading of every channel and of the supply, pascals."""
         if self._i >= self.block:
             self._refill()
