@@ -190,6 +190,7 @@ def inflate_and_adjust(
     n_modules: int,
     params: InflationParams | None = None,
     on_frame: FrameHook | None = None,
+    on_adjusted: Callable[[float], None] | None = None,
 ) -> AdjustmentResult:
     """Bring modules 1..n_modules to p0 within t_adj and save the reference (Section 6.2.1.1).
 
@@ -203,6 +204,9 @@ def inflate_and_adjust(
         Inflation parameters (thesis defaults).
     on_frame
         Called with every frame read (logging hook).
+    on_adjusted
+        Called with the box time when every module is within tolerance, before the
+        reference reads.
 
     Raises
     ------
@@ -221,8 +225,12 @@ def inflate_and_adjust(
     settle_start_p: NDArray[np.float64] | None = None
     t0: float | None = None
 
+    quiet = 0  # frames since the last valve change
+
     def apply(k: int, s: int) -> None:
+        nonlocal quiet
         if state[k] != s:
+            quiet = 0
             cmd = (
                 ValveCommand.INFLATE
                 if s > 0
@@ -241,6 +249,7 @@ def inflate_and_adjust(
             t0 = frame.t_s if t0 is None else t0
             p_raw = check_frame(frame, n_modules, params.max_pressure_pa)
             p = filt.update(p_raw)
+            quiet += 1
             if not filt.full:
                 continue
             err = p - target
@@ -258,7 +267,8 @@ def inflate_and_adjust(
                     f"channel {k + 1}: supply pressure {frame.supply_pa / 1e3:.2f} kPa is too low to "
                     f"inflate to {target / 1e3:.2f} kPa (supply lost?)"
                 )
-            if not state.any() and (np.abs(err) <= tol).all():
+            # judge a sealed channel only once the filter holds no sample from before the change
+            if not state.any() and quiet > params.filter_length and (np.abs(err) <= tol).all():
                 if settled_since is None:
                     settled_since, settle_start_p = frame.t_s, p.copy()
                 elif frame.t_s - settled_since >= params.settle_s:
@@ -285,6 +295,8 @@ def inflate_and_adjust(
                 )
         adjusted_at = frame.t_s
         box.close_valves()
+        if on_adjusted is not None:
+            on_adjusted(adjusted_at)
         reads = []
         for _ in range(params.reference_reads):
             frame = box.read()

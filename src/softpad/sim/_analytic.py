@@ -24,7 +24,7 @@ from softpad.sim._footprint import (
     PadSurface,
     fingertip_overlap,
     object_footprint,
-    part_footprint,
+    part_outline,
     to_pad_frame,
 )
 from softpad.sim._objects import ObjectSpec, Placement
@@ -134,9 +134,9 @@ class AnalyticWorld:
     ) -> None:
         self._layout = layout or PadLayout()
         self.surface = PadSurface(self._layout, line_width_m)
-        self.gripper = gripper or GripperSpec()
+        self._gripper = gripper or GripperSpec()
         w, h = self.surface.size_m
-        self._state = GripperState(w / 2, h / 2, start_height_m, 0.0, self.gripper.max_width_m)
+        self._state = GripperState(w / 2, h / 2, start_height_m, 0.0, self._gripper.max_width_m)
         self._target = self._state
         self._speed = 0.0
         self._time = 0.0
@@ -156,6 +156,18 @@ class AnalyticWorld:
         self.first_touch_z_m: float | None = None
         self._dirty = True
         self._grasp_width = 0.0
+        self._overlap_cache: dict[tuple[float, float, float], NDArray[np.float64]] = {}
+
+    @property
+    def gripper(self) -> GripperSpec:
+        """Gripper geometry; setting it (a new mounting) opens the jaws to the new maximum."""
+        return self._gripper
+
+    @gripper.setter
+    def gripper(self, spec: GripperSpec) -> None:
+        self._gripper = spec
+        self._state = replace(self._state, width_m=spec.max_width_m)
+        self._target = self._state
 
     # --- World protocol -------------------------------------------------------------------
     @property
@@ -185,7 +197,7 @@ class AnalyticWorld:
     def place_object(self, spec: ObjectSpec, placement: Placement | None = None) -> None:
         placement = placement or spec.placement
         fp = object_footprint(spec, self.surface, placement)
-        pts = [to_pad_frame(part_footprint(p, 2e-3)[0], placement) for p in spec.parts]
+        pts = [to_pad_frame(part_outline(p, 2e-3), placement) for p in spec.parts]
         loads = fp.weight_fraction * spec.mass_kg * GRAVITY_M_S2
         self._objects.append(_Placed(spec, placement, fp, np.vstack(pts), loads))
         self._update_object_loads()
@@ -280,8 +292,8 @@ class AnalyticWorld:
         if self._grasped is not None:
             return replace(new, width_m=max(new.width_m, self._grasp_width))
         for o in self._objects:
-            if o.lifted:
-                continue
+            if o.lifted or self._state.z_m >= self._object_top_m(o):
+                continue  # fingers above the object: nothing between the jaws
             ext = self._extent_between_jaws(self._state, o)
             if ext is None:
                 continue
@@ -297,6 +309,10 @@ class AnalyticWorld:
                     self._grasp_z = new.z_m
                     return replace(new, width_m=max(new.width_m, width))
         return new
+
+    def _object_top_m(self, o: _Placed) -> float:
+        """Height of an object's top above the pad base, metres."""
+        return float(self._heights.max()) + o.spec.height_m
 
     def _can_hold(self, o: _Placed) -> bool:
         g = self.gripper
@@ -326,9 +342,29 @@ class AnalyticWorld:
                 return o
         return None
 
+    def _tip_fractions(self, centre: tuple[float, float], yaw: float) -> NDArray[np.float64]:
+        key = (round(centre[0], 9), round(centre[1], 9), round(yaw, 9))
+        frac = self._overlap_cache.get(key)
+        if frac is None:
+            g = self.gripper
+            frac = fingertip_overlap(centre, yaw, (g.tip_thickness_m, g.tip_width_m), self.surface)
+            if len(self._overlap_cache) > 64:
+                self._overlap_cache.clear()
+            self._overlap_cache[key] = frac
+        return frac
+
     def _update_tips(self, heights: NDArray[np.float64]) -> None:
         st = self._state
         g = self.gripper
+        if all(t.touch_z_m is None for t in self._tips):
+            top = float(heights.max()) + max(
+                (o.spec.height_m for o in self._objects if not o.lifted), default=0.0
+            )
+            if st.z_m > top:  # nothing within reach of the fingertips
+                if self._tip_loads.any():
+                    self._tip_loads = np.zeros(self._layout.n_modules)
+                    self._dirty = True
+                return
         loads = np.zeros(self._layout.n_modules)
         for tip, centre in zip(self._tips, self.tip_centres_m(st), strict=True):
             frac = fingertip_overlap(

@@ -114,8 +114,6 @@ class AnalyticCharacteristic:
     @cached_property
     def _fit(self) -> tuple[float, float, float]:
         """(a, n, slope at x = 0) of the power law."""
-        from scipy.optimize import brentq
-
         x0, p = self.knee_pa, self.reference_pressure_pa
         dv = self.reference_volume_m3 - self.gap_volume_m3
         target = self.compliance_m3_pa / dv
@@ -123,13 +121,18 @@ class AnalyticCharacteristic:
         def ratio(n: float) -> float:
             return n * (p + x0) ** (n - 1) / ((p + x0) ** n - x0**n) - target
 
-        try:
-            n = float(brentq(ratio, 1e-3, 5.0))
-        except ValueError:
+        lo, hi = 1e-3, 5.0  # ratio increases with n on this bracket: bisection
+        if not ratio(lo) < 0 < ratio(hi):
             raise InputError(
                 "no power law fits the given reference volume and compliance; "
                 f"compliance {self.compliance_m3_pa:g} m^3/Pa is out of reach"
-            ) from None
+            )
+        for _ in range(100):
+            n = 0.5 * (lo + hi)
+            if ratio(n) < 0:
+                lo = n
+            else:
+                hi = n
         a = dv / ((p + x0) ** n - x0**n)
         return a, n, a * n * x0 ** (n - 1)
 

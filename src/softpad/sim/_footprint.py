@@ -200,6 +200,27 @@ def part_footprint(
     return local @ rot.T + np.array(part.pos_m[:2]), area
 
 
+def part_outline(part: PartSpec, step_m: float = 2e-3) -> NDArray[np.float64]:
+    """Points covering the part's full projection on the pad plane, object frame, metres.
+
+    Unlike :func:`part_footprint` (what touches the pad), this is what the jaws meet: a box's
+    rectangle, a lying cylinder's length x diameter, a sphere's or an upright cylinder's disc.
+    """
+    if part.shape == "box":
+        assert part.size_m is not None
+        local = _rect_points(part.size_m[0], part.size_m[1], step_m)
+    elif part.shape == "cylinder" and part.axis != "z":
+        assert part.radius_m is not None and part.length_m is not None
+        d = 2 * part.radius_m
+        lx, ly = (part.length_m, d) if part.axis == "x" else (d, part.length_m)
+        local = _rect_points(lx, ly, step_m)
+    else:
+        assert part.radius_m is not None
+        local = _disc_points(part.radius_m, step_m)
+    c, s = math.cos(part.yaw_rad), math.sin(part.yaw_rad)
+    return local @ np.array([[c, -s], [s, c]]).T + np.array(part.pos_m[:2])
+
+
 def to_pad_frame(points_obj: NDArray[np.float64], placement: Placement) -> NDArray[np.float64]:
     """Object-frame points (n, 2) -> pad-frame points, metres."""
     c, s = math.cos(placement.yaw_rad), math.sin(placement.yaw_rad)

@@ -136,14 +136,14 @@ class SensorBank:
         p, n, b = self.params, self.n, self.block
         noise = self.rng.normal(0.0, p.noise_std_pa, (b, n)) if p.noise_std_pa else np.zeros((b, n))
         if p.drift_std_pa:
-            from scipy.signal import lfilter
-
+            # first-order Gauss-Markov drift d[k] = a d[k-1] + e[k], one row per sample
             innov = self.rng.normal(0.0, self._drift_innov, (b, n))
-            drift, _zf = lfilter(
-                [1.0], [1.0, -self._a], innov, axis=0, zi=(self._a * self._drift)[None, :]
-            )
-            self._drift = drift[-1]
-            noise += drift
+            a, d = self._a, self._drift
+            for k in range(b):
+                d = a * d + innov[k]
+                innov[k] = d
+            self._drift = d
+            noise += innov
         self._noise = noise + self.offset_pa
         self._supply_noise = (
             self.rng.normal(0.0, p.supply_noise_std_pa, b) if p.supply_noise_std_pa else np.zeros(b)
