@@ -28,7 +28,9 @@ def register(sub: Any) -> None:
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     r.add_argument("--box", default="sim://", metavar="URL", help="box URL (default sim://)")
-    r.add_argument("--count", type=int, default=10, help="frames to read, 0 for endless (default 10)")
+    r.add_argument(
+        "--count", type=int, default=10, help="frames to read, 0 for endless (default 10)"
+    )
     r.add_argument("--every", type=int, default=1, help="print every k-th frame (default 1)")
     r.add_argument("--json", action="store_true", help="one JSON object per line")
     r.set_defaults(handler=read)

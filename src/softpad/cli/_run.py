@@ -102,12 +102,16 @@ def _timeline(log: Any, result: Any) -> list[str]:
     lines = []
     for t, kind, d in log.events:
         if kind == "adjusted":
-            lines.append(f"{_fmt(t)}  adjusted: every module within tolerance of {d['target_kpa']:.3f} kPa")
+            lines.append(
+                f"{_fmt(t)}  adjusted: every module within tolerance of {d['target_kpa']:.3f} kPa"
+            )
         elif kind == "reference":
             ref = " ".join(f"{v:.3f}" for v in d["reference_kpa"])
             lines.append(f"{_fmt(t)}  reference saved (kPa, mean of 10 reads): {ref}")
         elif kind == "object_seen":
-            lines.append(f"{_fmt(t)}  object detected on module(s) {', '.join(map(str, d['modules']))}")
+            lines.append(
+                f"{_fmt(t)}  object detected on module(s) {', '.join(map(str, d['modules']))}"
+            )
         elif kind == "plan":
             inc = " ".join(f"{v:.3f}" for v in d["increments_kpa"])
             lines.append(f"{_fmt(t)}  increments (kPa): {inc}")
@@ -117,12 +121,23 @@ def _timeline(log: Any, result: Any) -> list[str]:
                     f"({o['pcom'][0]:.2f}, {o['pcom'][1]:.2f})  COG ({o['cog'][0]:.2f}, {o['cog'][1]:.2f})  "
                     f"theta {o['theta']:+.3f} rad ({math.degrees(o['theta']):+.0f} deg)  [{o['rule']}]"
                 )
-        elif kind == "phase" and d["phase"] in ("approach", "descend", "close", "lift", "hold", "release"):
+        elif kind == "phase" and d["phase"] in (
+            "approach",
+            "descend",
+            "close",
+            "lift",
+            "hold",
+            "release",
+        ):
             lines.append(f"{_fmt(t)}  {d['phase']}")
         elif kind == "contact":
-            lines.append(f"{_fmt(t)}  contact detected on module(s) {', '.join(map(str, d['modules']))}")
+            lines.append(
+                f"{_fmt(t)}  contact detected on module(s) {', '.join(map(str, d['modules']))}"
+            )
         elif kind == "no_contact":
-            lines.append(f"{_fmt(t)}  no contact detected down to {d['z_m'] * 1e3:.1f} mm: gripper not closed")
+            lines.append(
+                f"{_fmt(t)}  no contact detected down to {d['z_m'] * 1e3:.1f} mm: gripper not closed"
+            )
         elif kind == "outcome":
             lines.append(f"{_fmt(t)}  {d['outcome']}")
     for i, g in enumerate(result.grasps, 1):

@@ -185,7 +185,9 @@ class RunLog:
             raise InputError(f"run log {str(p)!r} is unreadable or corrupt: {exc}") from None
 
     # --- plotting -------------------------------------------------------------------
-    def plot(self, path: str | Path | None = None, channels: int | None = None, title: str | None = None) -> Any:
+    def plot(
+        self, path: str | Path | None = None, channels: int | None = None, title: str | None = None
+    ) -> Any:
         """Pressure traces of every channel with the phases shaded, like the seed's Fig. 6.8.
 
         Parameters
@@ -211,7 +213,9 @@ class RunLog:
         t = self.t_s
         p = self.pressures_pa
         if channels is None:
-            used = np.flatnonzero(np.nanmax(p, axis=0) > 200.0) if p.size else np.array([], dtype=int)
+            used = (
+                np.flatnonzero(np.nanmax(p, axis=0) > 200.0) if p.size else np.array([], dtype=int)
+            )
             channels = int(used.max()) + 1 if used.size else (p.shape[1] if p.size else 0)
         fig, ax = plt.subplots(figsize=(10, 4.5), constrained_layout=True)
         seen: set[str] = set()
@@ -221,11 +225,18 @@ class RunLog:
             seen.add(ph)
         for k in range(channels):
             ax.plot(t, p[:, k] / 1e3, lw=0.8, label=f"module {k + 1}")
-        for t_ev, kind, data in self.events:
+        for t_ev, kind, _data in self.events:
             if kind in ("contact", "object_seen", "reference", "no_contact", "fault"):
                 ax.axvline(t_ev, color="k", ls="--", lw=0.7)
-                ax.annotate(kind.replace("_", " "), (t_ev, 1.0), xycoords=("data", "axes fraction"),
-                            rotation=90, va="top", ha="right", fontsize=7)
+                ax.annotate(
+                    kind.replace("_", " "),
+                    (t_ev, 1.0),
+                    xycoords=("data", "axes fraction"),
+                    rotation=90,
+                    va="top",
+                    ha="right",
+                    fontsize=7,
+                )
         ax.set_xlabel("time (s)")
         ax.set_ylabel("pressure (kPa)")
         ax.set_title(title or "SoftPad pressures during the grasp (cf. seed Fig. 6.8)")

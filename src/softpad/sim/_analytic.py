@@ -19,6 +19,7 @@ from numpy.typing import NDArray
 from softpad.errors import InputError
 from softpad.layout import PadLayout
 from softpad.sim._footprint import (
+    DEFAULT_TIP_SENSITIVE_SIDE_M,
     GRAVITY_M_S2,
     ObjectFootprint,
     PadSurface,
@@ -123,6 +124,10 @@ class AnalyticWorld:
         Width of the non-sensitive lines between modules, metres (3 mm).
     start_height_m
         Initial height of the fingertips above the pad base, metres.
+    tip_sensitive_side_m
+        Side of the central square of a module where a fingertip is fully sensed, metres
+        (the thesis's l at 1.1 kPa, about 26.5 mm); towards the lines the sensed share of a
+        fingertip's force falls linearly to zero. None: sensed uniformly up to the lines.
     """
 
     def __init__(
@@ -131,7 +136,9 @@ class AnalyticWorld:
         gripper: GripperSpec | None = None,
         line_width_m: float = 3e-3,
         start_height_m: float = 0.15,
+        tip_sensitive_side_m: float | None = DEFAULT_TIP_SENSITIVE_SIDE_M,
     ) -> None:
+        self.tip_sensitive_side_m = tip_sensitive_side_m
         self._layout = layout or PadLayout()
         self.surface = PadSurface(self._layout, line_width_m)
         self._gripper = gripper or GripperSpec()
@@ -347,7 +354,13 @@ class AnalyticWorld:
         frac = self._overlap_cache.get(key)
         if frac is None:
             g = self.gripper
-            frac = fingertip_overlap(centre, yaw, (g.tip_thickness_m, g.tip_width_m), self.surface)
+            frac = fingertip_overlap(
+                centre,
+                yaw,
+                (g.tip_thickness_m, g.tip_width_m),
+                self.surface,
+                sensitive_side_m=self.tip_sensitive_side_m,
+            )
             if len(self._overlap_cache) > 64:
                 self._overlap_cache.clear()
             self._overlap_cache[key] = frac
@@ -367,9 +380,7 @@ class AnalyticWorld:
                 return
         loads = np.zeros(self._layout.n_modules)
         for tip, centre in zip(self._tips, self.tip_centres_m(st), strict=True):
-            frac = fingertip_overlap(
-                centre, st.yaw_rad, (g.tip_thickness_m, g.tip_width_m), self.surface
-            )
+            frac = self._tip_fractions(centre, st.yaw_rad)
             obj = self._object_under(centre, st)
             if obj is not None:
                 surface_z = float(heights.max()) + obj.spec.height_m

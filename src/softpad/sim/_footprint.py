@@ -333,14 +333,49 @@ def object_footprint(
     return ObjectFootprint(pts, q, areas, idx, frac / weight)
 
 
+#: Side of the central square of a module where a small indenter is fully sensed, metres:
+#: the thesis's sensitive side l at 1.1 kPa, interpolated between about 20 mm at 0.5 kPa and
+#: 45 mm at 2.8 kPa (seed, Section 6.1.2).
+DEFAULT_TIP_SENSITIVE_SIDE_M = 0.020 + 0.025 * (1.1 - 0.5) / (2.8 - 0.5)
+
+
+def tip_sensitivity(
+    points_m: NDArray[np.float64], surface: PadSurface, sensitive_side_m: float
+) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
+    """Module under each point and how well a small indenter there is sensed, in [0, 1].
+
+    A fingertip pushing near a module's clamped border displaces little air, in its middle a
+    lot: the weight is 1 inside the central ``sensitive_side_m`` square, 0 on the line, and
+    rises linearly in between, separately along x and y (the product of the two).
+    """
+    pitch, half_line = surface.layout.pitch_m, 0.5 * surface.line_width_m
+    ramp = max(0.5 * (pitch - sensitive_side_m) - half_line, 1e-9)
+    col = np.floor(points_m[:, 0] / pitch).astype(np.int64)
+    rb = np.floor(points_m[:, 1] / pitch).astype(np.int64)
+    ok = (col >= 0) & (col < surface.layout.cols) & (rb >= 0) & (rb < surface.layout.rows)
+
+    def weight(x: NDArray[np.float64], k: NDArray[np.int64]) -> NDArray[np.float64]:
+        d = np.minimum(x - k * pitch, (k + 1) * pitch - x)  # distance to the module's border
+        return np.clip((d - half_line) / ramp, 0.0, 1.0)
+
+    w = np.where(ok, weight(points_m[:, 0], col) * weight(points_m[:, 1], rb), 0.0)
+    idx = np.where(ok, (surface.layout.rows - 1 - rb) * surface.layout.cols + col, -1)
+    return idx, w
+
+
 def fingertip_overlap(
     center_m: tuple[float, float],
     yaw_rad: float,
     tip_size_m: tuple[float, float],
     surface: PadSurface,
     step_m: float = 0.5e-3,
+    sensitive_side_m: float | None = None,
 ) -> NDArray[np.float64]:
-    """Fraction of a rectangular fingertip's area over each module's sensitive square.
+    """Share of a rectangular fingertip's force that each module senses.
+
+    With ``sensitive_side_m`` None: the fraction of the tip's area over each module's
+    sensitive square (lines excluded). Otherwise each area element is weighted by
+    :func:`tip_sensitivity` (graded towards the module borders).
 
     Parameters
     ----------
@@ -360,7 +395,10 @@ def fingertip_overlap(
     """
     local = _rect_points(tip_size_m[0], tip_size_m[1], step_m)
     pts = to_pad_frame(local, Placement(center_m[0], center_m[1], yaw_rad))
-    idx, cover = surface.module_coverage(pts, step_m)
+    if sensitive_side_m is None:
+        idx, cover = surface.module_coverage(pts, step_m)
+    else:
+        idx, cover = tip_sensitivity(pts, surface, sensitive_side_m)
     on = idx >= 0
     frac = np.bincount(idx[on], weights=cover[on], minlength=surface.layout.n_modules)
     return frac / len(local)

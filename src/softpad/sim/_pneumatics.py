@@ -190,23 +190,38 @@ class ChamberBank:
         return True
 
     def _solve(self, p: NDArray[np.float64]) -> NDArray[np.float64]:
-        """Gauge pressure with ``(p_atm + p)(V(p, F) + V_t) = n`` (Newton, warm start)."""
+        """Gauge pressure with ``(p_atm + p)(V(p, F) + V_t) = n``.
+
+        Newton's method from the previous pressure, safeguarded by bisection: the residual
+        increases monotonically with p, so a bracket [lo, hi] is kept and a Newton step that
+        leaves it is replaced by the midpoint (robust when a heavy load collapses the layer).
+        """
         patm, vt, n, f = (
             self.params.atmosphere_pa,
             self.params.tubing_volume_m3,
             self.amount,
             self.loads_n,
         )
-        for _ in range(8):
+        lo = np.full_like(p, -0.999 * patm)
+        hi = np.full_like(p, 1e6)
+        for _ in range(100):
             if self._vol_slope is not None:
                 v, dv = self._vol_slope(p, f)
             else:
                 v = self.characteristic.volume_m3(p, f)
                 dv = self.characteristic.volume_slope_m3_pa(p, f)
             r = (patm + p) * (v + vt) - n
-            d = r / ((v + vt) + (patm + p) * dv)
-            p = p - d
-            if np.abs(d).max() < 1e-6:
+            neg = r < 0
+            lo = np.where(neg, p, lo)
+            hi = np.where(neg, hi, p)
+            step = r / ((v + vt) + (patm + p) * dv)
+            new = p - step
+            bad = (new <= lo) | (new >= hi)
+            if bad.any():
+                new = np.where(bad, 0.5 * (lo + hi), new)
+            done = np.abs(new - p).max() < 1e-7
+            p = new
+            if done:
                 break
         return p
 
