@@ -11,7 +11,7 @@ lies only on a non-sensitive line loads no module (the thesis's failure mode, Se
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -108,7 +108,7 @@ class _Placed:
 @dataclass
 class _Tip:
     touch_z_m: float | None = None  # surface height where the tip first touched
-    fractions: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
+    prev_z_m: float = math.inf  # tip height at the previous evaluation
 
 
 class AnalyticWorld:
@@ -389,7 +389,11 @@ class AnalyticWorld:
             else:
                 surface_z = 0.0  # a line: the tip meets the rigid wall/base, no module senses it
             if tip.touch_z_m is None:
-                if st.z_m <= surface_z and (obj is not None or frac.any()):
+                # a touch is a crossing from above: jaws closing onto an object's side, or a
+                # module swelling under a resting tip, are not a fingertip landing on it
+                crossed = tip.prev_z_m > surface_z >= st.z_m
+                tip.prev_z_m = st.z_m
+                if crossed and (obj is not None or frac.any()):
                     tip.touch_z_m = surface_z
                     if self.first_touch_s is None:
                         self.first_touch_s = self._time
