@@ -45,7 +45,7 @@ def test_banana_full_loop() -> None:
     # the detector's reference is the pre-descent pressure: the object's own increment does
     # not trigger it, only the fingers do
     t_contact = log.events_of("contact")[0][0]
-    t_descend = [t for t, k, d in log.events if k == "phase" and d["phase"] == "descend"][0]
+    t_descend = next(t for t, k, d in log.events if k == "phase" and d["phase"] == "descend")
     assert t_contact - t_descend > 0.5
 
 
@@ -102,7 +102,9 @@ def test_overpressure_from_a_stuck_valve_during_the_run_is_vented() -> None:
     """Inflation valve of channel 1 stuck open mid-run: fault naming it, vented below max."""
     log = RunLog()
     box = open_box("sim://?seed=2&faults=stuck:1:inflate@6.0")
-    with pytest.raises(HardwareFault, match="channel 1: pressure .* exceeds the maximum 3.00 kPa"):
+    with pytest.raises(
+        HardwareFault, match=r"channel 1: pressure .* exceeds the maximum 3\.00 kPa"
+    ):
         run_simulated(["banana"], box, ExecutionParams(hold_s=30.0), log)
     assert box.true_pressures_pa[:6].max() <= 3000.0
     assert box.valves[0] is ValveCommand.DEFLATE  # venting against the stuck valve

@@ -181,7 +181,7 @@ class RunLog:
             raise
         except FileNotFoundError:
             raise InputError(f"run log {str(p)!r} does not exist") from None
-        except (OSError, ValueError, KeyError, IndexError, TypeError) as exc:
+        except (OSError, ValueError, KeyError, IndexError, TypeError, EOFError) as exc:
             raise InputError(f"run log {str(p)!r} is unreadable or corrupt: {exc}") from None
 
     # --- plotting -------------------------------------------------------------------

@@ -251,7 +251,7 @@ class TabulatedCharacteristic:
             raise
         except FileNotFoundError:
             raise InputError(f"module characteristic file {str(p)!r} does not exist") from None
-        except (OSError, ValueError) as exc:
+        except (OSError, ValueError, EOFError) as exc:
             raise InputError(
                 f"module characteristic {str(p)!r} is not a readable .npz file: {exc}"
             ) from None
