@@ -188,6 +188,7 @@ class SimBox(Box):
         self._nan = np.zeros(channels, dtype=bool)
         self._dropout = np.zeros(channels, dtype=bool)
         self._bad_sensor = False
+        self._leaking = False
         self._disconnected = False
         self.realtime = bool(realtime)
         self._wall0: float | None = None
@@ -224,13 +225,21 @@ class SimBox(Box):
             self._activate_faults()
         if self._disconnected:
             raise ConnectionLost(f"the simulated box stopped answering at t = {t:.3f} s")
-        self.world.step(dt, self._heights)
-        if self.chambers.step(
-            dt, self._inf, self._def, self.world.module_loads_n(), self._supply_true, self._any_open
-        ):
-            self._heights = self.chambers.heights_m()
-        values, supply = self.sensors.sample(self.chambers.pressure_pa, self._supply_true)
+        world = self.world
+        world.step(dt, self._heights)
+        loads = world.module_loads_n()
+        chambers = self.chambers
+        if self._any_open or self._leaking or not np.array_equal(loads, chambers.loads_n):
+            changed = chambers.step(
+                dt, self._inf, self._def, loads, self._supply_true, self._any_open
+            )
+            if changed:
+                self._heights = chambers.heights_m()
+        else:
+            changed = False
+        values, supply = self.sensors.sample(chambers.pressure_pa, self._supply_true, changed)
         if self._bad_sensor:
+            values = values.copy()
             values[self._dropout] = self.sensor_params.range_min_pa
             values[self._nan] = np.nan
         if self.realtime:
@@ -297,6 +306,7 @@ class SimBox(Box):
                 self.chambers.leak_m2[ch - 1] = (
                     float(f.arg) if f.arg is not None else DEFAULT_LEAK_M2
                 )
+                self._leaking = True
             elif f.kind == "supply_loss":
                 self._supply_true = 0.0
             elif f.kind == "disconnect":

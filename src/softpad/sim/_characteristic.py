@@ -139,6 +139,10 @@ class AnalyticCharacteristic:
     def _free(self, x: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         a, n, s0 = self._fit
         x0, vg = self.knee_pa, self.gap_volume_m3
+        if np.ndim(x) and (x >= 0).all():  # the usual case: one power per element
+            t = x + x0
+            tn = t**n
+            return vg + a * (tn - x0**n), a * n * tn / t
         xp = np.maximum(x, 0.0)
         xn = np.minimum(x, 0.0)
         pos = vg + a * ((xp + x0) ** n - x0**n)

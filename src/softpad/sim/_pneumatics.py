@@ -192,9 +192,10 @@ class ChamberBank:
     def _solve(self, p: NDArray[np.float64]) -> NDArray[np.float64]:
         """Gauge pressure with ``(p_atm + p)(V(p, F) + V_t) = n``.
 
-        Newton's method from the previous pressure, safeguarded by bisection: the residual
-        increases monotonically with p, so a bracket [lo, hi] is kept and a Newton step that
-        leaves it is replaced by the midpoint (robust when a heavy load collapses the layer).
+        Newton's method from the previous pressure (1-3 steps normally); if it has not
+        converged after 6 steps (a heavy load collapsing the layer), a bracketed Newton:
+        the residual increases monotonically with p, so a bracket [lo, hi] is kept and a
+        step that leaves it is replaced by the midpoint.
         """
         patm, vt, n, f = (
             self.params.atmosphere_pa,
@@ -202,28 +203,39 @@ class ChamberBank:
             self.amount,
             self.loads_n,
         )
+        start = p
+        for _ in range(6):
+            v, dv = self._volume_and_slope(p, f)
+            step = ((patm + p) * (v + vt) - n) / ((v + vt) + (patm + p) * dv)
+            p = p - step
+            if np.abs(step).max() < 1e-4:  # far below the sensors' resolution
+                return p
+        p = start
         lo = np.full_like(p, -0.999 * patm)
         hi = np.full_like(p, 1e6)
-        for _ in range(100):
-            if self._vol_slope is not None:
-                v, dv = self._vol_slope(p, f)
-            else:
-                v = self.characteristic.volume_m3(p, f)
-                dv = self.characteristic.volume_slope_m3_pa(p, f)
+        for _ in range(200):
+            v, dv = self._volume_and_slope(p, f)
             r = (patm + p) * (v + vt) - n
             neg = r < 0
             lo = np.where(neg, p, lo)
             hi = np.where(neg, hi, p)
-            step = r / ((v + vt) + (patm + p) * dv)
-            new = p - step
+            new = p - r / ((v + vt) + (patm + p) * dv)
             bad = (new <= lo) | (new >= hi)
             if bad.any():
                 new = np.where(bad, 0.5 * (lo + hi), new)
-            done = np.abs(new - p).max() < 1e-7
+            done = np.abs(new - p).max() < 1e-6
             p = new
             if done:
                 break
         return p
+
+    def _volume_and_slope(
+        self, p: NDArray[np.float64], f: NDArray[np.float64]
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        if self._vol_slope is not None:
+            v, dv = self._vol_slope(p, f)
+            return v, dv
+        return self.characteristic.volume_m3(p, f), self.characteristic.volume_slope_m3_pa(p, f)
 
     def heights_m(self) -> NDArray[np.float64]:
         """Top height of every module, metres."""
