@@ -84,3 +84,14 @@ def test_box_read_json(capsys) -> None:
     assert main(["box", "read", "--count", "2", "--json"]) == 0
     rows = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
     assert [r["t_s"] for r in rows] == [0.01, 0.02] and len(rows[0]["pressures_kpa"]) == 8
+
+
+def test_failed_run_still_saves_its_log(capsys, tmp_path) -> None:
+    from softpad.record import RunLog
+
+    path = tmp_path / "fault.npz"
+    argv = ["run", "--box", "sim://?seed=1&faults=nan:4@6.5", "--hold-s", "1", "--log", str(path)]
+    assert main(argv) == 2
+    assert "channel 4" in capsys.readouterr().err
+    log = RunLog.load(path)
+    assert log.t_s[-1] >= 6.49 and log.events_of("fault")

@@ -24,7 +24,7 @@ def test_noisy_loop_reproduces_the_plan_and_holds(name: str) -> None:
     plan = r.plans[0]
     assert plan.modules == tuple(spec.expected_modules)
     np.testing.assert_allclose(plan.cog, spec.table_cog, atol=0.06)
-    np.testing.assert_allclose(plan.theta, spec.table_theta, atol=1e-6)  # catalogue: 6 decimals
+    np.testing.assert_allclose(plan.theta, spec.table_theta, atol=1e-9)
     assert r.outcome == "held"
     g = r.grasps[0]
     assert g.contact_detected and g.contact_delay_s is not None and 0 < g.contact_delay_s < 0.5

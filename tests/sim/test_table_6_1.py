@@ -45,7 +45,7 @@ def test_noise_free_plan_matches_table_6_1(name: str) -> None:
     assert plan.modules == tuple(spec.expected_modules)
     assert spec.table_cog is not None and spec.table_theta is not None
     np.testing.assert_allclose(plan.cog, spec.table_cog, atol=0.01)
-    np.testing.assert_allclose(plan.theta, spec.table_theta, atol=1e-6)
+    np.testing.assert_allclose(plan.theta, spec.table_theta, atol=1e-9)
 
 
 @pytest.mark.parametrize("name", NAMES, ids=NAMES)
