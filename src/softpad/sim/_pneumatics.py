@@ -130,6 +130,9 @@ class ChamberBank:
         self._flow: NDArray[np.float64] | None = None
         self._rate = np.zeros(m)
         self._held = 0.0
+        self._dt_cached = -1.0
+        self._flow_dt = np.zeros(m)
+        self._rate_dt = np.zeros(m)
         #: Whether the last step solved the pressures exactly (module heights are updated then).
         self.solved = True
         rho = self.params.air_density_kg_m3
@@ -192,8 +195,12 @@ class ChamberBank:
             and self._held + dt_s <= self.resolve_s
         ):
             self._held += dt_s
-            self.amount = np.maximum(self.amount + self._flow * dt_s, 1e-12)
-            self.pressure_pa[:m] = p + self._rate * dt_s
+            if dt_s != self._dt_cached:
+                self._dt_cached = dt_s
+                self._flow_dt = self._flow * dt_s
+                self._rate_dt = self._rate * dt_s
+            self.amount += self._flow_dt  # in place: the hot path of an inflating box
+            p += self._rate_dt  # p is a view of pressure_pa
             self.solved = False
             return True
         if any_open or leaking:
@@ -222,6 +229,7 @@ class ChamberBank:
                 + (self.params.atmosphere_pa + self.pressure_pa[:m]) * dv
             )
             self._rate = flow / dn_dp
+            self._dt_cached = -1.0
         return True
 
     def _solve(self, p: NDArray[np.float64]) -> NDArray[np.float64]:
