@@ -65,11 +65,11 @@ obj("banana", 0.0598, [seg("stem end", b0, b1, 0.016, mb), seg("middle", b1, b2,
     "A YCB banana as three lying cylinders along a curve from module 4 over the corner of modules 1/2/4/5 to module 3; its stem end is the heavier.")
 mr = a('mr', 0.030)
 obj("toy", 0.1316, [box("body", 0.036, 0.036, 0.04, 1.5*U, 0.5*U, 0, 0.0296),
-                    box("left arm", 0.055, 0.018, 0.03, 1.5*U - 0.032, 0.5*U + 0.032, 0, 0.030, 3*pi/4),
+                    box("left arm", 0.055, 0.022, 0.03, 1.5*U - 0.032, 0.5*U + 0.032, 0, 0.030, 3*pi/4),
                     box("left hand", 0.03, 0.03, 0.035, 0.5*U+0.002, 1.5*U-0.002, 0, round(0.042-mr, 6)),
-                    box("right arm", 0.055, 0.018, 0.03, 1.5*U + 0.032, 0.5*U + 0.032, 0, 0.030, pi/4),
+                    box("right arm", 0.055, 0.022, 0.03, 1.5*U + 0.032, 0.5*U + 0.032, 0, 0.030, pi/4),
                     box("right hand", 0.03, 0.03, 0.035, 2.5*U-0.002, 1.5*U-0.002, 0, mr)],
-    0.0, 0.0, 0.0, [1,3,5], [2.0, 1.0], -pi/4, "4/0",
+    0.0, 0.0, 0.0, [1,3,5], [2.0, 1.0], -pi/4, "6/2",
     "A V-shaped toy: body on module 5, arms reaching diagonally to modules 1 and 3, heavier right hand.")
 m4, y4 = a('m4', 0.0325), a('y4', 0.021)
 obj("limes", 0.187, [sph("lime 1", 0.024, 0.5*U+0.006, 0.5*U, 0.044),

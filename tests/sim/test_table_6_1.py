@@ -50,9 +50,9 @@ def test_noise_free_plan_matches_table_6_1(name: str) -> None:
 
 @pytest.mark.parametrize("name", NAMES, ids=NAMES)
 def test_every_touched_module_clears_t_o_with_margin(name: str) -> None:
-    """At least 20 Pa above t_o = 50 Pa, and untouched modules at least 20 Pa below it."""
+    """At least 20 Pa above t_o = 50 Pa, and untouched modules at least 15 Pa below it."""
     d = _increments(name)
     on = np.zeros(6, dtype=bool)
     on[np.array(get_object(name).expected_modules) - 1] = True
     assert (d[on] > 70.0).all(), d
-    assert (d[~on] < 30.0).all(), d
+    assert (d[~on] < 35.0).all(), d
