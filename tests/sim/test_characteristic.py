@@ -121,3 +121,26 @@ def test_default_uses_the_packaged_table_when_present(tmp_path, monkeypatch) -> 
 def test_bad_analytic_parameter_named() -> None:
     with pytest.raises(InputError, match="effective_area_m2"):
         AnalyticCharacteristic(effective_area_m2=-1.0)
+
+
+def test_box_runs_on_a_tabulated_characteristic(tmp_path) -> None:
+    """A table sampled from the analytic characteristic gives the same sealed increments."""
+    from softpad.box import SimBox
+    from softpad.sim import AnalyticWorld, SensorParams, get_object
+
+    a = AnalyticCharacteristic()
+    p = np.linspace(0.0, 4000.0, 81)
+    f = np.linspace(0.0, 3.0, 61)
+    pp, ff = np.meshgrid(p, f, indexing="ij")
+    path = tmp_path / "table.npz"
+    np.savez(path, pressure_pa=p, load_n=f, volume_m3=a.volume_m3(pp, ff), height_m=a.height_m(pp, ff))
+    tab = TabulatedCharacteristic.from_file(path)
+
+    def increments(char: ModuleCharacteristic) -> np.ndarray:
+        world = AnalyticWorld()
+        box = SimBox(world, sensor=SensorParams.ideal(), characteristic=char, initial_pressure_pa=1100.0)
+        ref = box.read().pressures_pa[:6].copy()
+        world.place_object(get_object("object-4"))
+        return box.read_many(3)[-1].pressures_pa[:6] - ref
+
+    np.testing.assert_allclose(increments(tab), increments(a), rtol=0.02, atol=0.5)
