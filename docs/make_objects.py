@@ -25,12 +25,12 @@ def lcyl(name, r, l, x, y, m, yaw=0.0, z0=0.0):
 def sph(name, r, x, y, m, z0=0.0):
     return {"name": name, "shape": "sphere", "radius_m": r, "pos_m": [round(x,5), round(y,5), round(z0+r,5)], "mass_kg": round(m,6)}
 P = {}
-def obj(name, mass, parts, x, y, yaw, modules, cog, theta, gripper, desc):
+def obj(name, mass, parts, x, y, yaw, modules, cog, theta, gripper, desc, **extra):
     tot = sum(p["mass_kg"] for p in parts)
     assert abs(tot - mass) < 1e-6, (name, tot, mass)
     P[name] = {"name": name, "description": desc, "mass_kg": mass, "gripper": gripper,
         "expected_modules": modules, "table_6_1": {"cog": cog, "theta": round(theta, 12)},
-        "placement": {"x_m": round(x,5), "y_m": round(y,5), "yaw_rad": round(yaw,6)}, "parts": parts}
+        "placement": {"x_m": round(x,5), "y_m": round(y,5), "yaw_rad": round(yaw,6)}, "parts": parts, **extra}
 pi = math.pi
 L24, W2, H = 0.0635, 0.0317, 0.0192
 obj("object-1", 0.0238, [box("brick 2x4", L24, W2, 0.023, 0, 0, 0, 0.0238)], 2.5*U, 1.0*U, pi/2, [3,6], [2.5,1.0], 0.0, "6/2",
@@ -78,7 +78,8 @@ obj("limes", 0.187, [sph("lime 1", 0.024, 0.5*U+0.006, 0.5*U, 0.044),
                      sph("lime 4", 0.024, 1.5*U, 1.5*U-y4, m4),
                      box("net", 0.12, 0.05, 0.002, 1.5*U, 0.5*U, 0.048, 0.004)],
     0.0, 0.0, 0.0, [2,4,5,6], [1.5, 0.8], 0.0, "10/4",
-    "Four limes (about 41-50 g) in a net: three along the bottom row, the lightest one on module 2.")
+    "Four limes (about 41-50 g) in a net: three along the bottom row, the lightest one on module 2.",
+    loose_parts=True)
 obj("cylinder", 0.0889, [lcyl("shell", 0.024, 0.125, 0, 0, round(0.0459-a('mi', 0.0045), 6), z0=0.001),
                          lcyl("left rim", 0.025, a('lr', 0.012), -0.0625 + a('lr', 0.012)/2, 0, 0.004),
                          lcyl("bead", 0.025, a('lb', 0.006), a('xb', 0.0), 0, 0.003),

@@ -116,3 +116,17 @@ def test_unsupported_object_is_refused() -> None:
 def test_unknown_gripper_mounting() -> None:
     with pytest.raises(InputError, match="10/4, 6/2, 4/0"):
         GripperSpec.mounting("8/3")
+
+
+def test_object_wider_than_the_open_jaws_is_not_grasped() -> None:
+    """COG planned so that a jaw lands on the object: closing catches nothing."""
+    w = AnalyticWorld(gripper=GripperSpec.mounting("4/0"))
+    w.place_object(get_object("object-3"))  # 127 mm long along x, centred at (67.5, 67.5) mm
+    w._state = GripperState(0.0675, 0.0675, 0.01, 0.0, 0.04)  # jaws close along x: 4 cm apart
+    w.command_gripper(GripperState(0.0675, 0.0675, 0.01, 0.0, 0.0), 0.05)
+    for _ in range(100):
+        w.step(0.01, H)
+    w.command_gripper(GripperState(0.0675, 0.0675, 0.08, 0.0, 0.0), 0.1)
+    for _ in range(100):
+        w.step(0.01, H)
+    assert not w.holding()

@@ -133,12 +133,16 @@ def test_box_runs_on_a_tabulated_characteristic(tmp_path) -> None:
     f = np.linspace(0.0, 3.0, 61)
     pp, ff = np.meshgrid(p, f, indexing="ij")
     path = tmp_path / "table.npz"
-    np.savez(path, pressure_pa=p, load_n=f, volume_m3=a.volume_m3(pp, ff), height_m=a.height_m(pp, ff))
+    np.savez(
+        path, pressure_pa=p, load_n=f, volume_m3=a.volume_m3(pp, ff), height_m=a.height_m(pp, ff)
+    )
     tab = TabulatedCharacteristic.from_file(path)
 
     def increments(char: ModuleCharacteristic) -> np.ndarray:
         world = AnalyticWorld()
-        box = SimBox(world, sensor=SensorParams.ideal(), characteristic=char, initial_pressure_pa=1100.0)
+        box = SimBox(
+            world, sensor=SensorParams.ideal(), characteristic=char, initial_pressure_pa=1100.0
+        )
         ref = box.read().pressures_pa[:6].copy()
         world.place_object(get_object("object-4"))
         return box.read_many(3)[-1].pressures_pa[:6] - ref

@@ -289,8 +289,16 @@ class AnalyticWorld:
         d, n = self._jaw_axes(st)
         rel = o.outline_m - np.array([st.x_m, st.y_m])
         u, v = rel @ d, rel @ n
-        band = (np.abs(v) <= self.gripper.tip_width_m / 2) & (np.abs(u) <= st.width_m / 2)
+        in_band = np.abs(v) <= self.gripper.tip_width_m / 2
+        band = in_band & (np.abs(u) <= st.width_m / 2)
         if not band.any():
+            return None
+        if (
+            not o.spec.extra.get("loose_parts", False)
+            and (in_band & (np.abs(u) > st.width_m / 2)).any()
+        ):
+            # a rigid object reaching under a jaw: the jaw lands on it, nothing is caught
+            # (parts loosely tied together, like limes in a net, are pushed aside instead)
             return None
         return float(u[band].min()), float(u[band].max())
 
