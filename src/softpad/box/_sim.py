@@ -233,7 +233,7 @@ class SimBox(Box):
             changed = chambers.step(
                 dt, self._inf, self._def, loads, self._supply_true, self._any_open
             )
-            if changed and chambers.solved:  # heights follow the exact solves (every <= 5 ms)
+            if changed and chambers.solved:  # heights follow the exact solves (every <= 20 ms)
                 self._heights = chambers.heights_m()
         else:
             changed = False

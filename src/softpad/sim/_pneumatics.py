@@ -125,12 +125,13 @@ class ChamberBank:
         #: Effective leak area Cd A of each module channel, m^2 (0: tight).
         self.leak_m2 = np.zeros(m)
         #: Longest time between exact pressure solves while nothing changes, seconds.
-        self.resolve_s = 5e-3
+        self.resolve_s = 20e-3
         self._key: tuple[bytes, bytes, float] | None = None
         self._flow: NDArray[np.float64] | None = None
         self._rate = np.zeros(m)
         self._held = 0.0
         self._dt_cached = -1.0
+        self._dn_dp = np.ones(m)
         self._flow_dt = np.zeros(m)
         self._rate_dt = np.zeros(m)
         #: Whether the last step solved the pressures exactly (module heights are updated then).
@@ -186,7 +187,7 @@ class ChamberBank:
             return False
         # Between exact solves, hold the flows of the last solve and advance p along
         # dp/dt = flow / (dn/dp): the gas time constants (> 0.1 s) are far longer than the
-        # interval (<= resolve_s), and any change of valves, load or supply forces a solve.
+        # interval (<= resolve_s, 20 ms), and any change of valves, load or supply forces a solve.
         key = (inflate_open.tobytes(), deflate_open.tobytes(), supply_pa)
         if (
             same_load
@@ -222,13 +223,7 @@ class ChamberBank:
         self._key, self._held, self._flow = key, 0.0, flow
         self.solved = True
         if flow is not None:
-            v, dv = self._volume_and_slope(self.pressure_pa[:m], self.loads_n)
-            dn_dp = (
-                v
-                + self.params.tubing_volume_m3
-                + (self.params.atmosphere_pa + self.pressure_pa[:m]) * dv
-            )
-            self._rate = flow / dn_dp
+            self._rate = flow / self._dn_dp
             self._dt_cached = -1.0
         return True
 
@@ -249,9 +244,11 @@ class ChamberBank:
         start = p
         for _ in range(6):
             v, dv = self._volume_and_slope(p, f)
-            step = ((patm + p) * (v + vt) - n) / ((v + vt) + (patm + p) * dv)
+            dn_dp = (v + vt) + (patm + p) * dv
+            step = ((patm + p) * (v + vt) - n) / dn_dp
             p = p - step
             if np.abs(step).max() < 1e-4:  # far below the sensors' resolution
+                self._dn_dp = dn_dp  # at the last iterate, within 1e-4 Pa of the solution
                 return p
         p = start
         lo = np.full_like(p, -0.999 * patm)
@@ -270,6 +267,8 @@ class ChamberBank:
             p = new
             if done:
                 break
+        v, dv = self._volume_and_slope(p, f)
+        self._dn_dp = (v + vt) + (patm + p) * dv
         return p
 
     def _volume_and_slope(
