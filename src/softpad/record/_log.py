@@ -20,6 +20,9 @@ from softpad.errors import InputError
 #: Format tag of saved logs.
 LOG_FORMAT = "softpad-runlog/1"
 
+#: Events drawn as vertical lines in plots.
+_MARKED_EVENTS = ("reference", "object_seen", "contact", "no_contact", "fault")
+
 #: Colours of the phases in plots.
 _PHASE_COLOURS = {
     "adjust": "#dddddd",
@@ -225,18 +228,18 @@ class RunLog:
             seen.add(ph)
         for k in range(channels):
             ax.plot(t, p[:, k] / 1e3, lw=0.8, label=f"module {k + 1}")
-        for t_ev, kind, _data in self.events:
-            if kind in ("contact", "object_seen", "reference", "no_contact", "fault"):
-                ax.axvline(t_ev, color="k", ls="--", lw=0.7)
-                ax.annotate(
-                    kind.replace("_", " "),
-                    (t_ev, 1.0),
-                    xycoords=("data", "axes fraction"),
-                    rotation=90,
-                    va="top",
-                    ha="right",
-                    fontsize=7,
-                )
+        marked = [(t_ev, kind) for t_ev, kind, _ in self.events if kind in _MARKED_EVENTS]
+        for i, (t_ev, kind) in enumerate(marked):
+            ax.axvline(t_ev, color="k", ls="--", lw=0.7)
+            ax.annotate(
+                kind.replace("_", " "),
+                (t_ev, 0.98 - 0.14 * (i % 3)),  # staggered: close events do not overlap
+                xycoords=("data", "axes fraction"),
+                rotation=90,
+                va="top",
+                ha="right",
+                fontsize=7,
+            )
         ax.set_xlabel("time (s)")
         ax.set_ylabel("pressure (kPa)")
         ax.set_title(title or "SoftPad pressures during the grasp (cf. seed Fig. 6.8)")

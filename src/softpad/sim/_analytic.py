@@ -109,6 +109,7 @@ class _Placed:
 class _Tip:
     touch_z_m: float | None = None  # surface height where the tip first touched
     prev_z_m: float = math.inf  # tip height at the previous evaluation
+    on_object: _Placed | None = None  # the object the tip landed on (None: the pad)
 
 
 class AnalyticWorld:
@@ -403,6 +404,7 @@ class AnalyticWorld:
                 tip.prev_z_m = st.z_m
                 if crossed and (obj is not None or frac.any()):
                     tip.touch_z_m = surface_z
+                    tip.on_object = obj
                     if self.first_touch_s is None:
                         self.first_touch_s = self._time
                         self.first_touch_z_m = st.z_m
@@ -413,9 +415,10 @@ class AnalyticWorld:
                 tip.touch_z_m = None
                 continue
             force = g.tip_stiffness_n_m * pen
-            if obj is not None:
-                loads += force * obj.footprint.weight_fraction
-            else:
+            # what the tip landed on carries its force while it slides (closing jaws)
+            if tip.on_object is not None and not tip.on_object.lifted:
+                loads += force * tip.on_object.footprint.weight_fraction
+            elif tip.on_object is None:
                 loads += force * frac
         self._tip_loads = loads
         self._dirty = True
