@@ -128,3 +128,19 @@ def test_unknown_object_and_bad_params() -> None:
         run_simulated(["teapot"])
     with pytest.raises(InputError, match="approach_speed_m_s"):
         ExecutionParams(approach_speed_m_s=0.0)
+
+
+def test_same_seed_same_run() -> None:
+    a = run_simulated(["object-2"], "sim://?seed=21", FAST).to_dict()
+    b = run_simulated(["object-2"], "sim://?seed=21", FAST).to_dict()
+    assert a == b
+
+
+def test_contact_delay_is_consistent_with_the_frames() -> None:
+    """The detection comes a whole number of sample periods after the first touch."""
+    r = run_simulated(["object-3"], "sim://?seed=8&rate_hz=200", FAST)
+    g = r.grasps[0]
+    assert g.contact_delay_s is not None and g.first_touch_s is not None
+    np.testing.assert_allclose(g.contact_delay_s * 200, round(g.contact_delay_s * 200), atol=1e-6)
+    # at least half the running-average window (10 samples) passes before detection
+    assert g.contact_delay_s >= 4.5 / 200
