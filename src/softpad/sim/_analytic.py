@@ -164,7 +164,10 @@ class AnalyticWorld:
         self.first_touch_z_m: float | None = None
         self._dirty = True
         self._grasp_width = 0.0
-        self._overlap_cache: dict[tuple[float, float, float], NDArray[np.float64]] = {}
+        self._overlap_cache: dict[
+            tuple[int, int, float, int], tuple[NDArray[np.float64], _Placed | None]
+        ] = {}
+        self._objects_version = 0
 
     @property
     def gripper(self) -> GripperSpec:
@@ -174,6 +177,7 @@ class AnalyticWorld:
     @gripper.setter
     def gripper(self, spec: GripperSpec) -> None:
         self._gripper = spec
+        self._overlap_cache.clear()  # tip sizes may differ
         self._state = replace(self._state, width_m=spec.max_width_m)
         self._target = self._state
 
@@ -241,6 +245,7 @@ class AnalyticWorld:
         return self._object_loads.copy()
 
     def _update_object_loads(self) -> None:
+        self._objects_version += 1  # objects placed, lifted or removed: tip caches are stale
         self._object_loads = np.zeros(self._layout.n_modules)
         for o in self._objects:
             if not o.lifted:
@@ -358,22 +363,34 @@ class AnalyticWorld:
                 return o
         return None
 
-    def _tip_fractions(self, centre: tuple[float, float], yaw: float) -> NDArray[np.float64]:
-        key = (round(centre[0], 9), round(centre[1], 9), round(yaw, 9))
-        frac = self._overlap_cache.get(key)
-        if frac is None:
+    def _tip_contact(
+        self, centre: tuple[float, float], st: GripperState
+    ) -> tuple[NDArray[np.float64], _Placed | None]:
+        """Sensed share of a tip's force per module, and the object under the tip (cached).
+
+        Tip positions are keyed on a 0.25 mm grid (the overlap is sampled at 0.5 mm anyway).
+        """
+        key = (
+            round(centre[0] * 4e3),
+            round(centre[1] * 4e3),
+            round(st.yaw_rad, 4),
+            self._objects_version,
+        )
+        hit = self._overlap_cache.get(key)
+        if hit is None:
             g = self.gripper
             frac = fingertip_overlap(
                 centre,
-                yaw,
+                st.yaw_rad,
                 (g.tip_thickness_m, g.tip_width_m),
                 self.surface,
                 sensitive_side_m=self.tip_sensitive_side_m,
             )
-            if len(self._overlap_cache) > 64:
+            if len(self._overlap_cache) > 256:
                 self._overlap_cache.clear()
-            self._overlap_cache[key] = frac
-        return frac
+            hit = (frac, self._object_under(centre, st))
+            self._overlap_cache[key] = hit
+        return hit
 
     def _update_tips(self, heights: NDArray[np.float64]) -> None:
         st = self._state
@@ -389,8 +406,7 @@ class AnalyticWorld:
                 return
         loads = np.zeros(self._layout.n_modules)
         for tip, centre in zip(self._tips, self.tip_centres_m(st), strict=True):
-            frac = self._tip_fractions(centre, st.yaw_rad)
-            obj = self._object_under(centre, st)
+            frac, obj = self._tip_contact(centre, st)
             if obj is not None:
                 surface_z = float(heights.max()) + obj.spec.height_m
             elif frac.any():
