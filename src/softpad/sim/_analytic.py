@@ -223,7 +223,7 @@ class AnalyticWorld:
         self._time += dt_s
         self._heights = module_heights_m
         moved = self._move(dt_s)
-        if moved or any(t.touch_z_m is not None for t in self._tips):
+        if moved or (self._tips[0].touch_z_m is not None or self._tips[1].touch_z_m is not None):
             self._update_tips(module_heights_m)
         if self._grasped is not None and not self._grasped.lifted:
             if self._state.z_m > self._grasp_z + 2e-3:
