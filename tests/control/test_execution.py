@@ -144,3 +144,22 @@ def test_contact_delay_is_consistent_with_the_frames() -> None:
     np.testing.assert_allclose(g.contact_delay_s * 200, round(g.contact_delay_s * 200), atol=1e-6)
     # at least half the running-average window (10 samples) passes before detection
     assert g.contact_delay_s >= 4.5 / 200
+
+
+def test_interrupt_closes_the_valves() -> None:
+    """Ctrl-C while inflating: the box is put in its safe state before the interrupt propagates."""
+    log = RunLog()
+    box = SimBox(seed=1)
+    world = box.world
+
+    class Interrupting(RunLog):
+        def frame(self, frame, phase):  # type: ignore[no-untyped-def]
+            log.frame(frame, phase)
+            if frame.t_s > 1.0 and phase == "adjust":
+                raise KeyboardInterrupt
+
+    loop = GraspExecution(box, SimulatedRobot(world), world.layout, FAST, Interrupting())
+    with pytest.raises(KeyboardInterrupt):
+        loop.run()
+    assert set(box.valves) == {ValveCommand.CLOSED}
+    assert "safe" in log.phases
