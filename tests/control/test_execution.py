@@ -9,7 +9,7 @@ from softpad.box import ConnectionLost, SimBox, ValveCommand, open_box
 from softpad.control import ExecutionParams, GraspExecution, SimulatedRobot, run_simulated
 from softpad.errors import HardwareFault, InputError
 from softpad.record import RunLog
-from softpad.sim import AnalyticWorld, GripperSpec, get_object
+from softpad.sim import AnalyticWorld, SimGripper, get_object
 
 FAST = ExecutionParams(hold_s=1.0)
 
@@ -58,7 +58,7 @@ def test_two_separate_objects_are_grasped_one_after_the_other() -> None:
 
 def test_fingertips_on_the_lines_are_not_detected() -> None:
     """Tips centred on the 2|5 line and on the pad's border: no module senses them (Sec. 6.3)."""
-    g = GripperSpec(max_width_m=0.043, min_width_m=0.0, tip_thickness_m=0.002, tip_width_m=0.002)
+    g = SimGripper(max_width_m=0.043, min_width_m=0.0, tip_thickness_m=0.002, tip_width_m=0.002)
     world = AnalyticWorld(gripper=g)
     box = SimBox(world, seed=4)
     loop = GraspExecution(

@@ -18,7 +18,7 @@ from numpy.typing import NDArray
 from softpad.box._base import Box, ConnectionLost, PressureFrame, ValveCommand
 from softpad.errors import InputError
 from softpad.layout import PadLayout, parse_layout
-from softpad.sim import AnalyticWorld, GripperSpec, World, get_object
+from softpad.sim import AnalyticWorld, SimGripper, World, get_object
 from softpad.sim._characteristic import (
     AnalyticCharacteristic,
     ModuleCharacteristic,
@@ -387,7 +387,7 @@ def open_sim_url(location: str, options: dict[str, str]) -> SimBox:
     layout = parse_layout(options.get("layout", "2x3")) if "layout" in options else PadLayout()
     if "pitch_mm" in options:
         layout = PadLayout(layout.rows, layout.cols, _num(options, "pitch_mm", 45.0) / 1e3)
-    gripper = GripperSpec.mounting(options.get("gripper", "10/4"))
+    gripper = SimGripper.mounting(options.get("gripper", "10/4"))
     world = AnalyticWorld(layout, gripper)
     if "object" in options:
         world.place_object(get_object(options["object"]))

@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from softpad.errors import InputError
-from softpad.layout import PadLayout
+from softpad.layout import GripperSpec, PadLayout
 from softpad.sim._footprint import (
     DEFAULT_TIP_SENSITIVE_SIDE_M,
     GRAVITY_M_S2,
@@ -40,8 +40,11 @@ GRIPPER_MOUNTINGS: dict[str, tuple[float, float]] = {
 
 
 @dataclass(frozen=True)
-class GripperSpec:
-    """Parallel-jaw gripper geometry (seed, Section 6.3).
+class SimGripper:
+    """Parallel-jaw gripper of the analytic world: geometry plus contact physics (Section 6.3).
+
+    The geometry matches :class:`softpad.layout.GripperSpec` (see :attr:`geometry` and
+    :meth:`from_spec`); the extra fields say how hard the tips press into the pad and grip.
 
     Parameters
     ----------
@@ -84,15 +87,42 @@ class GripperSpec:
                 raise InputError(f"gripper {n} must be a positive number, got {v!r}")
 
     @classmethod
-    def mounting(cls, name: str, **kwargs: float) -> GripperSpec:
-        """Gripper of the thesis mounted as ``"10/4"``, ``"6/2"`` or ``"4/0"`` (max/min cm)."""
-        try:
-            mx, mn = GRIPPER_MOUNTINGS[name]
-        except KeyError:
+    def mounting(cls, name: str, **kwargs: float) -> SimGripper:
+        """Gripper of the thesis mounted as ``"10/4"``, ``"6/2"`` or ``"4/0"`` (max/min cm);
+        the names of :data:`softpad.layout.GRIPPER_CONFIGS_M` (``wide``, ``medium``,
+        ``narrow``) are accepted too."""
+        from softpad.layout import GRIPPER_CONFIGS_M
+
+        widths = GRIPPER_MOUNTINGS.get(name) or GRIPPER_CONFIGS_M.get(name)
+        if widths is None:
             raise InputError(
-                f"unknown gripper mounting {name!r}; use one of {', '.join(GRIPPER_MOUNTINGS)}"
-            ) from None
-        return cls(max_width_m=mx, min_width_m=mn, **kwargs)
+                f"unknown gripper mounting {name!r}; use one of {', '.join(GRIPPER_MOUNTINGS)} "
+                f"(or {', '.join(GRIPPER_CONFIGS_M)})"
+            )
+        return cls(max_width_m=widths[0], min_width_m=widths[1], **kwargs)
+
+    @classmethod
+    def from_spec(cls, spec: GripperSpec, **kwargs: float) -> SimGripper:
+        """The gripper of a :class:`softpad.layout.GripperSpec`, with default contact physics."""
+        return cls(
+            max_width_m=spec.max_width_m,
+            min_width_m=spec.min_width_m,
+            finger_length_m=spec.finger_length_m,
+            tip_thickness_m=spec.tip_thickness_m,
+            tip_width_m=spec.tip_width_m,
+            **kwargs,
+        )
+
+    @property
+    def geometry(self) -> GripperSpec:
+        """The geometry alone, as the planner's :class:`softpad.layout.GripperSpec`."""
+        return GripperSpec(
+            max_width_m=self.max_width_m,
+            min_width_m=self.min_width_m,
+            finger_length_m=self.finger_length_m,
+            tip_width_m=self.tip_width_m,
+            tip_thickness_m=self.tip_thickness_m,
+        )
 
 
 @dataclass
@@ -134,7 +164,7 @@ class AnalyticWorld:
     def __init__(
         self,
         layout: PadLayout | None = None,
-        gripper: GripperSpec | None = None,
+        gripper: SimGripper | None = None,
         line_width_m: float = 3e-3,
         start_height_m: float = 0.15,
         tip_sensitive_side_m: float | None = DEFAULT_TIP_SENSITIVE_SIDE_M,
@@ -142,7 +172,7 @@ class AnalyticWorld:
         self.tip_sensitive_side_m = tip_sensitive_side_m
         self._layout = layout or PadLayout()
         self.surface = PadSurface(self._layout, line_width_m)
-        self._gripper = gripper or GripperSpec()
+        self._gripper = gripper or SimGripper()
         w, h = self.surface.size_m
         self._state = GripperState(w / 2, h / 2, start_height_m, 0.0, self._gripper.max_width_m)
         self._target = self._state
@@ -170,12 +200,12 @@ class AnalyticWorld:
         self._objects_version = 0
 
     @property
-    def gripper(self) -> GripperSpec:
+    def gripper(self) -> SimGripper:
         """Gripper geometry; setting it (a new mounting) opens the jaws to the new maximum."""
         return self._gripper
 
     @gripper.setter
-    def gripper(self, spec: GripperSpec) -> None:
+    def gripper(self, spec: SimGripper) -> None:
         self._gripper = spec
         self._overlap_cache.clear()  # tip sizes may differ
         self._state = replace(self._state, width_m=spec.max_width_m)
