@@ -1,8 +1,72 @@
 """Simulation: module characteristic, chamber gas physics, valves, sensor model, worlds.
 
-The simulated box (``sim://``) is the default back-end of :mod:`softpad.box`.
+The simulated box (``sim://``) is the default back-end of :mod:`softpad.box`; it steps the
+gas physics of every channel and a :class:`World` (the analytic one here, a MuJoCo one in
+issue 4) once per sample period. Objects of the thesis (Table 6.1) are data in
+``softpad/data/objects.json``.
 """
 
+from softpad.sim._analytic import GRIPPER_MOUNTINGS, AnalyticWorld, SimGripper
+from softpad.sim._characteristic import (
+    AnalyticCharacteristic,
+    ModuleCharacteristic,
+    TabulatedCharacteristic,
+    default_characteristic,
+    packaged_table_path,
+    sealed_sensitivity_pa_n,
+)
+from softpad.sim._footprint import (
+    DEFAULT_LINE_WIDTH_M,
+    DEFAULT_TIP_SENSITIVE_SIDE_M,
+    GRAVITY_M_S2,
+    ObjectFootprint,
+    PadSurface,
+    fingertip_overlap,
+    object_footprint,
+)
+from softpad.sim._objects import (
+    CATALOGUE_SCHEMA,
+    ObjectSpec,
+    PartSpec,
+    Placement,
+    catalogue_to_json,
+    get_object,
+    load_catalogue,
+    object_names,
+)
+from softpad.sim._pneumatics import ChamberBank, PneumaticParams
+from softpad.sim._sensor import SensorBank, SensorParams
 from softpad.sim._world import GripperState, World
 
-__all__ = ["GripperState", "World"]
+__all__ = [
+    "CATALOGUE_SCHEMA",
+    "DEFAULT_LINE_WIDTH_M",
+    "DEFAULT_TIP_SENSITIVE_SIDE_M",
+    "GRAVITY_M_S2",
+    "GRIPPER_MOUNTINGS",
+    "AnalyticCharacteristic",
+    "AnalyticWorld",
+    "ChamberBank",
+    "GripperState",
+    "ModuleCharacteristic",
+    "ObjectFootprint",
+    "ObjectSpec",
+    "PadSurface",
+    "PartSpec",
+    "Placement",
+    "PneumaticParams",
+    "SensorBank",
+    "SensorParams",
+    "SimGripper",
+    "TabulatedCharacteristic",
+    "World",
+    "catalogue_to_json",
+    "default_characteristic",
+    "fingertip_overlap",
+    "get_object",
+    "load_catalogue",
+    "object_footprint",
+    "object_names",
+    "packaged_table_path",
+    "sealed_sensitivity_pa_n",
+]
