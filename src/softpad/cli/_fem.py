@@ -244,6 +244,12 @@ def register(sub: Any) -> None:
     t.add_argument(
         "--pressures-kpa", help="pressures in kPa starting at 0 (default 0..3 every 0.1)"
     )
+    t.add_argument(
+        "--gap-volume-ml",
+        type=finite_float("--gap-volume-ml", lo=0.0, unit="mL"),
+        default=0.2,
+        help="residual air under the flat layer added to every volume, mL (default 0.2)",
+    )
     t.set_defaults(handler=_characteristic)
 
 
@@ -589,6 +595,7 @@ def _characteristic(args: argparse.Namespace) -> int:
             geometry=_geometry(args),
             mesh=_mesh(args),
             progress=progress,
+            gap_volume_m3=args.gap_volume_ml * 1e-6,
         )
     out = result.to_npz(args.out or CHARACTERISTIC_PATH)
     if args.csv or args.png:

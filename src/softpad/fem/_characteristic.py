@@ -10,7 +10,9 @@ File layout (NumPy ``.npz``):
 - ``pressure_pa`` (P,): increasing gauge pressures from 0, Pa;
 - ``load_n`` (L,): increasing total vertical loads from 0, N, spread uniformly over the
   load patch described in ``meta``;
-- ``volume_m3`` (P, L): air volume between the base and the deformed layer (no tubing), m^3;
+- ``volume_m3`` (P, L): air volume between the base and the deformed layer (no tubing), m^3,
+  plus a constant residual gap (``meta["gap_volume_m3"]``, default 0.2 mL: the air left in the
+  acetate channel and tube inlet under a flat layer, so the volume stays > 0 for the gas law);
 - ``height_m`` (P, L): height of the top-face centre above its flat rest position, m;
 - ``meta``: 0-d string array holding JSON ``{"model", "thickness_m", "width_m",
   "load_patch", "source", "version", ...}``.
@@ -48,6 +50,9 @@ DEFAULT_LOADS_N = np.array(
 #: Default load patch: a centred 30 mm square (a fingertip or the part of an object's
 #: weight resting on one module).
 DEFAULT_LOAD_PATCH = LoadPatch.square(0.030)
+#: Residual air under a flat layer (acetate channel, tube inlet), m^3; the simulator's analytic
+#: characteristic uses the same 0.2 mL.
+DEFAULT_GAP_VOLUME_M3 = 0.2e-6
 
 
 @dataclass(frozen=True)
@@ -193,6 +198,7 @@ def module_characteristic(
     geometry: ModuleGeometry | None = None,
     mesh: MeshOptions | None = None,
     progress: ProgressCallback | None = None,
+    gap_volume_m3: float = DEFAULT_GAP_VOLUME_M3,
 ) -> ModuleCharacteristic:
     """Tabulate chamber volume and centre height against pressure and load.
 
@@ -214,6 +220,9 @@ def module_characteristic(
         Module geometry and discretisation.
     progress
         Optional ``progress(done, total)`` callback (one tick per table entry).
+    gap_volume_m3
+        Residual air under the flat layer added to every volume, m^3 (default 0.2 mL); the
+        finite-element volume is zero at rest, which a sealed-gas model cannot use.
     """
     p = np.asarray(DEFAULT_PRESSURES_PA if pressures_pa is None else pressures_pa, dtype=float)
     f = np.asarray(DEFAULT_LOADS_N if loads_n is None else loads_n, dtype=float)
@@ -226,6 +235,9 @@ def module_characteristic(
         raise InputError("pressure grid needs at least two values")
     if p[-1] > 10_000.0:
         raise InputError(f"pressure {p[-1]:g} Pa above 10000 Pa")
+    gap = check_finite("gap_volume_m3", gap_volume_m3)
+    if gap < 0:
+        raise InputError(f"gap volume must be >= 0 m^3, got {gap!r}")
 
     model = ModuleModel(material, geometry=geometry, mesh=mesh, load_patch=load_patch, contact=True)
     volume = np.zeros((p.size, f.size))
@@ -236,7 +248,7 @@ def module_characteristic(
         saved = model.checkpoint()
         for j, fj in enumerate(f):
             state = model.solve(float(pi), float(fj))
-            volume[i, j] = max(state.volume_m3, 0.0)
+            volume[i, j] = max(state.volume_m3, 0.0) + gap
             height[i, j] = state.height_m
             done += 1
             if progress is not None:
@@ -251,6 +263,9 @@ def module_characteristic(
         "load_patch": load_patch.describe()
         + " on the top face; total vertical force, uniform per reference area; "
         "lower face in frictionless contact with the rigid base",
+        "gap_volume_m3": gap,
+        "volume_definition": "finite-element air volume between the base and the deformed "
+        "lower face (>= 0) plus gap_volume_m3; tubing not included",
         "source": "softpad fem characteristic",
         "version": CHARACTERISTIC_VERSION,
         "mesh": {
