@@ -33,6 +33,24 @@ def test_sweep_json_has_exactly_the_documented_keys(capsys: pytest.CaptureFixtur
     assert payload["height_mm"][0] == 0.0 and 8.0 < payload["height_mm"][2] < 10.0
 
 
+def test_param_overrides_the_preset(capsys: pytest.CaptureFixture[str]) -> None:
+    argv = [
+        "fem",
+        "sweep",
+        "--mesh",
+        "coarse",
+        "--points",
+        "2",
+        "--max-pressure-kpa",
+        "1",
+        "--json",
+    ]
+    _, stiff, _ = run(capsys, *argv)
+    code, soft, _ = run(capsys, *argv, "--param", "mu=30000")
+    assert code == 0
+    assert json.loads(soft)["height_mm"][1] > json.loads(stiff)["height_mm"][1] + 0.5
+
+
 def test_sweep_writes_csv_png_vtu(tmp_path, capsys: pytest.CaptureFixture[str]) -> None:
     code, out, _ = run(
         capsys,
@@ -121,6 +139,10 @@ def test_compare_ranks_models_from_a_csv(tmp_path, capsys: pytest.CaptureFixture
         (["fem", "stiffness", "--forces-n", "0.2,-1"], "'-1'"),
         (["fem", "design", "--models", "neo-hookean,foam"], "'foam'"),
         (["fem", "fit", "--data", "/nonexistent/m.csv"], "does not exist"),
+        (["fem", "sweep", "--param", "mu=-5000"], "-5000 Pa <= 0"),
+        (["fem", "sweep", "--model", "yeoh", "--param", "c1=-1"], "not convex"),
+        (["fem", "sweep", "--param", "alpha1=2"], "'alpha1'"),
+        (["fem", "sweep", "--param", "mu"], "NAME=VALUE"),
     ],
     ids=[
         "zero-thickness",
@@ -133,6 +155,10 @@ def test_compare_ranks_models_from_a_csv(tmp_path, capsys: pytest.CaptureFixture
         "negative-force",
         "unknown-design-model",
         "missing-data",
+        "non-convex-mu",
+        "non-convex-yeoh",
+        "unknown-parameter",
+        "param-without-value",
     ],
 )
 def test_bad_input_is_one_line_and_exit_2(

@@ -67,6 +67,13 @@ def _add_common(p: argparse.ArgumentParser, model: bool = True, geometry: bool =
             default="neo-hookean",
             help="material preset (default neo-hookean): " + ", ".join(_MODELS),
         )
+        p.add_argument(
+            "--param",
+            action="append",
+            default=[],
+            metavar="NAME=VALUE",
+            help="override a preset parameter (moduli in Pa), e.g. --param mu=30000; repeatable",
+        )
     if geometry:
         p.add_argument(
             "--thickness-mm",
@@ -279,6 +286,24 @@ def _mesh(args: argparse.Namespace) -> Any:
     }[args.mesh]
 
 
+def _material(args: argparse.Namespace) -> Any:
+    """The preset named by ``--model`` with the ``--param NAME=VALUE`` overrides applied."""
+    from softpad.fem import get_material
+
+    material = get_material(args.model)
+    overrides = {}
+    for item in args.param:
+        name, sep, value = str(item).partition("=")
+        if not sep:
+            raise InputError(f"--param needs NAME=VALUE, got {item!r}")
+        try:
+            number = float(value)
+        except ValueError:
+            raise InputError(f"--param {name.strip()}: {value!r} is not a number") from None
+        overrides[name.strip()] = number
+    return material.with_parameters(**overrides) if overrides else material
+
+
 def _models(text: str) -> list[str]:
     names = [s.strip().lower() for s in text.split(",") if s.strip()]
     if not names:
@@ -340,7 +365,7 @@ def _sweep(args: argparse.Namespace) -> int:
     if args.max_pressure_kpa <= 0:
         raise InputError(f"--max-pressure-kpa must be > 0 kPa, got {args.max_pressure_kpa:g}")
     pressures = np.linspace(0.0, args.max_pressure_kpa * 1e3, args.points)
-    model = ModuleModel(args.model, geometry=_geometry(args), mesh=_mesh(args), contact=False)
+    model = ModuleModel(_material(args), geometry=_geometry(args), mesh=_mesh(args), contact=False)
     with _progress(args, f"sweep {args.model}") as progress:
         result = inflation_sweep(pressures_pa=pressures, model=model, progress=progress)
     _outputs(args, result)
@@ -396,7 +421,7 @@ def _stiffness(args: argparse.Namespace) -> int:
         raise InputError(f"--radius-mm must be > 0 mm, got {args.radius_mm:g}")
     with _progress(args, "stiffness") as progress:
         result = stiffness_study(
-            args.model,
+            _material(args),
             pressures,
             forces,
             args.radius_mm * 1e-3,
@@ -426,7 +451,7 @@ def _sensitivity(args: argparse.Namespace) -> int:
     pressures = _numbers(args.pressures_kpa, "--pressures-kpa", 1e3, positive=True)
     with _progress(args, "sensitivity") as progress:
         result = sensitive_area_study(
-            args.model,
+            _material(args),
             pressures,
             fraction=args.fraction,
             geometry=_geometry(args),
@@ -490,7 +515,7 @@ def _chamber(args: argparse.Namespace) -> int:
         raise InputError(f"detection threshold must be > 0 kPa, got {threshold * 1e-3:g}")
     with _progress(args, "chamber") as progress:
         result = sealed_chamber_study(
-            args.model,
+            _material(args),
             args.pressure_kpa * 1e3,
             masses,
             footprint=_footprint(args.footprint_mm),
@@ -541,7 +566,7 @@ def _fit(args: argparse.Namespace) -> int:
         result = fit_material(
             pressure,
             height,
-            args.model,
+            _material(args),
             free=free,
             geometry=_geometry(args),
             mesh=_mesh(args),
@@ -589,7 +614,7 @@ def _characteristic(args: argparse.Namespace) -> int:
     loads = _numbers(args.loads_n, "--loads-n") if args.loads_n else None
     with _progress(args, "characteristic") as progress:
         result = module_characteristic(
-            args.model,
+            _material(args),
             pressures_pa=pressures,
             loads_n=loads,
             geometry=_geometry(args),
