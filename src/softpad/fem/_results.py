@@ -32,16 +32,8 @@ def new_axes(ax: Any = None) -> Any:
     """Return ``ax`` or a fresh matplotlib axes (matplotlib imported lazily)."""
     if ax is not None:
         return ax
-    import matplotlib
+    import matplotlib.pyplot as plt
 
-    if matplotlib.get_backend().lower() not in ("agg", "pdf", "svg", "ps", "cairo"):
-        try:
-            import matplotlib.pyplot as plt
-        except Exception:  # pragma: no cover - headless fallback
-            matplotlib.use("Agg")
-            import matplotlib.pyplot as plt
-    else:
-        import matplotlib.pyplot as plt
     _, axes = plt.subplots(figsize=(6.0, 4.0))
     return axes
 
