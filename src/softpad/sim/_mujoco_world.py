@@ -1,0 +1,419 @@
+"""A rigid-body world on MuJoCo behind the :class:`~softpad.sim.World` interface.
+
+Module loads come from MuJoCo's contact forces on each module top (``mj_contactForce``), so the
+simulated box's pressures, the plans made from them and the contact detection all follow from
+the physics. The model itself is described in :mod:`softpad.sim._mujoco_model`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from softpad.errors import InputError, check_finite
+from softpad.layout import PadLayout
+from softpad.sim._mujoco_model import (
+    GripperParams,
+    ObjectModel,
+    PadPhysics,
+    body_name,
+    build_mjcf,
+)
+from softpad.sim._world import GripperState
+
+#: Time constant of the low-pass on the module rest heights handed over by the box, seconds.
+#: Slow next to the contact dynamics (tens of ms), so that the box's height, which itself
+#: depends on the load measured here, cannot close a fast feedback loop through MuJoCo.
+_HEIGHT_FILTER_S = 0.5
+
+
+@dataclass(frozen=True)
+class GripperContacts:
+    """Where the gripper touches things at one instant (diagnostics of a trial).
+
+    Attributes
+    ----------
+    sole_on_modules
+        Per finger (right, left): module numbers the tip's sole presses, empty when none.
+    sole_on_lines_n
+        Per finger: vertical force of the sole on non-sensitive surfaces (lines, rim, table), N.
+    finger_on_object_n
+        Per finger: total contact force between the finger and any object, N.
+    finger_on_object_from_above
+        Per finger: True when the finger touches an object with a mostly vertical contact normal
+        (the jaw came down on the object instead of beside it).
+    palm_on_object_n
+        Contact force between the palm and any object, N.
+    """
+
+    sole_on_modules: tuple[tuple[int, ...], tuple[int, ...]]
+    sole_on_lines_n: tuple[float, float]
+    finger_on_object_n: tuple[float, float]
+    finger_on_object_from_above: tuple[bool, bool]
+    palm_on_object_n: float
+
+
+@dataclass(frozen=True)
+class ObjectPose:
+    """Pose of an object's frame in the pad frame.
+
+    Attributes
+    ----------
+    x_m, y_m, z_m
+        Position of the object frame's origin, metres.
+    yaw_rad
+        Rotation about z, radians.
+    tilt_rad
+        Angle between the object's z axis and the vertical, radians.
+    """
+
+    x_m: float
+    y_m: float
+    z_m: float
+    yaw_rad: float
+    tilt_rad: float
+
+
+class MujocoWorld:
+    """Pad, gripper and objects simulated by MuJoCo; implements :class:`~softpad.sim.World`.
+
+    Parameters
+    ----------
+    layout
+        Pad geometry (2 x 3, 45 mm by default).
+    objects
+        Objects that can be placed on the pad (each starts parked far away).
+    pad
+        Pad physics (heights, stiffnesses, friction).
+    gripper
+        Gripper geometry (mounting 10/4, 6/2 or 4/0), servo and friction.
+    timestep_s
+        MuJoCo step, seconds. :meth:`step` is called at the box's sample rate and advances MuJoCo
+        only when a whole MuJoCo step has elapsed, so the box may sample at 1 kHz while MuJoCo
+        steps every 2 ms (loads are held in between).
+    """
+
+    def __init__(
+        self,
+        layout: PadLayout | None = None,
+        objects: tuple[ObjectModel, ...] | list[ObjectModel] = (),
+        pad: PadPhysics | None = None,
+        gripper: GripperParams | None = None,
+        timestep_s: float = 2e-3,
+    ) -> None:
+        import mujoco
+
+        self._mj = mujoco
+        self._layout = layout or PadLayout()
+        self.pad = pad or PadPhysics()
+        self.gripper = gripper or GripperParams()
+        self.objects = {o.name: o for o in objects}
+        if len(self.objects) != len(tuple(objects)):
+            raise InputError("object names must be unique")
+        self.xml = build_mjcf(self._layout, self.pad, self.gripper, tuple(objects), timestep_s)
+        self.model = mujoco.MjModel.from_xml_string(self.xml)
+        self.data = mujoco.MjData(self.model)
+        m = self.model
+        n = self._layout.n_modules
+        name2id = mujoco.mj_name2id
+        gt, bt, jt = mujoco.mjtObj.mjOBJ_GEOM, mujoco.mjtObj.mjOBJ_BODY, mujoco.mjtObj.mjOBJ_JOINT
+        self._top_geom = np.array([name2id(m, gt, f"module{k}_top") for k in self._layout.modules])
+        self._geom_module = np.full(m.ngeom, -1, dtype=int)
+        self._geom_module[self._top_geom] = np.arange(n)
+        self._module_qpos = np.array(
+            [m.jnt_qposadr[name2id(m, jt, f"module{k}_z")] for k in self._layout.modules]
+        )
+        self._module_dof = np.array(
+            [m.jnt_dofadr[name2id(m, jt, f"module{k}_z")] for k in self._layout.modules]
+        )
+        self._pad_static = {name2id(m, gt, "base"), name2id(m, gt, "table")}
+        self._sole = (name2id(m, gt, "sole_right"), name2id(m, gt, "sole_left"))
+        self._finger = (name2id(m, gt, "finger_right"), name2id(m, gt, "finger_left"))
+        self._palm = name2id(m, gt, "palm")
+        hand_j = [name2id(m, jt, f"hand_{a}") for a in ("x", "y", "z", "yaw")]
+        self._hand_qpos = np.array([m.jnt_qposadr[j] for j in hand_j])
+        self._hand_dof = np.array([m.jnt_dofadr[j] for j in hand_j])
+        self._jaw_qpos = np.array(
+            [m.jnt_qposadr[name2id(m, jt, f"jaw_{s}")] for s in ("right", "left")]
+        )
+        self._obj_body = {name: name2id(m, bt, body_name(o)) for name, o in self.objects.items()}
+        self._obj_qpos = {
+            name: m.jnt_qposadr[name2id(m, jt, body_name(o))] for name, o in self.objects.items()
+        }
+        self._obj_dof = {
+            name: m.jnt_dofadr[name2id(m, jt, body_name(o))] for name, o in self.objects.items()
+        }
+        self._body_object = {b: name for name, b in self._obj_body.items()}
+        self._force = np.zeros(6)
+        self._loads = np.zeros(n)
+        self._pending_s = 0.0
+        self._time_s = 0.0
+        self._heights = np.full(n, self.pad.free_height_m)
+        self._heights_given = False
+        # module tops start at their rest height, gripper high above the pad, fully open
+        self.data.qpos[self._module_qpos] = self.pad.free_height_m
+        open_w = self.gripper.max_width_m
+        cx, cy = (
+            self._layout.cols * self._layout.pitch_m / 2,
+            self._layout.rows * self._layout.pitch_m / 2,
+        )
+        self._hand = np.array([cx, cy, 0.15 + self.gripper.finger_length_m, 0.0])
+        self._hand_target = self._hand.copy()
+        self._width_target = open_w
+        self.data.qpos[self._hand_qpos] = self._hand
+        self.data.qpos[self._jaw_qpos] = open_w / 2
+        self.data.ctrl[:] = open_w / 2
+        mujoco.mj_forward(self.model, self.data)
+
+    # --- World protocol -------------------------------------------------------------------
+    @property
+    def layout(self) -> PadLayout:
+        """Geometry of the pad."""
+        return self._layout
+
+    @property
+    def time_s(self) -> float:
+        """Simulated time, seconds."""
+        return self._time_s
+
+    @property
+    def timestep_s(self) -> float:
+        """MuJoCo's step, seconds."""
+        return float(self.model.opt.timestep)
+
+    def step(self, dt_s: float, module_heights_m: ArrayLike | None = None) -> None:
+        """Advance by ``dt_s`` seconds; MuJoCo steps once per elapsed ``timestep_s``.
+
+        Parameters
+        ----------
+        dt_s
+            Time to advance, seconds (the box's sample period).
+        module_heights_m
+            Top height of every module from the box's characteristic at its current pressure
+            and load, metres; None keeps the last (before any is given, the tops rest at
+            ``pad.free_height_m``). The rest length of each top's spring is set so that under
+            the current load the top settles at that height (``springref = h + F / k``,
+            low-passed over 0.5 s), which keeps the geometry of the two models consistent at
+            rest without feeding the box's stiffness back into MuJoCo's contact dynamics.
+        """
+        dt = check_finite("world time step", dt_s)
+        if dt < 0:
+            raise InputError(f"world time step must be >= 0 s, got {dt!r}")
+        if module_heights_m is not None:
+            h = np.asarray(module_heights_m, dtype=float)
+            if h.shape != (self._layout.n_modules,) or not np.all(np.isfinite(h)):
+                raise InputError(
+                    f"module heights must be {self._layout.n_modules} finite values, got {h!r}"
+                )
+            self._heights = np.clip(h, 0.0, 0.03)
+            self._heights_given = True
+        self._pending_s += dt
+        ts = self.timestep_s
+        while self._pending_s >= ts * (1 - 1e-9):
+            self._pending_s -= ts
+            self._mj_step(ts)
+        self._time_s += dt
+
+    def module_loads_n(self) -> NDArray[np.float64]:
+        """Vertical contact force on each module top, N (>= 0), module order 1..N."""
+        return self._loads.copy()
+
+    def set_gripper_target(self, target: GripperState) -> None:
+        """Move the hand to ``target`` over the next MuJoCo step; the jaws servo to its width.
+
+        The robot calls this at its control rate with targets along its trajectory, so the hand
+        speed is the robot's. The jaw width is servoed by the gripper's position servos with the
+        grip-force limit (the jaws stop on an object and squeeze it).
+        """
+        vals = [
+            check_finite(n, getattr(target, n)) for n in ("x_m", "y_m", "z_m", "yaw_rad", "width_m")
+        ]
+        g = self.gripper
+        w = vals[4]
+        if not (g.min_width_m - 1e-9 <= w <= g.max_width_m + 1e-9):
+            raise InputError(
+                f"gripper width {w * 1e3:g} mm is outside the {g.mounting} mounting's range "
+                f"[{g.min_width_m * 1e3:g}, {g.max_width_m * 1e3:g}] mm"
+            )
+        self._hand_target = np.array(
+            [vals[0], vals[1], vals[2] + g.finger_length_m, _unwrap(vals[3], self._hand[3])]
+        )
+        self._width_target = w
+
+    def gripper_state(self) -> GripperState:
+        """Current hand pose and measured jaw opening."""
+        q = self.data.qpos
+        return GripperState(
+            x_m=float(self._hand[0]),
+            y_m=float(self._hand[1]),
+            z_m=float(self._hand[2] - self.gripper.finger_length_m),
+            yaw_rad=float(self._hand[3]),
+            width_m=float(q[self._jaw_qpos[0]] + q[self._jaw_qpos[1]]),
+        )
+
+    # --- objects --------------------------------------------------------------------------
+    def place_object(self, name: str, x_m: float, y_m: float, yaw_rad: float = 0.0) -> None:
+        """Put object ``name`` on the pad: its frame at (x, y) with ``yaw_rad``, 1 mm above the
+        highest module top, at rest; it settles under gravity in the next steps."""
+        if name not in self.objects:
+            raise InputError(f"unknown object {name!r}; this world has {sorted(self.objects)}")
+        x = check_finite("object x", x_m)
+        y = check_finite("object y", y_m)
+        yaw = check_finite("object yaw", yaw_rad)
+        qa, da = self._obj_qpos[name], self._obj_dof[name]
+        z = float(np.max(self.data.qpos[self._module_qpos])) + 1e-3
+        self.data.qpos[qa : qa + 7] = [x, y, z, math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2)]
+        self.data.qvel[da : da + 6] = 0.0
+        self._mj.mj_forward(self.model, self.data)
+
+    def remove_object(self, name: str) -> None:
+        """Take an object off the pad (back to its parking place)."""
+        if name not in self.objects:
+            raise InputError(f"unknown object {name!r}")
+        qa, da = self._obj_qpos[name], self._obj_dof[name]
+        i = list(self.objects).index(name)
+        self.data.qpos[qa : qa + 7] = [-1.0 - 0.5 * i, -1.0, 0.1, 1, 0, 0, 0]
+        self.data.qvel[da : da + 6] = 0.0
+        self._mj.mj_forward(self.model, self.data)
+
+    def object_pose(self, name: str) -> ObjectPose:
+        """Current pose of object ``name``."""
+        if name not in self.objects:
+            raise InputError(f"unknown object {name!r}")
+        b = self._obj_body[name]
+        pos = self.data.xpos[b]
+        rot = self.data.xmat[b].reshape(3, 3)
+        return ObjectPose(
+            x_m=float(pos[0]),
+            y_m=float(pos[1]),
+            z_m=float(pos[2]),
+            yaw_rad=float(math.atan2(rot[1, 0], rot[0, 0])),
+            tilt_rad=float(math.acos(max(-1.0, min(1.0, rot[2, 2])))),
+        )
+
+    def object_speed_m_s(self, name: str) -> float:
+        """Linear speed of an object, m/s (to tell when it has settled)."""
+        da = self._obj_dof[name]
+        return float(np.linalg.norm(self.data.qvel[da : da + 3]))
+
+    def module_top_heights_m(self) -> NDArray[np.float64]:
+        """Current height of every module top in MuJoCo, metres."""
+        return np.asarray(self.data.qpos[self._module_qpos], dtype=float).copy()
+
+    # --- diagnostics ----------------------------------------------------------------------
+    def gripper_contacts(self) -> GripperContacts:
+        """Where the gripper touches the pad and the objects now."""
+        m, d = self.model, self.data
+        on_mod: list[set[int]] = [set(), set()]
+        on_line = [0.0, 0.0]
+        on_obj = [0.0, 0.0]
+        above = [False, False]
+        palm = 0.0
+        for i in range(d.ncon):
+            c = d.contact[i]
+            g1, g2 = int(c.geom1), int(c.geom2)
+            f = self._contact_world_force(i)
+            for side in (0, 1):
+                sole, finger = self._sole[side], self._finger[side]
+                if sole in (g1, g2):
+                    other = g2 if g1 == sole else g1
+                    if self._geom_module[other] >= 0:
+                        on_mod[side].add(int(self._geom_module[other]) + 1)
+                    elif other in self._pad_static:
+                        on_line[side] += abs(f[2])
+                if finger in (g1, g2):
+                    other = g2 if g1 == finger else g1
+                    if int(m.geom_bodyid[other]) in self._body_object:
+                        on_obj[side] += float(np.linalg.norm(f))
+                        if abs(c.frame[2]) > 0.7 and abs(f[2]) > 1e-3:
+                            above[side] = True
+            if self._palm in (g1, g2):
+                other = g2 if g1 == self._palm else g1
+                if int(m.geom_bodyid[other]) in self._body_object:
+                    palm += float(np.linalg.norm(f))
+        return GripperContacts(
+            sole_on_modules=(tuple(sorted(on_mod[0])), tuple(sorted(on_mod[1]))),
+            sole_on_lines_n=(on_line[0], on_line[1]),
+            finger_on_object_n=(on_obj[0], on_obj[1]),
+            finger_on_object_from_above=(above[0], above[1]),
+            palm_on_object_n=palm,
+        )
+
+    def gripper_vertical_force_n(self) -> float:
+        """Upward contact force on the gripper (soles on anything, fingers and palm on objects),
+        N: what a force-limited robot would feel while descending."""
+        d = self.data
+        total = 0.0
+        gripper_geoms = {*self._sole, *self._finger, self._palm}
+        for i in range(d.ncon):
+            c = d.contact[i]
+            g1, g2 = int(c.geom1), int(c.geom2)
+            if g1 in gripper_geoms or g2 in gripper_geoms:
+                f = self._contact_world_force(i)
+                # force on geom2 is +f (normal from geom1 to geom2); upward on the gripper
+                total += f[2] if g2 in gripper_geoms else -f[2]
+        return total
+
+    def save_xml(self, path: str) -> None:
+        """Write the generated MJCF to ``path`` (to look at it in MuJoCo's viewer)."""
+        with open(path, "w", encoding="utf-8") as fh:
+            fh.write(self.xml)
+
+    # --- internals ------------------------------------------------------------------------
+    def _contact_world_force(self, i: int) -> NDArray[np.float64]:
+        """Force of contact ``i`` in world coordinates, acting on geom2 (from geom1), N."""
+        self._mj.mj_contactForce(self.model, self.data, i, self._force)
+        frame = self.data.contact[i].frame.reshape(3, 3)
+        return np.asarray(frame.T @ self._force[:3], dtype=float)
+
+    def _mj_step(self, ts: float) -> None:
+        m, d = self.model, self.data
+        # module rest lengths follow the box's heights (see step())
+        alpha = ts / (_HEIGHT_FILTER_S + ts)
+        if self._heights_given:
+            ref = self._heights + self._loads / self.pad.distributed_stiffness_n_m
+            spring = m.qpos_spring
+            spring[self._module_qpos] += alpha * (ref - spring[self._module_qpos])
+        # kinematic hand: straight to the target within one step
+        vel = (self._hand_target - self._hand) / ts
+        self._hand = self._hand_target.copy()
+        d.qpos[self._hand_qpos] = self._hand
+        d.qvel[self._hand_dof] = vel
+        d.ctrl[:] = self._width_target / 2
+        self._mj.mj_step(m, d)
+        d.qpos[self._hand_qpos] = self._hand
+        d.qvel[self._hand_dof] = 0.0
+        self._loads = self._compute_loads()
+
+    def _compute_loads(self) -> NDArray[np.float64]:
+        d = self.data
+        loads = np.zeros(self._layout.n_modules)
+        gm = self._geom_module
+        for i in range(d.ncon):
+            c = d.contact[i]
+            k = gm[int(c.geom1)]
+            if k < 0:
+                k = gm[int(c.geom2)]
+                if k < 0:
+                    continue
+            loads[k] += abs(self._contact_world_force(i)[2])
+        return loads
+
+    def info(self) -> dict[str, Any]:
+        """Model size and settings, for reports."""
+        return {
+            "timestep_s": self.timestep_s,
+            "nbody": int(self.model.nbody),
+            "ngeom": int(self.model.ngeom),
+            "integrator": "implicitfast",
+            "cone": "elliptic",
+        }
+
+
+def _unwrap(angle: float, reference: float) -> float:
+    """``angle`` plus a multiple of 2 pi, closest to ``reference`` (no jumps in the yaw joint)."""
+    return reference + math.remainder(angle - reference, 2 * math.pi)
