@@ -385,6 +385,9 @@ def build_mjcf(
     sole_t = gripper.sole_thickness_m
     finger_l = gripper.finger_length_m - sole_t
     open_half = gripper.max_width_m / 2
+    sole_mass = 0.002
+    # critically damped sole (2 sqrt(k m)): no bouncing on the pad
+    sole_damping = 2 * math.sqrt(pad.local_stiffness_n_m * sole_mass)
     fingers = []
     for side, sign in (("right", 1.0), ("left", -1.0)):
         fingers.append(
@@ -397,10 +400,10 @@ def build_mjcf(
             f'contype="{_FINGER}" conaffinity="0" condim="4"/>'
             f'<body name="sole_{side}" pos="{sign * t / 2:.9g} 0 {-finger_l:.9g}">'
             f'<joint name="sole_{side}_z" type="slide" axis="0 0 1" '
-            f'stiffness="{pad.local_stiffness_n_m:g}" springref="0" damping="0.3" '
+            f'stiffness="{pad.local_stiffness_n_m:g}" springref="0" damping="{sole_damping:.6g}" '
             f'range="0 {gripper.sole_stroke_m:.9g}" limited="true"/>'
             f'<geom name="sole_{side}" type="box" pos="0 0 {-sole_t / 2:.9g}" '
-            f'size="{t / 2:.9g} {w / 2:.9g} {sole_t / 2:.9g}" mass="0.002" '
+            f'size="{t / 2:.9g} {w / 2:.9g} {sole_t / 2:.9g}" mass="{sole_mass:g}" '
             f'rgba="0.1 0.1 0.1 1" friction="0.5 0.005 0.0001" priority="1" '
             f'contype="{_SOLE}" conaffinity="{_PAD}" condim="3"/>'
             f"</body></body>"
