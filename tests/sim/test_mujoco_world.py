@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 import pytest
 
@@ -10,6 +12,14 @@ from softpad.layout import PadLayout
 from softpad.sim import GripperState, World
 from softpad.sim._mujoco_model import GRAVITY_M_S2, GripperParams, ObjectModel, ObjectPart
 from softpad.sim._mujoco_world import MujocoWorld
+
+
+@dataclass(frozen=True)
+class Placement:
+    x_m: float
+    y_m: float
+    yaw_rad: float = 0.0
+
 
 pytestmark = pytest.mark.mujoco
 
@@ -34,7 +44,7 @@ def test_is_a_world() -> None:
 def test_resting_brick_loads_only_its_module_with_its_weight(module: int) -> None:
     world = MujocoWorld(objects=(brick(),))
     x, y = PadLayout().to_metres(PadLayout().center(module))
-    world.place_object("brick", x, y)
+    world.place_object(brick(), Placement(x, y))
     settle(world)
     loads = world.module_loads_n()
     expected = np.zeros(6)
@@ -55,7 +65,7 @@ def test_heavier_part_loads_its_module_more() -> None:
     )
     world = MujocoWorld(objects=(bar,))
     # heavy half over module 1 (x = 0.5 units): yaw pi turns the bar around
-    world.place_object("bar", PITCH, 1.5 * PITCH, yaw_rad=np.pi)
+    world.place_object(bar, Placement(PITCH, 1.5 * PITCH, np.pi))
     settle(world, 1.5)
     loads = world.module_loads_n()
     total = (light + heavy) * GRAVITY_M_S2
@@ -112,9 +122,9 @@ def test_gripper_width_outside_mounting_is_rejected() -> None:
         world.set_gripper_target(GripperState(0.05, 0.05, 0.05, 0.0, 0.08))
 
 
-def test_unknown_object_is_rejected() -> None:
-    with pytest.raises(InputError, match="unknown object"):
-        MujocoWorld().place_object("nothing", 0.0, 0.0)
+def test_object_without_parts_is_rejected() -> None:
+    with pytest.raises(InputError, match="no parts"):
+        MujocoWorld().place_object(ObjectModel("nothing", ()), Placement(0.0, 0.0))
 
 
 def test_bad_heights_are_rejected() -> None:

@@ -72,13 +72,17 @@ class PadPhysics:
         Vertical stiffness of a module top under a load spread over it, N/m. For a sealed chamber
         the gas carries such a load: with the FEM volume dV/dp = 3.8 mL/kPa and about 10 mL of
         gas (chamber plus tubing) the top sinks about 0.7 mm per newton, i.e. 1.4 kN/m; we use
-        1.5 kN/m, stiff enough that the 312 g charger sinks about 1 mm, soft enough for a 2 ms
-        step (period 2 pi sqrt(m/k) = 11 ms with the 4.5 g top).
+        1.5 kN/m, stiff enough that the 312 g charger sinks about 1 mm.
     distributed_damping_n_s_m
-        Damping of that joint, N s/m (about critical: 2 sqrt(k m) = 5 N s/m).
+        Damping of that joint, N s/m (0.65 of critical, 2 sqrt(k (m + armature)) = 18 N s/m).
     top_mass_kg
         Moving mass of a module top, kg: the 1.5 mm EcoFlex layer over 45 x 45 mm at
         1070 kg/m^3 (3.3 g) plus the carried air and a margin, 4.5 g.
+    top_armature_kg
+        Extra inertia of the top's slide joint (MuJoCo ``armature``), kg. Joint springs are
+        integrated explicitly; with the light top alone, a heavy object on it made the
+        2 ms step unstable (measured: a 300 g block bounced). 50 g brings sqrt(k/m) * dt to
+        0.33 and only slows the top's free response (period 37 ms).
     local_stiffness_n_m
         Stiffness of the membrane under a small indenter (a fingertip), N/m. The thesis's FEM
         (Fig. 6.3c) computes an equivalent stiffness k = F / (h_free - h_load) for a load on a
@@ -93,8 +97,9 @@ class PadPhysics:
     line_height_m: float = 1.5e-3
     rim_m: float = 15e-3
     distributed_stiffness_n_m: float = 1500.0
-    distributed_damping_n_s_m: float = 5.0
+    distributed_damping_n_s_m: float = 12.0
     top_mass_kg: float = 4.5e-3
+    top_armature_kg: float = 0.05
     local_stiffness_n_m: float = 80.0
     friction: float = 1.0
 
@@ -373,7 +378,7 @@ def build_mjcf(
             f'<body name="module{k}" pos="{cx:.9g} {cy:.9g} 0">'
             f'<joint name="module{k}_z" type="slide" axis="0 0 1" '
             f'stiffness="{pad.distributed_stiffness_n_m:g}" springref="{pad.free_height_m:.9g}" '
-            f'damping="{pad.distributed_damping_n_s_m:g}" range="0 0.03" limited="true"/>'
+            f'damping="{pad.distributed_damping_n_s_m:g}" range="0 0.03" limited="true" armature="{pad.top_armature_kg:g}"/>'
             f'<geom name="module{k}_top" type="box" pos="0 0 {-top_t / 2:.9g}" '
             f'size="{half:.9g} {half:.9g} {top_t / 2:.9g}" mass="{pad.top_mass_kg:.9g}" '
             f'rgba="0.95 0.55 0.7 1" friction="{pad.friction:g} 0.005 0.0001" '
@@ -391,7 +396,7 @@ def build_mjcf(
     fingers = []
     for side, sign in (("right", 1.0), ("left", -1.0)):
         fingers.append(
-            f'<body name="finger_{side}" pos="0 0 0">'
+            f'<body name="finger_{side}" pos="0 0 0" gravcomp="1">'
             f'<joint name="jaw_{side}" type="slide" axis="{sign:g} 0 0" damping="40" '
             f'range="{gripper.min_width_m / 2 - 1e-3:.9g} {open_half + 1e-3:.9g}" limited="true"/>'
             f'<geom name="finger_{side}" type="box" pos="{sign * t / 2:.9g} 0 {-finger_l / 2:.9g}" '
@@ -415,13 +420,20 @@ def build_mjcf(
     # the hand is driven kinematically: the world overwrites these four joints' positions and
     # velocities every step (the robot is position-controlled and far stiffer than anything
     # here), so contacts see the true finger velocity
-    hand_joints = (
-        '<joint name="hand_x" type="slide" axis="1 0 0"/>'
-        '<joint name="hand_y" type="slide" axis="0 1 0"/>'
-        '<joint name="hand_z" type="slide" axis="0 0 1"/>'
-        '<joint name="hand_yaw" type="hinge" axis="0 0 1"/>'
+    # a heavy armature makes the solver treat the hand as the immovable robot it stands for,
+    # and gravity compensation keeps the weight of hand and fingers off what they touch
+    hand_joints = "".join(
+        f'<joint name="hand_{a}" type="{kind}" axis="{axis}" armature="1000"/>'
+        for a, kind, axis in (
+            ("x", "slide", "1 0 0"),
+            ("y", "slide", "0 1 0"),
+            ("z", "slide", "0 0 1"),
+            ("yaw", "hinge", "0 0 1"),
+        )
     )
-    hand = f'<body name="hand" pos="0 0 0">{hand_joints}{palm}{"".join(fingers)}</body>'
+    hand = (
+        f'<body name="hand" pos="0 0 0" gravcomp="1">{hand_joints}{palm}{"".join(fingers)}</body>'
+    )
     obj_bodies = []
     palette = ("0.9 0.2 0.2 1", "0.2 0.6 0.9 1", "0.95 0.8 0.1 1", "0.3 0.8 0.3 1")
     for i, obj in enumerate(objects):

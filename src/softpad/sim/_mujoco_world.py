@@ -22,6 +22,7 @@ from softpad.sim._mujoco_model import (
     PadPhysics,
     body_name,
     build_mjcf,
+    parking_position,
 )
 from softpad.sim._world import GripperState
 
@@ -111,26 +112,54 @@ class MujocoWorld:
         self._layout = layout or PadLayout()
         self.pad = pad or PadPhysics()
         self.gripper = gripper or GripperParams()
+        self._timestep_s = timestep_s
+        names = [o.name for o in objects]
+        if len(set(names)) != len(names):
+            raise InputError(f"object names must be unique, got {names}")
+        self.objects: dict[str, ObjectModel] = {}
+        self._force = np.zeros(6)
+        n = self._layout.n_modules
+        self._loads = np.zeros(n)
+        self._pending_s = 0.0
+        self._time_s = 0.0
+        self._heights = np.full(n, self.pad.free_height_m)
+        self._heights_given = False
+        open_w = self.gripper.max_width_m
+        cx = self._layout.cols * self._layout.pitch_m / 2
+        cy = self._layout.rows * self._layout.pitch_m / 2
+        # gripper high above the pad centre, fully open
+        self._hand = np.array([cx, cy, 0.15 + self.gripper.finger_length_m, 0.0])
+        self._goal = np.append(self._hand.copy(), open_w)
+        self._speed_m_s = 0.0
+        self._width_setpoint = open_w
+        self._build(tuple(objects))
+
+    def _build(self, objects: tuple[ObjectModel, ...]) -> None:
+        """(Re)build the MuJoCo model with ``objects``, keeping the state of what existed."""
+        mujoco = self._mj
+        old = getattr(self, "data", None)
+        old_idx = None
+        if old is not None:
+            old_idx = (self._module_qpos, self._jaw_qpos, dict(self._obj_qpos), dict(self._obj_dof))
+            old_springs = self.model.qpos_spring[self._module_qpos].copy()
+            old_qvel = old.qvel.copy()
+            old_qpos = old.qpos.copy()
         self.objects = {o.name: o for o in objects}
-        if len(self.objects) != len(tuple(objects)):
-            raise InputError("object names must be unique")
-        self.xml = build_mjcf(self._layout, self.pad, self.gripper, tuple(objects), timestep_s)
+        self.xml = build_mjcf(self._layout, self.pad, self.gripper, objects, self._timestep_s)
         self.model = mujoco.MjModel.from_xml_string(self.xml)
         self.data = mujoco.MjData(self.model)
         m = self.model
         n = self._layout.n_modules
         name2id = mujoco.mj_name2id
         gt, bt, jt = mujoco.mjtObj.mjOBJ_GEOM, mujoco.mjtObj.mjOBJ_BODY, mujoco.mjtObj.mjOBJ_JOINT
-        self._top_geom = np.array([name2id(m, gt, f"module{k}_top") for k in self._layout.modules])
+        top_geom = np.array([name2id(m, gt, f"module{k}_top") for k in self._layout.modules])
         self._geom_module = np.full(m.ngeom, -1, dtype=int)
-        self._geom_module[self._top_geom] = np.arange(n)
+        self._geom_module[top_geom] = np.arange(n)
         self._module_qpos = np.array(
             [m.jnt_qposadr[name2id(m, jt, f"module{k}_z")] for k in self._layout.modules]
         )
-        self._module_dof = np.array(
-            [m.jnt_dofadr[name2id(m, jt, f"module{k}_z")] for k in self._layout.modules]
-        )
         self._pad_static = {name2id(m, gt, "base"), name2id(m, gt, "table")}
+        self._pad_geoms = self._pad_static | {int(g) for g in top_geom}
         self._sole = (name2id(m, gt, "sole_right"), name2id(m, gt, "sole_left"))
         self._finger = (name2id(m, gt, "finger_right"), name2id(m, gt, "finger_left"))
         self._palm = name2id(m, gt, "palm")
@@ -140,34 +169,34 @@ class MujocoWorld:
         self._jaw_qpos = np.array(
             [m.jnt_qposadr[name2id(m, jt, f"jaw_{s}")] for s in ("right", "left")]
         )
-        self._obj_body = {name: name2id(m, bt, body_name(o)) for name, o in self.objects.items()}
-        self._obj_qpos = {
-            name: m.jnt_qposadr[name2id(m, jt, body_name(o))] for name, o in self.objects.items()
-        }
-        self._obj_dof = {
-            name: m.jnt_dofadr[name2id(m, jt, body_name(o))] for name, o in self.objects.items()
-        }
-        self._body_object = {b: name for name, b in self._obj_body.items()}
-        self._force = np.zeros(6)
-        self._loads = np.zeros(n)
-        self._pending_s = 0.0
-        self._time_s = 0.0
-        self._heights = np.full(n, self.pad.free_height_m)
-        self._heights_given = False
-        # module tops start at their rest height, gripper high above the pad, fully open
-        self.data.qpos[self._module_qpos] = self.pad.free_height_m
-        open_w = self.gripper.max_width_m
-        cx, cy = (
-            self._layout.cols * self._layout.pitch_m / 2,
-            self._layout.rows * self._layout.pitch_m / 2,
+        self._jaw_dof = np.array(
+            [m.jnt_dofadr[name2id(m, jt, f"jaw_{s}")] for s in ("right", "left")]
         )
-        self._hand = np.array([cx, cy, 0.15 + self.gripper.finger_length_m, 0.0])
-        self._hand_target = self._hand.copy()
-        self._width_target = open_w
-        self.data.qpos[self._hand_qpos] = self._hand
-        self.data.qpos[self._jaw_qpos] = open_w / 2
-        self.data.ctrl[:] = open_w / 2
-        mujoco.mj_forward(self.model, self.data)
+        self._obj_body = {o.name: name2id(m, bt, body_name(o)) for o in objects}
+        self._obj_qpos = {o.name: int(m.jnt_qposadr[name2id(m, jt, body_name(o))]) for o in objects}
+        self._obj_dof = {o.name: int(m.jnt_dofadr[name2id(m, jt, body_name(o))]) for o in objects}
+        self._body_object = {b: name for name, b in self._obj_body.items()}
+        d = self.data
+        if old is None or old_idx is None:
+            d.qpos[self._module_qpos] = self.pad.free_height_m
+            d.qpos[self._jaw_qpos] = self.gripper.max_width_m / 2
+        else:
+            mq, jq, oq, od = old_idx
+            m.qpos_spring[self._module_qpos] = old_springs
+            d.qpos[self._module_qpos] = old_qpos[mq]
+            d.qpos[self._jaw_qpos] = old_qpos[jq]
+            for name in oq:
+                if name in self._obj_qpos:
+                    d.qpos[self._obj_qpos[name] : self._obj_qpos[name] + 7] = old_qpos[
+                        oq[name] : oq[name] + 7
+                    ]
+                    d.qvel[self._obj_dof[name] : self._obj_dof[name] + 6] = old_qvel[
+                        od[name] : od[name] + 6
+                    ]
+            d.time = old.time
+        d.qpos[self._hand_qpos] = self._hand
+        d.ctrl[:] = self._width_setpoint / 2
+        mujoco.mj_forward(m, d)
 
     # --- World protocol -------------------------------------------------------------------
     @property
@@ -222,16 +251,27 @@ class MujocoWorld:
         """Vertical contact force on each module top, N (>= 0), module order 1..N."""
         return self._loads.copy()
 
-    def set_gripper_target(self, target: GripperState) -> None:
-        """Move the hand to ``target`` over the next MuJoCo step; the jaws servo to its width.
+    def command_gripper(self, target: GripperState, speed_m_s: float) -> None:
+        """Move the hand towards ``target`` in a straight line at ``speed_m_s``; the jaw
+        servos' setpoint moves towards ``target.width_m`` at the same speed.
 
-        The robot calls this at its control rate with targets along its trajectory, so the hand
-        speed is the robot's. The jaw width is servoed by the gripper's position servos with the
-        grip-force limit (the jaws stop on an object and squeeze it).
+        The yaw turns at ``speed_m_s / 0.05 m`` rad/s (1 rad/s at the thesis's 0.05 m/s). A new
+        command replaces the previous one; commanding the current state stops the hand. The
+        jaws are servoed with the grip-force limit, so they stop on an object and squeeze it.
+
+        Parameters
+        ----------
+        target
+            Goal pose and opening, pad frame, metres and radians.
+        speed_m_s
+            Linear speed of the hand and of each jaw's setpoint, m/s (> 0).
         """
         vals = [
             check_finite(n, getattr(target, n)) for n in ("x_m", "y_m", "z_m", "yaw_rad", "width_m")
         ]
+        speed = check_finite("gripper speed", speed_m_s)
+        if not 0 < speed <= 2.0:
+            raise InputError(f"gripper speed must be in (0, 2] m/s, got {speed!r}")
         g = self.gripper
         w = vals[4]
         if not (g.min_width_m - 1e-9 <= w <= g.max_width_m + 1e-9):
@@ -239,10 +279,16 @@ class MujocoWorld:
                 f"gripper width {w * 1e3:g} mm is outside the {g.mounting} mounting's range "
                 f"[{g.min_width_m * 1e3:g}, {g.max_width_m * 1e3:g}] mm"
             )
-        self._hand_target = np.array(
-            [vals[0], vals[1], vals[2] + g.finger_length_m, _unwrap(vals[3], self._hand[3])]
+        self._goal = np.array(
+            [vals[0], vals[1], vals[2] + g.finger_length_m, _unwrap(vals[3], self._hand[3]), w]
         )
-        self._width_target = w
+        self._speed_m_s = speed
+
+    def set_gripper_target(self, target: GripperState) -> None:
+        """Put the hand at ``target`` at the next MuJoCo step (for robots that stream
+        setpoints at their own rate); the jaw setpoint jumps to ``target.width_m``."""
+        self.command_gripper(target, 2.0)
+        self._speed_m_s = math.inf
 
     def gripper_state(self) -> GripperState:
         """Current hand pose and measured jaw opening."""
@@ -256,29 +302,61 @@ class MujocoWorld:
         )
 
     # --- objects --------------------------------------------------------------------------
-    def place_object(self, name: str, x_m: float, y_m: float, yaw_rad: float = 0.0) -> None:
-        """Put object ``name`` on the pad: its frame at (x, y) with ``yaw_rad``, 1 mm above the
-        highest module top, at rest; it settles under gravity in the next steps."""
-        if name not in self.objects:
-            raise InputError(f"unknown object {name!r}; this world has {sorted(self.objects)}")
-        x = check_finite("object x", x_m)
-        y = check_finite("object y", y_m)
-        yaw = check_finite("object yaw", yaw_rad)
-        qa, da = self._obj_qpos[name], self._obj_dof[name]
+    def place_object(self, spec: Any, placement: Any | None = None) -> None:
+        """Put an object on the pad, at rest, 1 mm above the highest module top; it settles
+        under gravity in the next steps.
+
+        Parameters
+        ----------
+        spec
+            A catalogue object (:class:`ObjectModel`, or anything with ``name`` and ``parts``
+            in the ``softpad-objects/1`` schema, e.g. ``softpad.sim.ObjectSpec``).
+        placement
+            Pose of the object frame in the pad frame (``x_m``, ``y_m``, ``yaw_rad``);
+            ``spec.placement`` by default.
+        """
+        model = spec if isinstance(spec, ObjectModel) else ObjectModel.from_spec(spec)
+        placement = placement if placement is not None else getattr(spec, "placement", None)
+        if placement is None:
+            raise InputError(f"object {model.name!r} has no placement")
+        x = check_finite("object x", placement.x_m)
+        y = check_finite("object y", placement.y_m)
+        yaw = check_finite("object yaw", placement.yaw_rad)
+        if model.name not in self.objects or self.objects[model.name] != model:
+            objs = dict(self.objects)
+            objs[model.name] = model
+            self._build(tuple(objs.values()))
+        qa, da = self._obj_qpos[model.name], self._obj_dof[model.name]
         z = float(np.max(self.data.qpos[self._module_qpos])) + 1e-3
         self.data.qpos[qa : qa + 7] = [x, y, z, math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2)]
         self.data.qvel[da : da + 6] = 0.0
         self._mj.mj_forward(self.model, self.data)
 
-    def remove_object(self, name: str) -> None:
-        """Take an object off the pad (back to its parking place)."""
-        if name not in self.objects:
-            raise InputError(f"unknown object {name!r}")
-        qa, da = self._obj_qpos[name], self._obj_dof[name]
-        i = list(self.objects).index(name)
-        self.data.qpos[qa : qa + 7] = [-1.0 - 0.5 * i, -1.0, 0.1, 1, 0, 0, 0]
-        self.data.qvel[da : da + 6] = 0.0
+    def remove_objects(self) -> None:
+        """Take every object off the pad and out of the gripper (back to its parking place)."""
+        for i, name in enumerate(self.objects):
+            qa, da = self._obj_qpos[name], self._obj_dof[name]
+            self.data.qpos[qa : qa + 7] = [*parking_position(i), 1, 0, 0, 0]
+            self.data.qvel[da : da + 6] = 0.0
         self._mj.mj_forward(self.model, self.data)
+
+    def holding(self) -> bool:
+        """True when an object touches both fingers and nothing of the pad (it is carried)."""
+        d, m = self.data, self.model
+        touch: dict[int, set[int]] = {}
+        on_pad: set[int] = set()
+        fingers = {self._finger[0]: 0, self._finger[1]: 1}
+        for i in range(d.ncon):
+            c = d.contact[i]
+            g1, g2 = int(c.geom1), int(c.geom2)
+            for g, other in ((g1, g2), (g2, g1)):
+                b = int(m.geom_bodyid[g])
+                if b in self._body_object:
+                    if other in fingers:
+                        touch.setdefault(b, set()).add(fingers[other])
+                    elif other in self._pad_geoms:
+                        on_pad.add(b)
+        return any(len(s) == 2 and b not in on_pad for b, s in touch.items())
 
     def object_pose(self, name: str) -> ObjectPose:
         """Current pose of object ``name``."""
@@ -378,15 +456,27 @@ class MujocoWorld:
             ref = self._heights + self._loads / self.pad.distributed_stiffness_n_m
             spring = m.qpos_spring
             spring[self._module_qpos] += alpha * (ref - spring[self._module_qpos])
-        # kinematic hand: straight to the target within one step
-        vel = (self._hand_target - self._hand) / ts
-        self._hand = self._hand_target.copy()
+        # kinematic hand: straight line towards the goal at the commanded speed
+        old = self._hand.copy()
+        delta = self._goal[:3] - self._hand[:3]
+        dist = float(np.linalg.norm(delta))
+        step = self._speed_m_s * ts
+        self._hand[:3] = self._goal[:3] if dist <= step else self._hand[:3] + delta * (step / dist)
+        dyaw = self._goal[3] - self._hand[3]
+        ystep = self._speed_m_s / 0.05 * ts
+        self._hand[3] = (
+            self._goal[3] if abs(dyaw) <= ystep else self._hand[3] + math.copysign(ystep, dyaw)
+        )
+        dw = self._goal[4] - self._width_setpoint
+        self._width_setpoint = (
+            self._goal[4] if abs(dw) <= step else self._width_setpoint + math.copysign(step, dw)
+        )
         d.qpos[self._hand_qpos] = self._hand
-        d.qvel[self._hand_dof] = vel
-        d.ctrl[:] = self._width_target / 2
+        d.qvel[self._hand_dof] = (self._hand - old) / ts
+        d.ctrl[:] = self._width_setpoint / 2
         self._mj.mj_step(m, d)
+        # the hand moved as commanded whatever pushed on it (the robot is position-controlled)
         d.qpos[self._hand_qpos] = self._hand
-        d.qvel[self._hand_dof] = 0.0
         self._loads = self._compute_loads()
 
     def _compute_loads(self) -> NDArray[np.float64]:
