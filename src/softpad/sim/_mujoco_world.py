@@ -98,6 +98,14 @@ class MujocoWorld:
         steps every 2 ms (loads are held in between).
     """
 
+    model: Any
+    data: Any
+    xml: str
+    _module_qpos: NDArray[np.int64]
+    _jaw_qpos: NDArray[np.int64]
+    _obj_qpos: dict[str, int]
+    _obj_dof: dict[str, int]
+
     def __init__(
         self,
         layout: PadLayout | None = None,
