@@ -121,7 +121,9 @@ class PadLayout:
         ]
         return tuple(sorted(out))
 
-    def connected_groups(self, modules: set[int] | list[int] | tuple[int, ...]) -> list[tuple[int, ...]]:
+    def connected_groups(
+        self, modules: set[int] | list[int] | tuple[int, ...]
+    ) -> list[tuple[int, ...]]:
         """Split modules into 8-connected groups, each sorted, groups ordered by first module."""
         remaining = {self.check_module(m) for m in modules}
         groups: list[tuple[int, ...]] = []

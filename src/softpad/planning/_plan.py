@@ -41,7 +41,9 @@ class PlannerParams:
     def __post_init__(self) -> None:
         check_threshold(self.object_threshold_pa, "object threshold")
         if not (0.0 <= self.safety_shift < 0.5):
-            raise InputError(f"safety shift must be in [0, 0.5) module units, got {self.safety_shift!r}")
+            raise InputError(
+                f"safety shift must be in [0, 0.5) module units, got {self.safety_shift!r}"
+            )
 
 
 def plan_object(

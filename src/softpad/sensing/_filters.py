@@ -60,7 +60,9 @@ class RunningAverage:
         if self._sum is None:
             self._sum = np.zeros_like(x)
         elif x.shape != self._sum.shape:
-            raise InputError(f"frame has {x.size} channels, filter was started with {self._sum.size}")
+            raise InputError(
+                f"frame has {x.size} channels, filter was started with {self._sum.size}"
+            )
         if len(self._buf) == self.length:
             self._sum -= self._buf[0]
         self._buf.append(x)

@@ -2,8 +2,18 @@
 
 A world holds the objects resting on the pad and the gripper, and tells the simulated box
 which vertical force presses on each module. The analytic world (footprints and mass
-distributions) and the MuJoCo world (rigid-body contact) both implement :class:`World`, so the
-simulated box, the simulated robot and the trials do not care which one runs.
+distributions, :class:`~softpad.sim.AnalyticWorld`) and the MuJoCo world (rigid-body contact)
+both implement :class:`World`, so the simulated box, the simulated robot and the trials do not
+care which one runs.
+
+Who calls what (the simulated box is the clock master, see docs/box-and-simulator.md):
+
+* the simulated box calls :meth:`World.step` once per sample period with the module top
+  heights of the previous step, then reads :meth:`World.module_loads_n`;
+* the simulated robot calls :meth:`World.command_gripper` (kinematic target and speed),
+  :meth:`World.gripper_state` and :meth:`World.holding`;
+* the simulation set-up calls :meth:`World.place_object` (e.g. when the execution state
+  machine waits for an object) and :meth:`World.remove_objects`.
 
 Frames and units: everything is in the pad frame (DESIGN.md), SI units. ``z`` is measured
 from the pad's rigid base surface upward, so an inflated module's top sits at ``height_m``.
@@ -18,6 +28,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from softpad.layout import PadLayout
+from softpad.sim._objects import ObjectSpec, Placement
 
 
 @dataclass(frozen=True)
@@ -45,30 +56,59 @@ class GripperState:
 
 @runtime_checkable
 class World(Protocol):
-    """What the simulated box and robot need from a world. Owned by the box/closed-loop code."""
+    """What the simulated box and robot need from a world.
+
+    Implementations: :class:`softpad.sim.AnalyticWorld`; the MuJoCo world (issue 4).
+    Keep this small: every method here is needed by the box or the simulated robot.
+    """
 
     @property
     def layout(self) -> PadLayout:
-        """Geometry of the pad under the objects."""
+        """Geometry of the pad under the objects (module k is box channel k)."""
         ...
 
     @property
     def time_s(self) -> float:
-        """Simulated time, seconds."""
+        """Simulated time, seconds (advanced only by :meth:`step`)."""
         ...
 
     def step(self, dt_s: float, module_heights_m: NDArray[np.float64]) -> None:
-        """Advance the world by ``dt_s``; ``module_heights_m`` are the current module top heights."""
+        """Advance the world by ``dt_s`` seconds.
+
+        Parameters
+        ----------
+        dt_s
+            Time step, seconds (one sample period of the box).
+        module_heights_m
+            Current top height of every module, shape (n_modules,), metres; the world's
+            surface for objects and fingertips.
+        """
         ...
 
     def module_loads_n(self) -> NDArray[np.float64]:
         """Vertical force (N, >= 0) pressing on each module's sensitive area, shape (n_modules,)."""
         ...
 
-    def set_gripper_target(self, target: GripperState) -> None:
-        """Kinematic target of the gripper; the world moves it there (the robot sets speeds)."""
+    def command_gripper(self, target: GripperState, speed_m_s: float) -> None:
+        """Move the gripper towards ``target`` in a straight line at ``speed_m_s``.
+
+        The jaws' width changes at the same speed. A new command replaces the previous one;
+        commanding the current state stops the gripper.
+        """
         ...
 
     def gripper_state(self) -> GripperState:
         """Current gripper state."""
+        ...
+
+    def holding(self) -> bool:
+        """True when an object is between the closed jaws and is carried by the gripper."""
+        ...
+
+    def place_object(self, spec: ObjectSpec, placement: Placement | None = None) -> None:
+        """Put an object on the pad (at ``spec.placement`` by default)."""
+        ...
+
+    def remove_objects(self) -> None:
+        """Take every object off the pad and out of the gripper."""
         ...

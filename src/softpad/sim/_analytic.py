@@ -1,0 +1,357 @@
+"""The analytic world: objects loading modules through their footprints, a kinematic gripper.
+
+Implements :class:`~softpad.sim.World` without a physics engine (see ``_footprint.py`` for the
+load model). The gripper is a kinematic parallel jaw (seed, Section 6.3: 9.5 cm fingers,
+opening ranges 10/4, 6/2 and 4/0 cm) whose two rectangular fingertips load the modules under
+them once they touch the pad: the force of a fingertip is ``k_tip * penetration``, shared by
+the modules in proportion to the fingertip area over their sensitive squares. A fingertip that
+lies only on a non-sensitive line loads no module (the thesis's failure mode, Section 6.3).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+from numpy.typing import NDArray
+
+from softpad.errors import InputError
+from softpad.layout import PadLayout
+from softpad.sim._footprint import (
+    GRAVITY_M_S2,
+    ObjectFootprint,
+    PadSurface,
+    fingertip_overlap,
+    object_footprint,
+    part_footprint,
+    to_pad_frame,
+)
+from softpad.sim._objects import ObjectSpec, Placement
+from softpad.sim._world import GripperState
+
+#: Opening ranges of the thesis's gripper mountings, (max, min) width in metres (Section 6.3).
+GRIPPER_MOUNTINGS: dict[str, tuple[float, float]] = {
+    "10/4": (0.10, 0.04),
+    "6/2": (0.06, 0.02),
+    "4/0": (0.04, 0.0),
+}
+
+
+@dataclass(frozen=True)
+class GripperSpec:
+    """Parallel-jaw gripper geometry (seed, Section 6.3).
+
+    Parameters
+    ----------
+    max_width_m, min_width_m
+        Opening range of the jaws, metres (mountings 10/4, 6/2, 4/0 cm).
+    finger_length_m
+        Length of the fingers below the palm, metres (9.5 cm).
+    tip_thickness_m
+        Fingertip size along the closing direction, metres (our choice: 8 mm; the thesis
+        calls the tips "very small").
+    tip_width_m
+        Fingertip size across the closing direction, metres (our choice: 16 mm).
+    tip_stiffness_n_m
+        Vertical stiffness of the pad under a fingertip, N/m: force per metre of penetration
+        (our estimate from the module compliance, docs/box-and-simulator.md).
+    grip_force_n
+        Squeezing force of each jaw, newtons.
+    friction
+        Friction coefficient between fingertips and objects.
+    """
+
+    max_width_m: float = 0.10
+    min_width_m: float = 0.04
+    finger_length_m: float = 0.095
+    tip_thickness_m: float = 0.008
+    tip_width_m: float = 0.016
+    tip_stiffness_n_m: float = 190.0
+    grip_force_n: float = 20.0
+    friction: float = 0.5
+
+    def __post_init__(self) -> None:
+        if not (0 <= self.min_width_m < self.max_width_m <= 0.5):
+            raise InputError(
+                f"gripper width range must satisfy 0 <= min < max <= 500 mm, got "
+                f"{self.min_width_m * 1e3:g}..{self.max_width_m * 1e3:g} mm"
+            )
+        for n in ("finger_length_m", "tip_thickness_m", "tip_width_m", "tip_stiffness_n_m"):
+            v = getattr(self, n)
+            if not (math.isfinite(v) and v > 0):
+                raise InputError(f"gripper {n} must be a positive number, got {v!r}")
+
+    @classmethod
+    def mounting(cls, name: str, **kwargs: float) -> GripperSpec:
+        """Gripper of the thesis mounted as ``"10/4"``, ``"6/2"`` or ``"4/0"`` (max/min cm)."""
+        try:
+            mx, mn = GRIPPER_MOUNTINGS[name]
+        except KeyError:
+            raise InputError(
+                f"unknown gripper mounting {name!r}; use one of {', '.join(GRIPPER_MOUNTINGS)}"
+            ) from None
+        return cls(max_width_m=mx, min_width_m=mn, **kwargs)
+
+
+@dataclass
+class _Placed:
+    spec: ObjectSpec
+    placement: Placement
+    footprint: ObjectFootprint
+    outline_m: NDArray[np.float64]  # pad-frame sample points of every part (stacked ones too)
+    loads_n: NDArray[np.float64]
+    lifted: bool = False
+
+
+@dataclass
+class _Tip:
+    touch_z_m: float | None = None  # surface height where the tip first touched
+    fractions: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
+
+
+class AnalyticWorld:
+    """World of rigid objects on a Winkler pad and a kinematic parallel-jaw gripper.
+
+    Parameters
+    ----------
+    layout
+        Pad geometry (2 x 3, 45 mm by default).
+    gripper
+        Gripper geometry; mounting 10/4 by default.
+    line_width_m
+        Width of the non-sensitive lines between modules, metres (3 mm).
+    start_height_m
+        Initial height of the fingertips above the pad base, metres.
+    """
+
+    def __init__(
+        self,
+        layout: PadLayout | None = None,
+        gripper: GripperSpec | None = None,
+        line_width_m: float = 3e-3,
+        start_height_m: float = 0.15,
+    ) -> None:
+        self._layout = layout or PadLayout()
+        self.surface = PadSurface(self._layout, line_width_m)
+        self.gripper = gripper or GripperSpec()
+        w, h = self.surface.size_m
+        self._state = GripperState(w / 2, h / 2, start_height_m, 0.0, self.gripper.max_width_m)
+        self._target = self._state
+        self._speed = 0.0
+        self._time = 0.0
+        self._objects: list[_Placed] = []
+        self._tips = [_Tip(), _Tip()]
+        self._tip_loads = np.zeros(self._layout.n_modules)
+        self._object_loads = np.zeros(self._layout.n_modules)
+        self._loads = np.zeros(self._layout.n_modules)
+        self._grasped: _Placed | None = None
+        self._grasp_z: float = 0.0
+        self._heights = np.zeros(self._layout.n_modules)
+        #: Object touched first by a fingertip during the last descent (None: pad or nothing).
+        self.tip_hit_object: str | None = None
+        #: Pad-frame time of the first fingertip touch of the last descent, seconds.
+        self.first_touch_s: float | None = None
+
+    # --- World protocol -------------------------------------------------------------------
+    @property
+    def layout(self) -> PadLayout:
+        return self._layout
+
+    @property
+    def time_s(self) -> float:
+        return self._time
+
+    def module_loads_n(self) -> NDArray[np.float64]:
+        return self._loads
+
+    def gripper_state(self) -> GripperState:
+        return self._state
+
+    def command_gripper(self, target: GripperState, speed_m_s: float) -> None:
+        if not (math.isfinite(speed_m_s) and speed_m_s >= 0):
+            raise InputError(f"gripper speed must be a finite number >= 0 m/s, got {speed_m_s!r}")
+        width = min(max(target.width_m, self.gripper.min_width_m), self.gripper.max_width_m)
+        self._target = replace(target, width_m=width, z_m=max(target.z_m, 0.0))
+        self._speed = speed_m_s
+
+    def holding(self) -> bool:
+        return self._grasped is not None and self._grasped.lifted
+
+    def place_object(self, spec: ObjectSpec, placement: Placement | None = None) -> None:
+        placement = placement or spec.placement
+        fp = object_footprint(spec, self.surface, placement)
+        pts = [to_pad_frame(part_footprint(p, 2e-3)[0], placement) for p in spec.parts]
+        loads = fp.weight_fraction * spec.mass_kg * GRAVITY_M_S2
+        self._objects.append(_Placed(spec, placement, fp, np.vstack(pts), loads))
+        self._update_object_loads()
+
+    def remove_objects(self) -> None:
+        self._objects.clear()
+        self._grasped = None
+        self._update_object_loads()
+
+    def step(self, dt_s: float, module_heights_m: NDArray[np.float64]) -> None:
+        self._time += dt_s
+        self._heights = module_heights_m
+        moved = self._move(dt_s)
+        if moved or any(t.touch_z_m is not None for t in self._tips):
+            self._update_tips(module_heights_m)
+        if self._grasped is not None and not self._grasped.lifted:
+            if self._state.z_m > self._grasp_z + 2e-3:
+                self._grasped.lifted = True
+                self._update_object_loads()
+        if moved or self._dirty:
+            np.add(self._object_loads, self._tip_loads, out=self._loads)
+            self._dirty = False
+
+    # --- helpers --------------------------------------------------------------------------
+    _dirty = True
+
+    @property
+    def objects(self) -> tuple[ObjectSpec, ...]:
+        """Objects on the pad (or in the gripper)."""
+        return tuple(o.spec for o in self._objects)
+
+    def object_loads_n(self) -> NDArray[np.float64]:
+        """Loads of the objects alone (no fingertips), per module, newtons."""
+        return self._object_loads.copy()
+
+    def _update_object_loads(self) -> None:
+        self._object_loads = np.zeros(self._layout.n_modules)
+        for o in self._objects:
+            if not o.lifted:
+                self._object_loads += o.loads_n
+        self._dirty = True
+
+    def _move(self, dt_s: float) -> bool:
+        s, t = self._state, self._target
+        if s == t or self._speed <= 0:
+            return False
+        step = self._speed * dt_s
+        d = np.array([t.x_m - s.x_m, t.y_m - s.y_m, t.z_m - s.z_m, t.width_m - s.width_m])
+        dist = float(np.abs(d).max())
+        closing = t.width_m < s.width_m
+        if dist <= step:
+            new = t
+        else:
+            f = step / dist
+            new = GripperState(
+                s.x_m + f * d[0],
+                s.y_m + f * d[1],
+                s.z_m + f * d[2],
+                t.yaw_rad,
+                s.width_m + f * d[3],
+            )
+        new = replace(new, yaw_rad=t.yaw_rad)
+        if closing:
+            new = self._close_on_object(new)
+        self._state = new
+        if new.z_m > s.z_m + 1e-12 and self._grasped is None:
+            pass
+        return True
+
+    def _jaw_axes(self, st: GripperState) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        d = np.array([math.cos(st.yaw_rad), math.sin(st.yaw_rad)])
+        return d, np.array([-d[1], d[0]])
+
+    def _extent_between_jaws(self, st: GripperState, o: _Placed) -> tuple[float, float] | None:
+        d, n = self._jaw_axes(st)
+        rel = o.outline_m - np.array([st.x_m, st.y_m])
+        u, v = rel @ d, rel @ n
+        band = (np.abs(v) <= self.gripper.tip_width_m / 2) & (np.abs(u) <= st.width_m / 2)
+        if not band.any():
+            return None
+        return float(u[band].min()), float(u[band].max())
+
+    def _close_on_object(self, new: GripperState) -> GripperState:
+        """Stop the jaws on the object between them and latch the grasp."""
+        if self._grasped is not None:
+            return replace(new, width_m=max(new.width_m, self._grasp_width))
+        for o in self._objects:
+            if o.lifted:
+                continue
+            ext = self._extent_between_jaws(self._state, o)
+            if ext is None:
+                continue
+            umin, umax = ext
+            needed = 2 * max(abs(umin), abs(umax))  # jaws close symmetrically about the centre
+            width = max(umax - umin, self.gripper.min_width_m)
+            if new.width_m <= needed:
+                # the first jaw to touch pushes the object (it slides on the soft pad) until
+                # the second jaw touches too: the final width is the object's extent
+                if umax - umin >= self.gripper.min_width_m and self._can_hold(o):
+                    self._grasped = o
+                    self._grasp_width = width
+                    self._grasp_z = new.z_m
+                    return replace(new, width_m=max(new.width_m, width))
+        return new
+
+    def _can_hold(self, o: _Placed) -> bool:
+        g = self.gripper
+        return 2 * g.grip_force_n * g.friction >= o.spec.mass_kg * GRAVITY_M_S2
+
+    _grasp_width = 0.0
+
+    def tip_centres_m(
+        self, st: GripperState | None = None
+    ) -> tuple[tuple[float, float], tuple[float, float]]:
+        """Pad-frame centres of the two fingertips, metres."""
+        st = st or self._state
+        d, _ = self._jaw_axes(st)
+        off = (st.width_m + self.gripper.tip_thickness_m) / 2
+        c = np.array([st.x_m, st.y_m])
+        a, b = c - off * d, c + off * d
+        return (float(a[0]), float(a[1])), (float(b[0]), float(b[1]))
+
+    def _object_under(self, centre: tuple[float, float], st: GripperState) -> _Placed | None:
+        d, n = self._jaw_axes(st)
+        g = self.gripper
+        for o in self._objects:
+            if o.lifted:
+                continue
+            rel = o.outline_m - np.array(centre)
+            if (
+                (np.abs(rel @ d) <= g.tip_thickness_m / 2) & (np.abs(rel @ n) <= g.tip_width_m / 2)
+            ).any():
+                return o
+        return None
+
+    def _update_tips(self, heights: NDArray[np.float64]) -> None:
+        st = self._state
+        g = self.gripper
+        loads = np.zeros(self._layout.n_modules)
+        for tip, centre in zip(self._tips, self.tip_centres_m(st), strict=True):
+            frac = fingertip_overlap(
+                centre, st.yaw_rad, (g.tip_thickness_m, g.tip_width_m), self.surface
+            )
+            obj = self._object_under(centre, st)
+            if obj is not None:
+                surface_z = float(heights.max()) + obj.spec.height_m
+            elif frac.any():
+                surface_z = float(heights[frac > 0].max())
+            else:
+                surface_z = 0.0  # a line: the tip meets the rigid wall/base, no module senses it
+            if tip.touch_z_m is None:
+                if st.z_m <= surface_z and (obj is not None or frac.any()):
+                    tip.touch_z_m = surface_z
+                    if self.first_touch_s is None:
+                        self.first_touch_s = self._time
+                        self.tip_hit_object = obj.spec.name if obj is not None else None
+                continue
+            pen = tip.touch_z_m - st.z_m
+            if pen <= 0:
+                tip.touch_z_m = None
+                continue
+            force = g.tip_stiffness_n_m * pen
+            if obj is not None:
+                loads += force * obj.footprint.weight_fraction
+            else:
+                loads += force * frac
+        self._tip_loads = loads
+        self._dirty = True
+
+    def reset_touch(self) -> None:
+        """Forget the first-touch record (call before a new descent)."""
+        self.first_touch_s = None
+        self.tip_hit_object = None
