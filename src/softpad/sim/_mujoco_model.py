@@ -280,7 +280,20 @@ def part_geom_xml(part: PartLike, name: str, rgba: str, friction: float) -> str:
     if part.shape == "sphere":
         return f'<geom type="sphere" size="{part.radius_m:.9g}" {common}/>'
     assert part.length_m is not None
-    return f'<geom type="cylinder" size="{part.radius_m:.9g} {part.length_m / 2:.9g}" {common}/>'
+    half = part.length_m / 2
+    if part.axis == "z":
+        return f'<geom type="cylinder" size="{part.radius_m:.9g} {half:.9g}" {common}/>'
+    # A lying cylinder touches a flat top along a line, where MuJoCo's convex collision returns
+    # a single point that wanders along it (measured: the thesis's cylinder never settled).
+    # MuJoCo's box-capsule collider returns a stable pair of points, so a lying cylinder is a
+    # capsule of the same radius and overall length (an ellipsoid when it is shorter than
+    # its diameter); mass as given.
+    if half > part.radius_m:
+        return (
+            f'<geom type="capsule" size="{part.radius_m:.9g} {half - part.radius_m:.9g}" {common}/>'
+        )
+    r = part.radius_m
+    return f'<geom type="ellipsoid" size="{r:.9g} {r:.9g} {half:.9g}" {common}/>'
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,41 @@
+"""Every object of the thesis's catalogue rests stably in the MuJoCo world at its placement."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from softpad.sim import GRAVITY_M_S2, get_object, object_names
+from softpad.sim._mujoco_world import MujocoWorld
+
+pytestmark = pytest.mark.mujoco
+
+#: Force on a module equivalent to t_o = 50 Pa over the ~1.9e-3 m^2 effective area of a module
+#: (the sealed chamber turns 0.124 N of a Lego brick into 66 Pa, issue 3's FEM figures), N.
+T_O_FORCE_N = 0.094
+
+#: Objects whose rigid-body rest differs from the thesis's module list, and why.
+_KNOWN_DIFFERENT = {
+    # the toy's arms (boxes of the catalogue) reach modules 2, 4 and 6 as well; as a rigid body
+    # it rests on all six tops
+    "toy": (1, 2, 3, 4, 5, 6),
+    # the heavy insert at -x leaves modules 3 and 6 with 0.07 N each, under t_o at the
+    # nominal placement: the 4-module case the thesis reports for one of its cylinder trials
+    "cylinder": (1, 2, 4, 5),
+}
+
+
+@pytest.mark.parametrize("name", object_names())
+def test_object_rests_on_its_modules(name: str) -> None:
+    spec = get_object(name)
+    world = MujocoWorld()
+    world.place_object(spec)
+    for _ in range(1000):
+        world.step(1e-3)
+    loads = world.module_loads_n()
+    # the pad carries the whole weight (0.5 %: solver residual)
+    np.testing.assert_allclose(loads.sum(), spec.mass_kg * GRAVITY_M_S2, rtol=5e-3)
+    assert world.object_speed_m_s(name) < 1e-3
+    assert world.object_pose(name).tilt_rad < 0.05
+    loaded = tuple(int(k) + 1 for k in np.flatnonzero(loads > T_O_FORCE_N))
+    assert loaded == _KNOWN_DIFFERENT.get(name, tuple(spec.expected_modules))
