@@ -31,6 +31,9 @@ from softpad.sim._world import GripperState
 #: depends on the load measured here, cannot close a fast feedback loop through MuJoCo.
 _HEIGHT_FILTER_S = 0.5
 
+#: A commanded width this close to the measured one means "leave the jaws as they are", metres.
+_SAME_WIDTH_M = 0.5e-3
+
 
 @dataclass(frozen=True)
 class GripperContacts:
@@ -132,7 +135,15 @@ class MujocoWorld:
         self._time_s = 0.0
         self._heights = np.full(n, self.pad.free_height_m)
         self._heights_given = False
+        #: Simulated time of the first touch of a fingertip on a module top or of a finger on
+        #: an object since the last :meth:`reset_touch`, seconds, or None.
+        self.first_touch_s: float | None = None
+        #: Height of the fingertips' lower faces at the first touch, metres, or None.
+        self.first_touch_z_m: float | None = None
+        #: Name of the object a finger came down on from above (jaws still open), or None.
+        self.tip_hit_object: str | None = None
         open_w = self.gripper.max_width_m
+        self._open_width = open_w
         cx = self._layout.cols * self._layout.pitch_m / 2
         cy = self._layout.rows * self._layout.pitch_m / 2
         # gripper high above the pad centre, fully open
@@ -250,6 +261,9 @@ class MujocoWorld:
             self._heights_given = True
         self._pending_s += dt
         ts = self.timestep_s
+        # the hand moves on every call (the robot sees it move on every sample); MuJoCo steps
+        # once a whole time step has elapsed
+        self._move(dt)
         while self._pending_s >= ts * (1 - 1e-9):
             self._pending_s -= ts
             self._mj_step(ts)
@@ -278,8 +292,8 @@ class MujocoWorld:
             check_finite(n, getattr(target, n)) for n in ("x_m", "y_m", "z_m", "yaw_rad", "width_m")
         ]
         speed = check_finite("gripper speed", speed_m_s)
-        if not 0 < speed <= 2.0:
-            raise InputError(f"gripper speed must be in (0, 2] m/s, got {speed!r}")
+        if not 0 <= speed <= 2.0:
+            raise InputError(f"gripper speed must be in [0, 2] m/s, got {speed!r}")
         g = self.gripper
         w = vals[4]
         if not (g.min_width_m - 1e-9 <= w <= g.max_width_m + 1e-9):
@@ -287,6 +301,15 @@ class MujocoWorld:
                 f"gripper width {w * 1e3:g} mm is outside the {g.mounting} mounting's range "
                 f"[{g.min_width_m * 1e3:g}, {g.max_width_m * 1e3:g}] mm"
             )
+        if speed == 0.0:
+            # stop: the hand stays where it is and the jaws keep their setpoint (and grip)
+            self._goal = np.append(self._hand.copy(), self._width_setpoint)
+            self._speed_m_s = 0.0
+            return
+        if abs(w - self.gripper_state().width_m) < _SAME_WIDTH_M:
+            # "keep the jaws as they are" (e.g. moving with an object in the grip): the servo
+            # keeps its setpoint, so a squeezed object stays squeezed
+            w = self._width_setpoint
         self._goal = np.array(
             [vals[0], vals[1], vals[2] + g.finger_length_m, _unwrap(vals[3], self._hand[3]), w]
         )
@@ -300,13 +323,17 @@ class MujocoWorld:
 
     def gripper_state(self) -> GripperState:
         """Current hand pose and measured jaw opening."""
-        q = self.data.qpos
+        q, v = self.data.qpos, self.data.qvel
         return GripperState(
             x_m=float(self._hand[0]),
             y_m=float(self._hand[1]),
             z_m=float(self._hand[2] - self.gripper.finger_length_m),
             yaw_rad=float(self._hand[3]),
-            width_m=float(q[self._jaw_qpos[0]] + q[self._jaw_qpos[1]]),
+            width_m=float(
+                q[self._jaw_qpos[0]]
+                + q[self._jaw_qpos[1]]
+                + self._pending_s * (v[self._jaw_dof[0]] + v[self._jaw_dof[1]])
+            ),
         )
 
     # --- objects --------------------------------------------------------------------------
@@ -456,6 +483,22 @@ class MujocoWorld:
         frame = self.data.contact[i].frame.reshape(3, 3)
         return np.asarray(frame.T @ self._force[:3], dtype=float)
 
+    def _move(self, dt: float) -> None:
+        """Kinematic hand: straight line towards the goal at the commanded speed."""
+        delta = self._goal[:3] - self._hand[:3]
+        dist = float(np.linalg.norm(delta))
+        step = self._speed_m_s * dt
+        self._hand[:3] = self._goal[:3] if dist <= step else self._hand[:3] + delta * (step / dist)
+        dyaw = self._goal[3] - self._hand[3]
+        ystep = self._speed_m_s / 0.05 * dt
+        self._hand[3] = (
+            self._goal[3] if abs(dyaw) <= ystep else self._hand[3] + math.copysign(ystep, dyaw)
+        )
+        dw = self._goal[4] - self._width_setpoint
+        self._width_setpoint = (
+            self._goal[4] if abs(dw) <= step else self._width_setpoint + math.copysign(step, dw)
+        )
+
     def _mj_step(self, ts: float) -> None:
         m, d = self.model, self.data
         # module rest lengths follow the box's heights (see step())
@@ -464,23 +507,8 @@ class MujocoWorld:
             ref = self._heights + self._loads / self.pad.distributed_stiffness_n_m
             spring = m.qpos_spring
             spring[self._module_qpos] += alpha * (ref - spring[self._module_qpos])
-        # kinematic hand: straight line towards the goal at the commanded speed
-        old = self._hand.copy()
-        delta = self._goal[:3] - self._hand[:3]
-        dist = float(np.linalg.norm(delta))
-        step = self._speed_m_s * ts
-        self._hand[:3] = self._goal[:3] if dist <= step else self._hand[:3] + delta * (step / dist)
-        dyaw = self._goal[3] - self._hand[3]
-        ystep = self._speed_m_s / 0.05 * ts
-        self._hand[3] = (
-            self._goal[3] if abs(dyaw) <= ystep else self._hand[3] + math.copysign(ystep, dyaw)
-        )
-        dw = self._goal[4] - self._width_setpoint
-        self._width_setpoint = (
-            self._goal[4] if abs(dw) <= step else self._width_setpoint + math.copysign(step, dw)
-        )
+        d.qvel[self._hand_dof] = (self._hand - d.qpos[self._hand_qpos]) / ts
         d.qpos[self._hand_qpos] = self._hand
-        d.qvel[self._hand_dof] = (self._hand - old) / ts
         d.ctrl[:] = self._width_setpoint / 2
         self._mj.mj_step(m, d)
         # the hand moved as commanded whatever pushed on it (the robot is position-controlled)
@@ -488,18 +516,43 @@ class MujocoWorld:
         self._loads = self._compute_loads()
 
     def _compute_loads(self) -> NDArray[np.float64]:
-        d = self.data
+        """Vertical contact force on every module top; also records the first touch."""
+        d, m = self.data, self.model
         loads = np.zeros(self._layout.n_modules)
         gm = self._geom_module
+        soles, fingers = self._sole, self._finger
+        watch = self.first_touch_s is None or self.tip_hit_object is None
         for i in range(d.ncon):
             c = d.contact[i]
-            k = gm[int(c.geom1)]
-            if k < 0:
-                k = gm[int(c.geom2)]
-                if k < 0:
-                    continue
-            loads[k] += abs(self._contact_world_force(i)[2])
+            g1, g2 = int(c.geom1), int(c.geom2)
+            k = gm[g1] if gm[g1] >= 0 else gm[g2]
+            if k >= 0:
+                loads[k] += abs(self._contact_world_force(i)[2])
+            if not watch:
+                continue
+            if g1 in soles or g2 in soles:
+                if k >= 0 and self.first_touch_s is None:
+                    self._touched()
+            elif g1 in fingers or g2 in fingers:
+                other = g2 if g1 in fingers else g1
+                b = int(m.geom_bodyid[other])
+                if b in self._body_object and abs(c.frame[2]) > 0.7:
+                    if self.first_touch_s is None:
+                        self._touched()
+                    if self.tip_hit_object is None and self._width_setpoint >= self._open_width:
+                        self.tip_hit_object = self._body_object[b]
         return loads
+
+    def _touched(self) -> None:
+        self.first_touch_s = self._time_s + self._pending_s
+        self.first_touch_z_m = float(self._hand[2] - self.gripper.finger_length_m)
+
+    def reset_touch(self) -> None:
+        """Forget the first-touch record (call before a new descent)."""
+        self.first_touch_s = None
+        self.first_touch_z_m = None
+        self.tip_hit_object = None
+        self._open_width = self._width_setpoint
 
     def info(self) -> dict[str, Any]:
         """Model size and settings, for reports."""
