@@ -18,8 +18,8 @@ demo: venv
 	MPLBACKEND=Agg $(BIN)/softpad demo --out report
 
 lint: venv
-	$(BIN)/ruff check src tests
-	$(BIN)/ruff format --check src tests
+	$(BIN)/ruff check src tests examples
+	$(BIN)/ruff format --check src tests examples
 
 typecheck: venv
 	$(BIN)/mypy

@@ -11,6 +11,7 @@ import argparse
 import importlib
 import sys
 from collections.abc import Sequence
+from typing import NoReturn
 
 from softpad import __version__
 from softpad.errors import SoftPadError
@@ -21,8 +22,15 @@ _COMMAND_MODULES = ("_plan", "_demo", "_bench")
 EXIT_USAGE = 2
 
 
+class _Parser(argparse.ArgumentParser):
+    """ArgumentParser whose usage errors are one line (the value and what is allowed)."""
+
+    def error(self, message: str) -> NoReturn:
+        self.exit(EXIT_USAGE, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="softpad",
         description=(
             "SoftPad: soft sensorized pneumatic surfaces for grasping with rigid grippers. "

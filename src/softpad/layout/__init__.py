@@ -4,9 +4,18 @@ Conventions (DESIGN.md, thesis Fig. 6.4a): modules are numbered 1..R*C row-major
 top-left seen from above; module ``k`` sits in row ``r = (k-1)//C`` (0 = top) and column
 ``c = (k-1)%C`` with centre ``(c + 0.5, (R-1-r) + 0.5)`` in module units. The pad frame has
 its origin at the bottom-left corner, x to the right, y up the columns, z out of the pad.
+The gripper's geometry (Section 6.3) lives here too, since plans become fingertip positions.
 """
 
-from softpad.layout._grid import PadLayout, parse_layout
+from softpad.layout._grid import DEFAULT_PITCH_M, PadLayout, parse_layout
+from softpad.layout._gripper import GRIPPER_CONFIGS_M, GripperSpec
 from softpad.layout._pose import PadPose
 
-__all__ = ["PadLayout", "PadPose", "parse_layout"]
+__all__ = [
+    "DEFAULT_PITCH_M",
+    "GRIPPER_CONFIGS_M",
+    "GripperSpec",
+    "PadLayout",
+    "PadPose",
+    "parse_layout",
+]

@@ -64,6 +64,8 @@ class PadLayout:
 
     def check_module(self, module: int) -> int:
         """Return ``module`` if it is a valid 1-based module number, else raise LayoutError."""
+        if type(module) is int and 0 < module <= self.rows * self.cols:
+            return module
         if not isinstance(module, int | np.integer) or not 1 <= module <= self.n_modules:
             raise LayoutError(
                 f"module number must be from 1 to {self.n_modules} on a {self.name} pad, "
@@ -71,10 +73,33 @@ class PadLayout:
             )
         return int(module)
 
+    @cached_property
+    def _row_col_table(self) -> tuple[tuple[int, int], ...]:
+        return tuple((k // self.cols, k % self.cols) for k in range(self.n_modules))
+
+    @cached_property
+    def _center_table(self) -> tuple[tuple[float, float], ...]:
+        return tuple((c + 0.5, (self.rows - 1 - r) + 0.5) for r, c in self._row_col_table)
+
+    @cached_property
+    def _neighbour_table(self) -> tuple[tuple[int, ...], ...]:
+        table = []
+        for r, c in self._row_col_table:
+            table.append(
+                tuple(
+                    sorted(
+                        (r + dr) * self.cols + (c + dc) + 1
+                        for dr in (-1, 0, 1)
+                        for dc in (-1, 0, 1)
+                        if (dr or dc) and 0 <= r + dr < self.rows and 0 <= c + dc < self.cols
+                    )
+                )
+            )
+        return tuple(table)
+
     def row_col(self, module: int) -> tuple[int, int]:
         """Row (0 = top) and column (0 = left) of a 1-based module number."""
-        k = self.check_module(module) - 1
-        return k // self.cols, k % self.cols
+        return self._row_col_table[self.check_module(module) - 1]
 
     def module_at(self, row: int, col: int) -> int:
         """1-based module number at (row, col), row 0 at the top."""
@@ -84,8 +109,7 @@ class PadLayout:
 
     def center(self, module: int) -> tuple[float, float]:
         """Centre (x, y) of a module in module units."""
-        r, c = self.row_col(module)
-        return c + 0.5, (self.rows - 1 - r) + 0.5
+        return self._center_table[self.check_module(module) - 1]
 
     @cached_property
     def centers(self) -> NDArray[np.float64]:
@@ -112,14 +136,7 @@ class PadLayout:
 
     def neighbours(self, module: int) -> tuple[int, ...]:
         """8-neighbours of a module, sorted."""
-        r, c = self.row_col(module)
-        out = [
-            self.module_at(r + dr, c + dc)
-            for dr in (-1, 0, 1)
-            for dc in (-1, 0, 1)
-            if (dr or dc) and 0 <= r + dr < self.rows and 0 <= c + dc < self.cols
-        ]
-        return tuple(sorted(out))
+        return self._neighbour_table[self.check_module(module) - 1]
 
     def connected_groups(
         self, modules: set[int] | list[int] | tuple[int, ...]
@@ -133,7 +150,7 @@ class PadLayout:
             remaining.discard(seed)
             while stack:
                 m = stack.pop()
-                for n in self.neighbours(m):
+                for n in self._neighbour_table[m - 1]:
                     if n in remaining:
                         remaining.discard(n)
                         group.add(n)

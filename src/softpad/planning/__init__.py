@@ -2,11 +2,27 @@
 
 ``plan_grasps`` finds the objects (modules above t_o, 8-connected groups), computes each one's
 pressure-based centre of mass (PCOM, Eq. 6.1) and a top grasp (centre of grasp COG and
-direction theta) with the thesis's 2 x 3 rules or the general R x C planner.
+direction theta) with the thesis's rules, generalised to R x C pads (docs/planner.md).
 """
 
+from softpad.planning._cases import FIG_6_7, RULE_CASES, TABLE_6_1, PlanCase
 from softpad.planning._pcom import pcom
-from softpad.planning._plan import PlannerParams, plan_grasps, plan_object
+from softpad.planning._plan import DEFAULT_SAFETY_SHIFT, PlannerParams, plan_grasps, plan_object
 from softpad.planning._records import GraspPlan
+from softpad.planning._render import ascii_pad, format_plans, plot_plans
 
-__all__ = ["GraspPlan", "PlannerParams", "pcom", "plan_grasps", "plan_object"]
+__all__ = [
+    "DEFAULT_SAFETY_SHIFT",
+    "FIG_6_7",
+    "RULE_CASES",
+    "TABLE_6_1",
+    "GraspPlan",
+    "PlanCase",
+    "PlannerParams",
+    "ascii_pad",
+    "format_plans",
+    "pcom",
+    "plan_grasps",
+    "plan_object",
+    "plot_plans",
+]

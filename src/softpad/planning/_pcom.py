@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 
 import numpy as np
@@ -29,13 +30,16 @@ def pcom(delta_pa: ArrayLike, modules: Sequence[int], layout: PadLayout) -> tupl
     -------
     (x, y) in module units.
     """
-    d = np.asarray(delta_pa, dtype=float)
-    idx = np.array([layout.check_module(m) - 1 for m in modules], dtype=int)
-    if idx.size == 0:
+    d = delta_pa.tolist() if isinstance(delta_pa, np.ndarray) else list(np.asarray(delta_pa, float))
+    if not modules:
         raise InputError("an object needs at least one module to compute its PCOM")
-    w = d[idx]
-    total = float(w.sum())
-    if not np.isfinite(total) or total <= 0:
+    total = sx = sy = 0.0
+    for m in modules:
+        w = float(d[layout.check_module(m) - 1])
+        x, y = layout.center(m)
+        total += w
+        sx += w * x
+        sy += w * y
+    if not math.isfinite(total) or total <= 0:
         raise InputError(f"increments of modules {list(modules)} must sum to > 0 Pa, got {total:g}")
-    c = layout.centers[idx]
-    return float(w @ c[:, 0] / total), float(w @ c[:, 1] / total)
+    return sx / total, sy / total

@@ -13,7 +13,6 @@ from softpad.sensing._objects import (
     DEFAULT_OBJECT_THRESHOLD_PA,
     check_increments,
     check_threshold,
-    detect_objects,
 )
 
 #: c_s in the thesis: safety shift for corner-shaped objects, module units (Section 6.2.1.3).
@@ -75,8 +74,10 @@ def plan_grasps(
     params
         Planner parameters (thesis defaults).
     """
+    from softpad.planning._thesis_rules import plan_with_rules
+
     layout = layout or PadLayout()
     params = params or PlannerParams()
     d = check_increments(delta_pa, layout)
-    groups = detect_objects(d, layout, params.object_threshold_pa)
-    return [plan_object(d, g, layout, params) for g in groups]
+    touched = [k + 1 for k, v in enumerate(d.tolist()) if v > params.object_threshold_pa]
+    return [plan_with_rules(d, g, layout, params) for g in layout.connected_groups(touched)]

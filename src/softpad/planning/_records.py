@@ -27,6 +27,9 @@ class GraspPlan:
         Name of the planning rule that produced the plan (see docs/planner.md).
     reduced_modules
         Modules the rule kept after dropping some (equal to ``modules`` when none was dropped).
+    tie_break
+        True when the plan hinged on an exact tie (PCOM exactly on a bisector, two axes at the
+        same distance, two modules equally far) that a documented convention decided.
     """
 
     modules: tuple[int, ...]
@@ -35,6 +38,7 @@ class GraspPlan:
     theta: float
     rule: str
     reduced_modules: tuple[int, ...]
+    tie_break: bool = False
 
     def cog_m(self, layout: PadLayout) -> tuple[float, float]:
         """Centre of grasp in metres in the pad frame (COG times the module pitch)."""
@@ -45,11 +49,11 @@ class GraspPlan:
         """JSON-ready dict with the keys of ``softpad plan --json``."""
         return {
             "modules": list(self.modules),
-            "pcom": [round(self.pcom[0], 6), round(self.pcom[1], 6)],
-            "cog": [round(self.cog[0], 6), round(self.cog[1], 6)],
-            "theta": round(self.theta, 9),
+            "pcom": [self.pcom[0], self.pcom[1]],
+            "cog": [self.cog[0], self.cog[1]],
+            "theta": self.theta,
             "rule": self.rule,
-            "cog_m": [round(v, 9) for v in self.cog_m(layout)],
+            "cog_m": list(self.cog_m(layout)),
         }
 
 

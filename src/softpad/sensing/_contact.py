@@ -13,7 +13,9 @@ class ContactDetector:
     """The thesis's contact detector (seed, Section 6.2.2).
 
     Contact is declared on the first frame where the running average (``window`` samples) of
-    any module's increment over its reference exceeds ``threshold_pa`` (t_g).
+    any module's increment over its reference exceeds ``threshold_pa`` (t_g). The filter starts
+    primed with ``window`` zero increments (the reference itself), so one noise spike at the
+    start cannot trigger it before the window has filled.
 
     Parameters
     ----------
@@ -35,6 +37,8 @@ class ContactDetector:
         self.reference_pa = np.asarray(reference_pa, dtype=float).copy()
         self.threshold_pa = check_threshold(threshold_pa, "contact threshold")
         self._filter = RunningAverage(window)
+        for _ in range(window):
+            self._filter.update(np.zeros_like(self.reference_pa))
         self.triggered_modules: tuple[int, ...] = ()
 
     def update(self, pressures_pa: ArrayLike) -> bool:

@@ -55,5 +55,5 @@ def detect_objects(
     """
     d = check_increments(delta_pa, layout)
     t = check_threshold(threshold_pa)
-    touched = [k + 1 for k in np.flatnonzero(d > t)]
+    touched = [int(k) + 1 for k in np.flatnonzero(d > t)]
     return layout.connected_groups(touched)

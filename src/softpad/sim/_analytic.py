@@ -150,8 +150,12 @@ class AnalyticWorld:
         self._heights = np.zeros(self._layout.n_modules)
         #: Object touched first by a fingertip during the last descent (None: pad or nothing).
         self.tip_hit_object: str | None = None
-        #: Pad-frame time of the first fingertip touch of the last descent, seconds.
+        #: Time of the first fingertip touch of the last descent, seconds.
         self.first_touch_s: float | None = None
+        #: Fingertip height at that first touch, metres.
+        self.first_touch_z_m: float | None = None
+        self._dirty = True
+        self._grasp_width = 0.0
 
     # --- World protocol -------------------------------------------------------------------
     @property
@@ -206,7 +210,6 @@ class AnalyticWorld:
             self._dirty = False
 
     # --- helpers --------------------------------------------------------------------------
-    _dirty = True
 
     @property
     def objects(self) -> tuple[ObjectSpec, ...]:
@@ -247,9 +250,17 @@ class AnalyticWorld:
         if closing:
             new = self._close_on_object(new)
         self._state = new
-        if new.z_m > s.z_m + 1e-12 and self._grasped is None:
-            pass
+        if new.width_m > s.width_m + 1e-12 and self._grasped is not None:
+            self._release()
         return True
+
+    def _release(self) -> None:
+        """Opening the jaws lets the object go: a lifted object is put away off the pad."""
+        o = self._grasped
+        self._grasped = None
+        if o is not None and o.lifted:
+            self._objects.remove(o)
+            self._update_object_loads()
 
     def _jaw_axes(self, st: GripperState) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         d = np.array([math.cos(st.yaw_rad), math.sin(st.yaw_rad)])
@@ -290,8 +301,6 @@ class AnalyticWorld:
     def _can_hold(self, o: _Placed) -> bool:
         g = self.gripper
         return 2 * g.grip_force_n * g.friction >= o.spec.mass_kg * GRAVITY_M_S2
-
-    _grasp_width = 0.0
 
     def tip_centres_m(
         self, st: GripperState | None = None
@@ -337,6 +346,7 @@ class AnalyticWorld:
                     tip.touch_z_m = surface_z
                     if self.first_touch_s is None:
                         self.first_touch_s = self._time
+                        self.first_touch_z_m = st.z_m
                         self.tip_hit_object = obj.spec.name if obj is not None else None
                 continue
             pen = tip.touch_z_m - st.z_m
@@ -354,4 +364,5 @@ class AnalyticWorld:
     def reset_touch(self) -> None:
         """Forget the first-touch record (call before a new descent)."""
         self.first_touch_s = None
+        self.first_touch_z_m = None
         self.tip_hit_object = None

@@ -1,0 +1,195 @@
+"""The pneumatic box interface (seed, Section 6.1.1: the "Pneumaticbox").
+
+A box has ``channels`` pneumatic channels, each with an inflation valve, a deflation valve
+and a differential (gauge) pressure sensor, plus one supply-pressure sensor shared by all
+channels. Software reads timestamped frames and commands each channel's valves.
+"""
+
+from __future__ import annotations
+
+import enum
+from abc import ABC, abstractmethod
+from collections.abc import Sequence
+from dataclasses import dataclass
+from types import TracebackType
+
+import numpy as np
+from numpy.typing import NDArray
+
+from softpad.errors import HardwareFault, InputError
+
+
+class ConnectionLost(HardwareFault):
+    """The box stopped answering (network down, box powered off)."""
+
+
+class ValveCommand(enum.Enum):
+    """State commanded to one channel's pair of valves."""
+
+    CLOSED = "closed"
+    """Both valves closed: the module is sealed."""
+    INFLATE = "inflate"
+    """Inflation valve open (to the supply), deflation valve closed."""
+    DEFLATE = "deflate"
+    """Deflation valve open (to the atmosphere), inflation valve closed."""
+
+    @classmethod
+    def parse(cls, value: ValveCommand | str) -> ValveCommand:
+        """Accept a member or its name/value (``"inflate"``), else raise InputError."""
+        if isinstance(value, cls):
+            return value
+        try:
+            return cls(str(value).lower())
+        except ValueError:
+            raise InputError(
+                f"valve command must be one of {', '.join(c.value for c in cls)}, got {value!r}"
+            ) from None
+
+
+@dataclass(frozen=True, slots=True)
+class PressureFrame:
+    """One reading of the box.
+
+    Attributes
+    ----------
+    t_s
+        Time stamp, seconds since the box was opened (virtual time in simulation).
+    pressures_pa
+        Gauge pressure of every channel, pascals, shape (channels,); channel k is index k-1.
+        NaN marks a channel whose sensor gave no valid value.
+    supply_pa
+        Gauge pressure of the shared supply, pascals.
+    """
+
+    t_s: float
+    pressures_pa: NDArray[np.float64]
+    supply_pa: float
+
+    @property
+    def channels(self) -> int:
+        """Number of channels in the frame."""
+        return int(self.pressures_pa.shape[0])
+
+    def to_dict(self) -> dict[str, object]:
+        """JSON-ready dict with pressures in kPa (the CLI's edge unit)."""
+        return {
+            "t_s": round(self.t_s, 6),
+            "pressures_kpa": [None if not np.isfinite(p) else round(float(p) / 1e3, 5) for p in self.pressures_pa],
+            "supply_kpa": round(self.supply_pa / 1e3, 4) if np.isfinite(self.supply_pa) else None,
+        }
+
+
+class Box(ABC):
+    """Abstract pneumatic box. Back-ends subclass it; :func:`softpad.box.open_box` picks one.
+
+    Subclasses implement :attr:`channels`, :attr:`sample_rate_hz`, :meth:`_read`,
+    :meth:`_apply_valve` and :meth:`_close`; the base class validates arguments, tracks the
+    commanded valve states and gives the context-manager protocol. Every back-end must pass
+    :func:`softpad.box.check_conformance`.
+    """
+
+    def __init__(self) -> None:
+        self._closed = False
+        self._valves: list[ValveCommand] | None = None
+
+    # --- to implement ---------------------------------------------------------------
+    @property
+    @abstractmethod
+    def channels(self) -> int:
+        """Number of pneumatic channels."""
+
+    @property
+    @abstractmethod
+    def sample_rate_hz(self) -> float:
+        """Frames per second delivered by :meth:`read`, hertz."""
+
+    @abstractmethod
+    def _read(self) -> PressureFrame:
+        """Return the next frame (blocking until it is due)."""
+
+    @abstractmethod
+    def _apply_valve(self, channel: int, command: ValveCommand) -> None:
+        """Drive the valves of ``channel`` (1-based)."""
+
+    @abstractmethod
+    def _close(self) -> None:
+        """Release the back-end's resources (valves are already closed)."""
+
+    # --- public API -----------------------------------------------------------------
+    @property
+    def closed(self) -> bool:
+        """True after :meth:`close`."""
+        return self._closed
+
+    @property
+    def valves(self) -> tuple[ValveCommand, ...]:
+        """Last commanded state of every channel's valves."""
+        if self._valves is None:
+            self._valves = [ValveCommand.CLOSED] * self.channels
+        return tuple(self._valves)
+
+    def _check_open(self) -> None:
+        if self._closed:
+            raise InputError("the box is closed")
+
+    def check_channel(self, channel: int) -> int:
+        """Return ``channel`` if it is a valid 1-based channel number, else raise InputError."""
+        if isinstance(channel, bool) or not isinstance(channel, int | np.integer) or not 1 <= channel <= self.channels:
+            raise InputError(f"channel must be an integer from 1 to {self.channels}, got {channel!r}")
+        return int(channel)
+
+    def read(self) -> PressureFrame:
+        """Read one frame: every channel's gauge pressure and the supply pressure."""
+        self._check_open()
+        return self._read()
+
+    def read_many(self, n: int) -> list[PressureFrame]:
+        """Read ``n`` consecutive frames."""
+        if not isinstance(n, int) or n < 0:
+            raise InputError(f"number of frames must be an integer >= 0, got {n!r}")
+        return [self.read() for _ in range(n)]
+
+    def set_valve(self, channel: int, command: ValveCommand | str) -> None:
+        """Command the valves of one channel (1-based)."""
+        self._check_open()
+        ch = self.check_channel(channel)
+        cmd = ValveCommand.parse(command)
+        if self._valves is None:
+            self._valves = [ValveCommand.CLOSED] * self.channels
+        self._apply_valve(ch, cmd)
+        self._valves[ch - 1] = cmd
+
+    def set_valves(self, commands: Sequence[ValveCommand | str]) -> None:
+        """Command every channel at once (one command per channel, channel order)."""
+        if len(commands) != self.channels:
+            raise InputError(f"need {self.channels} valve commands (one per channel), got {len(commands)}")
+        parsed = [ValveCommand.parse(c) for c in commands]
+        for ch, cmd in enumerate(parsed, start=1):
+            self.set_valve(ch, cmd)
+
+    def close_valves(self) -> None:
+        """Close every valve (the safe state: no air in or out)."""
+        if not self._closed:
+            for ch in range(1, self.channels + 1):
+                self.set_valve(ch, ValveCommand.CLOSED)
+
+    def close(self) -> None:
+        """Close every valve and release the box; further reads raise. Idempotent."""
+        if self._closed:
+            return
+        try:
+            self.close_valves()
+        finally:
+            self._closed = True
+            self._close()
+
+    def __enter__(self) -> Box:
+        return self
+
+    def __exit__(
+        self,
+        exc_type: type[BaseException] | None,
+        exc: BaseException | None,
+        tb: TracebackType | None,
+    ) -> None:
+        self.close()

@@ -1,0 +1,71 @@
+"""Back-ends chosen by URL: ``open_box("sim://?seed=1&channels=8")``."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from urllib.parse import parse_qsl, urlsplit
+
+from softpad.box._base import Box
+from softpad.errors import InputError
+
+#: Factories by URL scheme; each takes (netloc + path, options) and returns an open Box.
+_BACKENDS: dict[str, Callable[[str, dict[str, str]], Box]] = {}
+
+#: URL of the default back-end (the simulated box).
+DEFAULT_URL = "sim://"
+
+
+def register_backend(scheme: str, factory: Callable[[str, dict[str, str]], Box]) -> None:
+    """Make ``open_box("<scheme>://...")`` call ``factory(location, options)``."""
+    _BACKENDS[scheme.lower()] = factory
+
+
+def backends() -> tuple[str, ...]:
+    """Registered URL schemes."""
+    _ensure_builtin()
+    return tuple(sorted(_BACKENDS))
+
+
+def _ensure_builtin() -> None:
+    if "sim" not in _BACKENDS:
+        from softpad.box._sim import open_sim_url
+
+        register_backend("sim", open_sim_url)
+
+
+def parse_url(url: str) -> tuple[str, str, dict[str, str]]:
+    """Split a box URL into (scheme, location, options); InputError on a malformed one."""
+    if not isinstance(url, str) or "://" not in url:
+        raise InputError(f"box URL must look like 'scheme://...' (e.g. sim://?seed=1), got {url!r}")
+    parts = urlsplit(url)
+    try:
+        pairs = parse_qsl(parts.query, keep_blank_values=True, strict_parsing=bool(parts.query))
+    except ValueError:
+        raise InputError(f"malformed options in box URL {url!r}") from None
+    options: dict[str, str] = {}
+    for k, v in pairs:
+        if k in options:
+            raise InputError(f"option {k!r} given twice in box URL {url!r}")
+        options[k] = v
+    return parts.scheme.lower(), parts.netloc + parts.path, options
+
+
+def open_box(url: str = DEFAULT_URL) -> Box:
+    """Open the box named by ``url``.
+
+    Parameters
+    ----------
+    url
+        ``sim://`` (the simulated box, see :func:`softpad.box.open_sim_url` for its options).
+
+    Raises
+    ------
+    InputError
+        Unknown scheme or option, or a malformed value (the message names it).
+    """
+    _ensure_builtin()
+    scheme, location, options = parse_url(url)
+    factory = _BACKENDS.get(scheme)
+    if factory is None:
+        raise InputError(f"unknown box URL scheme {scheme!r} in {url!r}; available: {', '.join(backends())}")
+    return factory(location, options)

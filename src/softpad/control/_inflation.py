@@ -1,0 +1,272 @@
+"""Initial inflation and adjustment of every module (seed, Section 6.2.1.1), and the safe state.
+
+Every module is brought to the same pressure p0 within t_adj, then the reference pressures are
+saved as the mean of 10 reads. The controller is a per-channel bang-bang with hysteresis on the
+running average of the readings: a channel starts correcting when it is off by more than t_adj
+and stops when it crosses p0, so the filter lag (about half the window) overshoots by less than
+t_adj. The maximum pressure is never exceeded on purpose: any channel above it is vented.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from softpad.box import Box, PressureFrame, ValveCommand
+from softpad.errors import HardwareFault, InputError
+from softpad.sensing import RunningAverage
+
+#: p0 of the thesis, Pa (Section 6.3: 1.1 kPa, about 9 mm high).
+DEFAULT_TARGET_PA = 1100.0
+#: t_adj of the thesis, Pa (Section 6.3).
+DEFAULT_TOLERANCE_PA = 30.0
+#: Maximum pressure the software ever lets a module reach, Pa (modules are unusable above 2.8 kPa).
+DEFAULT_MAX_PRESSURE_PA = 3000.0
+
+FrameHook = Callable[[PressureFrame], None]
+
+
+@dataclass(frozen=True)
+class InflationParams:
+    """Parameters of the initial inflation and adjustment (Section 6.2.1.1).
+
+    Parameters
+    ----------
+    target_pa
+        p0: pressure every module is brought to, pascals (1.1 kPa).
+    tolerance_pa
+        t_adj: allowed deviation from p0, pascals (0.03 kPa).
+    max_pressure_pa
+        Safety limit; a channel above it is vented and the run fails, pascals (3.0 kPa).
+    timeout_s
+        Time allowed to reach p0 on every channel, seconds.
+    settle_s
+        Time every channel must stay within t_adj with its valves closed, seconds.
+    reference_reads
+        Reads averaged into the reference (10 in the thesis).
+    filter_length
+        Running-average length used by the controller, samples.
+    max_drift_pa_s
+        A sealed channel losing pressure faster than this during the settle time leaks, Pa/s.
+    """
+
+    target_pa: float = DEFAULT_TARGET_PA
+    tolerance_pa: float = DEFAULT_TOLERANCE_PA
+    max_pressure_pa: float = DEFAULT_MAX_PRESSURE_PA
+    timeout_s: float = 30.0
+    settle_s: float = 0.5
+    reference_reads: int = 10
+    filter_length: int = 10
+    max_drift_pa_s: float = 25.0
+
+    def __post_init__(self) -> None:
+        for n in ("target_pa", "tolerance_pa", "max_pressure_pa", "timeout_s", "settle_s", "max_drift_pa_s"):
+            v = getattr(self, n)
+            if not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
+                raise InputError(f"inflation {n} must be a positive number, got {v!r}")
+        if self.target_pa + self.tolerance_pa >= self.max_pressure_pa:
+            raise InputError(
+                f"target pressure {self.target_pa / 1e3:g} kPa + tolerance must stay below the maximum "
+                f"{self.max_pressure_pa / 1e3:g} kPa"
+            )
+        if not (isinstance(self.reference_reads, int) and self.reference_reads >= 1):
+            raise InputError(f"reference reads must be an integer >= 1, got {self.reference_reads!r}")
+
+
+@dataclass(frozen=True)
+class AdjustmentResult:
+    """Outcome of :func:`inflate_and_adjust`.
+
+    Attributes
+    ----------
+    reference_pa
+        Saved reference pressure of every module (mean of the reference reads), pascals.
+    adjusted_at_s
+        Box time when every module was within tolerance, seconds.
+    reference_at_s
+        Box time when the reference was saved, seconds.
+    """
+
+    reference_pa: NDArray[np.float64]
+    adjusted_at_s: float
+    reference_at_s: float
+
+    def to_dict(self) -> dict[str, object]:
+        """JSON-ready dict (kPa at the edge)."""
+        return {
+            "reference_kpa": [round(float(v) / 1e3, 5) for v in self.reference_pa],
+            "adjusted_at_s": round(self.adjusted_at_s, 4),
+            "reference_at_s": round(self.reference_at_s, 4),
+        }
+
+
+def check_frame(frame: PressureFrame, n_modules: int, max_pressure_pa: float, floor_pa: float = -500.0) -> NDArray[np.float64]:
+    """Module pressures of a frame, or HardwareFault naming a bad channel.
+
+    A NaN reading is a sensor fault; a reading below ``floor_pa`` (a module cannot be
+    under vacuum) is a sensor dropout; a reading above ``max_pressure_pa`` is an
+    over-pressure.
+    """
+    p = frame.pressures_pa[:n_modules]
+    bad = ~np.isfinite(p)
+    if bad.any():
+        ch = int(np.argmax(bad)) + 1
+        raise HardwareFault(f"channel {ch}: pressure sensor gives no valid reading (NaN) at t = {frame.t_s:.2f} s")
+    low = p < floor_pa
+    if low.any():
+        ch = int(np.argmax(low)) + 1
+        raise HardwareFault(
+            f"channel {ch}: pressure sensor reads {p[ch - 1] / 1e3:.2f} kPa at t = {frame.t_s:.2f} s "
+            "(sensor dropout?)"
+        )
+    high = p > max_pressure_pa
+    if high.any():
+        ch = int(np.argmax(high)) + 1
+        raise HardwareFault(
+            f"channel {ch}: pressure {p[ch - 1] / 1e3:.2f} kPa exceeds the maximum "
+            f"{max_pressure_pa / 1e3:.2f} kPa at t = {frame.t_s:.2f} s (valve stuck open?)"
+        )
+    return p
+
+
+def make_safe(box: Box, n_modules: int, max_pressure_pa: float, timeout_s: float = 5.0, on_frame: FrameHook | None = None) -> None:
+    """Put the box in its safe state: inflation valves closed, no module above the maximum.
+
+    Closes every valve, then vents (deflation valve open) any module whose reading is above
+    ``max_pressure_pa`` until it is 10 % below it, for at most ``timeout_s`` of box time. A box
+    that cannot be reached is left as it is (nothing else can be done).
+    """
+    if box.closed:
+        return
+    try:
+        box.close_valves()
+        venting = np.zeros(n_modules, dtype=bool)
+        filt = RunningAverage(5)
+        t_end = None
+        while True:
+            frame = box.read()
+            if on_frame is not None:
+                on_frame(frame)
+            t_end = frame.t_s + timeout_s if t_end is None else t_end
+            p = filt.update(np.nan_to_num(frame.pressures_pa[:n_modules], nan=0.0))
+            start = (p > max_pressure_pa) & ~venting
+            stop = venting & (p < 0.9 * max_pressure_pa)
+            for k in np.flatnonzero(start):
+                box.set_valve(int(k) + 1, ValveCommand.DEFLATE)
+            for k in np.flatnonzero(stop):
+                box.set_valve(int(k) + 1, ValveCommand.CLOSED)
+            venting = (venting | start) & ~stop
+            if (not venting.any() and filt.full) or frame.t_s >= t_end:
+                break
+    except HardwareFault:
+        pass  # unreachable box: leave it
+
+
+def inflate_and_adjust(
+    box: Box,
+    n_modules: int,
+    params: InflationParams | None = None,
+    on_frame: FrameHook | None = None,
+) -> AdjustmentResult:
+    """Bring modules 1..n_modules to p0 within t_adj and save the reference (Section 6.2.1.1).
+
+    Parameters
+    ----------
+    box
+        An open box; module k is channel k.
+    n_modules
+        Modules on the pad.
+    params
+        Inflation parameters (thesis defaults).
+    on_frame
+        Called with every frame read (logging hook).
+
+    Raises
+    ------
+    HardwareFault
+        When a channel cannot reach p0 in ``timeout_s`` (leak, supply too low, stuck valve),
+        exceeds the maximum, leaks, or its sensor fails; the message names the channel. The box
+        is put in the safe state first.
+    """
+    params = params or InflationParams()
+    if not 1 <= n_modules <= box.channels:
+        raise InputError(f"a box with {box.channels} channels cannot drive {n_modules} modules")
+    target, tol = params.target_pa, params.tolerance_pa
+    filt = RunningAverage(params.filter_length)
+    state = np.zeros(n_modules, dtype=np.int8)  # 0 closed, 1 inflating, -1 deflating
+    settled_since: float | None = None
+    settle_start_p: NDArray[np.float64] | None = None
+    t0: float | None = None
+
+    def apply(k: int, s: int) -> None:
+        if state[k] != s:
+            cmd = ValveCommand.INFLATE if s > 0 else ValveCommand.DEFLATE if s < 0 else ValveCommand.CLOSED
+            box.set_valve(k + 1, cmd)
+            state[k] = s
+
+    try:
+        while True:
+            frame = box.read()
+            if on_frame is not None:
+                on_frame(frame)
+            t0 = frame.t_s if t0 is None else t0
+            p_raw = check_frame(frame, n_modules, params.max_pressure_pa)
+            p = filt.update(p_raw)
+            if not filt.full:
+                continue
+            err = p - target
+            for k in range(n_modules):
+                if state[k] == 0 and abs(err[k]) > tol:
+                    apply(k, 1 if err[k] < 0 else -1)
+                elif state[k] == 1 and err[k] >= 0:
+                    apply(k, 0)
+                elif state[k] == -1 and err[k] <= 0:
+                    apply(k, 0)
+            inflating = state == 1
+            if inflating.any() and frame.t_s - t0 > 1.0 and frame.supply_pa < target + 2 * tol:
+                k = int(np.argmax(inflating))
+                raise HardwareFault(
+                    f"channel {k + 1}: supply pressure {frame.supply_pa / 1e3:.2f} kPa is too low to "
+                    f"inflate to {target / 1e3:.2f} kPa (supply lost?)"
+                )
+            if not state.any() and (np.abs(err) <= tol).all():
+                if settled_since is None:
+                    settled_since, settle_start_p = frame.t_s, p.copy()
+                elif frame.t_s - settled_since >= params.settle_s:
+                    assert settle_start_p is not None
+                    rate = (p - settle_start_p) / (frame.t_s - settled_since)
+                    leaking = rate < -params.max_drift_pa_s
+                    if leaking.any():
+                        k = int(np.argmax(leaking))
+                        raise HardwareFault(
+                            f"channel {k + 1}: loses {-rate[k] / 1e3:.3f} kPa/s with its valves closed (leak)"
+                        )
+                    break
+            else:
+                settled_since = None
+            if frame.t_s - t0 > params.timeout_s:
+                off = np.flatnonzero(np.abs(err) > tol) + 1
+                which = ", ".join(str(int(c)) for c in off) or ", ".join(
+                    str(int(c)) for c in np.flatnonzero(state) + 1
+                )
+                raise HardwareFault(
+                    f"channel {which}: could not reach {target / 1e3:.2f} +/- {tol / 1e3:.2f} kPa within "
+                    f"{params.timeout_s:g} s (now {', '.join(f'{v / 1e3:.2f}' for v in p)} kPa; leak, low "
+                    "supply or stuck valve?)"
+                )
+        adjusted_at = frame.t_s
+        box.close_valves()
+        reads = []
+        for _ in range(params.reference_reads):
+            frame = box.read()
+            if on_frame is not None:
+                on_frame(frame)
+            reads.append(check_frame(frame, n_modules, params.max_pressure_pa))
+        return AdjustmentResult(np.mean(reads, axis=0), adjusted_at, frame.t_s)
+    except HardwareFault:
+        make_safe(box, n_modules, params.max_pressure_pa, on_frame=on_frame)
+        raise

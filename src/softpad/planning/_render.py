@@ -1,0 +1,148 @@
+"""Human-readable views of plans: a text table, an ASCII pad, and a matplotlib figure."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from softpad.layout import GripperSpec, PadLayout
+from softpad.planning._records import GraspPlan
+
+if TYPE_CHECKING:  # pragma: no cover
+    from matplotlib.axes import Axes
+
+
+def ascii_pad(
+    delta_pa: ArrayLike, layout: PadLayout, plans: Sequence[GraspPlan] = (), cell: int = 9
+) -> str:
+    """Draw the pad as text: module numbers, increments in kPa, PCOM ``P`` and COG ``G``.
+
+    ``*`` marks a PCOM and a COG that fall in the same character cell.
+    """
+    d = np.asarray(delta_pa, dtype=float)
+    h = 4
+    width, height = layout.cols * cell + 1, layout.rows * h + 1
+    canvas = [[" "] * width for _ in range(height)]
+    for r in range(layout.rows + 1):
+        for x in range(width):
+            canvas[r * h][x] = "-"
+    for c in range(layout.cols + 1):
+        for y in range(height):
+            canvas[y][c * cell] = "+" if y % h == 0 else "|"
+    for m in layout.modules:
+        r, c = layout.row_col(m)
+        label = f"{m} {d[m - 1] / 1e3:.3f}" if d[m - 1] else f"{m}"
+        for i, ch in enumerate(label[: cell - 1]):
+            canvas[r * h + 1][c * cell + 1 + i] = ch
+
+    def mark(p: tuple[float, float], ch: str) -> None:
+        x = min(round(p[0] * cell), width - 1)
+        y = min(round((layout.rows - p[1]) * h), height - 1)
+        canvas[y][x] = "*" if canvas[y][x] in "PG" and canvas[y][x] != ch else ch
+
+    for plan in plans:
+        mark(plan.pcom, "P")
+        mark(plan.cog, "G")
+    return "\n".join("".join(row).rstrip() for row in canvas)
+
+
+def format_plans(
+    delta_pa: ArrayLike, plans: Sequence[GraspPlan], layout: PadLayout, threshold_pa: float
+) -> str:
+    """The table ``softpad plan`` prints."""
+    lines = [
+        f"SoftPad {layout.name}, pitch {layout.pitch_m * 1e3:g} mm, "
+        f"object threshold t_o = {threshold_pa / 1e3:.3f} kPa",
+        "increments (kPa), P = PCOM, G = centre of grasp:",
+        ascii_pad(delta_pa, layout, plans),
+    ]
+    if not plans:
+        lines.append("no object detected (no module above t_o)")
+    for i, p in enumerate(plans, 1):
+        cx, cy = p.cog_m(layout)
+        lines += [
+            f"object {i}: modules {', '.join(map(str, p.modules))}",
+            f"  PCOM   ({p.pcom[0]:.3f}, {p.pcom[1]:.3f}) module units",
+            f"  COG    ({p.cog[0]:.3f}, {p.cog[1]:.3f}) module units = "
+            f"({cx * 1e3:.1f}, {cy * 1e3:.1f}) mm",
+            f"  theta  {math.degrees(p.theta):+.1f} deg ({p.theta:+.4f} rad), jaws close along it",
+            f"  rule   {p.rule}" + (" (decided by a tie-break)" if p.tie_break else ""),
+        ]
+        if p.reduced_modules != p.modules:
+            lines.append(f"  kept   modules {', '.join(map(str, p.reduced_modules))}")
+    return "\n".join(lines)
+
+
+def plot_plans(
+    delta_pa: ArrayLike,
+    plans: Sequence[GraspPlan],
+    layout: PadLayout,
+    gripper: GripperSpec | None = None,
+    ax: Axes | None = None,
+    title: str = "",
+) -> Any:
+    """Draw the pad, the increments as a heat map, PCOM, COG and the two fingertips (Fig. 6.10).
+
+    Returns the matplotlib Axes. Module units on both axes.
+    """
+    import matplotlib.pyplot as plt
+    from matplotlib.patches import Rectangle
+
+    gripper = gripper or GripperSpec()
+    d = np.asarray(delta_pa, dtype=float) / 1e3
+    if ax is None:
+        _, ax = plt.subplots(figsize=(1.6 * layout.cols + 1.4, 1.6 * layout.rows + 0.6))
+    grid = np.zeros((layout.rows, layout.cols))
+    for m in layout.modules:
+        r, c = layout.row_col(m)
+        grid[layout.rows - 1 - r, c] = d[m - 1]
+    vmax = max(float(np.max(np.abs(d))), 1e-6)
+    im = ax.imshow(
+        grid,
+        origin="lower",
+        extent=(0, layout.cols, 0, layout.rows),
+        cmap="RdPu",
+        vmin=0,
+        vmax=vmax,
+    )
+    ax.figure.colorbar(im, ax=ax, label="dP (kPa)", fraction=0.04)
+    for m in layout.modules:
+        x, y = layout.center(m)
+        ax.text(x - 0.45, y + 0.33, str(m), fontsize=8, color="0.3")
+    for k in range(layout.cols + 1):
+        ax.axvline(k, color="0.5", lw=1.5)
+    for k in range(layout.rows + 1):
+        ax.axhline(k, color="0.5", lw=1.5)
+    p_units = gripper.tip_thickness_m / layout.pitch_m
+    w_units = gripper.tip_width_m / layout.pitch_m
+    for plan in plans:
+        ax.plot(*plan.pcom, "o", color="tab:blue", ms=6, label="PCOM")
+        ax.plot(*plan.cog, "x", color="k", ms=9, mew=2, label="COG")
+        centre_m = plan.cog_m(layout)
+        for tip in gripper.fingertip_centres(centre_m, plan.theta):
+            tx, ty = layout.to_units(tip)
+            rect = Rectangle(
+                (tx - p_units / 2, ty - w_units / 2),
+                p_units,
+                w_units,
+                angle=math.degrees(plan.theta),
+                rotation_point="center",
+                color="k",
+            )
+            ax.add_patch(rect)
+    handles, labels = ax.get_legend_handles_labels()
+    uniq = dict(zip(labels, handles, strict=False))
+    if uniq:
+        ax.legend(uniq.values(), uniq.keys(), loc="upper right", fontsize=7, framealpha=0.8)
+    ax.set_xlim(-0.3, layout.cols + 0.3)
+    ax.set_ylim(-0.3, layout.rows + 0.3)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (module units)")
+    ax.set_ylabel("y (module units)")
+    if title:
+        ax.set_title(title, fontsize=9)
+    return ax

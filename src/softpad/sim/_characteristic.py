@@ -1,0 +1,315 @@
+"""Module characteristic: air volume and top height of a module vs pressure and load.
+
+The characteristic is the small interface between the mechanics of a module (the FEM model of
+chapter 7, or an analytic fit) and the gas physics of the simulated box:
+
+* ``volume_m3(p, F)``: volume of air under the upper layer (tubing excluded), m^3;
+* ``height_m(p, F)``: height of the top centre of the module above the base, m;
+
+for gauge pressure ``p`` (Pa) and a vertical external load ``F`` (N) spread over the module.
+A sealed module under a load settles where the amount of air is unchanged, which is how an
+object's weight becomes a pressure increment (seed, Section 6.2.1).
+
+Two implementations: :class:`AnalyticCharacteristic` (documented fit, default when no table
+is packaged) and :class:`TabulatedCharacteristic` (bilinear interpolation of a table, e.g. the
+FEM's ``softpad/data/module_characteristic.npz``). :func:`default_characteristic` picks one.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field
+from functools import cached_property
+from importlib import resources
+from pathlib import Path
+from typing import Any, Protocol, runtime_checkable
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from softpad.errors import InputError
+
+#: Name of the packaged FEM table (written by the FEM issue).
+PACKAGED_TABLE = "module_characteristic.npz"
+
+
+@runtime_checkable
+class ModuleCharacteristic(Protocol):
+    """Volume and height of a module as functions of gauge pressure and external load."""
+
+    def volume_m3(self, pressure_pa: ArrayLike, load_n: ArrayLike) -> NDArray[np.float64]:
+        """Air volume under the layer, m^3 (broadcasts over arrays of pressures/loads)."""
+        ...
+
+    def height_m(self, pressure_pa: ArrayLike, load_n: ArrayLike) -> NDArray[np.float64]:
+        """Height of the module's top centre above the base, m."""
+        ...
+
+    def volume_slope_m3_pa(self, pressure_pa: ArrayLike, load_n: ArrayLike) -> NDArray[np.float64]:
+        """Partial derivative dV/dp at constant load, m^3/Pa (membrane compliance)."""
+        ...
+
+
+@dataclass(frozen=True)
+class AnalyticCharacteristic:
+    """A documented analytic characteristic of a 45 mm module with a 1.5 mm EcoFlex layer.
+
+    The load acts on the membrane like a pressure ``F / A_eff`` pushing back, so the volume is
+    that of the free membrane at the net pressure ``x = p - F / A_eff``::
+
+        V(p, F) = V_free(x),
+        V_free(x) = V_gap + a ((x + x0)^n - x0^n)          for x >= 0,
+        V_free(x) = V_gap exp(x V_free'(0) / V_gap)        for x < 0 (layer pushed onto base),
+        h(p, F)   = h_ref V(p, F) / V_ref.
+
+    ``a`` and ``n`` are fitted so that ``V(p_ref) = V_ref`` and ``dV/dp(p_ref) = compliance``.
+    Defaults: the FEM scale of the issue (about 8 mL of air at 1.1 kPa, growing 3.8 mL/kPa),
+    the thesis's height of 9 mm at 1.1 kPa (Section 6.3), and an effective area chosen so that
+    a sealed module rises ``load_sensitivity_pa_n`` per newton (see docs/box-and-simulator.md
+    for why 0.70 kPa/N rather than the FEM's 0.53 kPa/N).
+
+    Parameters
+    ----------
+    reference_pressure_pa
+        p_ref, pascals (1.1 kPa, the thesis's inflating pressure).
+    reference_volume_m3
+        V_ref, air volume at p_ref without load, m^3 (8 mL).
+    compliance_m3_pa
+        dV/dp at p_ref, m^3/Pa (3.8 mL/kPa).
+    reference_height_m
+        h_ref, top height at p_ref without load, m (9 mm).
+    gap_volume_m3
+        V_gap, air left under a flat layer (the acetate sheet's gap), m^3 (0.2 mL).
+    knee_pa
+        x0, pressure scale where the slack membrane stiffens, pascals (50 Pa).
+    effective_area_m2
+        A_eff, area on which a load acts like a pressure, m^2.
+    """
+
+    reference_pressure_pa: float = 1100.0
+    reference_volume_m3: float = 8.0e-6
+    compliance_m3_pa: float = 3.8e-9
+    reference_height_m: float = 9.0e-3
+    gap_volume_m3: float = 0.2e-6
+    knee_pa: float = 50.0
+    effective_area_m2: float = 1.393e-3
+
+    def __post_init__(self) -> None:
+        for n in (
+            "reference_pressure_pa",
+            "reference_volume_m3",
+            "compliance_m3_pa",
+            "reference_height_m",
+            "gap_volume_m3",
+            "knee_pa",
+            "effective_area_m2",
+        ):
+            v = getattr(self, n)
+            if not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
+                raise InputError(f"characteristic {n} must be a positive number, got {v!r}")
+        if self.gap_volume_m3 >= self.reference_volume_m3:
+            raise InputError("gap volume must be smaller than the reference volume")
+
+    @cached_property
+    def _fit(self) -> tuple[float, float, float]:
+        """(a, n, slope at x = 0) of the power law."""
+        from scipy.optimize import brentq
+
+        x0, p = self.knee_pa, self.reference_pressure_pa
+        dv = self.reference_volume_m3 - self.gap_volume_m3
+        target = self.compliance_m3_pa / dv
+
+        def ratio(n: float) -> float:
+            return n * (p + x0) ** (n - 1) / ((p + x0) ** n - x0**n) - target
+
+        try:
+            n = float(brentq(ratio, 1e-3, 5.0))
+        except ValueError:
+            raise InputError(
+                "no power law fits the given reference volume and compliance; "
+                f"compliance {self.compliance_m3_pa:g} m^3/Pa is out of reach"
+            ) from None
+        a = dv / ((p + x0) ** n - x0**n)
+        return a, n, a * n * x0 ** (n - 1)
+
+    def _free(self, x: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        a, n, s0 = self._fit
+        x0, vg = self.knee_pa, self.gap_volume_m3
+        xp = np.maximum(x, 0.0)
+        xn = np.minimum(x, 0.0)
+        pos = vg + a * ((xp + x0) ** n - x0**n)
+        dpos = a * n * (xp + x0) ** (n - 1)
+        e = np.exp(xn * s0 / vg)
+        v = np.where(x >= 0, pos, vg * e)
+        dv = np.where(x >= 0, dpos, s0 * e)
+        return v, dv
+
+    def volume_m3(self, pressure_pa: ArrayLike, load_n: ArrayLike) -> NDArray[np.float64]:
+        x = np.asarray(pressure_pa, dtype=float) - np.asarray(load_n, dtype=float) / self.effective_area_m2
+        return self._free(x)[0]
+
+    def volume_slope_m3_pa(self, pressure_pa: ArrayLike, load_n: ArrayLike) -> NDArray[np.float64]:
+        x = np.asarray(pressure_pa, dtype=float) - np.asarray(load_n, dtype=float) / self.effective_area_m2
+        return self._free(x)[1]
+
+    def volume_and_slope(
+        self, pressure_pa: NDArray[np.float64], load_n: NDArray[np.float64]
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """V and dV/dp in one evaluation (the gas solver's hot path)."""
+        return self._free(pressure_pa - load_n / self.effective_area_m2)
+
+    def height_m(self, pressure_pa: ArrayLike, load_n: ArrayLike) -> NDArray[np.float64]:
+        return self.volume_m3(pressure_pa, load_n) * (self.reference_height_m / self.reference_volume_m3)
+
+
+@dataclass(frozen=True)
+class TabulatedCharacteristic:
+    """Bilinear interpolation of a table V(p, F), h(p, F); clamped at the table's edges.
+
+    Parameters
+    ----------
+    pressure_pa
+        Strictly increasing gauge pressures, shape (P,), pascals.
+    load_n
+        Strictly increasing loads, shape (L,), newtons.
+    volume_m3
+        Air volume under the layer (tubing excluded), shape (P, L), m^3.
+    height_m
+        Top-centre height, shape (P, L), metres.
+    meta
+        Provenance (model, material, mesh...), free JSON-ready dict.
+    """
+
+    pressure_pa: NDArray[np.float64]
+    load_n: NDArray[np.float64]
+    volume_m3_table: NDArray[np.float64]
+    height_m_table: NDArray[np.float64]
+    meta: dict[str, Any] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        p, f = np.asarray(self.pressure_pa, float), np.asarray(self.load_n, float)
+        v, h = np.asarray(self.volume_m3_table, float), np.asarray(self.height_m_table, float)
+        if p.ndim != 1 or p.size < 2 or not (np.diff(p) > 0).all():
+            raise InputError(f"table pressure_pa must be >= 2 strictly increasing values, got shape {p.shape}")
+        if f.ndim != 1 or f.size < 1 or (f.size > 1 and not (np.diff(f) > 0).all()):
+            raise InputError(f"table load_n must be strictly increasing values, got shape {f.shape}")
+        for name, a in (("volume_m3", v), ("height_m", h)):
+            if a.shape != (p.size, f.size):
+                raise InputError(f"table {name} must have shape ({p.size}, {f.size}), got {a.shape}")
+            if not np.isfinite(a).all():
+                raise InputError(f"table {name} contains NaN or infinite values")
+        if (v <= 0).any():
+            raise InputError("table volume_m3 must be > 0 everywhere (air volume under the layer)")
+        object.__setattr__(self, "pressure_pa", p)
+        object.__setattr__(self, "load_n", f)
+        object.__setattr__(self, "volume_m3_table", v)
+        object.__setattr__(self, "height_m_table", h)
+
+    @classmethod
+    def from_file(cls, path: str | Path) -> TabulatedCharacteristic:
+        """Read an ``.npz`` with arrays ``pressure_pa``, ``load_n``, ``volume_m3``, ``height_m``
+        and optionally ``meta`` (0-d JSON string); InputError names what is missing or wrong."""
+        p = Path(path)
+        try:
+            with np.load(p, allow_pickle=False) as z:
+                missing = [k for k in ("pressure_pa", "load_n", "volume_m3", "height_m") if k not in z]
+                if missing:
+                    raise InputError(f"module characteristic {str(p)!r} lacks array(s) {missing}")
+                arrays = {k: np.array(z[k], dtype=float) for k in ("pressure_pa", "load_n", "volume_m3", "height_m")}
+                meta: dict[str, Any] = {}
+                if "meta" in z:
+                    try:
+                        meta = json.loads(str(z["meta"][()]))
+                    except (json.JSONDecodeError, TypeError):
+                        raise InputError(f"module characteristic {str(p)!r}: 'meta' is not a JSON string") from None
+        except InputError:
+            raise
+        except FileNotFoundError:
+            raise InputError(f"module characteristic file {str(p)!r} does not exist") from None
+        except (OSError, ValueError) as exc:
+            raise InputError(f"module characteristic {str(p)!r} is not a readable .npz file: {exc}") from None
+        return cls(arrays["pressure_pa"], arrays["load_n"], arrays["volume_m3"], arrays["height_m"], meta)
+
+    def _locate(self, grid: NDArray[np.float64], x: NDArray[np.float64]) -> tuple[NDArray[np.intp], NDArray[np.float64], NDArray[np.float64]]:
+        if grid.size == 1:
+            z = np.zeros(x.shape, dtype=np.intp)
+            return z, np.zeros(x.shape), np.zeros(x.shape)
+        xc = np.clip(x, grid[0], grid[-1])
+        i = np.clip(np.searchsorted(grid, xc, side="right") - 1, 0, grid.size - 2)
+        width = grid[i + 1] - grid[i]
+        t = (xc - grid[i]) / width
+        inside = (x >= grid[0]) & (x <= grid[-1])
+        return i, t, np.where(inside, 1.0 / width, 0.0)
+
+    def _interp(self, table: NDArray[np.float64], p: ArrayLike, f: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        pa, fa = np.broadcast_arrays(np.asarray(p, float), np.asarray(f, float))
+        i, t, dti = self._locate(self.pressure_pa, pa)
+        if self.load_n.size == 1:
+            j, u = np.zeros(pa.shape, dtype=np.intp), np.zeros(pa.shape)
+            j1 = j
+        else:
+            j, u, _ = self._locate(self.load_n, fa)
+            j1 = j + 1
+        v00, v10 = table[i, j], table[i + 1, j]
+        v01, v11 = table[i, j1], table[i + 1, j1]
+        lo = v00 + (v10 - v00) * t
+        hi = v01 + (v11 - v01) * t
+        val = lo + (hi - lo) * u
+        dval = ((v10 - v00) * (1 - u) + (v11 - v01) * u) * dti
+        return val, dval
+
+    def volume_m3(self, pressure_pa: ArrayLike, load_n: ArrayLike) -> NDArray[np.float64]:
+        return self._interp(self.volume_m3_table, pressure_pa, load_n)[0]
+
+    def volume_slope_m3_pa(self, pressure_pa: ArrayLike, load_n: ArrayLike) -> NDArray[np.float64]:
+        return self._interp(self.volume_m3_table, pressure_pa, load_n)[1]
+
+    def volume_and_slope(
+        self, pressure_pa: NDArray[np.float64], load_n: NDArray[np.float64]
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """V and dV/dp in one evaluation."""
+        return self._interp(self.volume_m3_table, pressure_pa, load_n)
+
+    def height_m(self, pressure_pa: ArrayLike, load_n: ArrayLike) -> NDArray[np.float64]:
+        return self._interp(self.height_m_table, pressure_pa, load_n)[0]
+
+
+def packaged_table_path() -> Path | None:
+    """Path of the packaged FEM table, or None when it is not installed."""
+    res = resources.files("softpad").joinpath("data", PACKAGED_TABLE)
+    try:
+        p = Path(str(res))
+    except TypeError:  # pragma: no cover - zipped installs
+        return None
+    return p if p.is_file() else None
+
+
+def default_characteristic() -> ModuleCharacteristic:
+    """The packaged FEM table when present, else the :class:`AnalyticCharacteristic`."""
+    path = packaged_table_path()
+    if path is not None:
+        return TabulatedCharacteristic.from_file(path)
+    return AnalyticCharacteristic()
+
+
+def sealed_sensitivity_pa_n(
+    characteristic: ModuleCharacteristic,
+    pressure_pa: float = 1100.0,
+    tubing_volume_m3: float = 2.0e-6,
+    atmosphere_pa: float = 101325.0,
+    load_n: float = 0.0,
+) -> float:
+    """Pressure rise per newton of load of a sealed module, Pa/N (isothermal ideal gas).
+
+    From ``d[(p_atm + p)(V(p, F) + V_t)] = 0``:
+    ``dp/dF = -(p_atm + p) dV/dF / ((p_atm + p) dV/dp + V + V_t)``, with dV/dF by central
+    differences (0.01 N).
+    """
+    dF = 0.01
+    p, f = np.array([pressure_pa]), np.array([load_n])
+    dv_df = float((characteristic.volume_m3(p, f + dF) - characteristic.volume_m3(p, f - dF))[0] / (2 * dF))
+    dv_dp = float(characteristic.volume_slope_m3_pa(p, f)[0])
+    v = float(characteristic.volume_m3(p, f)[0])
+    pabs = atmosphere_pa + pressure_pa
+    return -pabs * dv_df / (pabs * dv_dp + v + tubing_volume_m3)

@@ -1,0 +1,204 @@
+"""Gas physics of the box channels: chamber + tubing, valves, supply, leaks.
+
+Each channel (seed, Section 6.1.1: one inflation valve, one deflation valve, one differential
+pressure sensor per channel, one shared supply) is modelled as an isothermal ideal gas in the
+module's chamber plus a tubing dead volume. The state is the amount of air expressed as
+``n = (p_atm + p) (V(p, F) + V_t)`` (Pa m^3, proportional to moles at constant temperature),
+changed by the valve and leak flows; the gauge pressure follows from ``n`` and the load ``F``
+through the module characteristic by Newton's method.
+
+Valves and leaks are orifices with an effective area ``Cd A``. The mass flow through an
+orifice, for the small pressure differences here (< 0.2 bar, nearly incompressible), is
+
+    m_dot = Cd A sqrt(2 rho) dp / sqrt(|dp| + p_lam)
+
+(turbulent ``Cd A sqrt(2 rho dp)`` for ``|dp| >> p_lam``, linear - laminar - near zero so the
+integration stays smooth), and ``dn/dt = m_dot R T`` with ``R T = p_atm / rho_atm``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from softpad.errors import InputError
+from softpad.sim._characteristic import ModuleCharacteristic
+
+
+@dataclass(frozen=True)
+class PneumaticParams:
+    """Parameters of the pneumatic channels.
+
+    Parameters
+    ----------
+    atmosphere_pa
+        Absolute atmospheric pressure, pascals.
+    air_density_kg_m3
+        Air density at atmospheric pressure and room temperature, kg/m^3.
+    tubing_volume_m3
+        Dead volume of the tube and valve manifold of one channel, m^3 (about 1 m of 1.6 mm
+        bore silicone tube: 2 mL).
+    supply_pa
+        Regulated supply gauge pressure, pascals (our choice: 10 kPa).
+    inflate_orifice_m2
+        Effective area Cd A of the inflation path, m^2 (about 2 mL/s from 10 kPa into a module
+        at 1 kPa: inflation to 1.1 kPa takes a few seconds, like Fig. 6.8).
+    deflate_orifice_m2
+        Effective area Cd A of the deflation path to atmosphere, m^2. Sized so that venting
+        beats a stuck-open inflation valve: with both open a module settles at
+        ``supply / (1 + (A_def / A_inf)^2)`` = 2.2 kPa, below the 3 kPa maximum.
+    laminar_pa
+        Pressure difference below which orifice flow turns linear, pascals.
+    """
+
+    atmosphere_pa: float = 101325.0
+    air_density_kg_m3: float = 1.204
+    tubing_volume_m3: float = 2.0e-6
+    supply_pa: float = 10.0e3
+    inflate_orifice_m2: float = 1.6e-8
+    deflate_orifice_m2: float = 3.0e-8
+    laminar_pa: float = 10.0
+
+    def __post_init__(self) -> None:
+        for n in (
+            "atmosphere_pa",
+            "air_density_kg_m3",
+            "tubing_volume_m3",
+            "inflate_orifice_m2",
+            "deflate_orifice_m2",
+            "laminar_pa",
+        ):
+            v = getattr(self, n)
+            if not (math.isfinite(v) and v > 0):
+                raise InputError(f"pneumatic {n} must be a positive number, got {v!r}")
+        if not (math.isfinite(self.supply_pa) and 0 <= self.supply_pa <= 500e3):
+            raise InputError(f"supply pressure must be within 0..500 kPa, got {self.supply_pa / 1e3:g} kPa")
+
+    @property
+    def gas_constant_rt(self) -> float:
+        """R T of air per unit mass, m^2/s^2 (``p_atm / rho_atm``, isothermal)."""
+        return self.atmosphere_pa / self.air_density_kg_m3
+
+
+class ChamberBank:
+    """The gas state of every channel, stepped together (vectorised with NumPy).
+
+    Channels ``0 .. n_modules-1`` hold a module; further channels are unconnected ports,
+    open to the atmosphere (gauge pressure 0).
+
+    Parameters
+    ----------
+    n_channels
+        Channels of the box.
+    n_modules
+        Channels connected to a module (first ones).
+    characteristic
+        Volume of a module vs pressure and load.
+    params
+        Pneumatic parameters.
+    """
+
+    def __init__(
+        self,
+        n_channels: int,
+        n_modules: int,
+        characteristic: ModuleCharacteristic,
+        params: PneumaticParams | None = None,
+    ) -> None:
+        if not 1 <= n_modules <= n_channels:
+            raise InputError(f"a box with {n_channels} channels cannot drive {n_modules} modules")
+        self.params = params or PneumaticParams()
+        self.characteristic = characteristic
+        self.n_channels = n_channels
+        self.n_modules = n_modules
+        m = n_modules
+        self._vol_slope = getattr(characteristic, "volume_and_slope", None)
+        self.pressure_pa = np.zeros(n_channels)
+        self.loads_n = np.zeros(m)
+        v0 = characteristic.volume_m3(np.zeros(m), np.zeros(m))
+        self.amount = self.params.atmosphere_pa * (v0 + self.params.tubing_volume_m3)
+        #: Effective leak area Cd A of each module channel, m^2 (0: tight).
+        self.leak_m2 = np.zeros(m)
+        rho = self.params.air_density_kg_m3
+        self._k = self.params.gas_constant_rt * math.sqrt(2 * rho)
+
+    def set_state(self, pressure_pa: NDArray[np.float64], loads_n: NDArray[np.float64] | None = None) -> None:
+        """Set module pressures (and loads) directly, e.g. to start already inflated."""
+        p = np.asarray(pressure_pa, dtype=float)[: self.n_modules]
+        if loads_n is not None:
+            self.loads_n = np.asarray(loads_n, dtype=float).copy()
+        v = self.characteristic.volume_m3(p, self.loads_n)
+        self.amount = (self.params.atmosphere_pa + p) * (v + self.params.tubing_volume_m3)
+        self.pressure_pa[: self.n_modules] = p
+
+    def _orifice(self, area: NDArray[np.float64] | float, dp: NDArray[np.float64]) -> NDArray[np.float64]:
+        return self._k * area * dp / np.sqrt(np.abs(dp) + self.params.laminar_pa)
+
+    def step(
+        self,
+        dt_s: float,
+        inflate_open: NDArray[np.bool_],
+        deflate_open: NDArray[np.bool_],
+        loads_n: NDArray[np.float64],
+        supply_pa: float,
+        any_open: bool,
+    ) -> bool:
+        """Advance by ``dt_s``; return True when the module pressures changed.
+
+        Parameters
+        ----------
+        dt_s
+            Time step, seconds.
+        inflate_open, deflate_open
+            Which inflation / deflation valves are open, shape (n_modules,).
+        loads_n
+            External load on each module, newtons, shape (n_modules,).
+        supply_pa
+            Current supply gauge pressure, pascals.
+        any_open
+            Whether any valve is open (lets a quiet step skip the flow computation).
+        """
+        m = self.n_modules
+        p = self.pressure_pa[:m]
+        leaking = bool(self.leak_m2.any())
+        same_load = np.array_equal(loads_n, self.loads_n)
+        if not any_open and not leaking and same_load:
+            return False
+        if any_open or leaking:
+            flow = np.zeros(m)
+            if any_open:
+                inf, dfl = inflate_open, deflate_open
+                if inf.any():
+                    flow[inf] += self._orifice(self.params.inflate_orifice_m2, supply_pa - p[inf])
+                if dfl.any():
+                    flow[dfl] -= self._orifice(self.params.deflate_orifice_m2, p[dfl])
+            if leaking:
+                flow -= self._orifice(self.leak_m2, p)
+            self.amount = np.maximum(self.amount + flow * dt_s, 1e-12)
+        if not same_load:
+            self.loads_n = loads_n.copy()
+        self.pressure_pa[:m] = self._solve(p.copy())
+        return True
+
+    def _solve(self, p: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Gauge pressure with ``(p_atm + p)(V(p, F) + V_t) = n`` (Newton, warm start)."""
+        patm, vt, n, f = self.params.atmosphere_pa, self.params.tubing_volume_m3, self.amount, self.loads_n
+        for _ in range(8):
+            if self._vol_slope is not None:
+                v, dv = self._vol_slope(p, f)
+            else:
+                v = self.characteristic.volume_m3(p, f)
+                dv = self.characteristic.volume_slope_m3_pa(p, f)
+            r = (patm + p) * (v + vt) - n
+            d = r / ((v + vt) + (patm + p) * dv)
+            p = p - d
+            if np.abs(d).max() < 1e-6:
+                break
+        return p
+
+    def heights_m(self) -> NDArray[np.float64]:
+        """Top height of every module, metres."""
+        return self.characteristic.height_m(self.pressure_pa[: self.n_modules], self.loads_n)

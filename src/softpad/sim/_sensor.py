@@ -1,0 +1,138 @@
+"""Pressure-sensor model: offset, white noise, slow drift, quantisation, range.
+
+Defaults are chosen so that traces look like the seed's Fig. 6.8 ("data look noisy mostly
+because of the pressure sensors performance") while the thesis thresholds keep their meaning
+(docs/box-and-simulator.md gives the numbers):
+
+* white noise 8 Pa rms per sample and a slow drift (first-order Gauss-Markov, 3 Pa rms,
+  2 s correlation time): the mean of 10 reads has about 4 Pa rms, so an increment of a 12.6 g
+  brick (86 Pa sealed) is far above t_o = 50 Pa and the 6 g minimum detectable mass (41 Pa)
+  stands out by about 5 sigma of a single sample;
+* the 10-sample running average has about 4 Pa rms, so t_g = 90 Pa is about 20 sigma away:
+  no false contact in hours of idle noise;
+* quantisation 2.44 Pa (a 12-bit converter over a 10 kPa span), a per-channel zero offset of
+  20 Pa rms (drawn once per box; the reference removes it) and a range of -2..10 kPa.
+
+Noise is drawn in blocks (vectorised), deterministically from the box's seed.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from softpad.errors import InputError
+
+
+@dataclass(frozen=True)
+class SensorParams:
+    """Parameters of the channel pressure sensors and of the supply sensor.
+
+    Parameters
+    ----------
+    noise_std_pa
+        Standard deviation of the white noise of one sample, pascals.
+    drift_std_pa
+        Stationary standard deviation of the slow drift, pascals.
+    drift_time_s
+        Correlation time of the drift, seconds.
+    quantization_pa
+        Resolution of the converter, pascals (0: none).
+    offset_std_pa
+        Standard deviation of the per-channel zero offset, pascals.
+    range_min_pa, range_max_pa
+        Readings saturate at these values, pascals.
+    supply_noise_std_pa
+        White noise of the supply-pressure sensor, pascals.
+    """
+
+    noise_std_pa: float = 8.0
+    drift_std_pa: float = 3.0
+    drift_time_s: float = 2.0
+    quantization_pa: float = 10e3 / 4096
+    offset_std_pa: float = 20.0
+    range_min_pa: float = -2.0e3
+    range_max_pa: float = 10.0e3
+    supply_noise_std_pa: float = 20.0
+
+    def __post_init__(self) -> None:
+        for n in ("noise_std_pa", "drift_std_pa", "quantization_pa", "offset_std_pa", "supply_noise_std_pa"):
+            v = getattr(self, n)
+            if not (math.isfinite(v) and v >= 0):
+                raise InputError(f"sensor {n} must be a finite number >= 0, got {v!r}")
+        if not (math.isfinite(self.drift_time_s) and self.drift_time_s > 0):
+            raise InputError(f"sensor drift_time_s must be > 0, got {self.drift_time_s!r}")
+        if not self.range_min_pa < self.range_max_pa:
+            raise InputError("sensor range_min_pa must be below range_max_pa")
+
+    @classmethod
+    def ideal(cls) -> SensorParams:
+        """A noise-free, offset-free, unquantised sensor (for tests of the physics)."""
+        return cls(0.0, 0.0, 1.0, 0.0, 0.0, -1e6, 1e6, 0.0)
+
+
+class SensorBank:
+    """Noisy readings of every channel; noise drawn in blocks from a seeded generator.
+
+    Parameters
+    ----------
+    n_channels
+        Number of channels.
+    dt_s
+        Sample period, seconds.
+    params
+        Sensor parameters.
+    rng
+        Random generator (the box's, seeded).
+    block
+        Samples drawn per block.
+    """
+
+    def __init__(
+        self, n_channels: int, dt_s: float, params: SensorParams, rng: np.random.Generator, block: int = 4096
+    ) -> None:
+        self.params = params
+        self.n = n_channels
+        self.rng = rng
+        self.block = block
+        self.offset_pa = rng.normal(0.0, params.offset_std_pa, n_channels) if params.offset_std_pa else np.zeros(n_channels)
+        self._a = math.exp(-dt_s / params.drift_time_s)
+        self._drift_innov = params.drift_std_pa * math.sqrt(1 - self._a**2)
+        self._drift = rng.normal(0.0, params.drift_std_pa, n_channels) if params.drift_std_pa else np.zeros(n_channels)
+        self._q = params.quantization_pa
+        self._inv_q = 1.0 / self._q if self._q else 0.0
+        self._i = block
+        self._noise = np.zeros((block, n_channels))
+        self._supply_noise = np.zeros(block)
+        self._quiet = params.noise_std_pa == 0 and params.drift_std_pa == 0 and params.supply_noise_std_pa == 0
+
+    def _refill(self) -> None:
+        p, n, b = self.params, self.n, self.block
+        noise = self.rng.normal(0.0, p.noise_std_pa, (b, n)) if p.noise_std_pa else np.zeros((b, n))
+        if p.drift_std_pa:
+            from scipy.signal import lfilter
+
+            innov = self.rng.normal(0.0, self._drift_innov, (b, n))
+            drift, zf = lfilter([1.0], [1.0, -self._a], innov, axis=0, zi=(self._a * self._drift)[None, :])
+            self._drift = drift[-1]
+            noise += drift
+        self._noise = noise + self.offset_pa
+        self._supply_noise = (
+            self.rng.normal(0.0, p.supply_noise_std_pa, b) if p.supply_noise_std_pa else np.zeros(b)
+        )
+        self._i = 0
+
+    def sample(self, true_pa: NDArray[np.float64], supply_pa: float) -> tuple[NDArray[np.float64], float]:
+        """One reading of every channel and of the supply, pascals."""
+        if self._i >= self.block:
+            self._refill()
+        i = self._i
+        self._i = i + 1
+        x = true_pa + self._noise[i]
+        if self._q:
+            x = np.round(x * self._inv_q) * self._q
+        np.clip(x, self.params.range_min_pa, self.params.range_max_pa, out=x)
+        return x, supply_pa + float(self._supply_noise[i])

@@ -1,0 +1,182 @@
+"""``softpad plan`` end to end: outputs, input formats and bad input."""
+
+from __future__ import annotations
+
+import io
+import json
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from softpad.cli.main import main
+
+BANANA = "0,0.124,0.078,0.109,0,0"
+
+
+def run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
+    """Run the CLI in process; argparse's own errors (SystemExit) count as exit codes."""
+    try:
+        code = main(list(argv))
+    except SystemExit as exc:
+        code = int(exc.code or 0)
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_json_has_exactly_the_documented_keys(capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, _ = run(capsys, "plan", "--delta", BANANA, "--json")
+    assert code == 0
+    data = json.loads(out)
+    assert list(data) == ["objects"]
+    (obj,) = data["objects"]
+    assert list(obj) == ["modules", "pcom", "cog", "theta", "rule", "cog_m"]
+    assert obj["modules"] == [2, 3, 4]
+    assert obj["cog"] == [1.0, 1.0]
+    assert obj["theta"] == -math.pi / 4
+    assert obj["cog_m"] == pytest.approx([0.045, 0.045])
+
+
+def test_pitch_scales_cog_in_metres(capsys: pytest.CaptureFixture[str]) -> None:
+    _, out, _ = run(capsys, "plan", "--delta", BANANA, "--pitch-mm", "30", "--json")
+    assert json.loads(out)["objects"][0]["cog_m"] == pytest.approx([0.03, 0.03])
+
+
+def test_threshold_flag_changes_detection(capsys: pytest.CaptureFixture[str]) -> None:
+    _, out, _ = run(capsys, "plan", "--delta", BANANA, "--threshold-kpa", "0.1", "--json")
+    assert [o["modules"] for o in json.loads(out)["objects"]] == [[2, 4]]
+
+
+def test_pressures_with_reference_equal_delta(capsys: pytest.CaptureFixture[str]) -> None:
+    _, a, _ = run(capsys, "plan", "--delta", BANANA, "--json")
+    _, b, _ = run(
+        capsys,
+        "plan",
+        "--pressures",
+        "1.1,1.224,1.178,1.209,1.1,1.1",
+        "--reference",
+        "1.1,1.1,1.1,1.1,1.1,1.1",
+        "--json",
+    )
+    pa, pb = json.loads(a)["objects"][0], json.loads(b)["objects"][0]
+    assert pa["modules"] == pb["modules"] and pa["rule"] == pb["rule"]
+    assert pa["cog"] == pytest.approx(pb["cog"], abs=1e-9)
+
+
+@pytest.mark.parametrize(
+    "content",
+    [
+        '{"delta_kpa": [0, 0.124, 0.078, 0.109, 0, 0]}',
+        "module,delta_kpa\n1,0\n2,0.124\n3,0.078\n4,0.109\n5,0\n6,0\n",
+        "0,0.124,0.078,0.109,0,0\n",
+        "module,pressure_kpa,reference_kpa\n1,1.1,1.1\n2,1.224,1.1\n3,1.178,1.1\n"
+        "4,1.209,1.1\n5,1.1,1.1\n6,1.1,1.1\n",
+    ],
+    ids=["json", "csv-delta", "csv-one-line", "csv-pressures"],
+)
+def test_frame_files(tmp_path: Path, capsys: pytest.CaptureFixture[str], content: str) -> None:
+    f = tmp_path / "frame.txt"
+    f.write_text(content)
+    code, out, _ = run(capsys, "plan", "--frame", str(f), "--json")
+    assert code == 0
+    assert json.loads(out)["objects"][0]["modules"] == [2, 3, 4]
+
+
+def test_frame_from_stdin(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    monkeypatch.setattr(sys, "stdin", io.StringIO('{"delta_kpa": [0,0,0.062,0,0,0.062]}'))
+    _, out, _ = run(capsys, "plan", "--frame", "-", "--json")
+    assert json.loads(out)["objects"][0]["cog"] == [2.5, 1.0]
+
+
+def test_table_output_is_readable(capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, _ = run(capsys, "plan", "--delta", BANANA)
+    assert code == 0
+    assert "modules 2, 3, 4" in out and "-45.0 deg" in out and "n3-diagonal-corner" in out
+
+
+def test_plot_is_written(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    png = tmp_path / "plan.png"
+    code, _, _ = run(capsys, "plan", "--delta", BANANA, "--plot", str(png))
+    assert code == 0
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["--delta", "0,0.1,0.1"], "needs 6 increments"),
+        (["--delta", "0,abc,0,0,0,0"], "item 2 'abc' is not a number"),
+        (["--delta", "0,nan,0,0,0,0"], "must be finite"),
+        (["--delta", "0,inf,0,0,0,0"], "must be finite"),
+        (["--delta", BANANA, "--layout", "2by3"], "ROWSxCOLS"),
+        (["--delta", BANANA, "--threshold-kpa", "-0.1"], ">= 0 kPa"),
+        (["--delta", BANANA, "--pitch-mm", "0"], ">= 1 mm"),
+        (["--pressures", BANANA], "needs --reference"),
+        (["--pressures", BANANA, "--reference", "1,1"], "6 pressures and 6 reference"),
+        (["--frame", "/nonexistent/frame.csv"], "cannot read frame file"),
+    ],
+    ids=[
+        "wrong-count",
+        "not-a-number",
+        "nan",
+        "inf",
+        "bad-layout",
+        "negative-threshold",
+        "zero-pitch",
+        "missing-reference",
+        "reference-count",
+        "missing-file",
+    ],
+)
+def test_bad_input_is_one_line_and_exit_2(
+    capsys: pytest.CaptureFixture[str], argv: list[str], message: str
+) -> None:
+    code, _, err = run(capsys, "plan", *argv)
+    assert code == 2
+    assert message in err
+    assert "Traceback" not in err
+    assert len(err.strip().splitlines()) == 1
+    assert err.startswith("softpad plan: error:")
+
+
+@pytest.mark.parametrize(
+    ("content", "message"),
+    [
+        ("{not json", "not valid JSON"),
+        ('{"delta": [1]}', "needs key delta_kpa"),
+        ("module,weight\n1,2\n", "header must name delta_kpa"),
+        ("", "is empty"),
+    ],
+    ids=["bad-json", "bad-key", "bad-header", "empty"],
+)
+def test_corrupt_frame_files(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], content: str, message: str
+) -> None:
+    f = tmp_path / "frame"
+    f.write_text(content)
+    code, _, err = run(capsys, "plan", "--frame", str(f))
+    assert code == 2 and message in err
+
+
+def test_argparse_range_errors_exit_2_without_traceback() -> None:
+    proc = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "softpad.cli.main",
+            "plan",
+            "--delta",
+            BANANA,
+            "--threshold-kpa",
+            "-1",
+        ],
+        capture_output=True,
+        text=True,
+    )
+    assert proc.returncode == 2
+    assert "threshold must be >= 0 kPa, got -1 kPa" in proc.stderr
+    assert "Traceback" not in proc.stderr
