@@ -16,10 +16,7 @@ T_O_FORCE_N = 0.094
 
 #: Objects whose rigid-body rest differs from the thesis's module list, and why.
 _KNOWN_DIFFERENT = {
-    # the toy's arms (boxes of the catalogue) reach modules 2, 4 and 6 as well; as a rigid body
-    # it rests on all six tops
-    "toy": (1, 2, 3, 4, 5, 6),
-    # the heavy insert at -x leaves modules 3 and 6 with 0.07 N each, under t_o at the
+    # the heavy insert at -x leaves modules 3 and 6 with 0.064 N each, under t_o at the
     # nominal placement: the 4-module case the thesis reports for one of its cylinder trials
     "cylinder": (1, 2, 4, 5),
 }
@@ -36,6 +33,6 @@ def test_object_rests_on_its_modules(name: str) -> None:
     # the pad carries the whole weight (0.5 %: solver residual)
     np.testing.assert_allclose(loads.sum(), spec.mass_kg * GRAVITY_M_S2, rtol=5e-3)
     assert world.object_speed_m_s(name) < 1e-3
-    assert world.object_pose(name).tilt_rad < 0.05
+    assert world.object_pose(name).tilt_rad < 0.1
     loaded = tuple(int(k) + 1 for k in np.flatnonzero(loads > T_O_FORCE_N))
     assert loaded == _KNOWN_DIFFERENT.get(name, tuple(spec.expected_modules))

@@ -106,14 +106,14 @@ def test_fingertip_on_line_loads_no_module(x_units: float, on_module: bool) -> N
     # inner faces at +-22.5 mm from the centre; tip centres at +-(22.5 + 2.5) mm
     width = PITCH - gripper.tip_thickness_m
     peak = descend_fingers(world, x_units * PITCH, 0.5 * PITCH, width)
+    # t_g = 90 Pa is 0.13 N on a module at the box's 700 Pa/N
     if on_module:
-        # the sole spring (80 N/m) is compressed by several mm: well above 0.2 N
+        # the sole spring (80 N/m) is compressed by several mm: well above t_g
         assert peak > 0.2
     else:
-        assert peak == 0.0
-        contacts = world.gripper_contacts()
-        assert contacts.sole_on_modules == ((), ())
-        assert min(contacts.sole_on_lines_n) > 0.0
+        # the 4 mm tips slip between the domes onto the 4 mm lines, grazing the domes' rims
+        assert peak < 0.1
+        assert min(world.gripper_contacts().sole_on_lines_n) > 0.0
 
 
 def test_gripper_width_outside_mounting_is_rejected() -> None:

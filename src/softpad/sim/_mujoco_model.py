@@ -59,10 +59,15 @@ class PadPhysics:
         about 9 mm, Section 6.3). The box replaces it with its own characteristic at run time
         (see :meth:`MujocoWorld.step`).
     sensitive_side_m
-        Side of the square top that transmits load to the chamber, metres. The thesis says the
-        sensitive area is a spherical cap whose square base grows from about 20 mm at 0.5 kPa to
-        45 mm at 2.8 kPa (Section 6.1.2); at 1.1 kPa a flat 36 mm top leaves 9 mm wide
-        non-sensitive lines between modules, wider than the small fingertips of Section 6.3.
+        Side of the square base of a module's dome, the area that transmits load to the
+        chamber, metres. 41 mm leaves 4 mm non-sensitive lines between the 45 mm modules (the
+        bonded grid walls of the mould, Fig. 6.2). A 4 mm fingertip centred on a line slips
+        between the domes to the line and loads the modules by 0.05 N at most (under t_g);
+        1 mm off centre it presses a dome's flank and is detected (measured, docs/trials.md):
+        rare misses, as in the thesis (2 of 55 trials). The thesis's sensitive-area figure (a cap whose base grows from
+        about 20 mm at 0.5 kPa to 45 mm at 2.8 kPa, Section 6.1.2) would make the lines far
+        wider at 1.1 kPa; with them most of the thesis's own grasps (e.g. object 1 with the
+        6 cm mounting) would land both fingertips off the modules, against its 94.5 % success.
     line_height_m
         Height of the non-sensitive lines and rim (the bonded silicone over the grid walls),
         metres: one 1.5 mm layer over the base.
@@ -83,6 +88,12 @@ class PadPhysics:
         integrated explicitly; with the light top alone, a heavy object on it made the
         2 ms step unstable (measured: a 300 g block bounced). 50 g brings sqrt(k/m) * dt to
         0.33 and only slows the top's free response (period 37 ms).
+    dome_height_m
+        Height of the dome of a module top above its rim, metres. An inflated module is a
+        spherical cap (Section 6.1.2), so the top is a half-ellipsoid of semi-axes
+        (side/2, side/2, dome height): an object rests on the apexes, near the module centres
+        where the PCOM of Eq. 6.1 puts each module's share, and a fingertip that lands near
+        a line slides off a flank into the gap. 4 mm (about half the 8.3 mm height).
     local_stiffness_n_m
         Stiffness of the membrane under a small indenter (a fingertip), N/m. The thesis's FEM
         (Fig. 6.3c) computes an equivalent stiffness k = F / (h_free - h_load) for a load on a
@@ -93,13 +104,14 @@ class PadPhysics:
     """
 
     free_height_m: float = 8.3e-3
-    sensitive_side_m: float = 36e-3
+    sensitive_side_m: float = 41e-3
     line_height_m: float = 1.5e-3
     rim_m: float = 15e-3
-    distributed_stiffness_n_m: float = 1500.0
-    distributed_damping_n_s_m: float = 12.0
+    distributed_stiffness_n_m: float = 400.0
+    distributed_damping_n_s_m: float = 6.0
     top_mass_kg: float = 4.5e-3
     top_armature_kg: float = 0.05
+    dome_height_m: float = 4e-3
     local_stiffness_n_m: float = 80.0
     friction: float = 1.0
 
@@ -147,7 +159,8 @@ class GripperParams:
     finger_length_m
         From the palm to the lower face of the tips, metres (9.5 cm).
     tip_thickness_m
-        Tip size along the closing direction, metres. The thesis's tips are "very small"; 5 mm.
+        Tip size along the closing direction, metres. The thesis's tips are "very small", small
+        enough to touch only a line between modules; 4 mm, the width of our lines.
     tip_width_m
         Tip size across the closing direction, metres; 10 mm.
     grip_force_n
@@ -162,7 +175,7 @@ class GripperParams:
 
     mounting: str = "10/4"
     finger_length_m: float = 0.095
-    tip_thickness_m: float = 5e-3
+    tip_thickness_m: float = 4e-3
     tip_width_m: float = 10e-3
     grip_force_n: float = 20.0
     servo_stiffness_n_m: float = 4000.0
@@ -280,20 +293,9 @@ def part_geom_xml(part: PartLike, name: str, rgba: str, friction: float) -> str:
     if part.shape == "sphere":
         return f'<geom type="sphere" size="{part.radius_m:.9g}" {common}/>'
     assert part.length_m is not None
-    half = part.length_m / 2
-    if part.axis == "z":
-        return f'<geom type="cylinder" size="{part.radius_m:.9g} {half:.9g}" {common}/>'
-    # A lying cylinder touches a flat top along a line, where MuJoCo's convex collision returns
-    # a single point that wanders along it (measured: the thesis's cylinder never settled).
-    # MuJoCo's box-capsule collider returns a stable pair of points, so a lying cylinder is a
-    # capsule of the same radius and overall length (an ellipsoid when it is shorter than
-    # its diameter); mass as given.
-    if half > part.radius_m:
-        return (
-            f'<geom type="capsule" size="{part.radius_m:.9g} {half - part.radius_m:.9g}" {common}/>'
-        )
-    r = part.radius_m
-    return f'<geom type="ellipsoid" size="{r:.9g} {r:.9g} {half:.9g}" {common}/>'
+    # (module tops are domes, so a lying cylinder touches each in a point: no degenerate line
+    # contact on a flat face)
+    return f'<geom type="cylinder" size="{part.radius_m:.9g} {part.length_m / 2:.9g}" {common}/>'
 
 
 @dataclass(frozen=True)
@@ -383,7 +385,7 @@ def build_mjcf(
         f'rgba="0.8 0.8 0.8 1" contype="{_PAD}" conaffinity="0" condim="3"/>',
     ]
     half = pad.sensitive_side_m / 2
-    top_t = pad.top_thickness_m
+    dome = pad.dome_height_m
     module_bodies = []
     for k in layout.modules:
         cx, cy = layout.to_metres(layout.center(k))
@@ -392,8 +394,8 @@ def build_mjcf(
             f'<joint name="module{k}_z" type="slide" axis="0 0 1" '
             f'stiffness="{pad.distributed_stiffness_n_m:g}" springref="{pad.free_height_m:.9g}" '
             f'damping="{pad.distributed_damping_n_s_m:g}" range="0 0.03" limited="true" armature="{pad.top_armature_kg:g}"/>'
-            f'<geom name="module{k}_top" type="box" pos="0 0 {-top_t / 2:.9g}" '
-            f'size="{half:.9g} {half:.9g} {top_t / 2:.9g}" mass="{pad.top_mass_kg:.9g}" '
+            f'<geom name="module{k}_top" type="ellipsoid" pos="0 0 {-dome:.9g}" '
+            f'size="{half:.9g} {half:.9g} {dome:.9g}" mass="{pad.top_mass_kg:.9g}" '
             f'rgba="0.95 0.55 0.7 1" friction="{pad.friction:g} 0.005 0.0001" '
             f'contype="{_PAD}" conaffinity="0" condim="3"/>'
             f"</body>"

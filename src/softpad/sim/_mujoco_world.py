@@ -34,6 +34,9 @@ _HEIGHT_FILTER_S = 0.5
 #: A commanded width this close to the measured one means "leave the jaws as they are", metres.
 _SAME_WIDTH_M = 0.5e-3
 
+#: Tolerance on commanded widths outside the mounting's range (then clipped to it), metres.
+_WIDTH_SLACK_M = 1e-3
+
 
 @dataclass(frozen=True)
 class GripperContacts:
@@ -296,11 +299,13 @@ class MujocoWorld:
             raise InputError(f"gripper speed must be in [0, 2] m/s, got {speed!r}")
         g = self.gripper
         w = vals[4]
-        if not (g.min_width_m - 1e-9 <= w <= g.max_width_m + 1e-9):
+        # a measured width handed back may overshoot the range by the servo's error
+        if not (g.min_width_m - _WIDTH_SLACK_M <= w <= g.max_width_m + _WIDTH_SLACK_M):
             raise InputError(
                 f"gripper width {w * 1e3:g} mm is outside the {g.mounting} mounting's range "
                 f"[{g.min_width_m * 1e3:g}, {g.max_width_m * 1e3:g}] mm"
             )
+        w = min(max(w, g.min_width_m), g.max_width_m)
         if speed == 0.0:
             # stop: the hand stays where it is and the jaws keep their setpoint (and grip)
             self._goal = np.append(self._hand.copy(), self._width_setpoint)
