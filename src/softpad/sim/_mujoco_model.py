@@ -465,7 +465,7 @@ def build_mjcf(
     actuators = "".join(
         f'<position name="jaw_{side}" joint="jaw_{side}" kp="{kp:g}" '
         f'forcelimited="true" forcerange="{-f_max:g} {f_max:g}" '
-        f'ctrlrange="{gripper.min_width_m / 2 - 1e-3:.9g} {open_half + 1e-3:.9g}"/>'
+        f'ctrlrange="{gripper.min_width_m / 2 - 2 * f_max / kp:.9g} {open_half + 1e-3:.9g}"/>'
         for side in ("right", "left")
     )
     if not math.isfinite(timestep_s) or not 1e-4 <= timestep_s <= 1e-2:

@@ -154,6 +154,7 @@ class MujocoWorld:
         self._goal = np.append(self._hand.copy(), open_w)
         self._speed_m_s = 0.0
         self._width_setpoint = open_w
+        self._closing = False
         self._build(tuple(objects))
 
     def _build(self, objects: tuple[ObjectModel, ...]) -> None:
@@ -217,7 +218,7 @@ class MujocoWorld:
                     ]
             d.time = old.time
         d.qpos[self._hand_qpos] = self._hand
-        d.ctrl[:] = self._width_setpoint / 2
+        d.ctrl[:] = self._servo_ctrl()
         mujoco.mj_forward(m, d)
 
     # --- World protocol -------------------------------------------------------------------
@@ -305,7 +306,6 @@ class MujocoWorld:
                 f"gripper width {w * 1e3:g} mm is outside the {g.mounting} mounting's range "
                 f"[{g.min_width_m * 1e3:g}, {g.max_width_m * 1e3:g}] mm"
             )
-        w = min(max(w, g.min_width_m), g.max_width_m)
         if speed == 0.0:
             # stop: the hand stays where it is and the jaws keep their setpoint (and grip)
             self._goal = np.append(self._hand.copy(), self._width_setpoint)
@@ -315,6 +315,9 @@ class MujocoWorld:
             # "keep the jaws as they are" (e.g. moving with an object in the grip): the servo
             # keeps its setpoint, so a squeezed object stays squeezed
             w = self._width_setpoint
+        else:
+            w = min(max(w, g.min_width_m), g.max_width_m)
+            self._closing = w < self._width_setpoint
         self._goal = np.array(
             [vals[0], vals[1], vals[2] + g.finger_length_m, _unwrap(vals[3], self._hand[3]), w]
         )
@@ -488,6 +491,20 @@ class MujocoWorld:
         frame = self.data.contact[i].frame.reshape(3, 3)
         return np.asarray(frame.T @ self._force[:3], dtype=float)
 
+    def _servo_ctrl(self) -> float:
+        """Setpoint of each jaw's servo, metres from the centre.
+
+        Closing is force-limited, like the Sawyer gripper closing on an object: while the jaws
+        close, the setpoint leads the commanded width by twice the grip force over the servo
+        gain, so a jaw blocked by an object squeezes it with the full grip force instead of the
+        small force of a nearly reached setpoint. Opening and holding a width are plain
+        position control.
+        """
+        g = self.gripper
+        if self._closing:
+            return self._width_setpoint / 2 - 2 * g.grip_force_n / g.servo_stiffness_n_m
+        return self._width_setpoint / 2
+
     def _move(self, dt: float) -> None:
         """Kinematic hand: straight line towards the goal at the commanded speed."""
         delta = self._goal[:3] - self._hand[:3]
@@ -514,7 +531,7 @@ class MujocoWorld:
             spring[self._module_qpos] += alpha * (ref - spring[self._module_qpos])
         d.qvel[self._hand_dof] = (self._hand - d.qpos[self._hand_qpos]) / ts
         d.qpos[self._hand_qpos] = self._hand
-        d.ctrl[:] = self._width_setpoint / 2
+        d.ctrl[:] = self._servo_ctrl()
         self._mj.mj_step(m, d)
         # the hand moved as commanded whatever pushed on it (the robot is position-controlled)
         d.qpos[self._hand_qpos] = self._hand

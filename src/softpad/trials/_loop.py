@@ -100,6 +100,7 @@ def execute_trial(
         mark("object placed")
         wait(config.settle_s)
         with_object = np.mean([read() for _ in range(10)], axis=0)
+        rest_z = world.object_pose(spec.name).z_m
         delta = with_object - adj.reference_pa
         mark("plan")
         plans = plan_grasps(delta, layout)
@@ -172,7 +173,8 @@ def execute_trial(
         wait(config.hold_s)
         mark("held")
         pose = world.object_pose(spec.name)
-        held = world.holding() and pose.z_m > 0.5 * config.lift_m
+        # carried: the object rose with the gripper and stayed up for the whole hold
+        held = pose.z_m > rest_z + 0.5 * config.lift_m
         if held:
             return finish(
                 success=True, cause=None, detail="held for the whole hold", **planned, **timing
@@ -181,7 +183,21 @@ def execute_trial(
         if hit is not None:
             cause, why = "jaws_hit_object", f"a jaw came down on {hit}"
         elif not between:
-            cause, why = "object_outside_jaws", "the jaws closed without the object between them"
+            s = robot.state()
+            inside = half_extent_along_m(
+                spec, _Pl(*placement), (s.x_m, s.y_m), s.yaw_rad, band_m=gripper.tip_width_m / 2
+            )
+            if inside is not None and 2 * inside < gripper.min_width_m:
+                cause = "object_too_narrow"
+                why = (
+                    f"the object between the jaws is {2e3 * inside:.0f} mm wide, under the "
+                    f"{gripper.mounting} mounting's {gripper.min_width_m * 1e3:.0f} mm"
+                )
+            else:
+                cause, why = (
+                    "object_outside_jaws",
+                    "the jaws closed without the object between them",
+                )
         else:
             cause, why = (
                 "slipped_during_hold",

@@ -28,12 +28,14 @@ THESIS_TABLE_6_1: dict[str, tuple[float, tuple[float, float, float], int]] = {
 THESIS_OVERALL_SUCCESS = 0.945
 
 #: Why a trial failed. The first four are the causes the issue names (the thesis reports the
-#: first and the third); ``object_not_detected`` means the planner found nothing to grasp.
+#: first and the third); ``object_too_narrow``: the object was between the jaws but thinner
+#: than the mounting's minimum width; ``object_not_detected``: the planner found nothing.
 FAILURE_CAUSES = (
     "contact_not_detected",
     "jaws_hit_object",
     "object_outside_jaws",
     "slipped_during_hold",
+    "object_too_narrow",
     "object_not_detected",
 )
 
