@@ -111,8 +111,8 @@ def test_fingertip_on_line_loads_no_module(x_units: float, on_module: bool) -> N
         # the sole spring (80 N/m) is compressed by several mm: well above t_g
         assert peak > 0.2
     else:
-        # the 4 mm tips slip between the domes onto the 4 mm lines, grazing the domes' rims
-        assert peak < 0.1
+        # the 4 mm tips slip between the domes onto the 5 mm lines
+        assert peak < 0.05
         assert min(world.gripper_contacts().sole_on_lines_n) > 0.0
 
 

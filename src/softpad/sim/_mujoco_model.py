@@ -60,10 +60,10 @@ class PadPhysics:
         (see :meth:`MujocoWorld.step`).
     sensitive_side_m
         Side of the square base of a module's dome, the area that transmits load to the
-        chamber, metres. 41 mm leaves 4 mm non-sensitive lines between the 45 mm modules (the
+        chamber, metres. 40 mm leaves 5 mm non-sensitive lines between the 45 mm modules (the
         bonded grid walls of the mould, Fig. 6.2). A 4 mm fingertip centred on a line slips
-        between the domes to the line and loads the modules by 0.05 N at most (under t_g);
-        1 mm off centre it presses a dome's flank and is detected (measured, docs/trials.md):
+        between the domes to the line and loads no module; 1 mm off centre it presses a
+        dome's rim and is detected (measured, docs/trials.md):
         rare misses, as in the thesis (2 of 55 trials). The thesis's sensitive-area figure (a cap whose base grows from
         about 20 mm at 0.5 kPa to 45 mm at 2.8 kPa, Section 6.1.2) would make the lines far
         wider at 1.1 kPa; with them most of the thesis's own grasps (e.g. object 1 with the
@@ -104,7 +104,7 @@ class PadPhysics:
     """
 
     free_height_m: float = 8.3e-3
-    sensitive_side_m: float = 41e-3
+    sensitive_side_m: float = 40e-3
     line_height_m: float = 1.5e-3
     rim_m: float = 15e-3
     distributed_stiffness_n_m: float = 400.0
@@ -160,7 +160,7 @@ class GripperParams:
         From the palm to the lower face of the tips, metres (9.5 cm).
     tip_thickness_m
         Tip size along the closing direction, metres. The thesis's tips are "very small", small
-        enough to touch only a line between modules; 4 mm, the width of our lines.
+        enough to touch only a line between modules; 4 mm, 1 mm less than our lines.
     tip_width_m
         Tip size across the closing direction, metres; 10 mm.
     grip_force_n
@@ -476,6 +476,10 @@ def build_mjcf(
         'integrator="implicitfast" cone="elliptic" impratio="10"/>'
         '<compiler angle="radian" inertiafromgeom="true" autolimits="true"/>'
         '<size memory="8M"/>'
+        # contacts as stiff as the 2 ms step allows (time constant 2 steps, impedance 0.99):
+        # with MuJoCo's default (20 ms, 0.95) the 20 N grip sank the jaws 5 mm into a 24 g
+        # brick; now about 0.1 mm
+        f'<default><geom solref="{2 * timestep_s:.6g} 1" solimp="0.95 0.99 0.001"/></default>'
         f"<worldbody>{''.join(pad_geoms)}{''.join(module_bodies)}{hand}"
         f"{''.join(obj_bodies)}</worldbody>"
         f"<actuator>{actuators}</actuator>"

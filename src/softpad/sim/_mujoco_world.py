@@ -313,11 +313,12 @@ class MujocoWorld:
             return
         if abs(w - self.gripper_state().width_m) < _SAME_WIDTH_M:
             # "keep the jaws as they are" (e.g. moving with an object in the grip): the servo
-            # keeps its setpoint, so a squeezed object stays squeezed
-            w = self._width_setpoint
+            # keeps its goal, so a squeezed object stays squeezed
+            w = float(self._goal[4])
         else:
             w = min(max(w, g.min_width_m), g.max_width_m)
-            self._closing = w < self._width_setpoint
+            # closing all the way is force-limited (see _servo_ctrl); other widths are held
+            self._closing = w <= g.min_width_m + _SAME_WIDTH_M
         self._goal = np.array(
             [vals[0], vals[1], vals[2] + g.finger_length_m, _unwrap(vals[3], self._hand[3]), w]
         )
@@ -494,11 +495,11 @@ class MujocoWorld:
     def _servo_ctrl(self) -> float:
         """Setpoint of each jaw's servo, metres from the centre.
 
-        Closing is force-limited, like the Sawyer gripper closing on an object: while the jaws
-        close, the setpoint leads the commanded width by twice the grip force over the servo
-        gain, so a jaw blocked by an object squeezes it with the full grip force instead of the
-        small force of a nearly reached setpoint. Opening and holding a width are plain
-        position control.
+        Closing fully is force-limited, like the Sawyer gripper closing on an object: the
+        setpoint leads the commanded width by twice the grip force over the servo gain, so a
+        jaw blocked by an object squeezes it with the full grip force instead of the small
+        force of a nearly reached setpoint (an unblocked jaw stops at its joint limit).
+        Opening to, or holding, a width is plain position control.
         """
         g = self.gripper
         if self._closing:

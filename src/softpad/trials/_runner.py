@@ -203,7 +203,12 @@ def run_trial(
 
 def _worker(args: tuple[Any, int, int, TrialConfig]) -> tuple[TrialResult, TrialTrace | None]:
     spec, trial, seed, config = args
-    return run_trial(spec, trial, seed, config)
+    try:
+        return run_trial(spec, trial, seed, config)
+    except Exception as exc:
+        # name the trial, so that it can be rerun alone with run_trial(spec, trial, seed)
+        exc.add_note(f"in trial {trial} of {spec.name!r} (seed {seed})")
+        raise
 
 
 def run_experiment(
