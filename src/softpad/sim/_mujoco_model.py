@@ -79,7 +79,8 @@ class PadPhysics:
         gas (chamber plus tubing) the top sinks about 0.7 mm per newton, i.e. 1.4 kN/m; we use
         1.5 kN/m, stiff enough that the 312 g charger sinks about 1 mm.
     distributed_damping_n_s_m
-        Damping of that joint, N s/m (0.65 of critical, 2 sqrt(k (m + armature)) = 18 N s/m).
+        Damping of that joint, N s/m: about critical, 2 sqrt(k (m + armature)) = 9.3 N s/m, so
+        a load put on a module does not overshoot (a 1.5 N overshoot collapses the box model).
     top_mass_kg
         Moving mass of a module top, kg: the 1.5 mm EcoFlex layer over 45 x 45 mm at
         1070 kg/m^3 (3.3 g) plus the carried air and a margin, 4.5 g.
@@ -108,7 +109,7 @@ class PadPhysics:
     line_height_m: float = 1.5e-3
     rim_m: float = 15e-3
     distributed_stiffness_n_m: float = 400.0
-    distributed_damping_n_s_m: float = 6.0
+    distributed_damping_n_s_m: float = 20.0
     top_mass_kg: float = 4.5e-3
     top_armature_kg: float = 0.05
     dome_height_m: float = 4e-3
@@ -479,7 +480,8 @@ def build_mjcf(
         # contacts as stiff as the 2 ms step allows (time constant 2 steps, impedance 0.99):
         # with MuJoCo's default (20 ms, 0.95) the 20 N grip sank the jaws 5 mm into a 24 g
         # brick; now about 0.1 mm
-        f'<default><geom solref="{2 * timestep_s:.6g} 1" solimp="0.95 0.99 0.001"/></default>'
+        f'<default><geom solref="{2 * timestep_s:.6g} 1" solimp="0.95 0.99 0.001"/>'
+        f'<joint solreflimit="{2 * timestep_s:.6g} 1" solimplimit="0.95 0.99 0.001"/></default>'
         f"<worldbody>{''.join(pad_geoms)}{''.join(module_bodies)}{hand}"
         f"{''.join(obj_bodies)}</worldbody>"
         f"<actuator>{actuators}</actuator>"

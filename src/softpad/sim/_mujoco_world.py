@@ -34,8 +34,18 @@ _HEIGHT_FILTER_S = 0.5
 #: A commanded width this close to the measured one means "leave the jaws as they are", metres.
 _SAME_WIDTH_M = 0.5e-3
 
-#: Tolerance on commanded widths outside the mounting's range (then clipped to it), metres.
-_WIDTH_SLACK_M = 1e-3
+#: Height above the highest module top at which a placed object appears, metres.
+_DROP_M = 0.0
+
+#: A placed object is lowered onto the pad no faster than this for ``_LOWER_S`` seconds, as by
+#: a hand laying it down, m/s (dropped from 1 mm, the 187 g limes hit the pad with 2.8 N peaks,
+#: which also collapse the box's module model).
+_LOWER_M_S = 0.005
+_LOWER_S = 1.0
+
+#: Tolerance on commanded widths outside the mounting's range (then clipped to it), metres:
+#: a robot may hand back a measured width, which the servo or the jaws' limits overshoot.
+_WIDTH_SLACK_M = 5e-3
 
 
 @dataclass(frozen=True)
@@ -155,6 +165,7 @@ class MujocoWorld:
         self._speed_m_s = 0.0
         self._width_setpoint = open_w
         self._closing = False
+        self._lowering: dict[str, float] = {}
         self._build(tuple(objects))
 
     def _build(self, objects: tuple[ObjectModel, ...]) -> None:
@@ -347,7 +358,7 @@ class MujocoWorld:
 
     # --- objects --------------------------------------------------------------------------
     def place_object(self, spec: Any, placement: Any | None = None) -> None:
-        """Put an object on the pad, at rest, 1 mm above the highest module top; it settles
+        """Put an object on the pad, at rest, 0.2 mm above the highest module top; it settles
         under gravity in the next steps.
 
         Parameters
@@ -371,9 +382,10 @@ class MujocoWorld:
             objs[model.name] = model
             self._build(tuple(objs.values()))
         qa, da = self._obj_qpos[model.name], self._obj_dof[model.name]
-        z = float(np.max(self.data.qpos[self._module_qpos])) + 1e-3
+        z = float(np.max(self.data.qpos[self._module_qpos])) + _DROP_M
         self.data.qpos[qa : qa + 7] = [x, y, z, math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2)]
         self.data.qvel[da : da + 6] = 0.0
+        self._lowering[model.name] = self._time_s + _LOWER_S
         self._mj.mj_forward(self.model, self.data)
 
     def remove_objects(self) -> None:
@@ -536,6 +548,12 @@ class MujocoWorld:
         self._mj.mj_step(m, d)
         # the hand moved as commanded whatever pushed on it (the robot is position-controlled)
         d.qpos[self._hand_qpos] = self._hand
+        for name, until in list(self._lowering.items()):
+            if self._time_s > until:
+                del self._lowering[name]
+            else:
+                vz = self._obj_dof[name] + 2
+                d.qvel[vz] = max(d.qvel[vz], -_LOWER_M_S)
         self._loads = self._compute_loads()
 
     def _compute_loads(self) -> NDArray[np.float64]:

@@ -79,7 +79,7 @@ class TrialConfig:
     lift_m: float = 0.10
     hold_s: float = 15.0
     clearance_m: float = 0.01
-    settle_s: float = 1.0
+    settle_s: float = 1.5
     inflated_start: bool = True
     sample_rate_hz: float = 100.0
     noise: bool = True
