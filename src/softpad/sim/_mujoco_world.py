@@ -34,6 +34,10 @@ _HEIGHT_FILTER_S = 0.5
 #: A commanded width this close to the measured one means "leave the jaws as they are", metres.
 _SAME_WIDTH_M = 0.5e-3
 
+#: Acceleration and braking of the kinematic arm, m/s^2 (a collaborative arm such as the
+#: Sawyer reaches 0.2 m/s in about 0.1 s).
+ARM_ACCELERATION_M_S2 = 2.0
+
 #: Height above the highest module top at which a placed object appears, metres.
 _DROP_M = 0.0
 
@@ -165,6 +169,7 @@ class MujocoWorld:
         self._speed_m_s = 0.0
         self._width_setpoint = open_w
         self._closing = False
+        self._hand_speed = 0.0
         self._lowering: dict[str, float] = {}
         self._build(tuple(objects))
 
@@ -274,14 +279,19 @@ class MujocoWorld:
                 )
             self._heights = np.clip(h, 0.0, 0.03)
             self._heights_given = True
-        self._pending_s += dt
         ts = self.timestep_s
-        # the hand moves on every call (the robot sees it move on every sample); MuJoCo steps
-        # once a whole time step has elapsed
-        self._move(dt)
-        while self._pending_s >= ts * (1 - 1e-9):
-            self._pending_s -= ts
+        # the hand moves continuously (the robot sees it move on every sample, whatever the
+        # sample period); MuJoCo steps each time a whole time step has elapsed
+        remaining = dt
+        while self._pending_s + remaining >= ts * (1 - 1e-9):
+            chunk = max(ts - self._pending_s, 0.0)
+            self._move(chunk)
+            remaining -= chunk
+            self._pending_s = 0.0
             self._mj_step(ts)
+        if remaining > 0:
+            self._move(remaining)
+            self._pending_s += remaining
         self._time_s += dt
 
     def module_loads_n(self) -> NDArray[np.float64]:
@@ -321,6 +331,7 @@ class MujocoWorld:
             # stop: the hand stays where it is and the jaws keep their setpoint (and grip)
             self._goal = np.append(self._hand.copy(), self._width_setpoint)
             self._speed_m_s = 0.0
+            self._hand_speed = 0.0
             return
         if abs(w - self.gripper_state().width_m) < _SAME_WIDTH_M:
             # "keep the jaws as they are" (e.g. moving with an object in the grip): the servo
@@ -522,8 +533,22 @@ class MujocoWorld:
         """Kinematic hand: straight line towards the goal at the commanded speed."""
         delta = self._goal[:3] - self._hand[:3]
         dist = float(np.linalg.norm(delta))
+        # the arm accelerates and brakes at ARM_ACCELERATION_M_S2 (a kinematic jump to the
+        # lift speed would ask friction for 100 m/s^2 on the object)
+        a = ARM_ACCELERATION_M_S2
+        if math.isinf(self._speed_m_s):  # streamed setpoints (set_gripper_target): no profile
+            v = math.inf
+        else:
+            v = min(self._speed_m_s, self._hand_speed + a * dt, math.sqrt(2 * a * dist))
+        self._hand_speed = v
+        step = v * dt if math.isfinite(v) else math.inf
+        if dist <= step or dist < 1e-9:
+            self._hand[:3] = self._goal[:3]
+            if dist < 1e-9:
+                self._hand_speed = 0.0
+        else:
+            self._hand[:3] = self._hand[:3] + delta * (step / dist)
         step = self._speed_m_s * dt
-        self._hand[:3] = self._goal[:3] if dist <= step else self._hand[:3] + delta * (step / dist)
         dyaw = self._goal[3] - self._hand[3]
         ystep = self._speed_m_s / 0.05 * dt
         self._hand[3] = (
