@@ -27,6 +27,8 @@ def execute_trial(
     seed: int,
     config: TrialConfig,
     plan_override: Any | None = None,
+    opening_m: float | None = None,
+    mounting: str | None = None,
 ) -> tuple[TrialResult, TrialTrace | None]:
     """Run one trial; see :func:`softpad.trials.run_trial`."""
     from softpad.box import SimBox
@@ -39,7 +41,7 @@ def execute_trial(
     from softpad.sim._mujoco_world import MujocoWorld
     from softpad.sim._sensor import SensorParams
 
-    gripper = GripperParams(mounting=spec.gripper)
+    gripper = GripperParams(mounting=mounting or spec.gripper)
     world = MujocoWorld(gripper=gripper)
     layout = world.layout
     n = layout.n_modules
@@ -118,6 +120,8 @@ def execute_trial(
             spec, _Pl(*placement), cog_m, plan.theta, band_m=gripper.tip_width_m / 2
         )
         wanted = gripper.max_width_m if half is None else 2 * (half + config.clearance_m)
+        if opening_m is not None:
+            wanted = opening_m
         opening = float(np.clip(wanted, gripper.min_width_m, gripper.max_width_m))
         planned = dict(modules=plan.modules, cog=plan.cog, theta=plan.theta, opening_m=opening)
         robot = SimulatedRobot(world)

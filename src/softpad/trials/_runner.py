@@ -167,6 +167,8 @@ def run_trial(
     config: TrialConfig | None = None,
     placement: tuple[float, float, float] | None = None,
     plan_override: Any | None = None,
+    opening_m: float | None = None,
+    mounting: str | None = None,
 ) -> tuple[TrialResult, TrialTrace | None]:
     """Run one grasp trial of ``spec`` in a fresh MuJoCo world.
 
@@ -185,6 +187,10 @@ def run_trial(
     plan_override
         A :class:`~softpad.planning.GraspPlan` to execute instead of the planner's (to provoke
         a failure on purpose, e.g. a COG outside the object).
+    opening_m
+        Jaw opening for the approach instead of the one fitted to the object, metres.
+    mounting
+        Gripper mounting (``"10/4"``, ``"6/2"``, ``"4/0"``) instead of the catalogue's.
 
     Returns
     -------
@@ -196,7 +202,9 @@ def run_trial(
     if placement is None:
         placement = perturbed_placement(spec, seed, config)
     t0 = time.perf_counter()
-    result, trace = execute_trial(spec, placement, seed, config, plan_override)
+    result, trace = execute_trial(
+        spec, placement, seed, config, plan_override, opening_m=opening_m, mounting=mounting
+    )
     result = replace(result, trial=trial, wall_time_s=time.perf_counter() - t0)
     return result, trace
 
