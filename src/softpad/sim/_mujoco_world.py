@@ -263,10 +263,10 @@ class MujocoWorld:
         module_heights_m
             Top height of every module from the box's characteristic at its current pressure
             and load, metres; None keeps the last (before any is given, the tops rest at
-            ``pad.free_height_m``). The rest length of each top's spring is set so that under
-            the current load the top settles at that height (``springref = h + F / k``,
-            low-passed over 0.5 s), which keeps the geometry of the two models consistent at
-            rest without feeding the box's stiffness back into MuJoCo's contact dynamics.
+            ``pad.free_height_m``). That height is the chamber's volume over its area, which a
+            sealed chamber keeps under a load (the gas hardly compresses); the top's spring
+            rests there (low-passed over 0.5 s) and sinks by ``F / k`` under a load ``F``,
+            which is the membrane's local indentation under the object.
         """
         dt = check_finite("world time step", dt_s)
         if dt < 0:
@@ -564,7 +564,7 @@ class MujocoWorld:
         # module rest lengths follow the box's heights (see step())
         alpha = ts / (_HEIGHT_FILTER_S + ts)
         if self._heights_given:
-            ref = self._heights + self._loads / self.pad.distributed_stiffness_n_m
+            ref = self._heights
             spring = m.qpos_spring
             spring[self._module_qpos] += alpha * (ref - spring[self._module_qpos])
         d.qvel[self._hand_dof] = (self._hand - d.qpos[self._hand_qpos]) / ts
