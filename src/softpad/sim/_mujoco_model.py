@@ -213,8 +213,9 @@ class GripperParams:
 
     @property
     def sole_thickness_m(self) -> float:
-        """Thickness of the compliant sole at the bottom of each tip, metres."""
-        return 3e-3
+        """Height of the compliant sole at the bottom of each tip (a capsule across the tip
+        whose diameter is the tip thickness), metres."""
+        return self.tip_thickness_m
 
 
 class PartLike(Protocol):
@@ -423,9 +424,12 @@ def build_mjcf(
             f'<joint name="sole_{side}_z" type="slide" axis="0 0 1" '
             f'stiffness="{pad.local_stiffness_n_m:g}" springref="0" damping="{sole_damping:.6g}" '
             f'range="0 {gripper.sole_stroke_m:.9g}" limited="true"/>'
-            f'<geom name="sole_{side}" type="box" pos="0 0 {-sole_t / 2:.9g}" '
-            f'size="{t / 2:.9g} {w / 2:.9g} {sole_t / 2:.9g}" mass="{sole_mass:g}" '
-            f'rgba="0.1 0.1 0.1 1" friction="0.5 0.005 0.0001" priority="1" '
+            # rounded in the closing direction (a capsule across the tip): closing after the
+            # contact, the tip rides up a dome's flank on its spring instead of ramming it
+            f'<geom name="sole_{side}" type="capsule" pos="0 0 {-t / 2:.9g}" '
+            f'size="{t / 2:.9g} {max(w / 2 - t / 2, 1e-4):.9g}" quat="0.70710678 0.70710678 0 0" '
+            f'mass="{sole_mass:g}" '
+            f'rgba="0.1 0.1 0.1 1" friction="0.3 0.005 0.0001" priority="1" '
             f'contype="{_SOLE}" conaffinity="{_PAD}" condim="3"/>'
             f"</body></body>"
         )

@@ -295,7 +295,8 @@ class MujocoWorld:
         self._time_s += dt
 
     def module_loads_n(self) -> NDArray[np.float64]:
-        """Vertical contact force on each module top, N (>= 0), module order 1..N."""
+        """Normal contact force on each module top, N (>= 0), module order 1..N (vertical for
+        an object resting on the domes; friction, which shears the membrane, is left out)."""
         return self._loads.copy()
 
     def command_gripper(self, target: GripperState, speed_m_s: float) -> None:
@@ -593,7 +594,10 @@ class MujocoWorld:
             g1, g2 = int(c.geom1), int(c.geom2)
             k = gm[g1] if gm[g1] >= 0 else gm[g2]
             if k >= 0:
-                loads[k] += abs(self._contact_world_force(i)[2])
+                # the normal force indents the membrane and compresses the chamber; friction
+                # shears it along its surface and hardly changes the volume
+                self._mj.mj_contactForce(self.model, d, i, self._force)
+                loads[k] += abs(self._force[0])
             if not watch:
                 continue
             if g1 in soles or g2 in soles:
