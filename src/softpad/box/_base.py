@@ -74,7 +74,9 @@ class PressureFrame:
         """JSON-ready dict with pressures in kPa (the CLI's edge unit)."""
         return {
             "t_s": round(self.t_s, 6),
-            "pressures_kpa": [None if not np.isfinite(p) else round(float(p) / 1e3, 5) for p in self.pressures_pa],
+            "pressures_kpa": [
+                None if not np.isfinite(p) else round(float(p) / 1e3, 5) for p in self.pressures_pa
+            ],
             "supply_kpa": round(self.supply_pa / 1e3, 4) if np.isfinite(self.supply_pa) else None,
         }
 
@@ -134,8 +136,14 @@ class Box(ABC):
 
     def check_channel(self, channel: int) -> int:
         """Return ``channel`` if it is a valid 1-based channel number, else raise InputError."""
-        if isinstance(channel, bool) or not isinstance(channel, int | np.integer) or not 1 <= channel <= self.channels:
-            raise InputError(f"channel must be an integer from 1 to {self.channels}, got {channel!r}")
+        if (
+            isinstance(channel, bool)
+            or not isinstance(channel, int | np.integer)
+            or not 1 <= channel <= self.channels
+        ):
+            raise InputError(
+                f"channel must be an integer from 1 to {self.channels}, got {channel!r}"
+            )
         return int(channel)
 
     def read(self) -> PressureFrame:
@@ -162,7 +170,9 @@ class Box(ABC):
     def set_valves(self, commands: Sequence[ValveCommand | str]) -> None:
         """Command every channel at once (one command per channel, channel order)."""
         if len(commands) != self.channels:
-            raise InputError(f"need {self.channels} valve commands (one per channel), got {len(commands)}")
+            raise InputError(
+                f"need {self.channels} valve commands (one per channel), got {len(commands)}"
+            )
         parsed = [ValveCommand.parse(c) for c in commands]
         for ch, cmd in enumerate(parsed, start=1):
             self.set_valve(ch, cmd)

@@ -42,25 +42,39 @@ def check_conformance(box: Box, frames: int = 20, exercise_valves: bool = True) 
         n = box.channels
         _require(isinstance(n, int) and n >= 1, f"channels must be a positive int, got {n!r}")
         rate = box.sample_rate_hz
-        _require(isinstance(rate, float | int) and math.isfinite(rate) and rate > 0, f"sample_rate_hz must be > 0, got {rate!r}")
+        _require(
+            isinstance(rate, float | int) and math.isfinite(rate) and rate > 0,
+            f"sample_rate_hz must be > 0, got {rate!r}",
+        )
         _require(not box.closed, "a freshly opened box must not be closed")
         _require(box.valves == (ValveCommand.CLOSED,) * n, "valves must start closed")
         last_t = -math.inf
         stamps = []
         for _ in range(frames):
             f = box.read()
-            _require(isinstance(f, PressureFrame), f"read() must return a PressureFrame, got {type(f).__name__}")
+            _require(
+                isinstance(f, PressureFrame),
+                f"read() must return a PressureFrame, got {type(f).__name__}",
+            )
             p = f.pressures_pa
-            _require(isinstance(p, np.ndarray) and p.shape == (n,), f"pressures_pa must have shape ({n},), got {getattr(p, 'shape', None)}")
+            _require(
+                isinstance(p, np.ndarray) and p.shape == (n,),
+                f"pressures_pa must have shape ({n},), got {getattr(p, 'shape', None)}",
+            )
             _require(p.dtype == np.float64, f"pressures_pa must be float64, got {p.dtype}")
             _require(not np.isinf(p).any(), "pressures must be finite or NaN, never infinite")
-            _require(math.isfinite(f.supply_pa), f"supply pressure must be finite, got {f.supply_pa!r}")
+            _require(
+                math.isfinite(f.supply_pa), f"supply pressure must be finite, got {f.supply_pa!r}"
+            )
             _require(f.t_s > last_t, f"time stamps must increase strictly ({f.t_s} after {last_t})")
             last_t = f.t_s
             stamps.append(f.t_s)
         if len(stamps) > 2:
             period = float(np.median(np.diff(stamps)))
-            _require(abs(period * rate - 1) < 0.2, f"frames must come at sample_rate_hz ({rate} Hz), median period {period} s")
+            _require(
+                abs(period * rate - 1) < 0.2,
+                f"frames must come at sample_rate_hz ({rate} Hz), median period {period} s",
+            )
         for bad in (0, n + 1, -1, 1.5, True):
             try:
                 box.set_valve(bad, ValveCommand.CLOSED)  # type: ignore[arg-type]
@@ -83,7 +97,10 @@ def check_conformance(box: Box, frames: int = 20, exercise_valves: bool = True) 
         if exercise_valves:
             for ch in range(1, n + 1):
                 box.set_valve(ch, "inflate")
-                _require(box.valves[ch - 1] is ValveCommand.INFLATE, "valves must report the last command")
+                _require(
+                    box.valves[ch - 1] is ValveCommand.INFLATE,
+                    "valves must report the last command",
+                )
                 box.read()
                 box.set_valve(ch, ValveCommand.DEFLATE)
                 box.read()

@@ -67,5 +67,7 @@ def open_box(url: str = DEFAULT_URL) -> Box:
     scheme, location, options = parse_url(url)
     factory = _BACKENDS.get(scheme)
     if factory is None:
-        raise InputError(f"unknown box URL scheme {scheme!r} in {url!r}; available: {', '.join(backends())}")
+        raise InputError(
+            f"unknown box URL scheme {scheme!r} in {url!r}; available: {', '.join(backends())}"
+        )
     return factory(location, options)

@@ -19,7 +19,11 @@ from softpad.box._base import Box, ConnectionLost, PressureFrame, ValveCommand
 from softpad.errors import InputError
 from softpad.layout import PadLayout, parse_layout
 from softpad.sim import AnalyticWorld, GripperSpec, World, get_object
-from softpad.sim._characteristic import AnalyticCharacteristic, ModuleCharacteristic, default_characteristic
+from softpad.sim._characteristic import (
+    AnalyticCharacteristic,
+    ModuleCharacteristic,
+    default_characteristic,
+)
 from softpad.sim._pneumatics import ChamberBank, PneumaticParams
 from softpad.sim._sensor import SensorBank, SensorParams
 
@@ -69,7 +73,7 @@ class Fault:
         if not math.isfinite(self.at_s) or self.at_s < 0:
             raise InputError(f"fault time must be >= 0 s, got {self.at_s!r}")
         if self.kind == "stuck":
-            ValveCommand.parse(self.arg if self.arg is not None else "")
+            ValveCommand.parse(str(self.arg))
 
     @classmethod
     def parse(cls, text: str) -> Fault:
@@ -142,22 +146,32 @@ class SimBox(Box):
         self.world: World = world if world is not None else AnalyticWorld()
         n_mod = self.world.layout.n_modules
         if not isinstance(channels, int) or not n_mod <= channels <= 64:
-            raise InputError(f"channels must be an integer from {n_mod} (modules of the pad) to 64, got {channels!r}")
+            raise InputError(
+                f"channels must be an integer from {n_mod} (modules of the pad) to 64, got {channels!r}"
+            )
         if not (math.isfinite(sample_rate_hz) and 1.0 <= sample_rate_hz <= 100e3):
-            raise InputError(f"sample rate must be within 1 Hz .. 100 kHz, got {sample_rate_hz!r} Hz")
+            raise InputError(
+                f"sample rate must be within 1 Hz .. 100 kHz, got {sample_rate_hz!r} Hz"
+            )
         self._channels = channels
         self._rate = float(sample_rate_hz)
         self._dt = 1.0 / self._rate
         self.seed = int(seed)
-        self.characteristic = characteristic if characteristic is not None else default_characteristic()
+        self.characteristic = (
+            characteristic if characteristic is not None else default_characteristic()
+        )
         self.pneumatics = pneumatics or PneumaticParams()
         self.sensor_params = sensor or SensorParams()
         rng = np.random.default_rng(self.seed)
         self.chambers = ChamberBank(channels, n_mod, self.characteristic, self.pneumatics)
         if initial_pressure_pa:
             if not (0 <= initial_pressure_pa <= 5e3):
-                raise InputError(f"initial pressure must be within 0..5 kPa, got {initial_pressure_pa / 1e3:g} kPa")
-            self.chambers.set_state(np.full(n_mod, float(initial_pressure_pa)), self.world.module_loads_n())
+                raise InputError(
+                    f"initial pressure must be within 0..5 kPa, got {initial_pressure_pa / 1e3:g} kPa"
+                )
+            self.chambers.set_state(
+                np.full(n_mod, float(initial_pressure_pa)), self.world.module_loads_n()
+            )
         self.sensors = SensorBank(channels, self._dt, self.sensor_params, rng)
         self._n_mod = n_mod
         self._cmd_inf = np.zeros(n_mod, dtype=bool)
@@ -174,6 +188,7 @@ class SimBox(Box):
         self._nan = np.zeros(channels, dtype=bool)
         self._dropout = np.zeros(channels, dtype=bool)
         self._bad_sensor = False
+        self._leaking = False
         self._disconnected = False
         self.realtime = bool(realtime)
         self._wall0: float | None = None
@@ -210,11 +225,21 @@ class SimBox(Box):
             self._activate_faults()
         if self._disconnected:
             raise ConnectionLost(f"the simulated box stopped answering at t = {t:.3f} s")
-        self.world.step(dt, self._heights)
-        if self.chambers.step(dt, self._inf, self._def, self.world.module_loads_n(), self._supply_true, self._any_open):
-            self._heights = self.chambers.heights_m()
-        values, supply = self.sensors.sample(self.chambers.pressure_pa, self._supply_true)
+        world = self.world
+        world.step(dt, self._heights)
+        loads = world.module_loads_n()
+        chambers = self.chambers
+        if self._any_open or self._leaking or not np.array_equal(loads, chambers.loads_n):
+            changed = chambers.step(
+                dt, self._inf, self._def, loads, self._supply_true, self._any_open
+            )
+            if changed and chambers.solved:  # heights follow the exact solves (every <= 20 ms)
+                self._heights = chambers.heights_m()
+        else:
+            changed = False
+        values, supply = self.sensors.sample(chambers.pressure_pa, self._supply_true, changed)
         if self._bad_sensor:
+            values = values.copy()
             values[self._dropout] = self.sensor_params.range_min_pa
             values[self._nan] = np.nan
         if self.realtime:
@@ -253,7 +278,9 @@ class SimBox(Box):
         if fault.channel is not None:
             self.check_channel(fault.channel)
             if fault.kind in ("stuck", "leak") and fault.channel > self._n_mod:
-                raise InputError(f"channel {fault.channel} has no module: a {fault.kind} fault needs one")
+                raise InputError(
+                    f"channel {fault.channel} has no module: a {fault.kind} fault needs one"
+                )
         self._faults.append(fault)
         self._next_fault_s = min(self._next_fault_s, fault.at_s)
         if fault.at_s <= self._t:
@@ -276,7 +303,10 @@ class SimBox(Box):
                 self._stuck[ch] = ValveCommand.parse(str(f.arg))
                 self._update_effective()
             elif f.kind == "leak" and ch is not None:
-                self.chambers.leak_m2[ch - 1] = float(f.arg) if f.arg is not None else DEFAULT_LEAK_M2
+                self.chambers.leak_m2[ch - 1] = (
+                    float(f.arg) if f.arg is not None else DEFAULT_LEAK_M2
+                )
+                self._leaking = True
             elif f.kind == "supply_loss":
                 self._supply_true = 0.0
             elif f.kind == "disconnect":
@@ -351,7 +381,9 @@ def open_sim_url(location: str, options: dict[str, str]) -> SimBox:
     elif char_name == "default":
         characteristic = default_characteristic()
     else:
-        raise InputError(f"sim:// option characteristic={char_name!r} must be 'analytic' or 'default'")
+        raise InputError(
+            f"sim:// option characteristic={char_name!r} must be 'analytic' or 'default'"
+        )
     noise = options.get("noise", "1")
     if noise not in ("0", "1"):
         raise InputError(f"sim:// option noise={noise!r} must be 0 or 1")

@@ -1,10 +1,10 @@
 """Initial inflation and adjustment of every module (seed, Section 6.2.1.1), and the safe state.
 
 Every module is brought to the same pressure p0 within t_adj, then the reference pressures are
-saved as the mean of 10 reads. The controller is a per-channel bang-bang with hysteresis on the
-running average of the readings: a channel starts correcting when it is off by more than t_adj
-and stops when it crosses p0, so the filter lag (about half the window) overshoots by less than
-t_adj. The maximum pressure is never exceeded on purpose: any channel above it is vented.
+saved as the mean of 10 reads. The controller is a per-channel bang-bang with hysteresis: a channel
+starts correcting when the running average of 10 readings is off by more than t_adj, and stops
+when a 3-sample average crosses p0 (one sample of lag, so the overshoot stays well below t_adj
+even where the module is stiff and fills fast). The maximum pressure is never exceeded on purpose: any channel above it is vented.
 """
 
 from __future__ import annotations
@@ -64,7 +64,14 @@ class InflationParams:
     max_drift_pa_s: float = 25.0
 
     def __post_init__(self) -> None:
-        for n in ("target_pa", "tolerance_pa", "max_pressure_pa", "timeout_s", "settle_s", "max_drift_pa_s"):
+        for n in (
+            "target_pa",
+            "tolerance_pa",
+            "max_pressure_pa",
+            "timeout_s",
+            "settle_s",
+            "max_drift_pa_s",
+        ):
             v = getattr(self, n)
             if not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
                 raise InputError(f"inflation {n} must be a positive number, got {v!r}")
@@ -74,7 +81,9 @@ class InflationParams:
                 f"{self.max_pressure_pa / 1e3:g} kPa"
             )
         if not (isinstance(self.reference_reads, int) and self.reference_reads >= 1):
-            raise InputError(f"reference reads must be an integer >= 1, got {self.reference_reads!r}")
+            raise InputError(
+                f"reference reads must be an integer >= 1, got {self.reference_reads!r}"
+            )
 
 
 @dataclass(frozen=True)
@@ -104,7 +113,9 @@ class AdjustmentResult:
         }
 
 
-def check_frame(frame: PressureFrame, n_modules: int, max_pressure_pa: float, floor_pa: float = -500.0) -> NDArray[np.float64]:
+def check_frame(
+    frame: PressureFrame, n_modules: int, max_pressure_pa: float, floor_pa: float = -500.0
+) -> NDArray[np.float64]:
     """Module pressures of a frame, or HardwareFault naming a bad channel.
 
     A NaN reading is a sensor fault; a reading below ``floor_pa`` (a module cannot be
@@ -112,10 +123,15 @@ def check_frame(frame: PressureFrame, n_modules: int, max_pressure_pa: float, fl
     over-pressure.
     """
     p = frame.pressures_pa[:n_modules]
+    lo, hi = p.min(), p.max()  # NaN propagates: one pass decides the usual, healthy case
+    if floor_pa <= lo and hi <= max_pressure_pa:
+        return p
     bad = ~np.isfinite(p)
     if bad.any():
         ch = int(np.argmax(bad)) + 1
-        raise HardwareFault(f"channel {ch}: pressure sensor gives no valid reading (NaN) at t = {frame.t_s:.2f} s")
+        raise HardwareFault(
+            f"channel {ch}: pressure sensor gives no valid reading (NaN) at t = {frame.t_s:.2f} s"
+        )
     low = p < floor_pa
     if low.any():
         ch = int(np.argmax(low)) + 1
@@ -133,12 +149,19 @@ def check_frame(frame: PressureFrame, n_modules: int, max_pressure_pa: float, fl
     return p
 
 
-def make_safe(box: Box, n_modules: int, max_pressure_pa: float, timeout_s: float = 5.0, on_frame: FrameHook | None = None) -> None:
+def make_safe(
+    box: Box,
+    n_modules: int,
+    max_pressure_pa: float,
+    timeout_s: float = 5.0,
+    on_frame: FrameHook | None = None,
+) -> None:
     """Put the box in its safe state: inflation valves closed, no module above the maximum.
 
-    Closes every valve, then vents (deflation valve open) any module whose reading is above
-    ``max_pressure_pa`` until it is 10 % below it, for at most ``timeout_s`` of box time. A box
-    that cannot be reached is left as it is (nothing else can be done).
+    Closes every valve, then opens the deflation valve of any module whose reading goes above
+    ``max_pressure_pa`` and leaves it open (a stuck-open inflation valve is then outflowed: the
+    deflation path is sized for it). Returns once every vented module is below the maximum
+    (or after ``timeout_s`` of box time). A box that cannot be reached is left as it is.
     """
     if box.closed:
         return
@@ -154,13 +177,10 @@ def make_safe(box: Box, n_modules: int, max_pressure_pa: float, timeout_s: float
             t_end = frame.t_s + timeout_s if t_end is None else t_end
             p = filt.update(np.nan_to_num(frame.pressures_pa[:n_modules], nan=0.0))
             start = (p > max_pressure_pa) & ~venting
-            stop = venting & (p < 0.9 * max_pressure_pa)
             for k in np.flatnonzero(start):
                 box.set_valve(int(k) + 1, ValveCommand.DEFLATE)
-            for k in np.flatnonzero(stop):
-                box.set_valve(int(k) + 1, ValveCommand.CLOSED)
-            venting = (venting | start) & ~stop
-            if (not venting.any() and filt.full) or frame.t_s >= t_end:
+            venting |= start
+            if (filt.full and (p <= max_pressure_pa).all()) or frame.t_s >= t_end:
                 break
     except HardwareFault:
         pass  # unreachable box: leave it
@@ -171,6 +191,7 @@ def inflate_and_adjust(
     n_modules: int,
     params: InflationParams | None = None,
     on_frame: FrameHook | None = None,
+    on_adjusted: Callable[[float], None] | None = None,
 ) -> AdjustmentResult:
     """Bring modules 1..n_modules to p0 within t_adj and save the reference (Section 6.2.1.1).
 
@@ -184,6 +205,9 @@ def inflate_and_adjust(
         Inflation parameters (thesis defaults).
     on_frame
         Called with every frame read (logging hook).
+    on_adjusted
+        Called with the box time when every module is within tolerance, before the
+        reference reads.
 
     Raises
     ------
@@ -197,16 +221,26 @@ def inflate_and_adjust(
         raise InputError(f"a box with {box.channels} channels cannot drive {n_modules} modules")
     target, tol = params.target_pa, params.tolerance_pa
     filt = RunningAverage(params.filter_length)
+    fast = RunningAverage(3)  # short filter for stopping: 1 sample of lag, small overshoot
     state = np.zeros(n_modules, dtype=np.int8)  # 0 closed, 1 inflating, -1 deflating
+    since = np.zeros(n_modules, dtype=np.int64)  # frames since each channel's last change
+    starts = np.zeros(n_modules, dtype=np.int64)  # corrections started per channel
     settled_since: float | None = None
     settle_start_p: NDArray[np.float64] | None = None
     t0: float | None = None
 
     def apply(k: int, s: int) -> None:
         if state[k] != s:
-            cmd = ValveCommand.INFLATE if s > 0 else ValveCommand.DEFLATE if s < 0 else ValveCommand.CLOSED
+            cmd = (
+                ValveCommand.INFLATE
+                if s > 0
+                else ValveCommand.DEFLATE
+                if s < 0
+                else ValveCommand.CLOSED
+            )
             box.set_valve(k + 1, cmd)
             state[k] = s
+            since[k] = 0
 
     try:
         while True:
@@ -216,15 +250,20 @@ def inflate_and_adjust(
             t0 = frame.t_s if t0 is None else t0
             p_raw = check_frame(frame, n_modules, params.max_pressure_pa)
             p = filt.update(p_raw)
+            p_fast = fast.update(p_raw)
+            since += 1
             if not filt.full:
                 continue
             err = p - target
+            err_fast = p_fast - target
             for k in range(n_modules):
-                if state[k] == 0 and abs(err[k]) > tol:
+                # start only once the long filter holds no sample from before the last change
+                if state[k] == 0 and since[k] > params.filter_length and abs(err[k]) > tol:
                     apply(k, 1 if err[k] < 0 else -1)
-                elif state[k] == 1 and err[k] >= 0:
+                    starts[k] += 1
+                elif state[k] == 1 and err_fast[k] >= 0:
                     apply(k, 0)
-                elif state[k] == -1 and err[k] <= 0:
+                elif state[k] == -1 and err_fast[k] <= 0:
                     apply(k, 0)
             inflating = state == 1
             if inflating.any() and frame.t_s - t0 > 1.0 and frame.supply_pa < target + 2 * tol:
@@ -233,7 +272,12 @@ def inflate_and_adjust(
                     f"channel {k + 1}: supply pressure {frame.supply_pa / 1e3:.2f} kPa is too low to "
                     f"inflate to {target / 1e3:.2f} kPa (supply lost?)"
                 )
-            if not state.any() and (np.abs(err) <= tol).all():
+            # judge sealed channels only once the filter holds no sample from before a change
+            if (
+                not state.any()
+                and since.min() > params.filter_length
+                and (np.abs(err) <= tol).all()
+            ):
                 if settled_since is None:
                     settled_since, settle_start_p = frame.t_s, p.copy()
                 elif frame.t_s - settled_since >= params.settle_s:
@@ -249,10 +293,13 @@ def inflate_and_adjust(
             else:
                 settled_since = None
             if frame.t_s - t0 > params.timeout_s:
-                off = np.flatnonzero(np.abs(err) > tol) + 1
-                which = ", ".join(str(int(c)) for c in off) or ", ".join(
-                    str(int(c)) for c in np.flatnonzero(state) + 1
-                )
+                # the culprit: off tolerance, else still correcting, else corrected most often
+                off = np.flatnonzero(np.abs(err) > tol)
+                if off.size == 0:
+                    off = np.flatnonzero(state)
+                if off.size == 0:
+                    off = np.flatnonzero(starts == starts.max())
+                which = ", ".join(str(int(c) + 1) for c in off)
                 raise HardwareFault(
                     f"channel {which}: could not reach {target / 1e3:.2f} +/- {tol / 1e3:.2f} kPa within "
                     f"{params.timeout_s:g} s (now {', '.join(f'{v / 1e3:.2f}' for v in p)} kPa; leak, low "
@@ -260,6 +307,8 @@ def inflate_and_adjust(
                 )
         adjusted_at = frame.t_s
         box.close_valves()
+        if on_adjusted is not None:
+            on_adjusted(adjusted_at)
         reads = []
         for _ in range(params.reference_reads):
             frame = box.read()

@@ -62,16 +62,8 @@ class Robot(Protocol):
         ...
 
     def is_moving(self) -> bool:
-        s = self.world.gripper_state()
-        if self._target is None or s == self._target:
-            self._last = s
-            return False
-        moved = s != self._last
-        self._last = s
-        if self._fresh:  # a command was just given: allow one step before judging
-            self._fresh = False
-            return True
-        return moved  # False when the jaws stopped on an object short of their target
+        """True while a commanded motion (arm or jaws) is under way."""
+        ...
 
     def state(self) -> GripperState:
         """Current pose and jaw width."""
@@ -111,7 +103,9 @@ class SimulatedRobot:
 
     def move_to(self, pose: ToolPose, speed_m_s: float) -> None:
         s = self.world.gripper_state()
-        self._command(GripperState(pose.x_m, pose.y_m, pose.z_m, pose.yaw_rad, s.width_m), speed_m_s)
+        self._command(
+            GripperState(pose.x_m, pose.y_m, pose.z_m, pose.yaw_rad, s.width_m), speed_m_s
+        )
 
     def descend(self, speed_m_s: float, min_z_m: float) -> None:
         s = self.world.gripper_state()
@@ -130,19 +124,16 @@ class SimulatedRobot:
         self._command(GripperState(s.x_m, s.y_m, s.z_m, s.yaw_rad, width_m), speed_m_s)
 
     def is_moving(self) -> bool:
-        if self._target is None:
+        s = self.world.gripper_state()
+        if self._target is None or s == self._target:
+            self._last = s
             return False
-        s, t = self.world.gripper_state(), self._target
-        if abs(s.x_m - t.x_m) + abs(s.y_m - t.y_m) + abs(s.z_m - t.z_m) > 1e-9:
+        moved = s != self._last
+        self._last = s
+        if self._fresh:  # a command was just given: allow one step before judging
+            self._fresh = False
             return True
-        if abs(s.width_m - t.width_m) > 1e-9:
-            # the jaws stopped on an object, or are still moving
-            return getattr(self, "_last_width", None) != s.width_m and self._update_width(s.width_m)
-        return False
-
-    def _update_width(self, w: float) -> bool:
-        self._last_width = w
-        return True
+        return moved  # False when the jaws stopped on an object short of their target
 
     def state(self) -> GripperState:
         return self.world.gripper_state()

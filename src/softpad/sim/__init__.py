@@ -7,8 +7,17 @@ issue 4) once per sample period. Objects of the thesis (Table 6.1) are data in
 """
 
 from softpad.sim._analytic import GRIPPER_MOUNTINGS, AnalyticWorld, GripperSpec
+from softpad.sim._characteristic import (
+    AnalyticCharacteristic,
+    ModuleCharacteristic,
+    TabulatedCharacteristic,
+    default_characteristic,
+    packaged_table_path,
+    sealed_sensitivity_pa_n,
+)
 from softpad.sim._footprint import (
     DEFAULT_LINE_WIDTH_M,
+    DEFAULT_TIP_SENSITIVE_SIDE_M,
     GRAVITY_M_S2,
     ObjectFootprint,
     PadSurface,
@@ -25,26 +34,39 @@ from softpad.sim._objects import (
     load_catalogue,
     object_names,
 )
+from softpad.sim._pneumatics import ChamberBank, PneumaticParams
+from softpad.sim._sensor import SensorBank, SensorParams
 from softpad.sim._world import GripperState, World
 
 __all__ = [
     "CATALOGUE_SCHEMA",
     "DEFAULT_LINE_WIDTH_M",
+    "DEFAULT_TIP_SENSITIVE_SIDE_M",
     "GRAVITY_M_S2",
     "GRIPPER_MOUNTINGS",
+    "AnalyticCharacteristic",
     "AnalyticWorld",
+    "ChamberBank",
     "GripperSpec",
     "GripperState",
+    "ModuleCharacteristic",
     "ObjectFootprint",
     "ObjectSpec",
     "PadSurface",
     "PartSpec",
     "Placement",
+    "PneumaticParams",
+    "SensorBank",
+    "SensorParams",
+    "TabulatedCharacteristic",
     "World",
     "catalogue_to_json",
+    "default_characteristic",
     "fingertip_overlap",
     "get_object",
     "load_catalogue",
     "object_footprint",
     "object_names",
+    "packaged_table_path",
+    "sealed_sensitivity_pa_n",
 ]

@@ -11,7 +11,7 @@ lies only on a non-sensitive line loads no module (the thesis's failure mode, Se
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -19,12 +19,13 @@ from numpy.typing import NDArray
 from softpad.errors import InputError
 from softpad.layout import PadLayout
 from softpad.sim._footprint import (
+    DEFAULT_TIP_SENSITIVE_SIDE_M,
     GRAVITY_M_S2,
     ObjectFootprint,
     PadSurface,
     fingertip_overlap,
     object_footprint,
-    part_footprint,
+    part_outline,
     to_pad_frame,
 )
 from softpad.sim._objects import ObjectSpec, Placement
@@ -67,7 +68,7 @@ class GripperSpec:
     finger_length_m: float = 0.095
     tip_thickness_m: float = 0.008
     tip_width_m: float = 0.016
-    tip_stiffness_n_m: float = 190.0
+    tip_stiffness_n_m: float = 125.0
     grip_force_n: float = 20.0
     friction: float = 0.5
 
@@ -107,7 +108,8 @@ class _Placed:
 @dataclass
 class _Tip:
     touch_z_m: float | None = None  # surface height where the tip first touched
-    fractions: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
+    prev_z_m: float = math.inf  # tip height at the previous evaluation
+    on_object: _Placed | None = None  # the object the tip landed on (None: the pad)
 
 
 class AnalyticWorld:
@@ -123,6 +125,10 @@ class AnalyticWorld:
         Width of the non-sensitive lines between modules, metres (3 mm).
     start_height_m
         Initial height of the fingertips above the pad base, metres.
+    tip_sensitive_side_m
+        Side of the central square of a module where a fingertip is fully sensed, metres
+        (the thesis's l at 1.1 kPa, about 26.5 mm); towards the lines the sensed share of a
+        fingertip's force falls linearly to zero. None: sensed uniformly up to the lines.
     """
 
     def __init__(
@@ -131,12 +137,14 @@ class AnalyticWorld:
         gripper: GripperSpec | None = None,
         line_width_m: float = 3e-3,
         start_height_m: float = 0.15,
+        tip_sensitive_side_m: float | None = DEFAULT_TIP_SENSITIVE_SIDE_M,
     ) -> None:
+        self.tip_sensitive_side_m = tip_sensitive_side_m
         self._layout = layout or PadLayout()
         self.surface = PadSurface(self._layout, line_width_m)
-        self.gripper = gripper or GripperSpec()
+        self._gripper = gripper or GripperSpec()
         w, h = self.surface.size_m
-        self._state = GripperState(w / 2, h / 2, start_height_m, 0.0, self.gripper.max_width_m)
+        self._state = GripperState(w / 2, h / 2, start_height_m, 0.0, self._gripper.max_width_m)
         self._target = self._state
         self._speed = 0.0
         self._time = 0.0
@@ -156,6 +164,18 @@ class AnalyticWorld:
         self.first_touch_z_m: float | None = None
         self._dirty = True
         self._grasp_width = 0.0
+        self._overlap_cache: dict[tuple[float, float, float], NDArray[np.float64]] = {}
+
+    @property
+    def gripper(self) -> GripperSpec:
+        """Gripper geometry; setting it (a new mounting) opens the jaws to the new maximum."""
+        return self._gripper
+
+    @gripper.setter
+    def gripper(self, spec: GripperSpec) -> None:
+        self._gripper = spec
+        self._state = replace(self._state, width_m=spec.max_width_m)
+        self._target = self._state
 
     # --- World protocol -------------------------------------------------------------------
     @property
@@ -185,7 +205,7 @@ class AnalyticWorld:
     def place_object(self, spec: ObjectSpec, placement: Placement | None = None) -> None:
         placement = placement or spec.placement
         fp = object_footprint(spec, self.surface, placement)
-        pts = [to_pad_frame(part_footprint(p, 2e-3)[0], placement) for p in spec.parts]
+        pts = [to_pad_frame(part_outline(p, 2e-3), placement) for p in spec.parts]
         loads = fp.weight_fraction * spec.mass_kg * GRAVITY_M_S2
         self._objects.append(_Placed(spec, placement, fp, np.vstack(pts), loads))
         self._update_object_loads()
@@ -270,8 +290,16 @@ class AnalyticWorld:
         d, n = self._jaw_axes(st)
         rel = o.outline_m - np.array([st.x_m, st.y_m])
         u, v = rel @ d, rel @ n
-        band = (np.abs(v) <= self.gripper.tip_width_m / 2) & (np.abs(u) <= st.width_m / 2)
+        in_band = np.abs(v) <= self.gripper.tip_width_m / 2
+        band = in_band & (np.abs(u) <= st.width_m / 2)
         if not band.any():
+            return None
+        if (
+            not o.spec.extra.get("loose_parts", False)
+            and (in_band & (np.abs(u) > st.width_m / 2)).any()
+        ):
+            # a rigid object reaching under a jaw: the jaw lands on it, nothing is caught
+            # (parts loosely tied together, like limes in a net, are pushed aside instead)
             return None
         return float(u[band].min()), float(u[band].max())
 
@@ -280,8 +308,8 @@ class AnalyticWorld:
         if self._grasped is not None:
             return replace(new, width_m=max(new.width_m, self._grasp_width))
         for o in self._objects:
-            if o.lifted:
-                continue
+            if o.lifted or self._state.z_m >= self._object_top_m(o):
+                continue  # fingers above the object: nothing between the jaws
             ext = self._extent_between_jaws(self._state, o)
             if ext is None:
                 continue
@@ -297,6 +325,10 @@ class AnalyticWorld:
                     self._grasp_z = new.z_m
                     return replace(new, width_m=max(new.width_m, width))
         return new
+
+    def _object_top_m(self, o: _Placed) -> float:
+        """Height of an object's top above the pad base, metres."""
+        return float(self._heights.max()) + o.spec.height_m
 
     def _can_hold(self, o: _Placed) -> bool:
         g = self.gripper
@@ -326,14 +358,38 @@ class AnalyticWorld:
                 return o
         return None
 
+    def _tip_fractions(self, centre: tuple[float, float], yaw: float) -> NDArray[np.float64]:
+        key = (round(centre[0], 9), round(centre[1], 9), round(yaw, 9))
+        frac = self._overlap_cache.get(key)
+        if frac is None:
+            g = self.gripper
+            frac = fingertip_overlap(
+                centre,
+                yaw,
+                (g.tip_thickness_m, g.tip_width_m),
+                self.surface,
+                sensitive_side_m=self.tip_sensitive_side_m,
+            )
+            if len(self._overlap_cache) > 64:
+                self._overlap_cache.clear()
+            self._overlap_cache[key] = frac
+        return frac
+
     def _update_tips(self, heights: NDArray[np.float64]) -> None:
         st = self._state
         g = self.gripper
+        if all(t.touch_z_m is None for t in self._tips):
+            top = float(heights.max()) + max(
+                (o.spec.height_m for o in self._objects if not o.lifted), default=0.0
+            )
+            if st.z_m > top:  # nothing within reach of the fingertips
+                if self._tip_loads.any():
+                    self._tip_loads = np.zeros(self._layout.n_modules)
+                    self._dirty = True
+                return
         loads = np.zeros(self._layout.n_modules)
         for tip, centre in zip(self._tips, self.tip_centres_m(st), strict=True):
-            frac = fingertip_overlap(
-                centre, st.yaw_rad, (g.tip_thickness_m, g.tip_width_m), self.surface
-            )
+            frac = self._tip_fractions(centre, st.yaw_rad)
             obj = self._object_under(centre, st)
             if obj is not None:
                 surface_z = float(heights.max()) + obj.spec.height_m
@@ -342,8 +398,13 @@ class AnalyticWorld:
             else:
                 surface_z = 0.0  # a line: the tip meets the rigid wall/base, no module senses it
             if tip.touch_z_m is None:
-                if st.z_m <= surface_z and (obj is not None or frac.any()):
+                # a touch is a crossing from above: jaws closing onto an object's side, or a
+                # module swelling under a resting tip, are not a fingertip landing on it
+                crossed = tip.prev_z_m > surface_z >= st.z_m
+                tip.prev_z_m = st.z_m
+                if crossed and (obj is not None or frac.any()):
                     tip.touch_z_m = surface_z
+                    tip.on_object = obj
                     if self.first_touch_s is None:
                         self.first_touch_s = self._time
                         self.first_touch_z_m = st.z_m
@@ -354,9 +415,10 @@ class AnalyticWorld:
                 tip.touch_z_m = None
                 continue
             force = g.tip_stiffness_n_m * pen
-            if obj is not None:
-                loads += force * obj.footprint.weight_fraction
-            else:
+            # what the tip landed on carries its force while it slides (closing jaws)
+            if tip.on_object is not None and not tip.on_object.lifted:
+                loads += force * tip.on_object.footprint.weight_fraction
+            elif tip.on_object is None:
                 loads += force * frac
         self._tip_loads = loads
         self._dirty = True

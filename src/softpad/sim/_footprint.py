@@ -12,8 +12,10 @@ Model (documented in docs/box-and-simulator.md):
   ``q = a + b (x - x_c) + c (y - y_c)``, with ``a, b, c`` fixed by force and moment balance
   about the centre of mass (x_c, y_c); where q would be negative the object lifts off and the
   points are dropped (a few active-set iterations). Heavier parts thus load their modules more.
-* The load on a module is the integral of q over the part of the footprint that lies on its
-  sensitive square; what lies on a line is carried by the walls and sensed by no module.
+* Only the modules' sensitive squares support the object: between inflated modules the
+  non-sensitive lines are valleys about a module height deep, which an object bridging them
+  does not touch. The load on a module is the integral of q over the footprint on its square.
+  (A fingertip, being small, does reach down into a valley: see ``fingertip_overlap``.)
 """
 
 from __future__ import annotations
@@ -108,6 +110,33 @@ class PadSurface:
         idx = row * self.layout.cols + col
         return np.where(ok, idx, -1)
 
+    def module_coverage(
+        self, points_m: NDArray[np.float64], cell_m: float
+    ) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
+        """Module of each sample cell and the fraction of the cell on its sensitive square.
+
+        Each point stands for an axis-aligned square cell of side ``cell_m`` (smaller than the
+        line width, so a cell never reaches two sensitive squares); the fraction is exact for
+        such cells and makes loads vary smoothly with an object's position.
+
+        Returns
+        -------
+        index, fraction
+            0-based module (-1 off the pad) and covered fraction in [0, 1] per point.
+        """
+        pitch, half_line, h = self.layout.pitch_m, 0.5 * self.line_width_m, 0.5 * cell_m
+        col = np.floor(points_m[:, 0] / pitch).astype(np.int64)
+        rb = np.floor(points_m[:, 1] / pitch).astype(np.int64)
+        ok = (col >= 0) & (col < self.layout.cols) & (rb >= 0) & (rb < self.layout.rows)
+
+        def cover(x: NDArray[np.float64], k: NDArray[np.int64]) -> NDArray[np.float64]:
+            lo, hi = k * pitch + half_line, (k + 1) * pitch - half_line
+            return np.clip(np.minimum(x + h, hi) - np.maximum(x - h, lo), 0.0, None) / cell_m
+
+        frac = np.where(ok, cover(points_m[:, 0], col) * cover(points_m[:, 1], rb), 0.0)
+        idx = np.where(ok, (self.layout.rows - 1 - rb) * self.layout.cols + col, -1)
+        return idx, frac
+
     def on_pad(self, points_m: NDArray[np.float64]) -> NDArray[np.bool_]:
         """True for points over the pad (lines included)."""
         w, h = self.size_m
@@ -169,6 +198,27 @@ def part_footprint(
     c, s = math.cos(part.yaw_rad), math.sin(part.yaw_rad)
     rot = np.array([[c, -s], [s, c]])
     return local @ rot.T + np.array(part.pos_m[:2]), area
+
+
+def part_outline(part: PartSpec, step_m: float = 2e-3) -> NDArray[np.float64]:
+    """Points covering the part's full projection on the pad plane, object frame, metres.
+
+    Unlike :func:`part_footprint` (what touches the pad), this is what the jaws meet: a box's
+    rectangle, a lying cylinder's length x diameter, a sphere's or an upright cylinder's disc.
+    """
+    if part.shape == "box":
+        assert part.size_m is not None
+        local = _rect_points(part.size_m[0], part.size_m[1], step_m)
+    elif part.shape == "cylinder" and part.axis != "z":
+        assert part.radius_m is not None and part.length_m is not None
+        d = 2 * part.radius_m
+        lx, ly = (part.length_m, d) if part.axis == "x" else (d, part.length_m)
+        local = _rect_points(lx, ly, step_m)
+    else:
+        assert part.radius_m is not None
+        local = _disc_points(part.radius_m, step_m)
+    c, s = math.cos(part.yaw_rad), math.sin(part.yaw_rad)
+    return local @ np.array([[c, -s], [s, c]]).T + np.array(part.pos_m[:2])
 
 
 def to_pad_frame(points_obj: NDArray[np.float64], placement: Placement) -> NDArray[np.float64]:
@@ -239,8 +289,12 @@ def object_footprint(
         area_list.append(np.full(len(p), a))
     pts = to_pad_frame(np.vstack(pts_list), placement)
     areas = np.concatenate(area_list)
-    keep = surface.on_pad(pts)
-    pts, areas = pts[keep], areas[keep]
+    # only the modules' sensitive squares support the object: the lines between inflated
+    # modules are valleys an object bridges without touching (and the pad's border is a wall
+    # at the base level, below the inflated modules)
+    idx_all, cover = surface.module_coverage(pts, step_m)
+    keep = cover > 0
+    pts, areas, idx = pts[keep], areas[keep] * cover[keep], idx_all[keep]
     com = to_pad_frame(np.array([spec.com_m[:2]]), placement)[0]
     weight = spec.mass_kg * GRAVITY_M_S2
     active = np.ones(len(pts), dtype=bool)
@@ -274,11 +328,39 @@ def object_footprint(
             f"object {spec.name!r} at ({placement.x_m * 1e3:.1f}, {placement.y_m * 1e3:.1f}) mm is not "
             "supported by the pad (its centre of mass is outside its footprint on the pad)"
         )
-    idx = surface.module_index(pts)
     frac = np.zeros(surface.layout.n_modules)
-    on = idx >= 0
-    np.add.at(frac, idx[on], q[on] * areas[on])
+    np.add.at(frac, idx, q * areas)
     return ObjectFootprint(pts, q, areas, idx, frac / weight)
+
+
+#: Side of the central square of a module where a small indenter is fully sensed, metres:
+#: the thesis's sensitive side l at 1.1 kPa, interpolated between about 20 mm at 0.5 kPa and
+#: 45 mm at 2.8 kPa (seed, Section 6.1.2).
+DEFAULT_TIP_SENSITIVE_SIDE_M = 0.020 + 0.025 * (1.1 - 0.5) / (2.8 - 0.5)
+
+
+def tip_sensitivity(
+    points_m: NDArray[np.float64], surface: PadSurface, sensitive_side_m: float
+) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
+    """Module under each point and how well a small indenter there is sensed, in [0, 1].
+
+    A fingertip pushing near a module's clamped border displaces little air, in its middle a
+    lot: the weight is 1 inside the central ``sensitive_side_m`` square, 0 on the line, and
+    rises linearly in between, separately along x and y (the product of the two).
+    """
+    pitch, half_line = surface.layout.pitch_m, 0.5 * surface.line_width_m
+    ramp = max(0.5 * (pitch - sensitive_side_m) - half_line, 1e-9)
+    col = np.floor(points_m[:, 0] / pitch).astype(np.int64)
+    rb = np.floor(points_m[:, 1] / pitch).astype(np.int64)
+    ok = (col >= 0) & (col < surface.layout.cols) & (rb >= 0) & (rb < surface.layout.rows)
+
+    def weight(x: NDArray[np.float64], k: NDArray[np.int64]) -> NDArray[np.float64]:
+        d = np.minimum(x - k * pitch, (k + 1) * pitch - x)  # distance to the module's border
+        return np.clip((d - half_line) / ramp, 0.0, 1.0)
+
+    w = np.where(ok, weight(points_m[:, 0], col) * weight(points_m[:, 1], rb), 0.0)
+    idx = np.where(ok, (surface.layout.rows - 1 - rb) * surface.layout.cols + col, -1)
+    return idx, w
 
 
 def fingertip_overlap(
@@ -287,8 +369,13 @@ def fingertip_overlap(
     tip_size_m: tuple[float, float],
     surface: PadSurface,
     step_m: float = 0.5e-3,
+    sensitive_side_m: float | None = None,
 ) -> NDArray[np.float64]:
-    """Fraction of a rectangular fingertip's area over each module's sensitive square.
+    """Share of a rectangular fingertip's force that each module senses.
+
+    With ``sensitive_side_m`` None: the fraction of the tip's area over each module's
+    sensitive square (lines excluded). Otherwise each area element is weighted by
+    :func:`tip_sensitivity` (graded towards the module borders).
 
     Parameters
     ----------
@@ -308,6 +395,10 @@ def fingertip_overlap(
     """
     local = _rect_points(tip_size_m[0], tip_size_m[1], step_m)
     pts = to_pad_frame(local, Placement(center_m[0], center_m[1], yaw_rad))
-    idx = surface.module_index(pts)
-    frac = np.bincount(idx[idx >= 0], minlength=surface.layout.n_modules).astype(float)
+    if sensitive_side_m is None:
+        idx, cover = surface.module_coverage(pts, step_m)
+    else:
+        idx, cover = tip_sensitivity(pts, surface, sensitive_side_m)
+    on = idx >= 0
+    frac = np.bincount(idx[on], weights=cover[on], minlength=surface.layout.n_modules)
     return frac / len(local)

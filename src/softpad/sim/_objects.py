@@ -18,6 +18,7 @@ Schema (SI units throughout; see docs/box-and-simulator.md):
         "expected_modules": [2, 3, 4],    # modules the thesis reports the object on
         "table_6_1": {"cog": [1.0, 1.0], "theta": -0.785398},   # planned grasp, module units, rad
         "placement": {"x_m": ..., "y_m": ..., "yaw_rad": ...},   # object frame in the pad frame
+        "loose_parts": false,             # optional: parts loosely tied (a net of limes)
         "parts": [
           {"name": "...", "shape": "box", "size_m": [lx, ly, lz],
            "pos_m": [x, y, z], "yaw_rad": 0.0, "mass_kg": ...},

@@ -59,7 +59,13 @@ class SensorParams:
     supply_noise_std_pa: float = 20.0
 
     def __post_init__(self) -> None:
-        for n in ("noise_std_pa", "drift_std_pa", "quantization_pa", "offset_std_pa", "supply_noise_std_pa"):
+        for n in (
+            "noise_std_pa",
+            "drift_std_pa",
+            "quantization_pa",
+            "offset_std_pa",
+            "supply_noise_std_pa",
+        ):
             v = getattr(self, n)
             if not (math.isfinite(v) and v >= 0):
                 raise InputError(f"sensor {n} must be a finite number >= 0, got {v!r}")
@@ -92,47 +98,88 @@ class SensorBank:
     """
 
     def __init__(
-        self, n_channels: int, dt_s: float, params: SensorParams, rng: np.random.Generator, block: int = 4096
+        self,
+        n_channels: int,
+        dt_s: float,
+        params: SensorParams,
+        rng: np.random.Generator,
+        block: int = 4096,
     ) -> None:
         self.params = params
         self.n = n_channels
         self.rng = rng
         self.block = block
-        self.offset_pa = rng.normal(0.0, params.offset_std_pa, n_channels) if params.offset_std_pa else np.zeros(n_channels)
+        self.offset_pa = (
+            rng.normal(0.0, params.offset_std_pa, n_channels)
+            if params.offset_std_pa
+            else np.zeros(n_channels)
+        )
         self._a = math.exp(-dt_s / params.drift_time_s)
         self._drift_innov = params.drift_std_pa * math.sqrt(1 - self._a**2)
-        self._drift = rng.normal(0.0, params.drift_std_pa, n_channels) if params.drift_std_pa else np.zeros(n_channels)
+        self._drift = (
+            rng.normal(0.0, params.drift_std_pa, n_channels)
+            if params.drift_std_pa
+            else np.zeros(n_channels)
+        )
         self._q = params.quantization_pa
         self._inv_q = 1.0 / self._q if self._q else 0.0
         self._i = block
         self._noise = np.zeros((block, n_channels))
         self._supply_noise = np.zeros(block)
-        self._quiet = params.noise_std_pa == 0 and params.drift_std_pa == 0 and params.supply_noise_std_pa == 0
+        self._same = 0
+        self._static: NDArray[np.float64] | None = None
+        self._static_start = 0
 
     def _refill(self) -> None:
         p, n, b = self.params, self.n, self.block
         noise = self.rng.normal(0.0, p.noise_std_pa, (b, n)) if p.noise_std_pa else np.zeros((b, n))
         if p.drift_std_pa:
-            from scipy.signal import lfilter
-
+            # first-order Gauss-Markov drift d[k] = a d[k-1] + e[k], one row per sample
             innov = self.rng.normal(0.0, self._drift_innov, (b, n))
-            drift, zf = lfilter([1.0], [1.0, -self._a], innov, axis=0, zi=(self._a * self._drift)[None, :])
-            self._drift = drift[-1]
-            noise += drift
+            a, d = self._a, self._drift
+            for k in range(b):
+                d = a * d + innov[k]
+                innov[k] = d
+            self._drift = d
+            noise += innov
         self._noise = noise + self.offset_pa
         self._supply_noise = (
             self.rng.normal(0.0, p.supply_noise_std_pa, b) if p.supply_noise_std_pa else np.zeros(b)
         )
         self._i = 0
 
-    def sample(self, true_pa: NDArray[np.float64], supply_pa: float) -> tuple[NDArray[np.float64], float]:
-        """One reading of every channel and of the supply, pascals."""
+    def sample(
+        self, true_pa: NDArray[np.float64], supply_pa: float, changed: bool = True
+    ) -> tuple[NDArray[np.float64], float]:
+        """One reading of every channel and of the supply, pascals.
+
+        ``changed=False`` promises that ``true_pa`` equals the previous call's: after two such
+        calls the readings of the rest of the noise block are computed at once (the hot path
+        of an idle box). The returned array must not be modified (copy it first).
+        """
         if self._i >= self.block:
             self._refill()
+            self._static = None
         i = self._i
         self._i = i + 1
-        x = true_pa + self._noise[i]
+        if changed:
+            self._same = 0
+            self._static = None
+        else:
+            self._same += 1
+            if self._static is not None:
+                return self._static[i - self._static_start], supply_pa + float(
+                    self._supply_noise[i]
+                )
+            if self._same >= 2:
+                self._static = self._quantise(true_pa + self._noise[i:])
+                self._static.flags.writeable = False
+                self._static_start = i
+                return self._static[0], supply_pa + float(self._supply_noise[i])
+        return self._quantise(true_pa + self._noise[i]), supply_pa + float(self._supply_noise[i])
+
+    def _quantise(self, x: NDArray[np.float64]) -> NDArray[np.float64]:
         if self._q:
             x = np.round(x * self._inv_q) * self._q
         np.clip(x, self.params.range_min_pa, self.params.range_max_pa, out=x)
-        return x, supply_pa + float(self._supply_noise[i])
+        return x

@@ -1,0 +1,155 @@
+"""``softpad run``: the whole closed loop once, on the simulated box, for thesis objects."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from typing import Any
+
+from softpad.cli._args import finite_float
+
+_EPILOG = """examples:
+  softpad run --object banana
+  softpad run --object object-4 --plot run.png --log run.npz
+  softpad run --object object-1 --object object-4       two objects, grasped one after the other
+  softpad run --box 'sim://?seed=3&rate_hz=200' --object charger --json
+
+objects: object-1 .. object-6, banana, toy, limes, cylinder, charger (seed, Table 6.1)
+"""
+
+
+def register(sub: Any) -> None:
+    p = sub.add_parser(
+        "run",
+        help="run the closed loop (inflate, reference, plan, approach, contact, grasp, hold)",
+        description=(
+            "Run the whole grasp loop of the seed's Section 6.2 once on the simulated box: inflate "
+            "every module to p0 and save the reference, place the object(s) of the thesis set, plan "
+            "the grasp from the pressure increments, move over the centre of grasp, descend at "
+            "0.05 m/s until the pad senses the fingers (running average of 10 samples above t_g), "
+            "close, lift, hold for 15 s, and print the timeline."
+        ),
+        epilog=_EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    p.add_argument("--box", default="sim://", metavar="URL", help="box URL (default sim://)")
+    p.add_argument(
+        "--object",
+        action="append",
+        metavar="NAME",
+        help="thesis object to place (repeat for several; default banana)",
+    )
+    p.add_argument(
+        "--gripper",
+        choices=("10/4", "6/2", "4/0"),
+        help="gripper mounting, max/min width in cm (default: the object's, Section 6.3)",
+    )
+    p.add_argument(
+        "--hold-s",
+        type=finite_float("hold time", lo=0.0, hi=3600.0, unit="s"),
+        default=15.0,
+        help="hold time in s (default 15)",
+    )
+    p.add_argument("--json", action="store_true", help="print the timeline as one JSON object")
+    p.add_argument("--plot", metavar="FILE.png", help="draw the pressure traces with the phases")
+    p.add_argument("--log", metavar="FILE.npz", help="save every frame and event")
+    p.set_defaults(handler=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from softpad.control import ExecutionParams, resolve_objects, run_simulated
+    from softpad.record import RunLog
+
+    specs = resolve_objects(args.object)  # unknown names fail before anything starts
+    if args.log and not str(args.log).endswith(".npz"):
+        from softpad.errors import InputError
+
+        raise InputError(f"--log must name a .npz file, got {args.log!r}")
+    names = [s.name for s in specs]
+    log = RunLog({"box": args.box, "objects": names})
+    params = ExecutionParams(hold_s=args.hold_s)
+    try:
+        result = run_simulated(names, args.box, params, log, gripper=args.gripper)
+    finally:
+        # whatever happened, what was logged is kept
+        if args.log:
+            log.save(args.log)
+        if args.plot and len(log):
+            import matplotlib.pyplot as plt
+
+            fig = log.plot(args.plot, title=f"softpad run: {', '.join(names)}")
+            plt.close(fig)
+    d = result.to_dict()
+    if args.json:
+        print(json.dumps(d))
+        return 0
+    print(f"softpad run: {', '.join(names)} on {args.box}")
+    for line in _timeline(log, result):
+        print("  " + line)
+    print(f"outcome: {result.outcome}")
+    if args.plot:
+        print(f"pressure traces: {args.plot}")
+    return 0
+
+
+def _fmt(t: float) -> str:
+    return f"t = {t:7.2f} s"
+
+
+def _timeline(log: Any, result: Any) -> list[str]:
+    lines = []
+    for t, kind, d in log.events:
+        if kind == "adjusted":
+            lines.append(
+                f"{_fmt(t)}  adjusted: every module within tolerance of {d['target_kpa']:.3f} kPa"
+            )
+        elif kind == "reference":
+            ref = " ".join(f"{v:.3f}" for v in d["reference_kpa"])
+            lines.append(f"{_fmt(t)}  reference saved (kPa, mean of 10 reads): {ref}")
+        elif kind == "object_seen":
+            lines.append(
+                f"{_fmt(t)}  object detected on module(s) {', '.join(map(str, d['modules']))}"
+            )
+        elif kind == "plan":
+            inc = " ".join(f"{v:.3f}" for v in d["increments_kpa"])
+            lines.append(f"{_fmt(t)}  increments (kPa): {inc}")
+            for o in d["objects"]:
+                lines.append(
+                    f"{_fmt(t)}  plan: modules {','.join(map(str, o['modules']))}  PCOM "
+                    f"({o['pcom'][0]:.2f}, {o['pcom'][1]:.2f})  COG ({o['cog'][0]:.2f}, {o['cog'][1]:.2f})  "
+                    f"theta {o['theta']:+.3f} rad ({math.degrees(o['theta']):+.0f} deg)  [{o['rule']}]"
+                )
+        elif kind == "phase" and d["phase"] in (
+            "approach",
+            "descend",
+            "close",
+            "lift",
+            "hold",
+            "release",
+        ):
+            lines.append(f"{_fmt(t)}  {d['phase']}")
+        elif kind == "contact":
+            lines.append(
+                f"{_fmt(t)}  contact detected on module(s) {', '.join(map(str, d['modules']))}"
+            )
+        elif kind == "no_contact":
+            lines.append(
+                f"{_fmt(t)}  no contact detected down to {d['z_m'] * 1e3:.1f} mm: gripper not closed"
+            )
+        elif kind == "outcome":
+            lines.append(f"{_fmt(t)}  {d['outcome']}")
+    for i, g in enumerate(result.grasps, 1):
+        if g.contact_delay_s is not None:
+            lines.append(
+                f"grasp {i}: contact {g.contact_delay_s * 1e3:.0f} ms after the first fingertip touch, "
+                f"finger travel {g.finger_travel_mm:.1f} mm; outcome {g.outcome}"
+            )
+        else:
+            lines.append(f"grasp {i}: outcome {g.outcome}")
+    return lines
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(0)

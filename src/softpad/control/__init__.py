@@ -1,0 +1,52 @@
+"""Control: inflation and adjustment, the robot interface, the grasp-execution state machine.
+
+``inflate_and_adjust`` brings every module to p0 within t_adj and saves the reference (seed,
+Section 6.2.1.1); :class:`GraspExecution` runs the closed loop of Section 6.2.2 on any
+:class:`~softpad.box.Box` and :class:`Robot`; :func:`run_simulated` runs it on the simulator
+with objects of the catalogue.
+"""
+
+from softpad.control._execution import (
+    OUTCOMES,
+    ExecutionError,
+    ExecutionParams,
+    ExecutionResult,
+    GraspExecution,
+    GraspRecord,
+    Recorder,
+)
+from softpad.control._inflation import (
+    DEFAULT_MAX_PRESSURE_PA,
+    DEFAULT_TARGET_PA,
+    DEFAULT_TOLERANCE_PA,
+    AdjustmentResult,
+    InflationParams,
+    check_frame,
+    inflate_and_adjust,
+    make_safe,
+)
+from softpad.control._robot import Robot, SimulatedRobot, ToolPose
+from softpad.control._simulation import resolve_objects, run_simulated
+
+__all__ = [
+    "DEFAULT_MAX_PRESSURE_PA",
+    "DEFAULT_TARGET_PA",
+    "DEFAULT_TOLERANCE_PA",
+    "OUTCOMES",
+    "AdjustmentResult",
+    "ExecutionError",
+    "ExecutionParams",
+    "ExecutionResult",
+    "GraspExecution",
+    "GraspRecord",
+    "InflationParams",
+    "Recorder",
+    "Robot",
+    "SimulatedRobot",
+    "ToolPose",
+    "check_frame",
+    "inflate_and_adjust",
+    "make_safe",
+    "resolve_objects",
+    "run_simulated",
+]

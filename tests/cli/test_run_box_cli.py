@@ -1,0 +1,97 @@
+"""``softpad run`` and ``softpad box read``: output, JSON, plot, log, one-line errors."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from softpad.cli.main import main
+
+
+def test_run_json_has_the_documented_keys(capsys, tmp_path) -> None:
+    log = tmp_path / "run.npz"
+    assert (
+        main(
+            [
+                "run",
+                "--object",
+                "object-4",
+                "--hold-s",
+                "1",
+                "--json",
+                "--log",
+                str(log),
+                "--box",
+                "sim://?seed=3",
+            ]
+        )
+        == 0
+    )
+    d = json.loads(capsys.readouterr().out)
+    for key in ("objects", "contact_detected", "contact_delay_s", "finger_travel_mm", "outcome"):
+        assert key in d
+    assert d["outcome"] == "held" and d["contact_detected"] is True
+    assert set(d["objects"][0]) == {"modules", "pcom", "cog", "theta", "rule", "cog_m"}
+    np.testing.assert_allclose(d["objects"][0]["cog"], [0.5, 1.2], atol=0.03)
+    assert log.stat().st_size > 0
+
+
+def test_run_prints_a_timeline_and_plots(capsys, tmp_path) -> None:
+    png = tmp_path / "trace.png"
+    assert main(["run", "--object", "banana", "--hold-s", "1", "--plot", str(png)]) == 0
+    out = capsys.readouterr().out
+    for text in (
+        "adjusted",
+        "reference saved",
+        "object detected on module(s) 2, 3, 4",
+        "plan: modules 2,3,4",
+        "contact detected",
+        "outcome: held",
+    ):
+        assert text in out
+    assert png.stat().st_size > 1000
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["run", "--object", "teapot"], "unknown object 'teapot'"),
+        (["run", "--box", "tcp://x:1"], "unknown box URL scheme 'tcp'"),
+        (["run", "--box", "sim://?speed=2"], "unknown sim:// option 'speed'"),
+        (["run", "--log", "run.txt"], "--log must name a .npz file"),
+        (["run", "--box", "sim://?seed=1&faults=leak:3:0.01", "--hold-s", "1"], "channel 3"),
+        (["box", "read", "--box", "sim://?rate_hz=-5"], "sample rate"),
+        (["box", "read", "--count", "-1"], "--count must be >= 0"),
+    ],
+    ids=["object", "scheme", "option", "log", "leak-fault", "rate", "count"],
+)
+def test_errors_are_one_line_and_exit_2(capsys, argv, message) -> None:
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert message in err and err.count("\n") == 1 and "Traceback" not in err
+
+
+def test_box_read_streams_frames(capsys) -> None:
+    assert main(["box", "read", "--count", "3", "--box", "sim://?inflated_kpa=1.1&noise=0"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert len(lines) == 4 and "ch8" in lines[0]
+    assert lines[1].split()[1] == "1.1000"
+
+
+def test_box_read_json(capsys) -> None:
+    assert main(["box", "read", "--count", "2", "--json"]) == 0
+    rows = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
+    assert [r["t_s"] for r in rows] == [0.01, 0.02] and len(rows[0]["pressures_kpa"]) == 8
+
+
+def test_failed_run_still_saves_its_log(capsys, tmp_path) -> None:
+    from softpad.record import RunLog
+
+    path = tmp_path / "fault.npz"
+    argv = ["run", "--box", "sim://?seed=1&faults=nan:4@6.5", "--hold-s", "1", "--log", str(path)]
+    assert main(argv) == 2
+    assert "channel 4" in capsys.readouterr().err
+    log = RunLog.load(path)
+    assert log.t_s[-1] >= 6.49 and log.events_of("fault")

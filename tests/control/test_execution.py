@@ -1,0 +1,146 @@
+"""The grasp-execution state machine on the simulated box (seed, Section 6.2.2)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from softpad.box import ConnectionLost, SimBox, ValveCommand, open_box
+from softpad.control import ExecutionParams, GraspExecution, SimulatedRobot, run_simulated
+from softpad.errors import HardwareFault, InputError
+from softpad.record import RunLog
+from softpad.sim import AnalyticWorld, GripperSpec, get_object
+
+FAST = ExecutionParams(hold_s=1.0)
+
+
+def test_banana_full_loop() -> None:
+    log = RunLog()
+    r = run_simulated(["banana"], "sim://?seed=11", FAST, log)
+    d = r.to_dict()
+    assert d["outcome"] == "held" and d["contact_detected"] is True
+    assert [o["modules"] for o in d["objects"]] == [[2, 3, 4]]
+    np.testing.assert_allclose(d["objects"][0]["cog"], [1.0, 1.0], atol=1e-9)
+    np.testing.assert_allclose(d["objects"][0]["theta"], -np.pi / 4, atol=1e-9)
+    # delay from first touch to detection, and the travel it implies at 0.05 m/s
+    assert 0.0 < d["contact_delay_s"] < 0.3
+    np.testing.assert_allclose(d["finger_travel_mm"], 0.05 * d["contact_delay_s"] * 1e3, atol=0.51)
+    phases = [p for p, _ in r.phases]
+    assert phases == [
+        "adjust",
+        "reference",
+        "wait_object",
+        "plan",
+        "approach",
+        "descend",
+        "close",
+        "lift",
+        "hold",
+        "release",
+        "done",
+    ]
+    kinds = [k for _, k, _ in log.events]
+    for k in ("adjusted", "reference", "object_seen", "plan", "contact", "outcome"):
+        assert k in kinds
+    # the detector's reference is the pre-descent pressure: the object's own increment does
+    # not trigger it, only the fingers do
+    t_contact = log.events_of("contact")[0][0]
+    t_descend = next(t for t, k, d in log.events if k == "phase" and d["phase"] == "descend")
+    assert t_contact - t_descend > 0.5
+
+
+def test_two_separate_objects_are_grasped_one_after_the_other() -> None:
+    r = run_simulated(["object-1", "object-4"], "sim://?seed=5", FAST, gripper="6/2")
+    assert [p.modules for p in r.plans] == [(1, 4), (3, 6)]
+    assert [g.outcome for g in r.grasps] == ["held", "held"]
+    assert r.grasps[0].detected_at_s < r.grasps[1].detected_at_s
+
+
+def test_fingertips_on_the_lines_are_not_detected() -> None:
+    """Tips centred on the 2|5 line and on the pad's border: no module senses them (Sec. 6.3)."""
+    g = GripperSpec(max_width_m=0.043, min_width_m=0.0, tip_thickness_m=0.002, tip_width_m=0.002)
+    world = AnalyticWorld(gripper=g)
+    box = SimBox(world, seed=4)
+    loop = GraspExecution(
+        box,
+        SimulatedRobot(world),
+        world.layout,
+        FAST,
+        None,
+        lambda: world.place_object(get_object("object-3")),
+    )
+    r = loop.run()
+    assert r.plans[0].modules == (1, 2, 3)
+    assert r.grasps[0].outcome == "contact_not_detected"
+    assert not r.contact_detected and r.outcome == "contact_not_detected"
+
+
+@pytest.mark.parametrize(
+    ("fault", "exc", "match"),
+    [
+        ("nan:2@8.0", HardwareFault, "channel 2.*NaN"),
+        ("dropout:5@8.0", HardwareFault, "channel 5.*dropout"),
+        ("disconnect@8.0", ConnectionLost, "stopped answering"),
+    ],
+    ids=["nan", "dropout", "disconnect"],
+)
+def test_fault_during_the_loop_is_logged_and_leaves_the_box_safe(
+    fault: str, exc: type, match: str
+) -> None:
+    log = RunLog()
+    box = open_box(f"sim://?seed=2&faults={fault}")
+    with pytest.raises(exc, match=match):
+        run_simulated(["banana"], box, FAST, log)
+    assert log.events_of("fault")
+    assert len(log) > 500 and log.t_s[-1] >= 7.99  # nothing logged before the fault is lost
+    if exc is not ConnectionLost:
+        assert all(v is not ValveCommand.INFLATE for v in box.valves)
+        assert box.true_pressures_pa.max() <= 3000.0
+
+
+def test_overpressure_from_a_stuck_valve_during_the_run_is_vented() -> None:
+    """Inflation valve of channel 1 stuck open mid-run: fault naming it, vented below max."""
+    log = RunLog()
+    box = open_box("sim://?seed=2&faults=stuck:1:inflate@6.0")
+    with pytest.raises(
+        HardwareFault, match=r"channel 1: pressure .* exceeds the maximum 3\.00 kPa"
+    ):
+        run_simulated(["banana"], box, ExecutionParams(hold_s=30.0), log)
+    assert box.true_pressures_pa[:6].max() <= 3000.0
+    assert box.valves[0] is ValveCommand.DEFLATE  # venting against the stuck valve
+    assert all(v is ValveCommand.CLOSED for v in box.valves[1:])
+
+
+def test_no_object_times_out() -> None:
+    from softpad.control import ExecutionError
+
+    world = AnalyticWorld()
+    box = SimBox(world, seed=1)
+    loop = GraspExecution(
+        box, SimulatedRobot(world), world.layout, ExecutionParams(object_wait_s=2.0)
+    )
+    with pytest.raises(ExecutionError, match="no object"):
+        loop.run()
+
+
+def test_unknown_object_and_bad_params() -> None:
+    with pytest.raises(InputError, match="unknown object 'teapot'"):
+        run_simulated(["teapot"])
+    with pytest.raises(InputError, match="approach_speed_m_s"):
+        ExecutionParams(approach_speed_m_s=0.0)
+
+
+def test_same_seed_same_run() -> None:
+    a = run_simulated(["object-2"], "sim://?seed=21", FAST).to_dict()
+    b = run_simulated(["object-2"], "sim://?seed=21", FAST).to_dict()
+    assert a == b
+
+
+def test_contact_delay_is_consistent_with_the_frames() -> None:
+    """The detection comes a whole number of sample periods after the first touch."""
+    r = run_simulated(["object-3"], "sim://?seed=8&rate_hz=200", FAST)
+    g = r.grasps[0]
+    assert g.contact_delay_s is not None and g.first_touch_s is not None
+    np.testing.assert_allclose(g.contact_delay_s * 200, round(g.contact_delay_s * 200), atol=1e-6)
+    # at least half the running-average window (10 samples) passes before detection
+    assert g.contact_delay_s >= 4.5 / 200

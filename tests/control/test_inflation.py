@@ -1,0 +1,122 @@
+"""Inflation and adjustment (Section 6.2.1.1), reference capture, and every fault."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from softpad.box import ConnectionLost, Fault, SimBox, ValveCommand, open_box
+from softpad.control import InflationParams, inflate_and_adjust
+from softpad.errors import HardwareFault, InputError
+
+N = 6
+
+
+def _adjust(box: SimBox, params: InflationParams | None = None):
+    frames = []
+    result = inflate_and_adjust(box, N, params, on_frame=frames.append)
+    return result, frames
+
+
+def test_adjusts_every_module_within_tolerance_and_never_above_max() -> None:
+    box = open_box("sim://?seed=2")
+    res, frames = _adjust(box)
+    p = np.array([f.pressures_pa[:N] for f in frames])
+    assert p.max() < 3000.0
+    np.testing.assert_allclose(res.reference_pa, 1100.0, atol=30.0)
+    # reference = mean of the last 10 reads, taken with every valve closed
+    np.testing.assert_allclose(res.reference_pa, p[-10:].mean(axis=0), rtol=1e-12)
+    assert set(box.valves) == {ValveCommand.CLOSED}
+    # the true pressures differ from the readings by the sensors' zero offsets (20 Pa rms)
+    np.testing.assert_allclose(
+        box.true_pressures_pa[:N] + box.sensors.offset_pa[:N], 1100.0, atol=30.0
+    )
+
+
+@pytest.mark.parametrize("target_kpa", [0.6, 1.1, 2.5], ids=["0.6", "1.1", "2.5"])
+def test_adjusts_to_other_targets_from_above_and_below(target_kpa: float) -> None:
+    box = SimBox(seed=1, initial_pressure_pa=1800.0)
+    res, _ = _adjust(box, InflationParams(target_pa=target_kpa * 1e3))
+    np.testing.assert_allclose(res.reference_pa, target_kpa * 1e3, atol=30.0)
+
+
+def _assert_safe(box: SimBox) -> None:
+    """Inflation valves closed (deflation only where venting) and no module above the max."""
+    assert all(v is not ValveCommand.INFLATE for v in box.valves)
+    assert box.true_pressures_pa[:N].max() <= 3000.0
+
+
+@pytest.mark.parametrize(
+    ("fault", "match"),
+    [
+        (Fault("leak", 3, 0.0, 1e-8), "channel 3"),
+        (Fault("stuck", 4, 0.0, "closed"), "channel 4"),
+        (Fault("stuck", 2, 0.0, "inflate"), "channel 2"),
+        (Fault("stuck", 5, 0.0, "deflate"), "channel 5"),
+        (Fault("supply_loss", None, 1.0), "supply pressure"),
+        (Fault("nan", 6, 1.0), "channel 6.*NaN"),
+        (Fault("dropout", 1, 1.0), "channel 1.*dropout"),
+    ],
+    ids=[
+        "leak",
+        "stuck-closed",
+        "stuck-inflate",
+        "stuck-deflate",
+        "supply-loss",
+        "sensor-nan",
+        "sensor-dropout",
+    ],
+)
+def test_fault_raises_naming_the_cause_and_leaves_the_box_safe(fault: Fault, match: str) -> None:
+    box = SimBox(seed=3)
+    box.inject_fault(fault)
+    frames: list = []
+    with pytest.raises(HardwareFault, match=match):
+        inflate_and_adjust(box, N, InflationParams(timeout_s=20.0), on_frame=frames.append)
+    _assert_safe(box)
+    assert len(frames) > 50  # everything read before the fault was handed to the logger
+
+
+def test_small_leak_after_adjustment_is_caught_by_the_drift_check() -> None:
+    box = SimBox(seed=3, initial_pressure_pa=1100.0)
+    box.inject_fault(Fault("leak", 2, 0.0, 3e-9))
+    with pytest.raises(HardwareFault, match="channel 2"):
+        inflate_and_adjust(box, N)
+    _assert_safe(box)
+
+
+def test_lost_connection_raises_connection_lost() -> None:
+    box = SimBox(seed=1)
+    box.inject_fault(Fault("disconnect", None, 0.5))
+    with pytest.raises(ConnectionLost, match="stopped answering"):
+        inflate_and_adjust(box, N)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "match"),
+    [
+        ({"target_pa": float("nan")}, "target_pa"),
+        ({"tolerance_pa": -1.0}, "tolerance_pa"),
+        ({"target_pa": 2990.0}, "below the maximum"),
+        ({"reference_reads": 0}, "reference reads"),
+    ],
+    ids=["nan", "negative", "too-high", "reads"],
+)
+def test_bad_parameters(kwargs, match) -> None:
+    with pytest.raises(InputError, match=match):
+        InflationParams(**kwargs)
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["leak:2", "leak:2:0.01@3", "stuck:3:inflate@1.5", "supply_loss@5", "disconnect", "nan:1@0"],
+)
+def test_fault_url_syntax(text: str) -> None:
+    f = Fault.parse(text)
+    assert f.kind == text.split(":")[0].split("@")[0]
+
+
+@pytest.mark.parametrize("text", ["stuck:x", "leak:2:big", "supply_loss:3", "stuck:2:open"])
+def test_bad_fault_syntax(text: str) -> None:
+    with pytest.raises(InputError):
+        Fault.parse(text)

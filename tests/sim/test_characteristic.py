@@ -1,0 +1,150 @@
+"""Module characteristic: analytic fit, tabulated interpolation, file errors, default choice."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from softpad.errors import InputError
+from softpad.sim import (
+    AnalyticCharacteristic,
+    ModuleCharacteristic,
+    TabulatedCharacteristic,
+    default_characteristic,
+    sealed_sensitivity_pa_n,
+)
+from softpad.sim import _characteristic as charmod
+
+G = 9.80665
+
+
+def test_analytic_meets_its_reference_values() -> None:
+    """V(1.1 kPa) = 8 mL, dV/dp = 3.8 mL/kPa, h = 9 mm (issue scale; seed Section 6.3)."""
+    c = AnalyticCharacteristic()
+    np.testing.assert_allclose(c.volume_m3(1100.0, 0.0), 8.0e-6, rtol=1e-9)
+    np.testing.assert_allclose(c.volume_slope_m3_pa(1100.0, 0.0), 3.8e-9, rtol=1e-6)
+    np.testing.assert_allclose(c.height_m(1100.0, 0.0), 9.0e-3, rtol=1e-9)
+    assert isinstance(c, ModuleCharacteristic)
+
+
+def test_analytic_slope_matches_finite_difference() -> None:
+    c = AnalyticCharacteristic()
+    p = np.array([-200.0, 10.0, 500.0, 1100.0, 2500.0])
+    f = np.array([0.0, 0.1, 0.0, 0.3, 1.0])
+    h = 1e-3
+    fd = (c.volume_m3(p + h, f) - c.volume_m3(p - h, f)) / (2 * h)
+    np.testing.assert_allclose(c.volume_slope_m3_pa(p, f), fd, rtol=1e-5)
+
+
+@pytest.mark.parametrize(
+    ("mass_g", "expected_kpa"), [(12.6, 0.105), (6.0, 0.050)], ids=["brick", "6g"]
+)
+def test_sealed_increment_of_the_thesis_masses(mass_g: float, expected_kpa: float) -> None:
+    """0.85 kPa/N: a 12.6 g brick gives 0.105 kPa (> t_o), 6 g reaches t_o = 0.05 kPa."""
+    s = sealed_sensitivity_pa_n(AnalyticCharacteristic())
+    np.testing.assert_allclose(s * mass_g * 1e-3 * G / 1e3, expected_kpa, rtol=0.02)
+
+
+def _table(tmp_path, **override):
+    p = np.array([0.0, 1000.0, 2000.0])
+    f = np.array([0.0, 0.5])
+    # bilinear functions are reproduced exactly by bilinear interpolation
+    v = 1e-6 * (1 + 4e-3 * p[:, None] - 1 * f[None, :] + 1e-3 * p[:, None] * f[None, :])
+    h = 1e-3 * (2 + 3e-3 * p[:, None] - f[None, :])
+    arrays = {
+        "pressure_pa": p,
+        "load_n": f,
+        "volume_m3": v,
+        "height_m": h,
+        "meta": np.array(json.dumps({"model": "test"})),
+    }
+    arrays.update(override)
+    path = tmp_path / "char.npz"
+    np.savez(path, **arrays)
+    return path
+
+
+def test_tabulated_is_exact_on_bilinear_data_and_clamps(tmp_path) -> None:
+    c = TabulatedCharacteristic.from_file(_table(tmp_path))
+    assert c.meta == {"model": "test"}
+    p = np.array([250.0, 1500.0, 1999.0])
+    f = np.array([0.1, 0.45, 0.25])
+    np.testing.assert_allclose(
+        c.volume_m3(p, f), 1e-6 * (1 + 4e-3 * p - 1 * f + 1e-3 * p * f), rtol=1e-12
+    )
+    np.testing.assert_allclose(c.height_m(p, f), 1e-3 * (2 + 3e-3 * p - f), rtol=1e-12)
+    np.testing.assert_allclose(c.volume_slope_m3_pa(p, f), 1e-6 * (4e-3 + 1e-3 * f), rtol=1e-12)
+    # clamped outside the table
+    np.testing.assert_allclose(c.volume_m3(5000.0, 2.0), c.volume_m3(2000.0, 0.5))
+    np.testing.assert_allclose(c.volume_m3(-100.0, -1.0), c.volume_m3(0.0, 0.0))
+
+
+@pytest.mark.parametrize(
+    ("override", "match"),
+    [
+        ({"volume_m3": np.ones((2, 2))}, "shape"),
+        ({"pressure_pa": np.array([0.0, 2000.0, 1000.0])}, "strictly increasing"),
+        ({"height_m": np.full((3, 2), np.nan)}, "NaN"),
+        ({"volume_m3": -np.ones((3, 2))}, "> 0"),
+        ({"meta": np.array("{not json")}, "meta"),
+    ],
+    ids=["shape", "order", "nan", "negative", "meta"],
+)
+def test_tabulated_rejects_bad_tables(tmp_path, override, match) -> None:
+    with pytest.raises(InputError, match=match):
+        TabulatedCharacteristic.from_file(_table(tmp_path, **override))
+
+
+def test_tabulated_missing_array_and_missing_or_corrupt_file(tmp_path) -> None:
+    path = tmp_path / "partial.npz"
+    np.savez(path, pressure_pa=np.arange(3.0))
+    with pytest.raises(InputError, match="lacks array"):
+        TabulatedCharacteristic.from_file(path)
+    with pytest.raises(InputError, match="does not exist"):
+        TabulatedCharacteristic.from_file(tmp_path / "nope.npz")
+    bad = tmp_path / "bad.npz"
+    bad.write_bytes(b"not a zip file at all")
+    with pytest.raises(InputError, match="not a readable"):
+        TabulatedCharacteristic.from_file(bad)
+
+
+def test_default_uses_the_packaged_table_when_present(tmp_path, monkeypatch) -> None:
+    table = _table(tmp_path)
+    monkeypatch.setattr(charmod, "packaged_table_path", lambda: table)
+    assert isinstance(default_characteristic(), TabulatedCharacteristic)
+    monkeypatch.setattr(charmod, "packaged_table_path", lambda: None)
+    assert isinstance(default_characteristic(), AnalyticCharacteristic)
+
+
+def test_bad_analytic_parameter_named() -> None:
+    with pytest.raises(InputError, match="effective_area_m2"):
+        AnalyticCharacteristic(effective_area_m2=-1.0)
+
+
+def test_box_runs_on_a_tabulated_characteristic(tmp_path) -> None:
+    """A table sampled from the analytic characteristic gives the same sealed increments."""
+    from softpad.box import SimBox
+    from softpad.sim import AnalyticWorld, SensorParams, get_object
+
+    a = AnalyticCharacteristic()
+    p = np.linspace(0.0, 4000.0, 81)
+    f = np.linspace(0.0, 3.0, 61)
+    pp, ff = np.meshgrid(p, f, indexing="ij")
+    path = tmp_path / "table.npz"
+    np.savez(
+        path, pressure_pa=p, load_n=f, volume_m3=a.volume_m3(pp, ff), height_m=a.height_m(pp, ff)
+    )
+    tab = TabulatedCharacteristic.from_file(path)
+
+    def increments(char: ModuleCharacteristic) -> np.ndarray:
+        world = AnalyticWorld()
+        box = SimBox(
+            world, sensor=SensorParams.ideal(), characteristic=char, initial_pressure_pa=1100.0
+        )
+        ref = box.read().pressures_pa[:6].copy()
+        world.place_object(get_object("object-4"))
+        return box.read_many(3)[-1].pressures_pa[:6] - ref
+
+    np.testing.assert_allclose(increments(tab), increments(a), rtol=0.02, atol=0.5)

@@ -1,0 +1,43 @@
+"""Sensor model: noise statistics, drift, quantisation, range, determinism."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from softpad.sim import SensorBank, SensorParams
+
+
+def _reads(params: SensorParams, n: int = 20000, seed: int = 1, dt: float = 0.01) -> np.ndarray:
+    bank = SensorBank(8, dt, params, np.random.default_rng(seed))
+    return np.array([bank.sample(np.full(8, 1100.0), 10e3)[0] for _ in range(n)])
+
+
+def test_white_noise_and_quantisation() -> None:
+    p = SensorParams(noise_std_pa=8.0, drift_std_pa=0.0, offset_std_pa=0.0)
+    x = _reads(p)
+    np.testing.assert_allclose(
+        x.std(axis=0), np.hypot(8.0, p.quantization_pa / np.sqrt(12)), rtol=0.05
+    )
+    np.testing.assert_allclose(x / p.quantization_pa, np.round(x / p.quantization_pa), atol=1e-9)
+
+
+def test_drift_is_slow_with_its_stationary_std() -> None:
+    p = SensorParams(
+        noise_std_pa=0.0, drift_std_pa=3.0, drift_time_s=0.5, quantization_pa=0.0, offset_std_pa=0.0
+    )
+    x = _reads(p, n=50000)
+    np.testing.assert_allclose(x.std(axis=0).mean(), 3.0, rtol=0.1)
+    lag1 = np.mean([np.corrcoef(x[:-1, k], x[1:, k])[0, 1] for k in range(8)])
+    np.testing.assert_allclose(lag1, np.exp(-0.01 / 0.5), atol=0.01)
+
+
+def test_offset_drawn_once_per_seed_and_deterministic() -> None:
+    a, b = _reads(SensorParams(), n=100, seed=5), _reads(SensorParams(), n=100, seed=5)
+    np.testing.assert_array_equal(a, b)
+
+
+def test_range_saturates_and_ideal_is_exact() -> None:
+    bank = SensorBank(2, 0.01, SensorParams(), np.random.default_rng(0))
+    assert bank.sample(np.array([50e3, -50e3]), 0.0)[0].tolist() == [10e3, -2e3]
+    ideal = SensorBank(2, 0.01, SensorParams.ideal(), np.random.default_rng(0))
+    np.testing.assert_array_equal(ideal.sample(np.array([1234.5, 0.1]), 7.0)[0], [1234.5, 0.1])
