@@ -10,9 +10,8 @@ from softpad.sim._mujoco_world import MujocoWorld
 
 pytestmark = pytest.mark.mujoco
 
-#: Force on a module equivalent to t_o = 50 Pa over the ~1.9e-3 m^2 effective area of a module
-#: (the sealed chamber turns 0.124 N of a Lego brick into 66 Pa, issue 3's FEM figures), N.
-T_O_FORCE_N = 0.094
+#: Force on a module equivalent to t_o = 50 Pa at the box's sealed sensitivity (0.70 kPa/N), N.
+T_O_FORCE_N = 50.0 / 700.0
 
 #: Objects whose rigid-body rest differs from the thesis's module list, and why.
 _KNOWN_DIFFERENT = {

@@ -116,10 +116,19 @@ def test_fingertip_on_line_loads_no_module(x_units: float, on_module: bool) -> N
         assert min(world.gripper_contacts().sole_on_lines_n) > 0.0
 
 
-def test_gripper_width_outside_mounting_is_rejected() -> None:
+@pytest.mark.parametrize(("asked", "got"), [(1.0, 0.06), (0.0, 0.02)], ids=["open", "close"])
+def test_gripper_width_is_clamped_to_the_mounting(asked: float, got: float) -> None:
+    """The execution opens with 1 m and closes with 0 m: the jaws go to the mounting's limits."""
     world = MujocoWorld(gripper=GripperParams(mounting="6/2"))
-    with pytest.raises(InputError, match="6/2"):
-        world.set_gripper_target(GripperState(0.05, 0.05, 0.05, 0.0, 0.08))
+    world.command_gripper(GripperState(0.05, 0.05, 0.05, 0.0, asked), 0.2)
+    settle(world, 0.6)
+    # closing fully is force-limited: an empty jaw stops on its joint limit (1 mm past)
+    np.testing.assert_allclose(world.gripper_state().width_m, got, atol=3e-3)
+
+
+def test_bad_gripper_target_is_rejected() -> None:
+    with pytest.raises(InputError, match="gripper speed"):
+        MujocoWorld().command_gripper(GripperState(0.05, 0.05, 0.05, 0.0, 0.05), -1.0)
 
 
 def test_object_without_parts_is_rejected() -> None:

@@ -86,24 +86,26 @@ def test_fingertip_on_line_is_not_detected_on_module_is(
 
 @pytest.mark.slow
 @pytest.mark.parametrize(
-    ("mounting", "cause"), [("6/2", "jaws_hit_object"), ("10/4", None)], ids=["6-2", "10-4"]
+    ("mounting", "cause"), [("6/2", "jaws_hit_object"), ("10/2", None)], ids=["6-2", "10-2"]
 )
 def test_cog_outside_object(mounting: str, cause: str | None) -> None:
-    """The thesis's cylinder failure (Section 6.3): a COG about 1.5 cm outside the object.
-    The 6 cm mounting cannot reach around it, a jaw comes down on it; the 10 cm mounting
-    straddles it and the grasp holds ("a wider maximum width ... would have been successful").
-    Object 6 lies along x on modules 4-6 (y from 6.6 to 38.4 mm); the COG is at y = 54 mm."""
-    spec = get_object("object-6")
+    """The thesis's cylinder failure (Section 6.3): a COG 1 cm outside the object, which the
+    6/2 mounting cannot straddle: a jaw comes down on it. "Using a gripper with a wider maximum
+    width and the same minimum width, this case would have been successful": with 10/2 the jaws
+    straddle it, push it in and hold it. Object 1 lies on modules 3/6 (x from 96.65 mm); the
+    forced COG is 10 mm left of it, at y = 1.2 (the left tip on module 1, not on a line)."""
+    spec = get_object("object-1")
+    x = (112.5 - 15.85 - 10.0) / 45.0
     result, _ = run_trial(
         spec,
         seed=2,
         config=FAST,
         placement=_nominal(spec),
-        plan_override=plan((1.5, 1.2), math.pi / 2),
+        plan_override=plan((x, 1.2), 0.0),
         mounting=mounting,
     )
     assert result.cog_outside_object_mm is not None
-    np.testing.assert_allclose(result.cog_outside_object_mm, 54.0 - 38.35, atol=1.0)
+    np.testing.assert_allclose(result.cog_outside_object_mm, 10.0, atol=0.5)
     assert result.cause == cause
     assert result.success is (cause is None)
 

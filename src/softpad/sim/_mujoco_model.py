@@ -149,6 +149,26 @@ GRIPPER_MOUNTINGS: dict[str, tuple[float, float]] = {
 }
 
 
+def parse_mounting(text: str) -> tuple[float, float]:
+    """(max, min) opening in metres of a mounting ``"MAX/MIN"`` in centimetres.
+
+    The thesis's three are ``"10/4"``, ``"6/2"`` and ``"4/0"``; others (e.g. ``"10/2"``, the
+    wider gripper the thesis says would have grasped its cylinder) are accepted for studies.
+    """
+    if text in GRIPPER_MOUNTINGS:
+        return GRIPPER_MOUNTINGS[text]
+    try:
+        hi, lo = (float(v) for v in str(text).split("/"))
+    except ValueError:
+        raise InputError(
+            f"gripper mounting must be MAX/MIN in cm such as {', '.join(GRIPPER_MOUNTINGS)}, "
+            f"got {text!r}"
+        ) from None
+    if not (0 <= lo < hi <= 30):
+        raise InputError(f"gripper mounting {text!r}: need 0 <= MIN < MAX <= 30 cm")
+    return hi / 100, lo / 100
+
+
 @dataclass(frozen=True)
 class GripperParams:
     """Parallel-jaw gripper (Sawyer electric gripper of Section 6.3).
@@ -156,7 +176,8 @@ class GripperParams:
     Parameters
     ----------
     mounting
-        One of ``"10/4"``, ``"6/2"``, ``"4/0"``: maximum / minimum opening in cm.
+        ``"10/4"``, ``"6/2"`` or ``"4/0"`` (Section 6.3), or any ``"MAX/MIN"``: maximum /
+        minimum opening in cm.
     finger_length_m
         From the palm to the lower face of the tips, metres (9.5 cm).
     tip_thickness_m
@@ -181,13 +202,10 @@ class GripperParams:
     grip_force_n: float = 20.0
     servo_stiffness_n_m: float = 4000.0
     friction: float = 0.8
-    sole_stroke_m: float = 12e-3
+    sole_stroke_m: float = 25e-3
 
     def __post_init__(self) -> None:
-        if self.mounting not in GRIPPER_MOUNTINGS:
-            raise InputError(
-                f"gripper mounting must be one of {sorted(GRIPPER_MOUNTINGS)}, got {self.mounting!r}"
-            )
+        parse_mounting(self.mounting)
         for name in (
             "finger_length_m",
             "tip_thickness_m",
@@ -204,12 +222,12 @@ class GripperParams:
     @property
     def max_width_m(self) -> float:
         """Largest opening between the tips' inner faces, metres."""
-        return GRIPPER_MOUNTINGS[self.mounting][0]
+        return parse_mounting(self.mounting)[0]
 
     @property
     def min_width_m(self) -> float:
         """Smallest opening between the tips' inner faces, metres."""
-        return GRIPPER_MOUNTINGS[self.mounting][1]
+        return parse_mounting(self.mounting)[1]
 
     @property
     def sole_thickness_m(self) -> float:

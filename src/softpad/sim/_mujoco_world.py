@@ -31,6 +31,9 @@ from softpad.sim._world import GripperState
 #: depends on the load measured here, cannot close a fast feedback loop through MuJoCo.
 _HEIGHT_FILTER_S = 0.5
 
+#: Resolution of the jaw-width reading, metres.
+_WIDTH_RESOLUTION_M = 1e-5
+
 #: A commanded width this close to the measured one means "leave the jaws as they are", metres.
 _SAME_WIDTH_M = 0.5e-3
 
@@ -46,10 +49,6 @@ _DROP_M = 0.0
 #: which also collapse the box's module model).
 _LOWER_M_S = 0.005
 _LOWER_S = 1.0
-
-#: Tolerance on commanded widths outside the mounting's range (then clipped to it), metres:
-#: a robot may hand back a measured width, which the servo or the jaws' limits overshoot.
-_WIDTH_SLACK_M = 5e-3
 
 
 @dataclass(frozen=True)
@@ -310,7 +309,8 @@ class MujocoWorld:
         Parameters
         ----------
         target
-            Goal pose and opening, pad frame, metres and radians.
+            Goal pose and opening, pad frame, metres and radians; an opening beyond the
+            mounting's range is clamped to it (0 closes fully, 1 m opens fully).
         speed_m_s
             Linear speed of the hand and of each jaw's setpoint, m/s (> 0).
         """
@@ -322,12 +322,6 @@ class MujocoWorld:
             raise InputError(f"gripper speed must be in [0, 2] m/s, got {speed!r}")
         g = self.gripper
         w = vals[4]
-        # a measured width handed back may overshoot the range by the servo's error
-        if not (g.min_width_m - _WIDTH_SLACK_M <= w <= g.max_width_m + _WIDTH_SLACK_M):
-            raise InputError(
-                f"gripper width {w * 1e3:g} mm is outside the {g.mounting} mounting's range "
-                f"[{g.min_width_m * 1e3:g}, {g.max_width_m * 1e3:g}] mm"
-            )
         if speed == 0.0:
             # stop: the hand stays where it is and the jaws keep their setpoint (and grip)
             self._goal = np.append(self._hand.copy(), self._width_setpoint)
@@ -339,6 +333,8 @@ class MujocoWorld:
             # keeps its goal, so a squeezed object stays squeezed
             w = float(self._goal[4])
         else:
+            # widths beyond the mounting's range mean "fully open" / "fully closed" (the
+            # execution asks for 1 m and 0 m)
             w = min(max(w, g.min_width_m), g.max_width_m)
             # closing all the way is force-limited (see _servo_ctrl); other widths are held
             self._closing = w <= g.min_width_m + _SAME_WIDTH_M
@@ -361,10 +357,16 @@ class MujocoWorld:
             y_m=float(self._hand[1]),
             z_m=float(self._hand[2] - self.gripper.finger_length_m),
             yaw_rad=float(self._hand[3]),
-            width_m=float(
-                q[self._jaw_qpos[0]]
-                + q[self._jaw_qpos[1]]
-                + self._pending_s * (v[self._jaw_dof[0]] + v[self._jaw_dof[1]])
+            # the gripper's position sensor resolves 10 um: a jaw stalled on an object reads
+            # a constant width (how a robot tells that the jaws have stopped)
+            width_m=_WIDTH_RESOLUTION_M
+            * round(
+                (
+                    q[self._jaw_qpos[0]]
+                    + q[self._jaw_qpos[1]]
+                    + self._pending_s * (v[self._jaw_dof[0]] + v[self._jaw_dof[1]])
+                )
+                / _WIDTH_RESOLUTION_M
             ),
         )
 

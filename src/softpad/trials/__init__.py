@@ -15,7 +15,6 @@ from softpad.trials._records import (
 )
 from softpad.trials._runner import (
     TrialConfig,
-    TrialTrace,
     perturbed_placement,
     run_experiment,
     run_trial,
@@ -30,7 +29,6 @@ __all__ = [
     "ObjectSummary",
     "TrialConfig",
     "TrialResult",
-    "TrialTrace",
     "perturbed_placement",
     "run_experiment",
     "run_trial",

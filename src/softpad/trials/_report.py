@@ -7,14 +7,13 @@ from pathlib import Path
 from typing import Any
 
 from softpad.trials._records import THESIS_OVERALL_SUCCESS, ExperimentResult
-from softpad.trials._runner import TrialTrace
 
 
 def write_report(
     out: str | Path,
     result: ExperimentResult,
     specs: dict[str, Any],
-    trace: TrialTrace | None = None,
+    trace: Any | None = None,
     trace_title: str = "",
     tip_thickness_m: float = 4e-3,
     tip_width_m: float = 10e-3,
@@ -43,7 +42,7 @@ def write_report(
     )
     paths.append(out / "grasps.png")
     if trace is not None:
-        trace.plot(str(out / "trace.png"), trace_title)
+        trace.plot(out / "trace.png", title=trace_title)
         paths.append(out / "trace.png")
     n = len(result.trials)
     k = sum(t.success for t in result.trials)

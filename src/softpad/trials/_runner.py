@@ -19,16 +19,13 @@ import os
 import time
 from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
 
 from softpad.errors import InputError
 from softpad.trials._records import ExperimentResult, TrialResult
-
-#: Height of the fingertips above the pad base while moving over the object, metres.
-APPROACH_CLEARANCE_M = 0.03
 
 
 @dataclass(frozen=True)
@@ -68,7 +65,8 @@ class TrialConfig:
     noise
         Sensor noise on (the box's defaults, like Fig. 6.8) or off.
     record_trace
-        Keep every pressure frame and the phase times (for a plot like Fig. 6.8).
+        Keep every frame and event in a :class:`softpad.record.RunLog` (its ``plot`` draws the
+        pressure traces with the phases, like Fig. 6.8).
     """
 
     position_sigma_m: float = 3e-3
@@ -105,46 +103,6 @@ class TrialConfig:
             raise InputError("trial speeds must be > 0 m/s")
 
 
-@dataclass(frozen=True)
-class TrialTrace:
-    """Pressure frames and phase marks of one trial (Fig. 6.8).
-
-    Attributes
-    ----------
-    t_s
-        Frame times, seconds.
-    pressures_pa
-        Module pressures, shape (frames, n_modules), pascals.
-    phases
-        (time s, label) of each phase start.
-    """
-
-    t_s: np.ndarray
-    pressures_pa: np.ndarray
-    phases: tuple[tuple[float, str], ...] = field(default_factory=tuple)
-
-    def plot(self, path: str, title: str = "") -> None:
-        """Save the pressure traces with the phases marked."""
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-
-        fig, ax = plt.subplots(figsize=(8, 3.6))
-        for k in range(self.pressures_pa.shape[1]):
-            ax.plot(self.t_s, self.pressures_pa[:, k] / 1e3, lw=0.7, label=f"module {k + 1}")
-        for t, label in self.phases:
-            ax.axvline(t, color="grey", lw=0.5, ls="--")
-            ax.text(t, ax.get_ylim()[1], label, rotation=90, fontsize=6, va="top", ha="right")
-        ax.set_xlabel("time (s)")
-        ax.set_ylabel("pressure (kPa)")
-        ax.set_title(title, fontsize=9)
-        ax.legend(fontsize=6, ncol=3, loc="lower right")
-        fig.tight_layout()
-        fig.savefig(path, dpi=150)
-        plt.close(fig)
-
-
 def trial_seed(seed: int, object_index: int, trial: int) -> int:
     """Seed of one trial, from the experiment seed (independent of the worker count)."""
     ss = np.random.SeedSequence([int(seed), int(object_index), int(trial)])
@@ -169,7 +127,7 @@ def run_trial(
     plan_override: Any | None = None,
     opening_m: float | None = None,
     mounting: str | None = None,
-) -> tuple[TrialResult, TrialTrace | None]:
+) -> tuple[TrialResult, Any | None]:
     """Run one grasp trial of ``spec`` in a fresh MuJoCo world.
 
     Parameters
@@ -194,7 +152,7 @@ def run_trial(
 
     Returns
     -------
-    The trial's result, and its trace when ``config.record_trace``.
+    The trial's result, and its :class:`softpad.record.RunLog` when ``config.record_trace``.
     """
     from softpad.trials._loop import execute_trial
 
@@ -209,7 +167,7 @@ def run_trial(
     return result, trace
 
 
-def _worker(args: tuple[Any, int, int, TrialConfig]) -> tuple[TrialResult, TrialTrace | None]:
+def _worker(args: tuple[Any, int, int, TrialConfig]) -> tuple[TrialResult, Any | None]:
     spec, trial, seed, config = args
     try:
         return run_trial(spec, trial, seed, config)
@@ -227,7 +185,7 @@ def run_experiment(
     config: TrialConfig | None = None,
     on_trial: Callable[[TrialResult], None] | None = None,
     trace_object: str | None = None,
-) -> tuple[ExperimentResult, TrialTrace | None]:
+) -> tuple[ExperimentResult, Any | None]:
     """Run ``trials`` trials of every object, in parallel processes.
 
     Parameters
@@ -271,7 +229,7 @@ def run_experiment(
     workers = min(workers, len(tasks))
     t0 = time.perf_counter()
     results: dict[tuple[str, int], TrialResult] = {}
-    trace: TrialTrace | None = None
+    trace: Any | None = None
     if workers == 1:
         for task in tasks:
             res, tr = _worker(task)
