@@ -41,8 +41,8 @@ def execute_trial(
     """Run one trial; see :func:`softpad.trials.run_trial`. Returns the result and the run's
     :class:`softpad.record.RunLog` when ``config.record_trace``."""
     from softpad.box import SimBox
-    from softpad.errors import HardwareFault
     from softpad.control import ExecutionError, ExecutionParams, GraspExecution, SimulatedRobot
+    from softpad.errors import HardwareFault
     from softpad.planning import GraspPlan
     from softpad.record import RunLog
     from softpad.sim import Placement
