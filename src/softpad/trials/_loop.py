@@ -41,7 +41,13 @@ def execute_trial(
     """Run one trial; see :func:`softpad.trials.run_trial`. Returns the result and the run's
     :class:`softpad.record.RunLog` when ``config.record_trace``."""
     from softpad.box import SimBox
-    from softpad.control import ExecutionError, ExecutionParams, GraspExecution, SimulatedRobot
+    from softpad.control import (
+        ExecutionError,
+        ExecutionParams,
+        GraspExecution,
+        InflationParams,
+        SimulatedRobot,
+    )
     from softpad.errors import HardwareFault
     from softpad.planning import GraspPlan
     from softpad.record import RunLog
@@ -122,6 +128,10 @@ def execute_trial(
                 seen["outcome"] = data.get("outcome")
 
     params = ExecutionParams(
+        # A gripper pressing an object into the pad, or a jaw dragging over a dome, reads
+        # above the 3 kPa inflation limit that the loop otherwise takes for a stuck valve;
+        # in these trials only the sensor's full scale (10 kPa) counts as a fault.
+        inflation=InflationParams(max_pressure_pa=config.max_pressure_pa),
         approach_speed_m_s=config.approach_speed_m_s,
         travel_speed_m_s=config.travel_speed_m_s,
         gripper_speed_m_s=config.jaw_speed_m_s,
@@ -158,13 +168,33 @@ def execute_trial(
                 ),
                 log,
             )
-        except HardwareFault:
-            # Releasing the object after the hold drops it from the lift height; its impact
-            # can read above the box's 3 kPa limit (the box's module model collapses under
-            # more than about 1.5 N), which the loop takes for a fault. The outcome was
-            # decided before, so the trial stands; any earlier fault is real.
-            if "outcome" not in seen:
+        except HardwareFault as exc:
+            # A module read above the box's 3 kPa limit: the box's module model collapses
+            # under more than about 1.5 N (a fingertip wedged on a dome's rim, or the object
+            # dropped on release after the hold). After the outcome the trial stands;
+            # before it, the trial is a failure of its own kind. Faults before the object
+            # was placed are real and propagate.
+            if "plan" not in seen:
                 raise
+            if "outcome" not in seen:
+                modules, cog, theta = seen["plan"]
+                return (
+                    TrialResult(
+                        **base,
+                        success=False,
+                        cause="box_fault",
+                        modules=modules,
+                        increments_pa=seen.get("increments_pa", ()),
+                        cog=cog,
+                        theta=theta,
+                        opening_m=robot.max_opening_m,
+                        contact_detected=seen.get("detected", False),
+                        cog_outside_object_mm=seen.get("cog_outside_mm"),
+                        sim_time_s=box.time_s,
+                        detail=f"box fault in phase {execution.phase}: {exc}",
+                    ),
+                    log,
+                )
         sim_time = box.time_s
     modules, cog, theta = seen["plan"]
     outcome = seen.get("outcome", "contact_not_detected")

@@ -29,7 +29,10 @@ THESIS_OVERALL_SUCCESS = 0.945
 
 #: Why a trial failed. The first four are the causes the issue names (the thesis reports the
 #: first and the third); ``object_too_narrow``: the object was between the jaws but thinner
-#: than the mounting's minimum width; ``object_not_detected``: the planner found nothing.
+#: than the mounting's minimum width; ``object_not_detected``: the planner found nothing;
+#: ``box_fault``: the loop stopped on a box fault (a module read above the 3 kPa limit, which
+#: the simulated box's module model reaches when a fingertip pushes a module with more than
+#: about 1.5 N).
 FAILURE_CAUSES = (
     "contact_not_detected",
     "jaws_hit_object",
@@ -37,6 +40,7 @@ FAILURE_CAUSES = (
     "slipped_during_hold",
     "object_too_narrow",
     "object_not_detected",
+    "box_fault",
 )
 
 

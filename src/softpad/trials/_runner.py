@@ -64,6 +64,10 @@ class TrialConfig:
         Box sample rate, hertz.
     noise
         Sensor noise on (the box's defaults, like Fig. 6.8) or off.
+    max_pressure_pa
+        Pressure above which the loop stops on a box fault, pascals. The thesis's 3 kPa is
+        an inflation limit; a gripper pressing an object into the pad reads more, so the
+        trials stop only near the sensor's 10 kPa full scale (9.5 kPa).
     record_trace
         Keep every frame and event in a :class:`softpad.record.RunLog` (its ``plot`` draws the
         pressure traces with the phases, like Fig. 6.8).
@@ -82,6 +86,7 @@ class TrialConfig:
     sample_rate_hz: float = 100.0
     noise: bool = True
     record_trace: bool = False
+    max_pressure_pa: float = 9.5e3
 
     def __post_init__(self) -> None:
         for name in (
@@ -95,6 +100,7 @@ class TrialConfig:
             "clearance_m",
             "settle_s",
             "sample_rate_hz",
+            "max_pressure_pa",
         ):
             v = getattr(self, name)
             if not isinstance(v, int | float) or not math.isfinite(v) or v < 0:
