@@ -59,7 +59,7 @@ def seg(name, p0, p1, r, m):
     dx, dy = p1[0]-p0[0], p1[1]-p0[1]
     return lcyl(name, r, math.hypot(dx, dy), (p0[0]+p1[0])/2, (p0[1]+p1[1])/2, m, math.atan2(dy, dx))
 b0, b1, b2, b3 = (0.014, 0.016), (0.045, 0.046), (0.080, 0.068), (0.122+a('b3', 0), 0.072)
-mb = a('mb', 0.022)
+mb = a('mb', 0.020)
 obj("banana", 0.0598, [seg("stem end", b0, b1, 0.016, mb), seg("middle", b1, b2, 0.018, 0.0238), seg("tip end", b2, b3, 0.016, round(0.036-mb, 6))],
     0.0, 0.0, 0.0, [2,3,4], [1.0, 1.0], -pi/4, "6/2",
     "A YCB banana as three lying cylinders along a curve from module 4 over the corner of modules 1/2/4/5 to module 3; its stem end is the heavier.")

@@ -146,3 +146,19 @@ def test_realtime_paces_reads_to_the_wall_clock(monkeypatch) -> None:
     with open_box("sim://?realtime=1&rate_hz=50") as b:
         b.read_many(4)
     np.testing.assert_allclose(sleeps, [0.02, 0.04, 0.06], rtol=1e-9)
+
+
+@pytest.mark.parametrize("rate_hz", [100, 1000], ids=["100Hz", "1kHz"])
+def test_ideal_readings_follow_the_true_pressures_while_inflating(rate_hz: int) -> None:
+    """The precomputed ramp of readings stays on the gas state frame by frame."""
+    from softpad.sim import SensorParams
+
+    with SimBox(
+        sample_rate_hz=rate_hz, sensor=SensorParams.ideal(), initial_pressure_pa=300.0
+    ) as b:
+        b.set_valves(["inflate"] * 3 + ["deflate"] * 3 + ["closed"] * 2)
+        for k in range(300):
+            f = b.read()
+            np.testing.assert_allclose(f.pressures_pa, b.true_pressures_pa, atol=1e-6)
+            if k == 150:
+                b.set_valve(2, "closed")  # a command in the middle of a ramp

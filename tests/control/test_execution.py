@@ -9,7 +9,7 @@ from softpad.box import ConnectionLost, SimBox, ValveCommand, open_box
 from softpad.control import ExecutionParams, GraspExecution, SimulatedRobot, run_simulated
 from softpad.errors import HardwareFault, InputError
 from softpad.record import RunLog
-from softpad.sim import AnalyticWorld, GripperSpec, get_object
+from softpad.sim import AnalyticWorld, SimGripper, get_object
 
 FAST = ExecutionParams(hold_s=1.0)
 
@@ -58,7 +58,7 @@ def test_two_separate_objects_are_grasped_one_after_the_other() -> None:
 
 def test_fingertips_on_the_lines_are_not_detected() -> None:
     """Tips centred on the 2|5 line and on the pad's border: no module senses them (Sec. 6.3)."""
-    g = GripperSpec(max_width_m=0.043, min_width_m=0.0, tip_thickness_m=0.002, tip_width_m=0.002)
+    g = SimGripper(max_width_m=0.043, min_width_m=0.0, tip_thickness_m=0.002, tip_width_m=0.002)
     world = AnalyticWorld(gripper=g)
     box = SimBox(world, seed=4)
     loop = GraspExecution(
@@ -144,3 +144,22 @@ def test_contact_delay_is_consistent_with_the_frames() -> None:
     np.testing.assert_allclose(g.contact_delay_s * 200, round(g.contact_delay_s * 200), atol=1e-6)
     # at least half the running-average window (10 samples) passes before detection
     assert g.contact_delay_s >= 4.5 / 200
+
+
+def test_interrupt_closes_the_valves() -> None:
+    """Ctrl-C while inflating: the box is put in its safe state before the interrupt propagates."""
+    log = RunLog()
+    box = SimBox(seed=1)
+    world = box.world
+
+    class Interrupting(RunLog):
+        def frame(self, frame, phase):  # type: ignore[no-untyped-def]
+            log.frame(frame, phase)
+            if frame.t_s > 1.0 and phase == "adjust":
+                raise KeyboardInterrupt
+
+    loop = GraspExecution(box, SimulatedRobot(world), world.layout, FAST, Interrupting())
+    with pytest.raises(KeyboardInterrupt):
+        loop.run()
+    assert set(box.valves) == {ValveCommand.CLOSED}
+    assert "safe" in log.phases

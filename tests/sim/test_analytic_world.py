@@ -9,9 +9,9 @@ from softpad.errors import InputError
 from softpad.sim import (
     GRAVITY_M_S2,
     AnalyticWorld,
-    GripperSpec,
     GripperState,
     PadSurface,
+    SimGripper,
     World,
     fingertip_overlap,
     get_object,
@@ -63,7 +63,7 @@ def test_descending_fingertip_loads_a_module_only_off_the_lines(
     x: float, expect_load: bool
 ) -> None:
     """A gripper with 2 mm thick tips: one tip centred on module 4/5 or on the 4|5 line."""
-    g = GripperSpec(max_width_m=0.06, min_width_m=0.0, tip_thickness_m=0.002, tip_width_m=0.002)
+    g = SimGripper(max_width_m=0.06, min_width_m=0.0, tip_thickness_m=0.002, tip_width_m=0.002)
     w = AnalyticWorld(gripper=g)
     # jaws close along y: the tips sit at y = 22.5 mm +- 31 mm: one on the pad, one off it
     _descend(w, x, 0.0225 + 0.031, np.pi / 2)
@@ -80,14 +80,14 @@ def test_gripper_moves_at_the_commanded_speed() -> None:
 
 
 def test_first_touch_is_where_the_tip_meets_the_module_top() -> None:
-    w = AnalyticWorld(gripper=GripperSpec.mounting("6/2"))
+    w = AnalyticWorld(gripper=SimGripper.mounting("6/2"))
     _descend(w, 0.0675, 0.045, np.pi / 2)  # tips at y = 11 and 79 mm, in modules 5 and 2
     assert w.first_touch_z_m is not None
     np.testing.assert_allclose(w.first_touch_z_m, 9e-3, atol=0.05e-3 + 1e-12)
 
 
 def test_grasp_lift_and_release() -> None:
-    w = AnalyticWorld(gripper=GripperSpec.mounting("6/2"))
+    w = AnalyticWorld(gripper=SimGripper.mounting("6/2"))
     w.place_object(get_object("object-1"))  # brick along y at (112.5, 45) mm
     w._state = GripperState(0.1125, 0.045, 0.01, 0.0, 0.06)
     w.command_gripper(GripperState(0.1125, 0.045, 0.01, 0.0, 0.0), 0.05)
@@ -114,13 +114,13 @@ def test_unsupported_object_is_refused() -> None:
 
 
 def test_unknown_gripper_mounting() -> None:
-    with pytest.raises(InputError, match="10/4, 6/2, 4/0"):
-        GripperSpec.mounting("8/3")
+    with pytest.raises(InputError, match=r"10/4, 6/2, 4/0 \(or wide, medium, narrow\)"):
+        SimGripper.mounting("8/3")
 
 
 def test_object_wider_than_the_open_jaws_is_not_grasped() -> None:
     """COG planned so that a jaw lands on the object: closing catches nothing."""
-    w = AnalyticWorld(gripper=GripperSpec.mounting("4/0"))
+    w = AnalyticWorld(gripper=SimGripper.mounting("4/0"))
     w.place_object(get_object("object-3"))  # 127 mm long along x, centred at (67.5, 67.5) mm
     w._state = GripperState(0.0675, 0.0675, 0.01, 0.0, 0.04)  # jaws close along x: 4 cm apart
     w.command_gripper(GripperState(0.0675, 0.0675, 0.01, 0.0, 0.0), 0.05)
@@ -130,3 +130,12 @@ def test_object_wider_than_the_open_jaws_is_not_grasped() -> None:
     for _ in range(100):
         w.step(0.01, H)
     assert not w.holding()
+
+
+@pytest.mark.parametrize(("ours", "lead"), [("10/4", "wide"), ("6/2", "medium"), ("4/0", "narrow")])
+def test_mountings_match_the_layout_gripper(ours: str, lead: str) -> None:
+    from softpad.layout import GripperSpec
+
+    assert SimGripper.mounting(ours).geometry == GripperSpec.from_config(lead)
+    assert SimGripper.mounting(lead) == SimGripper.mounting(ours)
+    assert SimGripper.from_spec(GripperSpec.from_config(lead)) == SimGripper.mounting(ours)

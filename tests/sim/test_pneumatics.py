@@ -71,7 +71,7 @@ def test_inflation_rises_monotonically_towards_the_supply() -> None:
 
 def test_leak_empties_a_sealed_module() -> None:
     b = _bank()
-    b.leak_m2[0] = 1e-8
+    b.set_leak(0, 1e-8)
     p = []
     for _ in range(500):
         b.step(0.01, CLOSED, CLOSED, np.zeros(1), PAR.supply_pa, any_open=False)

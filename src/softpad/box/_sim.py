@@ -18,7 +18,7 @@ from numpy.typing import NDArray
 from softpad.box._base import Box, ConnectionLost, PressureFrame, ValveCommand
 from softpad.errors import InputError
 from softpad.layout import PadLayout, parse_layout
-from softpad.sim import AnalyticWorld, GripperSpec, World, get_object
+from softpad.sim import AnalyticWorld, SimGripper, World, get_object
 from softpad.sim._characteristic import (
     AnalyticCharacteristic,
     ModuleCharacteristic,
@@ -174,6 +174,7 @@ class SimBox(Box):
             )
         self.sensors = SensorBank(channels, self._dt, self.sensor_params, rng)
         self._n_mod = n_mod
+        self._valve_count = 0
         self._cmd_inf = np.zeros(n_mod, dtype=bool)
         self._cmd_def = np.zeros(n_mod, dtype=bool)
         self._stuck: dict[int, ValveCommand] = {}
@@ -229,15 +230,29 @@ class SimBox(Box):
         world.step(dt, self._heights)
         loads = world.module_loads_n()
         chambers = self.chambers
-        if self._any_open or self._leaking or not np.array_equal(loads, chambers.loads_n):
+        same_load = np.array_equal(loads, chambers.loads_n)
+        if self._any_open or self._leaking or not same_load:
             changed = chambers.step(
-                dt, self._inf, self._def, loads, self._supply_true, self._any_open
+                dt,
+                self._inf,
+                self._def,
+                loads,
+                self._supply_true,
+                self._any_open,
+                same_load=same_load,
+                valve_key=self._valve_count,
             )
-            if changed and chambers.solved:  # heights follow the exact solves (every <= 20 ms)
-                self._heights = chambers.heights_m()
         else:
             changed = False
-        values, supply = self.sensors.sample(chambers.pressure_pa, self._supply_true, changed)
+        if not changed:
+            values, supply = self.sensors.sample(chambers.pressure_pa, self._supply_true, False)
+        elif chambers.solved:  # heights follow the exact solves (every <= 20 ms)
+            self._heights = chambers.heights_m()
+            values, supply = self.sensors.sample(chambers.pressure_pa, self._supply_true, True)
+        else:  # a linear stretch between solves: readings precomputed along the ramp
+            values, supply = self.sensors.sample_ramp(
+                chambers.pressure_pa, chambers.rate_dt_pa, chambers.solve_count, self._supply_true
+            )
         if self._bad_sensor:
             values = values.copy()
             values[self._dropout] = self.sensor_params.range_min_pa
@@ -258,6 +273,7 @@ class SimBox(Box):
         self._update_effective()
 
     def _update_effective(self) -> None:
+        self._valve_count += 1
         inf, dfl = self._cmd_inf.copy(), self._cmd_def.copy()
         for ch, state in self._stuck.items():
             if state is ValveCommand.INFLATE:
@@ -303,8 +319,8 @@ class SimBox(Box):
                 self._stuck[ch] = ValveCommand.parse(str(f.arg))
                 self._update_effective()
             elif f.kind == "leak" and ch is not None:
-                self.chambers.leak_m2[ch - 1] = (
-                    float(f.arg) if f.arg is not None else DEFAULT_LEAK_M2
+                self.chambers.set_leak(
+                    ch - 1, float(f.arg) if f.arg is not None else DEFAULT_LEAK_M2
                 )
                 self._leaking = True
             elif f.kind == "supply_loss":
@@ -371,7 +387,7 @@ def open_sim_url(location: str, options: dict[str, str]) -> SimBox:
     layout = parse_layout(options.get("layout", "2x3")) if "layout" in options else PadLayout()
     if "pitch_mm" in options:
         layout = PadLayout(layout.rows, layout.cols, _num(options, "pitch_mm", 45.0) / 1e3)
-    gripper = GripperSpec.mounting(options.get("gripper", "10/4"))
+    gripper = SimGripper.mounting(options.get("gripper", "10/4"))
     world = AnalyticWorld(layout, gripper)
     if "object" in options:
         world.place_object(get_object(options["object"]))

@@ -339,14 +339,21 @@ class GraspExecution:
             return self._run()
         except HardwareFault as exc:
             self.recorder.event(self._last_t, "fault", message=str(exc), phase=self.phase)
-            self.robot.stop()
-            make_safe(
-                self.box,
-                self.n,
-                self.params.inflation.max_pressure_pa,
-                on_frame=lambda f: self.recorder.frame(f, "safe"),
-            )
+            self._make_safe()
             raise
+        except KeyboardInterrupt:  # a user's Ctrl-C must not leave valves open
+            self.recorder.event(self._last_t, "interrupted", phase=self.phase)
+            self._make_safe()
+            raise
+
+    def _make_safe(self) -> None:
+        self.robot.stop()
+        make_safe(
+            self.box,
+            self.n,
+            self.params.inflation.max_pressure_pa,
+            on_frame=lambda f: self.recorder.frame(f, "safe"),
+        )
 
     def _run(self) -> ExecutionResult:
         p = self.params

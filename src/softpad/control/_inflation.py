@@ -256,15 +256,16 @@ def inflate_and_adjust(
                 continue
             err = p - target
             err_fast = p_fast - target
-            for k in range(n_modules):
-                # start only once the long filter holds no sample from before the last change
-                if state[k] == 0 and since[k] > params.filter_length and abs(err[k]) > tol:
-                    apply(k, 1 if err[k] < 0 else -1)
-                    starts[k] += 1
-                elif state[k] == 1 and err_fast[k] >= 0:
-                    apply(k, 0)
-                elif state[k] == -1 and err_fast[k] <= 0:
-                    apply(k, 0)
+            # start only once the long filter holds no sample from before the last change;
+            # stop when the short filter crosses p0 (decided for all channels at once)
+            start = (state == 0) & (since > params.filter_length) & (np.abs(err) > tol)
+            stop = ((state == 1) & (err_fast >= 0)) | ((state == -1) & (err_fast <= 0))
+            if start.any() or stop.any():
+                for ks in np.flatnonzero(stop):
+                    apply(int(ks), 0)
+                for kb in np.flatnonzero(start):
+                    apply(int(kb), 1 if err[kb] < 0 else -1)
+                    starts[kb] += 1
             inflating = state == 1
             if inflating.any() and frame.t_s - t0 > 1.0 and frame.supply_pa < target + 2 * tol:
                 k = int(np.argmax(inflating))

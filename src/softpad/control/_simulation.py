@@ -8,7 +8,7 @@ from softpad.box import Box, SimBox, open_box
 from softpad.control._execution import ExecutionParams, ExecutionResult, GraspExecution, Recorder
 from softpad.control._robot import SimulatedRobot
 from softpad.errors import InputError
-from softpad.sim import AnalyticWorld, GripperSpec, ObjectSpec, get_object, object_names
+from softpad.sim import AnalyticWorld, ObjectSpec, SimGripper, get_object, object_names
 
 
 def resolve_objects(names: Sequence[str] | None) -> list[ObjectSpec]:
@@ -61,7 +61,7 @@ def run_simulated(
         world = b.world
         mounting = gripper or specs[0].gripper
         if isinstance(world, AnalyticWorld):
-            world.gripper = GripperSpec.mounting(mounting)
+            world.gripper = SimGripper.mounting(mounting)
         robot = SimulatedRobot(world)
 
         def place() -> None:

@@ -6,7 +6,7 @@ issue 4) once per sample period. Objects of the thesis (Table 6.1) are data in
 ``softpad/data/objects.json``.
 """
 
-from softpad.sim._analytic import GRIPPER_MOUNTINGS, AnalyticWorld, GripperSpec
+from softpad.sim._analytic import GRIPPER_MOUNTINGS, AnalyticWorld, SimGripper
 from softpad.sim._characteristic import (
     AnalyticCharacteristic,
     ModuleCharacteristic,
@@ -47,7 +47,6 @@ __all__ = [
     "AnalyticCharacteristic",
     "AnalyticWorld",
     "ChamberBank",
-    "GripperSpec",
     "GripperState",
     "ModuleCharacteristic",
     "ObjectFootprint",
@@ -58,6 +57,7 @@ __all__ = [
     "PneumaticParams",
     "SensorBank",
     "SensorParams",
+    "SimGripper",
     "TabulatedCharacteristic",
     "World",
     "catalogue_to_json",

@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from softpad.errors import InputError
-from softpad.layout import PadLayout
+from softpad.layout import GripperSpec, PadLayout
 from softpad.sim._footprint import (
     DEFAULT_TIP_SENSITIVE_SIDE_M,
     GRAVITY_M_S2,
@@ -40,8 +40,11 @@ GRIPPER_MOUNTINGS: dict[str, tuple[float, float]] = {
 
 
 @dataclass(frozen=True)
-class GripperSpec:
-    """Parallel-jaw gripper geometry (seed, Section 6.3).
+class SimGripper:
+    """Parallel-jaw gripper of the analytic world: geometry plus contact physics (Section 6.3).
+
+    The geometry matches :class:`softpad.layout.GripperSpec` (see :attr:`geometry` and
+    :meth:`from_spec`); the extra fields say how hard the tips press into the pad and grip.
 
     Parameters
     ----------
@@ -84,15 +87,42 @@ class GripperSpec:
                 raise InputError(f"gripper {n} must be a positive number, got {v!r}")
 
     @classmethod
-    def mounting(cls, name: str, **kwargs: float) -> GripperSpec:
-        """Gripper of the thesis mounted as ``"10/4"``, ``"6/2"`` or ``"4/0"`` (max/min cm)."""
-        try:
-            mx, mn = GRIPPER_MOUNTINGS[name]
-        except KeyError:
+    def mounting(cls, name: str, **kwargs: float) -> SimGripper:
+        """Gripper of the thesis mounted as ``"10/4"``, ``"6/2"`` or ``"4/0"`` (max/min cm);
+        the names of :data:`softpad.layout.GRIPPER_CONFIGS_M` (``wide``, ``medium``,
+        ``narrow``) are accepted too."""
+        from softpad.layout import GRIPPER_CONFIGS_M
+
+        widths = GRIPPER_MOUNTINGS.get(name) or GRIPPER_CONFIGS_M.get(name)
+        if widths is None:
             raise InputError(
-                f"unknown gripper mounting {name!r}; use one of {', '.join(GRIPPER_MOUNTINGS)}"
-            ) from None
-        return cls(max_width_m=mx, min_width_m=mn, **kwargs)
+                f"unknown gripper mounting {name!r}; use one of {', '.join(GRIPPER_MOUNTINGS)} "
+                f"(or {', '.join(GRIPPER_CONFIGS_M)})"
+            )
+        return cls(max_width_m=widths[0], min_width_m=widths[1], **kwargs)
+
+    @classmethod
+    def from_spec(cls, spec: GripperSpec, **kwargs: float) -> SimGripper:
+        """The gripper of a :class:`softpad.layout.GripperSpec`, with default contact physics."""
+        return cls(
+            max_width_m=spec.max_width_m,
+            min_width_m=spec.min_width_m,
+            finger_length_m=spec.finger_length_m,
+            tip_thickness_m=spec.tip_thickness_m,
+            tip_width_m=spec.tip_width_m,
+            **kwargs,
+        )
+
+    @property
+    def geometry(self) -> GripperSpec:
+        """The geometry alone, as the planner's :class:`softpad.layout.GripperSpec`."""
+        return GripperSpec(
+            max_width_m=self.max_width_m,
+            min_width_m=self.min_width_m,
+            finger_length_m=self.finger_length_m,
+            tip_width_m=self.tip_width_m,
+            tip_thickness_m=self.tip_thickness_m,
+        )
 
 
 @dataclass
@@ -134,7 +164,7 @@ class AnalyticWorld:
     def __init__(
         self,
         layout: PadLayout | None = None,
-        gripper: GripperSpec | None = None,
+        gripper: SimGripper | None = None,
         line_width_m: float = 3e-3,
         start_height_m: float = 0.15,
         tip_sensitive_side_m: float | None = DEFAULT_TIP_SENSITIVE_SIDE_M,
@@ -142,7 +172,7 @@ class AnalyticWorld:
         self.tip_sensitive_side_m = tip_sensitive_side_m
         self._layout = layout or PadLayout()
         self.surface = PadSurface(self._layout, line_width_m)
-        self._gripper = gripper or GripperSpec()
+        self._gripper = gripper or SimGripper()
         w, h = self.surface.size_m
         self._state = GripperState(w / 2, h / 2, start_height_m, 0.0, self._gripper.max_width_m)
         self._target = self._state
@@ -164,16 +194,20 @@ class AnalyticWorld:
         self.first_touch_z_m: float | None = None
         self._dirty = True
         self._grasp_width = 0.0
-        self._overlap_cache: dict[tuple[float, float, float], NDArray[np.float64]] = {}
+        self._overlap_cache: dict[
+            tuple[int, int, float, int], tuple[NDArray[np.float64], _Placed | None]
+        ] = {}
+        self._objects_version = 0
 
     @property
-    def gripper(self) -> GripperSpec:
+    def gripper(self) -> SimGripper:
         """Gripper geometry; setting it (a new mounting) opens the jaws to the new maximum."""
         return self._gripper
 
     @gripper.setter
-    def gripper(self, spec: GripperSpec) -> None:
+    def gripper(self, spec: SimGripper) -> None:
         self._gripper = spec
+        self._overlap_cache.clear()  # tip sizes may differ
         self._state = replace(self._state, width_m=spec.max_width_m)
         self._target = self._state
 
@@ -219,7 +253,7 @@ class AnalyticWorld:
         self._time += dt_s
         self._heights = module_heights_m
         moved = self._move(dt_s)
-        if moved or any(t.touch_z_m is not None for t in self._tips):
+        if moved or (self._tips[0].touch_z_m is not None or self._tips[1].touch_z_m is not None):
             self._update_tips(module_heights_m)
         if self._grasped is not None and not self._grasped.lifted:
             if self._state.z_m > self._grasp_z + 2e-3:
@@ -241,6 +275,7 @@ class AnalyticWorld:
         return self._object_loads.copy()
 
     def _update_object_loads(self) -> None:
+        self._objects_version += 1  # objects placed, lifted or removed: tip caches are stale
         self._object_loads = np.zeros(self._layout.n_modules)
         for o in self._objects:
             if not o.lifted:
@@ -358,22 +393,34 @@ class AnalyticWorld:
                 return o
         return None
 
-    def _tip_fractions(self, centre: tuple[float, float], yaw: float) -> NDArray[np.float64]:
-        key = (round(centre[0], 9), round(centre[1], 9), round(yaw, 9))
-        frac = self._overlap_cache.get(key)
-        if frac is None:
+    def _tip_contact(
+        self, centre: tuple[float, float], st: GripperState
+    ) -> tuple[NDArray[np.float64], _Placed | None]:
+        """Sensed share of a tip's force per module, and the object under the tip (cached).
+
+        Tip positions are keyed on a 0.25 mm grid (the overlap is sampled at 0.5 mm anyway).
+        """
+        key = (
+            round(centre[0] * 4e3),
+            round(centre[1] * 4e3),
+            round(st.yaw_rad, 4),
+            self._objects_version,
+        )
+        hit = self._overlap_cache.get(key)
+        if hit is None:
             g = self.gripper
             frac = fingertip_overlap(
                 centre,
-                yaw,
+                st.yaw_rad,
                 (g.tip_thickness_m, g.tip_width_m),
                 self.surface,
                 sensitive_side_m=self.tip_sensitive_side_m,
             )
-            if len(self._overlap_cache) > 64:
+            if len(self._overlap_cache) > 256:
                 self._overlap_cache.clear()
-            self._overlap_cache[key] = frac
-        return frac
+            hit = (frac, self._object_under(centre, st))
+            self._overlap_cache[key] = hit
+        return hit
 
     def _update_tips(self, heights: NDArray[np.float64]) -> None:
         st = self._state
@@ -389,8 +436,7 @@ class AnalyticWorld:
                 return
         loads = np.zeros(self._layout.n_modules)
         for tip, centre in zip(self._tips, self.tip_centres_m(st), strict=True):
-            frac = self._tip_fractions(centre, st.yaw_rad)
-            obj = self._object_under(centre, st)
+            frac, obj = self._tip_contact(centre, st)
             if obj is not None:
                 surface_z = float(heights.max()) + obj.spec.height_m
             elif frac.any():

@@ -122,11 +122,10 @@ class ChamberBank:
         self.loads_n = np.zeros(m)
         v0 = characteristic.volume_m3(np.zeros(m), np.zeros(m))
         self.amount = self.params.atmosphere_pa * (v0 + self.params.tubing_volume_m3)
-        #: Effective leak area Cd A of each module channel, m^2 (0: tight).
-        self.leak_m2 = np.zeros(m)
+        self._leak_m2 = np.zeros(m)
+        self._leaking = False
         #: Longest time between exact pressure solves while nothing changes, seconds.
         self.resolve_s = 20e-3
-        self._key: tuple[bytes, bytes, float] | None = None
         self._flow: NDArray[np.float64] | None = None
         self._rate = np.zeros(m)
         self._held = 0.0
@@ -136,8 +135,25 @@ class ChamberBank:
         self._rate_dt = np.zeros(m)
         #: Whether the last step solved the pressures exactly (module heights are updated then).
         self.solved = True
+        #: Number of exact solves so far (identifies the current linear stretch).
+        self.solve_count = 0
+        #: Pressure change per step of every channel between solves, pascals.
+        self.rate_dt_pa = np.zeros(n_channels)
+        self._key: tuple[object, float] | None = None
         rho = self.params.air_density_kg_m3
         self._k = self.params.gas_constant_rt * math.sqrt(2 * rho)
+
+    @property
+    def leak_m2(self) -> NDArray[np.float64]:
+        """Effective leak area Cd A of each module channel, m^2 (0: tight; read-only view)."""
+        v = self._leak_m2.view()
+        v.flags.writeable = False
+        return v
+
+    def set_leak(self, channel_index: int, area_m2: float) -> None:
+        """Set the leak area Cd A of one module channel (0-based), m^2."""
+        self._leak_m2[channel_index] = area_m2
+        self._leaking = bool(self._leak_m2.any())
 
     def set_state(
         self, pressure_pa: NDArray[np.float64], loads_n: NDArray[np.float64] | None = None
@@ -163,6 +179,8 @@ class ChamberBank:
         loads_n: NDArray[np.float64],
         supply_pa: float,
         any_open: bool,
+        same_load: bool | None = None,
+        valve_key: object = None,
     ) -> bool:
         """Advance by ``dt_s``; return True when the module pressures changed.
 
@@ -178,17 +196,25 @@ class ChamberBank:
             Current supply gauge pressure, pascals.
         any_open
             Whether any valve is open (lets a quiet step skip the flow computation).
+        same_load
+            Whether ``loads_n`` equals the previous step's (computed when None).
+        valve_key
+            Any value that changes whenever the valve states change (the box's command
+            counter); None: derived from the valve arrays.
         """
         m = self.n_modules
         p = self.pressure_pa[:m]
-        leaking = bool(self.leak_m2.any())
-        same_load = np.array_equal(loads_n, self.loads_n)
+        leaking = self._leaking
+        if same_load is None:
+            same_load = np.array_equal(loads_n, self.loads_n)
         if not any_open and not leaking and same_load:
             return False
         # Between exact solves, hold the flows of the last solve and advance p along
         # dp/dt = flow / (dn/dp): the gas time constants (> 0.1 s) are far longer than the
         # interval (<= resolve_s, 20 ms), and any change of valves, load or supply forces a solve.
-        key = (inflate_open.tobytes(), deflate_open.tobytes(), supply_pa)
+        if valve_key is None:
+            valve_key = (inflate_open.tobytes(), deflate_open.tobytes())
+        key = (valve_key, supply_pa)
         if (
             same_load
             and self._flow is not None
@@ -200,6 +226,8 @@ class ChamberBank:
                 self._dt_cached = dt_s
                 self._flow_dt = self._flow * dt_s
                 self._rate_dt = self._rate * dt_s
+                self.rate_dt_pa = np.zeros(self.n_channels)
+                self.rate_dt_pa[:m] = self._rate_dt
             self.amount += self._flow_dt  # in place: the hot path of an inflating box
             p += self._rate_dt  # p is a view of pressure_pa
             self.solved = False
@@ -213,7 +241,7 @@ class ChamberBank:
                 if dfl.any():
                     flow[dfl] -= self._orifice(self.params.deflate_orifice_m2, p[dfl])
             if leaking:
-                flow -= self._orifice(self.leak_m2, p)
+                flow -= self._orifice(self._leak_m2, p)
             self.amount = np.maximum(self.amount + flow * dt_s, 1e-12)
         else:
             flow = None
@@ -222,6 +250,7 @@ class ChamberBank:
         self.pressure_pa[:m] = self._solve(p.copy())
         self._key, self._held, self._flow = key, 0.0, flow
         self.solved = True
+        self.solve_count += 1
         if flow is not None:
             self._rate = flow / self._dn_dp
             self._dt_cached = -1.0

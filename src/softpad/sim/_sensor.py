@@ -129,6 +129,12 @@ class SensorBank:
         self._same = 0
         self._static: NDArray[np.float64] | None = None
         self._static_start = 0
+        #: Most samples computed at once along a pressure ramp.
+        self.ramp_len = 64
+        self._ramp: NDArray[np.float64] | None = None
+        self._ramp_key = -1
+        self._ramp_start = 0
+        self._ramp_next = -1
 
     def _refill(self) -> None:
         p, n, b = self.params, self.n, self.block
@@ -162,6 +168,7 @@ class SensorBank:
             self._static = None
         i = self._i
         self._i = i + 1
+        self._ramp = None
         if changed:
             self._same = 0
             self._static = None
@@ -177,6 +184,38 @@ class SensorBank:
                 self._static_start = i
                 return self._static[0], supply_pa + float(self._supply_noise[i])
         return self._quantise(true_pa + self._noise[i]), supply_pa + float(self._supply_noise[i])
+
+    def sample_ramp(
+        self, true_pa: NDArray[np.float64], rate_pa: NDArray[np.float64], key: int, supply_pa: float
+    ) -> tuple[NDArray[np.float64], float]:
+        """One reading while the true pressures change by ``rate_pa`` per sample.
+
+        Readings along the ramp are computed for up to ``ramp_len`` samples at once, as long as
+        ``key`` (which identifies the ramp) stays the same and the calls are consecutive. The
+        returned array must not be modified (copy it first).
+        """
+        if self._i >= self.block:
+            self._refill()
+            self._static = None
+            self._ramp = None
+        i = self._i
+        self._i = i + 1
+        self._same = 0
+        self._static = None
+        ramp = self._ramp
+        if (
+            ramp is None
+            or key != self._ramp_key
+            or i != self._ramp_next
+            or i - self._ramp_start >= len(ramp)
+        ):
+            k = min(self.ramp_len, self.block - i)
+            steps = np.arange(k, dtype=float)[:, None]
+            ramp = self._quantise(true_pa + rate_pa * steps + self._noise[i : i + k])
+            ramp.flags.writeable = False
+            self._ramp, self._ramp_key, self._ramp_start = ramp, key, i
+        self._ramp_next = i + 1
+        return ramp[i - self._ramp_start], supply_pa + float(self._supply_noise[i])
 
     def _quantise(self, x: NDArray[np.float64]) -> NDArray[np.float64]:
         if self._q:
