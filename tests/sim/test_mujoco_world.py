@@ -139,3 +139,32 @@ def test_object_without_parts_is_rejected() -> None:
 def test_bad_heights_are_rejected() -> None:
     with pytest.raises(InputError, match="module heights"):
         MujocoWorld().step(1e-3, [0.008] * 5)
+
+
+def test_simulated_box_on_mujoco_world_conforms() -> None:
+    """The box contract holds with the MuJoCo world underneath (frames, valves, close)."""
+    from softpad.box import SimBox, check_conformance
+
+    check_conformance(SimBox(MujocoWorld(), seed=1, initial_pressure_pa=1100.0))
+
+
+def test_holding_a_lifted_brick() -> None:
+    """Squeezed by both jaws and off the pad: held; back on the pad: not."""
+    world = MujocoWorld(gripper=GripperParams(mounting="6/2"))
+    world.place_object(brick(mass_kg=0.05), Placement(1.5 * PITCH, 1.5 * PITCH))
+    settle(world, 1.0)
+    x, y = 1.5 * PITCH, 1.5 * PITCH
+    world.command_gripper(GripperState(x, y, 0.02, 0.0, 0.05), 0.2)
+    settle(world, 0.5)
+    world.command_gripper(GripperState(x, y, 0.009, 0.0, 0.05), 0.05)
+    settle(world, 0.5)
+    assert not world.holding()
+    world.command_gripper(GripperState(x, y, 0.009, 0.0, 0.0), 0.05)
+    settle(world, 0.8)
+    assert min(world.gripper_contacts().finger_on_object_n) > 5.0  # force-limited squeeze
+    z0 = world.object_pose("brick").z_m
+    world.command_gripper(GripperState(x, y, 0.06, 0.0, world.gripper_state().width_m), 0.1)
+    settle(world, 1.0)
+    assert world.holding()
+    # rose with the hand (51 mm), no slip beyond 1 mm
+    np.testing.assert_allclose(world.object_pose("brick").z_m - z0, 0.051, atol=1e-3)
