@@ -292,8 +292,11 @@ def _quat_mul(a: tuple[float, ...], b: tuple[float, ...]) -> tuple[float, float,
     )
 
 
-def part_geom_xml(part: PartLike, name: str, rgba: str, friction: float) -> str:
-    """The MJCF ``<geom>`` of one part (a cylinder's z axis turned onto ``axis``, then yawed)."""
+def part_geom_xml(
+    part: PartLike, name: str, rgba: str, friction: float, at_origin: bool = False
+) -> str:
+    """The MJCF ``<geom>`` of one part (a cylinder's z axis turned onto ``axis``, then yawed);
+    at its body's origin when ``at_origin`` (a loose part is a body of its own)."""
     c, s = math.cos(part.yaw_rad / 2), math.sin(part.yaw_rad / 2)
     q_yaw = (c, 0.0, 0.0, s)
     r = math.sqrt(0.5)
@@ -302,7 +305,8 @@ def part_geom_xml(part: PartLike, name: str, rgba: str, friction: float) -> str:
     )
     quat = _quat_mul(q_yaw, q_axis)
     common = (
-        f'name="{name}" pos="{_v(part.pos_m)}" quat="{_v(quat)}" mass="{part.mass_kg:.9g}" '
+        f'name="{name}" pos="{_v((0.0, 0.0, 0.0) if at_origin else part.pos_m)}" '
+        f'quat="{_v(quat)}" mass="{part.mass_kg:.9g}" '
         f'rgba="{rgba}" friction="{friction:g} 0.005 0.0001" contype="{_OBJ}" '
         f'conaffinity="{_PAD | _OBJ | _FINGER}" condim="4"'
     )
@@ -330,11 +334,16 @@ class ObjectModel:
         Rigid primitives in the object frame.
     friction
         Sliding friction of the object's surface, -.
+    loose
+        Parts loosely tied together (the catalogue's ``loose_parts``, e.g. limes in a net):
+        each part after the first is a body of its own held to the first by a soft weld (a
+        net: about 3 mm of sag under a lime's weight), so a jaw can push it aside.
     """
 
     name: str
     parts: tuple[PartLike, ...]
     friction: float = 0.8
+    loose: bool = False
 
     def __post_init__(self) -> None:
         if not self.parts:
@@ -348,7 +357,13 @@ class ObjectModel:
     @classmethod
     def from_spec(cls, spec: Any, friction: float = 0.8) -> ObjectModel:
         """From a catalogue object (anything with ``name`` and ``parts``)."""
-        return cls(name=str(spec.name), parts=tuple(spec.parts), friction=friction)
+        extra = getattr(spec, "extra", {}) or {}
+        return cls(
+            name=str(spec.name),
+            parts=tuple(spec.parts),
+            friction=friction,
+            loose=bool(extra.get("loose_parts", False)),
+        )
 
 
 def _v(values: object) -> str:
@@ -358,6 +373,11 @@ def _v(values: object) -> str:
 def body_name(obj: ObjectModel) -> str:
     """Name of an object's body in the model."""
     return f"obj_{obj.name}"
+
+
+def loose_body_name(obj: ObjectModel, part_index: int) -> str:
+    """Name of the body of part ``part_index`` (>= 1) of a loose object."""
+    return f"{body_name(obj)}__{part_index}"
 
 
 def parking_position(index: int) -> tuple[float, float, float]:
@@ -474,15 +494,32 @@ def build_mjcf(
     )
     obj_bodies = []
     palette = ("0.9 0.2 0.2 1", "0.2 0.6 0.9 1", "0.95 0.8 0.1 1", "0.3 0.8 0.3 1")
+    welds = []
     for i, obj in enumerate(objects):
+        park = parking_position(i)
+        tied = obj.parts[:1] if obj.loose else obj.parts
         geoms = "".join(
             part_geom_xml(part, f"{body_name(obj)}_{j}", palette[j % len(palette)], obj.friction)
-            for j, part in enumerate(obj.parts)
+            for j, part in enumerate(tied)
         )
         obj_bodies.append(
-            f'<body name="{body_name(obj)}" pos="{_v(parking_position(i))}">'
+            f'<body name="{body_name(obj)}" pos="{_v(park)}">'
             f'<freejoint name="{body_name(obj)}"/>{geoms}</body>'
         )
+        if obj.loose:
+            for j, part in enumerate(obj.parts[1:], start=1):
+                name = loose_body_name(obj, j)
+                pos = tuple(a + b for a, b in zip(park, part.pos_m, strict=True))
+                geom = part_geom_xml(
+                    part, f"{name}_g", palette[j % len(palette)], obj.friction, at_origin=True
+                )
+                obj_bodies.append(
+                    f'<body name="{name}" pos="{_v(pos)}"><freejoint name="{name}"/>{geom}</body>'
+                )
+                welds.append(
+                    f'<weld body1="{body_name(obj)}" body2="{name}" solref="0.02 1" '
+                    'solimp="0.9 0.95 0.001"/>'
+                )
     kp = gripper.servo_stiffness_n_m
     f_max = gripper.grip_force_n
     actuators = "".join(
@@ -506,6 +543,7 @@ def build_mjcf(
         f'<joint solreflimit="{2 * timestep_s:.6g} 1" solimplimit="0.95 0.99 0.001"/></default>'
         f"<worldbody>{''.join(pad_geoms)}{''.join(module_bodies)}{hand}"
         f"{''.join(obj_bodies)}</worldbody>"
+        f"<equality>{''.join(welds)}</equality>"
         f"<actuator>{actuators}</actuator>"
         "</mujoco>"
     )

@@ -22,6 +22,7 @@ from softpad.sim._mujoco_model import (
     PadPhysics,
     body_name,
     build_mjcf,
+    loose_body_name,
     parking_position,
 )
 from softpad.sim._world import GripperState
@@ -213,7 +214,27 @@ class MujocoWorld:
         self._obj_body = {o.name: name2id(m, bt, body_name(o)) for o in objects}
         self._obj_qpos = {o.name: int(m.jnt_qposadr[name2id(m, jt, body_name(o))]) for o in objects}
         self._obj_dof = {o.name: int(m.jnt_dofadr[name2id(m, jt, body_name(o))]) for o in objects}
-        self._body_object = {b: name for name, b in self._obj_body.items()}
+        # every body of every object (a loose object has one per part), with its qpos/qvel
+        # addresses and its offset in the object frame
+        self._obj_bodies: dict[str, list[tuple[int, int, int, tuple[float, float, float]]]] = {}
+        for o in objects:
+            bodies = [
+                (self._obj_body[o.name], self._obj_qpos[o.name], self._obj_dof[o.name], (0.0,) * 3)
+            ]
+            if o.loose:
+                for j, part in enumerate(o.parts[1:], start=1):
+                    jid = name2id(m, jt, loose_body_name(o, j))
+                    px, py, pz = (float(v) for v in part.pos_m)
+                    bodies.append(
+                        (
+                            name2id(m, bt, loose_body_name(o, j)),
+                            int(m.jnt_qposadr[jid]),
+                            int(m.jnt_dofadr[jid]),
+                            (px, py, pz),
+                        )
+                    )
+            self._obj_bodies[o.name] = bodies
+        self._body_object = {b[0]: name for name, bs in self._obj_bodies.items() for b in bs}
         d = self.data
         if old is None or old_idx is None:
             d.qpos[self._module_qpos] = self.pad.free_height_m
@@ -395,38 +416,49 @@ class MujocoWorld:
             objs = dict(self.objects)
             objs[model.name] = model
             self._build(tuple(objs.values()))
-        qa, da = self._obj_qpos[model.name], self._obj_dof[model.name]
         z = float(np.max(self.data.qpos[self._module_qpos])) + _DROP_M
-        self.data.qpos[qa : qa + 7] = [x, y, z, math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2)]
-        self.data.qvel[da : da + 6] = 0.0
+        c, sn = math.cos(yaw), math.sin(yaw)
+        for _, qa, da, (ox, oy, oz) in self._obj_bodies[model.name]:
+            self.data.qpos[qa : qa + 7] = [
+                x + c * ox - sn * oy,
+                y + sn * ox + c * oy,
+                z + oz,
+                math.cos(yaw / 2),
+                0.0,
+                0.0,
+                math.sin(yaw / 2),
+            ]
+            self.data.qvel[da : da + 6] = 0.0
         self._lowering[model.name] = self._time_s + _LOWER_S
         self._mj.mj_forward(self.model, self.data)
 
     def remove_objects(self) -> None:
         """Take every object off the pad and out of the gripper (back to its parking place)."""
         for i, name in enumerate(self.objects):
-            qa, da = self._obj_qpos[name], self._obj_dof[name]
-            self.data.qpos[qa : qa + 7] = [*parking_position(i), 1, 0, 0, 0]
-            self.data.qvel[da : da + 6] = 0.0
+            px, py, pz = parking_position(i)
+            for _, qa, da, (ox, oy, oz) in self._obj_bodies[name]:
+                self.data.qpos[qa : qa + 7] = [px + ox, py + oy, pz + oz, 1, 0, 0, 0]
+                self.data.qvel[da : da + 6] = 0.0
         self._mj.mj_forward(self.model, self.data)
 
     def holding(self) -> bool:
-        """True when an object touches both fingers and nothing of the pad (it is carried)."""
+        """True when an object (any of its parts) touches both fingers and none of its parts
+        touches the pad: it is carried."""
         d, m = self.data, self.model
-        touch: dict[int, set[int]] = {}
-        on_pad: set[int] = set()
+        touch: dict[str, set[int]] = {}
+        on_pad: set[str] = set()
         fingers = {self._finger[0]: 0, self._finger[1]: 1}
         for i in range(d.ncon):
             c = d.contact[i]
             g1, g2 = int(c.geom1), int(c.geom2)
             for g, other in ((g1, g2), (g2, g1)):
-                b = int(m.geom_bodyid[g])
-                if b in self._body_object:
+                name = self._body_object.get(int(m.geom_bodyid[g]))
+                if name is not None:
                     if other in fingers:
-                        touch.setdefault(b, set()).add(fingers[other])
+                        touch.setdefault(name, set()).add(fingers[other])
                     elif other in self._pad_geoms:
-                        on_pad.add(b)
-        return any(len(s) == 2 and b not in on_pad for b, s in touch.items())
+                        on_pad.add(name)
+        return any(len(s) == 2 and name not in on_pad for name, s in touch.items())
 
     def object_pose(self, name: str) -> ObjectPose:
         """Current pose of object ``name``."""
@@ -580,8 +612,8 @@ class MujocoWorld:
             if self._time_s > until:
                 del self._lowering[name]
             else:
-                vz = self._obj_dof[name] + 2
-                d.qvel[vz] = max(d.qvel[vz], -_LOWER_M_S)
+                for _, _, da, _ in self._obj_bodies[name]:
+                    d.qvel[da + 2] = max(d.qvel[da + 2], -_LOWER_M_S)
         self._loads = self._compute_loads()
 
     def _compute_loads(self) -> NDArray[np.float64]:
