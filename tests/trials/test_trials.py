@@ -212,3 +212,31 @@ def test_cli_bad_input(argv: list[str], message: str, capsys: pytest.CaptureFixt
     err = capsys.readouterr().err
     assert message in err
     assert "Traceback" not in err
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [
+        ({"hold_s": float("nan")}, "hold_s"),
+        ({"approach_speed_m_s": 0.0}, "speeds must be > 0"),
+        ({"position_sigma_m": -1e-3}, "position_sigma_m"),
+    ],
+    ids=["nan-hold", "zero-speed", "negative-noise"],
+)
+def test_bad_trial_config_is_rejected(kwargs: dict[str, float], message: str) -> None:
+    from softpad.errors import InputError
+
+    with pytest.raises(InputError, match=message):
+        TrialConfig(**kwargs)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [({"trials": 0}, "trials per object"), ({"workers": 0}, "workers")],
+    ids=["zero-trials", "zero-workers"],
+)
+def test_bad_experiment_is_rejected(kwargs: dict[str, int], message: str) -> None:
+    from softpad.errors import InputError
+
+    with pytest.raises(InputError, match=message):
+        run_experiment([get_object("banana")], **kwargs)

@@ -229,7 +229,7 @@ def run_experiment(
     n_cpu = (
         len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
     )
-    workers = workers or n_cpu
+    workers = n_cpu if workers is None else workers
     if not isinstance(workers, int) or not 1 <= workers <= 256:
         raise InputError(f"workers must be an integer from 1 to 256, got {workers!r}")
     workers = min(workers, len(tasks))
