@@ -10,7 +10,7 @@ import pytest
 from softpad.errors import InputError
 from softpad.layout import PadLayout
 from softpad.sim import GripperState, World
-from softpad.sim._mujoco_model import GRAVITY_M_S2, GripperParams, ObjectModel, ObjectPart
+from softpad.sim._mujoco_model import GRAVITY_M_S2, MujocoGripper, ObjectModel, ObjectPart
 from softpad.sim._mujoco_world import MujocoWorld
 
 
@@ -101,7 +101,7 @@ def descend_fingers(world: MujocoWorld, x_m: float, y_m: float, width_m: float) 
 def test_fingertip_on_line_loads_no_module(x_units: float, on_module: bool) -> None:
     """Tip centres 45 mm apart (x +- 22.5 mm): both on module tops, or, with the gripper
     centred at x = 1.5 units, both on the lines at x = 1 and x = 2 units."""
-    gripper = GripperParams(mounting="10/4")
+    gripper = MujocoGripper(mounting="10/4")
     world = MujocoWorld(gripper=gripper)
     # inner faces at +-22.5 mm from the centre; tip centres at +-(22.5 + 2.5) mm
     width = PITCH - gripper.tip_thickness_m
@@ -119,7 +119,7 @@ def test_fingertip_on_line_loads_no_module(x_units: float, on_module: bool) -> N
 @pytest.mark.parametrize(("asked", "got"), [(1.0, 0.06), (0.0, 0.02)], ids=["open", "close"])
 def test_gripper_width_is_clamped_to_the_mounting(asked: float, got: float) -> None:
     """The execution opens with 1 m and closes with 0 m: the jaws go to the mounting's limits."""
-    world = MujocoWorld(gripper=GripperParams(mounting="6/2"))
+    world = MujocoWorld(gripper=MujocoGripper(mounting="6/2"))
     world.command_gripper(GripperState(0.05, 0.05, 0.05, 0.0, asked), 0.2)
     settle(world, 0.6)
     # closing fully is force-limited: an empty jaw stops on its joint limit (1 mm past)
@@ -150,7 +150,7 @@ def test_simulated_box_on_mujoco_world_conforms() -> None:
 
 def test_holding_a_lifted_brick() -> None:
     """Squeezed by both jaws and off the pad: held; back on the pad: not."""
-    world = MujocoWorld(gripper=GripperParams(mounting="6/2"))
+    world = MujocoWorld(gripper=MujocoGripper(mounting="6/2"))
     world.place_object(brick(mass_kg=0.05), Placement(1.5 * PITCH, 1.5 * PITCH))
     settle(world, 1.0)
     x, y = 1.5 * PITCH, 1.5 * PITCH

@@ -170,7 +170,7 @@ def parse_mounting(text: str) -> tuple[float, float]:
 
 
 @dataclass(frozen=True)
-class GripperParams:
+class MujocoGripper:
     """Parallel-jaw gripper (Sawyer electric gripper of Section 6.3).
 
     Parameters
@@ -388,7 +388,7 @@ def parking_position(index: int) -> tuple[float, float, float]:
 def build_mjcf(
     layout: PadLayout,
     pad: PadPhysics,
-    gripper: GripperParams,
+    gripper: MujocoGripper,
     objects: tuple[ObjectModel, ...] = (),
     timestep_s: float = 2e-3,
 ) -> str:

@@ -17,7 +17,7 @@ from numpy.typing import ArrayLike, NDArray
 from softpad.errors import InputError, check_finite
 from softpad.layout import PadLayout
 from softpad.sim._mujoco_model import (
-    GripperParams,
+    MujocoGripper,
     ObjectModel,
     PadPhysics,
     body_name,
@@ -131,7 +131,7 @@ class MujocoWorld:
         layout: PadLayout | None = None,
         objects: tuple[ObjectModel, ...] | list[ObjectModel] = (),
         pad: PadPhysics | None = None,
-        gripper: GripperParams | None = None,
+        gripper: MujocoGripper | None = None,
         timestep_s: float = 2e-3,
     ) -> None:
         import mujoco
@@ -139,7 +139,7 @@ class MujocoWorld:
         self._mj = mujoco
         self._layout = layout or PadLayout()
         self.pad = pad or PadPhysics()
-        self.gripper = gripper or GripperParams()
+        self.gripper = gripper or MujocoGripper()
         self._timestep_s = timestep_s
         names = [o.name for o in objects]
         if len(set(names)) != len(names):

@@ -52,11 +52,11 @@ def execute_trial(
     from softpad.planning import GraspPlan
     from softpad.record import RunLog
     from softpad.sim import Placement
-    from softpad.sim._mujoco_model import GripperParams
+    from softpad.sim._mujoco_model import MujocoGripper
     from softpad.sim._mujoco_world import MujocoWorld
     from softpad.sim._sensor import SensorParams
 
-    gripper = GripperParams(mounting=mounting or spec.gripper)
+    gripper = MujocoGripper(mounting=mounting or spec.gripper)
     world = MujocoWorld(gripper=gripper)
     layout = world.layout
     placed = _Placed(*placement)
