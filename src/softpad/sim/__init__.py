@@ -1,8 +1,8 @@
 """Simulation: module characteristic, chamber gas physics, valves, sensor model, worlds.
 
 The simulated box (``sim://``) is the default back-end of :mod:`softpad.box`; it steps the
-gas physics of every channel and a :class:`World` (the analytic one here, a MuJoCo one in
-issue 4) once per sample period. Objects of the thesis (Table 6.1) are data in
+gas physics of every channel and a :class:`World` (:class:`AnalyticWorld`, or
+:class:`MujocoWorld` for rigid-body contact physics, docs/trials.md) once per sample period. Objects of the thesis (Table 6.1) are data in
 ``softpad/data/objects.json``.
 """
 
@@ -24,6 +24,8 @@ from softpad.sim._footprint import (
     fingertip_overlap,
     object_footprint,
 )
+from softpad.sim._mujoco_model import MujocoGripper, PadPhysics
+from softpad.sim._mujoco_world import GripperContacts, MujocoWorld, ObjectPose
 from softpad.sim._objects import (
     CATALOGUE_SCHEMA,
     ObjectSpec,
@@ -47,10 +49,15 @@ __all__ = [
     "AnalyticCharacteristic",
     "AnalyticWorld",
     "ChamberBank",
+    "GripperContacts",
     "GripperState",
     "ModuleCharacteristic",
+    "MujocoGripper",
+    "MujocoWorld",
     "ObjectFootprint",
+    "ObjectPose",
     "ObjectSpec",
+    "PadPhysics",
     "PadSurface",
     "PartSpec",
     "Placement",

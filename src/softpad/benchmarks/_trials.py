@@ -1,0 +1,86 @@
+"""Grasp-trial speed: one trial's simulated-to-real-time ratio, MuJoCo's step, the full
+55-trial Experiment 2 on this machine's cores (target <= 120 s on 2 cores)."""
+
+from __future__ import annotations
+
+import os
+import statistics
+import time
+
+from softpad.benchmarks._common import BenchResult, median_time_s
+
+TARGET_EXPERIMENT_S = 120.0
+
+
+def run(quick: bool = False) -> list[BenchResult]:
+    from softpad.sim import Placement, get_object, object_names
+    from softpad.sim._mujoco_world import MujocoWorld
+    from softpad.trials import TrialConfig, run_experiment, run_trial
+
+    results = []
+    # MuJoCo step with the charger (the heaviest object, most contacts) resting on the pad
+    world = MujocoWorld()
+    charger = get_object("charger")
+    world.place_object(charger, Placement(charger.placement.x_m, charger.placement.y_m))
+    for _ in range(1000):
+        world.step(1e-3)
+    n = 200 if quick else 2000
+
+    def steps() -> None:
+        for _ in range(n):
+            world.step(world.timestep_s)
+
+    t = median_time_s(steps, 3 if quick else 7) / n
+    results.append(
+        BenchResult(
+            "MuJoCo world step (charger resting, 2 ms step)",
+            t * 1e6,
+            "us",
+            detail=f"median of {3 if quick else 7} x {n} steps incl. contact-force scan",
+        )
+    )
+    # one full trial in this process: simulated time over wall time
+    spec = get_object("banana")
+    ratios, walls = [], []
+    for seed in range(1 if quick else 3):
+        t0 = time.perf_counter()
+        res, _ = run_trial(spec, seed=seed, config=TrialConfig())
+        wall = time.perf_counter() - t0
+        walls.append(wall)
+        ratios.append(res.sim_time_s / wall)
+    results.append(
+        BenchResult(
+            "one trial, simulated / real time (banana, 15 s hold, box at 100 Hz)",
+            statistics.median(ratios),
+            "x",
+            detail=f"median of {len(ratios)} trials; wall {statistics.median(walls):.2f} s each",
+        )
+    )
+    # the whole experiment in parallel processes
+    specs = [get_object(name) for name in object_names()]
+    trials = 1 if quick else 5
+    workers = min(2, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else 2)
+    exp, _ = run_experiment(specs, trials=trials, seed=0, workers=workers)
+    wall = exp.wall_time_s
+    label = f"Experiment 2: {len(specs)} objects x {trials} trials on {workers} processes"
+    if quick:
+        results.append(
+            BenchResult(
+                label,
+                wall,
+                "s",
+                detail=f"quick run; x5 for the 55-trial figure: about {5 * wall:.0f} s",
+            )
+        )
+    else:
+        results.append(
+            BenchResult(
+                label,
+                wall,
+                "s",
+                target=f"<= {TARGET_EXPERIMENT_S:g} s",
+                met=wall <= TARGET_EXPERIMENT_S,
+                detail=f"success {100 * exp.overall_success:.1f} % (thesis 94.5 %)",
+            )
+        )
+    return results

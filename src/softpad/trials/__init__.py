@@ -1,0 +1,36 @@
+"""Grasp trials: the thesis's Experiment 2 (Table 6.1) in rigid-body physics.
+
+A sub-package of its own because a trial drives every layer below it (the MuJoCo world in
+``softpad.sim``, the simulated box, the inflation and robot of ``softpad.control``, the
+planner) and so must sit above them; ``softpad.sim`` may not import ``softpad.control``.
+"""
+
+from softpad.trials._records import (
+    FAILURE_CAUSES,
+    THESIS_OVERALL_SUCCESS,
+    THESIS_TABLE_6_1,
+    ExperimentResult,
+    ObjectSummary,
+    TrialResult,
+)
+from softpad.trials._runner import (
+    TrialConfig,
+    perturbed_placement,
+    run_experiment,
+    run_trial,
+    trial_seed,
+)
+
+__all__ = [
+    "FAILURE_CAUSES",
+    "THESIS_OVERALL_SUCCESS",
+    "THESIS_TABLE_6_1",
+    "ExperimentResult",
+    "ObjectSummary",
+    "TrialConfig",
+    "TrialResult",
+    "perturbed_placement",
+    "run_experiment",
+    "run_trial",
+    "trial_seed",
+]

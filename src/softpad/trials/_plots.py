@@ -1,0 +1,123 @@
+"""Pictures of an experiment: every planned grasp over the pad, like the thesis's Fig. 6.10."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from softpad.layout import PadLayout
+from softpad.trials._geometry import fingertip_rectangles_m, object_outlines_m
+from softpad.trials._records import ExperimentResult, TrialResult
+
+
+def draw_grasp(
+    ax: Any,
+    spec: Any,
+    trial: TrialResult,
+    layout: PadLayout,
+    tip_thickness_m: float,
+    tip_width_m: float,
+    line_width_m: float,
+) -> None:
+    """Draw one trial on ``ax``: modules, object outline, planned fingertips (black), COG.
+
+    Lengths on the axes are millimetres in the pad frame.
+    """
+    from matplotlib.patches import Polygon, Rectangle
+
+    p = layout.pitch_m * 1e3
+    side = p - line_width_m * 1e3
+    for k in layout.modules:
+        cx, cy = (c * p for c in layout.center(k))
+        colour = "#f4a6c0" if k in trial.modules else "#f3d9e3"
+        ax.add_patch(
+            Rectangle(
+                (cx - side / 2, cy - side / 2), side, side, facecolor=colour, edgecolor="none"
+            )
+        )
+        ax.text(cx - side / 2 + 2, cy + side / 2 - 7, str(k), fontsize=6, color="#7a5060")
+    x, y, yaw = trial.placement
+
+    class _P:
+        x_m, y_m, yaw_rad = x, y, yaw
+
+    for poly in object_outlines_m(spec, _P):
+        ax.add_patch(
+            Polygon(
+                poly * 1e3, closed=True, facecolor="#8fb3d9", edgecolor="#2b4c6f", alpha=0.6, lw=0.8
+            )
+        )
+    if trial.cog is not None and trial.theta is not None:
+        cog = (trial.cog[0] * layout.pitch_m, trial.cog[1] * layout.pitch_m)
+        for rect in fingertip_rectangles_m(
+            cog, trial.theta, trial.opening_m, tip_thickness_m, tip_width_m
+        ):
+            ax.add_patch(Polygon(rect * 1e3, closed=True, facecolor="black", edgecolor="black"))
+        ax.plot([cog[0] * 1e3], [cog[1] * 1e3], marker="+", color="black", ms=6)
+    verdict = "ok" if trial.success else (trial.cause or "failed").replace("_", " ")
+    plan = (
+        ""
+        if trial.cog is None or trial.theta is None
+        else f"({trial.cog[0]:.2f}, {trial.cog[1]:.2f}, {math.degrees(trial.theta):.0f}°)"
+    )
+    ax.set_title(f"{trial.object} {plan}\n{verdict}", fontsize=7)
+    ax.set_xlim(-20, layout.cols * p + 20)
+    ax.set_ylim(-20, layout.rows * p + 20)
+    ax.set_aspect("equal")
+    ax.tick_params(labelsize=5)
+
+
+def plot_grasps(
+    result: ExperimentResult,
+    specs: dict[str, Any],
+    path: str,
+    layout: PadLayout | None = None,
+    tip_thickness_m: float = 5e-3,
+    tip_width_m: float = 10e-3,
+    line_width_m: float = 9e-3,
+    trial_index: int = 0,
+) -> None:
+    """Save a figure with the planned grasp of trial ``trial_index`` of every object (Fig. 6.10).
+
+    Parameters
+    ----------
+    result
+        The experiment.
+    specs
+        Catalogue objects by name.
+    path
+        Output image file.
+    layout
+        Pad geometry.
+    tip_thickness_m, tip_width_m
+        Fingertip size (closing direction, across), metres.
+    line_width_m
+        Width of the non-sensitive lines drawn between modules, metres.
+    trial_index
+        Which trial of each object to draw.
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    layout = layout or PadLayout()
+    names = result.object_names
+    n = len(names)
+    cols = min(4, n)
+    rows = math.ceil(n / cols)
+    fig, axes = plt.subplots(rows, cols, figsize=(3.0 * cols, 2.3 * rows), squeeze=False)
+    for ax in axes.flat[n:]:
+        ax.axis("off")
+    for ax, name in zip(axes.flat, names, strict=False):
+        trials = [t for t in result.trials if t.object == name]
+        trial = trials[min(trial_index, len(trials) - 1)]
+        draw_grasp(ax, specs[name], trial, layout, tip_thickness_m, tip_width_m, line_width_m)
+    fig.suptitle(
+        "Planned grasps (black: fingertips at the approach opening; pink: modules above t_o); "
+        "lengths in mm",
+        fontsize=8,
+    )
+    fig.tight_layout()
+    fig.savefig(path, dpi=150)
+    plt.close(fig)

@@ -1,0 +1,264 @@
+"""Grasp trials of the thesis's Experiment 2 (seed, Section 6.3) in the MuJoCo world.
+
+One trial: a fresh MuJoCo world behind the simulated box (``sim://`` physics: chamber gas,
+valves, sensor noise), the pad inflated to p0 and its reference saved, the object placed with a
+seeded random pose perturbation, the pressure increments planned by the thesis planner, the
+gripper moved over the centre of grasp, lowered at 0.05 m/s until the pad senses the fingers
+(running average of 10 samples above t_g), closed, lifted and held for 15 s. The outcome and,
+for a failure, its cause are read from the physics.
+
+Trials run in parallel processes; each trial's randomness comes from its own seed, derived
+from the experiment seed, the object and the trial number, so results do not depend on the
+number of workers.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import time
+from collections.abc import Callable, Sequence
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from dataclasses import dataclass, replace
+from typing import Any
+
+import numpy as np
+
+from softpad.errors import InputError
+from softpad.trials._records import ExperimentResult, TrialResult
+
+
+@dataclass(frozen=True)
+class TrialConfig:
+    """Parameters of a trial (thesis values where the thesis gives them).
+
+    Parameters
+    ----------
+    position_sigma_m
+        Standard deviation of the random shift of the object's placement in x and y, metres
+        (the thesis placed objects by hand "similarly to Fig. 6.10"; 3 mm).
+    yaw_sigma_rad
+        Standard deviation of the random rotation of the placement, radians (3 degrees).
+    approach_speed_m_s
+        Descent speed, m/s (0.05 m/s, Section 6.3).
+    travel_speed_m_s
+        Speed of the moves over the object and of the lift, m/s.
+    jaw_speed_m_s
+        Closing speed of the jaws, m/s.
+    lift_m
+        Lift height, metres.
+    hold_s
+        Hold time, seconds (15 s, Section 6.3).
+    clearance_m
+        Free space left on each side of the object when the jaws open for the approach,
+        metres: the opening is the object's extent along the closing direction, where the
+        fingers come down, plus twice this, within the mounting's range (the thesis chose the
+        mounting per object and does not give the opening; we choose it as an operator would
+        command the Sawyer gripper).
+    settle_s
+        Time the object is left to settle on the pad before the planner reads it, seconds.
+    inflated_start
+        Start with the modules already near p0 (as between trials of a session) instead of
+        deflated; the adjustment to p0 within t_adj and the reference capture always run.
+    sample_rate_hz
+        Box sample rate, hertz.
+    noise
+        Sensor noise on (the box's defaults, like Fig. 6.8) or off.
+    max_pressure_pa
+        Pressure above which the loop stops on a box fault, pascals. The thesis's 3 kPa is
+        an inflation limit; a gripper pressing an object into the pad reads more, so the
+        trials stop only near the sensor's 10 kPa full scale (9.5 kPa).
+    record_trace
+        Keep every frame and event in a :class:`softpad.record.RunLog` (its ``plot`` draws the
+        pressure traces with the phases, like Fig. 6.8).
+    """
+
+    position_sigma_m: float = 3e-3
+    yaw_sigma_rad: float = math.radians(3.0)
+    approach_speed_m_s: float = 0.05
+    travel_speed_m_s: float = 0.2
+    jaw_speed_m_s: float = 0.05
+    lift_m: float = 0.10
+    hold_s: float = 15.0
+    clearance_m: float = 0.01
+    settle_s: float = 1.5
+    inflated_start: bool = True
+    sample_rate_hz: float = 100.0
+    noise: bool = True
+    record_trace: bool = False
+    max_pressure_pa: float = 9.5e3
+
+    def __post_init__(self) -> None:
+        for name in (
+            "position_sigma_m",
+            "yaw_sigma_rad",
+            "approach_speed_m_s",
+            "travel_speed_m_s",
+            "jaw_speed_m_s",
+            "lift_m",
+            "hold_s",
+            "clearance_m",
+            "settle_s",
+            "sample_rate_hz",
+            "max_pressure_pa",
+        ):
+            v = getattr(self, name)
+            if not isinstance(v, int | float) or not math.isfinite(v) or v < 0:
+                raise InputError(f"trial parameter {name} must be a finite number >= 0, got {v!r}")
+        if self.approach_speed_m_s <= 0 or self.travel_speed_m_s <= 0 or self.jaw_speed_m_s <= 0:
+            raise InputError("trial speeds must be > 0 m/s")
+
+
+def trial_seed(seed: int, object_index: int, trial: int) -> int:
+    """Seed of one trial, from the experiment seed (independent of the worker count)."""
+    ss = np.random.SeedSequence([int(seed), int(object_index), int(trial)])
+    return int(ss.generate_state(1)[0])
+
+
+def perturbed_placement(spec: Any, seed: int, config: TrialConfig) -> tuple[float, float, float]:
+    """The catalogue placement of ``spec`` shifted and turned at random (normal, seeded)."""
+    rng = np.random.default_rng(seed)
+    dx, dy = rng.normal(0.0, config.position_sigma_m, 2)
+    dyaw = rng.normal(0.0, config.yaw_sigma_rad)
+    p = spec.placement
+    return float(p.x_m + dx), float(p.y_m + dy), float(p.yaw_rad + dyaw)
+
+
+def run_trial(
+    spec: Any,
+    trial: int = 0,
+    seed: int = 0,
+    config: TrialConfig | None = None,
+    placement: tuple[float, float, float] | None = None,
+    plan_override: Any | None = None,
+    opening_m: float | None = None,
+    mounting: str | None = None,
+) -> tuple[TrialResult, Any | None]:
+    """Run one grasp trial of ``spec`` in a fresh MuJoCo world.
+
+    Parameters
+    ----------
+    spec
+        Catalogue object (``softpad.sim.ObjectSpec``).
+    trial
+        Trial number (recorded only).
+    seed
+        Seed of the placement perturbation and of the box's sensor noise.
+    config
+        Trial parameters.
+    placement
+        Exact placement (x_m, y_m, yaw_rad) instead of a random one.
+    plan_override
+        A :class:`~softpad.planning.GraspPlan` to execute instead of the planner's (to provoke
+        a failure on purpose, e.g. a COG outside the object).
+    opening_m
+        Jaw opening for the approach instead of the one fitted to the object, metres.
+    mounting
+        Gripper mounting (``"10/4"``, ``"6/2"``, ``"4/0"``) instead of the catalogue's.
+
+    Returns
+    -------
+    The trial's result, and its :class:`softpad.record.RunLog` when ``config.record_trace``.
+    """
+    from softpad.trials._loop import execute_trial
+
+    config = config or TrialConfig()
+    if placement is None:
+        placement = perturbed_placement(spec, seed, config)
+    t0 = time.perf_counter()
+    result, trace = execute_trial(
+        spec, placement, seed, config, plan_override, opening_m=opening_m, mounting=mounting
+    )
+    result = replace(result, trial=trial, wall_time_s=time.perf_counter() - t0)
+    return result, trace
+
+
+def _worker(args: tuple[Any, int, int, TrialConfig]) -> tuple[TrialResult, Any | None]:
+    spec, trial, seed, config = args
+    try:
+        return run_trial(spec, trial, seed, config)
+    except Exception as exc:
+        # name the trial, so that it can be rerun alone with run_trial(spec, trial, seed)
+        exc.add_note(f"in trial {trial} of {spec.name!r} (seed {seed})")
+        raise
+
+
+def run_experiment(
+    specs: Sequence[Any],
+    trials: int = 5,
+    seed: int = 0,
+    workers: int | None = None,
+    config: TrialConfig | None = None,
+    on_trial: Callable[[TrialResult], None] | None = None,
+    trace_object: str | None = None,
+) -> tuple[ExperimentResult, Any | None]:
+    """Run ``trials`` trials of every object, in parallel processes.
+
+    Parameters
+    ----------
+    specs
+        Catalogue objects.
+    trials
+        Trials per object (5 in the thesis).
+    seed
+        Experiment seed.
+    workers
+        Worker processes (default: the CPUs available, at most the number of trials); 1 runs
+        in this process.
+    config
+        Trial parameters.
+    on_trial
+        Called with every finished trial (progress bars, logs), in completion order.
+    trace_object
+        Record the pressure trace of trial 0 of this object.
+
+    Returns
+    -------
+    The experiment and the trace of ``trace_object`` (or None).
+    """
+    if not isinstance(trials, int) or not 1 <= trials <= 1000:
+        raise InputError(f"trials per object must be an integer from 1 to 1000, got {trials!r}")
+    if not specs:
+        raise InputError("no objects to try")
+    config = config or TrialConfig()
+    tasks = []
+    for i, spec in enumerate(specs):
+        for k in range(trials):
+            cfg = replace(config, record_trace=(spec.name == trace_object and k == 0))
+            tasks.append((spec, k, trial_seed(seed, i, k), cfg))
+    n_cpu = (
+        len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+    )
+    workers = n_cpu if workers is None else workers
+    if not isinstance(workers, int) or not 1 <= workers <= 256:
+        raise InputError(f"workers must be an integer from 1 to 256, got {workers!r}")
+    workers = min(workers, len(tasks))
+    t0 = time.perf_counter()
+    results: dict[tuple[str, int], TrialResult] = {}
+    trace: Any | None = None
+    if workers == 1:
+        for task in tasks:
+            res, tr = _worker(task)
+            results[(res.object, res.trial)] = res
+            trace = trace or tr
+            if on_trial:
+                on_trial(res)
+    else:
+        # longest first (heavier objects and the traced trial take longer), for a short tail
+        with ProcessPoolExecutor(max_workers=workers) as pool:
+            futures = [pool.submit(_worker, task) for task in tasks]
+            for fut in as_completed(futures):
+                res, tr = fut.result()
+                results[(res.object, res.trial)] = res
+                trace = trace or tr
+                if on_trial:
+                    on_trial(res)
+    ordered = tuple(results[(spec.name, k)] for spec in specs for k in range(trials))
+    exp = ExperimentResult(
+        trials=ordered,
+        seed=seed,
+        masses_g={s.name: s.mass_kg * 1e3 for s in specs},
+        wall_time_s=time.perf_counter() - t0,
+        workers=workers,
+    )
+    return exp, trace

@@ -1,0 +1,170 @@
+"""The MuJoCo world: loads from contact forces, non-sensitive lines, kinematic gripper."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pytest
+
+from softpad.errors import InputError
+from softpad.layout import PadLayout
+from softpad.sim import GripperState, World
+from softpad.sim._mujoco_model import GRAVITY_M_S2, MujocoGripper, ObjectModel, ObjectPart
+from softpad.sim._mujoco_world import MujocoWorld
+
+
+@dataclass(frozen=True)
+class Placement:
+    x_m: float
+    y_m: float
+    yaw_rad: float = 0.0
+
+
+pytestmark = pytest.mark.mujoco
+
+PITCH = PadLayout().pitch_m
+
+
+def brick(name: str = "brick", mass_kg: float = 0.0126) -> ObjectModel:
+    """A Lego Duplo 2x2 brick, 31 x 31 x 31 mm (thesis: 12.6 g, 42 x 31 x 31 mm for a 2x4)."""
+    return ObjectModel(name, (ObjectPart("box", mass_kg, (0, 0, 0.0155), size_m=(0.031,) * 3),))
+
+
+def settle(world: MujocoWorld, seconds: float = 0.5) -> None:
+    for _ in range(round(seconds / 1e-3)):
+        world.step(1e-3)
+
+
+def test_is_a_world() -> None:
+    assert isinstance(MujocoWorld(), World)
+
+
+@pytest.mark.parametrize("module", [1, 2, 3, 4, 5, 6], ids=lambda k: f"module{k}")
+def test_resting_brick_loads_only_its_module_with_its_weight(module: int) -> None:
+    world = MujocoWorld(objects=(brick(),))
+    x, y = PadLayout().to_metres(PadLayout().center(module))
+    world.place_object(brick(), Placement(x, y))
+    settle(world)
+    loads = world.module_loads_n()
+    expected = np.zeros(6)
+    expected[module - 1] = 0.0126 * GRAVITY_M_S2
+    # static equilibrium: the contact forces carry the weight (1 % for solver residuals)
+    np.testing.assert_allclose(loads, expected, rtol=0.01, atol=1e-4)
+
+
+def test_heavier_part_loads_its_module_more() -> None:
+    """A bar across modules 1 and 2 with a heavy insert over module 1 (like the cylinder)."""
+    light, heavy = 0.010, 0.030
+    bar = ObjectModel(
+        "bar",
+        (
+            ObjectPart("box", light, (-0.0225, 0, 0.01), size_m=(0.045, 0.03, 0.02)),
+            ObjectPart("box", heavy, (0.0225, 0, 0.01), size_m=(0.045, 0.03, 0.02)),
+        ),
+    )
+    world = MujocoWorld(objects=(bar,))
+    # heavy half over module 1 (x = 0.5 units): yaw pi turns the bar around
+    world.place_object(bar, Placement(PITCH, 1.5 * PITCH, np.pi))
+    settle(world, 1.5)
+    loads = world.module_loads_n()
+    total = (light + heavy) * GRAVITY_M_S2
+    np.testing.assert_allclose(loads.sum(), total, rtol=0.01)
+    np.testing.assert_allclose(loads[2:], 0.0, atol=1e-6)
+    # the bar's COM is 11.25 mm from the middle towards module 1. Point supports at the module
+    # centres (the PCOM model, Eq. 6.1) would give module 1 a share of 0.75; the flat rigid
+    # tops carry the bar nearer their outer edges (x = 4.5 and 85.5 mm: 0.64 by the lever
+    # rule), and MuJoCo's contact points settle between that and an even split.
+    assert 0.55 < loads[0] / total < 0.75
+
+
+def descend_fingers(world: MujocoWorld, x_m: float, y_m: float, width_m: float) -> float:
+    """Lower the open gripper (theta = 0) at 0.05 m/s until the tips are 0.5 mm above the base;
+    return the largest module load seen, N."""
+    z = 0.02
+    world.set_gripper_target(GripperState(x_m, y_m, z, 0.0, width_m))
+    settle(world, 0.1)
+    peak = 0.0
+    while z > 0.0005:
+        z -= 0.05e-3
+        world.set_gripper_target(GripperState(x_m, y_m, z, 0.0, width_m))
+        world.step(1e-3)
+        peak = max(peak, float(world.module_loads_n().max()))
+    return peak
+
+
+@pytest.mark.parametrize(
+    ("x_units", "on_module"),
+    [(1.0, True), (2.0, True), (1.3, True), (1.5, False)],
+    ids=["tips-on-modules-4-5", "tips-on-modules-5-6", "tips-off-centre", "tips-on-lines"],
+)
+def test_fingertip_on_line_loads_no_module(x_units: float, on_module: bool) -> None:
+    """Tip centres 45 mm apart (x +- 22.5 mm): both on module tops, or, with the gripper
+    centred at x = 1.5 units, both on the lines at x = 1 and x = 2 units."""
+    gripper = MujocoGripper(mounting="10/4")
+    world = MujocoWorld(gripper=gripper)
+    # inner faces at +-22.5 mm from the centre; tip centres at +-(22.5 + 2.5) mm
+    width = PITCH - gripper.tip_thickness_m
+    peak = descend_fingers(world, x_units * PITCH, 0.5 * PITCH, width)
+    # t_g = 90 Pa is 0.13 N on a module at the box's 700 Pa/N
+    if on_module:
+        # the sole spring (80 N/m) is compressed by several mm: well above t_g
+        assert peak > 0.2
+    else:
+        # the 4 mm tips slip between the domes onto the 5 mm lines
+        assert peak < 0.05
+        assert min(world.gripper_contacts().sole_on_lines_n) > 0.0
+
+
+@pytest.mark.parametrize(("asked", "got"), [(1.0, 0.06), (0.0, 0.02)], ids=["open", "close"])
+def test_gripper_width_is_clamped_to_the_mounting(asked: float, got: float) -> None:
+    """The execution opens with 1 m and closes with 0 m: the jaws go to the mounting's limits."""
+    world = MujocoWorld(gripper=MujocoGripper(mounting="6/2"))
+    world.command_gripper(GripperState(0.05, 0.05, 0.05, 0.0, asked), 0.2)
+    settle(world, 0.6)
+    # closing fully is force-limited: an empty jaw stops on its joint limit (1 mm past)
+    np.testing.assert_allclose(world.gripper_state().width_m, got, atol=3e-3)
+
+
+def test_bad_gripper_target_is_rejected() -> None:
+    with pytest.raises(InputError, match="gripper speed"):
+        MujocoWorld().command_gripper(GripperState(0.05, 0.05, 0.05, 0.0, 0.05), -1.0)
+
+
+def test_object_without_parts_is_rejected() -> None:
+    with pytest.raises(InputError, match="no parts"):
+        MujocoWorld().place_object(ObjectModel("nothing", ()), Placement(0.0, 0.0))
+
+
+def test_bad_heights_are_rejected() -> None:
+    with pytest.raises(InputError, match="module heights"):
+        MujocoWorld().step(1e-3, [0.008] * 5)
+
+
+def test_simulated_box_on_mujoco_world_conforms() -> None:
+    """The box contract holds with the MuJoCo world underneath (frames, valves, close)."""
+    from softpad.box import SimBox, check_conformance
+
+    check_conformance(SimBox(MujocoWorld(), seed=1, initial_pressure_pa=1100.0))
+
+
+def test_holding_a_lifted_brick() -> None:
+    """Squeezed by both jaws and off the pad: held; back on the pad: not."""
+    world = MujocoWorld(gripper=MujocoGripper(mounting="6/2"))
+    world.place_object(brick(mass_kg=0.05), Placement(1.5 * PITCH, 1.5 * PITCH))
+    settle(world, 1.0)
+    x, y = 1.5 * PITCH, 1.5 * PITCH
+    world.command_gripper(GripperState(x, y, 0.02, 0.0, 0.05), 0.2)
+    settle(world, 0.5)
+    world.command_gripper(GripperState(x, y, 0.009, 0.0, 0.05), 0.05)
+    settle(world, 0.5)
+    assert not world.holding()
+    world.command_gripper(GripperState(x, y, 0.009, 0.0, 0.0), 0.05)
+    settle(world, 0.8)
+    assert min(world.gripper_contacts().finger_on_object_n) > 5.0  # force-limited squeeze
+    z0 = world.object_pose("brick").z_m
+    world.command_gripper(GripperState(x, y, 0.06, 0.0, world.gripper_state().width_m), 0.1)
+    settle(world, 1.0)
+    assert world.holding()
+    # rose with the hand (51 mm), no slip beyond 1 mm
+    np.testing.assert_allclose(world.object_pose("brick").z_m - z0, 0.051, atol=1e-3)
