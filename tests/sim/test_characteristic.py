@@ -76,8 +76,11 @@ def test_tabulated_is_exact_on_bilinear_data_and_clamps(tmp_path) -> None:
     )
     np.testing.assert_allclose(c.height_m(p, f), 1e-3 * (2 + 3e-3 * p - f), rtol=1e-12)
     np.testing.assert_allclose(c.volume_slope_m3_pa(p, f), 1e-6 * (4e-3 + 1e-3 * f), rtol=1e-12)
-    # clamped outside the table
-    np.testing.assert_allclose(c.volume_m3(5000.0, 2.0), c.volume_m3(2000.0, 0.5))
+    # load and low pressure clamped; above the last row linear along p (last interval's slope)
+    np.testing.assert_allclose(
+        c.volume_m3(5000.0, 2.0), 1e-6 * (1 + 4e-3 * 5000 - 0.5 + 1e-3 * 5000 * 0.5), rtol=1e-12
+    )
+    np.testing.assert_allclose(c.volume_slope_m3_pa(5000.0, 0.5), 1e-6 * (4e-3 + 0.5e-3))
     np.testing.assert_allclose(c.volume_m3(-100.0, -1.0), c.volume_m3(0.0, 0.0))
 
 
@@ -87,7 +90,7 @@ def test_tabulated_is_exact_on_bilinear_data_and_clamps(tmp_path) -> None:
         ({"volume_m3": np.ones((2, 2))}, "shape"),
         ({"pressure_pa": np.array([0.0, 2000.0, 1000.0])}, "strictly increasing"),
         ({"height_m": np.full((3, 2), np.nan)}, "NaN"),
-        ({"volume_m3": -np.ones((3, 2))}, "> 0"),
+        ({"volume_m3": -np.ones((3, 2))}, ">= 0"),
         ({"meta": np.array("{not json")}, "meta"),
     ],
     ids=["shape", "order", "nan", "negative", "meta"],

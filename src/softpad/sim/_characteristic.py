@@ -180,7 +180,14 @@ class AnalyticCharacteristic:
 
 @dataclass(frozen=True)
 class TabulatedCharacteristic:
-    """Bilinear interpolation of a table V(p, F), h(p, F); clamped at the table's edges.
+    """Bilinear interpolation of a table V(p, F), h(p, F).
+
+    Outside the table the load is clamped to its range and a pressure below the first row is
+    clamped; above the last row the table is extrapolated linearly along p with the slope of
+    its last interval. A membrane keeps growing with pressure, and a sealed chamber squeezed
+    by a load beyond the table's range (a gripper pressing hard) must still find its pressure:
+    with a clamped (flat) table the gas law would have no volume left to give and the
+    pressure would run away to the sensor's full scale.
 
     Parameters
     ----------
@@ -264,23 +271,23 @@ class TabulatedCharacteristic:
         )
 
     def _locate(
-        self, grid: NDArray[np.float64], x: NDArray[np.float64]
+        self, grid: NDArray[np.float64], x: NDArray[np.float64], extrapolate_above: bool = False
     ) -> tuple[NDArray[np.intp], NDArray[np.float64], NDArray[np.float64]]:
         if grid.size == 1:
             z = np.zeros(x.shape, dtype=np.intp)
             return z, np.zeros(x.shape), np.zeros(x.shape)
-        xc = np.clip(x, grid[0], grid[-1])
+        xc = np.maximum(x, grid[0]) if extrapolate_above else np.clip(x, grid[0], grid[-1])
         i = np.clip(np.searchsorted(grid, xc, side="right") - 1, 0, grid.size - 2)
         width = grid[i + 1] - grid[i]
         t = (xc - grid[i]) / width
-        inside = (x >= grid[0]) & (x <= grid[-1])
+        inside = (x >= grid[0]) & ((x <= grid[-1]) | extrapolate_above)
         return i, t, np.where(inside, 1.0 / width, 0.0)
 
     def _interp(
         self, table: NDArray[np.float64], p: ArrayLike, f: ArrayLike
     ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         pa, fa = np.broadcast_arrays(np.asarray(p, float), np.asarray(f, float))
-        i, t, dti = self._locate(self.pressure_pa, pa)
+        i, t, dti = self._locate(self.pressure_pa, pa, extrapolate_above=True)
         if self.load_n.size == 1:
             j, u = np.zeros(pa.shape, dtype=np.intp), np.zeros(pa.shape)
             j1 = j
