@@ -10,6 +10,12 @@ from softpad.control._robot import SimulatedRobot
 from softpad.errors import InputError
 from softpad.sim import AnalyticWorld, ObjectSpec, SimGripper, get_object, object_names
 
+_REMOTE_WORLD = (
+    "the simulated loop places objects and moves the gripper in the simulator's world, which "
+    "must run in this process: use a sim:// box; a tcp:// box carries pressures and valves only "
+    "(its world lives in the server), so use 'softpad box read' or 'softpad box inflate' on it"
+)
+
 
 def resolve_objects(names: Sequence[str] | None) -> list[ObjectSpec]:
     """Catalogue objects by name (``banana`` by default); InputError lists the known names."""
@@ -51,13 +57,13 @@ def run_simulated(
         The timeline and outcome; the box is closed on return unless it was passed in.
     """
     specs = resolve_objects(objects)
+    if isinstance(box, str) and box.lower().startswith("tcp://"):
+        raise InputError(_REMOTE_WORLD)
     owns = isinstance(box, str)
     b = open_box(box) if isinstance(box, str) else box
     try:
         if not isinstance(b, SimBox):
-            raise InputError(
-                f"simulated runs need a sim:// box (objects are placed by the simulator); got {type(b).__name__}"
-            )
+            raise InputError(f"{_REMOTE_WORLD} (got a {type(b).__name__})")
         world = b.world
         mounting = gripper or specs[0].gripper
         if isinstance(world, AnalyticWorld):
