@@ -136,6 +136,7 @@ class SensorBank:
         self._ramp_key = -1
         self._ramp_start = 0
         self._ramp_next = -1
+        self._ramp_end = -1  # first sample index after the current ramp (-1: no ramp)
 
     def _refill(self) -> None:
         p, n, b = self.params, self.n, self.block
@@ -171,6 +172,7 @@ class SensorBank:
         i = self._i
         self._i = i + 1
         self._ramp = None
+        self._ramp_end = -1
         if changed:
             self._same = 0
             self._static = None
@@ -203,6 +205,7 @@ class SensorBank:
             self._refill()
             self._static = None
             self._ramp = None
+            self._ramp_end = -1
         i = self._i
         self._i = i + 1
         self._same = 0
@@ -219,6 +222,7 @@ class SensorBank:
             ramp = self._quantise(true_pa + rate_pa * steps + self._noise[i : i + k])
             ramp.flags.writeable = False
             self._ramp, self._ramp_key, self._ramp_start = ramp, key, i
+            self._ramp_end = i + k
         self._ramp_next = i + 1
         return ramp[i - self._ramp_start], supply_pa + float(self._supply_noise[i])
 
@@ -227,17 +231,13 @@ class SensorBank:
         when that ramp does not cover it (then call :meth:`sample_ramp`, which recomputes).
         Lets the box skip computing the true pressures while a ramp lasts."""
         i = self._i
-        ramp = self._ramp
-        if (
-            ramp is None
-            or key != self._ramp_key
-            or i != self._ramp_next
-            or i >= self.block
-            or i - self._ramp_start >= len(ramp)
-        ):
+        # _ramp_end <= block, and -1 when there is no ramp
+        if i != self._ramp_next or key != self._ramp_key or i >= self._ramp_end:
             return None
         self._i = self._ramp_next = i + 1
         self._same = 0
+        ramp = self._ramp
+        assert ramp is not None
         return ramp[i - self._ramp_start], supply_pa + float(self._supply_noise[i])
 
     def _quantise(self, x: NDArray[np.float64]) -> NDArray[np.float64]:
