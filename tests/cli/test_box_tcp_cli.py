@@ -11,7 +11,7 @@ from collections.abc import Iterator
 
 import pytest
 
-from softpad.box import BoxServer, open_box
+from softpad.box import BoxServer, ConnectionLost, open_box
 from softpad.cli.main import main
 
 
@@ -101,6 +101,35 @@ def test_box_serve_prints_its_port_and_stops_when_the_client_leaves() -> None:
         assert proc.wait(timeout=20) == 0
         err = proc.stderr.read() if proc.stderr else ""
         assert "session ended (closed by the client); valves closed" in err
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait(timeout=5)
+
+
+def test_box_serve_stops_cleanly_on_ctrl_c() -> None:
+    import signal
+
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "softpad.cli.main", "box", "serve"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env=dict(os.environ, PYTHONUNBUFFERED="1"),
+    )
+    try:
+        assert proc.stdout is not None
+        url = proc.stdout.readline().split(" on ")[1].split()[0]
+        box = open_box(url)
+        box.set_valve(2, "inflate")
+        proc.send_signal(signal.SIGINT)
+        assert proc.wait(timeout=20) == 0
+        err = proc.stderr.read() if proc.stderr else ""
+        assert "session ended (server stopping); valves closed" in err
+        assert "stopped; valves closed" in err and "Traceback" not in err
+        with pytest.raises(ConnectionLost):
+            box.read()
+        box.close()
     finally:
         if proc.poll() is None:
             proc.kill()

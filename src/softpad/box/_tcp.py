@@ -218,6 +218,9 @@ class TcpBox(Box):
             raise self._lose(f"no reply within {self.timeout_s:g} s") from None
         except OSError as exc:
             raise self._lose(str(exc) or type(exc).__name__) from None
+        except BaseException:  # interrupted mid-exchange (Ctrl-C): the stream is out of step
+            self._lose("interrupted")
+            raise
         try:
             reply = decode(line)
         except ProtocolError as exc:
