@@ -54,18 +54,45 @@ def test_box_inflate_over_tcp(capsys, server: BoxServer) -> None:
 @pytest.mark.parametrize(
     ("argv", "message"),
     [
-        (["run", "--box", "tcp://127.0.0.1:1"], "its world lives in the server"),
         (["box", "read", "--box", "tcp://127.0.0.1"], "tcp:// needs host:port"),
         (["box", "serve", "--port", "70000"], "--port must be within 0..65535, got 70000"),
         (["box", "serve", "--host", "no.such.host.invalid"], "cannot resolve host"),
         (["box", "inflate", "--modules", "9"], "--modules must be within 1..8"),
     ],
-    ids=["run-tcp", "no-port", "port", "host", "modules"],
+    ids=["no-port", "port", "host", "modules"],
 )
 def test_errors_are_one_line_and_exit_2(capsys, argv, message) -> None:
     code, _, err = run(capsys, *argv)
     assert code == 2
     assert message in err and len(err.strip().splitlines()) == 1 and "Traceback" not in err
+
+
+def test_run_over_tcp_without_a_served_world_is_one_line(capsys, server: BoxServer) -> None:
+    code, _, err = run(capsys, "run", "--box", server.url)
+    assert code == 2 and "carries pressures and valves only" in err
+    assert len(err.strip().splitlines()) == 1
+
+
+def test_run_over_tcp_equals_the_run_in_process(capsys) -> None:
+    """softpad run through a served simulator (world and robot served too): the same run."""
+    from softpad.control import simulation_extensions
+
+    url = "sim://?seed=2"
+    argv = ["run", "--object", "object-4", "--hold-s", "1", "--json"]
+    code, out, _ = run(capsys, *argv, "--box", url)
+    assert code == 0
+    local = json.loads(out)
+    box = open_box(url)
+    with BoxServer(box, "127.0.0.1", 0, extensions=simulation_extensions(box)) as srv:
+        thread = threading.Thread(target=srv.serve, daemon=True)
+        thread.start()
+        code, out, err = run(capsys, *argv, "--box", srv.url)
+        srv.stop()
+        thread.join(timeout=5)
+    assert code == 0, err
+    remote = json.loads(out)
+    assert remote == local
+    assert remote["outcome"] == "held" and remote["contact_detected"] is True
 
 
 def test_box_read_when_nobody_listens_is_one_line(capsys) -> None:
@@ -79,8 +106,8 @@ def test_box_read_when_nobody_listens_is_one_line(capsys) -> None:
     assert len(err.strip().splitlines()) == 1
 
 
-def test_box_serve_prints_its_port_and_stops_when_the_client_leaves() -> None:
-    """The real command in a subprocess: --once, port 0, loopback."""
+def test_box_serve_prints_its_port_and_stops_when_the_client_leaves(capsys) -> None:
+    """The real command in a subprocess: --once, port 0, loopback; softpad run as its client."""
     env = dict(os.environ, PYTHONUNBUFFERED="1")
     proc = subprocess.Popen(
         [sys.executable, "-m", "softpad.cli.main", "box", "serve", "--port", "0", "--once"],
@@ -94,13 +121,12 @@ def test_box_serve_prints_its_port_and_stops_when_the_client_leaves() -> None:
         line = proc.stdout.readline()
         assert line.startswith("serving sim:// on tcp://127.0.0.1:")
         url = line.split(" on ")[1].split()[0]
-        with open_box(url) as box:
-            assert box.channels == 8
-            box.set_valve(1, "inflate")
-            box.read_many(5)
+        # the served simulator offers its world and robot: the whole loop runs through it
+        assert main(["run", "--box", url, "--object", "object-1", "--hold-s", "0", "--json"]) == 0
         assert proc.wait(timeout=20) == 0
         err = proc.stderr.read() if proc.stderr else ""
         assert "session ended (closed by the client); valves closed" in err
+        assert json.loads(capsys.readouterr().out)["outcome"] == "held"
     finally:
         if proc.poll() is None:
             proc.kill()

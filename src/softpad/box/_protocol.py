@@ -7,7 +7,8 @@ objects terminated by ``\\n``, at most :data:`MAX_LINE_BYTES` each. Requests car
 request                                   reply (``"ok": true`` plus)
 ========================================  ===================================================
 ``{"op": "hello", "protocol": 1}``        ``"protocol"``, ``"channels"``, ``"sample_rate_hz"``,
-                                          ``"box"`` (the served box's class), ``"server"``
+                                          ``"box"`` (the served box's class), ``"server"``,
+                                          ``"extensions"`` (extra ops offered)
 ``{"op": "read"}``                        ``"t_s"``, ``"pressures_pa"`` (list, ``null`` = NaN:
                                           no valid reading), ``"supply_pa"``
 ``{"op": "valve", "channel": k,           nothing more (``channel`` 1-based; command
@@ -22,6 +23,8 @@ A failed request is answered ``{"ok": false, "kind": K, "error": MESSAGE}`` with
 itself stopped answering: :class:`~softpad.box.ConnectionLost`). ``hello`` must come first;
 a protocol version other than :data:`PROTOCOL_VERSION` is refused and the session ends.
 JSON has no NaN: pressures use ``null``; the tokens ``NaN``/``Infinity`` are malformed.
+Extension ops contain a dot (``robot.stop``); a server lists those it offers in ``hello``
+(see :mod:`softpad.control._remote` for the simulator's world and robot).
 """
 
 from __future__ import annotations

@@ -14,7 +14,7 @@ import math
 import selectors
 import socket
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from typing import Any
 
 from softpad import __version__
@@ -54,6 +54,12 @@ class BoxServer:
         (a controller that hangs must not leave a module inflating).
     log
         Called with one line of text per session event (connections, errors); None: silent.
+    extensions
+        Extra requests by ``op`` name (each containing a dot, e.g. ``"robot.stop"``): a
+        handler takes the request and returns the reply's fields, or raises a
+        :class:`~softpad.errors.SoftPadError`. Listed to the client in the ``hello`` reply.
+        :func:`softpad.control.simulation_extensions` gives those that run the grasp loop
+        against a served simulator.
     """
 
     def __init__(
@@ -63,11 +69,16 @@ class BoxServer:
         port: int = 0,
         idle_timeout_s: float = DEFAULT_IDLE_TIMEOUT_S,
         log: Callable[[str], None] | None = None,
+        extensions: Mapping[str, Callable[[dict[str, Any]], dict[str, Any]]] | None = None,
     ) -> None:
         if isinstance(port, bool) or not isinstance(port, int) or not 0 <= port <= 65535:
             raise InputError(f"port must be an integer from 0 to 65535, got {port!r}")
         if not (math.isfinite(idle_timeout_s) and idle_timeout_s > 0):
             raise InputError(f"idle timeout must be > 0 s, got {idle_timeout_s!r}")
+        self.extensions = dict(extensions or {})
+        for name in self.extensions:
+            if "." not in name:
+                raise InputError(f"extension op names must contain a dot, got {name!r}")
         self.box = box
         self.idle_timeout_s = float(idle_timeout_s)
         self._log = log
@@ -249,8 +260,9 @@ class BoxServer:
         try:
             msg = decode(line)
             op = msg.get("op")
-            if op not in OPS:
-                raise InputError(f"unknown request op={op!r}; known: {', '.join(OPS)}")
+            if op not in OPS and op not in self.extensions:
+                known = ", ".join([*OPS, *self.extensions])
+                raise InputError(f"unknown request op={op!r}; known: {known}")
             if op == "hello":
                 return self._op_hello(msg)
             if not self._hello:
@@ -259,6 +271,8 @@ class BoxServer:
                 return self._op_read()
             if op == "valve":
                 return self._op_valve(msg)
+            if op in self.extensions:
+                return {"ok": True, **self.extensions[op](msg)}
             self._safe_state()
             return {"ok": True, "_end": True}
         except _Fatal as exc:
@@ -286,6 +300,7 @@ class BoxServer:
             "sample_rate_hz": float(box.sample_rate_hz),
             "box": type(box).__name__,
             "server": f"softpad {__version__}",
+            "extensions": sorted(self.extensions),
         }
 
     def _op_read(self) -> dict[str, Any]:

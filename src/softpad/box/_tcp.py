@@ -106,6 +106,30 @@ class TcpBox(Box):
         return self._rate
 
     @property
+    def extensions(self) -> tuple[str, ...]:
+        """Extra requests the server offers (``hello``'s ``extensions``), e.g. ``robot.stop``."""
+        ext = self.info.get("extensions", [])
+        return tuple(e for e in ext if isinstance(e, str)) if isinstance(ext, list) else ()
+
+    def request(self, op: str, **fields: Any) -> dict[str, Any]:
+        """Send an extension request ``op`` with ``fields``; return the reply's fields.
+
+        Raises
+        ------
+        InputError
+            The server does not offer ``op``, or refuses the request (message from it).
+        ConnectionLost
+            The link is lost.
+        """
+        self._check_open()
+        if op not in self.extensions:
+            offered = ", ".join(self.extensions) or "none"
+            raise InputError(f"box at {self.address} does not offer {op!r} (extensions: {offered})")
+        reply = self._request({**fields, "op": op})
+        reply.pop("ok", None)
+        return reply
+
+    @property
     def connected(self) -> bool:
         """False once the link is lost or closed."""
         return self._sock is not None
@@ -212,7 +236,13 @@ class TcpBox(Box):
         if sock is None:
             raise ConnectionLost(f"the link to the box at {self.address} was lost")
         try:
-            sock.sendall(encode(message))
+            data = encode(message)
+        except (TypeError, ValueError) as exc:  # NaN/inf or objects: not JSON
+            raise InputError(
+                f"request {message.get('op')!r} cannot be sent: {exc} (in {message!r})"
+            ) from None
+        try:
+            sock.sendall(data)
             line = self._readline(sock)
         except TimeoutError:
             raise self._lose(f"no reply within {self.timeout_s:g} s") from None

@@ -22,7 +22,8 @@ _SERVE_EPILOG = """examples:
 
 Binds only --host (127.0.0.1 by default: this computer only). One client at a time; when a
 client leaves or goes silent for --idle-timeout-s, every valve of the served box is closed.
-Ctrl-C stops the server (valves closed, box closed).
+Ctrl-C stops the server (valves closed, box closed). A served sim:// box also offers its world
+and robot, so 'softpad run --box tcp://HOST:PORT' runs the whole loop through the network.
 """
 
 _INFLATE_EPILOG = """examples:
@@ -128,19 +129,25 @@ def read(args: argparse.Namespace) -> int:
 def serve(args: argparse.Namespace) -> int:
     import sys
 
-    from softpad.box import BoxServer, open_box
+    from softpad.box import BoxServer, SimBox, open_box
     from softpad.errors import InputError
 
     if not 0 <= args.port <= 65535:
         raise InputError(f"--port must be within 0..65535, got {args.port}")
     box = open_box(args.box)
     try:
+        extensions = {}
+        if isinstance(box, SimBox):  # the world and robot too, so 'softpad run' works over tcp
+            from softpad.control import simulation_extensions
+
+            extensions = simulation_extensions(box)
         server = BoxServer(
             box,
             args.host,
             args.port,
             idle_timeout_s=args.idle_timeout_s,
             log=lambda text: print(f"softpad box serve: {text}", file=sys.stderr, flush=True),
+            extensions=extensions,
         )
     except BaseException:
         box.close()
