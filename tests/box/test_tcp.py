@@ -320,8 +320,20 @@ def test_bad_replies_from_a_box_raise_clear_errors(replies, exc, match) -> None:
         (b'{"op": "valve", "channel": 2, "command": "open-ish"}', "got 'open-ish'"),
         (b'{"op": "valve", "channel": 2}', "got None"),
         (b"\xff\xfe", "not UTF-8"),
+        (b'{"op": ["read"]}', "unknown request op=['read']"),
     ],
-    ids=["json", "array", "op", "channel", "fraction", "nan", "command", "missing", "utf8"],
+    ids=[
+        "json",
+        "array",
+        "op",
+        "channel",
+        "fraction",
+        "nan",
+        "command",
+        "missing",
+        "utf8",
+        "op-list",
+    ],
 )
 def test_server_answers_bad_requests_with_input_errors_and_keeps_serving(line, match) -> None:
     with served() as server:
@@ -374,3 +386,24 @@ def test_server_binds_only_the_requested_address() -> None:
         assert server.url == f"tcp://127.0.0.1:{server.port}"
     with pytest.raises(InputError, match="port must be an integer from 0 to 65535"):
         BoxServer(open_box("sim://"), "127.0.0.1", -1)
+
+
+def test_a_failing_extension_is_reported_and_the_server_keeps_serving() -> None:
+    def broken(msg: dict) -> dict:
+        return {"x": 1 / 0}
+
+    server = BoxServer(open_box("sim://"), "127.0.0.1", 0, extensions={"test.broken": broken})
+    thread = threading.Thread(target=server.serve, daemon=True)
+    thread.start()
+    try:
+        with open_box(server.url) as box:
+            assert isinstance(box, TcpBox) and box.extensions == ("test.broken",)
+            with pytest.raises(HardwareFault, match="server error: ZeroDivisionError"):
+                box.request("test.broken")
+            box.read()
+    finally:
+        server.stop()
+        thread.join(timeout=5)
+        server.close()
+    with pytest.raises(InputError, match="must contain a dot"):
+        BoxServer(open_box("sim://"), "127.0.0.1", 0, extensions={"broken": broken})

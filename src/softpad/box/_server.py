@@ -260,7 +260,7 @@ class BoxServer:
         try:
             msg = decode(line)
             op = msg.get("op")
-            if op not in OPS and op not in self.extensions:
+            if not isinstance(op, str) or (op not in OPS and op not in self.extensions):
                 known = ", ".join([*OPS, *self.extensions])
                 raise InputError(f"unknown request op={op!r}; known: {known}")
             if op == "hello":
@@ -283,6 +283,13 @@ class BoxServer:
             return {"ok": False, "kind": "hardware", "error": str(exc)}
         except (InputError, ProtocolError) as exc:
             return {"ok": False, "kind": "input", "error": str(exc)}
+        except Exception as exc:  # a bug in a back-end or extension: report it, keep serving
+            self._say(f"error handling {line[:80]!r}: {type(exc).__name__}: {exc}")
+            return {
+                "ok": False,
+                "kind": "hardware",
+                "error": f"server error: {type(exc).__name__}: {exc}",
+            }
 
     def _op_hello(self, msg: dict[str, Any]) -> dict[str, Any]:
         version = msg.get("protocol")

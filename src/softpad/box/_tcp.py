@@ -65,7 +65,6 @@ class TcpBox(Box):
             raise InputError(f"timeout_s must be a positive number of seconds, got {timeout_s!r}")
         self.address = f"tcp://{host}:{port}"
         self.timeout_s = float(timeout_s)
-        self._lost = False
         self._buf = b""
         try:
             self._sock: socket.socket | None = socket.create_connection(
@@ -218,7 +217,6 @@ class TcpBox(Box):
             except OSError:
                 pass
         self._drop()
-        self._lost = True
         if self._valves is not None:
             self._valves = [ValveCommand.CLOSED] * len(self._valves)
         return ConnectionLost(f"lost the link to the box at {self.address}: {why}")
