@@ -133,7 +133,8 @@ def test_box_serve_prints_its_port_and_stops_when_the_client_leaves(capsys) -> N
             proc.wait(timeout=5)
 
 
-def test_box_serve_stops_cleanly_on_ctrl_c() -> None:
+@pytest.mark.parametrize("signame", ["SIGINT", "SIGTERM"], ids=["ctrl-c", "term"])
+def test_box_serve_stops_cleanly_on_ctrl_c_and_term(signame: str) -> None:
     import signal
 
     proc = subprocess.Popen(
@@ -148,7 +149,7 @@ def test_box_serve_stops_cleanly_on_ctrl_c() -> None:
         url = proc.stdout.readline().split(" on ")[1].split()[0]
         box = open_box(url)
         box.set_valve(2, "inflate")
-        proc.send_signal(signal.SIGINT)
+        proc.send_signal(getattr(signal, signame))
         assert proc.wait(timeout=20) == 0
         err = proc.stderr.read() if proc.stderr else ""
         assert "session ended (server stopping); valves closed" in err

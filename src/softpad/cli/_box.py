@@ -152,12 +152,28 @@ def serve(args: argparse.Namespace) -> int:
     except BaseException:
         box.close()
         raise
-    with server:
-        print(f"serving {args.box} on {server.url} (port {server.port}); Ctrl-C stops", flush=True)
-        try:
-            server.serve(max_sessions=1 if args.once else None)
-        except KeyboardInterrupt:
-            print("softpad box serve: stopped; valves closed", file=sys.stderr)
+
+    def _terminate(signum: int, frame: object) -> None:
+        raise KeyboardInterrupt  # SIGTERM (e.g. a service manager) stops like Ctrl-C
+
+    import signal
+    import threading
+
+    main_thread = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGTERM, _terminate) if main_thread else None
+    try:
+        with server:
+            print(
+                f"serving {args.box} on {server.url} (port {server.port}); Ctrl-C stops",
+                flush=True,
+            )
+            try:
+                server.serve(max_sessions=1 if args.once else None)
+            except KeyboardInterrupt:
+                print("softpad box serve: stopped; valves closed", file=sys.stderr)
+    finally:
+        if main_thread:
+            signal.signal(signal.SIGTERM, previous)
     return 0
 
 
