@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import threading
+
 import numpy as np
 import pytest
 
@@ -34,9 +36,24 @@ def test_sim_backend_passes_conformance(url: str) -> None:
     check_conformance(open_box(url))
 
 
+def test_tcp_backend_passes_conformance() -> None:
+    """The network back-end, against a simulated box served on loopback."""
+    from softpad.box import BoxServer
+
+    with BoxServer(open_box("sim://?seed=5"), "127.0.0.1", 0) as server:
+        thread = threading.Thread(target=server.serve, daemon=True)
+        thread.start()
+        try:
+            check_conformance(open_box(server.url + "?timeout_s=5"))
+        finally:
+            server.stop()
+            thread.join(timeout=5)
+    assert not thread.is_alive()
+
+
 def test_every_registered_backend_is_checked() -> None:
     """A new scheme must be added to the conformance cases above."""
-    assert backends() == ("sim",)
+    assert backends() == ("sim", "tcp")
 
 
 class _BrokenBox(Box):
@@ -63,7 +80,7 @@ def test_conformance_catches_a_broken_backend() -> None:
 @pytest.mark.parametrize(
     ("url", "match"),
     [
-        ("tcp://192.168.7.2:5000", "unknown box URL scheme 'tcp'"),
+        ("serial:///dev/ttyUSB0", "unknown box URL scheme 'serial'"),
         ("sim://?sead=1", "unknown sim:// option 'sead'"),
         ("sim://?seed=one", "seed='one' must be an integer"),
         ("sim://?rate_hz=nan", "rate_hz='nan' must be finite"),

@@ -58,7 +58,7 @@ def test_run_prints_a_timeline_and_plots(capsys, tmp_path) -> None:
     ("argv", "message"),
     [
         (["run", "--object", "teapot"], "unknown object 'teapot'"),
-        (["run", "--box", "tcp://x:1"], "unknown box URL scheme 'tcp'"),
+        (["run", "--box", "serial://x:1"], "unknown box URL scheme 'serial'"),
         (["run", "--box", "sim://?speed=2"], "unknown sim:// option 'speed'"),
         (["run", "--log", "run.txt"], "--log must name a .npz file"),
         (["run", "--box", "sim://?seed=1&faults=leak:3:0.01", "--hold-s", "1"], "channel 3"),

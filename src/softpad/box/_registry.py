@@ -31,6 +31,10 @@ def _ensure_builtin() -> None:
         from softpad.box._sim import open_sim_url
 
         register_backend("sim", open_sim_url)
+    if "tcp" not in _BACKENDS:
+        from softpad.box._tcp import open_tcp_url
+
+        register_backend("tcp", open_tcp_url)
 
 
 def parse_url(url: str) -> tuple[str, str, dict[str, str]]:
@@ -56,7 +60,8 @@ def open_box(url: str = DEFAULT_URL) -> Box:
     Parameters
     ----------
     url
-        ``sim://`` (the simulated box, see :func:`softpad.box.open_sim_url` for its options).
+        ``sim://`` (the simulated box, see :func:`softpad.box.open_sim_url` for its options)
+        or ``tcp://host:port`` (a box served over the network, :class:`softpad.box.TcpBox`).
 
     Raises
     ------

@@ -183,6 +183,7 @@ class SimBox(Box):
         self._any_open = False
         self._t = 0.0
         self._heights = self.chambers.heights_m()
+        self._loads_key = self.chambers.loads_n.tobytes()
         self._supply_true = self.pneumatics.supply_pa
         self._faults: list[Fault] = []
         self._next_fault_s = math.inf
@@ -230,29 +231,46 @@ class SimBox(Box):
         world.step(dt, self._heights)
         loads = world.module_loads_n()
         chambers = self.chambers
-        same_load = np.array_equal(loads, chambers.loads_n)
-        if self._any_open or self._leaking or not same_load:
+        # the loads equal those of the last step (the chambers' loads_n) iff their bytes do;
+        # far cheaper than np.array_equal on the hot path
+        key = loads.tobytes()
+        same_load = key == self._loads_key
+        if not same_load:
+            self._loads_key = key
+        supply_true = self._supply_true
+        held = False
+        if not same_load:
+            changed = True
+        elif self._any_open or self._leaking:
+            # the hot path of an inflating box: the flows of the last solve are held
+            held = chambers.hold(dt, self._valve_count, supply_true)
+            changed = True
+        else:
+            changed = False
+        if changed and not held:
             changed = chambers.step(
                 dt,
                 self._inf,
                 self._def,
                 loads,
-                self._supply_true,
+                supply_true,
                 self._any_open,
                 same_load=same_load,
                 valve_key=self._valve_count,
             )
-        else:
-            changed = False
+        sensors = self.sensors
         if not changed:
-            values, supply = self.sensors.sample(chambers.pressure_pa, self._supply_true, False)
+            values, supply = sensors.sample(chambers.pressure_pa, supply_true, False)
         elif chambers.solved:  # heights follow the exact solves (every <= 20 ms)
             self._heights = chambers.heights_m()
-            values, supply = self.sensors.sample(chambers.pressure_pa, self._supply_true, True)
+            values, supply = sensors.sample(chambers.pressure_pa, supply_true, True)
         else:  # a linear stretch between solves: readings precomputed along the ramp
-            values, supply = self.sensors.sample_ramp(
-                chambers.pressure_pa, chambers.rate_dt_pa, chambers.solve_count, self._supply_true
-            )
+            hit = sensors.next_on_ramp(chambers.solve_count, supply_true)
+            if hit is None:
+                hit = sensors.sample_ramp(
+                    chambers.pressure_pa, chambers.rate_dt_pa, chambers.solve_count, supply_true
+                )
+            values, supply = hit
         if self._bad_sensor:
             values = values.copy()
             values[self._dropout] = self.sensor_params.range_min_pa

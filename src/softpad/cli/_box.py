@@ -1,4 +1,4 @@
-"""``softpad box read``: stream frames of a box to the terminal."""
+"""``softpad box read|serve|inflate``: stream frames, serve a box over TCP, inflate and adjust."""
 
 from __future__ import annotations
 
@@ -6,10 +6,29 @@ import argparse
 import json
 from typing import Any
 
+from softpad.cli._args import finite_float
+
 _EPILOG = """examples:
   softpad box read --count 5
   softpad box read --box 'sim://?inflated_kpa=1.1&object=banana' --count 3 --json
   softpad box read --box 'sim://?realtime=1' --count 0          stream until Ctrl-C
+  softpad box read --box tcp://127.0.0.1:5757 --count 3        a box served over the network
+"""
+
+_SERVE_EPILOG = """examples:
+  softpad box serve --port 5757                                 the simulated box on loopback
+  softpad box serve --box 'sim://?realtime=1&object=banana' --port 5757 --once
+  then: softpad box read --box tcp://127.0.0.1:5757
+
+Binds only --host (127.0.0.1 by default: this computer only). One client at a time; when a
+client leaves or goes silent for --idle-timeout-s, every valve of the served box is closed.
+Ctrl-C stops the server (valves closed, box closed). A served sim:// box also offers its world
+and robot, so 'softpad run --box tcp://HOST:PORT' runs the whole loop through the network.
+"""
+
+_INFLATE_EPILOG = """examples:
+  softpad box inflate                                 the simulated box, p0 = 1.1 kPa
+  softpad box inflate --box tcp://127.0.0.1:5757 --json
 """
 
 
@@ -34,6 +53,46 @@ def register(sub: Any) -> None:
     r.add_argument("--every", type=int, default=1, help="print every k-th frame (default 1)")
     r.add_argument("--json", action="store_true", help="one JSON object per line")
     r.set_defaults(handler=read)
+    s = bsub.add_parser(
+        "serve",
+        help="serve a box over TCP (softpad-box protocol; loopback by default)",
+        description="Expose a box (any URL, the simulator by default) on tcp://HOST:PORT.",
+        epilog=_SERVE_EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    s.add_argument("--box", default="sim://", metavar="URL", help="box to serve (default sim://)")
+    s.add_argument(
+        "--host", default="127.0.0.1", help="address to bind, and only it (default 127.0.0.1)"
+    )
+    s.add_argument("--port", type=int, default=0, help="TCP port (default 0: a free one, printed)")
+    s.add_argument(
+        "--idle-timeout-s",
+        type=finite_float("idle timeout", lo=0.01, hi=3600.0, unit="s"),
+        default=10.0,
+        help="drop a silent client and close the valves after this long, s (default 10)",
+    )
+    s.add_argument("--once", action="store_true", help="stop when the first client leaves")
+    s.set_defaults(handler=serve)
+    i = bsub.add_parser(
+        "inflate",
+        help="inflate every module to p0 and save the reference (Section 6.2.1.1)",
+        description=(
+            "Bring every module to p0 within t_adj and print the reference (mean of 10 reads); "
+            "works on any box URL, e.g. a tcp:// box served by 'softpad box serve'."
+        ),
+        epilog=_INFLATE_EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    i.add_argument("--box", default="sim://", metavar="URL", help="box URL (default sim://)")
+    i.add_argument("--modules", type=int, default=6, help="modules on the pad (default 6)")
+    i.add_argument(
+        "--p0-kpa",
+        type=finite_float("p0", lo=0.1, hi=3.0, unit="kPa"),
+        default=1.1,
+        help="target pressure p0, kPa (default 1.1)",
+    )
+    i.add_argument("--json", action="store_true", help="print the result as one JSON object")
+    i.set_defaults(handler=inflate)
     p.set_defaults(handler=_usage, _parser=p)
 
 
@@ -64,4 +123,77 @@ def read(args: argparse.Namespace) -> int:
                     vals = " ".join(f"{v / 1e3:8.4f}" for v in f.pressures_pa)
                     print(f"{f.t_s:8.3f}  {vals}  {f.supply_pa / 1e3:6.2f}", flush=True)
             i += 1
+    return 0
+
+
+def serve(args: argparse.Namespace) -> int:
+    import sys
+
+    from softpad.box import BoxServer, SimBox, open_box
+    from softpad.errors import InputError
+
+    if not 0 <= args.port <= 65535:
+        raise InputError(f"--port must be within 0..65535, got {args.port}")
+    box = open_box(args.box)
+    try:
+        extensions = {}
+        if isinstance(box, SimBox):  # the world and robot too, so 'softpad run' works over tcp
+            from softpad.control import simulation_extensions
+
+            extensions = simulation_extensions(box)
+        server = BoxServer(
+            box,
+            args.host,
+            args.port,
+            idle_timeout_s=args.idle_timeout_s,
+            log=lambda text: print(f"softpad box serve: {text}", file=sys.stderr, flush=True),
+            extensions=extensions,
+        )
+    except BaseException:
+        box.close()
+        raise
+
+    def _terminate(signum: int, frame: object) -> None:
+        raise KeyboardInterrupt  # SIGTERM (e.g. a service manager) stops like Ctrl-C
+
+    import signal
+    import threading
+
+    main_thread = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGTERM, _terminate) if main_thread else None
+    try:
+        with server:
+            print(
+                f"serving {args.box} on {server.url} (port {server.port}); Ctrl-C stops",
+                flush=True,
+            )
+            try:
+                server.serve(max_sessions=1 if args.once else None)
+            except KeyboardInterrupt:
+                print("softpad box serve: stopped; valves closed", file=sys.stderr)
+    finally:
+        if main_thread:
+            signal.signal(signal.SIGTERM, previous)
+    return 0
+
+
+def inflate(args: argparse.Namespace) -> int:
+    from softpad.box import open_box
+    from softpad.control import InflationParams, inflate_and_adjust
+    from softpad.errors import InputError
+
+    with open_box(args.box) as box:
+        if not 1 <= args.modules <= box.channels:
+            raise InputError(
+                f"--modules must be within 1..{box.channels} (channels of the box), got {args.modules}"
+            )
+        res = inflate_and_adjust(box, args.modules, InflationParams(target_pa=args.p0_kpa * 1e3))
+    if args.json:
+        print(json.dumps(res.to_dict()))
+    else:
+        ref = " ".join(f"{v / 1e3:.3f}" for v in res.reference_pa)
+        print(
+            f"adjusted at t = {res.adjusted_at_s:.2f} s; reference (kPa) saved at "
+            f"t = {res.reference_at_s:.2f} s: {ref}"
+        )
     return 0

@@ -3,7 +3,8 @@
 ``inflate_and_adjust`` brings every module to p0 within t_adj and saves the reference (seed,
 Section 6.2.1.1); :class:`GraspExecution` runs the closed loop of Section 6.2.2 on any
 :class:`~softpad.box.Box` and :class:`Robot`; :func:`run_simulated` runs it on the simulator
-with objects of the catalogue.
+with objects of the catalogue, in-process or served over ``tcp://`` (:class:`RemoteRobot`,
+:func:`simulation_extensions`).
 """
 
 from softpad.control._execution import (
@@ -25,6 +26,12 @@ from softpad.control._inflation import (
     inflate_and_adjust,
     make_safe,
 )
+from softpad.control._remote import (
+    SIMULATION_OPS,
+    RemoteRobot,
+    has_simulation,
+    simulation_extensions,
+)
 from softpad.control._robot import Robot, SimulatedRobot, ToolPose
 from softpad.control._simulation import resolve_objects, run_simulated
 
@@ -33,6 +40,7 @@ __all__ = [
     "DEFAULT_TARGET_PA",
     "DEFAULT_TOLERANCE_PA",
     "OUTCOMES",
+    "SIMULATION_OPS",
     "AdjustmentResult",
     "ExecutionError",
     "ExecutionParams",
@@ -41,12 +49,15 @@ __all__ = [
     "GraspRecord",
     "InflationParams",
     "Recorder",
+    "RemoteRobot",
     "Robot",
     "SimulatedRobot",
     "ToolPose",
     "check_frame",
+    "has_simulation",
     "inflate_and_adjust",
     "make_safe",
     "resolve_objects",
     "run_simulated",
+    "simulation_extensions",
 ]

@@ -4,11 +4,18 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from softpad.box import Box, SimBox, open_box
+from softpad.box import Box, SimBox, TcpBox, open_box
 from softpad.control._execution import ExecutionParams, ExecutionResult, GraspExecution, Recorder
+from softpad.control._remote import RemoteRobot, has_simulation
 from softpad.control._robot import SimulatedRobot
 from softpad.errors import InputError
 from softpad.sim import AnalyticWorld, ObjectSpec, SimGripper, get_object, object_names
+
+_REMOTE_WORLD = (
+    "the simulated loop places objects and moves the gripper in a simulator's world: use a "
+    "sim:// box, or a tcp:// box served by 'softpad box serve --box sim://...' (which offers "
+    "the world and robot); this box carries pressures and valves only"
+)
 
 
 def resolve_objects(names: Sequence[str] | None) -> list[ObjectSpec]:
@@ -36,7 +43,9 @@ def run_simulated(
         ``cylinder``, ``charger``); several objects lying on separate modules are planned and
         grasped one after the other. ``banana`` by default.
     box
-        A :class:`~softpad.box.SimBox` or a ``sim://`` URL.
+        A :class:`~softpad.box.SimBox` or a ``sim://`` URL; or a ``tcp://`` box whose server
+        offers the simulator's world and robot (:func:`simulation_extensions`, as
+        ``softpad box serve`` does for a ``sim://`` box): the run is then identical.
     params
         Loop parameters.
     recorder
@@ -54,12 +63,19 @@ def run_simulated(
     owns = isinstance(box, str)
     b = open_box(box) if isinstance(box, str) else box
     try:
-        if not isinstance(b, SimBox):
-            raise InputError(
-                f"simulated runs need a sim:// box (objects are placed by the simulator); got {type(b).__name__}"
-            )
-        world = b.world
         mounting = gripper or specs[0].gripper
+        if isinstance(b, TcpBox):  # a simulator served over the network: world and robot there
+            if not has_simulation(b):
+                raise InputError(_REMOTE_WORLD)
+            remote = RemoteRobot(b, mounting)
+            names = [s.name for s in specs]
+            loop = GraspExecution(
+                b, remote, remote.layout, params, recorder, lambda: remote.place(names)
+            )
+            return loop.run()
+        if not isinstance(b, SimBox):
+            raise InputError(f"{_REMOTE_WORLD} (got a {type(b).__name__})")
+        world = b.world
         if isinstance(world, AnalyticWorld):
             world.gripper = SimGripper.mounting(mounting)
         robot = SimulatedRobot(world)

@@ -284,7 +284,11 @@ class AnalyticWorld:
 
     def _move(self, dt_s: float) -> bool:
         s, t = self._state, self._target
+        if s is t:  # the idle hot path: no dataclass comparison
+            return False
         if s == t or self._speed <= 0:
+            if s == t:
+                self._state = t  # equal values; from now on the identity test suffices
             return False
         step = self._speed * dt_s
         d = np.array([t.x_m - s.x_m, t.y_m - s.y_m, t.z_m - s.z_m, t.width_m - s.width_m])

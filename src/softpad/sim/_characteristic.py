@@ -139,7 +139,7 @@ class AnalyticCharacteristic:
     def _free(self, x: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         a, n, s0 = self._fit
         x0, vg = self.knee_pa, self.gap_volume_m3
-        if np.ndim(x) and (x >= 0).all():  # the usual case: one power per element
+        if np.ndim(x) and x.min() >= 0:  # the usual case: one power per element
             t = x + x0
             tn = t**n
             return vg + a * (tn - x0**n), a * n * tn / t

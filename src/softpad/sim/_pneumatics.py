@@ -118,10 +118,12 @@ class ChamberBank:
         self.n_modules = n_modules
         m = n_modules
         self._vol_slope = getattr(characteristic, "volume_and_slope", None)
-        self.pressure_pa = np.zeros(n_channels)
+        self._pressure = np.zeros(n_channels)
+        self._p_modules = self._pressure[:n_modules]  # a view: _pressure is never rebound
+        self._pending = 0  # held steps not yet applied to _amount and _pressure (see hold)
         self.loads_n = np.zeros(m)
         v0 = characteristic.volume_m3(np.zeros(m), np.zeros(m))
-        self.amount = self.params.atmosphere_pa * (v0 + self.params.tubing_volume_m3)
+        self._amount = self.params.atmosphere_pa * (v0 + self.params.tubing_volume_m3)
         self._leak_m2 = np.zeros(m)
         self._leaking = False
         #: Longest time between exact pressure solves while nothing changes, seconds.
@@ -163,8 +165,9 @@ class ChamberBank:
         if loads_n is not None:
             self.loads_n = np.asarray(loads_n, dtype=float).copy()
         v = self.characteristic.volume_m3(p, self.loads_n)
-        self.amount = (self.params.atmosphere_pa + p) * (v + self.params.tubing_volume_m3)
-        self.pressure_pa[: self.n_modules] = p
+        self._pending = 0
+        self._amount = (self.params.atmosphere_pa + p) * (v + self.params.tubing_volume_m3)
+        self._pressure[: self.n_modules] = p
 
     def _orifice(
         self, area: NDArray[np.float64] | float, dp: NDArray[np.float64]
@@ -202,36 +205,23 @@ class ChamberBank:
             Any value that changes whenever the valve states change (the box's command
             counter); None: derived from the valve arrays.
         """
-        m = self.n_modules
-        p = self.pressure_pa[:m]
         leaking = self._leaking
         if same_load is None:
             same_load = np.array_equal(loads_n, self.loads_n)
-        if not any_open and not leaking and same_load:
-            return False
-        # Between exact solves, hold the flows of the last solve and advance p along
-        # dp/dt = flow / (dn/dp): the gas time constants (> 0.1 s) are far longer than the
-        # interval (<= resolve_s, 20 ms), and any change of valves, load or supply forces a solve.
         if valve_key is None:
             valve_key = (inflate_open.tobytes(), deflate_open.tobytes())
+        if same_load:
+            if not any_open and not leaking:
+                return False
+            # Between exact solves, hold the flows of the last solve and advance p along
+            # dp/dt = flow / (dn/dp): the gas time constants (> 0.1 s) are far longer than the
+            # interval (<= resolve_s, 20 ms); any change of valves, load or supply forces a solve.
+            if self.hold(dt_s, valve_key, supply_pa):
+                return True
+        self._sync()
+        m = self.n_modules
+        p = self._p_modules
         key = (valve_key, supply_pa)
-        if (
-            same_load
-            and self._flow is not None
-            and key == self._key
-            and self._held + dt_s <= self.resolve_s
-        ):
-            self._held += dt_s
-            if dt_s != self._dt_cached:
-                self._dt_cached = dt_s
-                self._flow_dt = self._flow * dt_s
-                self._rate_dt = self._rate * dt_s
-                self.rate_dt_pa = np.zeros(self.n_channels)
-                self.rate_dt_pa[:m] = self._rate_dt
-            self.amount += self._flow_dt  # in place: the hot path of an inflating box
-            p += self._rate_dt  # p is a view of pressure_pa
-            self.solved = False
-            return True
         if any_open or leaking:
             flow = np.zeros(m)
             if any_open:
@@ -242,12 +232,12 @@ class ChamberBank:
                     flow[dfl] -= self._orifice(self.params.deflate_orifice_m2, p[dfl])
             if leaking:
                 flow -= self._orifice(self._leak_m2, p)
-            self.amount = np.maximum(self.amount + flow * dt_s, 1e-12)
+            self._amount = np.maximum(self._amount + flow * dt_s, 1e-12)
         else:
             flow = None
         if not same_load:
             self.loads_n = loads_n.copy()
-        self.pressure_pa[:m] = self._solve(p.copy())
+        self._pressure[:m] = self._solve(p.copy())
         self._key, self._held, self._flow = key, 0.0, flow
         self.solved = True
         self.solve_count += 1
@@ -267,7 +257,7 @@ class ChamberBank:
         patm, vt, n, f = (
             self.params.atmosphere_pa,
             self.params.tubing_volume_m3,
-            self.amount,
+            self._amount,
             self.loads_n,
         )
         start = p
@@ -311,3 +301,51 @@ class ChamberBank:
     def heights_m(self) -> NDArray[np.float64]:
         """Top height of every module, metres."""
         return self.characteristic.height_m(self.pressure_pa[: self.n_modules], self.loads_n)
+
+    def hold(self, dt_s: float, valve_key: object, supply_pa: float) -> bool:
+        """The hot path of :meth:`step` while the loads are unchanged: True when the step was
+        taken with the held flows (no solve due; nothing changed since the last solve).
+
+        The held steps are only counted here; :attr:`amount` and :attr:`pressure_pa` apply
+        them when read (``k`` held steps add ``k`` times the per-step change, computed as
+        one product: the same state as adding it ``k`` times, to rounding).
+        """
+        held = self._held + dt_s
+        if held > self.resolve_s or self._flow is None or self._key != (valve_key, supply_pa):
+            return False
+        self._held = held
+        if dt_s != self._dt_cached:
+            self._sync()
+            self._dt_cached = dt_s
+            self._flow_dt = self._flow * dt_s
+            self._rate_dt = self._rate * dt_s
+            self.rate_dt_pa = np.zeros(self.n_channels)
+            self.rate_dt_pa[: self.n_modules] = self._rate_dt
+        self._pending += 1
+        self.solved = False
+        return True
+
+    def _sync(self) -> None:
+        k = self._pending
+        if k:
+            self._pending = 0
+            if k == 1:
+                self._amount += self._flow_dt
+                self._p_modules += self._rate_dt
+            else:
+                self._amount += self._flow_dt * k
+                self._p_modules += self._rate_dt * k
+
+    @property
+    def amount(self) -> NDArray[np.float64]:
+        """Amount of air of every module channel, ``(p_atm + p)(V + V_t)``, Pa m^3."""
+        if self._pending:
+            self._sync()
+        return self._amount
+
+    @property
+    def pressure_pa(self) -> NDArray[np.float64]:
+        """Gauge pressure of every channel, pascals (unconnected ports: 0)."""
+        if self._pending:
+            self._sync()
+        return self._pressure

@@ -122,6 +122,7 @@ class SensorBank:
             else np.zeros(n_channels)
         )
         self._q = params.quantization_pa
+        self._lo, self._hi = params.range_min_pa, params.range_max_pa
         self._inv_q = 1.0 / self._q if self._q else 0.0
         self._i = block
         self._noise = np.zeros((block, n_channels))
@@ -135,19 +136,21 @@ class SensorBank:
         self._ramp_key = -1
         self._ramp_start = 0
         self._ramp_next = -1
+        self._ramp_end = -1  # first sample index after the current ramp (-1: no ramp)
 
     def _refill(self) -> None:
         p, n, b = self.params, self.n, self.block
         noise = self.rng.normal(0.0, p.noise_std_pa, (b, n)) if p.noise_std_pa else np.zeros((b, n))
         if p.drift_std_pa:
-            # first-order Gauss-Markov drift d[k] = a d[k-1] + e[k], one row per sample
+            # first-order Gauss-Markov drift d[k] = a d[k-1] + e[k], one row per sample: the
+            # same recursion as a Python loop over the rows (bitwise, tested), run by lfilter
+            from scipy.signal import lfilter
+
             innov = self.rng.normal(0.0, self._drift_innov, (b, n))
-            a, d = self._a, self._drift
-            for k in range(b):
-                d = a * d + innov[k]
-                innov[k] = d
-            self._drift = d
-            noise += innov
+            a = self._a
+            drift = lfilter([1.0], [1.0, -a], innov, axis=0, zi=(a * self._drift)[None, :])[0]
+            self._drift = drift[-1].copy()
+            noise += drift
         self._noise = noise + self.offset_pa
         self._supply_noise = (
             self.rng.normal(0.0, p.supply_noise_std_pa, b) if p.supply_noise_std_pa else np.zeros(b)
@@ -169,6 +172,7 @@ class SensorBank:
         i = self._i
         self._i = i + 1
         self._ramp = None
+        self._ramp_end = -1
         if changed:
             self._same = 0
             self._static = None
@@ -194,10 +198,14 @@ class SensorBank:
         ``key`` (which identifies the ramp) stays the same and the calls are consecutive. The
         returned array must not be modified (copy it first).
         """
+        hit = self.next_on_ramp(key, supply_pa)
+        if hit is not None:
+            return hit
         if self._i >= self.block:
             self._refill()
             self._static = None
             self._ramp = None
+            self._ramp_end = -1
         i = self._i
         self._i = i + 1
         self._same = 0
@@ -214,11 +222,31 @@ class SensorBank:
             ramp = self._quantise(true_pa + rate_pa * steps + self._noise[i : i + k])
             ramp.flags.writeable = False
             self._ramp, self._ramp_key, self._ramp_start = ramp, key, i
+            self._ramp_end = i + k
         self._ramp_next = i + 1
         return ramp[i - self._ramp_start], supply_pa + float(self._supply_noise[i])
 
+    def next_on_ramp(self, key: int, supply_pa: float) -> tuple[NDArray[np.float64], float] | None:
+        """The next reading of the ramp computed by :meth:`sample_ramp` for ``key``, or None
+        when that ramp does not cover it (then call :meth:`sample_ramp`, which recomputes).
+        Lets the box skip computing the true pressures while a ramp lasts."""
+        i = self._i
+        # _ramp_end <= block, and -1 when there is no ramp
+        if i != self._ramp_next or key != self._ramp_key or i >= self._ramp_end:
+            return None
+        self._i = self._ramp_next = i + 1
+        self._same = 0
+        ramp = self._ramp
+        assert ramp is not None
+        return ramp[i - self._ramp_start], supply_pa + float(self._supply_noise[i])
+
     def _quantise(self, x: NDArray[np.float64]) -> NDArray[np.float64]:
+        # np.rint is what np.round(.., 0) computes (half to even), and maximum/minimum clip
+        # like np.clip (NaN stays NaN), without those functions' Python-level wrappers
         if self._q:
-            x = np.round(x * self._inv_q) * self._q
-        np.clip(x, self.params.range_min_pa, self.params.range_max_pa, out=x)
+            x = x * self._inv_q
+            np.rint(x, out=x)
+            x *= self._q
+        np.maximum(x, self._lo, out=x)
+        np.minimum(x, self._hi, out=x)
         return x

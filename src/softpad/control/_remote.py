@@ -1,0 +1,212 @@
+"""The grasp loop against a simulator served over the network (``tcp://``).
+
+A ``tcp://`` box carries pressures and valves only. To run the whole simulated loop through
+it, the server of a :class:`~softpad.box.SimBox` also offers the simulator's world and robot
+as protocol extensions (:func:`simulation_extensions`; ``softpad box serve`` adds them when it
+serves a ``sim://`` box), and the client drives them with :class:`RemoteRobot`:
+
+=====================  =================================================  =====================
+request                fields                                             reply
+=====================  =================================================  =====================
+``sim.setup``          ``gripper`` (``"10/4"``, ``"6/2"``, ``"4/0"``)      ``layout`` [rows, cols,
+                                                                          pitch_m]
+``sim.place``          ``objects`` (catalogue names)                      nothing more
+``robot.move_to``      ``x_m``, ``y_m``, ``z_m``, ``yaw_rad``,             nothing more
+                       ``speed_m_s``
+``robot.descend``      ``speed_m_s``, ``min_z_m``                         nothing more
+``robot.stop``                                                            nothing more
+``robot.set_gripper``  ``width_m``, ``speed_m_s``                         nothing more
+``robot.is_moving``                                                       ``moving``
+``robot.state``                                                           ``state`` [x_m, y_m,
+                                                                          z_m, yaw_rad, width_m]
+``robot.holding``                                                         ``holding``
+``robot.first_touch``                                                     ``first_touch`` [t_s,
+                                                                          z_m] or null
+=====================  =================================================  =====================
+
+Every robot request maps one to one onto the served :class:`SimulatedRobot`, so a run over
+``tcp://`` gives exactly the run on the same ``sim://`` box in-process (tested). A real robot
+would not be served this way: it has its own controller behind the :class:`Robot` protocol.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Any
+
+from softpad.box import SimBox, TcpBox
+from softpad.control._robot import SimulatedRobot, ToolPose
+from softpad.errors import HardwareFault, InputError
+from softpad.layout import PadLayout
+from softpad.sim import AnalyticWorld, GripperState, SimGripper, get_object
+
+Handler = Callable[[dict[str, Any]], dict[str, Any]]
+
+#: Extension requests a served simulator offers (see the module docstring).
+SIMULATION_OPS = (
+    "sim.setup",
+    "sim.place",
+    "robot.move_to",
+    "robot.descend",
+    "robot.stop",
+    "robot.set_gripper",
+    "robot.is_moving",
+    "robot.state",
+    "robot.holding",
+    "robot.first_touch",
+)
+
+
+def _number(msg: dict[str, Any], key: str) -> float:
+    v = msg.get(key)
+    if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
+        raise InputError(f"{msg.get('op')}: {key} must be a finite number, got {v!r}")
+    return float(v)
+
+
+def simulation_extensions(box: SimBox) -> dict[str, Handler]:
+    """Protocol extensions exposing ``box``'s world and a :class:`SimulatedRobot` on it.
+
+    Pass them to :class:`~softpad.box.BoxServer` (``extensions=``).
+    """
+    world = box.world
+    robot = [SimulatedRobot(world)]
+
+    def setup(msg: dict[str, Any]) -> dict[str, Any]:
+        mounting = msg.get("gripper")
+        if mounting is not None:
+            gripper = SimGripper.mounting(str(mounting))
+            if isinstance(world, AnalyticWorld):
+                world.gripper = gripper
+        robot[0] = SimulatedRobot(world)
+        lay = world.layout
+        return {"layout": [lay.rows, lay.cols, lay.pitch_m]}
+
+    def place(msg: dict[str, Any]) -> dict[str, Any]:
+        names = msg.get("objects")
+        if not isinstance(names, list) or not all(isinstance(n, str) for n in names):
+            raise InputError(f"sim.place: objects must be a list of names, got {names!r}")
+        specs = [get_object(n) for n in names]  # every name checked before placing any
+        for s in specs:
+            world.place_object(s)
+        return {}
+
+    def move_to(msg: dict[str, Any]) -> dict[str, Any]:
+        pose = ToolPose(*(_number(msg, k) for k in ("x_m", "y_m", "z_m", "yaw_rad")))
+        robot[0].move_to(pose, _number(msg, "speed_m_s"))
+        return {}
+
+    def descend(msg: dict[str, Any]) -> dict[str, Any]:
+        robot[0].descend(_number(msg, "speed_m_s"), _number(msg, "min_z_m"))
+        return {}
+
+    def stop(msg: dict[str, Any]) -> dict[str, Any]:
+        robot[0].stop()
+        return {}
+
+    def set_gripper(msg: dict[str, Any]) -> dict[str, Any]:
+        robot[0].set_gripper(_number(msg, "width_m"), _number(msg, "speed_m_s"))
+        return {}
+
+    def state(msg: dict[str, Any]) -> dict[str, Any]:
+        s = robot[0].state()
+        return {"state": [s.x_m, s.y_m, s.z_m, s.yaw_rad, s.width_m]}
+
+    def first_touch(msg: dict[str, Any]) -> dict[str, Any]:
+        touch = robot[0].first_touch()
+        return {"first_touch": None if touch is None else list(touch)}
+
+    return {
+        "sim.setup": setup,
+        "sim.place": place,
+        "robot.move_to": move_to,
+        "robot.descend": descend,
+        "robot.stop": stop,
+        "robot.set_gripper": set_gripper,
+        "robot.is_moving": lambda msg: {"moving": bool(robot[0].is_moving())},
+        "robot.state": state,
+        "robot.holding": lambda msg: {"holding": bool(robot[0].holding())},
+        "robot.first_touch": first_touch,
+    }
+
+
+def has_simulation(box: TcpBox) -> bool:
+    """True when the server of ``box`` offers every request of :data:`SIMULATION_OPS`."""
+    return set(SIMULATION_OPS) <= set(box.extensions)
+
+
+def _floats(reply: dict[str, Any], key: str, n: int) -> list[float]:
+    v = reply.get(key)
+    if (
+        not isinstance(v, list)
+        or len(v) != n
+        or not all(
+            isinstance(x, int | float) and not isinstance(x, bool) and math.isfinite(x) for x in v
+        )
+    ):
+        raise HardwareFault(f"served robot: {key} must be {n} finite numbers, got {v!r}")
+    return [float(x) for x in v]
+
+
+class RemoteRobot:
+    """The :class:`Robot` of a simulator served over ``tcp://`` (see the module docstring).
+
+    Parameters
+    ----------
+    box
+        An open :class:`~softpad.box.TcpBox` whose server offers :data:`SIMULATION_OPS`.
+    gripper
+        Gripper mounting to set up (``"10/4"``, ``"6/2"``, ``"4/0"``); None keeps the served one.
+    """
+
+    def __init__(self, box: TcpBox, gripper: str | None = None) -> None:
+        if not has_simulation(box):
+            raise InputError(
+                f"box at {box.address} serves no simulated world and robot "
+                "(start it with 'softpad box serve --box sim://...')"
+            )
+        self.box = box
+        reply = box.request("sim.setup", gripper=gripper)
+        rows, cols, pitch = _floats(reply, "layout", 3)
+        #: Layout of the served pad.
+        self.layout = PadLayout(int(rows), int(cols), pitch)
+
+    def place(self, names: list[str]) -> None:
+        """Place catalogue objects on the served pad."""
+        self.box.request("sim.place", objects=list(names))
+
+    def move_to(self, pose: ToolPose, speed_m_s: float) -> None:
+        self.box.request(
+            "robot.move_to",
+            x_m=pose.x_m,
+            y_m=pose.y_m,
+            z_m=pose.z_m,
+            yaw_rad=pose.yaw_rad,
+            speed_m_s=speed_m_s,
+        )
+
+    def descend(self, speed_m_s: float, min_z_m: float) -> None:
+        self.box.request("robot.descend", speed_m_s=speed_m_s, min_z_m=min_z_m)
+
+    def stop(self) -> None:
+        self.box.request("robot.stop")
+
+    def set_gripper(self, width_m: float, speed_m_s: float) -> None:
+        self.box.request("robot.set_gripper", width_m=width_m, speed_m_s=speed_m_s)
+
+    def is_moving(self) -> bool:
+        return self.box.request("robot.is_moving").get("moving") is True
+
+    def state(self) -> GripperState:
+        return GripperState(*_floats(self.box.request("robot.state"), "state", 5))
+
+    def holding(self) -> bool:
+        return self.box.request("robot.holding").get("holding") is True
+
+    def first_touch(self) -> tuple[float, float] | None:
+        reply = self.box.request("robot.first_touch")
+        if reply.get("first_touch") is None:
+            return None
+        t, z = _floats(reply, "first_touch", 2)
+        return t, z
