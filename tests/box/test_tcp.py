@@ -97,7 +97,7 @@ def _inflate_then(server: BoxServer, vanish: Callable[[TcpBox], None]) -> SimBox
     box = open_box(server.url)
     assert isinstance(box, TcpBox)
     box.set_valves(["inflate"] * 6 + ["closed"] * 2)
-    box.read_many(150)  # 1.5 s of inflation: about 0.6 kPa, rising
+    box.read_many(250)  # 2.5 s of inflation from flat: about 0.5 kPa, rising
     vanish(box)
     served_box = server.box
     assert isinstance(served_box, SimBox)

@@ -122,7 +122,7 @@ def test_box_serve_prints_its_port_and_stops_when_the_client_leaves(capsys) -> N
         assert line.startswith("serving sim:// on tcp://127.0.0.1:")
         url = line.split(" on ")[1].split()[0]
         # the served simulator offers its world and robot: the whole loop runs through it
-        assert main(["run", "--box", url, "--object", "object-1", "--hold-s", "0", "--json"]) == 0
+        assert main(["run", "--box", url, "--object", "banana", "--hold-s", "0", "--json"]) == 0
         assert proc.wait(timeout=20) == 0
         err = proc.stderr.read() if proc.stderr else ""
         assert "session ended (closed by the client); valves closed" in err

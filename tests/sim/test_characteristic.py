@@ -90,7 +90,7 @@ def test_tabulated_is_exact_on_bilinear_data_and_clamps(tmp_path) -> None:
         ({"volume_m3": np.ones((2, 2))}, "shape"),
         ({"pressure_pa": np.array([0.0, 2000.0, 1000.0])}, "strictly increasing"),
         ({"height_m": np.full((3, 2), np.nan)}, "NaN"),
-        ({"volume_m3": -np.ones((3, 2))}, ">= 0"),
+        ({"volume_m3": -np.ones((3, 2))}, "> 0"),
         ({"meta": np.array("{not json")}, "meta"),
     ],
     ids=["shape", "order", "nan", "negative", "meta"],

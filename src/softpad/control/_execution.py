@@ -317,7 +317,8 @@ class GraspExecution:
         frame = self.box.read()
         self._last_t = frame.t_s
         self.recorder.frame(frame, self.phase)
-        p = check_frame(frame, self.n, self.params.inflation.max_pressure_pa)
+        infl = self.params.inflation
+        p = check_frame(frame, self.n, infl.max_pressure_pa, trip_margin_pa=infl.trip_margin_pa)
         return frame, p
 
     def _wait_motion(self, what: str) -> None:
@@ -353,6 +354,7 @@ class GraspExecution:
             self.n,
             self.params.inflation.max_pressure_pa,
             on_frame=lambda f: self.recorder.frame(f, "safe"),
+            trip_margin_pa=self.params.inflation.trip_margin_pa,
         )
 
     def _run(self) -> ExecutionResult:

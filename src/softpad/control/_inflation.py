@@ -52,6 +52,10 @@ class InflationParams:
         Running-average length used by the controller, samples.
     max_drift_pa_s
         A sealed channel losing pressure faster than this during the settle time leaks, Pa/s.
+    trip_margin_pa
+        The safety trip acts on a reading this far below ``max_pressure_pa``, pascals (50 Pa:
+        about six standard deviations of the sensor noise plus a few samples of the fastest
+        rise), so that the true pressure never exceeds the maximum before the valves react.
     """
 
     target_pa: float = DEFAULT_TARGET_PA
@@ -62,6 +66,12 @@ class InflationParams:
     reference_reads: int = 10
     filter_length: int = 10
     max_drift_pa_s: float = 25.0
+    trip_margin_pa: float = 50.0
+
+    @property
+    def trip_pressure_pa(self) -> float:
+        """Reading at which the safety trip vents a channel, pascals (maximum - margin)."""
+        return self.max_pressure_pa - self.trip_margin_pa
 
     def __post_init__(self) -> None:
         for n in (
@@ -75,7 +85,13 @@ class InflationParams:
             v = getattr(self, n)
             if not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
                 raise InputError(f"inflation {n} must be a positive number, got {v!r}")
-        if self.target_pa + self.tolerance_pa >= self.max_pressure_pa:
+        if not (
+            math.isfinite(self.trip_margin_pa) and 0 <= self.trip_margin_pa < self.max_pressure_pa
+        ):
+            raise InputError(
+                f"trip margin must be in [0, {self.max_pressure_pa:g}) Pa, got {self.trip_margin_pa!r}"
+            )
+        if self.target_pa + self.tolerance_pa >= self.trip_pressure_pa:
             raise InputError(
                 f"target pressure {self.target_pa / 1e3:g} kPa + tolerance must stay below the maximum "
                 f"{self.max_pressure_pa / 1e3:g} kPa"
@@ -114,17 +130,22 @@ class AdjustmentResult:
 
 
 def check_frame(
-    frame: PressureFrame, n_modules: int, max_pressure_pa: float, floor_pa: float = -500.0
+    frame: PressureFrame,
+    n_modules: int,
+    max_pressure_pa: float,
+    floor_pa: float = -500.0,
+    trip_margin_pa: float = 0.0,
 ) -> NDArray[np.float64]:
     """Module pressures of a frame, or HardwareFault naming a bad channel.
 
     A NaN reading is a sensor fault; a reading below ``floor_pa`` (a module cannot be
-    under vacuum) is a sensor dropout; a reading above ``max_pressure_pa`` is an
-    over-pressure.
+    under vacuum) is a sensor dropout; a reading above ``max_pressure_pa - trip_margin_pa``
+    is an over-pressure (the trip acts before the maximum itself is reached).
     """
+    trip = max_pressure_pa - trip_margin_pa
     p = frame.pressures_pa[:n_modules]
     lo, hi = p.min(), p.max()  # NaN propagates: one pass decides the usual, healthy case
-    if floor_pa <= lo and hi <= max_pressure_pa:
+    if floor_pa <= lo and hi <= trip:
         return p
     bad = ~np.isfinite(p)
     if bad.any():
@@ -139,12 +160,13 @@ def check_frame(
             f"channel {ch}: pressure sensor reads {p[ch - 1] / 1e3:.2f} kPa at t = {frame.t_s:.2f} s "
             "(sensor dropout?)"
         )
-    high = p > max_pressure_pa
+    high = p > trip
     if high.any():
         ch = int(np.argmax(high)) + 1
         raise HardwareFault(
-            f"channel {ch}: pressure {p[ch - 1] / 1e3:.2f} kPa exceeds the maximum "
-            f"{max_pressure_pa / 1e3:.2f} kPa at t = {frame.t_s:.2f} s (valve stuck open?)"
+            f"channel {ch}: pressure {p[ch - 1] / 1e3:.3f} kPa tripped the safety limit "
+            f"{trip / 1e3:.3f} kPa (maximum {max_pressure_pa / 1e3:.2f} kPa) at "
+            f"t = {frame.t_s:.2f} s (valve stuck open?)"
         )
     return p
 
@@ -155,6 +177,7 @@ def make_safe(
     max_pressure_pa: float,
     timeout_s: float = 5.0,
     on_frame: FrameHook | None = None,
+    trip_margin_pa: float = 0.0,
 ) -> None:
     """Put the box in its safe state: inflation valves closed, no module above the maximum.
 
@@ -165,6 +188,7 @@ def make_safe(
     """
     if box.closed:
         return
+    trip = max_pressure_pa - trip_margin_pa
     try:
         box.close_valves()
         venting = np.zeros(n_modules, dtype=bool)
@@ -176,11 +200,11 @@ def make_safe(
                 on_frame(frame)
             t_end = frame.t_s + timeout_s if t_end is None else t_end
             p = filt.update(np.nan_to_num(frame.pressures_pa[:n_modules], nan=0.0))
-            start = (p > max_pressure_pa) & ~venting
+            start = (p > trip) & ~venting
             for k in np.flatnonzero(start):
                 box.set_valve(int(k) + 1, ValveCommand.DEFLATE)
             venting |= start
-            if (filt.full and (p <= max_pressure_pa).all()) or frame.t_s >= t_end:
+            if (filt.full and (p <= trip).all()) or frame.t_s >= t_end:
                 break
     except HardwareFault:
         pass  # unreachable box: leave it
@@ -248,7 +272,9 @@ def inflate_and_adjust(
             if on_frame is not None:
                 on_frame(frame)
             t0 = frame.t_s if t0 is None else t0
-            p_raw = check_frame(frame, n_modules, params.max_pressure_pa)
+            p_raw = check_frame(
+                frame, n_modules, params.max_pressure_pa, trip_margin_pa=params.trip_margin_pa
+            )
             p = filt.update(p_raw)
             p_fast = fast.update(p_raw)
             since += 1
@@ -315,8 +341,18 @@ def inflate_and_adjust(
             frame = box.read()
             if on_frame is not None:
                 on_frame(frame)
-            reads.append(check_frame(frame, n_modules, params.max_pressure_pa))
+            reads.append(
+                check_frame(
+                    frame, n_modules, params.max_pressure_pa, trip_margin_pa=params.trip_margin_pa
+                )
+            )
         return AdjustmentResult(np.mean(reads, axis=0), adjusted_at, frame.t_s)
     except HardwareFault:
-        make_safe(box, n_modules, params.max_pressure_pa, on_frame=on_frame)
+        make_safe(
+            box,
+            n_modules,
+            params.max_pressure_pa,
+            on_frame=on_frame,
+            trip_margin_pa=params.trip_margin_pa,
+        )
         raise
