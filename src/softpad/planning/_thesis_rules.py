@@ -49,9 +49,29 @@ class _Object:
         self.layout = layout
         self.pcom = compute_pcom(delta, modules, layout)
         self._cells = {m: self._cell(m) for m in modules}
+        self._centres = {m: layout.center(m) for m in modules}
+        self._bboxes: dict[tuple[int, ...], tuple[int, int, int, int]] = {}
 
     def c(self, m: int) -> Point:
-        return self.layout.center(m)
+        return self._centres[m]
+
+    def adjacent(self, a: int, b: int) -> bool:
+        """8-neighbours (edge or corner), from the cached cells."""
+        (ca, ra), (cb, rb) = self._cells[a], self._cells[b]
+        return a != b and abs(ca - cb) <= 1 and abs(ra - rb) <= 1
+
+    def connected(self, mods: list[int]) -> bool:
+        """Whether the modules form one 8-connected group."""
+        if not mods:
+            return False
+        seen, stack = {mods[0]}, [mods[0]]
+        while stack:
+            m = stack.pop()
+            for o in mods:
+                if o not in seen and self.adjacent(m, o):
+                    seen.add(o)
+                    stack.append(o)
+        return len(seen) == len(mods)
 
     def _cell(self, m: int) -> tuple[int, int]:
         r, col = self.layout.row_col(m)
@@ -62,14 +82,17 @@ class _Object:
         return self._cells[m] if m in self._cells else self._cell(m)
 
     def edge_adjacent(self, a: int, b: int) -> bool:
-        (ca, ra), (cb, rb) = self.cell(a), self.cell(b)
+        (ca, ra), (cb, rb) = self._cells[a], self._cells[b]
         return abs(ca - cb) + abs(ra - rb) == 1
 
     def bbox(self, mods: tuple[int, ...]) -> tuple[int, int, int, int]:
-        cells = [self.cell(m) for m in mods]
-        cols = [c for c, _ in cells]
-        rows = [r for _, r in cells]
-        return min(cols), max(cols), min(rows), max(rows)
+        box = self._bboxes.get(mods)
+        if box is None:
+            cells = [self._cells[m] for m in mods]
+            cols = [c for c, _ in cells]
+            rows = [r for _, r in cells]
+            box = self._bboxes[mods] = (min(cols), max(cols), min(rows), max(rows))
+        return box
 
     def is_rectangle(self, mods: tuple[int, ...]) -> bool:
         c0, c1, r0, r1 = self.bbox(mods)
@@ -143,7 +166,7 @@ def _rectangle(obj: _Object, mods: tuple[int, ...], theta0: float) -> _Grasp:
 
 def _three(obj: _Object, mods: tuple[int, ...], c_s: float) -> _Grasp:
     """N = 3 that is not a straight row: corner-shaped, diagonal-linked, or a diagonal line."""
-    corner = [m for m in mods if all(obj.layout.are_adjacent(m, o) for o in mods if o != m)]
+    corner = [m for m in mods if all(obj.adjacent(m, o) for o in mods if o != m)]
     c0, c1, r0, r1 = obj.bbox(mods)
     if c1 - c0 == 1 and r1 - r0 == 1:
         # Three modules of a 2 x 2 block: an L ("corner-shaped", Fig. 6.4d-(2)(3)).
@@ -267,9 +290,7 @@ def _reduce(obj: _Object, mods: tuple[int, ...], c_s: float, theta0: float) -> _
     if r1 - r0 >= c1 - c0:
         ends |= {m for m in mods if obj.cell(m)[1] in (r0, r1)}
     p = obj.pcom
-    candidates = [
-        m for m in ends if len(obj.layout.connected_groups([o for o in mods if o != m])) == 1
-    ] or list(ends)
+    candidates = [m for m in ends if obj.connected([o for o in mods if o != m])] or list(ends)
 
     def far(m: int) -> float:
         c = obj.c(m)
