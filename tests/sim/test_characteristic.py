@@ -151,3 +151,22 @@ def test_box_runs_on_a_tabulated_characteristic(tmp_path) -> None:
         return box.read_many(3)[-1].pressures_pa[:6] - ref
 
     np.testing.assert_allclose(increments(tab), increments(a), rtol=0.02, atol=0.5)
+
+
+def test_fast_path_matches_general_interpolation_on_the_packaged_table() -> None:
+    """The gas solver's cached load-column path gives the bilinear values and slopes."""
+    from softpad.sim import default_characteristic
+
+    c = default_characteristic()
+    assert isinstance(c, TabulatedCharacteristic)
+    rng = np.random.default_rng(3)
+    for k in range(100):
+        p = rng.uniform(-200.0, 4500.0, 6)  # below, inside and above the table
+        f = np.zeros(6) if k % 4 == 0 else rng.uniform(-0.5, 3.5, 6)
+        v_fast, dv_fast = c.volume_and_slope(p, f)
+        v_ref, dv_ref = c._interp(c.volume_m3_table, p, f)
+        np.testing.assert_allclose(v_fast, v_ref, rtol=1e-12, atol=1e-18)
+        np.testing.assert_allclose(dv_fast, dv_ref, rtol=1e-12, atol=1e-18)
+        np.testing.assert_allclose(
+            c.height_m(p, f), c._interp(c.height_m_table, p, f)[0], rtol=1e-12, atol=1e-18
+        )

@@ -208,6 +208,7 @@ class TabulatedCharacteristic:
     volume_m3_table: NDArray[np.float64]
     height_m_table: NDArray[np.float64]
     meta: dict[str, Any] = field(default_factory=dict)
+    _cache: dict[str, Any] = field(default_factory=dict, init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         p, f = np.asarray(self.pressure_pa, float), np.asarray(self.load_n, float)
@@ -233,6 +234,7 @@ class TabulatedCharacteristic:
         object.__setattr__(self, "load_n", f)
         object.__setattr__(self, "volume_m3_table", v)
         object.__setattr__(self, "height_m_table", h)
+        object.__setattr__(self, "_cache", {})
 
     @classmethod
     def from_file(cls, path: str | Path) -> TabulatedCharacteristic:
@@ -311,11 +313,48 @@ class TabulatedCharacteristic:
     def volume_and_slope(
         self, pressure_pa: NDArray[np.float64], load_n: NDArray[np.float64]
     ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        """V and dV/dp in one evaluation."""
-        return self._interp(self.volume_m3_table, pressure_pa, load_n)
+        """V and dV/dp in one evaluation (the gas solver's hot path).
+
+        Same values as :meth:`volume_m3` and :meth:`volume_slope_m3_pa` for 1-D arrays: the
+        table is first interpolated along the load (cached while the loads stay the same, as
+        they do through a Newton solve), then along the pressure.
+        """
+        p = np.asarray(pressure_pa, dtype=float)
+        f = np.asarray(load_n, dtype=float)
+        if p.ndim != 1 or f.shape != p.shape:
+            return self._interp(self.volume_m3_table, p, f)
+        return self._along_pressure("volume", p, f)
+
+    def _along_pressure(
+        self, which: str, p: NDArray[np.float64], f: NDArray[np.float64]
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Interpolate the cached load columns of a table along the pressure (1-D inputs)."""
+        cache = self._cache
+        key = (which, f.tobytes())
+        entry = cache.get(which)
+        if entry is None or entry[0] != key:
+            table = self.volume_m3_table if which == "volume" else self.height_m_table
+            j, u, _ = self._locate(self.load_n, f)
+            j1 = np.minimum(j + 1, self.load_n.size - 1)
+            cols = table[:, j] * (1 - u) + table[:, j1] * u  # (P, m) at each module's load
+            slopes = np.diff(cols, axis=0) / np.diff(self.pressure_pa)[:, None]
+            entry = cache[which] = (key, cols, slopes)
+        _, cols, slopes = entry
+        grid = self.pressure_pa
+        pc = np.maximum(p, grid[0])
+        i = np.searchsorted(grid, pc, side="right") - 1
+        np.clip(i, 0, grid.size - 2, out=i)
+        k = np.arange(p.size)
+        slope = slopes[i, k]
+        value = cols[i, k] + slope * (pc - grid[i])
+        return value, np.where(p >= grid[0], slope, 0.0)
 
     def height_m(self, pressure_pa: ArrayLike, load_n: ArrayLike) -> NDArray[np.float64]:
-        return self._interp(self.height_m_table, pressure_pa, load_n)[0]
+        p = np.asarray(pressure_pa, dtype=float)
+        f = np.asarray(load_n, dtype=float)
+        if p.ndim == 1 and f.shape == p.shape:
+            return self._along_pressure("height", p, f)[0]
+        return self._interp(self.height_m_table, p, f)[0]
 
 
 def packaged_table_path() -> Path | None:
