@@ -8,11 +8,11 @@ import math
 from softpad.errors import InputError
 
 
-def kpa_list(text: str, flag: str) -> list[float]:
-    """Parse ``"0.1,0,0.2"`` (kPa) into pascals, naming the flag and the bad item on error."""
+def number_list(text: str, flag: str, scale: float = 1.0, positive: bool = False) -> list[float]:
+    """Parse ``"1,1.5,2"`` into floats times ``scale``, naming the flag and the bad item on error."""
     items = [s.strip() for s in str(text).replace(";", ",").split(",")]
     if items == [""]:
-        raise InputError(f"{flag} needs comma-separated numbers in kPa, got an empty value")
+        raise InputError(f"{flag} needs comma-separated numbers, got an empty value")
     out = []
     for i, s in enumerate(items, 1):
         try:
@@ -21,8 +21,15 @@ def kpa_list(text: str, flag: str) -> list[float]:
             raise InputError(f"{flag}: item {i} {s!r} is not a number") from None
         if not math.isfinite(v):
             raise InputError(f"{flag}: item {i} must be finite, got {s!r}")
-        out.append(v * 1e3)
+        if positive and v <= 0:
+            raise InputError(f"{flag}: item {i} must be > 0, got {s!r}")
+        out.append(v * scale)
     return out
+
+
+def kpa_list(text: str, flag: str) -> list[float]:
+    """Parse ``"0.1,0,0.2"`` (kPa) into pascals, naming the flag and the bad item on error."""
+    return number_list(text, flag, scale=1e3)
 
 
 def finite_float(name: str, lo: float | None = None, hi: float | None = None, unit: str = ""):

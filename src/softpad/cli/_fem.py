@@ -4,13 +4,12 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import sys
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from typing import Any
 
-from softpad.cli._args import finite_float
+from softpad.cli._args import finite_float, number_list
 from softpad.errors import InputError
 
 _MODELS = ("neo-hookean", "mooney-rivlin", "ogden-1", "ogden-2", "varga", "yeoh")
@@ -32,22 +31,8 @@ measurement CSV: header pressure_kpa,height_mm; one row per measured point.
 
 
 def _numbers(text: str, flag: str, scale: float = 1.0, positive: bool = False) -> list[float]:
-    """Parse ``"1,1.5,2"`` times ``scale``, naming the flag and the bad item on error."""
-    items = [s.strip() for s in str(text).replace(";", ",").split(",")]
-    if items == [""]:
-        raise InputError(f"{flag} needs comma-separated numbers, got an empty value")
-    out = []
-    for i, s in enumerate(items, 1):
-        try:
-            v = float(s)
-        except ValueError:
-            raise InputError(f"{flag}: item {i} {s!r} is not a number") from None
-        if not math.isfinite(v):
-            raise InputError(f"{flag}: item {i} must be finite, got {s!r}")
-        if positive and v <= 0:
-            raise InputError(f"{flag}: item {i} must be > 0, got {s!r}")
-        out.append(v * scale)
-    return out
+    """Parse ``"1,1.5,2"`` times ``scale`` (see :func:`softpad.cli._args.number_list`)."""
+    return number_list(text, flag, scale, positive)
 
 
 def _model_name(text: str) -> str:
