@@ -71,15 +71,22 @@ obj("toy", 0.1316, [box("body", 0.036, 0.036, 0.04, 1.5*U, 0.5*U, 0, 0.0296),
                     box("right hand", 0.03, 0.03, 0.035, 2.5*U-0.002, 1.5*U-0.002, 0, mr)],
     0.0, 0.0, 0.0, [1,3,5], [2.0, 1.0], -pi/4, "6/2",
     "A V-shaped toy: body on module 5, arms reaching diagonally to modules 1 and 3, heavier right hand.")
-m4, y4 = a('m4', 0.0325), a('y4', 0.021)
-obj("limes", 0.187, [sph("lime 1", 0.024, 0.5*U+0.006, 0.5*U, 0.044),
-                     sph("lime 2", 0.024, 1.5*U, 0.5*U, round(0.187 - 0.044 - 0.048 - 0.004 - m4, 6)),
-                     sph("lime 3", 0.024, 2.5*U-0.006+a('x3', 0), 0.5*U, 0.048),
-                     sph("lime 4", 0.024, 1.5*U, 1.5*U-y4, m4),
-                     box("net", 0.12, 0.05, 0.002, 1.5*U, 0.5*U, 0.048, 0.004)],
-    0.0, 0.0, 0.0, [2,4,5,6], [1.5, 0.8], 0.0, "10/4",
-    "Four limes (about 41-50 g) in a net: three along the bottom row, the lightest one on module 2.",
-    loose_parts=True)
+rl, gl = 0.0245, 0.0005
+mc, yc, cz = a('mc', 0.0165), a('yc', 0.05), a('cz', 0.0)
+ml = round((0.187 - mc) / 3, 6)
+lz = a('lz', -0.004)
+zt = math.sqrt((2*rl)**2 - (rl + gl)**2)
+obj("limes", 0.187, [sph("lime 1", rl, -(rl + gl), 0, ml, z0=lz),
+                     sph("lime 2", rl, rl + gl, 0, ml, z0=lz),
+                     sph("lime 3", rl, 0, 0, round(0.187 - mc - 2*ml, 6), z0=round(zt + lz, 5)),
+                     box("net clip", a('cw', 0.03), a('cl', 0.02), 0.004, 0, yc, cz, mc)],
+    1.5*U, 0.5*U, 0.0, [2,4,5,6], [1.5, 0.8], 0.0, "10/4",
+    "Three limes (56.8 g, 49 mm) in a net drawn tight (one rigid body): two side by side along the bottom row, on the edges of modules 4 and 6 next to the lines to module 5, "
+    "the third on top of them, and the net's gathered end with its clip and label (16.5 g) pulled onto module 2; the limes settle 4 mm into the valleys between the domes, the clip lies on the dome. "
+    "Across x the pile is 86 mm wide where the jaws come down (y = 0.8), which the 10/4 mounting (100 mm) straddles with 7 mm a side; three limes in a row (>= 135 mm) would put a jaw on the outer ones. "
+    "Module 2 carries about a tenth of the summed increments, so the N = 4 drop-farthest rule keeps 2, 5 and 4 or 6 and the corner shift puts the COG at y = 0.8; "
+    "the rule needs the pressure centre within 0.1 module units of x = 1.5, which a turn of a few degrees can break (the pile's outer limes sit on the domes' edges).",
+    loose_parts=a("loose", 0) > 0)
 obj("cylinder", 0.0889, [lcyl("shell", 0.025 - a('sg', 0.0012), 0.125, 0, 0, round(0.0439-a('mi', 0.0045), 6), z0=a('sg', 0.0012)),
                          lcyl("left rim", 0.025, a('lr', 0.012), -0.0625 + a('lr', 0.012)/2, 0, 0.004),
                          lcyl("left band", 0.0241, a('lbd', 0.009), -0.0625 + a('lr', 0.012) + a('lbd', 0.009)/2, 0, 0.002, z0=0.0009),
