@@ -71,22 +71,34 @@ obj("toy", 0.1316, [box("body", 0.036, 0.036, 0.04, 1.5*U, 0.5*U, 0, 0.0296),
                     box("right hand", 0.03, 0.03, 0.035, 2.5*U-0.002, 1.5*U-0.002, 0, mr)],
     0.0, 0.0, 0.0, [1,3,5], [2.0, 1.0], -pi/4, "6/2",
     "A V-shaped toy: body on module 5, arms reaching diagonally to modules 1 and 3, heavier right hand.")
-m4, y4 = a('m4', 0.0325), a('y4', 0.021)
-obj("limes", 0.187, [sph("lime 1", 0.024, 0.5*U+0.006, 0.5*U, 0.044),
-                     sph("lime 2", 0.024, 1.5*U, 0.5*U, round(0.187 - 0.044 - 0.048 - 0.004 - m4, 6)),
-                     sph("lime 3", 0.024, 2.5*U-0.006+a('x3', 0), 0.5*U, 0.048),
-                     sph("lime 4", 0.024, 1.5*U, 1.5*U-y4, m4),
-                     box("net", 0.12, 0.05, 0.002, 1.5*U, 0.5*U, 0.048, 0.004)],
-    0.0, 0.0, 0.0, [2,4,5,6], [1.5, 0.8], 0.0, "10/4",
-    "Four limes (about 41-50 g) in a net: three along the bottom row, the lightest one on module 2.",
-    loose_parts=True)
-obj("cylinder", 0.0889, [lcyl("shell", 0.024, 0.125, 0, 0, round(0.0459-a('mi', 0.0045), 6), z0=0.001),
+rl, gl = 0.0245, 0.0005
+mc, yc, cz = a('mc', 0.0165), a('yc', 0.05), a('cz', 0.0)
+ml = round((0.187 - mc) / 3, 6)
+lz = a('lz', -0.004)
+zt = math.sqrt((2*rl)**2 - (rl + gl)**2)
+obj("limes", 0.187, [sph("lime 1", rl, -(rl + gl), 0, ml, z0=lz),
+                     sph("lime 2", rl, rl + gl, 0, ml, z0=lz),
+                     sph("lime 3", rl, 0, 0, round(0.187 - mc - 2*ml, 6), z0=round(zt + lz, 5)),
+                     box("net clip", a('cw', 0.03), a('cl', 0.02), 0.004, 0, yc, cz, mc)],
+    1.5*U, 0.5*U, 0.0, [2,4,5,6], [1.5, 0.8], 0.0, "10/4",
+    "Three limes (56.8 g, 49 mm) in a net drawn tight (one rigid body): two side by side along the bottom row, on the edges of modules 4 and 6 next to the lines to module 5, "
+    "the third on top of them, and the net's gathered end with its clip and label (16.5 g) pulled onto module 2; the limes settle 4 mm into the valleys between the domes, the clip lies on the dome. "
+    "Across x the pile is 86 mm wide where the jaws come down (y = 0.8), which the 10/4 mounting (100 mm) straddles with 7 mm a side; three limes in a row (>= 135 mm) would put a jaw on the outer ones. "
+    "Module 2 carries about a tenth of the summed increments, so the N = 4 drop-farthest rule keeps 2, 5 and 4 or 6 and the corner shift puts the COG at y = 0.8; "
+    "the rule needs the pressure centre within 0.1 module units of x = 1.5, which a turn of a few degrees can break (the pile's outer limes sit on the domes' edges).",
+    loose_parts=a("loose", 0) > 0)
+obj("cylinder", 0.0889, [lcyl("shell", 0.025 - a('sg', 0.0012), 0.125, 0, 0, round(0.0439-a('mi', 0.0045), 6), z0=a('sg', 0.0012)),
                          lcyl("left rim", 0.025, a('lr', 0.012), -0.0625 + a('lr', 0.012)/2, 0, 0.004),
-                         lcyl("bead", 0.025, a('lb', 0.006), a('xb', 0.0), 0, 0.003),
-                         lcyl("right rim", 0.025, a('rr', 0.012), 0.0625 - a('rr', 0.012)/2, 0, 0.004),
-                         lcyl("insert", 0.02, 0.02, -0.05, 0, round(0.032+a('mi', 0.0045), 6), z0=0.005)],
+                         lcyl("left band", 0.0241, a('lbd', 0.009), -0.0625 + a('lr', 0.012) + a('lbd', 0.009)/2, 0, 0.002, z0=0.0009),
+                         lcyl("bead", 0.025 - a('bg', 0.00045), a('lb', 0.0095), a('xb', 0.0), 0, 0.003, z0=a('bg', 0.00045)),
+                         lcyl("right rim", 0.025, a('rr', 0.012), 0.0505 + a('rr', 0.012)/2, 0, 0.004),
+                         lcyl("insert", 0.02, 0.02, a('xi', -0.041), 0, round(0.032+a('mi', 0.0045), 6), z0=0.005)],
     1.5*U, 1.0*U, 0.0, [1,2,3,4,5,6], [1.14, 1.0], pi/2, "6/2",
-    "A can (50 mm diameter, 125 mm long) lying along x across both rows, resting on its end rims and a central bead, with a heavy insert at its left end.")
+    "A can (50 mm diameter, 125 mm long, 88.9 g) lying along x on the line between the rows, with a 36.5 g insert 41 mm left of its middle (centre of mass at x = 1.10 module units). "
+    "It rests on its end rims (12 mm wide; inside the left one a 9 mm swaged band 0.1 mm proud of the body) and, lightly, on a central bead 9.5 mm wide that stands 0.45 mm back from the rims: "
+    "a rigid can on stiff, equal supports would give its middle column a third of its weight whatever the insert, leaving the right column under t_o; a recessed bead moves load to the ends, "
+    "so modules 2, 3, 5, 6 carry about 0.1 N each (the most they can with the pressure centre at x = 1.14) and the left column the rest. "
+    "Sensitive to its yaw: lying in the groove between the rows, turned by 1-2 degrees it rests with one end on each row and is seen on four or five modules (the thesis's cylinder failure).")
 obj("charger", 0.3123, [box("brick", 0.075, 0.055, 0.03, 0, 0, 0, 0.2823),
                         box("cable coil", 0.03, 0.03, 0.015, 0.055, -0.012, 0, 0.018),
                         box("plug", 0.03, 0.025, 0.02, 0.09, -0.02, 0, 0.012)],
