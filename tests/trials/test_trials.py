@@ -118,7 +118,8 @@ def test_placement_perturbation_is_seeded() -> None:
     assert a == b
     assert a != c
     # trial seeds depend on (experiment seed, object, trial) only
-    assert trial_seed(0, 3, 1) == trial_seed(0, 3, 1) != trial_seed(0, 3, 2)
+    assert trial_seed(0, "toy", 1) == trial_seed(0, "toy", 1) != trial_seed(0, "toy", 2)
+    assert trial_seed(0, "toy", 1) != trial_seed(0, "banana", 1) != trial_seed(1, "banana", 1)
 
 
 def _fake(name: str, k: int, cause: str | None) -> TrialResult:
@@ -170,6 +171,19 @@ def test_experiment_in_two_processes_matches_one() -> None:
     assert strip == [
         {k: v for k, v in t.to_dict().items() if k != "wall_time_s"} for t in two.trials
     ]
+
+
+def test_a_trial_does_not_depend_on_the_other_objects_of_the_run() -> None:
+    config = TrialConfig(hold_s=0.5)
+    alone, _ = run_experiment([get_object("object-2")], trials=1, seed=5, workers=1, config=config)
+    mixed, _ = run_experiment(
+        [get_object("object-4"), get_object("object-2")], trials=1, seed=5, workers=1, config=config
+    )
+    a = alone.trials[0].to_dict()
+    (b,) = [t.to_dict() for t in mixed.trials if t.object == "object-2"]
+    a.pop("wall_time_s")
+    b.pop("wall_time_s")
+    assert a == b
 
 
 @pytest.mark.slow

@@ -17,6 +17,7 @@ from __future__ import annotations
 import math
 import os
 import time
+import zlib
 from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, replace
@@ -109,9 +110,14 @@ class TrialConfig:
             raise InputError("trial speeds must be > 0 m/s")
 
 
-def trial_seed(seed: int, object_index: int, trial: int) -> int:
-    """Seed of one trial, from the experiment seed (independent of the worker count)."""
-    ss = np.random.SeedSequence([int(seed), int(object_index), int(trial)])
+def trial_seed(seed: int, object_name: str, trial: int) -> int:
+    """Seed of one trial, from the experiment seed, the object's name and the trial number.
+
+    Independent of the worker count and of which other objects run alongside, so trial k of
+    an object is the same trial in ``softpad demo`` and in ``softpad trials --objects NAME``.
+    """
+    name_key = zlib.crc32(str(object_name).encode("utf-8"))
+    ss = np.random.SeedSequence([int(seed), name_key, int(trial)])
     return int(ss.generate_state(1)[0])
 
 
@@ -222,10 +228,10 @@ def run_experiment(
         raise InputError("no objects to try")
     config = config or TrialConfig()
     tasks = []
-    for i, spec in enumerate(specs):
+    for spec in specs:
         for k in range(trials):
             cfg = replace(config, record_trace=(spec.name == trace_object and k == 0))
-            tasks.append((spec, k, trial_seed(seed, i, k), cfg))
+            tasks.append((spec, k, trial_seed(seed, spec.name, k), cfg))
     n_cpu = (
         len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
     )
