@@ -1,0 +1,59 @@
+"""``softpad demo`` writes its report; ``softpad bench`` measures and reports its figures."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from softpad.cli.main import main
+
+PNG = b"\x89PNG\r\n\x1a\n"
+
+
+def _run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
+    try:
+        code = main(list(argv))
+    except SystemExit as exc:
+        code = int(exc.code or 0)
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+@pytest.mark.slow
+@pytest.mark.mujoco
+def test_demo_writes_the_report(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    out = tmp_path / "report"
+    code, stdout, _ = _run(
+        capsys, "demo", "--out", str(out), "--trials", "1", "--workers", "2", "--no-progress"
+    )
+    assert code == 0
+    for name in ("table.md", "table.csv", "results.json", "README.md"):
+        assert (out / name).stat().st_size > 0, name
+    for name in ("grasps.png", "trace.png", "plans_reference.png"):
+        assert (out / name).read_bytes()[:8] == PNG, name
+    results = json.loads((out / "results.json").read_text())
+    names = [o["name"] for o in results["objects"]]
+    assert names[:6] == [f"object-{k}" for k in range(1, 7)] and len(names) == 11
+    assert all(o["trials"] == 1 and 0 <= o["successes"] <= 1 for o in results["objects"])
+    assert results["overall_success"] == pytest.approx(
+        sum(o["successes"] for o in results["objects"]) / 11
+    )
+    assert "94.5" in (out / "table.md").read_text() + stdout
+
+
+def test_bench_planning_reports_medians_against_the_target(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    code, out, _ = _run(capsys, "bench", "--only", "planning", "--quick", "--json")
+    assert code == 0
+    rows = json.loads(out)
+    assert {r["suite"] for r in rows} == {"planning"}
+    assert all(r["unit"] == "us" and r["value"] > 0 and r["target"] == "<= 50 us" for r in rows)
+
+
+def test_bench_unknown_suite_is_a_one_line_error(capsys: pytest.CaptureFixture[str]) -> None:
+    code, _, err = _run(capsys, "bench", "--only", "planning,warp")
+    assert code == 2
+    assert "unknown benchmark 'warp'" in err and len(err.strip().splitlines()) == 1
