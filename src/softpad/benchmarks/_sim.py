@@ -75,9 +75,8 @@ def _speed(quick: bool) -> list[BenchResult]:
                 f"closed loop on the banana, 8 channels at {rate} Hz",
                 f,
                 "x real time",
-                target=">= 100x",
-                met=f >= TARGET_REALTIME,
-                detail=f"one run: {sim_total:.1f} s simulated (inflate, plan, grasp, {hold:g} s hold) "
+                detail="informative (the >= 100x target is the simulator's, above); one run: "
+                f"{sim_total:.1f} s simulated (inflate, plan, grasp, {hold:g} s hold) "
                 f"in {wall:.2f} s, controller included",
             )
         )
