@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
@@ -25,6 +26,9 @@ from softpad.planning._geometry import (
 )
 from softpad.planning._pcom import pcom as compute_pcom
 from softpad.planning._records import GraspPlan
+
+if TYPE_CHECKING:  # pragma: no cover
+    from softpad.planning._plan import PlannerParams
 
 Point = tuple[float, float]
 
@@ -103,12 +107,9 @@ def plan_with_rules(
     delta: NDArray[np.float64],
     modules: tuple[int, ...],
     layout: PadLayout,
-    params: object,
+    params: PlannerParams,
 ) -> GraspPlan:
     """Plan one object with the thesis's rules (dispatch on N and shape)."""
-    from softpad.planning._plan import PlannerParams
-
-    assert isinstance(params, PlannerParams)
     obj = _Object(delta, modules, layout)
     g = _plan(obj, modules, params.safety_shift, params.default_theta)
     return GraspPlan(
