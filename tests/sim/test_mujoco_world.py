@@ -116,6 +116,29 @@ def test_fingertip_on_line_loads_no_module(x_units: float, on_module: bool) -> N
         assert min(world.gripper_contacts().sole_on_lines_n) > 0.0
 
 
+@pytest.mark.parametrize(
+    ("tip_width_m", "on_module"), [(0.016, True), (0.010, False)], ids=["tip-16mm", "tip-10mm"]
+)
+def test_fingertip_across_line_is_sensed_when_it_reaches_the_domes(
+    tip_width_m: float, on_module: bool
+) -> None:
+    """Tips centred on the line between rows (y = 1 unit, modules 2 and 5), 12 mm either side
+    of column 2's centre (like object 1's thesis grasp, whose tip crosses that line): a 16 mm
+    tip reaches 5.5 mm past the line's edges onto the flanks of both domes and is sensed; a
+    10 mm tip reaches 2.5 mm, which 12 mm from the column's centre is still outside the
+    domes' round 40 mm footprints, and rests on the line."""
+    world = MujocoWorld(gripper=MujocoGripper(mounting="10/2", tip_width_m=tip_width_m))
+    peak = descend_fingers(world, 1.5 * PITCH, 1.0 * PITCH, 0.020)
+    contacts = world.gripper_contacts()
+    if on_module:
+        assert peak > 0.2  # t_g = 90 Pa is 0.13 N on a module
+        assert contacts.sole_on_modules == ((2, 5), (2, 5))
+    else:
+        assert peak < 0.05
+        assert contacts.sole_on_modules == ((), ())
+        assert min(contacts.sole_on_lines_n) > 0.0
+
+
 @pytest.mark.parametrize(("asked", "got"), [(1.0, 0.06), (0.0, 0.02)], ids=["open", "close"])
 def test_gripper_width_is_clamped_to_the_mounting(asked: float, got: float) -> None:
     """The execution opens with 1 m and closes with 0 m: the jaws go to the mounting's limits."""
