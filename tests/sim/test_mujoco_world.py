@@ -116,6 +116,29 @@ def test_fingertip_on_line_loads_no_module(x_units: float, on_module: bool) -> N
         assert min(world.gripper_contacts().sole_on_lines_n) > 0.0
 
 
+@pytest.mark.parametrize(
+    ("tip_width_m", "on_module"), [(0.016, True), (0.010, False)], ids=["tip-16mm", "tip-10mm"]
+)
+def test_fingertip_across_line_is_sensed_when_it_reaches_the_domes(
+    tip_width_m: float, on_module: bool
+) -> None:
+    """Tips centred on the line between rows (y = 1 unit, modules 2 and 5), 12 mm either side
+    of column 2's centre (like object 1's thesis grasp, whose tip crosses that line): a 16 mm
+    tip reaches 5.5 mm past the line's edges onto the flanks of both domes and is sensed; a
+    10 mm tip reaches 2.5 mm, which 12 mm from the column's centre is still outside the
+    domes' round 40 mm footprints, and rests on the line."""
+    world = MujocoWorld(gripper=MujocoGripper(mounting="10/2", tip_width_m=tip_width_m))
+    peak = descend_fingers(world, 1.5 * PITCH, 1.0 * PITCH, 0.020)
+    contacts = world.gripper_contacts()
+    if on_module:
+        assert peak > 0.2  # t_g = 90 Pa is 0.13 N on a module
+        assert contacts.sole_on_modules == ((2, 5), (2, 5))
+    else:
+        assert peak < 0.05
+        assert contacts.sole_on_modules == ((), ())
+        assert min(contacts.sole_on_lines_n) > 0.0
+
+
 @pytest.mark.parametrize(("asked", "got"), [(1.0, 0.06), (0.0, 0.02)], ids=["open", "close"])
 def test_gripper_width_is_clamped_to_the_mounting(asked: float, got: float) -> None:
     """The execution opens with 1 m and closes with 0 m: the jaws go to the mounting's limits."""
@@ -148,23 +171,47 @@ def test_simulated_box_on_mujoco_world_conforms() -> None:
     check_conformance(SimBox(MujocoWorld(), seed=1, initial_pressure_pa=1100.0))
 
 
-def test_holding_a_lifted_brick() -> None:
-    """Squeezed by both jaws and off the pad: held; back on the pad: not."""
-    world = MujocoWorld(gripper=MujocoGripper(mounting="6/2"))
+def move_to(world: MujocoWorld, target: GripperState, speed_m_s: float, rest_s: float) -> None:
+    """Command the hand and step until it has arrived (at most 5 s), then ``rest_s`` more."""
+    world.command_gripper(target, speed_m_s)
+    for _ in range(5000):
+        now = world.gripper_state()
+        if (
+            max(abs(now.x_m - target.x_m), abs(now.y_m - target.y_m), abs(now.z_m - target.z_m))
+            < 1e-6
+        ):
+            break
+        world.step(1e-3)
+    else:
+        raise AssertionError(f"the hand did not reach {target} in 5 s")
+    settle(world, rest_s)
+
+
+@pytest.mark.parametrize("tip_width_m", [0.010, 0.016], ids=["tip-10mm", "tip-16mm"])
+def test_holding_a_lifted_brick(tip_width_m: float) -> None:
+    """Squeezed by both jaws and off the pad: held; back on the pad: not.
+
+    The hand reaches each pose before the next command (the robot's moves are sequential): a
+    version of this test that closed the jaws while the hand was still 25 mm above its target
+    pushed the brick into the dome with the closed fingers until it flipped out and was caught
+    by chance (held with the 10 mm tips, slipping with 16 mm)."""
+    world = MujocoWorld(gripper=MujocoGripper(mounting="6/2", tip_width_m=tip_width_m))
     world.place_object(brick(mass_kg=0.05), Placement(1.5 * PITCH, 1.5 * PITCH))
     settle(world, 1.0)
     x, y = 1.5 * PITCH, 1.5 * PITCH
-    world.command_gripper(GripperState(x, y, 0.02, 0.0, 0.05), 0.2)
-    settle(world, 0.5)
-    world.command_gripper(GripperState(x, y, 0.009, 0.0, 0.05), 0.05)
-    settle(world, 0.5)
+    move_to(world, GripperState(x, y, 0.02, 0.0, 0.05), 0.2, 0.2)
+    move_to(world, GripperState(x, y, 0.009, 0.0, 0.05), 0.05, 0.2)
     assert not world.holding()
-    world.command_gripper(GripperState(x, y, 0.009, 0.0, 0.0), 0.05)
-    settle(world, 0.8)
+    move_to(world, GripperState(x, y, 0.009, 0.0, 0.0), 0.05, 0.8)
     assert min(world.gripper_contacts().finger_on_object_n) > 5.0  # force-limited squeeze
-    z0 = world.object_pose("brick").z_m
-    world.command_gripper(GripperState(x, y, 0.06, 0.0, world.gripper_state().width_m), 0.1)
-    settle(world, 1.0)
+    # squeezed flat, face to face: the jaws closed to the brick's 31 mm (less the contacts'
+    # 0.1 mm penetration each side), the brick neither pushed off its dome nor turned
+    np.testing.assert_allclose(world.gripper_state().width_m, 0.031, atol=0.5e-3)
+    pose = world.object_pose("brick")
+    np.testing.assert_allclose([pose.x_m, pose.y_m], [x, y], atol=0.5e-3)
+    assert pose.tilt_rad < np.radians(1.0)
+    z0 = pose.z_m
+    move_to(world, GripperState(x, y, 0.06, 0.0, world.gripper_state().width_m), 0.1, 1.0)
     assert world.holding()
     # rose with the hand (51 mm), no slip beyond 1 mm
     np.testing.assert_allclose(world.object_pose("brick").z_m - z0, 0.051, atol=1e-3)

@@ -182,9 +182,21 @@ class MujocoGripper:
         From the palm to the lower face of the tips, metres (9.5 cm).
     tip_thickness_m
         Tip size along the closing direction, metres. The thesis's tips are "very small", small
-        enough to touch only a line between modules; 4 mm, 1 mm less than our lines.
+        enough to touch only a line between modules (its failure for object 5 and the charger,
+        Section 6.3); 4 mm, 1 mm less than our lines, so a tip can lie entirely on a line and
+        go unsensed. (The planner's drawing gripper, :class:`softpad.layout.GripperSpec`, and
+        the analytic world use 8 mm, which could never fit on a 5 mm line.)
     tip_width_m
-        Tip size across the closing direction, metres; 10 mm.
+        Tip size across the closing direction, metres; 16 mm, the width of
+        :class:`softpad.layout.GripperSpec` and of the analytic world's tips. Across a line
+        (e.g. object 1's thesis grasp (2.5, 1, 0), whose only tip on the pad lies over the line
+        between modules 2 and 5) a 16 mm tip reaches 5.5 mm past the line's edges on both
+        sides and touches a dome's flank unless it is far from the dome's centre; the 10 mm
+        tip used before reached 2.5 mm, touched nothing and sensed object 1's grasp in 2 of
+        15 trials (seeds 0-2; 16 mm: see docs/trials.md). Lying along a line (the tips of a
+        grasp along x centred on a column line) it stays unsensed at any width. The grip does
+        not depend on it: a 50 g brick squeezed by 10 or 16 mm tips rises 51 mm with the hand
+        within 0.02 mm (``tests/sim/test_mujoco_world.py``).
     grip_force_n
         Force limit of each jaw's servo, newtons (squeeze force once closed on an object).
     servo_stiffness_n_m
@@ -198,7 +210,7 @@ class MujocoGripper:
     mounting: str = "10/4"
     finger_length_m: float = 0.095
     tip_thickness_m: float = 4e-3
-    tip_width_m: float = 10e-3
+    tip_width_m: float = 16e-3
     grip_force_n: float = 20.0
     servo_stiffness_n_m: float = 4000.0
     friction: float = 0.8

@@ -72,9 +72,9 @@ def plot_grasps(
     specs: dict[str, Any],
     path: str,
     layout: PadLayout | None = None,
-    tip_thickness_m: float = 5e-3,
-    tip_width_m: float = 10e-3,
-    line_width_m: float = 9e-3,
+    tip_thickness_m: float | None = None,
+    tip_width_m: float | None = None,
+    line_width_m: float | None = None,
     trial_index: int = 0,
 ) -> None:
     """Save a figure with the planned grasp of trial ``trial_index`` of every object (Fig. 6.10).
@@ -90,18 +90,25 @@ def plot_grasps(
     layout
         Pad geometry.
     tip_thickness_m, tip_width_m
-        Fingertip size (closing direction, across), metres.
+        Fingertip size (closing direction, across), metres; by default the MuJoCo gripper's
+        (:class:`softpad.sim.MujocoGripper`, 4 x 16 mm).
     line_width_m
-        Width of the non-sensitive lines drawn between modules, metres.
+        Width of the non-sensitive lines drawn between modules, metres; by default the MuJoCo
+        pad's (pitch less the dome's side, 5 mm).
     trial_index
         Which trial of each object to draw.
     """
+    from softpad.sim import MujocoGripper, PadPhysics
+
+    layout = layout or PadLayout()
+    tip_thickness_m = tip_thickness_m or MujocoGripper().tip_thickness_m
+    tip_width_m = tip_width_m or MujocoGripper().tip_width_m
+    line_width_m = line_width_m or layout.pitch_m - PadPhysics().sensitive_side_m
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    layout = layout or PadLayout()
     names = result.object_names
     n = len(names)
     cols = min(4, n)

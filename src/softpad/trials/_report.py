@@ -15,13 +15,15 @@ def write_report(
     specs: dict[str, Any],
     trace: Any | None = None,
     trace_title: str = "",
-    tip_thickness_m: float = 4e-3,
-    tip_width_m: float = 10e-3,
-    line_width_m: float = 5e-3,
+    tip_thickness_m: float | None = None,
+    tip_width_m: float | None = None,
+    line_width_m: float | None = None,
 ) -> list[Path]:
     """Write the experiment to ``out``: ``table.md``, ``table.csv``, ``results.json``,
     ``grasps.png`` (every planned grasp over the pad, like Fig. 6.10), ``trace.png`` (pressure
-    traces of one trial, like Fig. 6.8) and ``README.md`` (the summary); return the paths."""
+    traces of one trial, like Fig. 6.8) and ``README.md`` (the summary); return the paths.
+    Fingertip and line sizes (metres) default to the MuJoCo world's (see
+    :func:`softpad.trials._plots.plot_grasps`)."""
     from softpad.trials._plots import plot_grasps
 
     out = Path(out)
