@@ -30,16 +30,11 @@ def register(sub: Any) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from softpad.cli._trials import progress_bar
-    from softpad.errors import InputError
+    from softpad.cli._trials import check_counts, run_with_progress
     from softpad.sim import get_object, object_names
-    from softpad.trials import run_experiment
     from softpad.trials._report import write_report
 
-    if not 1 <= args.trials <= 1000:
-        raise InputError(f"--trials must be from 1 to 1000, got {args.trials}")
-    if args.workers is not None and not 1 <= args.workers <= 256:
-        raise InputError(f"--workers must be from 1 to 256, got {args.workers}")
+    check_counts(args.trials, args.workers)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     specs = [get_object(n) for n in object_names()]
@@ -47,25 +42,15 @@ def run(args: argparse.Namespace) -> int:
     _reference_plans(out)
     # the thesis's Fig. 6.8 shows an object on modules 1 and 4: object 4 lies there
     trace_object = "object-4" if any(s.name == "object-4" for s in specs) else specs[0].name
-    bar = progress_bar(len(specs) * args.trials, not args.no_progress, desc="grasp trials")
-
-    def tick(result: Any) -> None:
-        if bar is not None:
-            bar.set_postfix_str(f"{result.object}: {'held' if result.success else result.cause}")
-            bar.update(1)
-
-    try:
-        exp, trace = run_experiment(
-            specs,
-            trials=args.trials,
-            seed=args.seed,
-            workers=args.workers,
-            on_trial=tick,
-            trace_object=trace_object,
-        )
-    finally:
-        if bar is not None:
-            bar.close()
+    exp, trace = run_with_progress(
+        specs,
+        args.trials,
+        not args.no_progress,
+        desc="grasp trials",
+        seed=args.seed,
+        workers=args.workers,
+        trace_object=trace_object,
+    )
     print(exp.to_text())
     paths = write_report(
         out,

@@ -66,7 +66,7 @@ def select_objects(names_text: str | None) -> list[Any]:
 
 
 def progress_bar(total: int, enabled: bool, desc: str = "trials") -> Any:
-    """A tqdm bar on stderr (or a no-op) with ``update(result)``-style use."""
+    """A tqdm bar on stderr, or None when disabled."""
     if not enabled:
         return None
     from tqdm import tqdm
@@ -74,37 +74,51 @@ def progress_bar(total: int, enabled: bool, desc: str = "trials") -> Any:
     return tqdm(total=total, desc=desc, unit="trial", file=sys.stderr, dynamic_ncols=True)
 
 
-def run(args: argparse.Namespace) -> int:
-    import math
+def check_counts(trials: int, workers: int | None) -> None:
+    """Validate ``--trials`` and ``--workers`` (shared by ``trials`` and ``demo``)."""
+    if not 1 <= trials <= 1000:
+        raise InputError(f"--trials must be from 1 to 1000, got {trials}")
+    if workers is not None and not 1 <= workers <= 256:
+        raise InputError(f"--workers must be from 1 to 256, got {workers}")
 
-    from softpad.trials import TrialConfig, run_experiment
 
-    specs = select_objects(args.objects)
-    if not 1 <= args.trials <= 1000:
-        raise InputError(f"--trials must be from 1 to 1000, got {args.trials}")
-    if args.workers is not None and not 1 <= args.workers <= 256:
-        raise InputError(f"--workers must be from 1 to 256, got {args.workers}")
-    if not math.isfinite(args.hold_s) or not 0 <= args.hold_s <= 600:
-        raise InputError(f"--hold-s must be from 0 to 600 s, got {args.hold_s!r}")
-    bar = progress_bar(len(specs) * args.trials, not args.no_progress and sys.stderr.isatty())
+def run_with_progress(
+    specs: list[Any], trials: int, show: bool, desc: str = "trials", **kwargs: Any
+) -> tuple[Any, Any]:
+    """``run_experiment`` with a progress bar that names each finished trial's outcome."""
+    from softpad.trials import run_experiment
+
+    bar = progress_bar(len(specs) * trials, show, desc=desc)
 
     def tick(result: Any) -> None:
         if bar is not None:
-            bar.set_postfix_str(f"{result.object} {'ok' if result.success else result.cause}")
+            bar.set_postfix_str(f"{result.object}: {'held' if result.success else result.cause}")
             bar.update(1)
 
     try:
-        exp, _ = run_experiment(
-            specs,
-            trials=args.trials,
-            seed=args.seed,
-            workers=args.workers,
-            config=TrialConfig(hold_s=args.hold_s),
-            on_trial=tick,
-        )
+        return run_experiment(specs, trials=trials, on_trial=tick, **kwargs)
     finally:
         if bar is not None:
             bar.close()
+
+
+def run(args: argparse.Namespace) -> int:
+    import math
+
+    from softpad.trials import TrialConfig
+
+    specs = select_objects(args.objects)
+    check_counts(args.trials, args.workers)
+    if not math.isfinite(args.hold_s) or not 0 <= args.hold_s <= 600:
+        raise InputError(f"--hold-s must be from 0 to 600 s, got {args.hold_s!r}")
+    exp, _ = run_with_progress(
+        specs,
+        args.trials,
+        not args.no_progress and sys.stderr.isatty(),
+        seed=args.seed,
+        workers=args.workers,
+        config=TrialConfig(hold_s=args.hold_s),
+    )
     if args.json:
         print(json.dumps(exp.to_dict(), indent=1))
     else:
