@@ -4,7 +4,7 @@ PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
 
-.PHONY: demo test bench lint typecheck venv clean
+.PHONY: demo test bench lint typecheck venv clean ros-deps
 
 $(VENV)/.installed: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -24,7 +24,19 @@ lint: venv
 typecheck: venv
 	$(BIN)/mypy
 
-test: lint typecheck
+# Debian's ROS 1 packages for the ROS node and its tests (docs/ros.md); installed only when missing,
+# and only as root (elsewhere the ROS tests are skipped with the reason).
+ROS_APT := ros-core python3-rospy python3-std-msgs python3-geometry-msgs python3-sensor-msgs \
+	python3-diagnostic-msgs python3-std-srvs python3-tf2-msgs python3-rostopic
+ros-deps:
+	@if command -v roscore >/dev/null && [ -f /usr/lib/python3/dist-packages/rospy/__init__.py ] \
+	    && [ -d /usr/lib/python3/dist-packages/tf2_msgs ]; then :; \
+	elif [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
+	    (apt-cache policy ros-core | grep -q 'Candidate: [0-9]' || apt-get update -q) && \
+	    DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends $(ROS_APT); \
+	else echo "ros-deps: ROS 1 not installed and not root: ROS tests will be skipped"; fi
+
+test: lint typecheck ros-deps
 	MPLBACKEND=Agg $(BIN)/pytest -n 2 -q
 
 bench: venv
