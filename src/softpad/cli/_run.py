@@ -36,6 +36,12 @@ def register(sub: Any) -> None:
     )
     p.add_argument("--box", default="sim://", metavar="URL", help="box URL (default sim://)")
     p.add_argument(
+        "--robot",
+        default="sim://",
+        metavar="URL",
+        help="robot URL: sim:// (the simulated box's own, default) or ros1:// (docs/ros.md)",
+    )
+    p.add_argument(
         "--object",
         action="append",
         metavar="NAME",
@@ -71,7 +77,12 @@ def run(args: argparse.Namespace) -> int:
     log = RunLog({"box": args.box, "objects": names})
     params = ExecutionParams(hold_s=args.hold_s)
     try:
-        result = run_simulated(names, args.box, params, log, gripper=args.gripper)
+        if args.robot == "sim://":
+            result = run_simulated(names, args.box, params, log, gripper=args.gripper)
+        else:
+            from softpad.cli._ros import run_with_robot_url
+
+            result = run_with_robot_url(args, names, log, params)
     finally:
         # whatever happened, what was logged is kept
         if args.log:

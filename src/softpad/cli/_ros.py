@@ -1,0 +1,99 @@
+"""``softpad ros node`` and ``softpad sim arm-node``: the ROS 1 adapters (docs/ros.md)."""
+
+from __future__ import annotations
+
+import argparse
+from typing import Any
+
+_NETWORK = (
+    "ROS networking: set ROS_MASTER_URI=http://127.0.0.1:11311, ROS_IP=127.0.0.1 and "
+    "ROS_HOSTNAME=localhost (loopback only)."
+)
+
+
+def register(sub: Any) -> None:
+    ros = sub.add_parser(
+        "ros",
+        help="ROS 1 node of the pad (rospy; docs/ros.md)",
+        description="ROS 1 adapters of SoftPad. " + _NETWORK,
+    )
+    rsub = ros.add_subparsers(dest="ros_command", metavar="COMMAND")
+    node = rsub.add_parser(
+        "node",
+        help="the pad as a ROS node: pressures, objects, grasps, contact, diagnostics",
+        description=(
+            "Open the box, inflate and adjust every module, save the reference, then publish "
+            "every frame (/softpad/module_K/pressure, /softpad/pressures), the objects and grasps "
+            "(/softpad/objects, /softpad/grasps), /softpad/contact, /diagnostics and the static "
+            "transforms; services ~inflate, ~capture_reference, ~plan. ROS parameters (~box, "
+            "~pad_x_m, ...) override the config file. " + _NETWORK
+        ),
+        epilog="example:\n  softpad ros node --box sim:// --place banana",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    node.add_argument("--config", metavar="FILE.json", help="installation file (docs/ros.md)")
+    node.add_argument("--box", metavar="URL", help="box URL (overrides the config; default sim://)")
+    node.add_argument(
+        "--place",
+        metavar="NAMES",
+        help="simulation: catalogue objects put on a sim:// box 1 s after the reference",
+    )
+    node.set_defaults(handler=run_node)
+    ros.set_defaults(handler=lambda a: _help(ros))
+
+    sim = sub.add_parser("sim", help="simulated devices for ROS (docs/ros.md)")
+    ssub = sim.add_subparsers(dest="sim_command", metavar="COMMAND")
+    arm = ssub.add_parser(
+        "arm-node",
+        help="simulated arm on ROS (ros1:// contract) sharing its world with a served sim box",
+        description=(
+            "Own a simulated box and its world; serve the box on tcp://127.0.0.1:PORT and the arm "
+            "on /softpad_arm/command and /softpad_arm/state, so that 'softpad run --robot ros1:// "
+            "--box tcp://127.0.0.1:PORT' runs the loop with the arm in ROS. " + _NETWORK
+        ),
+    )
+    arm.add_argument("--box", default="sim://", metavar="URL", help="sim:// URL (default sim://)")
+    arm.add_argument("--port", type=int, default=5757, help="TCP port of the box (0: a free one)")
+    arm.set_defaults(handler=run_arm_node)
+    sim.set_defaults(handler=lambda a: _help(sim))
+
+
+def _help(parser: argparse.ArgumentParser) -> int:
+    parser.print_help()
+    return 2
+
+
+def run_node(args: argparse.Namespace) -> int:
+    from softpad.ros import PadNode, load_config
+
+    config = load_config(args.config)
+    changes: dict[str, Any] = {}
+    if args.box:
+        changes["box"] = args.box
+    if args.place:
+        changes["place"] = args.place
+    node = PadNode(config.updated(changes))
+    print(f"softpad ros node: box {node.config.box}, {node.layout.name} pad", flush=True)
+    node.run()
+    return 0
+
+
+def run_arm_node(args: argparse.Namespace) -> int:
+    from softpad.ros._sim_arm import SimArmNode
+
+    node = SimArmNode(args.box, args.port)
+    print(f"softpad sim arm-node: box on {node.server.url}, arm on /softpad_arm", flush=True)
+    node.serve()
+    return 0
+
+
+def run_with_robot_url(args: argparse.Namespace, names: list[str], log: Any, params: Any) -> Any:
+    """``softpad run --robot URL``: the loop with a robot reached by URL (``ros1://``)."""
+    from softpad.ros import open_robot
+    from softpad.ros._run import run_with_robot
+
+    robot = open_robot(args.robot)
+    try:
+        return run_with_robot(names, args.box, robot, params, log, gripper=args.gripper)
+    finally:
+        robot.close()

@@ -1,0 +1,27 @@
+"""ROS 1 adapters: the pad as a rospy node, and a :class:`~softpad.control.Robot` reached
+through ROS topics (``ros1://``). Translation only: sensing, planning and control stay
+ROS-free. rospy comes from Debian's packages (:func:`ensure_rospy`); everything here imports
+it lazily, so ``import softpad.ros`` works without ROS. docs/ros.md has the topics, services,
+the arm contract and the frames.
+"""
+
+from softpad.ros._arm import ARM_COMMAND_TOPIC, ARM_STATE_TOPIC, Ros1Robot, open_robot
+from softpad.ros._node import CONFIG_KEYS, NodeConfig, PadNode, load_config
+from softpad.ros._rospy_path import INSTALL_HINT, ROS_MODULES, ensure_rospy, rospy_available
+from softpad.ros._run import run_with_robot
+
+__all__ = [
+    "ARM_COMMAND_TOPIC",
+    "ARM_STATE_TOPIC",
+    "CONFIG_KEYS",
+    "INSTALL_HINT",
+    "ROS_MODULES",
+    "NodeConfig",
+    "PadNode",
+    "Ros1Robot",
+    "ensure_rospy",
+    "load_config",
+    "open_robot",
+    "rospy_available",
+    "run_with_robot",
+]

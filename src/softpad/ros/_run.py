@@ -1,0 +1,54 @@
+"""The grasp loop with a robot reached by URL (``ros1://``) and a box reached by URL."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+from softpad.errors import HardwareFault
+
+
+def run_with_robot(
+    objects: Sequence[str] | None,
+    box: str,
+    robot: Any,
+    params: Any = None,
+    recorder: Any = None,
+    gripper: str | None = None,
+) -> Any:
+    """Run :class:`softpad.control.GraspExecution` once on ``box`` with ``robot``.
+
+    When the box is a simulator served over ``tcp://`` (``softpad sim arm-node`` or
+    ``softpad box serve --box sim://``), the gripper mounting is set up and the catalogue
+    ``objects`` are placed through its ``sim.setup``/``sim.place`` requests; on any other box a
+    person places the object and the pad layout is the default 2 x 3.
+
+    Returns
+    -------
+    ExecutionResult
+        The timeline and outcome. A fault (box or arm lost) raises
+        :class:`~softpad.errors.HardwareFault` after the box was made safe.
+    """
+    from softpad.box import TcpBox, open_box
+    from softpad.control import GraspExecution, resolve_objects
+    from softpad.layout import PadLayout
+
+    specs = resolve_objects(objects)
+    names = [s.name for s in specs]
+    layout, place = PadLayout(), None
+    with open_box(box) as b:
+        if isinstance(b, TcpBox) and {"sim.setup", "sim.place"} <= set(b.extensions):
+            tcp = b
+            rows, cols, pitch = tcp.request("sim.setup", gripper=gripper or specs[0].gripper)[
+                "layout"
+            ]
+            layout = PadLayout(int(rows), int(cols), float(pitch))
+
+            def place() -> None:
+                tcp.request("sim.place", objects=names)
+
+        loop = GraspExecution(b, robot, layout, params, recorder=recorder, place_objects=place)
+        try:
+            return loop.run()
+        except HardwareFault as exc:
+            raise HardwareFault(f"run stopped in phase {loop.phase!r}: {exc}") from None

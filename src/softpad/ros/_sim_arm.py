@@ -1,0 +1,153 @@
+"""``softpad sim arm-node``: a simulated arm honouring the ``ros1://`` contract.
+
+The simulated arm must move the gripper of the same world whose pressures the box reports, so
+this one process owns the simulated box and its world: it serves the box over ``tcp://`` on
+127.0.0.1 (the :class:`~softpad.box.BoxServer` of ``softpad box serve``, with the simulator's
+``sim.setup``/``sim.place`` requests so a run can place catalogue objects), and the arm over
+ROS (:data:`~softpad.ros.ARM_COMMAND_TOPIC` in, :data:`~softpad.ros.ARM_STATE_TOPIC` out). The
+box is paced to the wall clock (``realtime=1``) so that ROS latencies count as they would on
+hardware. Commands are applied between two frames, in the thread that serves the box, so the
+world is only touched from one thread.
+"""
+
+from __future__ import annotations
+
+import queue
+import threading
+from collections.abc import Callable
+from typing import Any
+
+from softpad.box import Box, PressureFrame, SimBox, ValveCommand
+from softpad.errors import InputError
+
+
+class _HookedBox(Box):
+    """A box that calls ``before`` ahead of every read of ``inner`` and ``after`` with it."""
+
+    def __init__(self, inner: Box, before: Callable[[], None], after: Callable[[], None]) -> None:
+        super().__init__()
+        self.inner, self.before, self.after = inner, before, after
+
+    @property
+    def channels(self) -> int:
+        return self.inner.channels
+
+    @property
+    def sample_rate_hz(self) -> float:
+        return self.inner.sample_rate_hz
+
+    def _read(self) -> PressureFrame:
+        self.before()
+        frame = self.inner.read()
+        self.after()
+        return frame
+
+    def _apply_valve(self, channel: int, command: ValveCommand) -> None:
+        self.inner.set_valve(channel, command)
+
+    def _close(self) -> None:
+        self.inner.close()
+
+
+def _simulated_robot(world: Any) -> Any:
+    try:  # the simulator harness (architecture issue), else its earlier home
+        from softpad.harness import SimulatedRobot  # type: ignore[attr-defined]
+    except ImportError:
+        from softpad.control import SimulatedRobot
+    return SimulatedRobot(world)
+
+
+class SimArmNode:
+    """The simulated arm node (module docstring).
+
+    Parameters
+    ----------
+    box_url
+        A ``sim://`` URL; ``realtime=1`` is added unless it sets ``realtime``.
+    port
+        TCP port of the served box on 127.0.0.1 (0: a free one, see :attr:`server`).
+    """
+
+    def __init__(self, box_url: str = "sim://", port: int = 0) -> None:
+        from softpad.box import BoxServer, open_box
+        from softpad.control import simulation_extensions
+        from softpad.ros._rospy_path import ensure_rospy
+
+        if not box_url.startswith("sim://"):
+            raise InputError(f"the simulated arm drives a sim:// box, got {box_url!r}")
+        if "realtime=" not in box_url:
+            box_url += ("&" if "?" in box_url else "?") + "realtime=1"
+        rospy = ensure_rospy()
+        from std_msgs.msg import Float64MultiArray
+
+        box = open_box(box_url)
+        assert isinstance(box, SimBox)
+        self.sim = box
+        self.robot = _simulated_robot(box.world)
+        self._commands: queue.Queue[tuple[str, list[float]]] = queue.Queue()
+        self._lock = threading.Lock()
+        self._current = self._done = 0.0
+        self._snapshot = self._take_snapshot()
+        ext = simulation_extensions(box)
+        self.server = BoxServer(
+            _HookedBox(box, self._apply_commands, self._after_read),
+            port=port,
+            extensions={k: ext[k] for k in ("sim.setup", "sim.place")},
+        )
+        from softpad.ros._arm import ARM_COMMAND_TOPIC, ARM_STATE_TOPIC
+
+        rospy.init_node("softpad_sim_arm", disable_signals=True)
+        self._pub = rospy.Publisher(ARM_STATE_TOPIC, Float64MultiArray, queue_size=10)
+        self._sub = rospy.Subscriber(ARM_COMMAND_TOPIC, Float64MultiArray, self._on_command)
+        self._timer = rospy.Timer(rospy.Duration(0.01), self._publish)
+
+    def _on_command(self, msg: Any) -> None:
+        op = msg.layout.dim[0].label if msg.layout.dim else ""
+        self._commands.put((op, [float(v) for v in msg.data]))
+
+    def _apply_commands(self) -> None:
+        """Apply received commands to the simulated robot (box thread, between frames)."""
+        from softpad.control import ToolPose
+
+        arity = {"move_to": 6, "descend": 3, "stop": 1, "gripper": 3}
+        while not self._commands.empty():
+            op, d = self._commands.get()
+            if arity.get(op) != len(d):
+                continue  # malformed: ignored, never acknowledged
+            if op == "move_to":
+                self.robot.move_to(ToolPose(*d[1:5]), d[5])
+            elif op == "descend":
+                self.robot.descend(d[1], d[2])
+            elif op == "stop":
+                self.robot.stop()
+            else:
+                self.robot.set_gripper(d[1], d[2])
+            self._current = d[0]
+
+    def _take_snapshot(self) -> list[float]:
+        moving = bool(self.robot.is_moving())
+        if not moving:
+            self._done = self._current
+        s = self.robot.state()
+        held = float(self.robot.holding())
+        return [s.x_m, s.y_m, s.z_m, s.yaw_rad, s.width_m, float(moving), held, self._done]
+
+    def _after_read(self) -> None:
+        snap = self._take_snapshot()
+        with self._lock:
+            self._snapshot = snap
+
+    def _publish(self, _event: Any) -> None:
+        from softpad.ros._messages import labelled_array
+
+        with self._lock:
+            snap = list(self._snapshot)
+        self._pub.publish(labelled_array(snap, "x_y_z_yaw_width_moving_holding_done_id"))
+
+    def serve(self) -> None:
+        """Serve the box until interrupted (the ROS side runs in rospy's threads)."""
+        try:
+            self.server.serve()
+        finally:
+            self._timer.shutdown()
+            self.server.close()
