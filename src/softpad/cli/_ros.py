@@ -54,6 +54,11 @@ def register(sub: Any) -> None:
     )
     arm.add_argument("--box", default="sim://", metavar="URL", help="sim:// URL (default sim://)")
     arm.add_argument("--port", type=int, default=5757, help="TCP port of the box (0: a free one)")
+    arm.add_argument(
+        "--lose-arm-on",
+        choices=("move_to", "descend", "stop", "gripper"),
+        help="fault injection: the arm goes silent on this command (the box stays served)",
+    )
     arm.set_defaults(handler=run_arm_node)
     sim.set_defaults(handler=lambda a: _help(sim))
 
@@ -81,7 +86,7 @@ def run_node(args: argparse.Namespace) -> int:
 def run_arm_node(args: argparse.Namespace) -> int:
     from softpad.ros._sim_arm import SimArmNode
 
-    node = SimArmNode(args.box, args.port)
+    node = SimArmNode(args.box, args.port, args.lose_arm_on)
     print(f"softpad sim arm-node: box on {node.server.url}, arm on /softpad_arm", flush=True)
     node.serve()
     return 0

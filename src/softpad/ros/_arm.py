@@ -99,10 +99,11 @@ class Ros1Robot:
             )
         return s
 
-    def _send(self, op: str, *args: float) -> None:
+    def _send(self, op: str, *args: float, check: bool = True) -> None:
         from softpad.ros._messages import labelled_array
 
-        self._latest()  # refuse to command an arm that is gone
+        if check:
+            self._latest()  # refuse to command an arm that is gone
         self._sent += 1
         self._pub.publish(labelled_array([float(self._sent), *args], op))
 
@@ -113,7 +114,8 @@ class Ros1Robot:
         self._send("descend", speed_m_s, min_z_m)
 
     def stop(self) -> None:
-        self._send("stop")
+        """Send stop, also to an arm that has gone silent (the loop stops it on any fault)."""
+        self._send("stop", check=False)
 
     def set_gripper(self, width_m: float, speed_m_s: float) -> None:
         self._send("gripper", width_m, speed_m_s)

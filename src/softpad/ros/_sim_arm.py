@@ -66,9 +66,14 @@ class SimArmNode:
         A ``sim://`` URL; ``realtime=1`` is added unless it sets ``realtime``.
     port
         TCP port of the served box on 127.0.0.1 (0: a free one, see :attr:`server`).
+    lose_arm_on
+        Fault injection: on this command (``move_to``, ``descend``, ``stop``, ``gripper``) the
+        arm's ROS side goes silent, as if its driver died, while the box stays served.
     """
 
-    def __init__(self, box_url: str = "sim://", port: int = 0) -> None:
+    def __init__(
+        self, box_url: str = "sim://", port: int = 0, lose_arm_on: str | None = None
+    ) -> None:
         from softpad.box import BoxServer, open_box
         from softpad.control import simulation_extensions
         from softpad.ros._rospy_path import ensure_rospy
@@ -84,6 +89,11 @@ class SimArmNode:
         assert isinstance(box, SimBox)
         self.sim = box
         self.robot = _simulated_robot(box.world)
+        if lose_arm_on not in (None, "move_to", "descend", "stop", "gripper"):
+            raise InputError(
+                f"lose_arm_on must be move_to, descend, stop or gripper, got {lose_arm_on!r}"
+            )
+        self.lose_arm_on = lose_arm_on
         self._commands: queue.Queue[tuple[str, list[float]]] = queue.Queue()
         self._lock = threading.Lock()
         self._current = self._done = 0.0
@@ -103,6 +113,10 @@ class SimArmNode:
 
     def _on_command(self, msg: Any) -> None:
         op = msg.layout.dim[0].label if msg.layout.dim else ""
+        if op == self.lose_arm_on:
+            self._timer.shutdown()  # the arm's driver "dies": no state, no commands
+            self._sub.unregister()
+            return
         self._commands.put((op, [float(v) for v in msg.data]))
 
     def _apply_commands(self) -> None:
@@ -123,6 +137,7 @@ class SimArmNode:
             else:
                 self.robot.set_gripper(d[1], d[2])
             self._current = d[0]
+            print(f"arm: {op} {' '.join(f'{v:g}' for v in d)}", flush=True)
 
     def _take_snapshot(self) -> list[float]:
         moving = bool(self.robot.is_moving())

@@ -1,0 +1,228 @@
+"""The ROS 1 adapters against a real roscore on loopback (skipped without ROS).
+
+Each test starts its processes with ROS_MASTER_URI on 127.0.0.1, ROS_IP=127.0.0.1 and
+ROS_HOSTNAME=localhost, waits for them with bounded timeouts and kills them at the end.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import re
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import time
+from collections.abc import Iterator
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from softpad.ros import rospy_available
+
+pytestmark = pytest.mark.skipif(
+    not (rospy_available() and shutil.which("roscore")),
+    reason="ROS 1 not installed (make ros-deps, as root, installs Debian's packages)",
+)
+SOFTPAD = str(Path(sys.executable).with_name("softpad"))
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+def _wait(predicate, timeout_s: float, what: str):  # type: ignore[no-untyped-def]
+    deadline = time.monotonic() + timeout_s
+    while time.monotonic() < deadline:
+        value = predicate()
+        if value:
+            return value
+        time.sleep(0.2)
+    raise AssertionError(f"timed out after {timeout_s} s waiting for {what}")
+
+
+class _Procs:
+    """Processes of one test, all killed at its end."""
+
+    def __init__(self, env: dict[str, str], tmp: Path) -> None:
+        self.env, self.tmp, self.procs = env, tmp, []  # type: ignore[var-annotated]
+
+    def start(self, name: str, *args: str) -> tuple[subprocess.Popen[bytes], Path]:
+        out = self.tmp / f"{name}.log"
+        p = subprocess.Popen(args, env=self.env, stdout=out.open("wb"), stderr=subprocess.STDOUT)
+        self.procs.append(p)
+        return p, out
+
+    def run(self, *args: str, timeout_s: float = 30.0) -> subprocess.CompletedProcess[str]:
+        return subprocess.run(
+            args, env=self.env, capture_output=True, text=True, timeout=timeout_s, check=False
+        )
+
+    def close(self) -> None:
+        for p in reversed(self.procs):
+            if p.poll() is None:
+                p.send_signal(signal.SIGINT)
+                try:
+                    p.wait(5)
+                except subprocess.TimeoutExpired:
+                    p.kill()
+                    p.wait(5)
+
+
+@pytest.fixture(scope="module")
+def master(tmp_path_factory: pytest.TempPathFactory) -> Iterator[dict[str, str]]:
+    port = _free_port()
+    env = dict(os.environ)
+    env.update(
+        ROS_MASTER_URI=f"http://127.0.0.1:{port}",
+        ROS_IP="127.0.0.1",
+        ROS_HOSTNAME="localhost",
+        ROS_HOME=str(tmp_path_factory.mktemp("ros_home")),
+        MPLBACKEND="Agg",
+    )
+    core = subprocess.Popen(
+        ["roscore", "-p", str(port)], env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
+    )
+    try:
+        _wait(
+            lambda: (
+                subprocess.run(
+                    ["rosparam", "list"], env=env, capture_output=True, timeout=10
+                ).returncode
+                == 0
+            ),
+            30.0,
+            "roscore",
+        )
+        yield env
+    finally:
+        core.send_signal(signal.SIGINT)
+        try:
+            core.wait(10)
+        except subprocess.TimeoutExpired:
+            core.kill()
+
+
+@pytest.fixture
+def procs(master: dict[str, str], tmp_path: Path) -> Iterator[_Procs]:
+    p = _Procs(master, tmp_path)
+    yield p
+    p.close()
+
+
+def _echo(procs: _Procs, topic: str) -> str:
+    r = procs.run("rostopic", "echo", "-n", "1", topic, timeout_s=20)
+    return r.stdout
+
+
+def _floats(text: str, key: str) -> list[float]:
+    return [float(v) for v in re.findall(rf"^\s*{key}: (\S+)$", text, re.M)]
+
+
+def _plan_json(*args: str) -> dict:  # type: ignore[type-arg]
+    r = subprocess.run(
+        [SOFTPAD, "plan", *args, "--json"], capture_output=True, text=True, check=True
+    )
+    return json.loads(r.stdout)
+
+
+def test_node_publishes_pressures_diagnostics_and_the_plan(procs: _Procs) -> None:
+    node, log = procs.start("node", SOFTPAD, "ros", "node", "--box", "sim://", "--place", "banana")
+
+    def grasps() -> str:
+        assert node.poll() is None, log.read_text()
+        text = _echo(procs, "/softpad/grasps")
+        return text if "position" in text else ""
+
+    text = _wait(grasps, 60.0, "a grasp on /softpad/grasps")
+    assert 'frame_id: "softpad"' in text
+    x, y, z = _floats(text, "x")[0], _floats(text, "y")[0], _floats(text, "z")
+    yaw = 2.0 * math.atan2(z[1], _floats(text, "w")[0])
+    # the banana on modules 2, 3, 4 (thesis increments): COG (1, 1), theta -pi/4
+    plan = _plan_json("--delta", "0,0.124,0.078,0.109,0,0")["objects"][0]
+    assert (x, y) == pytest.approx(plan["cog_m"], abs=1e-9)
+    assert yaw == pytest.approx(plan["theta"], abs=1e-9)
+
+    hz = procs.run(
+        "timeout", "-s", "INT", "8", "rostopic", "hz", "-w", "100", "/softpad/module_1/pressure"
+    )
+    rates = [float(v) for v in re.findall(r"average rate: ([0-9.]+)", hz.stdout)]
+    assert rates, hz.stdout + hz.stderr
+    # paced to the box clock: never faster than the box's 100 Hz (5 % for the estimate)
+    assert 0 < rates[-1] <= 105.0
+    diag = _echo(procs, "/diagnostics")
+    levels = [int(v) for v in re.findall(r"level: (\d+)", diag)]
+    names = re.findall(r'name: "([^"]+)"', diag)
+    assert "softpad: link" in names and "softpad: channel 6" in names
+    assert levels[names.index("softpad: link")] == 0
+    assert all(levels[names.index(f"softpad: channel {k}")] == 0 for k in range(1, 7))
+    pressure = _echo(procs, "/softpad/module_1/pressure")
+    assert 'frame_id: "softpad_module_1"' in pressure
+    assert 1000.0 < _floats(pressure, "fluid_pressure")[0] < 1300.0  # p0 = 1.1 kPa, Pa
+    r = procs.run("rosservice", "call", "/softpad/plan")
+    assert "success: True" in r.stdout, r.stdout + r.stderr
+    assert "n3-diagonal-corner" in r.stdout
+    tf = _echo(procs, "/tf_static")
+    assert 'child_frame_id: "softpad"' in tf and 'child_frame_id: "softpad_module_6"' in tf
+
+
+def _arm(procs: _Procs, *extra: str) -> tuple[subprocess.Popen[bytes], Path, str]:
+    arm, log = procs.start("arm", SOFTPAD, "sim", "arm-node", "--port", "0", *extra)
+    url = _wait(
+        lambda: (re.findall(r"tcp://127\.0\.0\.1:\d+", log.read_text()) or [None])[0],
+        30.0,
+        "the arm node",
+    )
+    return arm, log, url
+
+
+def test_run_with_the_arm_in_ros_holds_the_banana_with_the_simulated_plan(procs: _Procs) -> None:
+    _, _, url = _arm(procs)
+    args = ("run", "--object", "banana", "--hold-s", "1", "--json")
+    r = procs.run(SOFTPAD, *args, "--robot", "ros1://", "--box", url, timeout_s=90)
+    assert r.returncode == 0, r.stderr
+    ros = json.loads(r.stdout)
+    sim = json.loads(procs.run(SOFTPAD, *args, timeout_s=90).stdout)
+    assert ros["outcome"] == "held"
+    assert ros["objects"] == sim["objects"]  # same frames up to the plan: the same plan
+    assert ros["increments_kpa"] == sim["increments_kpa"]
+    assert ros["grasps"][0]["contact_modules"]
+
+
+def test_arm_lost_mid_approach_ends_the_run_with_the_box_safe(
+    procs: _Procs, tmp_path: Path
+) -> None:
+    from softpad.record import RunLog
+
+    _, _, url = _arm(procs, "--lose-arm-on", "descend")
+    npz = tmp_path / "run.npz"
+    r = procs.run(
+        SOFTPAD, "run", "--robot", "ros1://", "--box", url, "--object", "banana",
+        "--log", str(npz), timeout_s=90,
+    )  # fmt: skip
+    assert r.returncode == 2
+    assert "Traceback" not in r.stderr and len(r.stderr.strip().splitlines()) == 1
+    assert "phase 'descend'" in r.stderr and "arm lost" in r.stderr
+    log = RunLog.load(npz)
+    assert [d["phase"] for _, k, d in log.events if k == "fault"] == ["descend"]
+    safe = np.asarray(log.pressures_pa)[np.asarray(log.phases) == "safe"]
+    assert len(safe) and np.nanmax(safe) <= 3000.0  # inflation valves closed, below the maximum
+
+
+def test_arm_node_killed_mid_approach_gives_one_clear_error(procs: _Procs) -> None:
+    arm, log, url = _arm(procs)
+    run, out = procs.start(
+        "run", SOFTPAD, "run", "--robot", "ros1://", "--box", url, "--object", "banana"
+    )
+    _wait(lambda: "arm: descend" in log.read_text(), 60.0, "the descent")
+    arm.kill()
+    assert run.wait(30) == 2
+    text = out.read_text()
+    assert "Traceback" not in text
+    assert re.search(r"run stopped in phase 'descend': (arm lost|lost the link)", text), text
