@@ -7,8 +7,8 @@ import pytest
 
 from softpad.box import ConnectionLost, SimBox, ValveCommand, open_box
 from softpad.control import ExecutionParams, GraspExecution
-from softpad.harness import SimulatedRobot, run_simulated
 from softpad.errors import HardwareFault, InputError
+from softpad.harness import SimulatedRobot, run_simulated
 from softpad.record import RunLog
 from softpad.sim import AnalyticWorld, SimGripper, get_object
 
@@ -159,9 +159,7 @@ def test_interrupt_closes_the_valves() -> None:
             if frame.t_s > 1.0 and phase == "adjust":
                 raise KeyboardInterrupt
 
-    loop = GraspExecution(
-        box, SimulatedRobot(world), world.layout, FAST, recorder=Interrupting()
-    )
+    loop = GraspExecution(box, SimulatedRobot(world), world.layout, FAST, recorder=Interrupting())
     with pytest.raises(KeyboardInterrupt):
         loop.run()
     assert set(box.valves) == {ValveCommand.CLOSED}

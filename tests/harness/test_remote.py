@@ -10,8 +10,8 @@ import pytest
 
 from softpad.box import BoxServer, SimBox, TcpBox, ValveCommand, open_box
 from softpad.control import ExecutionParams, ToolPose
-from softpad.harness import RemoteRobot, SimulatedRobot, run_simulated, simulation_extensions
 from softpad.errors import InputError
+from softpad.harness import RemoteRobot, SimulatedRobot, run_simulated, simulation_extensions
 from softpad.record import RunLog
 
 

@@ -6,8 +6,8 @@ import pytest
 from softpad.errors import InputError
 from softpad.layout import PadLayout
 from softpad.sensing import (
-    ThesisContactDetector,
     RunningAverage,
+    ThesisContactDetector,
     capture_reference,
     detect_objects,
     increments,

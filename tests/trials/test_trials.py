@@ -17,10 +17,10 @@ from softpad.trials import (
     ExperimentResult,
     TrialConfig,
     TrialResult,
-    trial_execution_params,
     perturbed_placement,
     run_experiment,
     run_trial,
+    trial_execution_params,
     trial_seed,
 )
 
