@@ -1,7 +1,7 @@
 """Sensing primitives: filters, reference capture, increments, objects, contact.
 
 Pure functions and small state classes; every pressure is a gauge pressure in pascals.
-Thesis symbols: t_o (object threshold, 0.05 kPa), t_g (contact threshold, 0.09 kPa),
+Thesis symbols (values in :mod:`softpad.thesis`): t_o (object threshold), t_g (contact threshold),
 running average of 10 samples, reference = mean of 10 reads (seed, Sections 6.2.1.1 and 6.3).
 """
 

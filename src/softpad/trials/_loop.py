@@ -1,7 +1,7 @@
 """One trial: the box branch's execution state machine on the simulated box and a MuJoCo world.
 
 ``softpad.control.GraspExecution`` runs the loop of Section 6.2 (adjust -> reference -> wait
-for the object -> plan -> approach -> descend at 0.05 m/s -> contact at t_g -> close -> lift ->
+for the object -> plan -> approach -> descend -> contact at t_g -> close -> lift ->
 hold 15 s -> release). This module only sets it up for a trial (the world, the object's placement,
 the jaw opening) and reads the failure's cause from the world through the loop's recorder hook:
 which surfaces the fingertips touched, whether a jaw came down on the object, whether the object
