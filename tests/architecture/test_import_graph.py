@@ -25,6 +25,8 @@ ALLOWED: dict[str, set[str]] = {
     "record": {"box", "layout", "planning"},
     "harness": {"box", "control", "layout", "sim", "planning", "sensing"},
     "trials": {"box", "control", "harness", "layout", "planning", "record", "sensing", "sim"},
+    # the ROS adapters translate; the simulated arm node uses the harness and the catalogue
+    "ros": {"box", "control", "harness", "layout", "planning", "sensing", "sim"},
 }
 
 

@@ -191,7 +191,7 @@ def test_run_with_the_arm_in_ros_holds_the_banana_with_the_simulated_plan(procs:
     sim = json.loads(procs.run(SOFTPAD, *args, timeout_s=90).stdout)
     assert ros["outcome"] == "held"
     assert ros["objects"] == sim["objects"]  # same frames up to the plan: the same plan
-    assert ros["increments_kpa"] == sim["increments_kpa"]
+    assert ros["increments_pa"] == sim["increments_pa"]
     assert ros["grasps"][0]["contact_modules"]
 
 

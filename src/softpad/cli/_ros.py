@@ -94,11 +94,14 @@ def run_arm_node(args: argparse.Namespace) -> int:
 
 def run_with_robot_url(args: argparse.Namespace, names: list[str], log: Any, params: Any) -> Any:
     """``softpad run --robot URL``: the loop with a robot reached by URL (``ros1://``)."""
+    from softpad.harness import SimulatedRun, TouchTruth
     from softpad.ros import open_robot
     from softpad.ros._run import run_with_robot
 
     robot = open_robot(args.robot)
     try:
-        return run_with_robot(names, args.box, robot, params, log, gripper=args.gripper)
+        result = run_with_robot(names, args.box, robot, params, log, gripper=args.gripper)
     finally:
         robot.close()
+    # no ground truth of the touches through ROS: the report leaves them empty
+    return SimulatedRun(result, tuple(TouchTruth(None, None) for _ in result.grasps))

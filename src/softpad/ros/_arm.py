@@ -25,23 +25,13 @@ import time
 from typing import Any
 from urllib.parse import parse_qs, urlsplit
 
+from softpad.control import RobotState, ToolPose
 from softpad.errors import HardwareFault, InputError
 
 ARM_COMMAND_TOPIC = "/softpad_arm/command"
 ARM_STATE_TOPIC = "/softpad_arm/state"
 #: Fields of the state message, in order.
 STATE_FIELDS = ("x_m", "y_m", "z_m", "yaw_rad", "width_m", "moving", "holding", "done_id")
-
-
-def _state_type() -> Any:
-    import softpad.control as control
-
-    # RobotState (architecture issue) when present, else the simulator's GripperState
-    if hasattr(control, "RobotState"):
-        return control.RobotState
-    from softpad.sim import GripperState
-
-    return GripperState
 
 
 class Ros1Robot:
@@ -107,7 +97,7 @@ class Ros1Robot:
         self._sent += 1
         self._pub.publish(labelled_array([float(self._sent), *args], op))
 
-    def move_to(self, pose: Any, speed_m_s: float) -> None:
+    def move_to(self, pose: ToolPose, speed_m_s: float) -> None:
         self._send("move_to", pose.x_m, pose.y_m, pose.z_m, pose.yaw_rad, speed_m_s)
 
     def descend(self, speed_m_s: float, min_z_m: float) -> None:
@@ -124,15 +114,11 @@ class Ros1Robot:
         s = self._latest()
         return s[7] < self._sent or s[5] > 0.5
 
-    def state(self) -> Any:
-        return _state_type()(*self._latest()[:5])
+    def state(self) -> RobotState:
+        return RobotState(*self._latest()[:5])
 
     def holding(self) -> bool:
         return self._latest()[6] > 0.5
-
-    def first_touch(self) -> tuple[float, float] | None:
-        """Unknown through ROS (ground truth stays with the simulator)."""
-        return None
 
     def close(self) -> None:
         """Unregister the topics."""

@@ -21,6 +21,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from softpad import thesis
 from softpad.errors import HardwareFault, InputError
 from softpad.layout import PadLayout, PadPose
 
@@ -59,8 +60,8 @@ class NodeConfig:
     layout: str = "2x3"
     pad: PadPose = field(default_factory=PadPose)
     base_frame: str = "base"
-    object_threshold_pa: float = 50.0
-    contact_threshold_pa: float = 90.0
+    object_threshold_pa: float = thesis.OBJECT_THRESHOLD_PA
+    contact_threshold_pa: float = thesis.CONTACT_THRESHOLD_PA
     settle_s: float = 0.5
     place: tuple[str, ...] = ()
     place_after_s: float = 1.0
@@ -226,8 +227,8 @@ class PadNode:
         from softpad.sensing import RunningAverage
 
         self.reference_pa = np.asarray(reference_pa, dtype=float)
-        self.increments = RunningAverage(10)
-        self.touch = RunningAverage(10)
+        self.increments = RunningAverage(thesis.FILTER_WINDOW)
+        self.touch = RunningAverage(thesis.FILTER_WINDOW)
         self.contact_ref: NDArray[np.float64] | None = None
         self.groups: list[tuple[int, ...]] = []
         self.changed_at = self.planned_at = -math.inf
@@ -342,7 +343,7 @@ class PadNode:
                 from softpad.sensing import capture_reference
 
                 reads = []
-                for _ in range(10):
+                for _ in range(thesis.REFERENCE_READS):
                     frame = self.box.read()
                     self._publish_frame(frame)
                     reads.append(frame.pressures_pa[: self.n])

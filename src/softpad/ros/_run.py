@@ -30,7 +30,8 @@ def run_with_robot(
         :class:`~softpad.errors.HardwareFault` after the box was made safe.
     """
     from softpad.box import TcpBox, open_box
-    from softpad.control import GraspExecution, resolve_objects
+    from softpad.control import GraspExecution
+    from softpad.harness import resolve_objects
     from softpad.layout import PadLayout
 
     specs = resolve_objects(objects)

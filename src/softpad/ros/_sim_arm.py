@@ -49,14 +49,6 @@ class _HookedBox(Box):
         self.inner.close()
 
 
-def _simulated_robot(world: Any) -> Any:
-    try:  # the simulator harness (architecture issue), else its earlier home
-        from softpad.harness import SimulatedRobot  # type: ignore[attr-defined]
-    except ImportError:
-        from softpad.control import SimulatedRobot
-    return SimulatedRobot(world)
-
-
 class SimArmNode:
     """The simulated arm node (module docstring).
 
@@ -75,7 +67,7 @@ class SimArmNode:
         self, box_url: str = "sim://", port: int = 0, lose_arm_on: str | None = None
     ) -> None:
         from softpad.box import BoxServer, open_box
-        from softpad.control import simulation_extensions
+        from softpad.harness import SimulatedRobot, simulation_extensions
         from softpad.ros._rospy_path import ensure_rospy
 
         if not box_url.startswith("sim://"):
@@ -88,7 +80,7 @@ class SimArmNode:
         box = open_box(box_url)
         assert isinstance(box, SimBox)
         self.sim = box
-        self.robot = _simulated_robot(box.world)
+        self.robot = SimulatedRobot(box.world)
         if lose_arm_on not in (None, "move_to", "descend", "stop", "gripper"):
             raise InputError(
                 f"lose_arm_on must be move_to, descend, stop or gripper, got {lose_arm_on!r}"
