@@ -1,0 +1,104 @@
+"""The ROS adapters' checks that need no ROS master (and most no ROS at all)."""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from softpad.errors import InputError
+from softpad.ros import ROS_MODULES, NodeConfig, load_config, open_robot
+from softpad.ros._rospy_path import DIST_PACKAGES
+
+
+def test_node_config_file_and_overrides(tmp_path: Path) -> None:
+    f = tmp_path / "pad.json"
+    f.write_text(json.dumps({"box": "tcp://127.0.0.1:5757", "pad_x_m": 0.6, "pad_yaw_rad": 1.5}))
+    c = load_config(f)
+    assert c.box == "tcp://127.0.0.1:5757" and c.pad.x_m == 0.6 and c.pad.yaw_rad == 1.5
+    c2 = c.updated({"pad_x_m": 0.5, "place": "banana,toy", "contact_threshold_pa": 120})
+    assert c2.pad.x_m == 0.5 and c2.pad.yaw_rad == 1.5  # one field overridden, others kept
+    assert c2.place == ("banana", "toy") and c2.contact_threshold_pa == 120.0
+    assert load_config(None) == NodeConfig()
+
+
+@pytest.mark.parametrize(
+    ("values", "words"),
+    [
+        ({"pad_x": 1.0}, "unknown node setting 'pad_x'"),
+        ({"pad_z_m": math.nan}, "pad_z_m must be a finite number"),
+        ({"pad_y_m": "1"}, "pad_y_m must be a finite number"),
+        ({"settle_s": -1.0}, "settle_s must be >= 0"),
+    ],
+)
+def test_node_config_rejects_bad_values(values: dict[str, object], words: str) -> None:
+    with pytest.raises(InputError, match=words):
+        NodeConfig().updated(values)
+
+
+def test_node_config_file_errors(tmp_path: Path) -> None:
+    with pytest.raises(InputError, match="cannot read node config"):
+        load_config(tmp_path / "missing.json")
+    (tmp_path / "list.json").write_text("[1]")
+    with pytest.raises(InputError, match="must hold a JSON object"):
+        load_config(tmp_path / "list.json")
+
+
+@pytest.mark.parametrize(
+    ("url", "words"),
+    [
+        ("ur5://", "unknown robot URL"),
+        ("ros1://robot.example:11311", "takes no host"),
+        ("ros1://?speed=2", "unknown ros1:// option 'speed'"),
+        ("ros1://?timeout_s=abc", "must be numbers"),
+        ("ros1://?stale_s=0", r"must be in \(0, 3600\)"),
+    ],
+)
+def test_robot_urls_are_checked_before_ros_is_touched(url: str, words: str) -> None:
+    with pytest.raises(InputError, match=words):
+        open_robot(url)
+
+
+def test_only_ros_modules_come_from_the_system_python() -> None:
+    """rospy imports, but the system's other packages stay invisible to the environment."""
+    if not os.path.isdir(os.path.join(DIST_PACKAGES, "rospy")):
+        pytest.skip(f"no rospy in {DIST_PACKAGES} (make ros-deps installs it)")
+    assert not {"numpy", "matplotlib", "scipy", "paramiko", "apt"} & ROS_MODULES
+    others = [
+        n
+        for n in ("paramiko", "apt", "httplib2", "cryptography")
+        if os.path.isdir(os.path.join(DIST_PACKAGES, n))
+    ]
+    code = (
+        "import importlib.util, json, sys; from softpad.ros import ensure_rospy; ensure_rospy();"
+        "import std_msgs.msg, numpy;"
+        "print(json.dumps([numpy.__file__.startswith(sys.prefix),"
+        f" [importlib.util.find_spec(n) is None for n in {others!r}]]))"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert json.loads(out.stdout) == [True, [True] * len(others)]
+
+
+def _softpad(*args: str, **env: str) -> subprocess.CompletedProcess[str]:
+    exe = str(Path(sys.executable).with_name("softpad"))
+    return subprocess.run(
+        [exe, *args], capture_output=True, text=True, env={**os.environ, **env}, check=False
+    )
+
+
+def test_without_ros_the_node_says_how_to_install_it() -> None:
+    if os.path.isdir(os.path.join(sys.prefix, "lib", "python3.11", "site-packages", "rospy")):
+        pytest.skip("rospy is installed inside the environment")
+    r = _softpad("ros", "node", "--box", "sim://", SOFTPAD_ROS_DIST_PACKAGES="/nonexistent")
+    assert r.returncode == 2
+    assert r.stderr.count("\n") == 1 and "apt-get install -y ros-core python3-rospy" in r.stderr
+
+
+def test_run_with_an_unknown_robot_is_one_line() -> None:
+    r = _softpad("run", "--robot", "ur5://", "--object", "banana")
+    assert r.returncode == 2 and r.stderr.count("\n") == 1 and "ur5://" in r.stderr
