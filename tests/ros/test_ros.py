@@ -226,3 +226,13 @@ def test_arm_node_killed_mid_approach_gives_one_clear_error(procs: _Procs) -> No
     text = out.read_text()
     assert "Traceback" not in text
     assert re.search(r"run stopped in phase 'descend': (arm lost|lost the link)", text), text
+
+
+def test_node_ends_on_a_sensor_fault_with_one_line(procs: _Procs) -> None:
+    """A sensor going NaN after the adjustment: error naming the channel, exit 2, box safe."""
+    r = procs.run(
+        SOFTPAD, "ros", "node", "--box", "sim://?faults=nan:3@7", timeout_s=60
+    )  # fmt: skip
+    assert r.returncode == 2, r.stdout + r.stderr
+    assert "Traceback" not in r.stderr and len(r.stderr.strip().splitlines()) == 1
+    assert "3" in r.stderr and "softpad ros: error" in r.stderr

@@ -230,6 +230,7 @@ class PadNode:
         self.increments = RunningAverage(thesis.FILTER_WINDOW)
         self.touch = RunningAverage(thesis.FILTER_WINDOW)
         self.contact_ref: NDArray[np.float64] | None = None
+        self._filtered = np.zeros(self.n)
         self.groups: list[tuple[int, ...]] = []
         self.changed_at = self.planned_at = -math.inf
         self._publish_plans([])
@@ -244,11 +245,14 @@ class PadNode:
             self.place_at = self.last_t + self.config.place_after_s
 
     def _loop(self, max_frames: int | None) -> None:
+        from softpad.control import DEFAULT_MAX_PRESSURE_PA, check_frame
+
         next_diag = 0.0
         while not self.rospy.is_shutdown() and (max_frames is None or self.frames < max_frames):
             frame = self.box.read()
             self._publish_frame(frame)
-            self._track(frame.pressures_pa[: self.n])
+            # NaN, dropout or over the maximum: HardwareFault (diagnostics ERROR, box made safe)
+            self._track(check_frame(frame, self.n, DEFAULT_MAX_PRESSURE_PA))
             if self.place_at is not None and frame.t_s >= self.place_at:
                 self._place()
             while not self._requests.empty():
@@ -298,6 +302,7 @@ class PadNode:
 
         assert self.reference_pa is not None
         d = self.increments.update(np.nan_to_num(p - self.reference_pa))
+        self._filtered = d
         groups = detect_objects(d, self.layout, self.config.object_threshold_pa)
         if groups != self.groups:
             self.groups, self.changed_at = groups, self.last_t
@@ -350,7 +355,7 @@ class PadNode:
                 self._set_reference(capture_reference(reads))
                 r.message = "reference (Pa): " + _pa(self.reference_pa)
             else:
-                plans = self._plan(self.increments.update(self._last_pressures - self.reference_pa))
+                plans = self._plan(self._filtered)
                 r.message = json.dumps([p.to_dict(self.layout) for p in plans])
             r.ok = True
         except InputError as exc:
