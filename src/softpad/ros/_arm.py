@@ -132,6 +132,8 @@ def open_robot(url: str) -> Ros1Robot:
     ``sim://`` robots belong to a simulated box and are made by the simulated run itself.
     """
     parts = urlsplit(url)
+    if parts.scheme == "sim":
+        raise InputError(f"the simulated robot is plain sim:// (no options), got {url!r}")
     if parts.scheme != "ros1":
         raise InputError(f"unknown robot URL {url!r}: known schemes are sim:// and ros1://")
     if parts.netloc or parts.path not in ("", "/"):
