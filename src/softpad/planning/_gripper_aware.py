@@ -3,13 +3,15 @@
 The thesis's two seam failures came from a fingertip landing on the non-sensitive seam between
 modules (Section 6.3). :class:`GripperAwarePlanner` starts from the thesis's plan and keeps it
 whenever a fingertip lies on sensitive area; otherwise it tries grasps shifted along and across
-the closing direction and turned, and takes the best by the score
+the closing direction (turned too, when the object's outline is wider than the jaws open along
+the thesis's direction), and takes the best by the score
 
     score = sensed response of the better-placed fingertip - shift_cost * shift / max_shift
             - turn_cost * |turn| / max_turn
 
-among those whose centre stays on the object's modules and whose opening spans the object's
-extent estimated from the pad (its modules' outline, projected on the closing direction).
+among those whose centre stays on the object's modules, with a penalty of 1 when the object's
+extent estimated from the pad (its modules' outline, projected on the closing direction) is
+wider than the jaws open.
 """
 
 from __future__ import annotations
@@ -114,10 +116,12 @@ class GripperAwarePlanner:
         self.thesis = ThesisPlanner(params)
         self.seam_width_m = seam_width_m
         self.max_shift, self.max_turn_rad, self.good_share = max_shift, max_turn_rad, good_share
+        self._layout = PadLayout()
 
     def plan(
         self, increments_pa: ArrayLike, objects: list[tuple[int, ...]], layout: PadLayout
     ) -> list[GraspPlan]:
+        self._layout = layout
         plans = self.thesis.plan(increments_pa, objects, layout)
         return [self.improve(p, layout) for p in plans]
 
@@ -130,7 +134,8 @@ class GripperAwarePlanner:
     def improve(self, plan: GraspPlan, layout: PadLayout) -> GraspPlan:
         """The plan itself when a fingertip is sensed and the jaws span the object, else the
         best-scoring candidate (the plan itself when none is better)."""
-        fits = object_extent_m(plan.modules, plan.theta, layout) <= self.gripper.max_width_m
+        self._layout = layout
+        fits = not self._too_wide(plan, plan.theta, layout)
         if fits and self.tip_share(plan.cog, plan.theta, layout) >= self.good_share:
             return plan
         best, best_score = plan, self._score(plan, layout, plan.cog, plan.theta)
@@ -143,29 +148,44 @@ class GripperAwarePlanner:
                 )
         return best
 
+    def _too_wide(self, plan: GraspPlan, theta: float, layout: PadLayout | None = None) -> bool:
+        extent = object_extent_m(plan.modules, theta, layout or self._layout)
+        return extent > self.gripper.max_width_m
+
     def _candidates(self, plan: GraspPlan) -> list[tuple[tuple[float, float], float]]:
         out = []
         shifts = np.linspace(-self.max_shift, self.max_shift, 7)
-        for turn in np.linspace(-self.max_turn_rad, self.max_turn_rad, 5):
+        # the thesis's direction follows the object's shape: turn only to a direction in which
+        # the object's outline fits between the jaws
+        turns = [0.0]
+        if self._too_wide(plan, plan.theta):
+            turns += [
+                float(t)
+                for t in np.linspace(-self.max_turn_rad, self.max_turn_rad, 5)
+                if t != 0.0 and not self._too_wide(plan, plan.theta + t)
+            ]
+        for turn in turns:
             theta = _wrap(plan.theta + turn)
             d = np.array([math.cos(theta), math.sin(theta)])
             n = np.array([-d[1], d[0]])
             for a in shifts:
                 for b in shifts:
-                    c = np.asarray(plan.cog) + a * d + b * n
+                    # along the closing direction the object's width is unknown: small steps only
+                    c = np.asarray(plan.cog) + a / 3 * d + b * n
                     out.append(((round(float(c[0]), 4), round(float(c[1]), 4)), theta))
         return out
 
     def _score(
         self, plan: GraspPlan, layout: PadLayout, cog: tuple[float, float], theta: float
     ) -> float:
-        on_object = layout.module_containing(*cog) in plan.modules
-        fits = object_extent_m(plan.modules, theta, layout) <= self.gripper.max_width_m
-        if not on_object or not fits:
+        if layout.module_containing(*cog) not in plan.modules:
             return -math.inf
+        # the modules' outline overestimates the object: an outline wider than the jaws is a
+        # penalty (a narrower direction is preferred), not a veto
+        too_wide = self._too_wide(plan, theta, layout)
         shift = math.dist(cog, plan.cog) / self.max_shift
         turn = abs(_wrap(theta - plan.theta)) / max(self.max_turn_rad, 1e-9)
-        return self.tip_share(cog, theta, layout) - 0.2 * shift - 0.1 * turn
+        return self.tip_share(cog, theta, layout) - 0.2 * shift - 0.1 * turn - 1.0 * too_wide
 
 
 def _wrap(theta: float) -> float:
