@@ -9,10 +9,11 @@ import sys
 from typing import Any
 
 from softpad.cli._args import finite_float
+from softpad.cli._record import add_record_option, open_recorder
 
 _EPILOG = """examples:
   softpad run --object banana
-  softpad run --object object-4 --plot run.png --log run.npz
+  softpad run --object object-4 --png run.png --record run.mcap
   softpad run --object object-1 --object object-4       two objects, grasped one after the other
   softpad run --box 'sim://?seed=3&rate_hz=200' --object charger --json
 
@@ -53,34 +54,34 @@ def register(sub: Any) -> None:
         help="hold time in s (default 15)",
     )
     p.add_argument("--json", action="store_true", help="print the timeline as one JSON object")
-    p.add_argument("--plot", metavar="FILE.png", help="draw the pressure traces with the phases")
-    p.add_argument("--log", metavar="FILE.npz", help="save every frame and event")
+    p.add_argument("--png", metavar="FILE.png", help="draw the pressure traces with the phases")
+    add_record_option(p)
     p.set_defaults(handler=run)
 
 
 def run(args: argparse.Namespace) -> int:
+    from softpad.box import open_box
     from softpad.control import ExecutionParams, resolve_objects, run_simulated
-    from softpad.record import RunLog
+    from softpad.record import RunLog, Tee, check_output
 
     specs = resolve_objects(args.object)  # unknown names fail before anything starts
-    if args.log and not str(args.log).endswith(".npz"):
-        from softpad.errors import InputError
-
-        raise InputError(f"--log must name a .npz file, got {args.log!r}")
+    if args.record:
+        check_output(args.record, args.force)
     names = [s.name for s in specs]
     log = RunLog({"box": args.box, "objects": names})
     params = ExecutionParams(hold_s=args.hold_s)
-    try:
-        result = run_simulated(names, args.box, params, log, gripper=args.gripper)
-    finally:
-        # whatever happened, what was logged is kept
-        if args.log:
-            log.save(args.log)
-        if args.plot and len(log):
-            import matplotlib.pyplot as plt
-
-            fig = log.plot(args.plot, title=f"softpad run: {', '.join(names)}")
-            plt.close(fig)
+    meta = {"command": "run", "box": args.box, "objects": names, "gripper": args.gripper}
+    meta["params"] = {"hold_s": args.hold_s}
+    with open_box(args.box) as box:
+        recorder = open_recorder(args.record, box, meta, args.force)
+        try:
+            result = run_simulated(names, box, params, Tee(log, recorder), gripper=args.gripper)
+        finally:
+            # whatever happened, what was recorded is kept
+            if recorder is not None:
+                recorder.close()
+            if args.png and len(log):
+                _plot(log, args.png, names)
     d = result.to_dict()
     if args.json:
         print(json.dumps(d))
@@ -89,9 +90,18 @@ def run(args: argparse.Namespace) -> int:
     for line in _timeline(log, result):
         print("  " + line)
     print(f"outcome: {result.outcome}")
-    if args.plot:
-        print(f"pressure traces: {args.plot}")
+    if args.png:
+        print(f"pressure traces: {args.png}")
+    if args.record:
+        print(f"recording: {args.record}")
     return 0
+
+
+def _plot(log: Any, path: str, names: list[str]) -> None:
+    import matplotlib.pyplot as plt
+
+    fig = log.plot(path, title=f"softpad run: {', '.join(names)}")
+    plt.close(fig)
 
 
 def _fmt(t: float) -> str:

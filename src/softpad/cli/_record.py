@@ -1,0 +1,32 @@
+"""The ``--record FILE.mcap`` option shared by ``run``, ``trials`` and ``demo``."""
+
+from __future__ import annotations
+
+from typing import Any
+
+
+def add_record_option(p: Any) -> None:
+    """Add ``--record FILE.mcap`` and ``--force`` to a sub-command's parser."""
+    p.add_argument(
+        "--record",
+        metavar="FILE.mcap",
+        help="record every frame, valve command, robot pose, plan and event as MCAP (ROS 2 types)",
+    )
+    p.add_argument("--force", action="store_true", help="overwrite an existing --record file")
+
+
+def open_recorder(path: str | None, box: Any, metadata: dict[str, Any], force: bool) -> Any:
+    """A :class:`softpad.record.McapRecorder` for ``path`` watching ``box`` (None without a path).
+
+    The box's commanded valve states are recorded as they change; on a simulated box the
+    gripper's measured pose too (from the simulator's world).
+    """
+    if not path:
+        return None
+    from softpad.box import SimBox
+    from softpad.record import McapRecorder
+
+    robot_state = box.world.gripper_state if isinstance(box, SimBox) else None
+    return McapRecorder(
+        path, metadata, force=force, valves=lambda: box.valves, robot_state=robot_state
+    )
