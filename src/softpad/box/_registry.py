@@ -35,6 +35,14 @@ def _ensure_builtin() -> None:
         from softpad.box._tcp import open_tcp_url
 
         register_backend("tcp", open_tcp_url)
+    if "replay" not in _BACKENDS:
+        # recordings are read by softpad.record; imported only when a replay:// box is opened
+        def open_replay(location: str, options: dict[str, str]) -> Box:
+            from softpad.record._replay import open_replay_url
+
+            return open_replay_url(location, options)
+
+        register_backend("replay", open_replay)
 
 
 def parse_url(url: str) -> tuple[str, str, dict[str, str]]:
@@ -61,7 +69,9 @@ def open_box(url: str = DEFAULT_URL) -> Box:
     ----------
     url
         ``sim://`` (the simulated box, see :func:`softpad.box.open_sim_url` for its options)
-        or ``tcp://host:port`` (a box served over the network, :class:`softpad.box.TcpBox`).
+        or ``tcp://host:port`` (a box served over the network, :class:`softpad.box.TcpBox`)
+        or ``replay://run.mcap[?speed=fast|recorded|FACTOR]`` (a recording played back,
+        :class:`softpad.record.ReplayBox`).
 
     Raises
     ------

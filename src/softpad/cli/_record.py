@@ -30,3 +30,21 @@ def open_recorder(path: str | None, box: Any, metadata: dict[str, Any], force: b
     return McapRecorder(
         path, metadata, force=force, valves=lambda: box.valves, robot_state=robot_state
     )
+
+
+def run_metadata(
+    command: str, box: Any, url: str, objects: list[str], params: Any, **extra: Any
+) -> dict[str, Any]:
+    """The metadata record of a recording: command, box URL, objects, layout, parameters
+    (the execution's, SI), seed of the box and extra facts (gripper, trial...)."""
+    from dataclasses import asdict
+
+    from softpad.box import SimBox, parse_url
+
+    layout = box.world.layout.name if isinstance(box, SimBox) else "2x3"
+    options = parse_url(url)[2]
+    meta: dict[str, Any] = {"command": command, "box": url, "objects": objects, "layout": layout}
+    meta.update(seed=int(options["seed"]) if options.get("seed", "").isdigit() else None)
+    meta.update(params=asdict(params), sample_rate_hz=box.sample_rate_hz, channels=box.channels)
+    meta.update(extra)
+    return meta

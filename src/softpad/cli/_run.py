@@ -9,7 +9,7 @@ import sys
 from typing import Any
 
 from softpad.cli._args import finite_float
-from softpad.cli._record import add_record_option, open_recorder
+from softpad.cli._record import add_record_option, open_recorder, run_metadata
 
 _EPILOG = """examples:
   softpad run --object banana
@@ -70,9 +70,8 @@ def run(args: argparse.Namespace) -> int:
     names = [s.name for s in specs]
     log = RunLog({"box": args.box, "objects": names})
     params = ExecutionParams(hold_s=args.hold_s)
-    meta = {"command": "run", "box": args.box, "objects": names, "gripper": args.gripper}
-    meta["params"] = {"hold_s": args.hold_s}
     with open_box(args.box) as box:
+        meta = run_metadata("run", box, args.box, names, params, gripper=args.gripper)
         recorder = open_recorder(args.record, box, meta, args.force)
         try:
             result = run_simulated(names, box, params, Tee(log, recorder), gripper=args.gripper)

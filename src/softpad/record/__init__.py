@@ -11,6 +11,7 @@ in-memory recorder, :class:`Tee` sends a run to several recorders.
 from softpad.record._log import RunLog
 from softpad.record._mcap import FLUSH_PERIOD_S, McapRecorder, check_output
 from softpad.record._read import RecordedRun, load_recording, recover
+from softpad.record._replay import ReplayBox, compare_replay, open_replay_url
 from softpad.record._schemas import (
     EVENT_TOPIC,
     OWN_TYPES,
@@ -34,10 +35,13 @@ __all__ = [
     "VALVE_TOPIC",
     "McapRecorder",
     "RecordedRun",
+    "ReplayBox",
     "RunLog",
     "Tee",
     "check_output",
+    "compare_replay",
     "load_recording",
     "module_topic",
+    "open_replay_url",
     "recover",
 ]

@@ -37,7 +37,7 @@ ROBOT_POSE_PERIOD_S = 0.05
 
 def _stamp(t_s: float) -> dict[str, int]:
     sec = math.floor(t_s)
-    return {"sec": int(sec), "nanosec": min(int(round((t_s - sec) * 1e9)), 999_999_999)}
+    return {"sec": int(sec), "nanosec": min(round((t_s - sec) * 1e9), 999_999_999)}
 
 
 def _header(t_s: float, frame_id: str) -> dict[str, Any]:
@@ -125,7 +125,7 @@ class McapRecorder:
 
         self.path = check_output(path, force)
         self._file = open(self.path, "wb")
-        self._writer = Writer(self._file, chunk_size=CHUNK_SIZE, compression=CompressionType.LZ4)
+        self._writer = Writer(self._file, chunk_size=CHUNK_SIZE, compression=CompressionType.ZSTD)
         self._schemas: dict[str, Any] = {}
         self._valves_source = valves
         self._robot_source = robot_state
