@@ -5,13 +5,12 @@ from __future__ import annotations
 from typing import Any
 
 
-def add_record_option(p: Any) -> None:
+def add_record_option(p: Any, per_trial: bool = False) -> None:
     """Add ``--record FILE.mcap`` and ``--force`` to a sub-command's parser."""
-    p.add_argument(
-        "--record",
-        metavar="FILE.mcap",
-        help="record every frame, valve command, robot pose, plan and event as MCAP (ROS 2 types)",
-    )
+    what = "every frame, valve command, robot pose, plan and event as MCAP (ROS 2 types)"
+    if per_trial:
+        what = f"record every trial: {what}, one file per trial, FILE-OBJECT-tK.mcap"
+    p.add_argument("--record", metavar="FILE.mcap", help=what if per_trial else f"record {what}")
     p.add_argument("--force", action="store_true", help="overwrite an existing --record file")
 
 
@@ -48,3 +47,17 @@ def run_metadata(
     meta.update(params=asdict(params), sample_rate_hz=box.sample_rate_hz, channels=box.channels)
     meta.update(extra)
     return meta
+
+
+def check_trial_recordings(base: str | None, specs: Any, trials: int, force: bool) -> None:
+    """Refuse, before any trial runs, a ``--record`` base whose trial files exist (unless
+    ``force``) or that is not a ``.mcap`` name."""
+    if not base:
+        return
+    from softpad.record import check_output
+    from softpad.trials import trial_recording_path
+
+    check_output(base, force=True)  # the name itself: .mcap, existing folder
+    for spec in specs:
+        for k in range(trials):
+            check_output(trial_recording_path(base, spec.name, k), force)

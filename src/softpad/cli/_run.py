@@ -97,10 +97,7 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _plot(log: Any, path: str, names: list[str]) -> None:
-    import matplotlib.pyplot as plt
-
-    fig = log.plot(path, title=f"softpad run: {', '.join(names)}")
-    plt.close(fig)
+    log.plot(path, title=f"softpad run: {', '.join(names)}")
 
 
 def _fmt(t: float) -> str:

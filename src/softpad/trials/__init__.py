@@ -18,6 +18,7 @@ from softpad.trials._runner import (
     perturbed_placement,
     run_experiment,
     run_trial,
+    trial_recording_path,
     trial_seed,
 )
 
@@ -32,5 +33,6 @@ __all__ = [
     "perturbed_placement",
     "run_experiment",
     "run_trial",
+    "trial_recording_path",
     "trial_seed",
 ]

@@ -10,6 +10,7 @@ was between the jaws when they closed.
 
 from __future__ import annotations
 
+import contextlib
 from typing import Any
 
 import numpy as np
@@ -79,6 +80,7 @@ def execute_trial(
 
     robot = TrialRobot(world)
     log = RunLog({"object": spec.name, "seed": seed}) if config.record_trace else None
+    mcap = _trial_recorder(config, box, world, spec, seed, placement)
     seen: dict[str, Any] = {}
 
     class Recorder:
@@ -87,10 +89,14 @@ def execute_trial(
         def frame(self, frame: Any, phase: str) -> None:
             if log is not None:
                 log.frame(frame, phase)
+            if mcap is not None:
+                mcap.frame(frame, phase)
 
         def event(self, t_s: float, kind: str, **data: Any) -> None:
             if log is not None:
                 log.event(t_s, kind, **data)
+            if mcap is not None:
+                mcap.event(t_s, kind, **data)
             phase = data.get("phase") if kind == "phase" else None
             if kind == "plan":
                 seen["increments_pa"] = tuple(1e3 * v for v in data.get("increments_kpa", ()))
@@ -153,7 +159,7 @@ def execute_trial(
         object=spec.name, trial=0, seed=seed, placement=placement, mounting=gripper.mounting
     )
     execution = TrialExecution(box, robot, layout, params, Recorder(), place)
-    with box:
+    with box, mcap if mcap is not None else contextlib.nullcontext():
         try:
             execution.run()
         except ExecutionError as exc:
@@ -237,3 +243,24 @@ def _cause(
             )
         return "object_outside_jaws", "the jaws closed without the object between them"
     return "slipped_during_hold", f"squeezed, then lost ({outcome})"
+
+
+def _trial_recorder(
+    config: TrialConfig, box: Any, world: Any, spec: Any, seed: int, placement: Any
+) -> Any:
+    """The trial's MCAP recorder when ``config.record_path`` (valves and gripper pose watched)."""
+    if config.record_path is None:
+        return None
+    from dataclasses import asdict
+
+    from softpad.record import McapRecorder
+
+    meta = {"command": "trials", "objects": [spec.name], "seed": seed, "layout": world.layout.name}
+    meta.update(placement=list(placement), trial_config=asdict(config), box="sim (MuJoCo world)")
+    return McapRecorder(
+        config.record_path,
+        meta,
+        force=True,
+        valves=lambda: box.valves,
+        robot_state=world.gripper_state,
+    )

@@ -21,6 +21,7 @@ import zlib
 from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, replace
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -72,6 +73,9 @@ class TrialConfig:
     record_trace
         Keep every frame and event in a :class:`softpad.record.RunLog` (its ``plot`` draws the
         pressure traces with the phases, like Fig. 6.8).
+    record_path
+        Record the trial as MCAP into this file (:class:`softpad.record.McapRecorder`;
+        overwritten: the caller checks it first, see :func:`trial_recording_path`).
     """
 
     position_sigma_m: float = 3e-3
@@ -87,6 +91,7 @@ class TrialConfig:
     sample_rate_hz: float = 100.0
     noise: bool = True
     record_trace: bool = False
+    record_path: str | None = None
     max_pressure_pa: float = 9.5e3
 
     def __post_init__(self) -> None:
@@ -108,6 +113,13 @@ class TrialConfig:
                 raise InputError(f"trial parameter {name} must be a finite number >= 0, got {v!r}")
         if self.approach_speed_m_s <= 0 or self.travel_speed_m_s <= 0 or self.jaw_speed_m_s <= 0:
             raise InputError("trial speeds must be > 0 m/s")
+
+
+def trial_recording_path(base: str | Path, object_name: str, trial: int) -> Path:
+    """File of one trial's recording for ``--record BASE.mcap``: ``BASE-OBJECT-tK.mcap``
+    (K from 1)."""
+    b = Path(base)
+    return b.with_name(f"{b.stem}-{object_name}-t{trial + 1}{b.suffix}")
 
 
 def trial_seed(seed: int, object_name: str, trial: int) -> int:
@@ -197,6 +209,7 @@ def run_experiment(
     config: TrialConfig | None = None,
     on_trial: Callable[[TrialResult], None] | None = None,
     trace_object: str | None = None,
+    record: str | Path | None = None,
 ) -> tuple[ExperimentResult, Any | None]:
     """Run ``trials`` trials of every object, in parallel processes.
 
@@ -217,6 +230,8 @@ def run_experiment(
         Called with every finished trial (progress bars, logs), in completion order.
     trace_object
         Record the pressure trace of trial 0 of this object.
+    record
+        Record every trial as MCAP, into :func:`trial_recording_path` files of this base name.
 
     Returns
     -------
@@ -231,6 +246,8 @@ def run_experiment(
     for spec in specs:
         for k in range(trials):
             cfg = replace(config, record_trace=(spec.name == trace_object and k == 0))
+            if record is not None:
+                cfg = replace(cfg, record_path=str(trial_recording_path(record, spec.name, k)))
             tasks.append((spec, k, trial_seed(seed, spec.name, k), cfg))
     n_cpu = (
         len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
