@@ -56,6 +56,12 @@ def register(sub: Any) -> None:
     p.add_argument("--json", action="store_true", help="print the timeline as one JSON object")
     p.add_argument("--png", metavar="FILE.png", help="draw the pressure traces with the phases")
     add_record_option(p)
+    p.add_argument(
+        "--foxglove",
+        type=int,
+        metavar="PORT",
+        help="serve the run live to Foxglove on ws://127.0.0.1:PORT (0: a free port)",
+    )
     p.set_defaults(handler=run)
 
 
@@ -73,12 +79,15 @@ def run(args: argparse.Namespace) -> int:
     with open_box(args.box) as box:
         meta = run_metadata("run", box, args.box, names, params, gripper=args.gripper)
         recorder = open_recorder(args.record, box, meta, args.force)
+        live = _live(args.foxglove, box)
         try:
-            result = run_simulated(names, box, params, Tee(log, recorder), gripper=args.gripper)
+            tee = Tee(log, recorder, live)
+            result = run_simulated(names, box, params, tee, gripper=args.gripper)
         finally:
             # whatever happened, what was recorded is kept
-            if recorder is not None:
-                recorder.close()
+            for r in (recorder, live):
+                if r is not None:
+                    r.close()
             if args.png and len(log):
                 _plot(log, args.png, names)
     d = result.to_dict()
@@ -94,6 +103,21 @@ def run(args: argparse.Namespace) -> int:
     if args.record:
         print(f"recording: {args.record}")
     return 0
+
+
+def _live(port: int | None, box: Any) -> Any:
+    if port is None:
+        return None
+    from softpad.box import SimBox
+    from softpad.errors import InputError
+    from softpad.record import FoxgloveLive
+
+    if not 0 <= port <= 65535:
+        raise InputError(f"--foxglove port must be within 0..65535, got {port}")
+    robot = box.world.gripper_state if isinstance(box, SimBox) else None
+    live = FoxgloveLive(port, robot_state=robot)
+    print(f"foxglove: {live.url} (port {live.port})", flush=True)
+    return live
 
 
 def _plot(log: Any, path: str, names: list[str]) -> None:

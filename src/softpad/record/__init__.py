@@ -8,6 +8,7 @@ file cut short by a crash; ``replay://run.mcap`` plays it back as a box (:class:
 in-memory recorder, :class:`Tee` sends a run to several recorders.
 """
 
+from softpad.record._live import FoxgloveLive
 from softpad.record._log import RunLog
 from softpad.record._mcap import FLUSH_PERIOD_S, McapRecorder, check_output
 from softpad.record._read import RecordedRun, load_recording, recover
@@ -33,6 +34,7 @@ __all__ = [
     "ROBOT_POSE_TOPIC",
     "SUPPLY_TOPIC",
     "VALVE_TOPIC",
+    "FoxgloveLive",
     "McapRecorder",
     "RecordedRun",
     "ReplayBox",
