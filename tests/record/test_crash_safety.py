@@ -17,11 +17,12 @@ from softpad.record import FLUSH_PERIOD_S, load_recording, recover
 _CHILD = """
 import os, struct, sys
 from softpad.box import open_box
-from softpad.control import ExecutionParams, run_simulated
+from softpad.control import ExecutionParams
+from softpad.harness import run_simulated
 from softpad.record import McapRecorder
 box = open_box("sim://?seed=1")
 fd = os.open(sys.argv[2], os.O_WRONLY | os.O_CREAT)
-rec = McapRecorder(sys.argv[1], {"objects": ["banana"]}, valves=lambda: box.valves)
+rec = McapRecorder(sys.argv[1], {"objects": ["banana"]})
 class Probe:
     def frame(self, frame, phase):
         rec.frame(frame, phase)

@@ -17,8 +17,8 @@ def add_record_option(p: Any, per_trial: bool = False) -> None:
 def open_recorder(path: str | None, box: Any, metadata: dict[str, Any], force: bool) -> Any:
     """A :class:`softpad.record.McapRecorder` for ``path`` watching ``box`` (None without a path).
 
-    The box's commanded valve states are recorded as they change; on a simulated box the
-    gripper's measured pose too (from the simulator's world).
+    Valve and robot commands come from the execution's events; on a simulated box the
+    gripper's measured pose is recorded too (from the simulator's world).
     """
     if not path:
         return None
@@ -26,9 +26,7 @@ def open_recorder(path: str | None, box: Any, metadata: dict[str, Any], force: b
     from softpad.record import McapRecorder
 
     robot_state = box.world.gripper_state if isinstance(box, SimBox) else None
-    return McapRecorder(
-        path, metadata, force=force, valves=lambda: box.valves, robot_state=robot_state
-    )
+    return McapRecorder(path, metadata, force=force, robot_state=robot_state)
 
 
 def run_metadata(

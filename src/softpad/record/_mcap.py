@@ -95,8 +95,9 @@ class McapRecorder:
         Overwrite an existing file.
     valves
         Optional source of the box's commanded valve states (e.g. ``lambda: box.valves``),
-        polled at every frame: a change is recorded as a ``valves`` event. Not needed when
-        the execution reports ``valves`` events itself (polling stops at the first one).
+        polled at every frame: a change is recorded on ``/softpad/valves``. Not needed with
+        :class:`softpad.control.GraspExecution`, which reports every command as a ``valve``
+        event (channel, command); polling stops at the first such event.
     robot_state
         Optional source of the measured robot state (an object with ``x_m, y_m, z_m,
         yaw_rad, width_m``), recorded on ``/softpad/robot/pose`` at most every
@@ -134,6 +135,7 @@ class McapRecorder:
         self._flush_period_s = float(flush_period_s)
         self._last_flush = time.monotonic()
         self._t_s = 0.0
+        self._channels = 0
         self.closed = False
         self.messages = 0
         self.last_log_ns = 0
@@ -179,6 +181,7 @@ class McapRecorder:
         """Record one frame: a ``FluidPressure`` per channel and one for the supply."""
         t = frame.t_s
         self._t_s = t
+        self._channels = frame.channels
         for k, p in enumerate(frame.pressures_pa, start=1):
             msg = {"header": _header(t, S.module_frame(k)), "fluid_pressure": float(p)}
             msg["variance"] = 0.0
@@ -203,6 +206,14 @@ class McapRecorder:
             }
             self._write(S.ROBOT_POSE_TOPIC, "geometry_msgs/msg/PoseStamped", pose)
 
+    def _valve_state(self, channel: int, command: str) -> list[str]:
+        state = list(self._last_valves or ())
+        if len(state) < max(channel, self._channels):
+            state += ["closed"] * (max(channel, self._channels) - len(state))
+        state[channel - 1] = command
+        self._last_valves = tuple(state)
+        return state
+
     def _valve_message(self, t: float, commands: list[str]) -> None:
         msg = {"header": _header(t, "softpad_box"), "commands": commands}
         self._write(S.VALVE_TOPIC, "softpad_msgs/msg/ValveCommands", msg)
@@ -213,6 +224,9 @@ class McapRecorder:
         if kind == "valves":
             self._valves_source = None  # the execution reports them: stop polling
             self._valve_message(t_s, [str(c) for c in data.get("commands", [])])
+        elif kind == "valve":  # one channel's command: record the state of every channel
+            self._valves_source = None
+            self._valve_message(t_s, self._valve_state(int(data["channel"]), str(data["command"])))
         elif kind == "robot" and all(k in data for k in ("x_m", "y_m", "z_m")):
             pose = _pose(data["x_m"], data["y_m"], data["z_m"], data.get("yaw_rad", 0.0))
             msg = {"header": _header(t_s, S.PAD_FRAME), "pose": pose}

@@ -176,7 +176,8 @@ def _reference(run: RecordedRun, phases: list[tuple[str, float]], n: int, reads:
 
 
 def _replan(run: RecordedRun, phases: Any, reference: Any, layout: Any, params: Any) -> Any:
-    from softpad.planning import plan_grasps
+    from softpad.planning import ThesisPlanner
+    from softpad.sensing import ThesisObjectDetector
 
     ev = run.events_of("plan")
     windows = _phase_window(phases, "plan", run.t_s[-1])
@@ -186,19 +187,20 @@ def _replan(run: RecordedRun, phases: Any, reference: Any, layout: Any, params: 
         -params.planning_reads :, : layout.n_modules
     ]
     delta = frames.mean(axis=0) - reference
-    return [pl.to_dict(layout) for pl in plan_grasps(delta, layout, params.planner)]
+    objects = ThesisObjectDetector(params.planner.object_threshold_pa).objects(delta, layout)
+    plans = ThesisPlanner(params.planner).plan(delta, objects, layout)
+    return [pl.to_dict(layout) for pl in plans]
 
 
 def _redetect_contacts(run: RecordedRun, phases: Any, n: int, params: Any) -> list[dict[str, Any]]:
     """Contact detection of today's code over every recorded descent, next to the recording's."""
-    from softpad.sensing import ContactDetector
+    from softpad.sensing import ThesisContactDetector
 
     out = []
     for t0, t1 in _phase_window(phases, "descend", float(run.t_s[-1])):
         before = run.pressures_pa[run.t_s <= t0 + 1e-9][-params.pre_descent_reads :, :n]
-        detector = ContactDetector(
-            before.mean(axis=0), params.contact_threshold_pa, params.filter_length
-        )
+        detector = ThesisContactDetector(params.contact_threshold_pa, params.filter_length)
+        detector.reset(before.mean(axis=0))
         now = None
         for t, p in zip(run.t_s, run.pressures_pa, strict=True):
             if t0 + 1e-9 < t <= t1 + 1e-9 and detector.update(p[:n]):
@@ -224,8 +226,9 @@ def compare_replay(recording: RecordedRun | str | Path) -> dict[str, Any]:
     """Run today's reference capture, planning and contact detection on a recording.
 
     The reference is the mean of the recorded reference reads; the plan comes from the mean of
-    the frames read in the ``plan`` phase (:func:`softpad.planning.plan_grasps`); contact is
-    detected (:class:`softpad.sensing.ContactDetector`, the recorded t_g and filter length)
+    the frames read in the ``plan`` phase (:class:`softpad.sensing.ThesisObjectDetector` and
+    :class:`softpad.planning.ThesisPlanner`); contact is detected
+    (:class:`softpad.sensing.ThesisContactDetector`, the recorded t_g and filter length)
     on every frame of each descent from the mean of the reads before it.
 
     Returns
