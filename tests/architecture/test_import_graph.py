@@ -22,7 +22,8 @@ ALLOWED: dict[str, set[str]] = {
     "sim": {"layout", "fem"},
     "box": {"sim", "layout"},
     "control": {"box", "layout", "sensing", "planning"},
-    "record": {"box", "layout", "planning"},
+    # record replays the controller's decisions on recordings (ExecutionParams, detectors)
+    "record": {"box", "control", "layout", "planning", "sensing"},
     "harness": {"box", "control", "layout", "sim", "planning", "sensing"},
     "trials": {"box", "control", "harness", "layout", "planning", "record", "sensing", "sim"},
 }
