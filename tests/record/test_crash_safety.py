@@ -20,7 +20,7 @@ from softpad.box import open_box
 from softpad.control import ExecutionParams
 from softpad.harness import run_simulated
 from softpad.record import McapRecorder
-box = open_box("sim://?seed=1")
+box = open_box("sim://?seed=1&realtime=1")  # real-time pace: the 100 ms flush decides
 fd = os.open(sys.argv[2], os.O_WRONLY | os.O_CREAT)
 rec = McapRecorder(sys.argv[1], {"objects": ["banana"]})
 class Probe:
@@ -38,11 +38,11 @@ def test_kill_9_loses_at_most_one_flush_period(tmp_path: Path) -> None:
     child = subprocess.Popen([sys.executable, "-c", _CHILD, str(path), str(side)])
     try:
         deadline = time.monotonic() + 120.0
-        while not (path.exists() and side.exists() and path.stat().st_size > 200_000):
+        while not (path.exists() and side.exists() and side.stat().st_size == 8):
             assert child.poll() is None, "the recording run ended early"
             assert time.monotonic() < deadline, "the recording run did not start"
             time.sleep(0.05)
-        time.sleep(0.3)
+        time.sleep(1.5)  # 150 frames: several flush periods
         os.kill(child.pid, signal.SIGKILL)
     finally:
         child.kill()
@@ -50,8 +50,9 @@ def test_kill_9_loses_at_most_one_flush_period(tmp_path: Path) -> None:
     assert child.returncode == -signal.SIGKILL
     last_recorded_ns = int.from_bytes(side.read_bytes()[:8], "little", signed=True)
     run = load_recording(path)  # read up to the last complete chunk
-    assert not run.complete and len(run) > 100
+    assert not run.complete and len(run) > 50
     lost_s = (last_recorded_ns - int(run.wall_ns[-1])) * 1e-9
+    print(f"kill -9: {lost_s * 1e3:.1f} ms of recording lost")  # shown by pytest -s
     # one flush period, plus the 9 messages of the frame being written when the period ran out
     assert lost_s <= FLUSH_PERIOD_S + 0.005, lost_s
     # after recovery ROS tooling opens it as any complete file

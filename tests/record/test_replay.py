@@ -85,3 +85,21 @@ def test_replay_cli_json_and_text(capsys) -> None:
     assert main(["replay", str(path)]) == 0
     out = capsys.readouterr().out
     assert "plan: same" in out and "verdict: today's code decides what was recorded" in out
+
+
+def test_foxglove_layout_plots_the_recorded_topics() -> None:
+    """docs/foxglove-layout.json plots topics that a recording (and the live view) has."""
+    from softpad.record._live import PAD_TOPIC
+
+    layout = json.loads((DATA.parents[1] / "docs" / "foxglove-layout.json").read_text())
+    run_topics = {f"/softpad/module_{k}/pressure" for k in range(1, 7)} | {
+        "/softpad/supply/pressure"
+    }
+    paths = [p["value"] for cfg in layout["configById"].values() for p in cfg.get("paths", [])]
+    assert {p.split(".")[0] for p in paths} == run_topics
+    assert all(p.endswith(".fluid_pressure") for p in paths)
+    assert layout["configById"]["3D!softpadpad"]["topics"] == {PAD_TOPIC: {"visible": True}}
+    from rosbags.highlevel import AnyReader
+
+    with AnyReader([DATA / "banana.mcap"]) as reader:
+        assert run_topics <= {c.topic for c in reader.connections}
