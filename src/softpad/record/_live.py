@@ -127,10 +127,10 @@ class FoxgloveLive:
         now = time.time_ns()
         stamp = _stamp(frame.t_s)
         for k, p in enumerate(frame.pressures_pa, start=1):
-            msg = {"header": {"stamp": stamp, "frame_id": module_frame(k)}}
+            msg: dict[str, Any] = {"header": {"stamp": stamp, "frame_id": module_frame(k)}}
             msg.update(fluid_pressure=float(p) if math.isfinite(p) else None, variance=0.0)
             self._channel(module_topic(k), _PRESSURE_SCHEMA).log(msg, log_time=now)
-        supply = {"header": {"stamp": stamp, "frame_id": "softpad_supply"}}
+        supply: dict[str, Any] = {"header": {"stamp": stamp, "frame_id": "softpad_supply"}}
         supply.update(fluid_pressure=float(frame.supply_pa), variance=0.0)
         self._channel(SUPPLY_TOPIC, _PRESSURE_SCHEMA).log(supply, log_time=now)
         if self._robot_state is not None:

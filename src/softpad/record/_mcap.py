@@ -229,12 +229,12 @@ class McapRecorder:
             self._valve_message(t_s, self._valve_state(int(data["channel"]), str(data["command"])))
         elif kind == "robot" and all(k in data for k in ("x_m", "y_m", "z_m")):
             pose = _pose(data["x_m"], data["y_m"], data["z_m"], data.get("yaw_rad", 0.0))
-            msg = {"header": _header(t_s, S.PAD_FRAME), "pose": pose}
-            self._write(S.ROBOT_COMMAND_TOPIC, "geometry_msgs/msg/PoseStamped", msg)
+            command = {"header": _header(t_s, S.PAD_FRAME), "pose": pose}
+            self._write(S.ROBOT_COMMAND_TOPIC, "geometry_msgs/msg/PoseStamped", command)
         elif kind == "plan":
             self._plan_messages(t_s, data.get("objects", []))
-        msg = {"header": _header(t_s, "softpad"), "kind": kind, "data_json": json.dumps(data)}
-        self._write(S.EVENT_TOPIC, "softpad_msgs/msg/Event", msg)
+        event = {"header": _header(t_s, "softpad"), "kind": kind, "data_json": json.dumps(data)}
+        self._write(S.EVENT_TOPIC, "softpad_msgs/msg/Event", event)
 
     def _plan_messages(self, t: float, objects: list[dict[str, Any]]) -> None:
         grasps, pcoms = [], []

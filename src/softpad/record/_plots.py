@@ -38,8 +38,10 @@ def _modules(run: RecordedRun) -> int:
     layout = run.metadata.get("layout")
     if isinstance(layout, str):
         return min(parse_layout(layout).n_modules, run.channels)
-    used = np.flatnonzero(np.nanmax(run.pressures_pa, axis=0) > 200.0) if len(run) else []
-    return int(np.max(used)) + 1 if len(used) else run.channels
+    if not len(run):
+        return run.channels
+    used = np.flatnonzero(np.nanmax(run.pressures_pa, axis=0) > 200.0)
+    return int(np.max(used)) + 1 if used.size else run.channels
 
 
 def plot_traces(run: RecordedRun, path: str | Path | None = None, title: str | None = None) -> Any:

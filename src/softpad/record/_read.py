@@ -10,6 +10,7 @@ from __future__ import annotations
 import bisect
 import json
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -234,7 +235,7 @@ def load_recording(path: str | Path) -> RecordedRun:
     meta: dict[str, Any] = {}
     by_topic: dict[str, list[tuple[int, Any]]] = {}
     factory = DecoderFactory()
-    decoders: dict[int, Any] = {}
+    decoders: dict[int, Callable[[bytes], Any]] = {}
     for rec in records:
         if isinstance(rec, Schema):
             schemas[rec.id] = rec
@@ -246,7 +247,10 @@ def load_recording(path: str | Path) -> RecordedRun:
             ch = channels[rec.channel_id]
             dec = decoders.get(ch.schema_id)
             if dec is None:
-                dec = decoders[ch.schema_id] = factory.decoder_for("cdr", schemas[ch.schema_id])
+                found = factory.decoder_for("cdr", schemas[ch.schema_id])
+                if found is None:
+                    raise InputError(f"{str(p)!r}: no CDR decoder for {schemas[ch.schema_id].name}")
+                dec = decoders[ch.schema_id] = found
             by_topic.setdefault(ch.topic, []).append((rec.log_time, dec(rec.data)))
     if meta.get("format") != S.RECORDING_FORMAT:
         raise InputError(f"{str(p)!r} is not a SoftPad recording ({S.RECORDING_FORMAT})")

@@ -201,7 +201,7 @@ def _redetect_contacts(run: RecordedRun, phases: Any, n: int, params: Any) -> li
         before = run.pressures_pa[run.t_s <= t0 + 1e-9][-params.pre_descent_reads :, :n]
         detector = ThesisContactDetector(params.contact_threshold_pa, params.filter_length)
         detector.reset(before.mean(axis=0))
-        now = None
+        now: dict[str, Any] | None = None
         for t, p in zip(run.t_s, run.pressures_pa, strict=True):
             if t0 + 1e-9 < t <= t1 + 1e-9 and detector.update(p[:n]):
                 now = {"t_s": float(t), "modules": [int(m) for m in detector.triggered_modules]}
@@ -211,7 +211,7 @@ def _redetect_contacts(run: RecordedRun, phases: Any, n: int, params: Any) -> li
             for t, d in run.events_of("contact")
             if t0 < t <= t1 + 1e-9
         ]
-        recorded = rec[0] if rec else None
+        recorded: dict[str, Any] | None = rec[0] if rec else None
         same = (recorded is None and now is None) or (
             recorded is not None
             and now is not None
