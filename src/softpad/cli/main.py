@@ -22,6 +22,7 @@ _COMMAND_MODULES = (
     "_run",
     "_box",
     "_trials",
+    "_compare",
     "_fem",
     "_demo",
     "_replay",
