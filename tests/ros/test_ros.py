@@ -199,21 +199,26 @@ def test_run_with_the_arm_in_ros_holds_the_banana_with_the_simulated_plan(procs:
 def test_arm_lost_mid_approach_ends_the_run_with_the_box_safe(
     procs: _Procs, tmp_path: Path
 ) -> None:
-    from softpad.record import RunLog
+    from softpad.record import load_recording
 
     _, _, url = _arm(procs, "--lose-arm-on", "descend")
-    npz = tmp_path / "run.npz"
+    mcap = tmp_path / "run.mcap"
     r = procs.run(
         SOFTPAD, "run", "--robot", "ros1://", "--box", url, "--object", "banana",
-        "--log", str(npz), timeout_s=90,
+        "--record", str(mcap), timeout_s=90,
     )  # fmt: skip
     assert r.returncode == 2
     assert "Traceback" not in r.stderr and len(r.stderr.strip().splitlines()) == 1
     assert "phase 'descend'" in r.stderr and "arm lost" in r.stderr
-    log = RunLog.load(npz)
-    assert [d["phase"] for _, k, d in log.events if k == "fault"] == ["descend"]
-    safe = np.asarray(log.pressures_pa)[np.asarray(log.phases) == "safe"]
-    assert len(safe) and np.nanmax(safe) <= 3000.0  # inflation valves closed, below the maximum
+    rec = load_recording(mcap)
+    faults = [(t, d) for t, k, d in rec.events if k == "fault"]
+    assert len(faults) == 1 and faults[0][1]["phase"] == "descend"
+    t_fault = faults[0][0]
+    # made safe after the fault: every valve closed, and frames read, none above the maximum
+    last_t, last_valves = rec.valves[-1]
+    assert last_t >= t_fault and set(last_valves) == {"closed"}
+    after = rec.pressures_pa[rec.t_s >= t_fault, :6]
+    assert len(after) and np.nanmax(after) <= 3000.0
 
 
 def test_arm_node_killed_mid_approach_gives_one_clear_error(procs: _Procs) -> None:

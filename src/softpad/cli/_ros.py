@@ -92,7 +92,9 @@ def run_arm_node(args: argparse.Namespace) -> int:
     return 0
 
 
-def run_with_robot_url(args: argparse.Namespace, names: list[str], log: Any, params: Any) -> Any:
+def run_with_robot_url(
+    args: argparse.Namespace, names: list[str], box: Any, recorder: Any, params: Any
+) -> Any:
     """``softpad run --robot URL``: the loop with a robot reached by URL (``ros1://``)."""
     from softpad.harness import SimulatedRun, TouchTruth
     from softpad.ros import open_robot
@@ -100,7 +102,7 @@ def run_with_robot_url(args: argparse.Namespace, names: list[str], log: Any, par
 
     robot = open_robot(args.robot)
     try:
-        result = run_with_robot(names, args.box, robot, params, log, gripper=args.gripper)
+        result = run_with_robot(names, box, robot, params, recorder, gripper=args.gripper)
     finally:
         robot.close()
     # no ground truth of the touches through ROS: the report leaves them empty

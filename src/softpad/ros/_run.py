@@ -5,12 +5,13 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
+from softpad.box import Box
 from softpad.errors import HardwareFault
 
 
 def run_with_robot(
     objects: Sequence[str] | None,
-    box: str,
+    box: Box | str,
     robot: Any,
     params: Any = None,
     recorder: Any = None,
@@ -37,7 +38,9 @@ def run_with_robot(
     specs = resolve_objects(objects)
     names = [s.name for s in specs]
     layout, place = PadLayout(), None
-    with open_box(box) as b:
+    owned = isinstance(box, str)
+    b = open_box(box) if isinstance(box, str) else box
+    try:
         if isinstance(b, TcpBox) and {"sim.setup", "sim.place"} <= set(b.extensions):
             tcp = b
             rows, cols, pitch = tcp.request("sim.setup", gripper=gripper or specs[0].gripper)[
@@ -53,3 +56,6 @@ def run_with_robot(
             return loop.run()
         except HardwareFault as exc:
             raise HardwareFault(f"run stopped in phase {loop.phase!r}: {exc}") from None
+    finally:
+        if owned:
+            b.close()
