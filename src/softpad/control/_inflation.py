@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from softpad.box import Box, PressureFrame, ValveCommand
+from softpad.box import RATED_MAX_PRESSURE_PA, Box, PressureFrame, ValveCommand
 from softpad.errors import HardwareFault, InputError
 from softpad.sensing import RunningAverage
 
@@ -25,7 +25,10 @@ DEFAULT_TARGET_PA = 1100.0
 #: t_adj of the thesis, Pa (Section 6.3).
 DEFAULT_TOLERANCE_PA = 30.0
 #: Maximum pressure the software ever lets a module reach, Pa (modules are unusable above 2.8 kPa).
-DEFAULT_MAX_PRESSURE_PA = 3000.0
+DEFAULT_MAX_PRESSURE_PA = RATED_MAX_PRESSURE_PA
+#: Usable range of p0, Pa (Section 6.3: 0.5 to 2.8 kPa).
+USABLE_MIN_PA = 500.0
+USABLE_MAX_PA = 2800.0
 
 FrameHook = Callable[[PressureFrame], None]
 
@@ -90,6 +93,17 @@ class InflationParams:
         ):
             raise InputError(
                 f"trip margin must be in [0, {self.max_pressure_pa:g}) Pa, got {self.trip_margin_pa!r}"
+            )
+        if not USABLE_MIN_PA <= self.target_pa <= USABLE_MAX_PA:
+            raise InputError(
+                f"target pressure must be within the module's usable range "
+                f"{USABLE_MIN_PA / 1e3:g}..{USABLE_MAX_PA / 1e3:g} kPa, got {self.target_pa!r} Pa "
+                f"({self.target_pa / 1e3:g} kPa; pressures are in pascals)"
+            )
+        if self.max_pressure_pa > RATED_MAX_PRESSURE_PA:
+            raise InputError(
+                f"maximum pressure must be at most the module's rating "
+                f"{RATED_MAX_PRESSURE_PA / 1e3:g} kPa, got {self.max_pressure_pa / 1e3:g} kPa"
             )
         if self.target_pa + self.tolerance_pa >= self.trip_pressure_pa:
             raise InputError(
