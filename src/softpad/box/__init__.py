@@ -11,8 +11,8 @@ Every back-end must pass :func:`check_conformance`.
 from softpad.box._base import Box, ConnectionLost, PressureFrame, ValveCommand
 from softpad.box._conformance import ConformanceError, check_conformance
 from softpad.box._protocol import PROTOCOL_VERSION, ProtocolError
-from softpad.box._safety import RATED_MAX_PRESSURE_PA, SafetyGuard, SafetyLimits, SafetyTrip
 from softpad.box._registry import DEFAULT_URL, backends, open_box, parse_url, register_backend
+from softpad.box._safety import RATED_MAX_PRESSURE_PA, SafetyGuard, SafetyLimits, SafetyTrip
 from softpad.box._server import BoxServer
 from softpad.box._sim import FAULT_KINDS, Fault, SimBox, open_sim_url
 from softpad.box._tcp import TcpBox, open_tcp_url

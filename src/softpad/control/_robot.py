@@ -15,7 +15,6 @@ from typing import Protocol, runtime_checkable
 from softpad.errors import InputError
 from softpad.sim import GripperState, World
 
-
 #: Reach of the simulated arm around the pad's origin in x and y, metres (pad frame).
 WORKSPACE_XY_M = 1.0
 #: Lowest and highest fingertip height of the simulated arm, metres (pad frame).
