@@ -100,7 +100,7 @@ def test_lost_connection_raises_connection_lost() -> None:
         ({"target_pa": 2990.0}, "usable range"),
         ({"target_pa": 1.1}, "usable range 0.5..2.8 kPa, got 1.1 Pa"),
         ({"target_pa": 2800.0, "max_pressure_pa": 2800.0}, "below the maximum"),
-        ({"max_pressure_pa": 1e6, "target_pa": 2000.0}, "rating 3 kPa"),
+        ({"max_pressure_pa": 1e6, "target_pa": 2000.0}, "full scale 10 kPa"),
         ({"reference_reads": 0}, "reference reads"),
     ],
     ids=["nan", "negative", "too-high", "kpa-as-pa", "over-own-max", "max-1e6", "reads"],

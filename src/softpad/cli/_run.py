@@ -9,6 +9,10 @@ import sys
 from typing import Any
 
 from softpad.cli._args import finite_float
+from softpad.errors import HardwareFault
+
+#: Exit code of a run ended by a hardware or link fault (after the verified safe state).
+EXIT_HARDWARE = 3
 
 _EPILOG = """examples:
   softpad run --object banana
@@ -72,6 +76,8 @@ def run(args: argparse.Namespace) -> int:
     params = ExecutionParams(hold_s=args.hold_s)
     try:
         result = run_simulated(names, args.box, params, log, gripper=args.gripper)
+    except HardwareFault as exc:
+        return _report_fault(args, log, exc)
     finally:
         # whatever happened, what was logged is kept
         if args.log:
@@ -92,6 +98,36 @@ def run(args: argparse.Namespace) -> int:
     if args.plot:
         print(f"pressure traces: {args.plot}")
     return 0
+
+
+def _report_fault(args: argparse.Namespace, log: Any, exc: Exception) -> int:
+    """Print what was detected and the safe state reached; the hardware-fault exit code."""
+    faults = [f.to_dict() for f in getattr(exc, "faults", ())]
+    safe = getattr(exc, "safe_state", None)
+    d = {
+        "outcome": "fault",
+        "error": str(exc),
+        "faults": faults,
+        "safe_state": None if safe is None else safe.to_dict(),
+        "phases": [{"phase": p, "t_s": round(t, 4)} for p, t in _phases(log)],
+    }
+    if args.json:
+        print(json.dumps(d))
+    else:
+        for f in faults:
+            print(f"t = {f['t_s']:7.2f} s  fault on channel {f['channel']} ({f['cause']})")
+        if safe is not None:
+            kpa = ", ".join(
+                "nan" if v is None else f"{v:.3f}" for v in d["safe_state"]["pressures_kpa"]
+            )  # type: ignore[index]
+            state = "verified" if safe.verified else f"NOT verified: {safe.reason}"
+            print(f"safe state {state}; pressures {kpa} kPa")
+    print(f"softpad run: hardware fault: {exc}", file=sys.stderr)
+    return EXIT_HARDWARE
+
+
+def _phases(log: Any) -> list[tuple[str, float]]:
+    return [(d["phase"], t) for t, kind, d in log.events if kind == "phase"]
 
 
 def _fmt(t: float) -> str:

@@ -33,6 +33,16 @@ from softpad.control._remote import (
     simulation_extensions,
 )
 from softpad.control._robot import Robot, SimulatedRobot, ToolPose
+from softpad.control._safety import (
+    DetectedFault,
+    FaultMonitor,
+    FaultThresholds,
+    MonitoredFault,
+    RunSafety,
+    SafeStateResult,
+    check_valves,
+    reach_safe_state,
+)
 from softpad.control._simulation import resolve_objects, run_simulated
 
 __all__ = [
@@ -42,21 +52,29 @@ __all__ = [
     "OUTCOMES",
     "SIMULATION_OPS",
     "AdjustmentResult",
+    "DetectedFault",
     "ExecutionError",
     "ExecutionParams",
     "ExecutionResult",
+    "FaultMonitor",
+    "FaultThresholds",
     "GraspExecution",
     "GraspRecord",
     "InflationParams",
+    "MonitoredFault",
     "Recorder",
     "RemoteRobot",
     "Robot",
+    "RunSafety",
+    "SafeStateResult",
     "SimulatedRobot",
     "ToolPose",
     "check_frame",
+    "check_valves",
     "has_simulation",
     "inflate_and_adjust",
     "make_safe",
+    "reach_safe_state",
     "resolve_objects",
     "run_simulated",
     "simulation_extensions",

@@ -27,11 +27,10 @@ from softpad.box import Box, PressureFrame
 from softpad.control._inflation import (
     AdjustmentResult,
     InflationParams,
-    check_frame,
     inflate_and_adjust,
-    make_safe,
 )
 from softpad.control._robot import Robot, ToolPose
+from softpad.control._safety import RunSafety
 from softpad.errors import HardwareFault, InputError, SoftPadError
 from softpad.layout import PadLayout
 from softpad.planning import GraspPlan, PlannerParams, plan_grasps
@@ -306,6 +305,9 @@ class GraspExecution:
         self.phase = "idle"
         self._phases: list[tuple[str, float]] = []
         self._last_t = 0.0
+        infl = self.params.inflation
+        #: Fault monitor of every frame and the safe state of this run.
+        self.safety = RunSafety(box, self.n, infl.max_pressure_pa, infl.trip_margin_pa)
 
     # --- plumbing -------------------------------------------------------------------
     def _enter(self, phase: str, **data: Any) -> None:
@@ -317,9 +319,7 @@ class GraspExecution:
         frame = self.box.read()
         self._last_t = frame.t_s
         self.recorder.frame(frame, self.phase)
-        infl = self.params.inflation
-        p = check_frame(frame, self.n, infl.max_pressure_pa, trip_margin_pa=infl.trip_margin_pa)
-        return frame, p
+        return frame, self.safety.watch(frame)
 
     def _wait_motion(self, what: str) -> None:
         t0 = self._last_t
@@ -339,23 +339,28 @@ class GraspExecution:
         try:
             return self._run()
         except HardwareFault as exc:
-            self.recorder.event(self._last_t, "fault", message=str(exc), phase=self.phase)
-            self._make_safe()
+            self._make_safe(exc)
             raise
         except KeyboardInterrupt:  # a user's Ctrl-C must not leave valves open
             self.recorder.event(self._last_t, "interrupted", phase=self.phase)
-            self._make_safe()
+            self._make_safe(HardwareFault("interrupted"))
             raise
 
-    def _make_safe(self) -> None:
-        self.robot.stop()
-        make_safe(
-            self.box,
-            self.n,
-            self.params.inflation.max_pressure_pa,
-            on_frame=lambda f: self.recorder.frame(f, "safe"),
-            trip_margin_pa=self.params.inflation.trip_margin_pa,
+    def _make_safe(self, exc: HardwareFault) -> None:
+        """Record the fault, stop the arm (holding what it holds), reach the verified safe state."""
+        try:
+            self.robot.stop()
+        except HardwareFault:
+            pass  # a robot behind a lost link cannot be stopped from here
+        f = self.safety.fail(exc, self._last_t, lambda fr: self.recorder.frame(fr, "safe"))
+        self.recorder.event(
+            f.t_s, "fault", message=f.message, phase=self.phase, channel=f.channel, cause=f.cause
         )
+        s = self.safety.safe_state
+        if s is not None:
+            d = s.to_dict()
+            del d["t_s"]
+            self.recorder.event(s.t_s, "safe_state", **d)
 
     def _run(self) -> ExecutionResult:
         p = self.params
@@ -366,12 +371,14 @@ class GraspExecution:
             p.inflation,
             on_frame=self._on_adjust_frame,
             on_adjusted=self._on_adjusted,
+            safe_state=False,
         )
         self.recorder.event(
             adj.reference_at_s,
             "reference",
             reference_kpa=[round(v / 1e3, 5) for v in adj.reference_pa],
         )
+        self.safety.monitor.set_reference(adj.reference_pa)
 
         self._enter("wait_object")
         if self.place_objects is not None:
@@ -392,6 +399,8 @@ class GraspExecution:
             raise ExecutionError("the object disappeared before planning: no module above t_o")
 
         grasps = [self._grasp(plan) for plan in plans]
+        self._enter("valve_check")
+        self.safety.check_valves(self._read)
         self._enter("done")
         return ExecutionResult(
             self.layout, adj, seen_at, delta, plans, tuple(grasps), tuple(self._phases)
@@ -400,6 +409,7 @@ class GraspExecution:
     def _on_adjust_frame(self, frame: PressureFrame) -> None:
         self._last_t = frame.t_s
         self.recorder.frame(frame, self.phase)
+        self.safety.watch(frame)
 
     def _on_adjusted(self, t_s: float) -> None:
         self.recorder.event(t_s, "adjusted", target_kpa=self.params.inflation.target_pa / 1e3)
