@@ -30,7 +30,7 @@ from softpad.control._inflation import (
     inflate_and_adjust,
 )
 from softpad.control._robot import Robot, ToolPose
-from softpad.control._safety import RunSafety
+from softpad.control._safety import DetectedFault, RunSafety, SafeStateResult
 from softpad.errors import HardwareFault, InputError, SoftPadError
 from softpad.layout import PadLayout
 from softpad.planning import GraspPlan, PlannerParams, plan_grasps
@@ -216,6 +216,11 @@ class ExecutionResult:
         One record per executed plan.
     phases
         (phase name, start time s) in order.
+    faults
+        Faults detected (empty on a run that ended normally; a faulted run raises, with its
+        faults and safe state attached to the exception).
+    safe_state
+        Result of the verified safe state when one was reached, else None.
     """
 
     layout: PadLayout
@@ -225,6 +230,8 @@ class ExecutionResult:
     plans: tuple[GraspPlan, ...]
     grasps: tuple[GraspRecord, ...]
     phases: tuple[tuple[str, float], ...]
+    faults: tuple[DetectedFault, ...] = ()
+    safe_state: SafeStateResult | None = None
 
     @property
     def outcome(self) -> str:
@@ -259,6 +266,8 @@ class ExecutionResult:
             "object_seen_at_s": round(self.object_seen_at_s, 4),
             "grasps": [g.to_dict(self.layout) for g in self.grasps],
             "phases": [{"phase": n, "t_s": round(t, 4)} for n, t in self.phases],
+            "faults": [f.to_dict() for f in self.faults],
+            "safe_state": None if self.safe_state is None else self.safe_state.to_dict(),
         }
 
 
@@ -403,7 +412,14 @@ class GraspExecution:
         self.safety.check_valves(self._read)
         self._enter("done")
         return ExecutionResult(
-            self.layout, adj, seen_at, delta, plans, tuple(grasps), tuple(self._phases)
+            self.layout,
+            adj,
+            seen_at,
+            delta,
+            plans,
+            tuple(grasps),
+            tuple(self._phases),
+            tuple(self.safety.faults),
         )
 
     def _on_adjust_frame(self, frame: PressureFrame) -> None:
