@@ -153,6 +153,8 @@ class FaultMonitor:
         self._sealed_frames = np.zeros(self.n, dtype=np.int64)
         self._window_start: tuple[float, NDArray[np.float64]] | None = None
         self._rising = np.zeros(self.n, dtype=np.int64)
+        # sealed (for a whole filter length) at the start of the current window and ever since
+        self._sealed_window = np.zeros(self.n, dtype=bool)
 
     def set_reference(self, reference_pa: Sequence[float] | NDArray[np.float64]) -> None:
         """Pressures the sealed modules must not fall below (the saved reference), pascals."""
@@ -245,16 +247,20 @@ class FaultMonitor:
                     f"valves closed, {(ref[k] - mean[k]):.0f} Pa below its reference at "
                     f"t = {t:.2f} s (leak or deflation valve stuck open?)",
                 )
+        self._sealed_window &= sealed
         if self._window_start is None or not sealed.any():
             self._window_start = (t, mean.copy())
+            self._sealed_window = sealed.copy()
             self._rising[:] = 0
             return None
         t0, m0 = self._window_start
         if t - t0 < th.window_s:
             return None
         slope = (mean - m0) / (t - t0)
-        self._rising = np.where(sealed & (slope > th.rise_pa_s), self._rising + 1, 0)
+        judged = self._sealed_window & (slope > th.rise_pa_s)
+        self._rising = np.where(judged, self._rising + 1, 0)
         self._window_start = (t, mean.copy())
+        self._sealed_window = sealed.copy()
         up = self._rising >= th.rise_windows
         if up.any():
             k = int(np.argmax(up))
