@@ -23,11 +23,12 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
+from softpad import thesis
 from softpad.errors import HardwareFault, InputError
 
 #: The module's rated maximum pressure, Pa (seed, Section 6.3: modules are usable 0.5..2.8 kPa;
 #: the thesis's box never takes them above 3 kPa).
-RATED_MAX_PRESSURE_PA = 3000.0
+RATED_MAX_PRESSURE_PA = thesis.MAX_PRESSURE_PA
 
 
 class SafetyTrip(HardwareFault):
@@ -115,6 +116,8 @@ class SafetyGuard:
 
     def check(self, t_s: float, pressures_pa: NDArray[np.float64]) -> list[int]:
         """Update with one frame; return the 1-based channels newly tripped (to vent now)."""
+        if self._times and t_s == self._times[-1]:
+            return []  # the same frame seen again (a wrapper sharing this guard)
         lim = self.limits
         p = np.asarray(pressures_pa, dtype=float)[: self.channels]
         self._history.append(p)

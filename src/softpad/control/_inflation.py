@@ -17,22 +17,20 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import NDArray
 
-from softpad.box import RATED_MAX_PRESSURE_PA, Box, PressureFrame, ValveCommand
+from softpad import thesis
+from softpad.box import Box, PressureFrame, ValveCommand
 from softpad.errors import HardwareFault, InputError
 
 if TYPE_CHECKING:
     from softpad.control._safety import SafeStateResult
-from softpad.sensing import RunningAverage
+from softpad.sensing import RunningAverage, capture_reference
 
-#: p0 of the thesis, Pa (Section 6.3: 1.1 kPa, about 9 mm high).
-DEFAULT_TARGET_PA = 1100.0
+#: p0 of the thesis, Pa (:data:`softpad.thesis.P0_PA`).
+DEFAULT_TARGET_PA = thesis.P0_PA
 #: t_adj of the thesis, Pa (Section 6.3).
-DEFAULT_TOLERANCE_PA = 30.0
+DEFAULT_TOLERANCE_PA = thesis.ADJUST_TOLERANCE_PA
 #: Maximum pressure the software ever lets a module reach, Pa (modules are unusable above 2.8 kPa).
-DEFAULT_MAX_PRESSURE_PA = RATED_MAX_PRESSURE_PA
-#: Usable range of p0, Pa (Section 6.3: 0.5 to 2.8 kPa).
-USABLE_MIN_PA = 500.0
-USABLE_MAX_PA = 2800.0
+DEFAULT_MAX_PRESSURE_PA = thesis.MAX_PRESSURE_PA
 #: Full scale of the box's pressure sensors, Pa: no limit can be checked above it.
 SENSOR_FULL_SCALE_PA = 10.0e3
 
@@ -46,9 +44,9 @@ class InflationParams:
     Parameters
     ----------
     target_pa
-        p0: pressure every module is brought to, pascals (1.1 kPa).
+        p0: pressure every module is brought to, pascals.
     tolerance_pa
-        t_adj: allowed deviation from p0, pascals (0.03 kPa).
+        t_adj: allowed deviation from p0, pascals.
     max_pressure_pa
         Safety limit; a channel above it is vented and the run fails, pascals (3.0 kPa).
     timeout_s
@@ -72,8 +70,8 @@ class InflationParams:
     max_pressure_pa: float = DEFAULT_MAX_PRESSURE_PA
     timeout_s: float = 30.0
     settle_s: float = 0.5
-    reference_reads: int = 10
-    filter_length: int = 10
+    reference_reads: int = thesis.REFERENCE_READS
+    filter_length: int = thesis.FILTER_WINDOW
     max_drift_pa_s: float = 25.0
     trip_margin_pa: float = 50.0
 
@@ -100,17 +98,18 @@ class InflationParams:
             raise InputError(
                 f"trip margin must be in [0, {self.max_pressure_pa:g}) Pa, got {self.trip_margin_pa!r}"
             )
-        if not USABLE_MIN_PA <= self.target_pa <= USABLE_MAX_PA:
+        lo, hi = thesis.P0_RANGE_PA
+        if not lo <= self.target_pa <= hi:
             raise InputError(
                 f"target pressure must be within the module's usable range "
-                f"{USABLE_MIN_PA / 1e3:g}..{USABLE_MAX_PA / 1e3:g} kPa, got {self.target_pa!r} Pa "
+                f"{lo / 1e3:g}..{hi / 1e3:g} kPa, got {self.target_pa!r} Pa "
                 f"({self.target_pa / 1e3:g} kPa; pressures are in pascals)"
             )
         if self.max_pressure_pa >= SENSOR_FULL_SCALE_PA:
             raise InputError(
                 f"maximum pressure must be below the sensor's full scale "
                 f"{SENSOR_FULL_SCALE_PA / 1e3:g} kPa (the module's rating is "
-                f"{RATED_MAX_PRESSURE_PA / 1e3:g} kPa), got {self.max_pressure_pa / 1e3:g} kPa"
+                f"{thesis.MAX_PRESSURE_PA / 1e3:g} kPa), got {self.max_pressure_pa / 1e3:g} kPa"
             )
         if self.target_pa + self.tolerance_pa >= self.trip_pressure_pa:
             raise InputError(
@@ -142,9 +141,9 @@ class AdjustmentResult:
     reference_at_s: float
 
     def to_dict(self) -> dict[str, object]:
-        """JSON-ready dict (kPa at the edge)."""
+        """JSON-ready dict (SI units)."""
         return {
-            "reference_kpa": [round(float(v) / 1e3, 5) for v in self.reference_pa],
+            "reference_pa": [round(float(v), 2) for v in self.reference_pa],
             "adjusted_at_s": round(self.adjusted_at_s, 4),
             "reference_at_s": round(self.reference_at_s, 4),
         }
@@ -350,7 +349,7 @@ def inflate_and_adjust(
                     frame, n_modules, params.max_pressure_pa, trip_margin_pa=params.trip_margin_pa
                 )
             )
-        return AdjustmentResult(np.mean(reads, axis=0), adjusted_at, frame.t_s)
+        return AdjustmentResult(capture_reference(reads), adjusted_at, frame.t_s)
     except HardwareFault as exc:
         if safe_state and not hasattr(exc, "safe_state"):
             exc.safe_state = make_safe(  # type: ignore[attr-defined]

@@ -494,20 +494,23 @@ class RunSafety:
         )
         self.faults: list[DetectedFault] = []
         self.safe_state: SafeStateResult | None = None
+        #: Box time of the last frame watched, seconds.
+        self.last_t = 0.0
 
     def watch(self, frame: PressureFrame) -> NDArray[np.float64]:
         """Judge one frame; return the module pressures or raise :class:`MonitoredFault`."""
+        self.last_t = frame.t_s
         fault = self.monitor.update(frame, self.box.valves)
         if fault is not None:
             raise MonitoredFault(fault)
         return frame.pressures_pa[: self.n]
 
-    def check_valves(self, read: Callable[[], tuple[PressureFrame, NDArray[np.float64]]]) -> None:
+    def check_valves(self, read: Callable[[], NDArray[np.float64]]) -> None:
         """Run :func:`check_valves` through ``read``; the falling check is suspended during the
         pulses and its reference moved to the pressures they leave."""
         self.monitor.reference_pa = None
-        check_valves(self.box, self.n, read)
-        rows = [read()[1] for _ in range(self.monitor.th.filter_length)]
+        check_valves(self.box, self.n, read, clock=lambda: self.last_t)
+        rows = [read() for _ in range(self.monitor.th.filter_length)]
         self.monitor.set_reference(np.mean(rows, axis=0))
 
     def fail(
@@ -528,21 +531,22 @@ class RunSafety:
 def check_valves(
     box: Box,
     n_modules: int,
-    read: Callable[[], object],
+    read: Callable[[], NDArray[np.float64]],
     pulse_s: float = 0.5,
     min_change_pa: float = 40.0,
+    clock: Callable[[], float] = lambda: math.nan,
 ) -> None:
     """Pulse every module's deflation then inflation valve and check the pressure answers.
 
     Deflates every module for ``pulse_s``, then inflates for ``pulse_s``, then closes; a module
     whose filtered pressure does not fall (then rise) by ``min_change_pa`` has a valve that does
     not open (stuck closed, or no supply) and raises :class:`MonitoredFault`. ``read`` reads one
-    frame (the caller's, so that every frame passes its monitor) and returns (frame, pressures).
+    frame (the caller's, so that every frame passes its monitor) and returns the module
+    pressures; ``clock`` gives the box time of the last frame (for the fault's time stamp).
     """
 
     def mean_of(n: int) -> tuple[float, NDArray[np.float64]]:
-        rows = [read() for _ in range(n)]
-        return rows[-1][0].t_s, np.mean([r[1] for r in rows], axis=0)  # type: ignore[index]
+        return clock(), np.mean([read() for _ in range(n)], axis=0)
 
     for cmd, sign, what in (
         (ValveCommand.DEFLATE, -1.0, "deflation"),

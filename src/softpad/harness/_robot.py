@@ -1,0 +1,140 @@
+"""The simulated robot: the control layer's :class:`~softpad.control.Robot` on a simulated world."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from softpad.control import RobotState, ToolPose
+from softpad.errors import InputError
+from softpad.sim import GripperState, World
+
+#: Reach of the simulated arm around the pad's origin in x and y, metres (pad frame).
+WORKSPACE_XY_M = 1.0
+#: Lowest and highest fingertip height of the simulated arm, metres (pad frame).
+WORKSPACE_Z_M = (-0.01, 1.0)
+#: Widest gripper opening that may be commanded, metres (wider commands are clamped to the
+#: mounting's maximum by the gripper).
+MAX_COMMAND_WIDTH_M = 1.0
+#: Fastest commanded arm or jaw speed, m/s.
+MAX_SPEED_M_S = 2.0
+
+
+def check_target(x_m: float, y_m: float, z_m: float, width_m: float) -> None:
+    """Raise InputError unless a target lies in the simulated arm's workspace.
+
+    Finite coordinates within +/- ``WORKSPACE_XY_M`` in x and y, a height within
+    ``WORKSPACE_Z_M`` and a gripper width within 0 .. ``MAX_COMMAND_WIDTH_M``.
+    """
+    for name, v, lo, hi in (
+        ("x_m", x_m, -WORKSPACE_XY_M, WORKSPACE_XY_M),
+        ("y_m", y_m, -WORKSPACE_XY_M, WORKSPACE_XY_M),
+        ("z_m", z_m, *WORKSPACE_Z_M),
+        ("width_m", width_m, 0.0, MAX_COMMAND_WIDTH_M),
+    ):
+        if not (math.isfinite(v) and lo <= v <= hi):
+            raise InputError(f"robot target {name} must be within {lo:g}..{hi:g} m, got {v!r}")
+
+
+@dataclass(frozen=True)
+class TouchTruth:
+    """Ground truth of one descent, read from the simulated world after it.
+
+    Attributes
+    ----------
+    first_touch_s
+        Box time of the first fingertip touch, seconds (None: the fingers touched nothing).
+    first_touch_z_m
+        Fingertip height at the first touch, metres.
+    """
+
+    first_touch_s: float | None
+    first_touch_z_m: float | None
+
+
+def _robot_state(s: GripperState) -> RobotState:
+    return RobotState(s.x_m, s.y_m, s.z_m, s.yaw_rad, s.width_m)
+
+
+class SimulatedRobot:
+    """A kinematic robot driving the gripper of a simulated :class:`~softpad.sim.World`.
+
+    Commands are non-blocking; the world advances with the box's reads. After each descent
+    the world's first-touch record is appended to :attr:`touches` (ground truth for scoring).
+
+    Parameters
+    ----------
+    world
+        The world whose gripper this robot moves.
+    max_opening_m
+        Widest opening the robot commands, metres (the world clamps to the mounting's).
+    """
+
+    def __init__(self, world: World, max_opening_m: float = math.inf) -> None:
+        self.world = world
+        self.max_opening_m = max_opening_m
+        self.touches: list[TouchTruth] = []
+        self._target: GripperState | None = None
+        self._last: GripperState | None = None
+        self._fresh = False
+        self._descending = False
+
+    def _end_descent(self) -> None:
+        if self._descending:
+            w = self.world
+            self.touches.append(TouchTruth(w.first_touch_s, w.first_touch_z_m))
+            self._descending = False
+
+    def _command(self, target: GripperState, speed_m_s: float) -> None:
+        if not (math.isfinite(speed_m_s) and 0 < speed_m_s <= MAX_SPEED_M_S):
+            raise InputError(
+                f"robot speed must be > 0 and at most {MAX_SPEED_M_S:g} m/s, got {speed_m_s!r}"
+            )
+        check_target(target.x_m, target.y_m, target.z_m, target.width_m)
+        self._target = target
+        self._fresh = True
+        self.world.command_gripper(target, speed_m_s)
+
+    def move_to(self, pose: ToolPose, speed_m_s: float) -> None:
+        self._end_descent()
+        s = self.world.gripper_state()
+        self._command(
+            GripperState(pose.x_m, pose.y_m, pose.z_m, pose.yaw_rad, s.width_m), speed_m_s
+        )
+
+    def descend(self, speed_m_s: float, min_z_m: float) -> None:
+        self._end_descent()
+        s = self.world.gripper_state()
+        self.world.reset_touch()
+        self._command(GripperState(s.x_m, s.y_m, min_z_m, s.yaw_rad, s.width_m), speed_m_s)
+        self._descending = True
+
+    def stop(self) -> None:
+        self._end_descent()
+        s = self.world.gripper_state()
+        self._target = s
+        self.world.command_gripper(s, 0.0)
+
+    def set_gripper(self, width_m: float, speed_m_s: float) -> None:
+        self._end_descent()
+        width_m = min(width_m, self.max_opening_m)
+        s = self.world.gripper_state()
+        self._command(GripperState(s.x_m, s.y_m, s.z_m, s.yaw_rad, width_m), speed_m_s)
+
+    def is_moving(self) -> bool:
+        s = self.world.gripper_state()
+        if self._target is None or s == self._target:
+            self._last = s
+            return False
+        moved = s != self._last
+        self._last = s
+        if self._fresh:  # a command was just given: allow one step before judging
+            self._fresh = False
+            return True
+        return moved  # False when the jaws stopped on an object short of their target
+
+    def state(self) -> RobotState:
+        return _robot_state(self.world.gripper_state())
+
+    def holding(self) -> bool:
+        return self.world.holding()
