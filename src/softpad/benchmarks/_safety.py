@@ -87,8 +87,8 @@ def run_one(seed: int, rate_hz: float = 50.0) -> CampaignRun:
     """Run the loop once with the faults drawn from ``seed``; watch the true pressure."""
     from softpad.box import open_box
     from softpad.control import ExecutionParams
-    from softpad.harness import run_simulated
     from softpad.errors import HardwareFault, SoftPadError
+    from softpad.harness import run_simulated
 
     specs = draw_faults(random.Random(seed))
     run = CampaignRun(seed, specs, {s: float(s.rpartition("@")[2]) for s in specs})

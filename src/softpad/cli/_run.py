@@ -122,9 +122,7 @@ def _report_fault(args: argparse.Namespace, log: Any, exc: Exception) -> int:
         for f in faults:
             print(f"t = {f['t_s']:7.2f} s  fault on channel {f['channel']} ({f['cause']})")
         if safe is not None:
-            kpa = ", ".join(
-                "nan" if v is None else f"{v:.3f}" for v in safe.to_dict()["pressures_kpa"]
-            )
+            kpa = ", ".join("nan" if v != v else f"{v / 1e3:.3f}" for v in safe.pressures_pa)
             state = "verified" if safe.verified else f"NOT verified: {safe.reason}"
             print(f"safe state {state}; pressures {kpa} kPa")
     print(f"softpad run: hardware fault: {exc}", file=sys.stderr)

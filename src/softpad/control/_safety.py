@@ -308,12 +308,11 @@ class SafeStateResult:
     reason: str = ""
 
     def to_dict(self) -> dict[str, object]:
-        """JSON-ready dict (kPa at the edge)."""
+        """JSON-ready dict (SI units; None where a sensor gave no valid reading)."""
         return {
             "verified": self.verified,
-            "pressures_kpa": [
-                None if not math.isfinite(v) else round(float(v) / 1e3, 5)
-                for v in self.pressures_pa
+            "pressures_pa": [
+                None if not math.isfinite(v) else round(float(v), 1) for v in self.pressures_pa
             ],
             "channel_unsafe": self.channel_unsafe,
             "tried": list(self.tried),
