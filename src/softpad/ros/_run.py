@@ -55,7 +55,9 @@ def run_with_robot(
         try:
             return loop.run()
         except HardwareFault as exc:
-            raise HardwareFault(f"run stopped in phase {loop.phase!r}: {exc}") from None
+            # same exception (its safe state and faults kept), the phase named in the message
+            exc.args = (f"run stopped in phase {loop.phase!r}: {exc}", *exc.args[1:])
+            raise
     finally:
         if owned:
             b.close()
