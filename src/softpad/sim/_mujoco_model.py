@@ -420,6 +420,31 @@ def build_mjcf(
         MuJoCo time step, seconds (2 ms is stable with the stiffnesses above; see
         docs/trials.md for the measurement).
     """
+    if not math.isfinite(timestep_s) or not 1e-4 <= timestep_s <= 1e-2:
+        raise InputError(f"MuJoCo time step must be in [0.1, 10] ms, got {timestep_s * 1e3:g} ms")
+    hand = _hand_xml(pad, gripper)
+    obj_bodies, welds = _objects_xml(objects)
+    return (
+        '<mujoco model="softpad">'
+        f'<option timestep="{timestep_s:.9g}" gravity="0 0 {-GRAVITY_M_S2:g}" '
+        'integrator="implicitfast" cone="elliptic" impratio="10"/>'
+        '<compiler angle="radian" inertiafromgeom="true" autolimits="true"/>'
+        '<size memory="8M"/>'
+        # contacts as stiff as the 2 ms step allows (time constant 2 steps, impedance 0.99):
+        # with MuJoCo's default (20 ms, 0.95) the 20 N grip sank the jaws 5 mm into a 24 g
+        # brick; now about 0.1 mm
+        f'<default><geom solref="{2 * timestep_s:.6g} 1" solimp="0.95 0.99 0.001"/>'
+        f'<joint solreflimit="{2 * timestep_s:.6g} 1" solimplimit="0.95 0.99 0.001"/></default>'
+        f"<worldbody>{_pad_xml(layout, pad)}{hand}"
+        f"{''.join(obj_bodies)}</worldbody>"
+        f"<equality>{''.join(welds)}</equality>"
+        f"<actuator>{_actuators_xml(gripper)}</actuator>"
+        "</mujoco>"
+    )
+
+
+def _pad_xml(layout: PadLayout, pad: PadPhysics) -> str:
+    """MJCF of the base, the table and the module tops (each on a vertical spring)."""
     pitch = layout.pitch_m
     width, height = layout.cols * pitch, layout.rows * pitch
     base_t = 0.01
@@ -452,6 +477,11 @@ def build_mjcf(
             f'contype="{_PAD}" conaffinity="0" condim="3"/>'
             f"</body>"
         )
+    return "".join(pad_geoms) + "".join(module_bodies)
+
+
+def _hand_xml(pad: PadPhysics, gripper: MujocoGripper) -> str:
+    """MJCF of the kinematic hand: palm and two fingers, each with a sprung sole."""
     # gripper: hand at the palm; fingers hang finger_length below it
     t, w = gripper.tip_thickness_m, gripper.tip_width_m
     sole_t = gripper.sole_thickness_m
@@ -501,9 +531,13 @@ def build_mjcf(
             ("yaw", "hinge", "0 0 1"),
         )
     )
-    hand = (
+    return (
         f'<body name="hand" pos="0 0 0" gravcomp="1">{hand_joints}{palm}{"".join(fingers)}</body>'
     )
+
+
+def _objects_xml(objects: tuple[ObjectModel, ...]) -> tuple[list[str], list[str]]:
+    """MJCF bodies of ``objects`` at their parking places, and the welds of loose parts."""
     obj_bodies = []
     palette = ("0.9 0.2 0.2 1", "0.2 0.6 0.9 1", "0.95 0.8 0.1 1", "0.3 0.8 0.3 1")
     welds = []
@@ -532,30 +566,17 @@ def build_mjcf(
                     f'<weld body1="{body_name(obj)}" body2="{name}" solref="0.02 1" '
                     'solimp="0.9 0.95 0.001"/>'
                 )
+    return obj_bodies, welds
+
+
+def _actuators_xml(gripper: MujocoGripper) -> str:
+    """MJCF of the jaws' force-limited position servos."""
+    open_half = gripper.max_width_m / 2
     kp = gripper.servo_stiffness_n_m
     f_max = gripper.grip_force_n
-    actuators = "".join(
+    return "".join(
         f'<position name="jaw_{side}" joint="jaw_{side}" kp="{kp:g}" '
         f'forcelimited="true" forcerange="{-f_max:g} {f_max:g}" '
         f'ctrlrange="{gripper.min_width_m / 2 - 2 * f_max / kp:.9g} {open_half + 1e-3:.9g}"/>'
         for side in ("right", "left")
-    )
-    if not math.isfinite(timestep_s) or not 1e-4 <= timestep_s <= 1e-2:
-        raise InputError(f"MuJoCo time step must be in [0.1, 10] ms, got {timestep_s * 1e3:g} ms")
-    return (
-        '<mujoco model="softpad">'
-        f'<option timestep="{timestep_s:.9g}" gravity="0 0 {-GRAVITY_M_S2:g}" '
-        'integrator="implicitfast" cone="elliptic" impratio="10"/>'
-        '<compiler angle="radian" inertiafromgeom="true" autolimits="true"/>'
-        '<size memory="8M"/>'
-        # contacts as stiff as the 2 ms step allows (time constant 2 steps, impedance 0.99):
-        # with MuJoCo's default (20 ms, 0.95) the 20 N grip sank the jaws 5 mm into a 24 g
-        # brick; now about 0.1 mm
-        f'<default><geom solref="{2 * timestep_s:.6g} 1" solimp="0.95 0.99 0.001"/>'
-        f'<joint solreflimit="{2 * timestep_s:.6g} 1" solimplimit="0.95 0.99 0.001"/></default>'
-        f"<worldbody>{''.join(pad_geoms)}{''.join(module_bodies)}{hand}"
-        f"{''.join(obj_bodies)}</worldbody>"
-        f"<equality>{''.join(welds)}</equality>"
-        f"<actuator>{actuators}</actuator>"
-        "</mujoco>"
     )
