@@ -117,18 +117,18 @@ class PadPhysics:
     friction: float = 1.0
 
     def __post_init__(self) -> None:
-        for name in (
-            "free_height_m",
-            "sensitive_side_m",
-            "line_height_m",
-            "distributed_stiffness_n_m",
-            "top_mass_kg",
-            "local_stiffness_n_m",
-            "friction",
-        ):
-            v = check_finite(name, getattr(self, name))
-            if v <= 0:
-                raise InputError(f"{name} must be > 0, got {v!r}")
+        _check_positive(
+            self,
+            (
+                "free_height_m",
+                "sensitive_side_m",
+                "line_height_m",
+                "distributed_stiffness_n_m",
+                "top_mass_kg",
+                "local_stiffness_n_m",
+                "friction",
+            ),
+        )
         if self.line_height_m >= self.free_height_m:
             raise InputError(
                 f"line height ({self.line_height_m * 1e3:g} mm) must be below the module "
@@ -147,6 +147,14 @@ GRIPPER_MOUNTINGS: dict[str, tuple[float, float]] = {
     "6/2": (0.06, 0.02),
     "4/0": (0.04, 0.0),
 }
+
+
+def _check_positive(record: object, names: tuple[str, ...]) -> None:
+    """Raise :class:`InputError` unless every field ``names`` of ``record`` is finite and > 0."""
+    for name in names:
+        v = check_finite(name, getattr(record, name))
+        if v <= 0:
+            raise InputError(f"{name} must be > 0, got {v!r}")
 
 
 def parse_mounting(text: str) -> tuple[float, float]:
@@ -218,18 +226,18 @@ class MujocoGripper:
 
     def __post_init__(self) -> None:
         parse_mounting(self.mounting)
-        for name in (
-            "finger_length_m",
-            "tip_thickness_m",
-            "tip_width_m",
-            "grip_force_n",
-            "servo_stiffness_n_m",
-            "friction",
-            "sole_stroke_m",
-        ):
-            v = check_finite(name, getattr(self, name))
-            if v <= 0:
-                raise InputError(f"{name} must be > 0, got {v!r}")
+        _check_positive(
+            self,
+            (
+                "finger_length_m",
+                "tip_thickness_m",
+                "tip_width_m",
+                "grip_force_n",
+                "servo_stiffness_n_m",
+                "friction",
+                "sole_stroke_m",
+            ),
+        )
 
     @property
     def max_width_m(self) -> float:
