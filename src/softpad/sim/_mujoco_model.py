@@ -74,20 +74,21 @@ class PadPhysics:
     rim_m
         Width of the non-sensitive silicone frame around the modules, metres.
     distributed_stiffness_n_m
-        Vertical stiffness of a module top under a load spread over it, N/m. For a sealed chamber
-        the gas carries such a load: with the FEM volume dV/dp = 3.8 mL/kPa and about 10 mL of
-        gas (chamber plus tubing) the top sinks about 0.7 mm per newton, i.e. 1.4 kN/m; we use
-        1.5 kN/m, stiff enough that the 312 g charger sinks about 1 mm.
+        Vertical stiffness of a module top's slide joint under a load spread over it, N/m:
+        400 N/m, soft enough that an object sinks about 1 mm and rests on all the modules it
+        spans. The gas's own stiffness (the FEM's dV/dp = 3.8 mL/kPa over about 10 mL of gas:
+        about 0.7 mm per newton, 1.4 kN/m) reaches MuJoCo through the box's module heights
+        (see :meth:`MujocoWorld.step`), not through this spring.
     distributed_damping_n_s_m
-        Damping of that joint, N s/m: about critical, 2 sqrt(k (m + armature)) = 9.3 N s/m, so
-        a load put on a module does not overshoot (a 1.5 N overshoot collapses the box model).
+        Damping of that joint, N s/m: 20 N s/m, about twice the critical
+        2 sqrt(k (m + armature)) = 9.3 N s/m, so a load put on a module does not overshoot.
     top_mass_kg
         Moving mass of a module top, kg: the 1.5 mm EcoFlex layer over 45 x 45 mm at
         1070 kg/m^3 (3.3 g) plus the carried air and a margin, 4.5 g.
     top_armature_kg
         Extra inertia of the top's slide joint (MuJoCo ``armature``), kg. Joint springs are
-        integrated explicitly; with the light top alone, a heavy object on it made the
-        2 ms step unstable (measured: a 300 g block bounced). 50 g brings sqrt(k/m) * dt to
+        integrated explicitly; with the light top alone, a heavy object on it makes the
+        2 ms step unstable (a 300 g block bounces). 50 g brings sqrt(k/m) * dt to
         0.33 and only slows the top's free response (period 37 ms).
     dome_height_m
         Height of the dome of a module top above its rim, metres. An inflated module is a
@@ -199,8 +200,8 @@ class MujocoGripper:
         :class:`softpad.layout.GripperSpec` and of the analytic world's tips. Across a line
         (e.g. object 1's thesis grasp (2.5, 1, 0), whose only tip on the pad lies over the line
         between modules 2 and 5) a 16 mm tip reaches 5.5 mm past the line's edges on both
-        sides and touches a dome's flank unless it is far from the dome's centre; the 10 mm
-        tip used before reached 2.5 mm, touched nothing and sensed object 1's grasp in 2 of
+        sides and touches a dome's flank unless it is far from the dome's centre; a 10 mm
+        tip reaches 2.5 mm, touches nothing and senses object 1's grasp in 2 of
         15 trials (seeds 0-2; 16 mm: see docs/trials.md). Lying along a line (the tips of a
         grasp along x centred on a column line) it stays unsensed at any width. The grip does
         not depend on it: a 50 g brick squeezed by 10 or 16 mm tips rises 51 mm with the hand
@@ -439,8 +440,8 @@ def build_mjcf(
         '<compiler angle="radian" inertiafromgeom="true" autolimits="true"/>'
         '<size memory="8M"/>'
         # contacts as stiff as the 2 ms step allows (time constant 2 steps, impedance 0.99):
-        # with MuJoCo's default (20 ms, 0.95) the 20 N grip sank the jaws 5 mm into a 24 g
-        # brick; now about 0.1 mm
+        # with MuJoCo's default (20 ms, 0.95) the 20 N grip sinks the jaws 5 mm into a 24 g
+        # brick, with these about 0.1 mm
         f'<default><geom solref="{2 * timestep_s:.6g} 1" solimp="0.95 0.99 0.001"/>'
         f'<joint solreflimit="{2 * timestep_s:.6g} 1" solimplimit="0.95 0.99 0.001"/></default>'
         f"<worldbody>{_pad_xml(layout, pad)}{hand}"
