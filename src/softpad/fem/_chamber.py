@@ -209,18 +209,9 @@ def sealed_chamber_study(
     rise_per_n, compliance = sealed_rise_per_force(model, vd, pa)
     gas_amount = (pa + p0) * (v0 + vd)
 
-    pressures, volumes, heights = [], [], []
-    p_prev = p0
-    for i, m in enumerate(masses):
-        force = m * GRAVITY_M_PER_S2
-        _sealed_equilibrium(model, force, p_prev, p0 + rise_per_n * force, vd, pa, gas_amount)
-        st = model.state()
-        pressures.append(model.pressure_pa)
-        volumes.append(st.volume_m3)
-        heights.append(st.height_m)
-        p_prev = model.pressure_pa
-        if progress is not None:
-            progress(i + 1, len(masses))
+    pressures, volumes, heights = _sealed_series(
+        model, masses, p0, rise_per_n, vd, pa, gas_amount, progress
+    )
     return ChamberResult(
         model=model.material.name,
         initial_pressure_pa=p0,
@@ -228,9 +219,9 @@ def sealed_chamber_study(
         dead_volume_m3=vd,
         footprint=footprint,
         mass_kg=masses,
-        pressure_pa=np.array(pressures),
-        volume_m3=np.array(volumes),
-        height_m=np.array(heights),
+        pressure_pa=pressures,
+        volume_m3=volumes,
+        height_m=heights,
         rise_per_kg_pa=rise_per_n * GRAVITY_M_PER_S2,
         compliance_m3_per_pa=compliance,
     )
@@ -284,3 +275,30 @@ def _sealed_equilibrium(
         x1, f1 = x2, mismatch(x2)
         if abs(x1 - x0) < 1e-3:
             break
+
+
+def _sealed_series(
+    model: ModuleModel,
+    masses: NDArray[np.float64],
+    p0: float,
+    rise_per_n: float,
+    vd: float,
+    pa: float,
+    gas_amount: float,
+    progress: ProgressCallback | None,
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """Sealed equilibrium pressure (Pa), chamber volume (m^3) and centre height (m) for each
+    of the increasing ``masses`` (kg), each solve starting from the previous one."""
+    pressures, volumes, heights = [], [], []
+    p_prev = p0
+    for i, m in enumerate(masses):
+        force = m * GRAVITY_M_PER_S2
+        _sealed_equilibrium(model, force, p_prev, p0 + rise_per_n * force, vd, pa, gas_amount)
+        st = model.state()
+        pressures.append(model.pressure_pa)
+        volumes.append(st.volume_m3)
+        heights.append(st.height_m)
+        p_prev = model.pressure_pa
+        if progress is not None:
+            progress(i + 1, len(masses))
+    return np.array(pressures), np.array(volumes), np.array(heights)

@@ -487,28 +487,15 @@ class ModuleModel:
         # similar displacement increments and a good secant predictor.
         cube = df == 0 and dp != 0
 
-        def at(s: float) -> tuple[float, float]:
-            if cube:
-                c0, c1 = np.cbrt(p0), np.cbrt(p1)
-                return float((c0 + s * (c1 - c0)) ** 3), f0
-            return p0 + s * dp, f0 + s * df
-
+        at = _path(p0, p1, f0, f1, cube)
         step, max_step = self._initial_steps(p0, p1, dp, df, cube)
         min_step = step * self.solver.min_fraction
         s = 0.0
         history = self._start_history(p0, p1, f0, cube)
         while s < 1.0 - 1e-12:
             trial = min(1.0, s + step)
-            start = self._values()
-            saved = self._solid.checkpoint() if self.mesh_options.element == "hex8" else None
-            self._predict(history, trial)
-            p_trial, f_trial = at(trial)
-            iterations = self._newton(p_trial, f_trial)
+            iterations = self._attempt(history, trial, at(trial))
             if iterations < 0:
-                if saved is not None:
-                    self._solid.restore(saved)
-                else:
-                    self._set_values(start)
                 step *= 0.5
                 history = history[-1:]
                 if step < min_step:
@@ -527,6 +514,26 @@ class ModuleModel:
             self._previous = (at(history[-2][0])[0], f0, history[-2][1])
         self.pressure_pa, self.load_n = p1, f1
         return self.state()
+
+    def _attempt(
+        self,
+        history: list[tuple[float, list[np.ndarray]]],
+        trial: float,
+        target: tuple[float, float],
+    ) -> int:
+        """Predict the state at path fraction ``trial`` and solve at ``target`` (Pa, N); the
+        Newton iterations, or -1 with the state before the attempt restored."""
+        start = self._values()
+        saved = self._solid.checkpoint() if self.mesh_options.element == "hex8" else None
+        self._predict(history, trial)
+        p_trial, f_trial = target
+        iterations = self._newton(p_trial, f_trial)
+        if iterations < 0:
+            if saved is not None:
+                self._solid.restore(saved)
+            else:
+                self._set_values(start)
+        return iterations
 
     def _target(self, pressure_pa: float, load_n: float | None) -> tuple[float, float]:
         """Checked target pressure (Pa) and load (N) of :meth:`solve`."""
@@ -660,3 +667,19 @@ class ModuleModel:
             field_data={},
         )
         mesh.write(path)
+
+
+def _path(
+    p0: float, p1: float, f0: float, f1: float, cube: bool
+) -> Callable[[float], tuple[float, float]]:
+    """Pressure (Pa) and load (N) at fraction ``s`` of the path from ``(p0, f0)`` to
+    ``(p1, f1)``: linear, or linear in the cube root of the pressure when ``cube``."""
+    dp, df = p1 - p0, f1 - f0
+
+    def at(s: float) -> tuple[float, float]:
+        if cube:
+            c0, c1 = np.cbrt(p0), np.cbrt(p1)
+            return float((c0 + s * (c1 - c0)) ** 3), f0
+        return p0 + s * dp, f0 + s * df
+
+    return at

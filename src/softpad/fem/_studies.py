@@ -551,23 +551,11 @@ def sensitive_area_study(
     dead_volume_m3
         Tubing dead volume, m^3 (default :data:`~softpad.fem.DEFAULT_DEAD_VOLUME_M3`).
     """
-    from softpad.fem._chamber import DEFAULT_DEAD_VOLUME_M3, GRAVITY_M_PER_S2
+    from softpad.fem._chamber import GRAVITY_M_PER_S2
 
-    p = _pressures(np.linspace(500.0, 2800.0, 6) if pressures_pa is None else pressures_pa)
-    probe = check_finite("probe_mass_kg", probe_mass_kg)
-    thr = check_finite("threshold_pa", threshold_pa)
-    if probe <= 0 or thr <= 0:
-        raise InputError(f"probe mass and threshold must be > 0, got {probe!r} kg, {thr!r} Pa")
-    vd = (
-        DEFAULT_DEAD_VOLUME_M3
-        if dead_volume_m3 is None
-        else check_finite("dead_volume", dead_volume_m3)
+    p, probe, thr, vd, frac = _sensitivity_inputs(
+        pressures_pa, probe_mass_kg, threshold_pa, dead_volume_m3, fraction
     )
-    if p[0] <= 0:
-        raise InputError("sensitive area needs pressures > 0 Pa (the flat layer has no dome)")
-    frac = check_finite("fraction", fraction)
-    if not 0.0 < frac < 1.0:
-        raise InputError(f"fraction must be in (0, 1), got {frac!r}")
     model = ModuleModel(material, geometry=geometry, mesh=mesh, contact=False)
     areas, centre, detectable = [], [], []
     for i, pi in enumerate(p):
@@ -609,3 +597,31 @@ def _sensitive_area_at(
     rise = weight_n * dw / (compliance + gas)
     detectable = 4.0 * float(area_weights[top & (rise >= thr)].sum())
     return 4.0 * float(area_weights[sensitive].sum()), float(c), detectable
+
+
+def _sensitivity_inputs(
+    pressures_pa: Sequence[float] | np.ndarray | None,
+    probe_mass_kg: float,
+    threshold_pa: float,
+    dead_volume_m3: float | None,
+    fraction: float,
+) -> tuple[np.ndarray, float, float, float, float]:
+    """The inputs of :func:`sensitive_area_study`, checked and with their defaults."""
+    from softpad.fem._chamber import DEFAULT_DEAD_VOLUME_M3
+
+    p = _pressures(np.linspace(500.0, 2800.0, 6) if pressures_pa is None else pressures_pa)
+    probe = check_finite("probe_mass_kg", probe_mass_kg)
+    thr = check_finite("threshold_pa", threshold_pa)
+    if probe <= 0 or thr <= 0:
+        raise InputError(f"probe mass and threshold must be > 0, got {probe!r} kg, {thr!r} Pa")
+    vd = (
+        DEFAULT_DEAD_VOLUME_M3
+        if dead_volume_m3 is None
+        else check_finite("dead_volume", dead_volume_m3)
+    )
+    if p[0] <= 0:
+        raise InputError("sensitive area needs pressures > 0 Pa (the flat layer has no dome)")
+    frac = check_finite("fraction", fraction)
+    if not 0.0 < frac < 1.0:
+        raise InputError(f"fraction must be in (0, 1), got {frac!r}")
+    return p, probe, thr, vd, frac
