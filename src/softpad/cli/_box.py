@@ -27,7 +27,7 @@ and robot, so 'softpad run --box tcp://HOST:PORT' runs the whole loop through th
 """
 
 _INFLATE_EPILOG = """examples:
-  softpad box inflate                                 the simulated box, p0 = 1.1 kPa
+  softpad box inflate                                 the simulated box, to p0
   softpad box inflate --box tcp://127.0.0.1:5757 --json
 """
 

@@ -29,7 +29,7 @@ def register(sub: Any) -> None:
             "Run the whole grasp loop of the seed's Section 6.2 once on the simulated box: inflate "
             "every module to p0 and save the reference, place the object(s) of the thesis set, plan "
             "the grasp from the pressure increments, move over the centre of grasp, descend at "
-            "0.05 m/s until the pad senses the fingers (running average of 10 samples above t_g), "
+            "the approach speed until the pad senses the fingers (running average of 10 samples above t_g), "
             "close, lift, hold for 15 s, and print the timeline."
         ),
         epilog=_EPILOG,

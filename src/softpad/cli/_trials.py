@@ -17,7 +17,7 @@ _EPILOG = """examples:
 
 Each trial: a fresh MuJoCo world behind the simulated box; inflate to p0, save the reference,
 place the object with a seeded random shift (3 mm) and turn (3 deg), plan from the pressure
-increments, move over the COG, descend at 0.05 m/s until the pad senses the fingers (t_g),
+increments, move over the COG, descend at the approach speed until the pad senses the fingers (t_g),
 close, lift 10 cm, hold 15 s. Failure causes: contact_not_detected, jaws_hit_object,
 object_outside_jaws, slipped_during_hold, object_too_narrow, object_not_detected.
 """

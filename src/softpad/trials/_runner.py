@@ -3,7 +3,7 @@
 One trial: a fresh MuJoCo world behind the simulated box (``sim://`` physics: chamber gas,
 valves, sensor noise), the pad inflated to p0 and its reference saved, the object placed with a
 seeded random pose perturbation, the pressure increments planned by the thesis planner, the
-gripper moved over the centre of grasp, lowered at 0.05 m/s until the pad senses the fingers
+gripper moved over the centre of grasp, lowered at the approach speed until the pad senses the fingers
 (running average of 10 samples above t_g), closed, lifted and held for 15 s. The outcome and,
 for a failure, its cause are read from the physics.
 
