@@ -10,10 +10,15 @@ from typing import Any
 
 from softpad import SCHEMA_VERSION, thesis
 from softpad.cli._args import finite_float
+from softpad.cli._record import add_record_option, open_recorder, run_metadata
+from softpad.errors import HardwareFault
+
+#: Exit code of a run ended by a hardware or link fault (after the verified safe state).
+EXIT_HARDWARE = 3
 
 _EPILOG = """examples:
   softpad run --object banana
-  softpad run --object object-4 --plot run.png --log run.npz
+  softpad run --object object-4 --png run.png --record run.mcap
   softpad run --object object-1 --object object-4       two objects, grasped one after the other
   softpad run --box 'sim://?seed=3&rate_hz=200' --object charger --json
 
@@ -54,35 +59,45 @@ def register(sub: Any) -> None:
         help="hold time in s (default %(default)g)",
     )
     p.add_argument("--json", action="store_true", help="print the timeline as one JSON object")
-    p.add_argument("--plot", metavar="FILE.png", help="draw the pressure traces with the phases")
-    p.add_argument("--log", metavar="FILE.npz", help="save every frame and event")
+    p.add_argument("--png", metavar="FILE.png", help="draw the pressure traces with the phases")
+    add_record_option(p)
+    p.add_argument(
+        "--foxglove",
+        type=int,
+        metavar="PORT",
+        help="serve the run live to Foxglove on ws://127.0.0.1:PORT (0: a free port)",
+    )
     p.set_defaults(handler=run)
 
 
 def run(args: argparse.Namespace) -> int:
+    from softpad.box import open_box
     from softpad.control import ExecutionParams
     from softpad.harness import resolve_objects, run_simulated
-    from softpad.record import RunLog
+    from softpad.record import RunLog, Tee, check_output
 
     specs = resolve_objects(args.object)  # unknown names fail before anything starts
-    if args.log and not str(args.log).endswith(".npz"):
-        from softpad.errors import InputError
-
-        raise InputError(f"--log must name a .npz file, got {args.log!r}")
+    if args.record:
+        check_output(args.record, args.force)
     names = [s.name for s in specs]
     log = RunLog({"box": args.box, "objects": names})
     params = ExecutionParams(hold_s=args.hold_s)
-    try:
-        result = run_simulated(names, args.box, params, log, gripper=args.gripper)
-    finally:
-        # whatever happened, what was logged is kept
-        if args.log:
-            log.save(args.log)
-        if args.plot and len(log):
-            import matplotlib.pyplot as plt
-
-            fig = log.plot(args.plot, title=f"softpad run: {', '.join(names)}")
-            plt.close(fig)
+    with open_box(args.box) as box:
+        meta = run_metadata("run", box, args.box, names, params, gripper=args.gripper)
+        recorder = open_recorder(args.record, box, meta, args.force)
+        live = _live(args.foxglove, box)
+        try:
+            tee = Tee(log, recorder, live)
+            result = run_simulated(names, box, params, tee, gripper=args.gripper)
+        except HardwareFault as exc:
+            return _report_fault(args, log, exc)
+        finally:
+            # whatever happened, what was recorded is kept
+            for r in (recorder, live):
+                if r is not None:
+                    r.close()
+            if args.png and len(log):
+                log.plot(args.png, title=f"softpad run: {', '.join(names)}")
     d = {"schema_version": SCHEMA_VERSION, **result.to_dict()}
     if args.json:
         print(json.dumps(d))
@@ -91,9 +106,53 @@ def run(args: argparse.Namespace) -> int:
     for line in _timeline(log, result):
         print("  " + line)
     print(f"outcome: {result.outcome}")
-    if args.plot:
-        print(f"pressure traces: {args.plot}")
+    if args.png:
+        print(f"pressure traces: {args.png}")
+    if args.record:
+        print(f"recording: {args.record}")
     return 0
+
+
+def _live(port: int | None, box: Any) -> Any:
+    if port is None:
+        return None
+    from softpad.box import SimBox
+    from softpad.errors import InputError
+    from softpad.record import FoxgloveLive
+
+    if not 0 <= port <= 65535:
+        raise InputError(f"--foxglove port must be within 0..65535, got {port}")
+    robot = box.world.gripper_state if isinstance(box, SimBox) else None
+    live = FoxgloveLive(port, robot_state=robot)
+    print(f"foxglove: {live.url} (port {live.port})", flush=True)
+    return live
+
+
+def _report_fault(args: argparse.Namespace, log: Any, exc: Exception) -> int:
+    """Print what was detected and the safe state reached; the hardware-fault exit code."""
+    faults = [f.to_dict() for f in getattr(exc, "faults", ())]
+    safe = getattr(exc, "safe_state", None)
+    d = {
+        "schema_version": SCHEMA_VERSION,
+        "outcome": "fault",
+        "error": str(exc),
+        "faults": faults,
+        "safe_state": None if safe is None else safe.to_dict(),
+        "phases": [
+            {"phase": e["phase"], "t_s": round(t, 4)} for t, k, e in log.events if k == "phase"
+        ],
+    }
+    if args.json:
+        print(json.dumps(d))
+    else:
+        for f in faults:
+            print(f"t = {f['t_s']:7.2f} s  fault on channel {f['channel']} ({f['cause']})")
+        if safe is not None:
+            kpa = ", ".join("nan" if v != v else f"{v / 1e3:.3f}" for v in safe.pressures_pa)
+            state = "verified" if safe.verified else f"NOT verified: {safe.reason}"
+            print(f"safe state {state}; pressures {kpa} kPa")
+    print(f"softpad run: hardware fault: {exc}", file=sys.stderr)
+    return EXIT_HARDWARE
 
 
 def _kpa(values: Any) -> str:
