@@ -2,8 +2,7 @@
 
 from __future__ import annotations
 
-import threading
-from collections.abc import Iterator
+from collections.abc import Callable
 
 import numpy as np
 import pytest
@@ -16,16 +15,10 @@ from softpad.record import RunLog
 
 
 @pytest.fixture
-def served() -> Iterator[BoxServer]:
+def served(serve_box: Callable[..., BoxServer]) -> BoxServer:
     box = open_box("sim://?seed=4")
     assert isinstance(box, SimBox)
-    server = BoxServer(box, "127.0.0.1", 0, extensions=simulation_extensions(box))
-    thread = threading.Thread(target=server.serve, daemon=True)
-    thread.start()
-    yield server
-    server.stop()
-    thread.join(timeout=5)
-    server.close()
+    return serve_box(box, extensions=simulation_extensions(box))
 
 
 def test_remote_robot_moves_the_served_gripper_like_the_local_one(served: BoxServer) -> None:

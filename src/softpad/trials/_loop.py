@@ -217,36 +217,36 @@ def _not_detected(
 def _box_fault(
     base: dict[str, Any], seen: dict[str, Any], t: _Trial, phase: str, exc: Exception
 ) -> TrialResult:
-    modules, cog, theta = seen["plan"]
     return TrialResult(
         **base,
         success=False,
         cause="box_fault",
-        modules=modules,
-        increments_pa=seen.get("increments_pa", ()),
-        cog=cog,
-        theta=theta,
-        opening_m=t.robot.max_opening_m,
-        contact_detected=seen.get("detected", False),
-        cog_outside_object_mm=seen.get("cog_outside_mm"),
+        **_planned(seen, t),
         sim_time_s=t.box.time_s,
         detail=f"box fault in phase {phase}: {exc}",
     )
 
 
-def _scored(base: dict[str, Any], seen: dict[str, Any], t: _Trial, sim_time: float) -> TrialResult:
+def _planned(seen: dict[str, Any], t: _Trial) -> dict[str, Any]:
+    """The fields of a trial result that a planned grasp has, from what the watcher saw."""
     modules, cog, theta = seen["plan"]
-    outcome = seen.get("outcome", "contact_not_detected")
-    common = dict(
+    return dict(
         modules=modules,
         increments_pa=seen.get("increments_pa", ()),
         cog=cog,
         theta=theta,
         opening_m=t.robot.max_opening_m,
         contact_detected=seen.get("detected", False),
+        cog_outside_object_mm=seen.get("cog_outside_mm"),
+    )
+
+
+def _scored(base: dict[str, Any], seen: dict[str, Any], t: _Trial, sim_time: float) -> TrialResult:
+    outcome = seen.get("outcome", "contact_not_detected")
+    common = dict(
+        **_planned(seen, t),
         contact_delay_s=seen.get("delay"),
         finger_travel_mm=seen.get("travel"),
-        cog_outside_object_mm=seen.get("cog_outside_mm"),
         sim_time_s=sim_time,
     )
     if outcome == "held":
