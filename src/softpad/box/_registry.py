@@ -41,7 +41,10 @@ def parse_url(url: str) -> tuple[str, str, dict[str, str]]:
     """Split a box URL into (scheme, location, options); InputError on a malformed one."""
     if not isinstance(url, str) or "://" not in url:
         raise InputError(f"box URL must look like 'scheme://...' (e.g. sim://?seed=1), got {url!r}")
-    parts = urlsplit(url)
+    try:
+        parts = urlsplit(url)
+    except ValueError as exc:
+        raise InputError(f"malformed box URL {url!r}: {exc}") from None
     try:
         pairs = parse_qsl(parts.query, keep_blank_values=True, strict_parsing=bool(parts.query))
     except ValueError:

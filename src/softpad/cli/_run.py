@@ -3,20 +3,24 @@
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import sys
 from typing import Any
 
-from softpad.cli._args import finite_float
+from softpad.cli._args import Renamed, add_json_force, finite_float
+from softpad.cli._output import emit, say
+from softpad.cli._paths import atomic_path, check_output
+from softpad.errors import EXIT_FAILED, EXIT_OK, InputError
 
 _EPILOG = """examples:
-  softpad run --object banana
-  softpad run --object object-4 --plot run.png --log run.npz
-  softpad run --object object-1 --object object-4       two objects, grasped one after the other
-  softpad run --box 'sim://?seed=3&rate_hz=200' --object charger --json
+  softpad run --objects banana
+  softpad run --objects object-4 --png run.png --log run.npz
+  softpad run --objects object-1,object-4       two objects, grasped one after the other
+  softpad run --box 'sim://?seed=3&rate_hz=200' --objects charger --json
+  softpad run --objects banana --p0-kpa 1.5 --contact-threshold-kpa 0.12 --window 5
 
 objects: object-1 .. object-6, banana, toy, limes, cylinder, charger (seed, Table 6.1)
+exit code: 0 every grasp held, 1 a grasp not held, 2 bad input, 3 hardware or link fault
 """
 
 
@@ -36,11 +40,11 @@ def register(sub: Any) -> None:
     )
     p.add_argument("--box", default="sim://", metavar="URL", help="box URL (default sim://)")
     p.add_argument(
-        "--object",
-        action="append",
-        metavar="NAME",
-        help="thesis object to place (repeat for several; default banana)",
+        "--objects",
+        metavar="NAME,...",
+        help="thesis objects to place, comma-separated (default banana)",
     )
+    p.add_argument("--object", action="append", help=argparse.SUPPRESS)  # old spelling
     p.add_argument(
         "--gripper",
         choices=("10/4", "6/2", "4/0"),
@@ -52,46 +56,129 @@ def register(sub: Any) -> None:
         default=15.0,
         help="hold time in s (default 15)",
     )
-    p.add_argument("--json", action="store_true", help="print the timeline as one JSON object")
-    p.add_argument("--plot", metavar="FILE.png", help="draw the pressure traces with the phases")
+    add_thesis_params(p)
+    add_json_force(p)
+    p.add_argument("--png", metavar="FILE.png", help="draw the pressure traces with the phases")
+    p.add_argument("--plot", action=Renamed, new="--png FILE.png")
     p.add_argument("--log", metavar="FILE.npz", help="save every frame and event")
     p.set_defaults(handler=run)
 
 
+def add_thesis_params(p: argparse.ArgumentParser) -> None:
+    """The seed's loop parameters (Section 6.2) as options with their physical ranges."""
+    from softpad.cli._args import bounded_int
+
+    g = p.add_argument_group("loop parameters (seed, Section 6.2)")
+    g.add_argument(
+        "--p0-kpa",
+        type=finite_float("--p0-kpa", lo=0.5, hi=2.8, unit="kPa"),
+        default=1.1,
+        help="p0, pressure every module is inflated to, kPa, 0.5..2.8 (default 1.1)",
+    )
+    g.add_argument(
+        "--object-threshold-kpa",
+        type=finite_float("--object-threshold-kpa", lo=0.005, hi=1.0, unit="kPa"),
+        default=0.05,
+        help="t_o, a module holds an object when dP > t_o, kPa, 0.005..1 (default 0.05)",
+    )
+    g.add_argument(
+        "--contact-threshold-kpa",
+        type=finite_float("--contact-threshold-kpa", lo=0.005, hi=1.0, unit="kPa"),
+        default=0.09,
+        help="t_g, the fingers touch the pad when the average rise > t_g, kPa, 0.005..1 "
+        "(default 0.09)",
+    )
+    g.add_argument(
+        "--window",
+        type=bounded_int("--window", 1, 200),
+        default=10,
+        help="running-average length of the detectors, samples, 1..200 (default 10)",
+    )
+    g.add_argument(
+        "--approach-speed-mps",
+        type=finite_float("--approach-speed-mps", lo=0.001, hi=0.25, unit="m/s"),
+        default=0.05,
+        help="descent speed towards the pad, m/s, 0.001..0.25 (default 0.05)",
+    )
+
+
+def execution_params(args: argparse.Namespace) -> Any:
+    """ExecutionParams from the options of :func:`add_thesis_params` and ``--hold-s``."""
+    from softpad.control import ExecutionParams, InflationParams
+    from softpad.planning import PlannerParams
+
+    return ExecutionParams(
+        inflation=InflationParams(target_pa=args.p0_kpa * 1e3),
+        planner=PlannerParams(object_threshold_pa=args.object_threshold_kpa * 1e3),
+        contact_threshold_pa=args.contact_threshold_kpa * 1e3,
+        filter_length=args.window,
+        approach_speed_m_s=args.approach_speed_mps,
+        hold_s=args.hold_s,
+    )
+
+
+def _object_names(args: argparse.Namespace) -> list[str]:
+    from softpad.cli._args import name_list
+
+    names: list[str] = name_list(args.objects, "--objects") if args.objects else []
+    for text in args.object or []:
+        names += name_list(text, "--object")
+    return names or ["banana"]
+
+
 def run(args: argparse.Namespace) -> int:
-    from softpad.control import ExecutionParams, resolve_objects, run_simulated
+    from softpad.control import resolve_objects, run_simulated
+    from softpad.errors import SoftPadError
     from softpad.record import RunLog
 
-    specs = resolve_objects(args.object)  # unknown names fail before anything starts
-    if args.log and not str(args.log).endswith(".npz"):
-        from softpad.errors import InputError
-
-        raise InputError(f"--log must name a .npz file, got {args.log!r}")
-    names = [s.name for s in specs]
+    names = [s.name for s in resolve_objects(_object_names(args))]  # fail before any work
+    params = execution_params(args)
+    log_path = check_output(args.log, "--log", force=args.force, suffix=".npz")
+    png_path = check_output(args.png, "--png", force=args.force, suffix=".png")
+    if log_path is not None and log_path == png_path:
+        raise InputError("--log and --png name the same file")
     log = RunLog({"box": args.box, "objects": names})
-    params = ExecutionParams(hold_s=args.hold_s)
     try:
         result = run_simulated(names, args.box, params, log, gripper=args.gripper)
-    finally:
-        # whatever happened, what was logged is kept
-        if args.log:
-            log.save(args.log)
-        if args.plot and len(log):
-            import matplotlib.pyplot as plt
-
-            fig = log.plot(args.plot, title=f"softpad run: {', '.join(names)}")
-            plt.close(fig)
+    except SoftPadError as exc:
+        exc.partial = {"objects": names, "events": _events(log), "frames": len(log)}
+        raise
+    finally:  # whatever happened, what was logged is kept
+        _save(log, log_path, png_path, names)
     d = result.to_dict()
+    held = result.outcome == "held"
     if args.json:
-        print(json.dumps(d))
-        return 0
-    print(f"softpad run: {', '.join(names)} on {args.box}")
-    for line in _timeline(log, result):
-        print("  " + line)
-    print(f"outcome: {result.outcome}")
-    if args.plot:
-        print(f"pressure traces: {args.plot}")
-    return 0
+        if not held:
+            d["error"] = {"kind": "failed", "message": f"grasp not held: {result.outcome}"}
+        emit(d)
+    else:
+        print(f"softpad run: {', '.join(names)} on {args.box}")
+        for line in _timeline(log, result):
+            print("  " + line)
+        print(f"outcome: {result.outcome}")
+    for path, what in ((png_path, "pressure traces"), (log_path, "run log")):
+        if path is not None:
+            say(f"{what}: {path}", args.json)
+    return EXIT_OK if held else EXIT_FAILED
+
+
+def _events(log: Any) -> list[Any]:
+    return [[t, kind, data] for t, kind, data in log.events]
+
+
+def _save(log: Any, log_path: Any, png_path: Any, names: list[str]) -> None:
+    if log_path is not None:
+        with atomic_path(log_path) as tmp:
+            log.save(tmp)
+    if png_path is not None and len(log):
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+
+        with atomic_path(png_path) as tmp:
+            fig = log.plot(tmp, title=f"softpad run: {', '.join(names)}")
+        plt.close(fig)
 
 
 def _fmt(t: float) -> str:
