@@ -10,7 +10,9 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from softpad.cli._args import finite_float, kpa_list
+from softpad.cli._args import Renamed, add_json_force, finite_float, kpa_list
+from softpad.cli._output import emit, say
+from softpad.cli._paths import atomic_path, check_output
 from softpad.errors import InputError
 
 _EPILOG = """examples:
@@ -65,10 +67,11 @@ def register(sub: Any) -> None:
         default=0.2,
         help="c_s, safety shift of corner-shaped objects in module units (default 0.2)",
     )
-    p.add_argument("--json", action="store_true", help="print the plans as JSON")
+    add_json_force(p)
     p.add_argument(
-        "--plot", metavar="FILE.png", help="draw the pad, increments, PCOM, COG and fingertips"
+        "--png", metavar="FILE.png", help="draw the pad, increments, PCOM, COG and fingertips"
     )
+    p.add_argument("--plot", action=Renamed, new="--png FILE.png")
     p.set_defaults(handler=run)
 
 
@@ -78,9 +81,13 @@ def _read_frame(path: str) -> tuple[list[float], list[float] | None]:
         text = sys.stdin.read()
     else:
         try:
-            text = Path(path).read_text()
+            text = Path(path).read_bytes().decode("utf-8")
         except OSError as exc:
             raise InputError(f"cannot read frame file {path!r}: {exc.strerror}") from None
+        except UnicodeDecodeError:
+            raise InputError(
+                f"frame file {path!r} is not text (CSV or JSON expected; a binary file?)"
+            ) from None
     stripped = text.strip()
     if not stripped:
         raise InputError(f"frame file {path!r} is empty")
@@ -91,6 +98,8 @@ def _read_frame(path: str) -> tuple[list[float], list[float] | None]:
             raise InputError(
                 f"frame file {path!r} is not valid JSON: {exc.msg} at line {exc.lineno}"
             ) from None
+        if not isinstance(data, dict):
+            raise InputError(f"frame file {path!r} must hold a JSON object")
         if "delta_kpa" in data:
             return _numbers(data["delta_kpa"], "delta_kpa"), None
         if "pressures_kpa" in data and "reference_kpa" in data:
@@ -149,6 +158,7 @@ def run(args: argparse.Namespace) -> int:
     from softpad.sensing import increments
 
     layout = parse_layout(args.layout, pitch_m=args.pitch_mm / 1e3)
+    png = check_output(args.png, "--png", force=args.force, suffix=".png")
     reference: list[float] | None
     if args.delta is not None:
         values, reference = kpa_list(args.delta, "--delta"), None
@@ -162,6 +172,8 @@ def run(args: argparse.Namespace) -> int:
     else:
         values, reference = _read_frame(args.frame)
     if reference is not None:
+        _check_readings(values, "pressures")
+        _check_readings(reference, "reference")
         if len(values) != layout.n_modules or len(reference) != layout.n_modules:
             raise InputError(
                 f"a {layout.name} pad needs {layout.n_modules} pressures and {layout.n_modules} "
@@ -174,16 +186,27 @@ def run(args: argparse.Namespace) -> int:
         object_threshold_pa=args.threshold_kpa * 1e3, safety_shift=args.safety_shift
     )
     plans = plan_grasps(delta, layout, params)
+    if png is not None:
+        _save_plot(png, delta, plans, layout, args.json)
     if args.json:
-        print(json.dumps({"objects": [p.to_dict(layout) for p in plans]}))
+        emit({"objects": [p.to_dict(layout) for p in plans]})
     else:
         print(format_plans(delta, plans, layout, params.object_threshold_pa))
-    if args.plot:
-        _save_plot(args.plot, delta, plans, layout)
     return 0
 
 
-def _save_plot(path: str, delta: list[float], plans: Any, layout: Any) -> None:
+def _check_readings(values_pa: list[float], what: str) -> None:
+    """Readings within the sensor range (-2..10 kPa), else a message suggesting Pa given as kPa."""
+    for i, v in enumerate(values_pa, 1):
+        if not -2e3 <= v <= 10e3:
+            hint = ": pascals given as kPa?" if v > 10e3 else ""
+            raise InputError(
+                f"--{what}: module {i} reads {v / 1e3:g} kPa, outside the sensor range "
+                f"-2..10 kPa{hint}"
+            )
+
+
+def _save_plot(path: Path, delta: list[float], plans: Any, layout: Any, json_mode: bool) -> None:
     import matplotlib
 
     matplotlib.use("Agg")
@@ -193,9 +216,8 @@ def _save_plot(path: str, delta: list[float], plans: Any, layout: Any) -> None:
 
     ax = plot_plans(delta, plans, layout, title="SoftPad plan")
     try:
-        ax.figure.savefig(path, dpi=130, bbox_inches="tight")
-    except (OSError, ValueError) as exc:
-        raise InputError(f"cannot write plot {path!r}: {exc}") from None
+        with atomic_path(path) as tmp:
+            ax.figure.savefig(tmp, dpi=130, bbox_inches="tight")
     finally:
         plt.close(ax.figure)
-    print(f"plot written to {path}", file=sys.stderr)
+    say(f"plot written to {path}", json_mode)

@@ -132,6 +132,9 @@ def _report(
     prog = f"softpad {name}".strip()
     if isinstance(exc, SoftPadError):
         kind, message = exc.kind, str(exc)
+    elif isinstance(exc, OSError) and exc.filename is not None:  # a file that cannot be used
+        code, kind = EXIT_INPUT, "input"
+        message = f"cannot use file {exc.filename!r}: {exc.strerror or exc}"
     else:
         kind = "internal"
         message = (

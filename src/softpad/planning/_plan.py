@@ -2,12 +2,13 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from numpy.typing import ArrayLike
 
-from softpad.errors import InputError
-from softpad.layout import PadLayout
+from softpad.errors import InputError, check_finite
+from softpad.layout import PadLayout, parse_layout
 from softpad.planning._records import GraspPlan
 from softpad.sensing._objects import (
     DEFAULT_OBJECT_THRESHOLD_PA,
@@ -43,6 +44,11 @@ class PlannerParams:
             raise InputError(
                 f"safety shift must be in [0, 0.5) module units, got {self.safety_shift!r}"
             )
+        theta = check_finite("default_theta (radians)", self.default_theta)
+        if abs(theta) > 2 * math.pi:
+            raise InputError(
+                f"default_theta must be within -2 pi..2 pi radians, got {theta!r}: degrees?"
+            )
 
 
 def plan_object(
@@ -60,7 +66,7 @@ def plan_object(
 
 def plan_grasps(
     delta_pa: ArrayLike,
-    layout: PadLayout | None = None,
+    layout: PadLayout | str | None = None,
     params: PlannerParams | None = None,
 ) -> list[GraspPlan]:
     """Detect the objects on the pad and plan a grasp for each, in module order.
@@ -70,12 +76,16 @@ def plan_grasps(
     delta_pa
         Increment dP_i of every module over its reference, pascals, module order 1..N.
     layout
-        Pad geometry (2 x 3, 45 mm by default).
+        Pad geometry (2 x 3, 45 mm by default), or a layout string such as ``"2x3"``.
     params
         Planner parameters (thesis defaults).
     """
     from softpad.planning._thesis_rules import plan_with_rules
 
+    if isinstance(layout, str):
+        layout = parse_layout(layout)
+    elif layout is not None and not isinstance(layout, PadLayout):
+        raise InputError(f"layout must be a PadLayout or a string like '2x3', got {layout!r}")
     layout = layout or PadLayout()
     params = params or PlannerParams()
     d = check_increments(delta_pa, layout)
