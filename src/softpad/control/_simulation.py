@@ -20,7 +20,9 @@ _REMOTE_WORLD = (
 
 def resolve_objects(names: Sequence[str] | None) -> list[ObjectSpec]:
     """Catalogue objects by name (``banana`` by default); InputError lists the known names."""
-    names = list(names) if names else ["banana"]
+    names = ["banana"] if names is None else list(names)
+    if not names:
+        raise InputError("no object to place: give at least one catalogue name (None: banana)")
     specs = [get_object(n) for n in names]
     if len(set(names)) != len(names):
         raise InputError(f"each object can be placed once, got {names}")
