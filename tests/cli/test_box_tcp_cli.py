@@ -48,7 +48,7 @@ def test_box_inflate_over_tcp(capsys, server: BoxServer) -> None:
     code, out, _ = run(capsys, "box", "inflate", "--box", server.url, "--json")
     assert code == 0
     d = json.loads(out)
-    assert len(d["reference_kpa"]) == 6 and d["reference_at_s"] > d["adjusted_at_s"]
+    assert len(d["reference_pa"]) == 6 and d["reference_at_s"] > d["adjusted_at_s"]
 
 
 @pytest.mark.parametrize(
@@ -75,7 +75,7 @@ def test_run_over_tcp_without_a_served_world_is_one_line(capsys, server: BoxServ
 
 def test_run_over_tcp_equals_the_run_in_process(capsys) -> None:
     """softpad run through a served simulator (world and robot served too): the same run."""
-    from softpad.control import simulation_extensions
+    from softpad.harness import simulation_extensions
 
     url = "sim://?seed=2"
     argv = ["run", "--object", "object-4", "--hold-s", "1", "--json"]

@@ -145,7 +145,7 @@ def serve(args: argparse.Namespace) -> int:
     try:
         extensions = {}
         if isinstance(box, SimBox):  # the world and robot too, so 'softpad run' works over tcp
-            from softpad.control import simulation_extensions
+            from softpad.harness import simulation_extensions
 
             extensions = simulation_extensions(box)
         server = BoxServer(

@@ -7,8 +7,7 @@ import math
 import sys
 from typing import Any
 
-#: Version of the JSON the command prints; raised when a field changes meaning or goes away.
-SCHEMA_VERSION = 1
+from softpad import SCHEMA_VERSION
 
 
 def _clean(value: Any) -> Any:

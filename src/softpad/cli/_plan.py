@@ -10,6 +10,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from softpad import thesis
 from softpad.cli._args import Renamed, add_json_force, finite_float, kpa_list
 from softpad.cli._output import emit, say
 from softpad.cli._paths import atomic_path, check_output
@@ -52,8 +53,8 @@ def register(sub: Any) -> None:
     p.add_argument(
         "--threshold-kpa",
         type=finite_float("threshold", lo=0.0, unit="kPa"),
-        default=0.05,
-        help="object-detection threshold t_o in kPa (default 0.05)",
+        default=thesis.OBJECT_THRESHOLD_PA / 1e3,
+        help="object-detection threshold t_o in kPa (default %(default)g)",
     )
     p.add_argument(
         "--pitch-mm",

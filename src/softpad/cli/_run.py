@@ -7,6 +7,7 @@ import math
 import sys
 from typing import Any
 
+from softpad import thesis
 from softpad.cli._args import Renamed, add_json_force, finite_float
 from softpad.cli._output import emit, say
 from softpad.cli._paths import atomic_path, check_output
@@ -53,8 +54,8 @@ def register(sub: Any) -> None:
     p.add_argument(
         "--hold-s",
         type=finite_float("hold time", lo=0.0, hi=3600.0, unit="s"),
-        default=15.0,
-        help="hold time in s (default 15)",
+        default=thesis.HOLD_S,
+        help="hold time in s (default %(default)g)",
     )
     add_thesis_params(p)
     add_json_force(p)
@@ -72,32 +73,32 @@ def add_thesis_params(p: argparse.ArgumentParser) -> None:
     g.add_argument(
         "--p0-kpa",
         type=finite_float("--p0-kpa", lo=0.5, hi=2.8, unit="kPa"),
-        default=1.1,
+        default=thesis.P0_PA / 1e3,
         help="p0, pressure every module is inflated to, kPa, 0.5..2.8 (default 1.1)",
     )
     g.add_argument(
         "--object-threshold-kpa",
         type=finite_float("--object-threshold-kpa", lo=0.005, hi=1.0, unit="kPa"),
-        default=0.05,
+        default=thesis.OBJECT_THRESHOLD_PA / 1e3,
         help="t_o, a module holds an object when dP > t_o, kPa, 0.005..1 (default 0.05)",
     )
     g.add_argument(
         "--contact-threshold-kpa",
         type=finite_float("--contact-threshold-kpa", lo=0.005, hi=1.0, unit="kPa"),
-        default=0.09,
+        default=thesis.CONTACT_THRESHOLD_PA / 1e3,
         help="t_g, the fingers touch the pad when the average rise > t_g, kPa, 0.005..1 "
         "(default 0.09)",
     )
     g.add_argument(
         "--window",
         type=bounded_int("--window", 1, 200),
-        default=10,
+        default=thesis.FILTER_WINDOW,
         help="running-average length of the detectors, samples, 1..200 (default 10)",
     )
     g.add_argument(
         "--approach-speed-mps",
         type=finite_float("--approach-speed-mps", lo=0.001, hi=0.25, unit="m/s"),
-        default=0.05,
+        default=thesis.APPROACH_SPEED_M_S,
         help="descent speed towards the pad, m/s, 0.001..0.25 (default 0.05)",
     )
 
@@ -127,7 +128,7 @@ def _object_names(args: argparse.Namespace) -> list[str]:
 
 
 def run(args: argparse.Namespace) -> int:
-    from softpad.control import resolve_objects, run_simulated
+    from softpad.harness import resolve_objects, run_simulated
     from softpad.errors import SoftPadError
     from softpad.record import RunLog
 
@@ -181,60 +182,58 @@ def _save(log: Any, log_path: Any, png_path: Any, names: list[str]) -> None:
         plt.close(fig)
 
 
-def _fmt(t: float) -> str:
-    return f"t = {t:7.2f} s"
+def _kpa(values: Any) -> str:
+    return " ".join(f"{v / 1e3:.3f}" for v in values)
+
+
+def _modules(d: dict[str, Any]) -> str:
+    return ", ".join(map(str, d["modules"]))
+
+
+def _plan_lines(d: dict[str, Any]) -> list[str]:
+    lines = [f"increments (kPa): {_kpa(d['increments_pa'])}"]
+    for o in d["objects"]:
+        lines.append(
+            f"plan: modules {','.join(map(str, o['modules']))}  PCOM "
+            f"({o['pcom'][0]:.2f}, {o['pcom'][1]:.2f})  COG ({o['cog'][0]:.2f}, {o['cog'][1]:.2f})  "
+            f"theta {o['theta']:+.3f} rad ({math.degrees(o['theta']):+.0f} deg)  [{o['rule']}]"
+        )
+    return lines
+
+
+#: How each event kind of a run reads in the timeline (kinds not listed are not shown).
+_EVENT_TEXT: dict[str, Any] = {
+    "adjusted": lambda d: [
+        f"adjusted: every module within tolerance of {d['target_pa'] / 1e3:.3f} kPa"
+    ],
+    "reference": lambda d: [f"reference saved (kPa): {_kpa(d['reference_pa'])}"],
+    "object_seen": lambda d: [f"object detected on module(s) {_modules(d)}"],
+    "plan": _plan_lines,
+    "contact": lambda d: [f"contact detected on module(s) {_modules(d)}"],
+    "no_contact": lambda d: [
+        f"no contact detected down to {d['z_m'] * 1e3:.1f} mm: gripper not closed"
+    ],
+    "outcome": lambda d: [d["outcome"]],
+}
+_SHOWN_PHASES = ("approach", "descend", "close", "lift", "hold", "release")
 
 
 def _timeline(log: Any, result: Any) -> list[str]:
     lines = []
     for t, kind, d in log.events:
-        if kind == "adjusted":
+        if kind == "phase" and d["phase"] in _SHOWN_PHASES:
+            lines.append(f"t = {t:7.2f} s  {d['phase']}")
+        elif kind in _EVENT_TEXT:
+            lines += [f"t = {t:7.2f} s  {text}" for text in _EVENT_TEXT[kind](d)]
+    for i, g in enumerate(result.result.grasps):
+        delay, travel = result.contact_delay_s(i), result.finger_travel_m(i)
+        if delay is not None and travel is not None:
             lines.append(
-                f"{_fmt(t)}  adjusted: every module within tolerance of {d['target_kpa']:.3f} kPa"
-            )
-        elif kind == "reference":
-            ref = " ".join(f"{v:.3f}" for v in d["reference_kpa"])
-            lines.append(f"{_fmt(t)}  reference saved (kPa, mean of 10 reads): {ref}")
-        elif kind == "object_seen":
-            lines.append(
-                f"{_fmt(t)}  object detected on module(s) {', '.join(map(str, d['modules']))}"
-            )
-        elif kind == "plan":
-            inc = " ".join(f"{v:.3f}" for v in d["increments_kpa"])
-            lines.append(f"{_fmt(t)}  increments (kPa): {inc}")
-            for o in d["objects"]:
-                lines.append(
-                    f"{_fmt(t)}  plan: modules {','.join(map(str, o['modules']))}  PCOM "
-                    f"({o['pcom'][0]:.2f}, {o['pcom'][1]:.2f})  COG ({o['cog'][0]:.2f}, {o['cog'][1]:.2f})  "
-                    f"theta {o['theta']:+.3f} rad ({math.degrees(o['theta']):+.0f} deg)  [{o['rule']}]"
-                )
-        elif kind == "phase" and d["phase"] in (
-            "approach",
-            "descend",
-            "close",
-            "lift",
-            "hold",
-            "release",
-        ):
-            lines.append(f"{_fmt(t)}  {d['phase']}")
-        elif kind == "contact":
-            lines.append(
-                f"{_fmt(t)}  contact detected on module(s) {', '.join(map(str, d['modules']))}"
-            )
-        elif kind == "no_contact":
-            lines.append(
-                f"{_fmt(t)}  no contact detected down to {d['z_m'] * 1e3:.1f} mm: gripper not closed"
-            )
-        elif kind == "outcome":
-            lines.append(f"{_fmt(t)}  {d['outcome']}")
-    for i, g in enumerate(result.grasps, 1):
-        if g.contact_delay_s is not None:
-            lines.append(
-                f"grasp {i}: contact {g.contact_delay_s * 1e3:.0f} ms after the first fingertip touch, "
-                f"finger travel {g.finger_travel_mm:.1f} mm; outcome {g.outcome}"
+                f"grasp {i + 1}: contact {delay * 1e3:.0f} ms after the first fingertip touch, "
+                f"finger travel {travel * 1e3:.1f} mm; outcome {g.outcome}"
             )
         else:
-            lines.append(f"grasp {i}: outcome {g.outcome}")
+            lines.append(f"grasp {i + 1}: outcome {g.outcome}")
     return lines
 
 

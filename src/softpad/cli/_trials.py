@@ -3,10 +3,10 @@
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from typing import Any
 
+from softpad import thesis
 from softpad.cli._args import Renamed, add_json_force, int_ranges, name_list
 from softpad.cli._output import emit, say
 from softpad.errors import InputError
@@ -49,7 +49,9 @@ def register(sub: Any) -> None:
     )
     p.add_argument("--seed", action=Renamed, new="--seeds (e.g. --seeds 7 or --seeds 0-9)")
     p.add_argument("--workers", type=int, default=None, help="worker processes (default: all CPUs)")
-    p.add_argument("--hold-s", type=float, default=15.0, help="hold time in s (default 15)")
+    p.add_argument(
+        "--hold-s", type=float, default=thesis.HOLD_S, help="hold time in s (default %(default)g)"
+    )
     add_json_force(p, force=False)
     p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
     p.set_defaults(handler=run)
@@ -109,7 +111,7 @@ def run_with_progress(
 def run(args: argparse.Namespace) -> int:
     import math
 
-    from softpad.trials import TrialConfig
+    from softpad.trials import TrialConfig, trial_execution_params
 
     specs = select_objects(args.objects)
     check_counts(args.trials, args.workers)
@@ -127,7 +129,7 @@ def run(args: argparse.Namespace) -> int:
             not args.no_progress and sys.stderr.isatty(),
             seed=seed,
             workers=args.workers,
-            config=TrialConfig(hold_s=args.hold_s),
+            config=TrialConfig(trial_execution_params(hold_s=args.hold_s)),
         )
         done.append(exp.to_dict())
         say(f"seed {seed}:\n{exp.to_text()}", args.json)

@@ -9,15 +9,9 @@ import numpy as np
 import pytest
 
 from softpad.box import BoxServer, SimBox, TcpBox, ValveCommand, open_box
-from softpad.control import (
-    ExecutionParams,
-    RemoteRobot,
-    SimulatedRobot,
-    ToolPose,
-    run_simulated,
-    simulation_extensions,
-)
+from softpad.control import ExecutionParams, ToolPose
 from softpad.errors import InputError
+from softpad.harness import RemoteRobot, SimulatedRobot, run_simulated, simulation_extensions
 from softpad.record import RunLog
 
 
@@ -49,7 +43,7 @@ def test_remote_robot_moves_the_served_gripper_like_the_local_one(served: BoxSer
         assert remote.state() == local.state()
         assert remote.is_moving() is local.is_moving() is False
         assert remote.holding() is local.holding() is False
-        assert remote.first_touch() is None
+        assert remote.touches() == local.touches == []
     local_box.close()
 
 
@@ -84,6 +78,7 @@ def test_loop_over_tcp_logs_the_same_frames_and_leaves_valves_closed(served: Box
     result = run_simulated(["banana"], served.url, params, recorder=remote_log)
     local = run_simulated(["banana"], "sim://?seed=4", params, recorder=local_log)
     assert result.outcome == local.outcome == "held"
+    assert result.to_dict() == local.to_dict()  # ground truth included
     np.testing.assert_array_equal(remote_log.t_s, local_log.t_s)
     np.testing.assert_array_equal(remote_log.pressures_pa, local_log.pressures_pa)
     assert remote_log.events == local_log.events
