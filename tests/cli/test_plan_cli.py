@@ -30,7 +30,7 @@ def test_json_has_exactly_the_documented_keys(capsys: pytest.CaptureFixture[str]
     code, out, _ = run(capsys, "plan", "--delta", BANANA, "--json")
     assert code == 0
     data = json.loads(out)
-    assert list(data) == ["objects"]
+    assert list(data) == ["schema_version", "objects"]
     (obj,) = data["objects"]
     assert list(obj) == ["modules", "pcom", "cog", "theta", "rule", "cog_m"]
     assert obj["modules"] == [2, 3, 4]
@@ -100,7 +100,7 @@ def test_table_output_is_readable(capsys: pytest.CaptureFixture[str]) -> None:
 
 def test_plot_is_written(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     png = tmp_path / "plan.png"
-    code, _, _ = run(capsys, "plan", "--delta", BANANA, "--plot", str(png))
+    code, _, _ = run(capsys, "plan", "--delta", BANANA, "--png", str(png))
     assert code == 0
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 

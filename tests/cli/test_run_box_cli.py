@@ -40,7 +40,7 @@ def test_run_json_has_the_documented_keys(capsys, tmp_path) -> None:
 
 def test_run_prints_a_timeline_and_plots(capsys, tmp_path) -> None:
     png = tmp_path / "trace.png"
-    assert main(["run", "--object", "banana", "--hold-s", "1", "--plot", str(png)]) == 0
+    assert main(["run", "--objects", "banana", "--hold-s", "1", "--png", str(png)]) == 0
     out = capsys.readouterr().out
     for text in (
         "adjusted",
@@ -61,16 +61,25 @@ def test_run_prints_a_timeline_and_plots(capsys, tmp_path) -> None:
         (["run", "--box", "serial://x:1"], "unknown box URL scheme 'serial'"),
         (["run", "--box", "sim://?speed=2"], "unknown sim:// option 'speed'"),
         (["run", "--log", "run.txt"], "--log must name a .npz file"),
-        (["run", "--box", "sim://?seed=1&faults=leak:3:0.01", "--hold-s", "1"], "channel 3"),
         (["box", "read", "--box", "sim://?rate_hz=-5"], "sample rate"),
         (["box", "read", "--count", "-1"], "--count must be >= 0"),
     ],
-    ids=["object", "scheme", "option", "log", "leak-fault", "rate", "count"],
+    ids=["object", "scheme", "option", "log", "rate", "count"],
 )
 def test_errors_are_one_line_and_exit_2(capsys, argv, message) -> None:
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert message in err and err.count("\n") == 1 and "Traceback" not in err
+
+
+def test_a_hardware_fault_is_one_line_and_exit_3(capsys) -> None:
+    argv = ["run", "--box", "sim://?seed=1&faults=leak:3:0.01", "--hold-s", "1", "--json"]
+    assert main(argv) == 3
+    captured = capsys.readouterr()
+    assert "channel 3" in captured.err and captured.err.count("\n") == 1
+    data = json.loads(captured.out)
+    assert data["error"]["kind"] == "hardware" and "channel 3" in data["error"]["message"]
+    assert data["error"]["events"] and data["error"]["frames"] > 0  # what was gathered before
 
 
 def test_box_read_streams_frames(capsys) -> None:
@@ -91,7 +100,7 @@ def test_failed_run_still_saves_its_log(capsys, tmp_path) -> None:
 
     path = tmp_path / "fault.npz"
     argv = ["run", "--box", "sim://?seed=1&faults=nan:4@6.5", "--hold-s", "1", "--log", str(path)]
-    assert main(argv) == 2
+    assert main(argv) == 3  # a hardware fault
     assert "channel 4" in capsys.readouterr().err
     log = RunLog.load(path)
     assert log.t_s[-1] >= 6.49 and log.events_of("fault")

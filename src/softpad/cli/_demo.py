@@ -27,11 +27,15 @@ def register(sub: Any) -> None:
         ),
     )
     p.add_argument(
-        "--out", default="report", help="report folder, absent or empty unless --force (default: report)"
+        "--out",
+        default="report",
+        help="report folder, absent or empty unless --force (default: report)",
     )
     p.add_argument("--trials", type=int, default=5, help="trials per object (default 5)")
     p.add_argument(
-        "--seeds", type=bounded_int("--seeds", 0, 2**32 - 1), default=0,
+        "--seeds",
+        type=bounded_int("--seeds", 0, 2**32 - 1),
+        default=0,
         help="experiment seed, one value (default 0)",
     )
     p.add_argument("--seed", action=Renamed, new="--seeds")

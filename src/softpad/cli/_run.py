@@ -128,8 +128,8 @@ def _object_names(args: argparse.Namespace) -> list[str]:
 
 
 def run(args: argparse.Namespace) -> int:
-    from softpad.harness import resolve_objects, run_simulated
     from softpad.errors import SoftPadError
+    from softpad.harness import resolve_objects, run_simulated
     from softpad.record import RunLog
 
     names = [s.name for s in resolve_objects(_object_names(args))]  # fail before any work

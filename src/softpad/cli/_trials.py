@@ -45,7 +45,10 @@ def register(sub: Any) -> None:
     )
     p.add_argument("--trials", type=int, default=5, help="trials per object (default 5)")
     p.add_argument(
-        "--seeds", default="0", metavar="SEEDS", help="experiment seeds: 7, 0-9 or 0-2,7 (default 0)"
+        "--seeds",
+        default="0",
+        metavar="SEEDS",
+        help="experiment seeds: 7, 0-9 or 0-2,7 (default 0)",
     )
     p.add_argument("--seed", action=Renamed, new="--seeds (e.g. --seeds 7 or --seeds 0-9)")
     p.add_argument("--workers", type=int, default=None, help="worker processes (default: all CPUs)")
@@ -133,8 +136,10 @@ def run(args: argparse.Namespace) -> int:
         )
         done.append(exp.to_dict())
         say(f"seed {seed}:\n{exp.to_text()}", args.json)
-        say(f"({len(exp.trials)} trials in {exp.wall_time_s:.1f} s on {exp.workers} workers)",
-            args.json)
+        say(
+            f"({len(exp.trials)} trials in {exp.wall_time_s:.1f} s on {exp.workers} workers)",
+            args.json,
+        )
     if args.json:
         emit(done[0] if len(done) == 1 else {"seeds": seeds, "experiments": done})
     return 0

@@ -20,7 +20,6 @@ from typing import Any, NoReturn
 from softpad import __version__
 from softpad.errors import (
     EXIT_INPUT,
-    EXIT_INTERNAL,
     InputError,
     SoftPadError,
     exit_code_for,
@@ -123,9 +122,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return _report(exc, name, json_mode, debug, args)
 
 
-def _report(
-    exc: BaseException, name: str, json_mode: bool, debug: bool, args: Any
-) -> int:
+def _report(exc: BaseException, name: str, json_mode: bool, debug: bool, args: Any) -> int:
     from softpad.cli._output import emit, error_object
 
     code = exit_code_for(exc)
