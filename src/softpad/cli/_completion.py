@@ -21,6 +21,7 @@ def register(sub: Any) -> None:
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     p.add_argument("shell", choices=("bash", "zsh"), help="the shell")
+    p.add_argument("--json", action="store_true", help='print {"script": ...} as JSON')
     p.set_defaults(handler=run)
 
 
@@ -79,5 +80,11 @@ def run(args: argparse.Namespace) -> int:
     from softpad.cli.main import build_parser
 
     table = command_table(build_parser())
-    print(bash_script(table) if args.shell == "bash" else zsh_script(table), end="")
+    script = bash_script(table) if args.shell == "bash" else zsh_script(table)
+    if args.json:
+        from softpad.cli._output import emit
+
+        emit({"shell": args.shell, "script": script})
+    else:
+        print(script, end="")
     return 0
