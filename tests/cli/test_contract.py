@@ -110,7 +110,14 @@ def test_help_documents_the_exit_codes(capsys) -> None:
     with pytest.raises(SystemExit):
         main(["--help"])
     out = capsys.readouterr().out
-    for text in ("exit codes", "0  success", "1  the job ran", "2  bad input", "3  hardware", "4  internal"):
+    for text in (
+        "exit codes",
+        "0  success",
+        "1  the job ran",
+        "2  bad input",
+        "3  hardware",
+        "4  internal",
+    ):
         assert text in out
     doc = (Path(__file__).parents[2] / "docs" / "cli.md").read_text()
     assert "| 3 |" in doc and "--json" in doc
@@ -177,9 +184,7 @@ def _umask() -> int:
 
 def test_fem_characteristic_writes_to_the_working_folder_by_default() -> None:
     (action,) = [
-        a
-        for a in _subparser("fem", "characteristic")._actions
-        if "--out" in a.option_strings
+        a for a in _subparser("fem", "characteristic")._actions if "--out" in a.option_strings
     ]
     assert action.default == "characteristic.npz"
 
@@ -297,11 +302,22 @@ def test_run_passes_the_thesis_parameters_in_si(monkeypatch, capsys) -> None:
         (["run", "--approach-speed-mps", "5"], "got 5 m/s"),
         (["plan", "--delta", "0,124,78,109,3,2"], "were pascals given as kPa?"),
         (
-            ["plan", "--pressures", "1200,1.1,1.1,1.1,1.1,1.1", "--reference", "1.1,1.1,1.1,1.1,1.1,1.1"],
+            [
+                "plan",
+                "--pressures",
+                "1200,1.1,1.1,1.1,1.1,1.1",
+                "--reference",
+                "1.1,1.1,1.1,1.1,1.1,1.1",
+            ],
             "1200 kPa, outside the sensor range",
         ),
         (
-            ["plan", "--pressures=-5,1.1,1.1,1.1,1.1,1.1", "--reference", "1.1,1.1,1.1,1.1,1.1,1.1"],
+            [
+                "plan",
+                "--pressures=-5,1.1,1.1,1.1,1.1,1.1",
+                "--reference",
+                "1.1,1.1,1.1,1.1,1.1,1.1",
+            ],
             "-5 kPa, outside the sensor range",
         ),
         (["fem", "sweep", "--points", "1000000000"], "--points must be from 2 to 200"),

@@ -78,4 +78,9 @@ def open_box(url: str = DEFAULT_URL) -> Box:
         raise InputError(
             f"unknown box URL scheme {scheme!r} in {url!r}; available: {', '.join(backends())}"
         )
-    return factory(location, options)
+    try:
+        return factory(location, options)
+    except InputError as exc:
+        if url in str(exc):
+            raise
+        raise InputError(f"{exc} (box URL {url!r})") from None

@@ -70,7 +70,7 @@ def register(sub: Any) -> None:
     s.add_argument("--port", type=int, default=0, help="TCP port (default 0: a free one, printed)")
     s.add_argument(
         "--idle-timeout-s",
-        type=finite_float("idle timeout", lo=0.01, hi=3600.0, unit="s"),
+        type=finite_float("--idle-timeout-s", lo=0.01, hi=3600.0, unit="s"),
         default=10.0,
         help="drop a silent client and close the valves after this long, s (default 10)",
     )

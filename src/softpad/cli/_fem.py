@@ -297,7 +297,12 @@ def _geometry(args: argparse.Namespace) -> Any:
         raise InputError(f"--thickness-mm must be > 0 mm, got {args.thickness_mm:g} mm")
     if args.width_mm <= 0:
         raise InputError(f"--width-mm must be > 0 mm, got {args.width_mm:g} mm")
-    return ModuleGeometry(args.width_mm * 1e-3, args.thickness_mm * 1e-3)
+    try:
+        return ModuleGeometry(args.width_mm * 1e-3, args.thickness_mm * 1e-3)
+    except InputError as exc:
+        raise InputError(
+            f"--thickness-mm {args.thickness_mm:g} / --width-mm {args.width_mm:g}: {exc}"
+        ) from None
 
 
 def _mesh(args: argparse.Namespace) -> Any:
@@ -328,14 +333,14 @@ def _material(args: argparse.Namespace) -> Any:
     return material.with_parameters(**overrides) if overrides else material
 
 
-def _models(text: str) -> list[str]:
-    names = [s.strip().lower() for s in text.split(",") if s.strip()]
-    if not names:
-        raise InputError("--models needs at least one model name")
+def _models(text: str, flag: str = "--models") -> list[str]:
+    from softpad.cli._args import name_list
+
+    names = name_list(text, flag)
     for n in names:
-        if n not in _MODELS:
-            raise InputError(f"unknown model {n!r}; choose from {', '.join(_MODELS)}")
-    return names
+        if n.lower() not in _MODELS:
+            raise InputError(f"{flag}: unknown model {n!r}; choose from {', '.join(_MODELS)}")
+    return [n.lower() for n in names]
 
 
 @contextmanager

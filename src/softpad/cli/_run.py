@@ -53,7 +53,7 @@ def register(sub: Any) -> None:
     )
     p.add_argument(
         "--hold-s",
-        type=finite_float("hold time", lo=0.0, hi=3600.0, unit="s"),
+        type=finite_float("--hold-s", lo=0.0, hi=3600.0, unit="s"),
         default=thesis.HOLD_S,
         help="hold time in s (default %(default)g)",
     )
