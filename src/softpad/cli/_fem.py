@@ -400,7 +400,7 @@ def _sweep(args: argparse.Namespace) -> int:
     _outputs(args, result)
     if args.vtu:
         with atomic_path(args.vtu) as tmp:
-            model.write_vtu(tmp)
+            model.write_vtu(str(tmp))
     if args.json:
         emit(result.to_json_dict())
         return 0
