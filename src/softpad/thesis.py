@@ -64,6 +64,10 @@ FINGERTIP_WIDTH_M = 0.016
 #: tip can lie on a non-sensitive line between modules, as Section 6.3 reports.
 FINGERTIP_THICKNESS_M = 0.008
 
+#: Closing speed of each jaw, m/s. Not in the seed; chosen equal to the approach speed so that
+#: the jaws meet an object as gently as the fingers meet the pad.
+JAW_SPEED_M_S = APPROACH_SPEED_M_S
+
 # --- Experiment 2 (Section 6.3, Table 6.1) ---------------------------------------------------
 #: Trials per object (5).
 TRIALS_PER_OBJECT = 5
@@ -85,6 +89,7 @@ __all__ = [
     "FINGER_LENGTH_M",
     "GRIPPER_MOUNTINGS_M",
     "HOLD_S",
+    "JAW_SPEED_M_S",
     "MAX_PRESSURE_PA",
     "MODULE_PITCH_M",
     "OBJECT_THRESHOLD_PA",

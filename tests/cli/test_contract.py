@@ -127,9 +127,9 @@ def test_help_documents_the_exit_codes(capsys) -> None:
 @pytest.mark.parametrize(
     ("argv", "message"),
     [
-        (["run", "--log", "/nonexistent/dir/x.npz"], "does not exist"),
+        (["run", "--record", "/nonexistent/dir/x.mcap"], "does not exist"),
         (["run", "--png", "/nonexistent/dir/x.png"], "does not exist"),
-        (["run", "--log", "x.txt"], "must name a .npz file"),
+        (["run", "--record", "x.txt"], "must name a .mcap file"),
         (["plan", "--delta", BANANA, "--png", "DIR"], "must name a .png file"),
         (["fem", "characteristic", "--out", ""], "needs a file name"),
         (["fem", "characteristic", "--out", "c.txt"], "must name a .npz file"),
@@ -152,15 +152,28 @@ def test_outputs_are_checked_before_any_work(capsys, monkeypatch, tmp_path, argv
 
 def test_an_existing_file_is_refused_without_force(capsys, monkeypatch, tmp_path) -> None:
     monkeypatch.chdir(tmp_path)
-    Path("run.npz").write_bytes(b"old")
-    assert main(["run", "--objects", "banana", "--hold-s", "0", "--log", "run.npz"]) == 2
+    Path("run.mcap").write_bytes(b"old")
+    Path("run.png").write_bytes(b"old")
+    argv = [
+        "run",
+        "--objects",
+        "banana",
+        "--hold-s",
+        "0",
+        "--record",
+        "run.mcap",
+        "--png",
+        "run.png",
+    ]
+    assert main(argv) == 2
     assert "add --force" in capsys.readouterr().err
-    assert Path("run.npz").read_bytes() == b"old"
-    assert main(["run", "--objects", "banana", "--hold-s", "0", "--log", "run.npz", "--force"]) == 0
-    from softpad.record import RunLog
+    assert Path("run.mcap").read_bytes() == b"old"
+    assert main([*argv, "--force"]) == 0
+    from softpad.record import load_recording
 
-    assert len(RunLog.load("run.npz")) > 100
-    assert [p.name for p in tmp_path.iterdir()] == ["run.npz"]  # no temporary file left
+    assert load_recording("run.mcap").complete
+    assert Path("run.png").read_bytes()[:4] == b"\x89PNG"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["run.mcap", "run.png"]  # no temp file
 
 
 def test_atomic_write_keeps_the_old_file_when_the_writer_fails(tmp_path) -> None:

@@ -96,7 +96,7 @@ OPTIONS = (
             "--window",
             "--approach-speed-mps",
             "--png",
-            "--log",
+            "--record",
         )
     ]
     + [

@@ -1,4 +1,5 @@
-"""``softpad box read|serve|inflate``: stream frames, serve a box over TCP, inflate and adjust."""
+"""``softpad box read|serve|inflate|monitor``: stream frames, serve a box over TCP, inflate and
+adjust, watch a box live in Foxglove."""
 
 from __future__ import annotations
 
@@ -27,8 +28,19 @@ Ctrl-C stops the server (valves closed, box closed). A served sim:// box also of
 and robot, so 'softpad run --box tcp://HOST:PORT' runs the whole loop through the network.
 """
 
+_MONITOR_EPILOG = """examples:
+  softpad box monitor --foxglove                         the simulated box, ws://127.0.0.1:8765
+  softpad box monitor --foxglove --port 0 --box 'sim://?object=banana&inflated_kpa=1.1'
+  then in Foxglove: Open connection -> Foxglove WebSocket -> ws://127.0.0.1:8765
+  (docs/foxglove-layout.json: a pressure plot per module and the pad picture)
+
+Serves /softpad/module_K/pressure (Pa), /softpad/supply/pressure and /softpad/pad (3D picture)
+to any number of viewers, on 127.0.0.1 only, at the box's pace (never faster than real time).
+Ctrl-C stops. 'softpad run --foxglove PORT' serves a whole run (plans, contact, robot) live.
+"""
+
 _INFLATE_EPILOG = """examples:
-  softpad box inflate                                 the simulated box, p0 = 1.1 kPa
+  softpad box inflate                                 the simulated box, to p0
   softpad box inflate --box tcp://127.0.0.1:5757 --json
 """
 
@@ -56,6 +68,18 @@ def register(sub: Any) -> None:
         "--json", action="store_true", help="one JSON object per line (the last the error if any)"
     )
     r.set_defaults(handler=read)
+    m = bsub.add_parser(
+        "monitor",
+        help="watch a box live (Foxglove WebSocket server on 127.0.0.1)",
+        description="Serve a box's frames live to Foxglove viewers.",
+        epilog=_MONITOR_EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    m.add_argument("--box", default="sim://", metavar="URL", help="box URL (default sim://)")
+    m.add_argument("--foxglove", action="store_true", help="serve to Foxglove (WebSocket)")
+    m.add_argument("--port", type=int, default=8765, help="port on 127.0.0.1 (0: a free one)")
+    m.add_argument("--count", type=int, default=0, help="frames to serve, 0 for endless")
+    m.set_defaults(handler=monitor)
     s = bsub.add_parser(
         "serve",
         help="serve a box over TCP (softpad-box protocol; loopback by default)",
@@ -206,4 +230,40 @@ def inflate(args: argparse.Namespace) -> int:
             f"adjusted at t = {res.adjusted_at_s:.2f} s; reference (kPa) saved at "
             f"t = {res.reference_at_s:.2f} s: {ref}"
         )
+    return 0
+
+
+def monitor(args: argparse.Namespace) -> int:
+    """Read frames from the box and publish them to Foxglove, paced to real time."""
+    import sys
+    import time
+
+    from softpad.box import open_box
+    from softpad.errors import InputError
+    from softpad.record import FoxgloveLive
+
+    if not args.foxglove:
+        raise InputError("box monitor needs a viewer: add --foxglove")
+    if not 0 <= args.port <= 65535:
+        raise InputError(f"--port must be within 0..65535, got {args.port}")
+    if args.count < 0:
+        raise InputError(f"--count must be >= 0 (0: endless), got {args.count}")
+    with open_box(args.box) as box, FoxgloveLive(args.port) as live:
+        print(
+            f"foxglove: {live.url} (port {live.port}); serving {args.box}; Ctrl-C stops", flush=True
+        )
+        wall0 = t0 = None
+        i = 0
+        try:
+            while args.count == 0 or i < args.count:
+                f = box.read()
+                if wall0 is None or t0 is None:
+                    wall0, t0 = time.monotonic(), f.t_s
+                delay = wall0 + (f.t_s - t0) - time.monotonic()
+                if delay > 0:  # a simulated box runs faster than real time: keep pace
+                    time.sleep(delay)
+                live.frame(f, "monitor")
+                i += 1
+        except KeyboardInterrupt:
+            print("softpad box monitor: stopped", file=sys.stderr)
     return 0

@@ -10,6 +10,7 @@ from typing import Any
 from softpad.cli._args import Renamed, add_json_force, bounded_int
 from softpad.cli._output import emit, say
 from softpad.cli._paths import check_output_dir
+from softpad.cli._record import add_record_option, check_trial_recordings
 from softpad.errors import InputError
 
 
@@ -39,9 +40,10 @@ def register(sub: Any) -> None:
         help="experiment seed, one value (default 0)",
     )
     p.add_argument("--seed", action=Renamed, new="--seeds")
-    add_json_force(p)
+    add_json_force(p, force=False)  # --force comes with --record
     p.add_argument("--workers", type=int, default=None, help="worker processes (default: CPUs)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    add_record_option(p, per_trial=True)
     p.set_defaults(handler=run)
 
 
@@ -57,6 +59,7 @@ def run(args: argparse.Namespace) -> int:
     except OSError as exc:
         raise InputError(f"--out {args.out!r}: cannot create the folder: {exc.strerror}") from None
     specs = [get_object(n) for n in object_names()]
+    check_trial_recordings(args.record, specs, args.trials, args.force)
     # the planner on the thesis's reference increments first (instant), then the experiment
     _reference_plans(out)
     # the thesis's Fig. 6.8 shows an object on modules 1 and 4: object 4 lies there
@@ -69,6 +72,7 @@ def run(args: argparse.Namespace) -> int:
         seed=args.seeds,
         workers=args.workers,
         trace_object=trace_object,
+        record=args.record,
     )
     say(exp.to_text(), args.json)
     paths = write_report(

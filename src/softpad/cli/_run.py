@@ -11,11 +11,12 @@ from softpad import thesis
 from softpad.cli._args import Renamed, add_json_force, finite_float
 from softpad.cli._output import emit, say
 from softpad.cli._paths import atomic_path, check_output
+from softpad.cli._record import add_record_option, open_recorder, run_metadata
 from softpad.errors import EXIT_FAILED, EXIT_OK, InputError
 
 _EPILOG = """examples:
   softpad run --objects banana
-  softpad run --objects object-4 --png run.png --log run.npz
+  softpad run --objects object-4 --png run.png --record run.mcap
   softpad run --objects object-1,object-4       two objects, grasped one after the other
   softpad run --box 'sim://?seed=3&rate_hz=200' --objects charger --json
   softpad run --objects banana --p0-kpa 1.5 --contact-threshold-kpa 0.12 --window 5
@@ -33,7 +34,7 @@ def register(sub: Any) -> None:
             "Run the whole grasp loop of the seed's Section 6.2 once on the simulated box: inflate "
             "every module to p0 and save the reference, place the object(s) of the thesis set, plan "
             "the grasp from the pressure increments, move over the centre of grasp, descend at "
-            "0.05 m/s until the pad senses the fingers (running average of 10 samples above t_g), "
+            "the approach speed until the pad senses the fingers (running average of 10 samples above t_g), "
             "close, lift, hold for 15 s, and print the timeline."
         ),
         epilog=_EPILOG,
@@ -58,10 +59,16 @@ def register(sub: Any) -> None:
         help="hold time in s (default %(default)g)",
     )
     add_thesis_params(p)
-    add_json_force(p)
+    add_json_force(p, force=False)  # --force comes with --record
     p.add_argument("--png", metavar="FILE.png", help="draw the pressure traces with the phases")
     p.add_argument("--plot", action=Renamed, new="--png FILE.png")
-    p.add_argument("--log", metavar="FILE.npz", help="save every frame and event")
+    add_record_option(p)
+    p.add_argument(
+        "--foxglove",
+        type=int,
+        metavar="PORT",
+        help="serve the run live to Foxglove on ws://127.0.0.1:PORT (0: a free port)",
+    )
     p.set_defaults(handler=run)
 
 
@@ -128,24 +135,38 @@ def _object_names(args: argparse.Namespace) -> list[str]:
 
 
 def run(args: argparse.Namespace) -> int:
+    from softpad.box import open_box
     from softpad.errors import SoftPadError
     from softpad.harness import resolve_objects, run_simulated
-    from softpad.record import RunLog
+    from softpad.record import RunLog, Tee
 
     names = [s.name for s in resolve_objects(_object_names(args))]  # fail before any work
     params = execution_params(args)
-    log_path = check_output(args.log, "--log", force=args.force, suffix=".npz")
+    record_path = check_output(args.record, "--record", force=args.force, suffix=".mcap")
     png_path = check_output(args.png, "--png", force=args.force, suffix=".png")
-    if log_path is not None and log_path == png_path:
-        raise InputError("--log and --png name the same file")
+    if args.foxglove is not None and not 0 <= args.foxglove <= 65535:
+        raise InputError(f"--foxglove port must be within 0..65535, got {args.foxglove}")
     log = RunLog({"box": args.box, "objects": names})
-    try:
-        result = run_simulated(names, args.box, params, log, gripper=args.gripper)
-    except SoftPadError as exc:
-        exc.partial = {"objects": names, "events": _events(log), "frames": len(log)}
-        raise
-    finally:  # whatever happened, what was logged is kept
-        _save(log, log_path, png_path, names)
+    with open_box(args.box) as box:
+        meta = run_metadata("run", box, args.box, names, params, gripper=args.gripper)
+        recorder = open_recorder(record_path and str(record_path), box, meta, args.force)
+        live = _live(args.foxglove, box, args.json)
+        try:
+            result = run_simulated(
+                names, box, params, Tee(log, recorder, live), gripper=args.gripper
+            )
+        except SoftPadError as exc:
+            exc.partial = {"objects": names, "events": _events(log), "frames": len(log)}
+            raise
+        finally:  # whatever happened, what was recorded is kept
+            for r in (recorder, live):
+                if r is not None:
+                    r.close()
+            _save_png(log, png_path, names)
+    return _report(args, log, result, names, png_path, record_path)
+
+
+def _report(args: Any, log: Any, result: Any, names: list[str], png: Any, record: Any) -> int:
     d = result.to_dict()
     held = result.outcome == "held"
     if args.json:
@@ -157,7 +178,7 @@ def run(args: argparse.Namespace) -> int:
         for line in _timeline(log, result):
             print("  " + line)
         print(f"outcome: {result.outcome}")
-    for path, what in ((png_path, "pressure traces"), (log_path, "run log")):
+    for path, what in ((png, "pressure traces"), (record, "recording")):
         if path is not None:
             say(f"{what}: {path}", args.json)
     return EXIT_OK if held else EXIT_FAILED
@@ -167,19 +188,29 @@ def _events(log: Any) -> list[Any]:
     return [[t, kind, data] for t, kind, data in log.events]
 
 
-def _save(log: Any, log_path: Any, png_path: Any, names: list[str]) -> None:
-    if log_path is not None:
-        with atomic_path(log_path) as tmp:
-            log.save(tmp)
-    if png_path is not None and len(log):
-        import matplotlib
+def _save_png(log: Any, png_path: Any, names: list[str]) -> None:
+    if png_path is None or not len(log):
+        return
+    import matplotlib
 
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
 
-        with atomic_path(png_path) as tmp:
-            fig = log.plot(tmp, title=f"softpad run: {', '.join(names)}")
-        plt.close(fig)
+    with atomic_path(png_path) as tmp:
+        fig = log.plot(tmp, title=f"softpad run: {', '.join(names)}")
+    plt.close(fig)
+
+
+def _live(port: int | None, box: Any, json_mode: bool) -> Any:
+    if port is None:
+        return None
+    from softpad.box import SimBox
+    from softpad.record import FoxgloveLive
+
+    robot = box.world.gripper_state if isinstance(box, SimBox) else None
+    live = FoxgloveLive(port, robot_state=robot)
+    say(f"foxglove: {live.url} (port {live.port})", json_mode)
+    return live
 
 
 def _kpa(values: Any) -> str:

@@ -9,6 +9,7 @@ from typing import Any
 from softpad import thesis
 from softpad.cli._args import Renamed, add_json_force, int_ranges, name_list
 from softpad.cli._output import emit, say
+from softpad.cli._record import add_record_option, check_trial_recordings
 from softpad.errors import InputError
 
 _EPILOG = """examples:
@@ -19,7 +20,7 @@ _EPILOG = """examples:
 
 Each trial: a fresh MuJoCo world behind the simulated box; inflate to p0, save the reference,
 place the object with a seeded random shift (3 mm) and turn (3 deg), plan from the pressure
-increments, move over the COG, descend at 0.05 m/s until the pad senses the fingers (t_g),
+increments, move over the COG, descend at the approach speed until the pad senses the fingers (t_g),
 close, lift 10 cm, hold 15 s. Failure causes: contact_not_detected, jaws_hit_object,
 object_outside_jaws, slipped_during_hold, object_too_narrow, object_not_detected.
 """
@@ -57,6 +58,7 @@ def register(sub: Any) -> None:
     )
     add_json_force(p, force=False)
     p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
+    add_record_option(p, per_trial=True)
     p.set_defaults(handler=run)
 
 
@@ -123,6 +125,11 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(f"--seeds {args.seeds!r} names {len(seeds)} seeds; at most 100")
     if not math.isfinite(args.hold_s) or not 0 <= args.hold_s <= 600:
         raise InputError(f"--hold-s must be from 0 to 600 s, got {args.hold_s!r}")
+    if args.record and len(seeds) > 1:
+        raise InputError(
+            "--record takes one seed at a time (trial files are named by object and trial)"
+        )
+    check_trial_recordings(args.record, specs, args.trials, args.force)
     done: list[Any] = []
     args.partial = {"seeds": seeds, "experiments": done}
     for seed in seeds:
@@ -133,6 +140,7 @@ def run(args: argparse.Namespace) -> int:
             seed=seed,
             workers=args.workers,
             config=TrialConfig(trial_execution_params(hold_s=args.hold_s)),
+            record=args.record,
         )
         done.append(exp.to_dict())
         say(f"seed {seed}:\n{exp.to_text()}", args.json)

@@ -31,8 +31,11 @@ _COMMAND_MODULES = (
     "_run",
     "_box",
     "_trials",
+    "_compare",
     "_fem",
     "_demo",
+    "_replay",
+    "_log",
     "_bench",
     "_completion",
 )

@@ -114,7 +114,7 @@ class ExecutionParams:
     filter_length: int = thesis.FILTER_WINDOW
     approach_speed_m_s: float = thesis.APPROACH_SPEED_M_S
     travel_speed_m_s: float = 0.25
-    gripper_speed_m_s: float = 0.05
+    gripper_speed_m_s: float = thesis.JAW_SPEED_M_S
     approach_height_m: float = 0.12
     min_height_m: float = 0.001
     lift_m: float = 0.08

@@ -21,7 +21,7 @@ from softpad.box import Box, PressureFrame, ValveCommand
 from softpad.errors import HardwareFault, InputError
 from softpad.sensing import RunningAverage, capture_reference
 
-#: p0 of the thesis, Pa (Section 6.3: 1.1 kPa, about 9 mm high).
+#: p0 of the thesis, Pa (:data:`softpad.thesis.P0_PA`).
 DEFAULT_TARGET_PA = thesis.P0_PA
 #: t_adj of the thesis, Pa (Section 6.3).
 DEFAULT_TOLERANCE_PA = thesis.ADJUST_TOLERANCE_PA
@@ -38,9 +38,9 @@ class InflationParams:
     Parameters
     ----------
     target_pa
-        p0: pressure every module is brought to, pascals (1.1 kPa).
+        p0: pressure every module is brought to, pascals.
     tolerance_pa
-        t_adj: allowed deviation from p0, pascals (0.03 kPa).
+        t_adj: allowed deviation from p0, pascals.
     max_pressure_pa
         Safety limit; a channel above it is vented and the run fails, pascals (3.0 kPa).
     timeout_s

@@ -20,7 +20,7 @@ class PlannerParams:
     Parameters
     ----------
     object_threshold_pa
-        t_o: a module is touched when dP > t_o (pascals), 50 Pa in the thesis.
+        t_o: a module is touched when dP > t_o, pascals (:data:`softpad.thesis.OBJECT_THRESHOLD_PA`).
     safety_shift
         c_s: shift away from the corner of corner-shaped objects, module units, 0.2 in the thesis.
     default_theta

@@ -1,11 +1,20 @@
 """Sensing primitives: filters, reference capture, increments, objects, contact.
 
 Pure functions and small state classes; every pressure is a gauge pressure in pascals.
-Thesis symbols: t_o (object threshold, 0.05 kPa), t_g (contact threshold, 0.09 kPa),
+Thesis symbols (values in :mod:`softpad.thesis`): t_o (object threshold), t_g (contact threshold),
 running average of 10 samples, reference = mean of 10 reads (seed, Sections 6.2.1.1 and 6.3).
 """
 
 from softpad.sensing._contact import ContactDetector, ThesisContactDetector
+from softpad.sensing._cusum import (
+    CONTACT_DETECTORS,
+    DEFAULT_CUSUM_DRIFT_PA,
+    DEFAULT_CUSUM_THRESHOLD_PA,
+    CusumContactDetector,
+    calibrate_cusum_threshold,
+    cusum_peak_pa,
+    make_contact_detector,
+)
 from softpad.sensing._filters import RunningAverage, capture_reference, increments
 from softpad.sensing._objects import (
     DEFAULT_CONTACT_THRESHOLD_PA,
@@ -16,14 +25,21 @@ from softpad.sensing._objects import (
 )
 
 __all__ = [
+    "CONTACT_DETECTORS",
     "DEFAULT_CONTACT_THRESHOLD_PA",
+    "DEFAULT_CUSUM_DRIFT_PA",
+    "DEFAULT_CUSUM_THRESHOLD_PA",
     "DEFAULT_OBJECT_THRESHOLD_PA",
     "ContactDetector",
+    "CusumContactDetector",
     "ObjectDetector",
     "RunningAverage",
     "ThesisContactDetector",
     "ThesisObjectDetector",
+    "calibrate_cusum_threshold",
     "capture_reference",
+    "cusum_peak_pa",
     "detect_objects",
     "increments",
+    "make_contact_detector",
 ]

@@ -1,7 +1,7 @@
 """One trial: the box branch's execution state machine on the simulated box and a MuJoCo world.
 
 ``softpad.control.GraspExecution`` runs the loop of Section 6.2 (adjust -> reference -> wait
-for the object -> plan -> approach -> descend at 0.05 m/s -> contact at t_g -> close -> lift ->
+for the object -> plan -> approach -> descend -> contact at t_g -> close -> lift ->
 hold 15 s -> release). This module only sets it up for a trial (the world, the object's placement,
 the jaw opening) and reads the failure's cause from the world through the loop's recorder hook:
 which surfaces the fingertips touched, whether a jaw came down on the object, whether the object
@@ -10,6 +10,7 @@ was between the jaws when they closed.
 
 from __future__ import annotations
 
+import contextlib
 from typing import Any
 
 import numpy as np
@@ -127,6 +128,17 @@ class _Trial:
         )
         self.robot = SimulatedRobot(self.world, max_opening_m=self.gripper.max_width_m)
 
+    def planner(self) -> Any:
+        """The configured planner, told the trial gripper's geometry (a published spec)."""
+        from softpad.layout import GripperSpec
+        from softpad.planning import make_planner
+
+        g = self.gripper
+        spec = GripperSpec(
+            g.max_width_m, g.min_width_m, g.finger_length_m, g.tip_width_m, g.tip_thickness_m
+        )
+        return make_planner(self.config.planner, spec, self.config.execution.planner)
+
     def place(self) -> None:
         from softpad.sim import Placement
 
@@ -146,24 +158,27 @@ def execute_trial(
     :class:`softpad.record.RunLog` when ``config.record_trace``."""
     from softpad.control import ExecutionError, GraspExecution
     from softpad.errors import HardwareFault
-    from softpad.record import RunLog
+    from softpad.record import RunLog, Tee
+    from softpad.sensing import make_contact_detector
 
     t = _Trial(spec, placement, seed, config, opening_m, mounting)
     log = RunLog({"object": spec.name, "seed": seed}) if config.record_trace else None
-    watcher = _TrialWatcher(t, log)
+    mcap = _trial_recorder(t, seed)
+    watcher = _TrialWatcher(t, Tee(log, mcap) if mcap is not None else log)
     execution = GraspExecution(
         t.box,
         t.robot,
         t.world.layout,
         config.execution,
-        planner=None if plan_override is None else _FixedPlanner(plan_override),
+        planner=_FixedPlanner(plan_override) if plan_override is not None else t.planner(),
+        contact_detector=make_contact_detector(config.detector),
         recorder=watcher,
         place_objects=t.place,
     )
     base: dict[str, Any] = dict(
         object=spec.name, trial=0, seed=seed, placement=placement, mounting=t.gripper.mounting
     )
-    with t.box:
+    with t.box, mcap if mcap is not None else contextlib.nullcontext():
         try:
             execution.run()
         except ExecutionError as exc:
@@ -255,3 +270,18 @@ def _cause(
             )
         return "object_outside_jaws", "the jaws closed without the object between them"
     return "slipped_during_hold", f"squeezed, then lost ({outcome})"
+
+
+def _trial_recorder(t: _Trial, seed: int) -> Any:
+    """The trial's MCAP recorder when ``config.record_path`` (gripper pose from the world)."""
+    if t.config.record_path is None:
+        return None
+    from dataclasses import asdict
+
+    from softpad.record import McapRecorder
+
+    meta: dict[str, Any] = {"command": "trials", "objects": [t.spec.name], "seed": seed}
+    meta.update(layout=t.world.layout.name, placement=list(t.placement), box="sim (MuJoCo)")
+    meta.update(params=asdict(t.config.execution), mounting=t.gripper.mounting)
+    meta.update(planner=t.config.planner, contact_detector=t.config.detector)
+    return McapRecorder(t.config.record_path, meta, force=True, robot_state=t.world.gripper_state)
