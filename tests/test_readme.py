@@ -17,6 +17,8 @@ ROOT = Path(__file__).resolve().parents[1]
 QUICK = {
     "run --objects banana --png run.png": "run --objects banana --png run.png --hold-s 1",
     "run --objects charger --json": "run --objects charger --json --hold-s 1",
+    "run --objects banana --record run.mcap": "run --objects banana --record run.mcap --hold-s 1",
+    "box monitor --foxglove": "box monitor --foxglove --port 0 --count 20",
     "trials --objects banana,toy --trials 2": "trials --objects banana --trials 1 --workers 1 "
     "--hold-s 1 --no-progress",
     "fem sweep --model yeoh --json": "fem sweep --model yeoh --json --mesh coarse --points 3",
@@ -58,6 +60,8 @@ def test_readme_command_runs(command: str, tmp_path: Path, monkeypatch, capsys) 
     (tmp_path / "examples").mkdir()
     shutil.copy(ROOT / "examples" / "frame.csv", tmp_path / "examples" / "frame.csv")
     monkeypatch.chdir(tmp_path)
+    if "run.mcap" in command and "--record" not in command:  # a recording made by the README
+        assert main(["run", "--objects", "banana", "--record", "run.mcap", "--hold-s", "1"]) == 0
     argv = shlex.split(QUICK.get(command, command))
     words = [w for w in argv if w not in (">",)]
     redirect = None

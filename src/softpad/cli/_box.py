@@ -79,6 +79,7 @@ def register(sub: Any) -> None:
     m.add_argument("--foxglove", action="store_true", help="serve to Foxglove (WebSocket)")
     m.add_argument("--port", type=int, default=8765, help="port on 127.0.0.1 (0: a free one)")
     m.add_argument("--count", type=int, default=0, help="frames to serve, 0 for endless")
+    m.add_argument("--json", action="store_true", help="print the viewer URL as one JSON object")
     m.set_defaults(handler=monitor)
     s = bsub.add_parser(
         "serve",
@@ -249,9 +250,13 @@ def monitor(args: argparse.Namespace) -> int:
     if args.count < 0:
         raise InputError(f"--count must be >= 0 (0: endless), got {args.count}")
     with open_box(args.box) as box, FoxgloveLive(args.port) as live:
-        print(
-            f"foxglove: {live.url} (port {live.port}); serving {args.box}; Ctrl-C stops", flush=True
-        )
+        if args.json:
+            emit({"foxglove": live.url, "port": live.port, "serving": args.box})
+        else:
+            print(
+                f"foxglove: {live.url} (port {live.port}); serving {args.box}; Ctrl-C stops",
+                flush=True,
+            )
         wall0 = t0 = None
         i = 0
         try:

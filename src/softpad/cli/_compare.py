@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import json
 import re
 import sys
 from typing import Any
@@ -108,7 +107,12 @@ def run(args: argparse.Namespace) -> int:
             bar.close()
     if args.png:
         _plot(d, args.png)
-    print(json.dumps(d) if args.json else _table(d))
+    if args.json:
+        from softpad.cli._output import emit
+
+        emit(d)
+    else:
+        print(_table(d))
     return 0
 
 
