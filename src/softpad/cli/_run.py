@@ -149,7 +149,7 @@ def run(args: argparse.Namespace) -> int:
     log = RunLog({"box": args.box, "objects": names})
     with open_box(args.box) as box:
         meta = run_metadata("run", box, args.box, names, params, gripper=args.gripper)
-        recorder = open_recorder(record_path and str(record_path), box, meta, args.force)
+        recorder = open_recorder(str(record_path) if record_path else None, box, meta, args.force)
         live = _live(args.foxglove, box, args.json)
         try:
             result = run_simulated(
