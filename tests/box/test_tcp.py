@@ -407,3 +407,49 @@ def test_a_failing_extension_is_reported_and_the_server_keeps_serving() -> None:
         server.close()
     with pytest.raises(InputError, match="must contain a dot"):
         BoxServer(open_box("sim://"), "127.0.0.1", 0, extensions={"broken": broken})
+
+
+def _controller_inflating(server: BoxServer) -> RawClient:
+    ctl = RawClient(server.port)
+    assert ctl.send(b'{"op": "hello", "protocol": %d}' % PROTOCOL_VERSION)["ok"]
+    assert ctl.send(b'{"op": "valve", "channel": 1, "command": "inflate"}')["ok"]
+    return ctl
+
+
+def _wait_for(cond: Callable[[], bool], poke: Callable[[], None], limit_s: float = 5.0) -> bool:
+    """Poke the server until ``cond`` holds (True) or ``limit_s`` passes (False)."""
+    stop = threading.Event()
+    t = 0.0
+    while t < limit_s:
+        if cond():
+            return True
+        poke()
+        stop.wait(0.05)
+        t += 0.05
+    return cond()
+
+
+@pytest.mark.parametrize("intruder", ["refused-connections", "partial-line", "garbage-lines"])
+def test_only_the_controllers_valid_messages_feed_the_watchdog(intruder: str) -> None:
+    """A silent controller with inflation open is dropped (valves closed) although someone
+    keeps the link busy: refused connection attempts, a trickle of one byte of an unfinished
+    line, or lines that are not valid requests."""
+    with served("sim://?seed=2", idle_timeout_s=0.3) as server:
+        ctl = _controller_inflating(server)
+        assert server.box.valves[0] is ValveCommand.INFLATE
+
+        def poke() -> None:
+            try:
+                if intruder == "refused-connections":
+                    with socket.create_connection(("127.0.0.1", server.port), timeout=1):
+                        pass
+                elif intruder == "partial-line":
+                    ctl.sock.sendall(b" ")
+                else:
+                    ctl.sock.sendall(b"not json\n")
+            except OSError:
+                pass
+
+        assert _wait_for(lambda: server.sessions >= 1, poke)
+        assert set(server.box.valves) == {ValveCommand.CLOSED}
+        ctl.sock.close()

@@ -2,8 +2,7 @@
 
 from __future__ import annotations
 
-import threading
-from collections.abc import Iterator
+from collections.abc import Callable
 
 import numpy as np
 import pytest
@@ -16,16 +15,10 @@ from softpad.record import RunLog
 
 
 @pytest.fixture
-def served() -> Iterator[BoxServer]:
+def served(serve_box: Callable[..., BoxServer]) -> BoxServer:
     box = open_box("sim://?seed=4")
     assert isinstance(box, SimBox)
-    server = BoxServer(box, "127.0.0.1", 0, extensions=simulation_extensions(box))
-    thread = threading.Thread(target=server.serve, daemon=True)
-    thread.start()
-    yield server
-    server.stop()
-    thread.join(timeout=5)
-    server.close()
+    return serve_box(box, extensions=simulation_extensions(box))
 
 
 def test_remote_robot_moves_the_served_gripper_like_the_local_one(served: BoxServer) -> None:
@@ -55,13 +48,25 @@ def test_remote_robot_moves_the_served_gripper_like_the_local_one(served: BoxSer
             lambda r: r.box.request("robot.descend", speed_m_s=None, min_z_m=0.0),
             "speed_m_s must be a finite number, got None",
         ),
-        (lambda r: r.set_gripper(0.01, -1.0), "robot speed must be a positive number"),
+        (lambda r: r.set_gripper(0.01, -1.0), "robot speed must be > 0"),
         (lambda r: r.place(["teapot"]), "unknown object 'teapot'"),
         (lambda r: r.box.request("sim.place", objects="banana"), "objects must be a list of names"),
         (lambda r: r.box.request("robot.fly"), "does not offer 'robot.fly'"),
         (lambda r: r.box.request("sim.setup", gripper="12/5"), "12/5"),
+        (lambda r: r.move_to(ToolPose(1e300, 0.0, 0.1, 0.0), 0.1), "x_m must be within"),
+        (lambda r: r.set_gripper(-1.0, 0.1), "width_m must be within"),
     ],
-    ids=["nan", "missing", "negative-speed", "object", "objects-type", "unknown-op", "mounting"],
+    ids=[
+        "nan",
+        "missing",
+        "negative-speed",
+        "object",
+        "objects-type",
+        "unknown-op",
+        "mounting",
+        "x-1e300",
+        "width-negative",
+    ],
 )
 def test_bad_remote_requests_are_input_errors(served: BoxServer, call, match: str) -> None:
     with open_box(served.url) as box:
@@ -85,3 +90,21 @@ def test_loop_over_tcp_logs_the_same_frames_and_leaves_valves_closed(served: Box
     box = served.box
     assert isinstance(box, SimBox)
     assert set(box.valves) == {ValveCommand.CLOSED}
+
+
+@pytest.mark.parametrize(
+    ("call", "match"),
+    [
+        (lambda r: r.move_to(ToolPose(1e300, 0.0, 0.1, 0.0), 0.1), "x_m"),
+        (lambda r: r.move_to(ToolPose(0.0, 0.0, -5.0, 0.0), 0.1), "z_m"),
+        (lambda r: r.set_gripper(-1.0, 0.1), "width_m"),
+        (lambda r: r.move_to(ToolPose(0.0, 0.0, 0.1, 0.0), 1e9), "speed"),
+    ],
+    ids=["x-1e300", "z-below", "width-negative", "speed-huge"],
+)
+def test_simulated_robot_refuses_targets_outside_workspace(call, match) -> None:
+    from softpad.harness import SimulatedRobot
+    from softpad.sim import AnalyticWorld
+
+    with pytest.raises(InputError, match=match):
+        call(SimulatedRobot(AnalyticWorld()))

@@ -13,11 +13,14 @@ TARGET_EXPERIMENT_S = 120.0
 
 
 def run(quick: bool = False) -> list[BenchResult]:
-    from softpad.sim import Placement, get_object, object_names
-    from softpad.sim._mujoco_world import MujocoWorld
-    from softpad.trials import TrialConfig, run_experiment, run_trial
+    """The MuJoCo world's step time, one trial's speed and the whole Experiment 2's wall time."""
+    return [_world_step(quick), _one_trial(quick), _experiment(quick)]
 
-    results = []
+
+def _world_step(quick: bool) -> BenchResult:
+    from softpad.sim import Placement, get_object
+    from softpad.sim._mujoco_world import MujocoWorld
+
     # MuJoCo step with the charger (the heaviest object, most contacts) resting on the pad
     world = MujocoWorld()
     charger = get_object("charger")
@@ -31,14 +34,18 @@ def run(quick: bool = False) -> list[BenchResult]:
             world.step(world.timestep_s)
 
     t = median_time_s(steps, 3 if quick else 7) / n
-    results.append(
-        BenchResult(
-            "MuJoCo world step (charger resting, 2 ms step)",
-            t * 1e6,
-            "us",
-            detail=f"median of {3 if quick else 7} x {n} steps incl. contact-force scan",
-        )
+    return BenchResult(
+        "MuJoCo world step (charger resting, 2 ms step)",
+        t * 1e6,
+        "us",
+        detail=f"median of {3 if quick else 7} x {n} steps incl. contact-force scan",
     )
+
+
+def _one_trial(quick: bool) -> BenchResult:
+    from softpad.sim import get_object
+    from softpad.trials import TrialConfig, run_trial
+
     # one full trial in this process: simulated time over wall time
     spec = get_object("banana")
     ratios, walls = [], []
@@ -48,14 +55,18 @@ def run(quick: bool = False) -> list[BenchResult]:
         wall = time.perf_counter() - t0
         walls.append(wall)
         ratios.append(res.sim_time_s / wall)
-    results.append(
-        BenchResult(
-            "one trial, simulated / real time (banana, 15 s hold, box at 100 Hz)",
-            statistics.median(ratios),
-            "x",
-            detail=f"median of {len(ratios)} trials; wall {statistics.median(walls):.2f} s each",
-        )
+    return BenchResult(
+        "one trial, simulated / real time (banana, 15 s hold, box at 100 Hz)",
+        statistics.median(ratios),
+        "x",
+        detail=f"median of {len(ratios)} trials; wall {statistics.median(walls):.2f} s each",
     )
+
+
+def _experiment(quick: bool) -> BenchResult:
+    from softpad.sim import get_object, object_names
+    from softpad.trials import run_experiment
+
     # the whole experiment in parallel processes
     specs = [get_object(name) for name in object_names()]
     trials = 1 if quick else 5
@@ -64,23 +75,17 @@ def run(quick: bool = False) -> list[BenchResult]:
     wall = exp.wall_time_s
     label = f"Experiment 2: {len(specs)} objects x {trials} trials on {workers} processes"
     if quick:
-        results.append(
-            BenchResult(
-                label,
-                wall,
-                "s",
-                detail=f"quick run; x5 for the 55-trial figure: about {5 * wall:.0f} s",
-            )
+        return BenchResult(
+            label,
+            wall,
+            "s",
+            detail=f"quick run; x5 for the 55-trial figure: about {5 * wall:.0f} s",
         )
-    else:
-        results.append(
-            BenchResult(
-                label,
-                wall,
-                "s",
-                target=f"<= {TARGET_EXPERIMENT_S:g} s",
-                met=wall <= TARGET_EXPERIMENT_S,
-                detail=f"success {100 * exp.overall_success:.1f} % (thesis 94.5 %)",
-            )
-        )
-    return results
+    return BenchResult(
+        label,
+        wall,
+        "s",
+        target=f"<= {TARGET_EXPERIMENT_S:g} s",
+        met=wall <= TARGET_EXPERIMENT_S,
+        detail=f"success {100 * exp.overall_success:.1f} % (thesis 94.5 %)",
+    )

@@ -12,6 +12,7 @@ from softpad.box._base import Box, ConnectionLost, PressureFrame, ValveCommand
 from softpad.box._conformance import ConformanceError, check_conformance
 from softpad.box._protocol import PROTOCOL_VERSION, ProtocolError
 from softpad.box._registry import DEFAULT_URL, backends, open_box, parse_url, register_backend
+from softpad.box._safety import RATED_MAX_PRESSURE_PA, SafetyGuard, SafetyLimits, SafetyTrip
 from softpad.box._server import BoxServer
 from softpad.box._sim import FAULT_KINDS, Fault, SimBox, open_sim_url
 from softpad.box._tcp import TcpBox, open_tcp_url
@@ -20,6 +21,7 @@ __all__ = [
     "DEFAULT_URL",
     "FAULT_KINDS",
     "PROTOCOL_VERSION",
+    "RATED_MAX_PRESSURE_PA",
     "Box",
     "BoxServer",
     "ConformanceError",
@@ -27,6 +29,9 @@ __all__ = [
     "Fault",
     "PressureFrame",
     "ProtocolError",
+    "SafetyGuard",
+    "SafetyLimits",
+    "SafetyTrip",
     "SimBox",
     "TcpBox",
     "ValveCommand",

@@ -136,12 +136,14 @@ class BoxServer:
                     break
                 for key, _ in sel.select(timeout=poll_s):
                     if key.data == "listen":
-                        self._accept(sel)
-                        last_heard = time.monotonic()
+                        if self._accept(sel):  # a new controller: its own watchdog starts
+                            last_heard = time.monotonic()
                     elif self._client is not None:
                         try:
-                            self._receive()
-                            last_heard = time.monotonic()
+                            # only the controller's own valid, complete requests feed the
+                            # watchdog: refused connections and partial lines do not
+                            if self._receive():
+                                last_heard = time.monotonic()
                         except _EndSession as why:
                             self._end_session(sel, str(why))
                 if self._client is not None and time.monotonic() - last_heard > self.idle_timeout_s:
@@ -170,11 +172,12 @@ class BoxServer:
         self.close()
 
     # --- sessions -------------------------------------------------------------------
-    def _accept(self, sel: selectors.BaseSelector) -> None:
+    def _accept(self, sel: selectors.BaseSelector) -> bool:
+        """Accept a connection; True when it became the controlling client."""
         try:
             conn, peer = self._listener.accept()
         except OSError:
-            return
+            return False
         if self._client is not None:
             try:
                 conn.settimeout(1.0)
@@ -191,13 +194,14 @@ class BoxServer:
                 pass
             conn.close()
             self._say(f"refused {peer}: busy")
-            return
+            return False
         conn.setblocking(True)
         conn.settimeout(self.idle_timeout_s)
         conn.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
         self._client, self._buf, self._hello = conn, b"", False
         sel.register(conn, selectors.EVENT_READ, "client")
         self._say(f"client {peer} connected")
+        return True
 
     def _end_session(self, sel: selectors.BaseSelector, why: str) -> None:
         conn, self._client = self._client, None
@@ -222,7 +226,8 @@ class BoxServer:
         except SoftPadError as exc:
             self._say(f"could not close the valves: {exc}")
 
-    def _receive(self) -> None:
+    def _receive(self) -> bool:
+        """Handle the complete lines received; True when one was a valid request."""
         conn = self._client
         assert conn is not None
         try:
@@ -232,16 +237,19 @@ class BoxServer:
         if not chunk:
             raise _EndSession("client disconnected")
         self._buf += chunk
+        valid = False
         while True:
             i = self._buf.find(b"\n")
             if i < 0:
                 if len(self._buf) > MAX_LINE_BYTES:
                     self._reply({"ok": False, "kind": "input", "error": "message too long"})
                     raise _EndSession("message too long")
-                return
+                return valid
             line, self._buf = self._buf[:i], self._buf[i + 1 :]
             if line.strip():
-                self._reply(self._handle(line))
+                reply = self._handle(line)
+                valid = valid or bool(reply.get("ok"))
+                self._reply(reply)
 
     def _reply(self, message: dict[str, Any]) -> None:
         conn = self._client

@@ -12,7 +12,7 @@ from softpad.cli._args import Renamed, add_json_force, finite_float
 from softpad.cli._output import emit, say
 from softpad.cli._paths import atomic_path, check_output
 from softpad.cli._record import add_record_option, open_recorder, run_metadata
-from softpad.errors import EXIT_FAILED, EXIT_OK, InputError
+from softpad.errors import EXIT_FAILED, EXIT_HARDWARE, EXIT_OK, HardwareFault, InputError
 
 _EPILOG = """examples:
   softpad run --objects banana
@@ -155,6 +155,8 @@ def run(args: argparse.Namespace) -> int:
             result = run_simulated(
                 names, box, params, Tee(log, recorder, live), gripper=args.gripper
             )
+        except HardwareFault as exc:
+            return _report_fault(args, log, names, exc)
         except SoftPadError as exc:
             exc.partial = {"objects": names, "events": _events(log), "frames": len(log)}
             raise
@@ -211,6 +213,42 @@ def _live(port: int | None, box: Any, json_mode: bool) -> Any:
     live = FoxgloveLive(port, robot_state=robot)
     say(f"foxglove: {live.url} (port {live.port})", json_mode)
     return live
+
+
+def _report_fault(args: argparse.Namespace, log: Any, names: list[str], exc: Exception) -> int:
+    """Print what was detected and the safe state reached; the hardware-fault exit code.
+
+    With ``--json``: ``outcome``, ``faults``, ``safe_state`` and ``phases`` at the top and the
+    contract's ``error`` object (kind ``hardware``, message, events and frames recorded so far).
+    """
+    faults = [f.to_dict() for f in getattr(exc, "faults", ())]
+    safe = getattr(exc, "safe_state", None)
+    d = {
+        "outcome": "fault",
+        "objects": names,
+        "faults": faults,
+        "safe_state": None if safe is None else safe.to_dict(),
+        "phases": [
+            {"phase": e["phase"], "t_s": round(t, 4)} for t, k, e in log.events if k == "phase"
+        ],
+        "error": {
+            "kind": "hardware",
+            "message": str(exc),
+            "events": _events(log),
+            "frames": len(log),
+        },
+    }
+    if args.json:
+        emit(d)
+    else:
+        for f in faults:
+            print(f"t = {f['t_s']:7.2f} s  fault on channel {f['channel']} ({f['cause']})")
+        if safe is not None:
+            kpa = ", ".join("nan" if v != v else f"{v / 1e3:.3f}" for v in safe.pressures_pa)
+            state = "verified" if safe.verified else f"NOT verified: {safe.reason}"
+            print(f"safe state {state}; pressures {kpa} kPa")
+    print(f"softpad run: error: hardware fault: {exc}", file=sys.stderr)
+    return EXIT_HARDWARE
 
 
 def _kpa(values: Any) -> str:

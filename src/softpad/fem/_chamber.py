@@ -20,13 +20,14 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from softpad import thesis
 from softpad.errors import InputError, check_finite
 from softpad.fem._geometry import LoadPatch, MeshOptions, ModuleGeometry
 from softpad.fem._materials import MaterialModel
 from softpad.fem._model import ModuleModel, ProgressCallback
-from softpad.fem._results import as_list, new_axes, write_csv
+from softpad.fem._results import as_list, label_axes, new_axes, write_csv
 
 #: Standard atmosphere, Pa.
 ATMOSPHERIC_PRESSURE_PA = 101_325.0
@@ -135,14 +136,12 @@ class ChamberResult:
         m = np.linspace(0.0, float(self.mass_kg.max()), 50)
         ax.plot(m * 1e3, m * self.rise_per_kg_pa * 1e-3, "--", label="small-load slope")
         ax.axhline(threshold_pa * 1e-3, color="k", lw=0.8, label="threshold")
-        ax.set_xlabel("mass on the footprint (g)")
-        ax.set_ylabel("pressure rise (kPa)")
-        ax.set_title(
-            f"{self.model}, p0 = {self.initial_pressure_pa * 1e-3:g} kPa, {self.footprint.describe()}"
+        return label_axes(
+            ax,
+            "mass on the footprint (g)",
+            "pressure rise (kPa)",
+            title=f"{self.model}, p0 = {self.initial_pressure_pa * 1e-3:g} kPa, {self.footprint.describe()}",
         )
-        ax.grid(True, alpha=0.3)
-        ax.legend()
-        return ax
 
 
 def sealed_rise_per_force(
@@ -202,6 +201,39 @@ def sealed_chamber_study(
     For each mass the sealed equilibrium is found by a secant iteration on the pressure,
     each evaluation a finite-element solve at ``(p, F = m g)`` with base contact.
     """
+    p0, vd, pa, masses = _checked_inputs(
+        initial_pressure_pa, dead_volume_m3, atmospheric_pa, masses_kg
+    )
+    model = ModuleModel(material, geometry=geometry, mesh=mesh, load_patch=footprint, contact=True)
+    v0 = model.solve(p0, 0.0).volume_m3
+    rise_per_n, compliance = sealed_rise_per_force(model, vd, pa)
+    gas_amount = (pa + p0) * (v0 + vd)
+
+    pressures, volumes, heights = _sealed_series(
+        model, masses, p0, rise_per_n, vd, pa, gas_amount, progress
+    )
+    return ChamberResult(
+        model=model.material.name,
+        initial_pressure_pa=p0,
+        initial_volume_m3=v0,
+        dead_volume_m3=vd,
+        footprint=footprint,
+        mass_kg=masses,
+        pressure_pa=pressures,
+        volume_m3=volumes,
+        height_m=heights,
+        rise_per_kg_pa=rise_per_n * GRAVITY_M_PER_S2,
+        compliance_m3_per_pa=compliance,
+    )
+
+
+def _checked_inputs(
+    initial_pressure_pa: float,
+    dead_volume_m3: float,
+    atmospheric_pa: float,
+    masses_kg: Sequence[float],
+) -> tuple[float, float, float, NDArray[np.float64]]:
+    """The inputs of :func:`sealed_chamber_study`, checked: p0, dead volume, ambient, masses."""
     p0 = check_finite("initial_pressure_pa", initial_pressure_pa)
     if not 0.0 < p0 <= 10_000.0:
         raise InputError(f"initial pressure {p0:g} Pa outside (0, 10000] Pa")
@@ -215,50 +247,58 @@ def sealed_chamber_study(
     if masses.size == 0 or np.any(masses <= 0) or np.any(np.diff(masses) <= 0):
         raise InputError(f"masses must be positive and increasing, got {masses.tolist()} kg")
 
-    model = ModuleModel(material, geometry=geometry, mesh=mesh, load_patch=footprint, contact=True)
-    state0 = model.solve(p0, 0.0)
-    v0 = state0.volume_m3
-    rise_per_n, compliance = sealed_rise_per_force(model, vd, pa)
-    gas_amount = (pa + p0) * (v0 + vd)
+    return p0, vd, pa, masses
 
+
+def _sealed_equilibrium(
+    model: ModuleModel,
+    force: float,
+    x0: float,
+    x1: float,
+    vd: float,
+    pa: float,
+    gas_amount: float,
+) -> None:
+    """Solve ``model`` at the pressure where the sealed gas (amount ``gas_amount``, dead volume
+    ``vd``, ambient ``pa``) balances ``force``: a secant iteration from ``x0`` and ``x1``, Pa."""
+
+    def mismatch(p: float) -> float:
+        st = model.solve(max(p, 0.0), force)
+        return (pa + p) * (st.volume_m3 + vd) - gas_amount
+
+    f0, f1 = mismatch(x0), mismatch(x1)
+    for _ in range(30):
+        if abs(f1) < 1e-9 * gas_amount or f1 == f0:
+            break
+        x2 = x1 - f1 * (x1 - x0) / (f1 - f0)
+        x0, f0 = x1, f1
+        x1, f1 = x2, mismatch(x2)
+        if abs(x1 - x0) < 1e-3:
+            break
+
+
+def _sealed_series(
+    model: ModuleModel,
+    masses: NDArray[np.float64],
+    p0: float,
+    rise_per_n: float,
+    vd: float,
+    pa: float,
+    gas_amount: float,
+    progress: ProgressCallback | None,
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """Sealed equilibrium pressure (Pa), chamber volume (m^3) and centre height (m) for each
+    of the increasing ``masses`` (kg), each solve starting from the previous one."""
     pressures, volumes, heights = [], [], []
-    total = len(masses)
     p_prev = p0
     for i, m in enumerate(masses):
         force = m * GRAVITY_M_PER_S2
-
-        def mismatch(p: float, force: float = force) -> float:
-            st = model.solve(max(p, 0.0), force)
-            return (pa + p) * (st.volume_m3 + vd) - gas_amount
-
-        x0 = p_prev
-        x1 = p0 + rise_per_n * force
-        f0, f1 = mismatch(x0), mismatch(x1)
-        for _ in range(30):
-            if abs(f1) < 1e-9 * gas_amount or f1 == f0:
-                break
-            x2 = x1 - f1 * (x1 - x0) / (f1 - f0)
-            x0, f0 = x1, f1
-            x1, f1 = x2, mismatch(x2)
-            if abs(x1 - x0) < 1e-3:
-                break
+        _sealed_equilibrium(model, force, p_prev, p0 + rise_per_n * force, vd, pa, gas_amount)
         st = model.state()
         pressures.append(model.pressure_pa)
         volumes.append(st.volume_m3)
         heights.append(st.height_m)
         p_prev = model.pressure_pa
         if progress is not None:
-            progress(i + 1, total)
-    return ChamberResult(
-        model=model.material.name,
-        initial_pressure_pa=p0,
-        initial_volume_m3=v0,
-        dead_volume_m3=vd,
-        footprint=footprint,
-        mass_kg=masses,
-        pressure_pa=np.array(pressures),
-        volume_m3=np.array(volumes),
-        height_m=np.array(heights),
-        rise_per_kg_pa=rise_per_n * GRAVITY_M_PER_S2,
-        compliance_m3_per_pa=compliance,
-    )
+            progress(i + 1, len(masses))
+    return np.array(pressures), np.array(volumes), np.array(heights)

@@ -34,7 +34,7 @@ from softpad.errors import InputError, check_finite
 from softpad.fem._geometry import LoadPatch, MeshOptions, ModuleGeometry
 from softpad.fem._materials import MaterialModel
 from softpad.fem._model import ModuleModel, ProgressCallback
-from softpad.fem._results import new_axes
+from softpad.fem._results import label_axes, new_axes
 
 #: Path of the characteristic shipped with the package.
 CHARACTERISTIC_PATH = Path(str(resources.files("softpad") / "data" / "module_characteristic.npz"))
@@ -166,12 +166,14 @@ class ModuleCharacteristic:
         ax = new_axes(ax)
         for j, f in enumerate(self.load_n):
             ax.plot(self.pressure_pa * 1e-3, self.volume_m3[:, j] * 1e6, label=f"{f:g} N")
-        ax.set_xlabel("pressure (kPa)")
-        ax.set_ylabel("chamber volume (mL)")
-        ax.set_title(f"module characteristic ({self.meta.get('model', '?')})")
-        ax.grid(True, alpha=0.3)
-        ax.legend(fontsize="small", ncol=2)
-        return ax
+        return label_axes(
+            ax,
+            "pressure (kPa)",
+            "chamber volume (mL)",
+            title=f"module characteristic ({self.meta.get('model', '?')})",
+            fontsize="small",
+            ncol=2,
+        )
 
 
 def _bilinear(xs: np.ndarray, ys: np.ndarray, table: np.ndarray, x: float, y: float) -> float:
@@ -227,19 +229,10 @@ def module_characteristic(
     """
     p = np.asarray(DEFAULT_PRESSURES_PA if pressures_pa is None else pressures_pa, dtype=float)
     f = np.asarray(DEFAULT_LOADS_N if loads_n is None else loads_n, dtype=float)
-    for name, arr in (("pressure", p), ("load", f)):
-        for v in arr:
-            check_finite(name, v)
-        if arr.size == 0 or arr[0] != 0.0 or np.any(np.diff(arr) <= 0):
-            raise InputError(f"{name} grid must start at 0 and increase, got {arr.tolist()}")
-    if p.size < 2:
-        raise InputError("pressure grid needs at least two values")
-    if p[-1] > 10_000.0:
-        raise InputError(f"pressure {p[-1]:g} Pa above 10000 Pa")
+    _check_grids(p, f)
     gap = check_finite("gap_volume_m3", gap_volume_m3)
     if gap < 0:
         raise InputError(f"gap volume must be >= 0 m^3, got {gap!r}")
-
     model = ModuleModel(material, geometry=geometry, mesh=mesh, load_patch=load_patch, contact=True)
     volume = np.zeros((p.size, f.size))
     height = np.zeros((p.size, f.size))
@@ -255,8 +248,27 @@ def module_characteristic(
             if progress is not None:
                 progress(done, total)
         model.restore(saved)
+    return ModuleCharacteristic(p, f, volume, height, _metadata(model, load_patch, gap))
+
+
+def _check_grids(p: np.ndarray, f: np.ndarray) -> None:
+    """Raise :class:`InputError` unless both grids start at 0 and increase, p has >= 2 values
+    and ends at or below 10 kPa."""
+    for name, arr in (("pressure", p), ("load", f)):
+        for v in arr:
+            check_finite(name, v)
+        if arr.size == 0 or arr[0] != 0.0 or np.any(np.diff(arr) <= 0):
+            raise InputError(f"{name} grid must start at 0 and increase, got {arr.tolist()}")
+    if p.size < 2:
+        raise InputError("pressure grid needs at least two values")
+    if p[-1] > 10_000.0:
+        raise InputError(f"pressure {p[-1]:g} Pa above 10000 Pa")
+
+
+def _metadata(model: ModuleModel, load_patch: LoadPatch, gap: float) -> dict[str, Any]:
+    """What a characteristic table records about the model it was computed with."""
     geo = model.geometry
-    meta = {
+    return {
         "model": model.material.name,
         "material": model.material.to_dict(),
         "thickness_m": geo.thickness_m,
@@ -276,7 +288,6 @@ def module_characteristic(
             "grading": model.mesh_options.grading,
         },
     }
-    return ModuleCharacteristic(p, f, volume, height, meta)
 
 
 def load_characteristic(path: str | Path | None = None) -> ModuleCharacteristic:

@@ -20,7 +20,7 @@ from softpad.errors import InputError, SoftPadError
 from softpad.fem._geometry import MeshOptions, ModuleGeometry
 from softpad.fem._materials import MODEL_NAMES, MaterialModel, get_material
 from softpad.fem._model import ProgressCallback
-from softpad.fem._results import as_list, new_axes, write_csv
+from softpad.fem._results import as_list, label_axes, new_axes, write_csv
 from softpad.fem._studies import InflationResult, inflation_sweep
 
 
@@ -153,11 +153,7 @@ class FitResult:
             "-",
             label=f"{self.material.name} fit (RMSE {self.rmse_m * 1e3:.3g} mm)",
         )
-        ax.set_xlabel("pressure (kPa)")
-        ax.set_ylabel("centre height (mm)")
-        ax.grid(True, alpha=0.3)
-        ax.legend()
-        return ax
+        return label_axes(ax, "pressure (kPa)", "centre height (mm)")
 
 
 def fit_material(
@@ -194,42 +190,14 @@ def fit_material(
     """
     from scipy.optimize import least_squares
 
-    p = np.asarray(pressure_pa, dtype=float)
-    h = np.asarray(height_m, dtype=float)
-    if p.shape != h.shape or p.ndim != 1 or p.size < 2:
-        raise InputError(
-            f"need matching 1-D pressure and height arrays (>= 2), got {p.shape}, {h.shape}"
-        )
+    p, h = _measurements(pressure_pa, height_m)
     if not (np.all(np.isfinite(p)) and np.all(np.isfinite(h))):
         raise InputError("measurements contain non-finite values")
     start = get_material(model)
-    names = (
-        tuple(free)
-        if free is not None
-        else tuple(n for n in start.parameter_names if not n.startswith("alpha"))
-    )
-    unknown = [n for n in names if n not in start.parameters]
-    if unknown or not names:
-        raise InputError(
-            f"cannot fit {unknown or 'no'} parameter(s) of {start.name!r}; "
-            f"it has {list(start.parameter_names)}"
-        )
+    names = _free_parameters(start, free)
     scale = np.array([start.parameters[n] if start.parameters[n] != 0 else 1.0 for n in names])
-    evaluations = 0
-    penalty = np.full(p.size, 1.0)  # 1 m: far worse than any real fit
-
-    def residuals(x: np.ndarray) -> np.ndarray:
-        nonlocal evaluations
-        evaluations += 1
-        if progress is not None:
-            progress(evaluations, max_evaluations)
-        try:
-            trial = start.with_parameters(**dict(zip(names, x * scale, strict=True)))
-            sim = _simulate(trial, p, geometry, mesh)
-        except SoftPadError:
-            return penalty
-        return np.interp(p, sim.pressure_pa, sim.height_m) - h
-
+    residuals = _HeightResiduals(start, names, scale, p, h, geometry, mesh)
+    residuals.progress, residuals.budget = progress, max_evaluations
     initial_res = residuals(np.ones(len(names)))
     solution = least_squares(
         residuals,
@@ -250,7 +218,7 @@ def fit_material(
         pressure_pa=p,
         height_m=h,
         predicted_m=final + h,
-        evaluations=evaluations,
+        evaluations=residuals.evaluations,
     )
 
 
@@ -303,11 +271,7 @@ class ComparisonResult:
             if name in self.curves:
                 c = self.curves[name]
                 ax.plot(c.pressure_pa * 1e-3, c.height_m * 1e3, label=name)
-        ax.set_xlabel("pressure (kPa)")
-        ax.set_ylabel("centre height (mm)")
-        ax.grid(True, alpha=0.3)
-        ax.legend()
-        return ax
+        return label_axes(ax, "pressure (kPa)", "centre height (mm)")
 
 
 def compare_models(
@@ -319,10 +283,7 @@ def compare_models(
     progress: ProgressCallback | None = None,
 ) -> ComparisonResult:
     """Rank material models by the RMSE of their centre height against the data."""
-    p = np.asarray(pressure_pa, dtype=float)
-    h = np.asarray(height_m, dtype=float)
-    if p.shape != h.shape or p.ndim != 1 or p.size < 2:
-        raise InputError("need matching 1-D pressure and height arrays with >= 2 entries")
+    p, h = _measurements(pressure_pa, height_m)
     mats = [get_material(m) for m in models]
     curves: dict[str, InflationResult] = {}
     errors = []
@@ -339,3 +300,65 @@ def compare_models(
     return ComparisonResult(
         tuple(mats[i].name for i in order), np.asarray(errors)[order], curves, p, h
     )
+
+
+def _measurements(
+    pressure_pa: Sequence[float] | np.ndarray, height_m: Sequence[float] | np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Measured pressures (Pa) and heights (m) as matching 1-D arrays of >= 2 entries."""
+    p = np.asarray(pressure_pa, dtype=float)
+    h = np.asarray(height_m, dtype=float)
+    if p.shape != h.shape or p.ndim != 1 or p.size < 2:
+        raise InputError(
+            f"need matching 1-D pressure and height arrays (>= 2), got {p.shape}, {h.shape}"
+        )
+    return p, h
+
+
+def _free_parameters(start: MaterialModel, free: Sequence[str] | None) -> tuple[str, ...]:
+    """Names of the parameters to fit: ``free``, or every modulus (not Ogden's exponents)."""
+    names = (
+        tuple(free)
+        if free is not None
+        else tuple(n for n in start.parameter_names if not n.startswith("alpha"))
+    )
+    unknown = [n for n in names if n not in start.parameters]
+    if unknown or not names:
+        raise InputError(
+            f"cannot fit {unknown or 'no'} parameter(s) of {start.name!r}; "
+            f"it has {list(start.parameter_names)}"
+        )
+    return names
+
+
+class _HeightResiduals:
+    """Simulated minus measured heights (m) of ``start`` with parameters ``names`` set to
+    ``x * scale``; counts its evaluations (one inflation sweep each)."""
+
+    def __init__(
+        self,
+        start: MaterialModel,
+        names: tuple[str, ...],
+        scale: np.ndarray,
+        p: np.ndarray,
+        h: np.ndarray,
+        geometry: ModuleGeometry | None,
+        mesh: MeshOptions | None,
+    ) -> None:
+        self.start, self.names, self.scale = start, names, scale
+        self.p, self.h, self.geometry, self.mesh = p, h, geometry, mesh
+        self.evaluations = 0
+        self.progress: ProgressCallback | None = None
+        self.budget = 0
+        self._penalty = np.full(p.size, 1.0)  # 1 m: far worse than any real fit
+
+    def __call__(self, x: np.ndarray) -> np.ndarray:
+        self.evaluations += 1
+        if self.progress is not None:
+            self.progress(self.evaluations, self.budget)
+        try:
+            trial = self.start.with_parameters(**dict(zip(self.names, x * self.scale, strict=True)))
+            sim = _simulate(trial, self.p, self.geometry, self.mesh)
+        except SoftPadError:
+            return self._penalty
+        return np.interp(self.p, sim.pressure_pa, sim.height_m) - self.h

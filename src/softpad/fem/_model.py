@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, NoReturn
 
 import numpy as np
 
@@ -145,6 +145,20 @@ class ModuleModel:
         self.contact = bool(contact)
         self.solver = solver or SolverOptions()
 
+        self._fem = fem
+        quadratic = self._build_mesh()
+        self._build_fields(quadratic)
+        self._build_boundaries()
+
+        self.pressure_pa = 0.0
+        self.load_n = 0.0
+        self._last_iterations = 0
+        self._previous: tuple[float, float, list[np.ndarray]] | None = None
+
+    def _build_mesh(self) -> bool:
+        """Mesh one quarter of the layer (symmetry) and its lower and upper faces; True for
+        quadratic (hex27) elements."""
+        fem = self._fem
         a, t = self.geometry.half_width_m, self.geometry.thickness_m
         n, nz = self.mesh_options.cells_in_plane, self.mesh_options.cells_through_thickness
         mesh_ = fem.Cube(a=(0.0, 0.0, 0.0), b=(1.0, 1.0, t), n=(n + 1, n + 1, nz + 1))
@@ -157,7 +171,6 @@ class ModuleModel:
         else:
             region = fem.RegionHexahedron(mesh_)
             boundary_region = fem.RegionHexahedronBoundary
-        self._fem = fem
         self.mesh = mesh_
         points = mesh_.points
         tol = 1e-9 * a
@@ -165,7 +178,13 @@ class ModuleModel:
         top = np.abs(points[:, 2] - t) < tol
         self._bottom_region = boundary_region(mesh_, mask=bottom)
         self._top_region = boundary_region(mesh_, mask=top)
+        self._region = region
+        return quadratic
 
+    def _build_fields(self, quadratic: bool) -> None:
+        """The displacement field(s), the nearly incompressible solid and the chamber pressure."""
+        fem = self._fem
+        region = self._region
         umat = self.material.felupe_material()
         bulk = self.material.bulk_modulus_pa
         if quadratic:
@@ -178,6 +197,14 @@ class ModuleModel:
         self._bottom_field.link(self.field)
         self._pressure = fem.SolidBodyPressure(self._bottom_field)
 
+    def _build_boundaries(self) -> None:
+        """Symmetry and clamping, the centre point, the contact candidates and the patch load."""
+        fem = self._fem
+        a, t = self.geometry.half_width_m, self.geometry.thickness_m
+        points = self.mesh.points
+        tol = 1e-9 * a
+        bottom = np.abs(points[:, 2]) < tol
+        top = np.abs(points[:, 2] - t) < tol
         u = self.field[0]
         boundaries = {
             "symmetry-x": fem.Boundary(u, fx=0.0, skip=(0, 1, 1)),
@@ -195,11 +222,6 @@ class ModuleModel:
         self._contact_points = np.flatnonzero(bottom & ~clamped)
         self._contact_area = self._lumped_area(self._bottom_region)[self._contact_points]
         self._load_unit = self._patch_load_vector(self.load_patch)
-
-        self.pressure_pa = 0.0
-        self.load_n = 0.0
-        self._last_iterations = 0
-        self._previous: tuple[float, float, list[np.ndarray]] | None = None
 
     # ------------------------------------------------------------------ set-up helpers
     def _lumped_area(self, region: Any) -> np.ndarray:
@@ -455,79 +477,29 @@ class ModuleModel:
             a pressure maximum of the inflation curve); the message names the pressure and
             load reached.
         """
-        p1 = check_finite("pressure_pa", pressure_pa)
-        f1 = self.load_n if load_n is None else check_finite("load_n", load_n)
-        if p1 < 0:
-            raise InputError(f"pressure must be >= 0 Pa, got {p1!r} Pa")
-        if f1 < 0:
-            raise InputError(f"load must be >= 0 N, got {f1!r} N")
+        p1, f1 = self._target(pressure_pa, load_n)
         p0, f0 = self.pressure_pa, self.load_n
         dp, df = p1 - p0, f1 - f0
         if dp == 0 and df == 0:
             return self.state()
-        opts = self.solver
         # Pure inflation paths are stepped in the cube root of the pressure: the inflated
         # membrane's deflection grows about as p^(1/3), so equal steps in p^(1/3) give
         # similar displacement increments and a good secant predictor.
         cube = df == 0 and dp != 0
 
-        def at(s: float) -> tuple[float, float]:
-            if cube:
-                c0, c1 = np.cbrt(p0), np.cbrt(p1)
-                return float((c0 + s * (c1 - c0)) ** 3), f0
-            return p0 + s * dp, f0 + s * df
-
-        if cube:
-            c0, c1 = np.cbrt(p0), np.cbrt(p1)
-            inflated = p0 > 0 and self.height_m > self.geometry.thickness_m
-            first_pa = opts.max_step_pa if inflated else opts.initial_step_pa
-            first = np.cbrt(max(p0 + np.sign(dp) * first_pa, 0.0)) - c0
-            step = min(1.0, abs(first / (c1 - c0)))
-            max_step = 1.0
-        else:
-            candidates = [opts.initial_step_pa / abs(dp)] if dp else []
-            candidates += [opts.initial_step_n / abs(df)] if df else []
-            step = min(1.0, *candidates)
-            limits = [opts.max_step_pa / abs(dp)] if dp else []
-            limits += [opts.max_step_n / abs(df)] if df else []
-            max_step = max(step, min(1.0, *limits))
-        min_step = step * opts.min_fraction
+        at = _path(p0, p1, f0, f1, cube)
+        step, max_step = self._initial_steps(p0, p1, dp, df, cube)
+        min_step = step * self.solver.min_fraction
         s = 0.0
-        history: list[tuple[float, list[np.ndarray]]] = []
-        if self._previous is not None and cube and self._previous[1] == f0:
-            # continue the secant predictor of the previous inflation call
-            prev_p, _, prev_values = self._previous
-            c_prev, c0_, c1_ = np.cbrt(prev_p), np.cbrt(p0), np.cbrt(p1)
-            if c1_ != c0_ and c_prev != c0_:
-                history.append(((c_prev - c0_) / (c1_ - c0_), prev_values))
-        history.append((0.0, self._values()))
+        history = self._start_history(p0, p1, f0, cube)
         while s < 1.0 - 1e-12:
             trial = min(1.0, s + step)
-            start = self._values()
-            saved = self._solid.checkpoint() if self.mesh_options.element == "hex8" else None
-            if len(history) >= 2:
-                (s_a, u_a), (s_b, u_b) = history[-2], history[-1]
-                ratio = (trial - s_b) / (s_b - s_a)
-                self._set_values([b + ratio * (b - a_) for a_, b in zip(u_a, u_b, strict=True)])
-                self._sync_internal_state()
-            p_trial, f_trial = at(trial)
-            iterations = self._newton(p_trial, f_trial)
+            iterations = self._attempt(history, trial, at(trial))
             if iterations < 0:
-                if saved is not None:
-                    self._solid.restore(saved)
-                else:
-                    self._set_values(start)
                 step *= 0.5
                 history = history[-1:]
                 if step < min_step:
-                    p_reached, f_reached = at(s)
-                    self.pressure_pa, self.load_n = p_reached, f_reached
-                    raise ConvergenceError(
-                        f"no equilibrium beyond pressure {p_reached:.1f} Pa and load "
-                        f"{f_reached:.3g} N on the way to {p1:.1f} Pa / {f1:.3g} N for model "
-                        f"{self.material.name!r} (beyond its convergence: a pressure maximum "
-                        "of the inflation curve or a snap-through)"
-                    )
+                    self._give_up(*at(s), p1, f1)
                 continue
             s = trial
             self._last_iterations = iterations
@@ -542,6 +514,91 @@ class ModuleModel:
             self._previous = (at(history[-2][0])[0], f0, history[-2][1])
         self.pressure_pa, self.load_n = p1, f1
         return self.state()
+
+    def _attempt(
+        self,
+        history: list[tuple[float, list[np.ndarray]]],
+        trial: float,
+        target: tuple[float, float],
+    ) -> int:
+        """Predict the state at path fraction ``trial`` and solve at ``target`` (Pa, N); the
+        Newton iterations, or -1 with the state before the attempt restored."""
+        start = self._values()
+        saved = self._solid.checkpoint() if self.mesh_options.element == "hex8" else None
+        self._predict(history, trial)
+        p_trial, f_trial = target
+        iterations = self._newton(p_trial, f_trial)
+        if iterations < 0:
+            if saved is not None:
+                self._solid.restore(saved)
+            else:
+                self._set_values(start)
+        return iterations
+
+    def _target(self, pressure_pa: float, load_n: float | None) -> tuple[float, float]:
+        """Checked target pressure (Pa) and load (N) of :meth:`solve`."""
+        p1 = check_finite("pressure_pa", pressure_pa)
+        f1 = self.load_n if load_n is None else check_finite("load_n", load_n)
+        if p1 < 0:
+            raise InputError(f"pressure must be >= 0 Pa, got {p1!r} Pa")
+        if f1 < 0:
+            raise InputError(f"load must be >= 0 N, got {f1!r} N")
+        return p1, f1
+
+    def _give_up(self, p_reached: float, f_reached: float, p1: float, f1: float) -> NoReturn:
+        """Keep the state reached and raise :class:`ConvergenceError` naming it."""
+        self.pressure_pa, self.load_n = p_reached, f_reached
+        raise ConvergenceError(
+            f"no equilibrium beyond pressure {p_reached:.1f} Pa and load "
+            f"{f_reached:.3g} N on the way to {p1:.1f} Pa / {f1:.3g} N for model "
+            f"{self.material.name!r} (beyond its convergence: a pressure maximum "
+            "of the inflation curve or a snap-through)"
+        )
+
+    def _initial_steps(
+        self, p0: float, p1: float, dp: float, df: float, cube: bool
+    ) -> tuple[float, float]:
+        """First and largest step of a path from ``p0`` to ``p1`` (and a load change ``df``),
+        as fractions of the path (in the cube root of the pressure when ``cube``)."""
+        opts = self.solver
+        if cube:
+            c0, c1 = np.cbrt(p0), np.cbrt(p1)
+            inflated = p0 > 0 and self.height_m > self.geometry.thickness_m
+            first_pa = opts.max_step_pa if inflated else opts.initial_step_pa
+            first = np.cbrt(max(p0 + np.sign(dp) * first_pa, 0.0)) - c0
+            step = min(1.0, abs(first / (c1 - c0)))
+            max_step = 1.0
+        else:
+            candidates = [opts.initial_step_pa / abs(dp)] if dp else []
+            candidates += [opts.initial_step_n / abs(df)] if df else []
+            step = min(1.0, *candidates)
+            limits = [opts.max_step_pa / abs(dp)] if dp else []
+            limits += [opts.max_step_n / abs(df)] if df else []
+            max_step = max(step, min(1.0, *limits))
+        return step, max_step
+
+    def _start_history(
+        self, p0: float, p1: float, f0: float, cube: bool
+    ) -> list[tuple[float, list[np.ndarray]]]:
+        """Solutions at known path fractions for the secant predictor: the current state, and
+        the previous inflation call's last state when this call continues it."""
+        history: list[tuple[float, list[np.ndarray]]] = []
+        if self._previous is not None and cube and self._previous[1] == f0:
+            # continue the secant predictor of the previous inflation call
+            prev_p, _, prev_values = self._previous
+            c_prev, c0_, c1_ = np.cbrt(prev_p), np.cbrt(p0), np.cbrt(p1)
+            if c1_ != c0_ and c_prev != c0_:
+                history.append(((c_prev - c0_) / (c1_ - c0_), prev_values))
+        history.append((0.0, self._values()))
+        return history
+
+    def _predict(self, history: list[tuple[float, list[np.ndarray]]], trial: float) -> None:
+        """Set the field to the secant extrapolation of the last two solutions to ``trial``."""
+        if len(history) >= 2:
+            (s_a, u_a), (s_b, u_b) = history[-2], history[-1]
+            ratio = (trial - s_b) / (s_b - s_a)
+            self._set_values([b + ratio * (b - a_) for a_, b in zip(u_a, u_b, strict=True)])
+            self._sync_internal_state()
 
     def pressure_sensitivity(self, with_compliance: bool = False) -> Any:
         """``du/dp`` of every point at the current state, m/Pa, shape (npoints, 3).
@@ -610,3 +667,19 @@ class ModuleModel:
             field_data={},
         )
         mesh.write(path)
+
+
+def _path(
+    p0: float, p1: float, f0: float, f1: float, cube: bool
+) -> Callable[[float], tuple[float, float]]:
+    """Pressure (Pa) and load (N) at fraction ``s`` of the path from ``(p0, f0)`` to
+    ``(p1, f1)``: linear, or linear in the cube root of the pressure when ``cube``."""
+    dp, df = p1 - p0, f1 - f0
+
+    def at(s: float) -> tuple[float, float]:
+        if cube:
+            c0, c1 = np.cbrt(p0), np.cbrt(p1)
+            return float((c0 + s * (c1 - c0)) ** 3), f0
+        return p0 + s * dp, f0 + s * df
+
+    return at

@@ -38,6 +38,17 @@ def new_axes(ax: Any = None) -> Any:
     return axes
 
 
+def label_axes(ax: Any, xlabel: str, ylabel: str, title: str | None = None, **legend: Any) -> Any:
+    """Label ``ax``, add a light grid and a legend (``legend`` keywords); return ``ax``."""
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    if title is not None:
+        ax.set_title(title)
+    ax.grid(True, alpha=0.3)
+    ax.legend(**legend)
+    return ax
+
+
 def save_figure(ax: Any, path: str | Path) -> Path:
     """Save the figure of ``ax`` as an image at ``path`` and close it."""
     import matplotlib.pyplot as plt

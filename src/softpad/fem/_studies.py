@@ -19,7 +19,7 @@ from softpad.errors import InputError, check_finite
 from softpad.fem._geometry import LoadPatch, MeshOptions, ModuleGeometry
 from softpad.fem._materials import MaterialModel, get_material
 from softpad.fem._model import ModuleModel, ProgressCallback
-from softpad.fem._results import as_list, new_axes, write_csv
+from softpad.fem._results import as_list, label_axes, new_axes, write_csv
 
 #: Highest pressure the studies accept, Pa (thesis Fig. 7.2 spans 0..3 kPa).
 MAX_PRESSURE_PA = 10_000.0
@@ -113,11 +113,7 @@ class InflationResult:
         ax.plot(
             self.pressure_pa * 1e-3, self.height_m * 1e3, marker="o", label=self.model, **kwargs
         )
-        ax.set_xlabel("pressure (kPa)")
-        ax.set_ylabel("centre height (mm)")
-        ax.grid(True, alpha=0.3)
-        ax.legend()
-        return ax
+        return label_axes(ax, "pressure (kPa)", "centre height (mm)")
 
 
 def inflation_sweep(
@@ -213,11 +209,9 @@ class DesignResult:
         for name, h in zip(self.models, self.height_m, strict=True):
             ax.plot(self.values_m * 1e3, h * 1e3, marker="o", label=name)
         label = "upper-layer thickness" if self.parameter == "thickness" else "module width"
-        ax.set_xlabel(f"{label} (mm)")
-        ax.set_ylabel(f"centre height at {self.pressure_pa * 1e-3:g} kPa (mm)")
-        ax.grid(True, alpha=0.3)
-        ax.legend()
-        return ax
+        return label_axes(
+            ax, f"{label} (mm)", f"centre height at {self.pressure_pa * 1e-3:g} kPa (mm)"
+        )
 
 
 def design_sweep(
@@ -362,12 +356,12 @@ class StiffnessResult:
             touch = self.touches_base[:, j]
             if np.any(touch):
                 ax.plot(self.pressure_pa[touch] * 1e-3, k[touch, j], "kx")
-        ax.set_xlabel("pressure (kPa)")
-        ax.set_ylabel("equivalent stiffness (N/mm)")
-        ax.set_title(f"{self.model}; x: layer touches the base")
-        ax.grid(True, alpha=0.3)
-        ax.legend()
-        return ax
+        return label_axes(
+            ax,
+            "pressure (kPa)",
+            "equivalent stiffness (N/mm)",
+            title=f"{self.model}; x: layer touches the base",
+        )
 
 
 def stiffness_study(
@@ -524,11 +518,7 @@ class SensitivityResult:
             marker="s",
             label=f"{self.probe_mass_kg * 1e3:g} g probe detected at {self.threshold_pa:g} Pa",
         )
-        ax.set_xlabel("pressure (kPa)")
-        ax.set_ylabel(f"side of the sensitive square (mm), {self.model}")
-        ax.grid(True, alpha=0.3)
-        ax.legend()
-        return ax
+        return label_axes(ax, "pressure (kPa)", f"side of the sensitive square (mm), {self.model}")
 
 
 def sensitive_area_study(
@@ -561,11 +551,63 @@ def sensitive_area_study(
     dead_volume_m3
         Tubing dead volume, m^3 (default :data:`~softpad.fem.DEFAULT_DEAD_VOLUME_M3`).
     """
-    from softpad.fem._chamber import (
-        ATMOSPHERIC_PRESSURE_PA,
-        DEFAULT_DEAD_VOLUME_M3,
-        GRAVITY_M_PER_S2,
+    from softpad.fem._chamber import GRAVITY_M_PER_S2
+
+    p, probe, thr, vd, frac = _sensitivity_inputs(
+        pressures_pa, probe_mass_kg, threshold_pa, dead_volume_m3, fraction
     )
+    model = ModuleModel(material, geometry=geometry, mesh=mesh, contact=False)
+    areas, centre, detectable = [], [], []
+    for i, pi in enumerate(p):
+        area, c, reach = _sensitive_area_at(
+            model, float(pi), frac, probe * GRAVITY_M_PER_S2, thr, vd
+        )
+        areas.append(area)
+        centre.append(c)
+        detectable.append(reach)
+        _tick(progress, i + 1, len(p))
+    return SensitivityResult(
+        model.material.name,
+        p,
+        frac,
+        np.array(areas),
+        np.array(centre),
+        probe,
+        thr,
+        np.array(detectable),
+    )
+
+
+def _sensitive_area_at(
+    model: ModuleModel, pressure_pa: float, frac: float, weight_n: float, thr: float, vd: float
+) -> tuple[float, float, float]:
+    """At ``pressure_pa``: the area whose response is >= ``frac`` x the centre's (m^2), the
+    centre's response (m/Pa) and the area where ``weight_n`` raises the sealed pressure by
+    ``thr`` Pa or more (m^2)."""
+    from softpad.fem._chamber import ATMOSPHERIC_PRESSURE_PA
+
+    area_weights = model.top_face_area_weights()
+    top = area_weights > 0
+    model.solve(pressure_pa, 0.0)
+    dudp, compliance = model.pressure_sensitivity(with_compliance=True)
+    dw = dudp[:, 2]
+    c = dw[model.centre_top_point]
+    sensitive = top & (dw >= frac * c)
+    gas = (model.volume_m3() + vd) / (ATMOSPHERIC_PRESSURE_PA + pressure_pa)
+    rise = weight_n * dw / (compliance + gas)
+    detectable = 4.0 * float(area_weights[top & (rise >= thr)].sum())
+    return 4.0 * float(area_weights[sensitive].sum()), float(c), detectable
+
+
+def _sensitivity_inputs(
+    pressures_pa: Sequence[float] | np.ndarray | None,
+    probe_mass_kg: float,
+    threshold_pa: float,
+    dead_volume_m3: float | None,
+    fraction: float,
+) -> tuple[np.ndarray, float, float, float, float]:
+    """The inputs of :func:`sensitive_area_study`, checked and with their defaults."""
+    from softpad.fem._chamber import DEFAULT_DEAD_VOLUME_M3
 
     p = _pressures(np.linspace(500.0, 2800.0, 6) if pressures_pa is None else pressures_pa)
     probe = check_finite("probe_mass_kg", probe_mass_kg)
@@ -582,29 +624,4 @@ def sensitive_area_study(
     frac = check_finite("fraction", fraction)
     if not 0.0 < frac < 1.0:
         raise InputError(f"fraction must be in (0, 1), got {frac!r}")
-    model = ModuleModel(material, geometry=geometry, mesh=mesh, contact=False)
-    area_weights = model.top_face_area_weights()
-    top = area_weights > 0
-    areas, centre, detectable = [], [], []
-    for i, pi in enumerate(p):
-        model.solve(float(pi), 0.0)
-        dudp, compliance = model.pressure_sensitivity(with_compliance=True)
-        dw = dudp[:, 2]
-        c = dw[model.centre_top_point]
-        sensitive = top & (dw >= frac * c)
-        areas.append(4.0 * float(area_weights[sensitive].sum()))
-        centre.append(float(c))
-        gas = (model.volume_m3() + vd) / (ATMOSPHERIC_PRESSURE_PA + float(pi))
-        rise = probe * GRAVITY_M_PER_S2 * dw / (compliance + gas)
-        detectable.append(4.0 * float(area_weights[top & (rise >= thr)].sum()))
-        _tick(progress, i + 1, len(p))
-    return SensitivityResult(
-        model.material.name,
-        p,
-        frac,
-        np.array(areas),
-        np.array(centre),
-        probe,
-        thr,
-        np.array(detectable),
-    )
+    return p, probe, thr, vd, frac

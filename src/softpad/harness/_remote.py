@@ -71,69 +71,76 @@ def simulation_extensions(box: SimBox) -> dict[str, Handler]:
 
     Pass them to :class:`~softpad.box.BoxServer` (``extensions=``).
     """
-    world = box.world
-    robot = [SimulatedRobot(world)]
+    sim = _SimulationService(box)
+    return {
+        "sim.setup": sim.setup,
+        "sim.place": sim.place,
+        "robot.move_to": sim.move_to,
+        "robot.descend": sim.descend,
+        "robot.stop": sim.stop,
+        "robot.set_gripper": sim.set_gripper,
+        "robot.is_moving": lambda msg: {"moving": bool(sim.robot.is_moving())},
+        "robot.state": sim.state,
+        "robot.holding": lambda msg: {"holding": bool(sim.robot.holding())},
+        "robot.touches": sim.touches,
+    }
 
-    def setup(msg: dict[str, Any]) -> dict[str, Any]:
+
+class _SimulationService:
+    """The handlers of :func:`simulation_extensions`: a served box's world and the simulated
+    robot on it (replaced by each ``sim.setup``)."""
+
+    def __init__(self, box: SimBox) -> None:
+        self.world = box.world
+        self.robot = SimulatedRobot(self.world)
+
+    def setup(self, msg: dict[str, Any]) -> dict[str, Any]:
         mounting = msg.get("gripper")
         if mounting is not None:
             gripper = SimGripper.mounting(str(mounting))
-            if isinstance(world, AnalyticWorld):
-                world.gripper = gripper
-        robot[0] = SimulatedRobot(world)
-        lay = world.layout
+            if isinstance(self.world, AnalyticWorld):
+                self.world.gripper = gripper
+        self.robot = SimulatedRobot(self.world)
+        lay = self.world.layout
         return {"layout": [lay.rows, lay.cols, lay.pitch_m]}
 
-    def place(msg: dict[str, Any]) -> dict[str, Any]:
+    def place(self, msg: dict[str, Any]) -> dict[str, Any]:
         names = msg.get("objects")
         if not isinstance(names, list) or not all(isinstance(n, str) for n in names):
             raise InputError(f"sim.place: objects must be a list of names, got {names!r}")
         specs = [get_object(n) for n in names]  # every name checked before placing any
         for s in specs:
-            world.place_object(s)
+            self.world.place_object(s)
         return {}
 
-    def move_to(msg: dict[str, Any]) -> dict[str, Any]:
+    def move_to(self, msg: dict[str, Any]) -> dict[str, Any]:
         pose = ToolPose(*(_number(msg, k) for k in ("x_m", "y_m", "z_m", "yaw_rad")))
-        robot[0].move_to(pose, _number(msg, "speed_m_s"))
+        self.robot.move_to(pose, _number(msg, "speed_m_s"))
         return {}
 
-    def descend(msg: dict[str, Any]) -> dict[str, Any]:
-        robot[0].descend(_number(msg, "speed_m_s"), _number(msg, "min_z_m"))
+    def descend(self, msg: dict[str, Any]) -> dict[str, Any]:
+        self.robot.descend(_number(msg, "speed_m_s"), _number(msg, "min_z_m"))
         return {}
 
-    def stop(msg: dict[str, Any]) -> dict[str, Any]:
-        robot[0].stop()
+    def stop(self, msg: dict[str, Any]) -> dict[str, Any]:
+        self.robot.stop()
         return {}
 
-    def set_gripper(msg: dict[str, Any]) -> dict[str, Any]:
-        robot[0].set_gripper(_number(msg, "width_m"), _number(msg, "speed_m_s"))
+    def set_gripper(self, msg: dict[str, Any]) -> dict[str, Any]:
+        self.robot.set_gripper(_number(msg, "width_m"), _number(msg, "speed_m_s"))
         return {}
 
-    def state(msg: dict[str, Any]) -> dict[str, Any]:
-        s = robot[0].state()
+    def state(self, msg: dict[str, Any]) -> dict[str, Any]:
+        s = self.robot.state()
         return {"state": [s.x_m, s.y_m, s.z_m, s.yaw_rad, s.width_m]}
 
-    def touches(msg: dict[str, Any]) -> dict[str, Any]:
+    def touches(self, msg: dict[str, Any]) -> dict[str, Any]:
         return {
             "touches": [
                 None if t.first_touch_s is None else [t.first_touch_s, t.first_touch_z_m]
-                for t in robot[0].touches
+                for t in self.robot.touches
             ]
         }
-
-    return {
-        "sim.setup": setup,
-        "sim.place": place,
-        "robot.move_to": move_to,
-        "robot.descend": descend,
-        "robot.stop": stop,
-        "robot.set_gripper": set_gripper,
-        "robot.is_moving": lambda msg: {"moving": bool(robot[0].is_moving())},
-        "robot.state": state,
-        "robot.holding": lambda msg: {"holding": bool(robot[0].holding())},
-        "robot.touches": touches,
-    }
 
 
 def has_simulation(box: TcpBox) -> bool:

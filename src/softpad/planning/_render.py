@@ -7,7 +7,7 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from softpad.layout import GripperSpec, PadLayout
 from softpad.planning._records import GraspPlan
@@ -90,12 +90,31 @@ def plot_plans(
     Returns the matplotlib Axes. Module units on both axes.
     """
     import matplotlib.pyplot as plt
-    from matplotlib.patches import Rectangle
 
     gripper = gripper or GripperSpec()
     d = np.asarray(delta_pa, dtype=float) / 1e3
     if ax is None:
         _, ax = plt.subplots(figsize=(1.6 * layout.cols + 1.4, 1.6 * layout.rows + 0.6))
+    _draw_increments(ax, d, layout)
+    for plan in plans:
+        _draw_plan(ax, plan, layout, gripper)
+    handles, labels = ax.get_legend_handles_labels()
+    uniq = dict(zip(labels, handles, strict=False))
+    if uniq:
+        ax.legend(uniq.values(), uniq.keys(), loc="upper right", fontsize=7, framealpha=0.8)
+    ax.set_xlim(-0.3, layout.cols + 0.3)
+    ax.set_ylim(-0.3, layout.rows + 0.3)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (module units)")
+    ax.set_ylabel("y (module units)")
+    if title:
+        ax.set_title(title, fontsize=9)
+    return ax
+
+
+def _draw_increments(ax: Any, d_kpa: NDArray[np.float64], layout: PadLayout) -> None:
+    """Heat map of the increments (kPa) over the modules, module numbers and module edges."""
+    d = d_kpa
     grid = np.zeros((layout.rows, layout.cols))
     for m in layout.modules:
         r, c = layout.row_col(m)
@@ -117,32 +136,25 @@ def plot_plans(
         ax.axvline(k, color="0.5", lw=1.5)
     for k in range(layout.rows + 1):
         ax.axhline(k, color="0.5", lw=1.5)
+
+
+def _draw_plan(ax: Any, plan: GraspPlan, layout: PadLayout, gripper: GripperSpec) -> None:
+    """PCOM, COG and the two fingertips of ``plan``."""
+    from matplotlib.patches import Rectangle
+
     p_units = gripper.tip_thickness_m / layout.pitch_m
     w_units = gripper.tip_width_m / layout.pitch_m
-    for plan in plans:
-        ax.plot(*plan.pcom, "o", color="tab:blue", ms=6, label="PCOM")
-        ax.plot(*plan.cog, "x", color="k", ms=9, mew=2, label="COG")
-        centre_m = plan.cog_m(layout)
-        for tip in gripper.fingertip_centres(centre_m, plan.theta):
-            tx, ty = layout.to_units(tip)
-            rect = Rectangle(
-                (tx - p_units / 2, ty - w_units / 2),
-                p_units,
-                w_units,
-                angle=math.degrees(plan.theta),
-                rotation_point="center",
-                color="k",
-            )
-            ax.add_patch(rect)
-    handles, labels = ax.get_legend_handles_labels()
-    uniq = dict(zip(labels, handles, strict=False))
-    if uniq:
-        ax.legend(uniq.values(), uniq.keys(), loc="upper right", fontsize=7, framealpha=0.8)
-    ax.set_xlim(-0.3, layout.cols + 0.3)
-    ax.set_ylim(-0.3, layout.rows + 0.3)
-    ax.set_aspect("equal")
-    ax.set_xlabel("x (module units)")
-    ax.set_ylabel("y (module units)")
-    if title:
-        ax.set_title(title, fontsize=9)
-    return ax
+    ax.plot(*plan.pcom, "o", color="tab:blue", ms=6, label="PCOM")
+    ax.plot(*plan.cog, "x", color="k", ms=9, mew=2, label="COG")
+    centre_m = plan.cog_m(layout)
+    for tip in gripper.fingertip_centres(centre_m, plan.theta):
+        tx, ty = layout.to_units(tip)
+        rect = Rectangle(
+            (tx - p_units / 2, ty - w_units / 2),
+            p_units,
+            w_units,
+            angle=math.degrees(plan.theta),
+            rotation_point="center",
+            color="k",
+        )
+        ax.add_patch(rect)

@@ -36,6 +36,16 @@ from softpad.sim._world import GripperState
 GRIPPER_MOUNTINGS = thesis.GRIPPER_MOUNTINGS_M
 
 
+#: The fields :class:`SimGripper` shares with :class:`softpad.layout.GripperSpec`.
+_GEOMETRY_FIELDS = (
+    "max_width_m",
+    "min_width_m",
+    "finger_length_m",
+    "tip_thickness_m",
+    "tip_width_m",
+)
+
+
 @dataclass(frozen=True)
 class SimGripper:
     """Parallel-jaw gripper of the analytic world: geometry plus contact physics (Section 6.3).
@@ -101,25 +111,12 @@ class SimGripper:
     @classmethod
     def from_spec(cls, spec: GripperSpec, **kwargs: float) -> SimGripper:
         """The gripper of a :class:`softpad.layout.GripperSpec`, with default contact physics."""
-        return cls(
-            max_width_m=spec.max_width_m,
-            min_width_m=spec.min_width_m,
-            finger_length_m=spec.finger_length_m,
-            tip_thickness_m=spec.tip_thickness_m,
-            tip_width_m=spec.tip_width_m,
-            **kwargs,
-        )
+        return cls(**{f: getattr(spec, f) for f in _GEOMETRY_FIELDS}, **kwargs)
 
     @property
     def geometry(self) -> GripperSpec:
         """The geometry alone, as the planner's :class:`softpad.layout.GripperSpec`."""
-        return GripperSpec(
-            max_width_m=self.max_width_m,
-            min_width_m=self.min_width_m,
-            finger_length_m=self.finger_length_m,
-            tip_width_m=self.tip_width_m,
-            tip_thickness_m=self.tip_thickness_m,
-        )
+        return GripperSpec(**{f: getattr(self, f) for f in _GEOMETRY_FIELDS})
 
 
 @dataclass

@@ -65,7 +65,7 @@ class AnalyticCharacteristic:
         h(p, F)   = h_ref V(p, F) / V_ref.
 
     ``a`` and ``n`` are fitted so that ``V(p_ref) = V_ref`` and ``dV/dp(p_ref) = compliance``.
-    Defaults: the FEM scale of the issue (about 8 mL of air at 1.1 kPa, growing 3.8 mL/kPa),
+    Defaults: the FEM's scale (about 8 mL of air at 1.1 kPa, growing 3.8 mL/kPa),
     the thesis's height of 9 mm at 1.1 kPa (Section 6.3), and an effective area chosen so that
     a sealed module rises ``load_sensitivity_pa_n`` per newton (see docs/box-and-simulator.md
     for why 0.85 kPa/N rather than the FEM's 0.53 kPa/N).

@@ -297,6 +297,25 @@ def object_footprint(
     pts, areas, idx = pts[keep], areas[keep] * cover[keep], idx_all[keep]
     com = to_pad_frame(np.array([spec.com_m[:2]]), placement)[0]
     weight = spec.mass_kg * GRAVITY_M_S2
+    q = _winkler_pressures(pts, areas, com, weight)
+    q = np.clip(q, 0.0, None)
+    total = float((q * areas).sum())
+    if len(pts) < 3 or total <= 0 or abs(total - weight) > 1e-3 * weight:
+        raise InputError(
+            f"object {spec.name!r} at ({placement.x_m * 1e3:.1f}, {placement.y_m * 1e3:.1f}) mm is not "
+            "supported by the pad (its centre of mass is outside its footprint on the pad)"
+        )
+    frac = np.zeros(surface.layout.n_modules)
+    np.add.at(frac, idx, q * areas)
+    return ObjectFootprint(pts, q, areas, idx, frac / weight)
+
+
+def _winkler_pressures(
+    pts: NDArray[np.float64], areas: NDArray[np.float64], com: NDArray[np.float64], weight: float
+) -> NDArray[np.float64]:
+    """Contact pressure at every sample point of a rigid body of ``weight`` (N) on a Winkler
+    bed: linear in x and y about ``com``, in equilibrium, with points that would pull lifted
+    off (an active-set iteration); not yet clipped at zero."""
     active = np.ones(len(pts), dtype=bool)
     q = np.zeros(len(pts))
     for _ in range(30):
@@ -321,16 +340,7 @@ def object_footprint(
         active[drop] = False
     else:  # pragma: no cover - 30 iterations always suffice on sampled footprints
         pass
-    q = np.clip(q, 0.0, None)
-    total = float((q * areas).sum())
-    if len(pts) < 3 or total <= 0 or abs(total - weight) > 1e-3 * weight:
-        raise InputError(
-            f"object {spec.name!r} at ({placement.x_m * 1e3:.1f}, {placement.y_m * 1e3:.1f}) mm is not "
-            "supported by the pad (its centre of mass is outside its footprint on the pad)"
-        )
-    frac = np.zeros(surface.layout.n_modules)
-    np.add.at(frac, idx, q * areas)
-    return ObjectFootprint(pts, q, areas, idx, frac / weight)
+    return q
 
 
 #: Side of the central square of a module where a small indenter is fully sensed, metres:

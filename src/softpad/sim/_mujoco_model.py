@@ -75,20 +75,21 @@ class PadPhysics:
     rim_m
         Width of the non-sensitive silicone frame around the modules, metres.
     distributed_stiffness_n_m
-        Vertical stiffness of a module top under a load spread over it, N/m. For a sealed chamber
-        the gas carries such a load: with the FEM volume dV/dp = 3.8 mL/kPa and about 10 mL of
-        gas (chamber plus tubing) the top sinks about 0.7 mm per newton, i.e. 1.4 kN/m; we use
-        1.5 kN/m, stiff enough that the 312 g charger sinks about 1 mm.
+        Vertical stiffness of a module top's slide joint under a load spread over it, N/m:
+        400 N/m, soft enough that an object sinks about 1 mm and rests on all the modules it
+        spans. The gas's own stiffness (the FEM's dV/dp = 3.8 mL/kPa over about 10 mL of gas:
+        about 0.7 mm per newton, 1.4 kN/m) reaches MuJoCo through the box's module heights
+        (see :meth:`MujocoWorld.step`), not through this spring.
     distributed_damping_n_s_m
-        Damping of that joint, N s/m: about critical, 2 sqrt(k (m + armature)) = 9.3 N s/m, so
-        a load put on a module does not overshoot (a 1.5 N overshoot collapses the box model).
+        Damping of that joint, N s/m: 20 N s/m, about twice the critical
+        2 sqrt(k (m + armature)) = 9.3 N s/m, so a load put on a module does not overshoot.
     top_mass_kg
         Moving mass of a module top, kg: the 1.5 mm EcoFlex layer over 45 x 45 mm at
         1070 kg/m^3 (3.3 g) plus the carried air and a margin, 4.5 g.
     top_armature_kg
         Extra inertia of the top's slide joint (MuJoCo ``armature``), kg. Joint springs are
-        integrated explicitly; with the light top alone, a heavy object on it made the
-        2 ms step unstable (measured: a 300 g block bounced). 50 g brings sqrt(k/m) * dt to
+        integrated explicitly; with the light top alone, a heavy object on it makes the
+        2 ms step unstable (a 300 g block bounces). 50 g brings sqrt(k/m) * dt to
         0.33 and only slows the top's free response (period 37 ms).
     dome_height_m
         Height of the dome of a module top above its rim, metres. An inflated module is a
@@ -118,18 +119,18 @@ class PadPhysics:
     friction: float = 1.0
 
     def __post_init__(self) -> None:
-        for name in (
-            "free_height_m",
-            "sensitive_side_m",
-            "line_height_m",
-            "distributed_stiffness_n_m",
-            "top_mass_kg",
-            "local_stiffness_n_m",
-            "friction",
-        ):
-            v = check_finite(name, getattr(self, name))
-            if v <= 0:
-                raise InputError(f"{name} must be > 0, got {v!r}")
+        _check_positive(
+            self,
+            (
+                "free_height_m",
+                "sensitive_side_m",
+                "line_height_m",
+                "distributed_stiffness_n_m",
+                "top_mass_kg",
+                "local_stiffness_n_m",
+                "friction",
+            ),
+        )
         if self.line_height_m >= self.free_height_m:
             raise InputError(
                 f"line height ({self.line_height_m * 1e3:g} mm) must be below the module "
@@ -144,6 +145,14 @@ class PadPhysics:
 
 #: The three mountings of the thesis's gripper: (maximum, minimum) width, metres (Section 6.3).
 GRIPPER_MOUNTINGS = thesis.GRIPPER_MOUNTINGS_M
+
+
+def _check_positive(record: object, names: tuple[str, ...]) -> None:
+    """Raise :class:`InputError` unless every field ``names`` of ``record`` is finite and > 0."""
+    for name in names:
+        v = check_finite(name, getattr(record, name))
+        if v <= 0:
+            raise InputError(f"{name} must be > 0, got {v!r}")
 
 
 def parse_mounting(text: str) -> tuple[float, float]:
@@ -188,8 +197,8 @@ class MujocoGripper:
         :class:`softpad.layout.GripperSpec` and of the analytic world's tips. Across a line
         (e.g. object 1's thesis grasp (2.5, 1, 0), whose only tip on the pad lies over the line
         between modules 2 and 5) a 16 mm tip reaches 5.5 mm past the line's edges on both
-        sides and touches a dome's flank unless it is far from the dome's centre; the 10 mm
-        tip used before reached 2.5 mm, touched nothing and sensed object 1's grasp in 2 of
+        sides and touches a dome's flank unless it is far from the dome's centre; a 10 mm
+        tip reaches 2.5 mm, touches nothing and senses object 1's grasp in 2 of
         15 trials (seeds 0-2; 16 mm: see docs/trials.md). Lying along a line (the tips of a
         grasp along x centred on a column line) it stays unsensed at any width. The grip does
         not depend on it: a 50 g brick squeezed by 10 or 16 mm tips rises 51 mm with the hand
@@ -215,18 +224,18 @@ class MujocoGripper:
 
     def __post_init__(self) -> None:
         parse_mounting(self.mounting)
-        for name in (
-            "finger_length_m",
-            "tip_thickness_m",
-            "tip_width_m",
-            "grip_force_n",
-            "servo_stiffness_n_m",
-            "friction",
-            "sole_stroke_m",
-        ):
-            v = check_finite(name, getattr(self, name))
-            if v <= 0:
-                raise InputError(f"{name} must be > 0, got {v!r}")
+        _check_positive(
+            self,
+            (
+                "finger_length_m",
+                "tip_thickness_m",
+                "tip_width_m",
+                "grip_force_n",
+                "servo_stiffness_n_m",
+                "friction",
+                "sole_stroke_m",
+            ),
+        )
 
     @property
     def max_width_m(self) -> float:
@@ -417,6 +426,31 @@ def build_mjcf(
         MuJoCo time step, seconds (2 ms is stable with the stiffnesses above; see
         docs/trials.md for the measurement).
     """
+    if not math.isfinite(timestep_s) or not 1e-4 <= timestep_s <= 1e-2:
+        raise InputError(f"MuJoCo time step must be in [0.1, 10] ms, got {timestep_s * 1e3:g} ms")
+    hand = _hand_xml(pad, gripper)
+    obj_bodies, welds = _objects_xml(objects)
+    return (
+        '<mujoco model="softpad">'
+        f'<option timestep="{timestep_s:.9g}" gravity="0 0 {-GRAVITY_M_S2:g}" '
+        'integrator="implicitfast" cone="elliptic" impratio="10"/>'
+        '<compiler angle="radian" inertiafromgeom="true" autolimits="true"/>'
+        '<size memory="8M"/>'
+        # contacts as stiff as the 2 ms step allows (time constant 2 steps, impedance 0.99):
+        # with MuJoCo's default (20 ms, 0.95) the 20 N grip sinks the jaws 5 mm into a 24 g
+        # brick, with these about 0.1 mm
+        f'<default><geom solref="{2 * timestep_s:.6g} 1" solimp="0.95 0.99 0.001"/>'
+        f'<joint solreflimit="{2 * timestep_s:.6g} 1" solimplimit="0.95 0.99 0.001"/></default>'
+        f"<worldbody>{_pad_xml(layout, pad)}{hand}"
+        f"{''.join(obj_bodies)}</worldbody>"
+        f"<equality>{''.join(welds)}</equality>"
+        f"<actuator>{_actuators_xml(gripper)}</actuator>"
+        "</mujoco>"
+    )
+
+
+def _pad_xml(layout: PadLayout, pad: PadPhysics) -> str:
+    """MJCF of the base, the table and the module tops (each on a vertical spring)."""
     pitch = layout.pitch_m
     width, height = layout.cols * pitch, layout.rows * pitch
     base_t = 0.01
@@ -449,6 +483,11 @@ def build_mjcf(
             f'contype="{_PAD}" conaffinity="0" condim="3"/>'
             f"</body>"
         )
+    return "".join(pad_geoms) + "".join(module_bodies)
+
+
+def _hand_xml(pad: PadPhysics, gripper: MujocoGripper) -> str:
+    """MJCF of the kinematic hand: palm and two fingers, each with a sprung sole."""
     # gripper: hand at the palm; fingers hang finger_length below it
     t, w = gripper.tip_thickness_m, gripper.tip_width_m
     sole_t = gripper.sole_thickness_m
@@ -498,9 +537,13 @@ def build_mjcf(
             ("yaw", "hinge", "0 0 1"),
         )
     )
-    hand = (
+    return (
         f'<body name="hand" pos="0 0 0" gravcomp="1">{hand_joints}{palm}{"".join(fingers)}</body>'
     )
+
+
+def _objects_xml(objects: tuple[ObjectModel, ...]) -> tuple[list[str], list[str]]:
+    """MJCF bodies of ``objects`` at their parking places, and the welds of loose parts."""
     obj_bodies = []
     palette = ("0.9 0.2 0.2 1", "0.2 0.6 0.9 1", "0.95 0.8 0.1 1", "0.3 0.8 0.3 1")
     welds = []
@@ -529,30 +572,17 @@ def build_mjcf(
                     f'<weld body1="{body_name(obj)}" body2="{name}" solref="0.02 1" '
                     'solimp="0.9 0.95 0.001"/>'
                 )
+    return obj_bodies, welds
+
+
+def _actuators_xml(gripper: MujocoGripper) -> str:
+    """MJCF of the jaws' force-limited position servos."""
+    open_half = gripper.max_width_m / 2
     kp = gripper.servo_stiffness_n_m
     f_max = gripper.grip_force_n
-    actuators = "".join(
+    return "".join(
         f'<position name="jaw_{side}" joint="jaw_{side}" kp="{kp:g}" '
         f'forcelimited="true" forcerange="{-f_max:g} {f_max:g}" '
         f'ctrlrange="{gripper.min_width_m / 2 - 2 * f_max / kp:.9g} {open_half + 1e-3:.9g}"/>'
         for side in ("right", "left")
-    )
-    if not math.isfinite(timestep_s) or not 1e-4 <= timestep_s <= 1e-2:
-        raise InputError(f"MuJoCo time step must be in [0.1, 10] ms, got {timestep_s * 1e3:g} ms")
-    return (
-        '<mujoco model="softpad">'
-        f'<option timestep="{timestep_s:.9g}" gravity="0 0 {-GRAVITY_M_S2:g}" '
-        'integrator="implicitfast" cone="elliptic" impratio="10"/>'
-        '<compiler angle="radian" inertiafromgeom="true" autolimits="true"/>'
-        '<size memory="8M"/>'
-        # contacts as stiff as the 2 ms step allows (time constant 2 steps, impedance 0.99):
-        # with MuJoCo's default (20 ms, 0.95) the 20 N grip sank the jaws 5 mm into a 24 g
-        # brick; now about 0.1 mm
-        f'<default><geom solref="{2 * timestep_s:.6g} 1" solimp="0.95 0.99 0.001"/>'
-        f'<joint solreflimit="{2 * timestep_s:.6g} 1" solimplimit="0.95 0.99 0.001"/></default>'
-        f"<worldbody>{''.join(pad_geoms)}{''.join(module_bodies)}{hand}"
-        f"{''.join(obj_bodies)}</worldbody>"
-        f"<equality>{''.join(welds)}</equality>"
-        f"<actuator>{actuators}</actuator>"
-        "</mujoco>"
     )

@@ -219,25 +219,15 @@ class ChamberBank:
             if self.hold(dt_s, valve_key, supply_pa):
                 return True
         self._sync()
-        m = self.n_modules
         p = self._p_modules
         key = (valve_key, supply_pa)
+        flow = None
         if any_open or leaking:
-            flow = np.zeros(m)
-            if any_open:
-                inf, dfl = inflate_open, deflate_open
-                if inf.any():
-                    flow[inf] += self._orifice(self.params.inflate_orifice_m2, supply_pa - p[inf])
-                if dfl.any():
-                    flow[dfl] -= self._orifice(self.params.deflate_orifice_m2, p[dfl])
-            if leaking:
-                flow -= self._orifice(self._leak_m2, p)
+            flow = self._flows(p, inflate_open, deflate_open, supply_pa, any_open, leaking)
             self._amount = np.maximum(self._amount + flow * dt_s, 1e-12)
-        else:
-            flow = None
         if not same_load:
             self.loads_n = loads_n.copy()
-        self._pressure[:m] = self._solve(p.copy())
+        self._pressure[: self.n_modules] = self._solve(p.copy())
         self._key, self._held, self._flow = key, 0.0, flow
         self.solved = True
         self.solve_count += 1
@@ -245,6 +235,28 @@ class ChamberBank:
             self._rate = flow / self._dn_dp
             self._dt_cached = -1.0
         return True
+
+    def _flows(
+        self,
+        p: NDArray[np.float64],
+        inflate_open: NDArray[np.bool_],
+        deflate_open: NDArray[np.bool_],
+        supply_pa: float,
+        any_open: bool,
+        leaking: bool,
+    ) -> NDArray[np.float64]:
+        """Gas flow into every module through its open valves and its leak, amount/s."""
+        flow = np.zeros(self.n_modules)
+        if any_open:
+            if inflate_open.any():
+                flow[inflate_open] += self._orifice(
+                    self.params.inflate_orifice_m2, supply_pa - p[inflate_open]
+                )
+            if deflate_open.any():
+                flow[deflate_open] -= self._orifice(self.params.deflate_orifice_m2, p[deflate_open])
+        if leaking:
+            flow -= self._orifice(self._leak_m2, p)
+        return flow
 
     def _solve(self, p: NDArray[np.float64]) -> NDArray[np.float64]:
         """Gauge pressure with ``(p_atm + p)(V(p, F) + V_t) = n``.

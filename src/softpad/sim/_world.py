@@ -58,7 +58,7 @@ class GripperState:
 class World(Protocol):
     """What the simulated box and robot need from a world.
 
-    Implementations: :class:`softpad.sim.AnalyticWorld`; the MuJoCo world (issue 4).
+    Implementations: :class:`softpad.sim.AnalyticWorld`, :class:`softpad.sim.MujocoWorld`.
     Keep this small: every method here is needed by the box or the simulated robot.
     """
 

@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from softpad import SCHEMA_VERSION
+import softpad
 from softpad.errors import InputError
 from softpad.trials._config import TrialConfig
 from softpad.trials._records import TrialResult
@@ -113,4 +113,4 @@ def compare(
                 "objects": [{"name": n, **summarise(ts)} for n, ts in by_object.items()],
             }
         )
-    return {"schema_version": SCHEMA_VERSION, "seeds": list(seeds), "combinations": combos}
+    return {"schema_version": softpad.SCHEMA_VERSION, "seeds": list(seeds), "combinations": combos}

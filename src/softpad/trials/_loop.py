@@ -107,7 +107,7 @@ class _Trial:
         opening_m: float | None,
         mounting: str | None,
     ) -> None:
-        from softpad.box import SimBox
+        from softpad.box import SafetyLimits, SimBox
         from softpad.harness import SimulatedRobot
         from softpad.sim._mujoco_model import MujocoGripper
         from softpad.sim._mujoco_world import MujocoWorld
@@ -125,6 +125,12 @@ class _Trial:
             sensor=SensorParams() if config.noise else SensorParams.ideal(),
             # between trials of a session the modules stay near p0 (1 kPa, under it)
             initial_pressure_pa=1.0e3 if config.inflated_start else 0.0,
+        )
+        # the box-side limit follows the trials' fault limit (a gripper pressing an object
+        # into the pad reads above the 3 kPa inflation maximum: trial_execution_params)
+        max_pa = config.execution.inflation.max_pressure_pa
+        self.box.safety_limits = SafetyLimits(
+            max_pressure_pa=max_pa, release_pa=min(2500.0, max_pa - 500.0)
         )
         self.robot = SimulatedRobot(self.world, max_opening_m=self.gripper.max_width_m)
 
@@ -184,11 +190,11 @@ def execute_trial(
         except ExecutionError as exc:
             return _not_detected(base, watcher.seen, t, exc), log
         except HardwareFault as exc:
-            # A module read above the trial's fault limit: after the outcome the trial stands;
-            # before it, the trial is a failure of its own kind. Faults before the object
-            # was placed are real and propagate.
+            # A fault the loop detected (over-pressure, a leak alarm during the adjustment...):
+            # after the outcome the trial stands; before it, the trial is a failure of its own
+            # kind, with the plan when there was one.
             if "plan" not in watcher.seen:
-                raise
+                return _box_fault_unplanned(base, t, execution.phase, exc), log
             if "outcome" not in watcher.seen:
                 return _box_fault(base, watcher.seen, t, execution.phase, exc), log
         sim_time = t.box.time_s
@@ -211,36 +217,48 @@ def _not_detected(
 def _box_fault(
     base: dict[str, Any], seen: dict[str, Any], t: _Trial, phase: str, exc: Exception
 ) -> TrialResult:
-    modules, cog, theta = seen["plan"]
     return TrialResult(
         **base,
         success=False,
         cause="box_fault",
-        modules=modules,
-        increments_pa=seen.get("increments_pa", ()),
-        cog=cog,
-        theta=theta,
-        opening_m=t.robot.max_opening_m,
-        contact_detected=seen.get("detected", False),
-        cog_outside_object_mm=seen.get("cog_outside_mm"),
+        **_planned(seen, t),
         sim_time_s=t.box.time_s,
         detail=f"box fault in phase {phase}: {exc}",
     )
 
 
-def _scored(base: dict[str, Any], seen: dict[str, Any], t: _Trial, sim_time: float) -> TrialResult:
+def _box_fault_unplanned(
+    base: dict[str, Any], t: _Trial, phase: str, exc: Exception
+) -> TrialResult:
+    return TrialResult(
+        **base,
+        success=False,
+        cause="box_fault",
+        sim_time_s=t.box.time_s,
+        detail=f"box fault in phase {phase}, before planning: {exc}",
+    )
+
+
+def _planned(seen: dict[str, Any], t: _Trial) -> dict[str, Any]:
+    """The fields of a trial result that a planned grasp has, from what the watcher saw."""
     modules, cog, theta = seen["plan"]
-    outcome = seen.get("outcome", "contact_not_detected")
-    common = dict(
+    return dict(
         modules=modules,
         increments_pa=seen.get("increments_pa", ()),
         cog=cog,
         theta=theta,
         opening_m=t.robot.max_opening_m,
         contact_detected=seen.get("detected", False),
+        cog_outside_object_mm=seen.get("cog_outside_mm"),
+    )
+
+
+def _scored(base: dict[str, Any], seen: dict[str, Any], t: _Trial, sim_time: float) -> TrialResult:
+    outcome = seen.get("outcome", "contact_not_detected")
+    common = dict(
+        **_planned(seen, t),
         contact_delay_s=seen.get("delay"),
         finger_travel_mm=seen.get("travel"),
-        cog_outside_object_mm=seen.get("cog_outside_mm"),
         sim_time_s=sim_time,
     )
     if outcome == "held":

@@ -98,12 +98,10 @@ def plot_grasps(
     trial_index
         Which trial of each object to draw.
     """
-    from softpad.sim import MujocoGripper, PadPhysics
-
     layout = layout or PadLayout()
-    tip_thickness_m = tip_thickness_m or MujocoGripper().tip_thickness_m
-    tip_width_m = tip_width_m or MujocoGripper().tip_width_m
-    line_width_m = line_width_m or layout.pitch_m - PadPhysics().sensitive_side_m
+    tip_thickness_m, tip_width_m, line_width_m = _sizes(
+        layout, tip_thickness_m, tip_width_m, line_width_m
+    )
     import matplotlib
 
     matplotlib.use("Agg")
@@ -128,3 +126,19 @@ def plot_grasps(
     fig.tight_layout()
     fig.savefig(path, dpi=150)
     plt.close(fig)
+
+
+def _sizes(
+    layout: PadLayout,
+    tip_thickness_m: float | None,
+    tip_width_m: float | None,
+    line_width_m: float | None,
+) -> tuple[float, float, float]:
+    """Fingertip thickness and width and line width, metres; the MuJoCo world's by default."""
+    from softpad.sim import MujocoGripper, PadPhysics
+
+    return (
+        tip_thickness_m or MujocoGripper().tip_thickness_m,
+        tip_width_m or MujocoGripper().tip_width_m,
+        line_width_m or layout.pitch_m - PadPhysics().sensitive_side_m,
+    )

@@ -259,7 +259,7 @@ class ExperimentResult:
         return out
 
     def to_dict(self) -> dict[str, Any]:
-        """The JSON of ``softpad trials --json`` (issue 4's schema, plus details)."""
+        """The JSON of ``softpad trials --json`` (per-object counts, then every trial)."""
         return {
             "objects": [s.to_dict() for s in self.summaries()],
             "overall_success": round(self.overall_success, 6),

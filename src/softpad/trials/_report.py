@@ -46,6 +46,13 @@ def write_report(
     if trace is not None:
         trace.plot(out / "trace.png", title=trace_title)
         paths.append(out / "trace.png")
+    (out / "README.md").write_text(_summary(result, md, trace is not None, trace_title))
+    paths.append(out / "README.md")
+    return paths
+
+
+def _summary(result: ExperimentResult, table_md: str, has_trace: bool, trace_title: str) -> str:
+    """The report's README.md: overall success, failures by cause, the table and the files."""
     n = len(result.trials)
     k = sum(t.success for t in result.trials)
     causes = result.failures_by_cause()
@@ -63,12 +70,12 @@ def write_report(
         + (", ".join(f"{c}: {v}" for c, v in sorted(causes.items())) or "none")
         + ".",
         "",
-        md,
+        table_md,
         "",
         "- `grasps.png`: the planned grasp of trial 1 of every object over the pad (black: the "
         "fingertips at the approach opening), like Fig. 6.10.",
     ]
-    if trace is not None:
+    if has_trace:
         lines.append(
             f"- `trace.png`: module pressures during one trial ({trace_title}), like Fig. 6.8."
         )
@@ -78,6 +85,4 @@ def write_report(
         "- `table.csv`: the table above.",
         "",
     ]
-    (out / "README.md").write_text("\n".join(lines))
-    paths.append(out / "README.md")
-    return paths
+    return "\n".join(lines)

@@ -164,33 +164,9 @@ def run_experiment(
             if record is not None:
                 cfg = replace(cfg, record_path=str(trial_recording_path(record, spec.name, k)))
             tasks.append((spec, k, trial_seed(seed, spec.name, k), cfg))
-    n_cpu = (
-        len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
-    )
-    workers = n_cpu if workers is None else workers
-    if not isinstance(workers, int) or not 1 <= workers <= 256:
-        raise InputError(f"workers must be an integer from 1 to 256, got {workers!r}")
-    workers = min(workers, len(tasks))
+    workers = _worker_count(workers, len(tasks))
     t0 = time.perf_counter()
-    results: dict[tuple[str, int], TrialResult] = {}
-    trace: Any | None = None
-    if workers == 1:
-        for task in tasks:
-            res, tr = _worker(task)
-            results[(res.object, res.trial)] = res
-            trace = trace or tr
-            if on_trial:
-                on_trial(res)
-    else:
-        # longest first (heavier objects and the traced trial take longer), for a short tail
-        with ProcessPoolExecutor(max_workers=workers) as pool:
-            futures = [pool.submit(_worker, task) for task in tasks]
-            for fut in as_completed(futures):
-                res, tr = fut.result()
-                results[(res.object, res.trial)] = res
-                trace = trace or tr
-                if on_trial:
-                    on_trial(res)
+    results, trace = _run_tasks(tasks, workers, on_trial)
     ordered = tuple(results[(spec.name, k)] for spec in specs for k in range(trials))
     exp = ExperimentResult(
         trials=ordered,
@@ -200,3 +176,41 @@ def run_experiment(
         workers=workers,
     )
     return exp, trace
+
+
+def _worker_count(workers: int | None, n_tasks: int) -> int:
+    """Worker processes to use: ``workers`` (checked) or the CPUs available, at most
+    ``n_tasks``."""
+    n_cpu = (
+        len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+    )
+    workers = n_cpu if workers is None else workers
+    if not isinstance(workers, int) or not 1 <= workers <= 256:
+        raise InputError(f"workers must be an integer from 1 to 256, got {workers!r}")
+    return min(workers, n_tasks)
+
+
+def _run_tasks(
+    tasks: list[Any], workers: int, on_trial: Callable[[TrialResult], None] | None
+) -> tuple[dict[tuple[str, int], TrialResult], Any | None]:
+    """Run ``tasks`` in this process (one worker) or a process pool; the results by (object,
+    trial) and the recorded trace, if any. ``on_trial`` sees each result as it completes."""
+    results: dict[tuple[str, int], TrialResult] = {}
+    trace: Any | None = None
+    if workers == 1:
+        for task in tasks:
+            res, tr = _worker(task)
+            results[(res.object, res.trial)] = res
+            trace = trace or tr
+            if on_trial:
+                on_trial(res)
+        return results, trace
+    with ProcessPoolExecutor(max_workers=workers) as pool:
+        futures = [pool.submit(_worker, task) for task in tasks]
+        for fut in as_completed(futures):
+            res, tr = fut.result()
+            results[(res.object, res.trial)] = res
+            trace = trace or tr
+            if on_trial:
+                on_trial(res)
+    return results, trace
