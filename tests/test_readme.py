@@ -26,6 +26,8 @@ QUICK = {
     "--png design.png --mesh coarse --values-mm 1.5,2",
     "fem chamber": "fem chamber --mesh coarse --masses-g 12.6",
     "bench": "bench --only planning --quick",
+    "compare --seeds 0-19 --json": "compare --seeds 0 --json --objects banana --trials 1 "
+    "--workers 1 --idle-hours 0.01 --no-progress",
 }
 #: Commands not run, with the reason.
 SKIP = {
