@@ -1,18 +1,55 @@
-"""Exceptions shared by every sub-package.
+"""Exceptions shared by every sub-package, and the exit code of each.
 
 Each subclasses a built-in so callers can catch either (``except ValueError`` still works).
-The CLI turns any :class:`SoftPadError` into a one-line message and exit code 2.
+The ``softpad`` command turns every exception into a one-line message and the exit code of its
+class (:func:`exit_code_for`):
+
+====  ==========================================================================
+code  meaning
+====  ==========================================================================
+0     success (every grasp held, every study done)
+1     the job ran but failed (a grasp not held, a model that did not converge)
+2     bad input (usage, values, files)
+3     hardware or link fault (the box was put in a safe state)
+4     internal error (a bug: please report it)
+====  ==========================================================================
 """
 
 from __future__ import annotations
 
+EXIT_OK = 0
+"""Success."""
+EXIT_FAILED = 1
+"""The job ran but failed (a grasp not held)."""
+EXIT_INPUT = 2
+"""Bad input: usage, values, files."""
+EXIT_HARDWARE = 3
+"""Hardware or link fault; the safe state was reached."""
+EXIT_INTERNAL = 4
+"""Internal error (a bug)."""
+
 
 class SoftPadError(Exception):
-    """Base class of every error SoftPad raises on purpose."""
+    """Base class of every error SoftPad raises on purpose.
+
+    ``exit_code`` is the ``softpad`` command's exit status for the class and ``kind`` the
+    ``error.kind`` of its JSON output; ``partial`` may carry the results gathered before it.
+    """
+
+    exit_code: int = EXIT_FAILED
+    kind: str = "failed"
+    partial: dict | None = None
+
+
+class JobFailed(SoftPadError, RuntimeError):
+    """The job ran to its end but did not succeed (a grasp not held)."""
 
 
 class InputError(SoftPadError, ValueError):
     """A value given by the user is malformed or outside its allowed range."""
+
+    exit_code = EXIT_INPUT
+    kind = "input"
 
 
 class LayoutError(InputError):
@@ -24,6 +61,16 @@ class HardwareFault(SoftPadError, RuntimeError):
 
     Raised only after the box has been put in a safe state (inflation valves closed).
     """
+
+    exit_code = EXIT_HARDWARE
+    kind = "hardware"
+
+
+def exit_code_for(exc: BaseException) -> int:
+    """Exit status of the ``softpad`` command for ``exc`` (see the module's table)."""
+    if isinstance(exc, SoftPadError):
+        return int(exc.exit_code)
+    return EXIT_INTERNAL
 
 
 def check_finite(name: str, value: float) -> float:

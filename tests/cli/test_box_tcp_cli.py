@@ -102,7 +102,7 @@ def test_box_read_when_nobody_listens_is_one_line(capsys) -> None:
     port = s.getsockname()[1]
     s.close()
     code, _, err = run(capsys, "box", "read", "--box", f"tcp://127.0.0.1:{port}")
-    assert code == 2 and "cannot connect to the box at tcp://127.0.0.1" in err
+    assert code == 3 and "cannot connect to the box at tcp://127.0.0.1" in err
     assert len(err.strip().splitlines()) == 1
 
 

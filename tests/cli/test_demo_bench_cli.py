@@ -48,7 +48,7 @@ def test_bench_planning_reports_medians_against_the_target(
 ) -> None:
     code, out, _ = _run(capsys, "bench", "--only", "planning", "--quick", "--json")
     assert code == 0
-    rows = json.loads(out)
+    rows = json.loads(out)["results"]
     assert {r["suite"] for r in rows} == {"planning"}
     assert all(r["unit"] == "us" and r["value"] > 0 and r["target"] == "<= 50 us" for r in rows)
 

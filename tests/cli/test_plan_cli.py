@@ -30,7 +30,7 @@ def test_json_has_exactly_the_documented_keys(capsys: pytest.CaptureFixture[str]
     code, out, _ = run(capsys, "plan", "--delta", BANANA, "--json")
     assert code == 0
     data = json.loads(out)
-    assert list(data) == ["objects"]
+    assert list(data) == ["schema_version", "objects"]
     (obj,) = data["objects"]
     assert list(obj) == ["modules", "pcom", "cog", "theta", "rule", "cog_m"]
     assert obj["modules"] == [2, 3, 4]
@@ -113,7 +113,7 @@ def test_plot_is_written(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> 
         (["--delta", "0,nan,0,0,0,0"], "must be finite"),
         (["--delta", "0,inf,0,0,0,0"], "must be finite"),
         (["--delta", BANANA, "--layout", "2by3"], "ROWSxCOLS"),
-        (["--delta", BANANA, "--threshold-kpa", "-0.1"], ">= 0 kPa"),
+        (["--delta", BANANA, "--threshold-kpa", "-0.1"], ">= 0.001 kPa"),
         (["--delta", BANANA, "--pitch-mm", "0"], ">= 1 mm"),
         (["--pressures", BANANA], "needs --reference"),
         (["--pressures", BANANA, "--reference", "1,1"], "6 pressures and 6 reference"),
@@ -178,5 +178,5 @@ def test_argparse_range_errors_exit_2_without_traceback() -> None:
         text=True,
     )
     assert proc.returncode == 2
-    assert "threshold must be >= 0 kPa, got -1 kPa" in proc.stderr
+    assert "--threshold-kpa must be >= 0.001 kPa, got -1 kPa" in proc.stderr
     assert "Traceback" not in proc.stderr

@@ -40,7 +40,7 @@ def test_run_json_has_the_documented_keys(capsys, tmp_path) -> None:
 
 def test_run_prints_a_timeline_and_plots(capsys, tmp_path) -> None:
     png = tmp_path / "trace.png"
-    assert main(["run", "--object", "banana", "--hold-s", "1", "--png", str(png)]) == 0
+    assert main(["run", "--objects", "banana", "--hold-s", "1", "--png", str(png)]) == 0
     out = capsys.readouterr().out
     for text in (
         "adjusted",
@@ -60,7 +60,7 @@ def test_run_prints_a_timeline_and_plots(capsys, tmp_path) -> None:
         (["run", "--object", "teapot"], "unknown object 'teapot'"),
         (["run", "--box", "serial://x:1"], "unknown box URL scheme 'serial'"),
         (["run", "--box", "sim://?speed=2"], "unknown sim:// option 'speed'"),
-        (["run", "--record", "run.txt"], "recordings are MCAP files ending in .mcap"),
+        (["run", "--record", "run.txt"], "--record must name a .mcap file"),
         (["box", "read", "--box", "sim://?rate_hz=-5"], "sample rate"),
         (["box", "read", "--count", "-1"], "--count must be >= 0"),
     ],
@@ -70,6 +70,16 @@ def test_errors_are_one_line_and_exit_2(capsys, argv, message) -> None:
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert message in err and err.count("\n") == 1 and "Traceback" not in err
+
+
+def test_a_hardware_fault_is_one_line_and_exit_3(capsys) -> None:
+    argv = ["run", "--box", "sim://?seed=1&faults=leak:3:0.01", "--hold-s", "1", "--json"]
+    assert main(argv) == 3
+    captured = capsys.readouterr()
+    assert "channel 3" in captured.err and captured.err.count("\n") == 1
+    data = json.loads(captured.out)
+    assert data["error"]["kind"] == "hardware" and "channel 3" in data["error"]["message"]
+    assert data["error"]["events"] and data["error"]["frames"] > 0  # what was gathered before
 
 
 def test_box_read_streams_frames(capsys) -> None:
@@ -98,7 +108,7 @@ def test_failed_run_still_saves_its_recording(capsys, tmp_path) -> None:
         "--record",
         str(path),
     ]
-    assert main(argv) == 3  # the hardware-fault code
+    assert main(argv) == 3  # a hardware fault
     assert "channel 4" in capsys.readouterr().err
     run = load_recording(path)
     assert run.complete and run.t_s[-1] >= 6.49 and run.events_of("fault")

@@ -27,7 +27,7 @@ def test_sweep_json_has_exactly_the_documented_keys(capsys: pytest.CaptureFixtur
     )  # fmt: skip
     assert code == 0
     payload = json.loads(out)
-    assert list(payload) == ["model", "pressure_kpa", "height_mm"]
+    assert list(payload) == ["schema_version", "model", "pressure_kpa", "height_mm"]
     assert payload["model"] == "yeoh"
     assert payload["pressure_kpa"] == [0.0, 0.5, 1.0]
     assert payload["height_mm"][0] == 0.0 and 8.0 < payload["height_mm"][2] < 10.0

@@ -94,5 +94,5 @@ def test_mcap_reader_sees_ros2_profile_metadata_and_two_clocks(recording: Path) 
 def test_existing_file_is_never_overwritten_silently(recording: Path, capsys) -> None:
     size = recording.stat().st_size
     assert main(["run", "--hold-s", "1", "--record", str(recording)]) == 2
-    assert "refusing to overwrite" in capsys.readouterr().err
+    assert "exists; add --force to overwrite it" in capsys.readouterr().err
     assert recording.stat().st_size == size

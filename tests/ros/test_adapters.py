@@ -100,5 +100,5 @@ def test_without_ros_the_node_says_how_to_install_it() -> None:
 
 
 def test_run_with_an_unknown_robot_is_one_line() -> None:
-    r = _softpad("run", "--robot", "ur5://", "--object", "banana")
+    r = _softpad("run", "--robot", "ur5://", "--objects", "banana")
     assert r.returncode == 2 and r.stderr.count("\n") == 1 and "ur5://" in r.stderr

@@ -185,7 +185,7 @@ def _arm(procs: _Procs, *extra: str) -> tuple[subprocess.Popen[bytes], Path, str
 
 def test_run_with_the_arm_in_ros_holds_the_banana_with_the_simulated_plan(procs: _Procs) -> None:
     _, _, url = _arm(procs)
-    args = ("run", "--object", "banana", "--hold-s", "1", "--json")
+    args = ("run", "--objects", "banana", "--hold-s", "1", "--json")
     r = procs.run(SOFTPAD, *args, "--robot", "ros1://", "--box", url, timeout_s=90)
     assert r.returncode == 0, r.stderr
     ros = json.loads(r.stdout)
@@ -204,7 +204,7 @@ def test_arm_lost_mid_approach_ends_the_run_with_the_box_safe(
     _, _, url = _arm(procs, "--lose-arm-on", "descend")
     mcap = tmp_path / "run.mcap"
     r = procs.run(
-        SOFTPAD, "run", "--robot", "ros1://", "--box", url, "--object", "banana",
+        SOFTPAD, "run", "--robot", "ros1://", "--box", url, "--objects", "banana",
         "--record", str(mcap), timeout_s=90,
     )  # fmt: skip
     assert r.returncode == 3, r.stdout + r.stderr  # softpad run's hardware-fault exit code
@@ -225,7 +225,7 @@ def test_arm_lost_mid_approach_ends_the_run_with_the_box_safe(
 def test_arm_node_killed_mid_approach_gives_one_clear_error(procs: _Procs) -> None:
     arm, log, url = _arm(procs)
     run, out = procs.start(
-        "run", SOFTPAD, "run", "--robot", "ros1://", "--box", url, "--object", "banana"
+        "run", SOFTPAD, "run", "--robot", "ros1://", "--box", url, "--objects", "banana"
     )
     _wait(lambda: "arm: descend" in log.read_text(), 60.0, "the descent")
     arm.kill()
@@ -240,6 +240,6 @@ def test_node_ends_on_a_sensor_fault_with_one_line(procs: _Procs) -> None:
     r = procs.run(
         SOFTPAD, "ros", "node", "--box", "sim://?faults=nan:3@7", timeout_s=60
     )  # fmt: skip
-    assert r.returncode == 2, r.stdout + r.stderr
+    assert r.returncode == 3, r.stdout + r.stderr  # the hardware-fault exit code
     assert "Traceback" not in r.stderr and len(r.stderr.strip().splitlines()) == 1
-    assert "3" in r.stderr and "softpad ros: error" in r.stderr
+    assert "channel 3" in r.stderr and "softpad ros: error" in r.stderr

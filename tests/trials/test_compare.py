@@ -41,8 +41,8 @@ def test_compare_json_has_every_pair_and_object(capsys: pytest.CaptureFixture[st
 @pytest.mark.parametrize(
     ("argv", "message"),
     [
-        (["--seeds", "5-2"], "must go up"),
-        (["--seeds", "x"], "--seeds takes"),
+        (["--seeds", "5-2"], "first <= last"),
+        (["--seeds", "x"], "is not an integer or a range"),
         (["--pair", "thesis:glr"], "--pair must be"),
         (["--idle-hours", "0"], "--idle-hours"),
     ],

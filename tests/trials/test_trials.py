@@ -218,7 +218,7 @@ def test_cli_trials_json(capsys: pytest.CaptureFixture[str]) -> None:
         (["trials", "--trials", "0"], "--trials must be"),
         (["trials", "--workers", "0"], "--workers must be"),
         (["trials", "--hold-s", "nan"], "--hold-s must be"),
-        (["trials", "--objects", ","], "at least one object"),
+        (["trials", "--objects", ","], "--objects needs comma-separated names"),
     ],
     ids=["unknown-object", "zero-trials", "zero-workers", "nan-hold", "empty-objects"],
 )

@@ -60,7 +60,10 @@ def parse_url(url: str) -> tuple[str, str, dict[str, str]]:
     """Split a box URL into (scheme, location, options); InputError on a malformed one."""
     if not isinstance(url, str) or "://" not in url:
         raise InputError(f"box URL must look like 'scheme://...' (e.g. sim://?seed=1), got {url!r}")
-    parts = urlsplit(url)
+    try:
+        parts = urlsplit(url)
+    except ValueError as exc:
+        raise InputError(f"malformed box URL {url!r}: {exc}") from None
     try:
         pairs = parse_qsl(parts.query, keep_blank_values=True, strict_parsing=bool(parts.query))
     except ValueError:
@@ -96,4 +99,9 @@ def open_box(url: str = DEFAULT_URL) -> Box:
         raise InputError(
             f"unknown box URL scheme {scheme!r} in {url!r}; available: {', '.join(backends())}"
         )
-    return factory(location, options)
+    try:
+        return factory(location, options)
+    except InputError as exc:
+        if url in str(exc):
+            raise
+        raise InputError(f"{exc} (box URL {url!r})") from None

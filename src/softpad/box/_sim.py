@@ -161,6 +161,8 @@ class SimBox(Box):
         self._rate = float(sample_rate_hz)
         self._dt = 1.0 / self._rate
         self.seed = int(seed)
+        if self.seed < 0:
+            raise InputError(f"seed must be >= 0, got {seed!r}")
         self.characteristic = (
             characteristic if characteristic is not None else default_characteristic()
         )

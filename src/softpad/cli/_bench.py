@@ -4,9 +4,10 @@ from __future__ import annotations
 
 import argparse
 import importlib
-import json
 from typing import Any
 
+from softpad.cli._args import add_json_force, name_list
+from softpad.cli._output import emit
 from softpad.errors import InputError
 
 
@@ -22,7 +23,7 @@ def register(sub: Any) -> None:
         "--only", metavar="NAMES", help="comma-separated subset of: " + ", ".join(BENCH_MODULES)
     )
     p.add_argument("--quick", action="store_true", help="fewer repeats (a smoke run)")
-    p.add_argument("--json", action="store_true", help="print the results as JSON")
+    add_json_force(p, force=False)
     p.set_defaults(handler=run)
 
 
@@ -30,14 +31,15 @@ def run(args: argparse.Namespace) -> int:
     from softpad.benchmarks import BENCH_MODULES
 
     names = list(BENCH_MODULES)
-    if args.only:
-        names = [s.strip() for s in args.only.split(",") if s.strip()]
+    if args.only is not None:
+        names = name_list(args.only, "--only")
         unknown = [n for n in names if n not in BENCH_MODULES]
         if unknown:
             raise InputError(
                 f"unknown benchmark {unknown[0]!r}; choose from {', '.join(BENCH_MODULES)}"
             )
-    out = []
+    out: list[dict[str, Any]] = []
+    args.partial = {"results": out}
     for name in names:
         module = importlib.import_module(f"softpad.benchmarks._{name}")
         if not args.json:
@@ -47,5 +49,5 @@ def run(args: argparse.Namespace) -> int:
             if not args.json:
                 print("  " + r.line(), flush=True)
     if args.json:
-        print(json.dumps(out, indent=1))
+        emit({"results": out})
     return 0

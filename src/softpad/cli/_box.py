@@ -4,10 +4,11 @@ adjust, watch a box live in Foxglove."""
 from __future__ import annotations
 
 import argparse
-import json
+import sys
 from typing import Any
 
 from softpad.cli._args import finite_float
+from softpad.cli._output import emit
 
 _EPILOG = """examples:
   softpad box read --count 5
@@ -63,7 +64,9 @@ def register(sub: Any) -> None:
         "--count", type=int, default=10, help="frames to read, 0 for endless (default 10)"
     )
     r.add_argument("--every", type=int, default=1, help="print every k-th frame (default 1)")
-    r.add_argument("--json", action="store_true", help="one JSON object per line")
+    r.add_argument(
+        "--json", action="store_true", help="one JSON object per line (the last the error if any)"
+    )
     r.set_defaults(handler=read)
     m = bsub.add_parser(
         "monitor",
@@ -76,6 +79,7 @@ def register(sub: Any) -> None:
     m.add_argument("--foxglove", action="store_true", help="serve to Foxglove (WebSocket)")
     m.add_argument("--port", type=int, default=8765, help="port on 127.0.0.1 (0: a free one)")
     m.add_argument("--count", type=int, default=0, help="frames to serve, 0 for endless")
+    m.add_argument("--json", action="store_true", help="print the viewer URL as one JSON object")
     m.set_defaults(handler=monitor)
     s = bsub.add_parser(
         "serve",
@@ -91,11 +95,12 @@ def register(sub: Any) -> None:
     s.add_argument("--port", type=int, default=0, help="TCP port (default 0: a free one, printed)")
     s.add_argument(
         "--idle-timeout-s",
-        type=finite_float("idle timeout", lo=0.01, hi=3600.0, unit="s"),
+        type=finite_float("--idle-timeout-s", lo=0.01, hi=3600.0, unit="s"),
         default=10.0,
         help="drop a silent client and close the valves after this long, s (default 10)",
     )
     s.add_argument("--once", action="store_true", help="stop when the first client leaves")
+    s.add_argument("--json", action="store_true", help="print the served URL as one JSON object")
     s.set_defaults(handler=serve)
     i = bsub.add_parser(
         "inflate",
@@ -111,18 +116,21 @@ def register(sub: Any) -> None:
     i.add_argument("--modules", type=int, default=6, help="modules on the pad (default 6)")
     i.add_argument(
         "--p0-kpa",
-        type=finite_float("p0", lo=0.1, hi=3.0, unit="kPa"),
+        type=finite_float("--p0-kpa", lo=0.5, hi=2.8, unit="kPa"),
         default=1.1,
-        help="target pressure p0, kPa (default 1.1)",
+        help="target pressure p0, kPa, 0.5..2.8 (default 1.1)",
     )
     i.add_argument("--json", action="store_true", help="print the result as one JSON object")
     i.set_defaults(handler=inflate)
+    p.add_argument("--json", action="store_true", help=argparse.SUPPRESS)
     p.set_defaults(handler=_usage, _parser=p)
 
 
 def _usage(args: argparse.Namespace) -> int:
-    args._parser.print_help()
-    return 2
+    from softpad.cli.main import UsageError
+
+    args._parser.print_help(sys.stderr)
+    raise UsageError("an ACTION is required: read, serve or inflate (see softpad box --help)")
 
 
 def read(args: argparse.Namespace) -> int:
@@ -134,6 +142,7 @@ def read(args: argparse.Namespace) -> int:
     if args.every < 1:
         raise InputError(f"--every must be >= 1, got {args.every}")
     with open_box(args.box) as box:
+        args.partial = {"frames": 0}
         if not args.json:
             head = "    t_s  " + " ".join(f"{'ch' + str(k + 1):>8s}" for k in range(box.channels))
             print(head + "  supply   (kPa)")
@@ -142,17 +151,16 @@ def read(args: argparse.Namespace) -> int:
             f = box.read()
             if i % args.every == 0:
                 if args.json:
-                    print(json.dumps(f.to_dict()), flush=True)
+                    emit(f.to_dict())
                 else:
                     vals = " ".join(f"{v / 1e3:8.4f}" for v in f.pressures_pa)
                     print(f"{f.t_s:8.3f}  {vals}  {f.supply_pa / 1e3:6.2f}", flush=True)
             i += 1
+            args.partial["frames"] = i
     return 0
 
 
 def serve(args: argparse.Namespace) -> int:
-    import sys
-
     from softpad.box import BoxServer, SimBox, open_box
     from softpad.errors import InputError
 
@@ -187,10 +195,13 @@ def serve(args: argparse.Namespace) -> int:
     previous = signal.signal(signal.SIGTERM, _terminate) if main_thread else None
     try:
         with server:
-            print(
-                f"serving {args.box} on {server.url} (port {server.port}); Ctrl-C stops",
-                flush=True,
-            )
+            if args.json:
+                emit({"serving": args.box, "url": server.url, "port": server.port})
+            else:
+                print(
+                    f"serving {args.box} on {server.url} (port {server.port}); Ctrl-C stops",
+                    flush=True,
+                )
             try:
                 server.serve(max_sessions=1 if args.once else None)
             except KeyboardInterrupt:
@@ -213,7 +224,7 @@ def inflate(args: argparse.Namespace) -> int:
             )
         res = inflate_and_adjust(box, args.modules, InflationParams(target_pa=args.p0_kpa * 1e3))
     if args.json:
-        print(json.dumps(res.to_dict()))
+        emit(res.to_dict())
     else:
         ref = " ".join(f"{v / 1e3:.3f}" for v in res.reference_pa)
         print(
@@ -239,9 +250,13 @@ def monitor(args: argparse.Namespace) -> int:
     if args.count < 0:
         raise InputError(f"--count must be >= 0 (0: endless), got {args.count}")
     with open_box(args.box) as box, FoxgloveLive(args.port) as live:
-        print(
-            f"foxglove: {live.url} (port {live.port}); serving {args.box}; Ctrl-C stops", flush=True
-        )
+        if args.json:
+            emit({"foxglove": live.url, "port": live.port, "serving": args.box})
+        else:
+            print(
+                f"foxglove: {live.url} (port {live.port}); serving {args.box}; Ctrl-C stops",
+                flush=True,
+            )
         wall0 = t0 = None
         i = 0
         try:

@@ -3,11 +3,10 @@
 from __future__ import annotations
 
 import argparse
-import json
-import re
 import sys
 from typing import Any
 
+from softpad.cli._args import int_ranges
 from softpad.errors import InputError
 
 _EPILOG = """examples:
@@ -48,20 +47,6 @@ def register(sub: Any) -> None:
     p.set_defaults(handler=run)
 
 
-def parse_seeds(text: str) -> list[int]:
-    """``"0-9"`` or ``"0,3,5"`` (or both, comma-separated) as a list of seeds >= 0."""
-    seeds: list[int] = []
-    for part in str(text).split(","):
-        m = re.fullmatch(r"\s*(\d+)\s*(?:-\s*(\d+)\s*)?", part)
-        if not m:
-            raise InputError(f"--seeds takes A-B or A,B,... with integers >= 0, got {text!r}")
-        a, b = int(m.group(1)), int(m.group(2) or m.group(1))
-        if b < a or b - a > 1000:
-            raise InputError(f"--seeds range {part.strip()!r} must go up, at most 1000 seeds")
-        seeds += range(a, b + 1)
-    return seeds
-
-
 def parse_pairs(pairs: list[str] | None) -> list[tuple[str, str]]:
     from softpad.planning import PLANNERS
     from softpad.sensing import CONTACT_DETECTORS
@@ -87,7 +72,7 @@ def run(args: argparse.Namespace) -> int:
     from softpad.cli._trials import check_counts, select_objects
     from softpad.trials import compare
 
-    seeds, pairs = parse_seeds(args.seeds), parse_pairs(args.pair)
+    seeds, pairs = int_ranges(args.seeds, "--seeds", lo=0, hi=2**32 - 1), parse_pairs(args.pair)
     specs = select_objects(args.objects)
     check_counts(args.trials, args.workers)
     if not (math.isfinite(args.idle_hours) and 0 < args.idle_hours <= 100):
@@ -108,7 +93,12 @@ def run(args: argparse.Namespace) -> int:
             bar.close()
     if args.png:
         _plot(d, args.png)
-    print(json.dumps(d) if args.json else _table(d))
+    if args.json:
+        from softpad.cli._output import emit
+
+        emit(d)
+    else:
+        print(_table(d))
     return 0
 
 

@@ -7,7 +7,11 @@ import math
 from pathlib import Path
 from typing import Any
 
+from softpad.cli._args import Renamed, add_json_force, bounded_int
+from softpad.cli._output import emit, say
+from softpad.cli._paths import check_output_dir
 from softpad.cli._record import add_record_option, check_trial_recordings
+from softpad.errors import InputError
 
 
 def register(sub: Any) -> None:
@@ -23,9 +27,20 @@ def register(sub: Any) -> None:
             "(like Fig. 6.8), and the planner's Table 6.1 plans from reference increments."
         ),
     )
-    p.add_argument("--out", default="report", help="report folder (default: report)")
+    p.add_argument(
+        "--out",
+        default="report",
+        help="report folder, absent or empty unless --force (default: report)",
+    )
     p.add_argument("--trials", type=int, default=5, help="trials per object (default 5)")
-    p.add_argument("--seed", type=int, default=0, help="experiment seed (default 0)")
+    p.add_argument(
+        "--seeds",
+        type=bounded_int("--seeds", 0, 2**32 - 1),
+        default=0,
+        help="experiment seed, one value (default 0)",
+    )
+    p.add_argument("--seed", action=Renamed, new="--seeds")
+    add_json_force(p, force=False)  # --force comes with --record
     p.add_argument("--workers", type=int, default=None, help="worker processes (default: CPUs)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     add_record_option(p, per_trial=True)
@@ -38,8 +53,11 @@ def run(args: argparse.Namespace) -> int:
     from softpad.trials._report import write_report
 
     check_counts(args.trials, args.workers)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    out = check_output_dir(args.out, "--out", force=args.force)
+    try:
+        out.mkdir(exist_ok=True)
+    except OSError as exc:
+        raise InputError(f"--out {args.out!r}: cannot create the folder: {exc.strerror}") from None
     specs = [get_object(n) for n in object_names()]
     check_trial_recordings(args.record, specs, args.trials, args.force)
     # the planner on the thesis's reference increments first (instant), then the experiment
@@ -51,24 +69,27 @@ def run(args: argparse.Namespace) -> int:
         args.trials,
         not args.no_progress,
         desc="grasp trials",
-        seed=args.seed,
+        seed=args.seeds,
         workers=args.workers,
         trace_object=trace_object,
         record=args.record,
     )
-    print(exp.to_text())
+    say(exp.to_text(), args.json)
     paths = write_report(
         out,
         exp,
         {s.name: s for s in specs},
         trace,
-        trace_title=f"{trace_object}, trial 1 (seed {args.seed})",
+        trace_title=f"{trace_object}, trial 1 (seed {args.seeds})",
     )
     names = ", ".join(p.name for p in paths)
-    print(
+    say(
         f"\n{len(exp.trials)} trials in {exp.wall_time_s:.1f} s on {exp.workers} workers; "
-        f"report written to {out}/ ({names}, plans_reference.md/.csv/.png)"
+        f"report written to {out}/ ({names}, plans_reference.md/.csv/.png)",
+        args.json,
     )
+    if args.json:
+        emit({"report": str(out), "files": [str(p) for p in paths], **exp.to_dict()})
     return 0
 
 

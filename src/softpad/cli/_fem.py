@@ -3,14 +3,15 @@
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from typing import Any
 
 from softpad import thesis
-from softpad.cli._args import finite_float, number_list
+from softpad.cli._args import add_json_force, bounded_int, finite_float, number_list
+from softpad.cli._output import emit
+from softpad.cli._paths import atomic_path, check_output
 from softpad.errors import InputError
 
 _MODELS = ("neo-hookean", "mooney-rivlin", "ogden-1", "ogden-2", "varga", "yeoh")
@@ -79,9 +80,9 @@ def _add_common(p: argparse.ArgumentParser, model: bool = True, geometry: bool =
         default="default",
         help="discretisation: coarse (6x6x1), default (12x12x2), fine (16x16x2) quarter cells",
     )
-    p.add_argument("--csv", metavar="PATH", help="write the results as CSV")
-    p.add_argument("--png", metavar="PATH", help="write a plot as PNG")
-    p.add_argument("--json", action="store_true", help="print the results as JSON")
+    p.add_argument("--csv", metavar="FILE.csv", help="write the results as CSV")
+    p.add_argument("--png", metavar="FILE.png", help="write a plot as PNG")
+    add_json_force(p)
     p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
 
 
@@ -98,6 +99,7 @@ def register(sub: Any) -> None:
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     fem_sub = p.add_subparsers(dest="fem_command", metavar="STUDY")
+    p.add_argument("--json", action="store_true", help=argparse.SUPPRESS)
     p.set_defaults(handler=lambda args: _usage(p))
 
     s = fem_sub.add_parser("sweep", help="centre height against pressure (Fig. 7.2b)")
@@ -108,8 +110,15 @@ def register(sub: Any) -> None:
         default=3.0,
         help="highest pressure in kPa (default 3)",
     )
-    s.add_argument("--points", type=int, default=13, help="number of pressures (default 13)")
-    s.add_argument("--vtu", metavar="PATH", help="write the deformed module at the last pressure")
+    s.add_argument(
+        "--points",
+        type=bounded_int("--points", 2, 200),
+        default=13,
+        help="number of pressures, 2..200 (default 13)",
+    )
+    s.add_argument(
+        "--vtu", metavar="FILE.vtu", help="write the deformed module at the last pressure"
+    )
     s.set_defaults(handler=_sweep)
 
     d = fem_sub.add_parser("design", help="height at 1 kPa against thickness or width (Fig. 7.3)")
@@ -232,7 +241,13 @@ def register(sub: Any) -> None:
         "characteristic", help="tabulate volume and height against pressure and load (.npz)"
     )
     _add_common(t)
-    t.add_argument("--out", metavar="PATH", help="output file (default: the shipped data file)")
+    t.add_argument(
+        "--out",
+        metavar="FILE.npz",
+        default="characteristic.npz",
+        help="output file (default ./characteristic.npz); developers regenerate the shipped "
+        "table with --out src/softpad/data/module_characteristic.npz --force",
+    )
     t.add_argument("--loads-n", help="loads in N starting at 0 (default 0..3 N, 15 values)")
     t.add_argument(
         "--pressures-kpa", help="pressures in kPa starting at 0 (default 0..3 every 0.1)"
@@ -247,8 +262,31 @@ def register(sub: Any) -> None:
 
 
 def _usage(p: argparse.ArgumentParser) -> int:
+    from softpad.cli.main import UsageError
+
     p.print_help(sys.stderr)
-    return 2
+    raise UsageError("a STUDY is required (see softpad fem --help)")
+
+
+def _check_outputs(args: argparse.Namespace) -> None:
+    """Check every output file named on the command line before the study starts."""
+    seen: dict[Any, str] = {}
+    for flag, suffix in (("csv", ".csv"), ("png", ".png"), ("vtu", ".vtu"), ("out", ".npz")):
+        if not hasattr(args, flag):
+            continue
+        path = check_output(getattr(args, flag), f"--{flag}", force=args.force, suffix=suffix)
+        if path is not None and path.resolve() in seen:
+            raise InputError(f"--{flag} and --{seen[path.resolve()]} name the same file {path}")
+        if path is not None:
+            seen[path.resolve()] = flag
+        setattr(args, flag, path)
+
+
+def _save_figure(fig: Any, path: Any) -> None:
+    from softpad.fem._results import save_figure
+
+    with atomic_path(path) as tmp:
+        save_figure(fig, tmp)
 
 
 # ---------------------------------------------------------------------------- helpers
@@ -259,7 +297,12 @@ def _geometry(args: argparse.Namespace) -> Any:
         raise InputError(f"--thickness-mm must be > 0 mm, got {args.thickness_mm:g} mm")
     if args.width_mm <= 0:
         raise InputError(f"--width-mm must be > 0 mm, got {args.width_mm:g} mm")
-    return ModuleGeometry(args.width_mm * 1e-3, args.thickness_mm * 1e-3)
+    try:
+        return ModuleGeometry(args.width_mm * 1e-3, args.thickness_mm * 1e-3)
+    except InputError as exc:
+        raise InputError(
+            f"--thickness-mm {args.thickness_mm:g} / --width-mm {args.width_mm:g}: {exc}"
+        ) from None
 
 
 def _mesh(args: argparse.Namespace) -> Any:
@@ -290,14 +333,14 @@ def _material(args: argparse.Namespace) -> Any:
     return material.with_parameters(**overrides) if overrides else material
 
 
-def _models(text: str) -> list[str]:
-    names = [s.strip().lower() for s in text.split(",") if s.strip()]
-    if not names:
-        raise InputError("--models needs at least one model name")
+def _models(text: str, flag: str = "--models") -> list[str]:
+    from softpad.cli._args import name_list
+
+    names = name_list(text, flag)
     for n in names:
-        if n not in _MODELS:
-            raise InputError(f"unknown model {n!r}; choose from {', '.join(_MODELS)}")
-    return names
+        if n.lower() not in _MODELS:
+            raise InputError(f"{flag}: unknown model {n!r}; choose from {', '.join(_MODELS)}")
+    return [n.lower() for n in names]
 
 
 @contextmanager
@@ -333,11 +376,10 @@ def _progress(args: argparse.Namespace, label: str) -> Iterator[Callable[[int, i
 
 def _outputs(args: argparse.Namespace, result: Any) -> None:
     if args.csv:
-        result.to_csv(args.csv)
+        with atomic_path(args.csv) as tmp:
+            result.to_csv(tmp)
     if args.png:
-        from softpad.fem._results import save_figure
-
-        save_figure(result.plot(), args.png)
+        _save_figure(result.plot(), args.png)
 
 
 # ---------------------------------------------------------------------------- handlers
@@ -346,6 +388,7 @@ def _sweep(args: argparse.Namespace) -> int:
 
     from softpad.fem import ModuleModel, inflation_sweep
 
+    _check_outputs(args)
     if args.points < 2:
         raise InputError(f"--points must be >= 2, got {args.points}")
     if args.max_pressure_kpa <= 0:
@@ -356,12 +399,10 @@ def _sweep(args: argparse.Namespace) -> int:
         result = inflation_sweep(pressures_pa=pressures, model=model, progress=progress)
     _outputs(args, result)
     if args.vtu:
-        from pathlib import Path
-
-        Path(args.vtu).parent.mkdir(parents=True, exist_ok=True)
-        model.write_vtu(args.vtu)
+        with atomic_path(args.vtu) as tmp:
+            model.write_vtu(str(tmp))
     if args.json:
-        print(json.dumps(result.to_json_dict()))
+        emit(result.to_json_dict())
         return 0
     print(f"model {result.model}: centre height against pressure")
     print("pressure_kpa  height_mm  volume_ml")
@@ -373,6 +414,7 @@ def _sweep(args: argparse.Namespace) -> int:
 def _design(args: argparse.Namespace) -> int:
     from softpad.fem import design_sweep
 
+    _check_outputs(args)
     defaults = {"thickness": "1,1.5,2,2.5,3", "width": "35,40,45,50,55"}
     values = _numbers(
         args.values_mm or defaults[args.parameter], "--values-mm", 1e-3, positive=True
@@ -389,7 +431,7 @@ def _design(args: argparse.Namespace) -> int:
         )
     _outputs(args, result)
     if args.json:
-        print(json.dumps(result.to_dict()))
+        emit(result.to_dict())
         return 0
     print(f"centre height (mm) at {args.pressure_kpa:g} kPa against {args.parameter}")
     print(f"{args.parameter}_mm  " + "  ".join(f"{m:>13}" for m in result.models))
@@ -401,10 +443,14 @@ def _design(args: argparse.Namespace) -> int:
 def _stiffness(args: argparse.Namespace) -> int:
     from softpad.fem import stiffness_study
 
+    _check_outputs(args)
     pressures = _numbers(args.pressures_kpa, "--pressures-kpa", 1e3, positive=True)
     forces = _numbers(args.forces_n, "--forces-n", positive=True)
-    if args.radius_mm <= 0:
-        raise InputError(f"--radius-mm must be > 0 mm, got {args.radius_mm:g}")
+    if not 0 < args.radius_mm < args.width_mm / 2:
+        raise InputError(
+            f"--radius-mm must be > 0 and below half the module width ({args.width_mm / 2:g} mm), "
+            f"got {args.radius_mm:g}"
+        )
     with _progress(args, "stiffness") as progress:
         result = stiffness_study(
             _material(args),
@@ -417,7 +463,7 @@ def _stiffness(args: argparse.Namespace) -> int:
         )
     _outputs(args, result)
     if args.json:
-        print(json.dumps(result.to_dict()))
+        emit(result.to_dict())
         return 0
     k = result.stiffness_n_per_m * 1e-3
     print(f"model {result.model}: equivalent stiffness (N/mm); * = layer touches the base")
@@ -434,6 +480,7 @@ def _stiffness(args: argparse.Namespace) -> int:
 def _sensitivity(args: argparse.Namespace) -> int:
     from softpad.fem import sensitive_area_study
 
+    _check_outputs(args)
     pressures = _numbers(args.pressures_kpa, "--pressures-kpa", 1e3, positive=True)
     with _progress(args, "sensitivity") as progress:
         result = sensitive_area_study(
@@ -448,7 +495,7 @@ def _sensitivity(args: argparse.Namespace) -> int:
         )
     _outputs(args, result)
     if args.json:
-        print(json.dumps(result.to_dict()))
+        emit(result.to_dict())
         return 0
     print(
         f"model {result.model}: sensitive area = top-face region where a small load changes the "
@@ -474,7 +521,18 @@ def _sensitivity(args: argparse.Namespace) -> int:
     return 0
 
 
-def _footprint(text: str) -> Any:
+def _footprint(text: str, width_mm: float) -> Any:
+    """``WxH`` or ``dD`` in mm as a LoadPatch, no side wider than the module."""
+    patch = _parse_footprint(text)
+    if max(patch.size_x_m, patch.size_y_m or 0.0) * 1e3 > width_mm:
+        raise InputError(
+            f"--footprint-mm {text!r} is wider than the module ({width_mm:g} mm): "
+            "a load wider than the module rests on its frame"
+        )
+    return patch
+
+
+def _parse_footprint(text: str) -> Any:
     from softpad.fem import LoadPatch
 
     t = text.strip().lower()
@@ -491,6 +549,7 @@ def _footprint(text: str) -> Any:
 def _chamber(args: argparse.Namespace) -> int:
     from softpad.fem import sealed_chamber_study
 
+    _check_outputs(args)
     masses = _numbers(args.masses_g, "--masses-g", 1e-3, positive=True)
     if args.pressure_kpa <= 0:
         raise InputError(f"--pressure-kpa must be > 0 kPa, got {args.pressure_kpa:g}")
@@ -504,21 +563,20 @@ def _chamber(args: argparse.Namespace) -> int:
             _material(args),
             args.pressure_kpa * 1e3,
             masses,
-            footprint=_footprint(args.footprint_mm),
+            footprint=_footprint(args.footprint_mm, args.width_mm),
             dead_volume_m3=args.dead_volume_ml * 1e-6,
             geometry=_geometry(args),
             mesh=_mesh(args),
             progress=progress,
         )
     if args.csv:
-        result.to_csv(args.csv)
+        with atomic_path(args.csv) as tmp:
+            result.to_csv(tmp)
     if args.png:
-        from softpad.fem._results import save_figure
-
-        save_figure(result.plot(threshold_pa=threshold), args.png)
+        _save_figure(result.plot(threshold_pa=threshold), args.png)
     info = result.to_dict(threshold)
     if args.json:
-        print(json.dumps(info))
+        emit(info)
         return 0
     print(
         f"model {result.model}: sealed at {info['initial_pressure_kpa']:g} kPa, chamber "
@@ -544,6 +602,7 @@ def _chamber(args: argparse.Namespace) -> int:
 def _fit(args: argparse.Namespace) -> int:
     from softpad.fem import fit_material, read_measurements
 
+    _check_outputs(args)
     pressure, height = read_measurements(args.data)
     free = [s.strip() for s in args.free.split(",") if s.strip()] if args.free else None
     if args.max_evals < 1:
@@ -562,7 +621,7 @@ def _fit(args: argparse.Namespace) -> int:
     _outputs(args, result)
     info = result.to_dict()
     if args.json:
-        print(json.dumps(info))
+        emit(info)
         return 0
     print(f"model {args.model}: RMSE {info['initial_rmse_mm']:.4f} mm -> {info['rmse_mm']:.4f} mm")
     for name, value in info["parameters"].items():
@@ -573,6 +632,7 @@ def _fit(args: argparse.Namespace) -> int:
 def _compare(args: argparse.Namespace) -> int:
     from softpad.fem import compare_models, read_measurements
 
+    _check_outputs(args)
     pressure, height = read_measurements(args.data)
     with _progress(args, "compare") as progress:
         result = compare_models(
@@ -585,7 +645,7 @@ def _compare(args: argparse.Namespace) -> int:
         )
     _outputs(args, result)
     if args.json:
-        print(json.dumps(result.to_dict()))
+        emit(result.to_dict())
         return 0
     print("rank  model           RMSE_mm")
     for i, (name, err) in enumerate(zip(result.models, result.rmse_m, strict=True), 1):
@@ -594,8 +654,9 @@ def _compare(args: argparse.Namespace) -> int:
 
 
 def _characteristic(args: argparse.Namespace) -> int:
-    from softpad.fem import CHARACTERISTIC_PATH, module_characteristic
+    from softpad.fem import module_characteristic
 
+    _check_outputs(args)
     pressures = _numbers(args.pressures_kpa, "--pressures-kpa", 1e3) if args.pressures_kpa else None
     loads = _numbers(args.loads_n, "--loads-n") if args.loads_n else None
     with _progress(args, "characteristic") as progress:
@@ -608,16 +669,16 @@ def _characteristic(args: argparse.Namespace) -> int:
             progress=progress,
             gap_volume_m3=args.gap_volume_ml * 1e-6,
         )
-    out = result.to_npz(args.out or CHARACTERISTIC_PATH)
-    if args.csv or args.png:
-        if args.png:
-            from softpad.fem._results import save_figure
-
-            save_figure(result.plot(), args.png)
-        if args.csv:
-            _characteristic_csv(result, args.csv)
+    out = args.out
+    with atomic_path(out) as tmp:
+        result.to_npz(tmp)
+    if args.png:
+        _save_figure(result.plot(), args.png)
+    if args.csv:
+        with atomic_path(args.csv) as tmp:
+            _characteristic_csv(result, str(tmp))
     if args.json:
-        print(json.dumps({"path": str(out), **result.to_dict()}))
+        emit({"path": str(out), **result.to_dict()})
         return 0
     print(
         f"wrote {out}: {len(result.pressure_pa)} pressures x {len(result.load_n)} loads "

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from typing import Any
 
@@ -42,6 +41,9 @@ def register(sub: Any) -> None:
     recover.add_argument("file", metavar="FILE.mcap")
     recover.add_argument("--out", metavar="FILE.mcap", help="default: FILE.recovered.mcap")
     recover.add_argument("--force", action="store_true", help="overwrite --out")
+    for q in (plot, export, recover):
+        q.add_argument("--json", action="store_true", help="print the written files as JSON")
+    p.add_argument("--json", action="store_true", help=argparse.SUPPRESS)
     p.set_defaults(handler=run)
 
 
@@ -66,7 +68,9 @@ def _info(run: Any, as_json: bool) -> None:
         for t, ty, n in (_topics(s["path"]) if run.complete else [])
     ]
     if as_json:
-        print(json.dumps(s))
+        from softpad.cli._output import emit
+
+        emit(s)
         return
     print(
         f"{s['path']}: {s['frames']} frames of {s['channels']} channels over {s['duration_s']:.2f} s"
@@ -99,7 +103,8 @@ def run(args: argparse.Namespace) -> int:
 
     if args.action == "recover":
         out = recover(args.file, args.out, args.force)
-        print(f"recovered {len(load_recording(out))} frames into {out}")
+        n = len(load_recording(out))
+        _done(args, f"recovered {n} frames into {out}", files=[str(out)], frames=n)
         return 0
     rec = load_recording(args.file)
     if not rec.complete:
@@ -112,7 +117,11 @@ def run(args: argparse.Namespace) -> int:
         rec.plot(args.png)
         if args.pad_png:
             rec.plot_pad(args.pad_png)
-        print(f"pressure traces: {args.png}" + (f"; pad: {args.pad_png}" if args.pad_png else ""))
+        _done(
+            args,
+            f"pressure traces: {args.png}" + (f"; pad: {args.pad_png}" if args.pad_png else ""),
+            files=[f for f in (args.png, args.pad_png) if f],
+        )
     else:
         if args.out.endswith(".csv"):
             rec.to_csv(args.out)
@@ -120,5 +129,18 @@ def run(args: argparse.Namespace) -> int:
             rec.to_parquet(args.out)
         else:
             raise InputError(f"--out must end in .csv or .parquet, got {args.out!r}")
-        print(f"{len(rec)} frames and {len(rec.events)} events written to {args.out}")
+        _done(
+            args,
+            f"{len(rec)} frames and {len(rec.events)} events written to {args.out}",
+            files=[args.out],
+        )
     return 0
+
+
+def _done(args: argparse.Namespace, text: str, **result: Any) -> None:
+    """The human line, or (with --json) the result as one JSON object and the line on stderr."""
+    from softpad.cli._output import emit, say
+
+    say(text, args.json)
+    if args.json:
+        emit(result)

@@ -11,7 +11,9 @@ from pathlib import Path
 from typing import Any
 
 from softpad import thesis
-from softpad.cli._args import finite_float, kpa_list
+from softpad.cli._args import Renamed, add_json_force, finite_float, kpa_list
+from softpad.cli._output import emit, say
+from softpad.cli._paths import atomic_path, check_output
 from softpad.errors import InputError
 
 _EPILOG = """examples:
@@ -50,26 +52,27 @@ def register(sub: Any) -> None:
     p.add_argument("--layout", default="2x3", help="pad layout ROWSxCOLS (default 2x3)")
     p.add_argument(
         "--threshold-kpa",
-        type=finite_float("threshold", lo=0.0, unit="kPa"),
+        type=finite_float("--threshold-kpa", lo=0.001, hi=10.0, unit="kPa"),
         default=thesis.OBJECT_THRESHOLD_PA / 1e3,
         help="object-detection threshold t_o in kPa (default %(default)g)",
     )
     p.add_argument(
         "--pitch-mm",
-        type=finite_float("pitch", lo=1.0, hi=1000.0, unit="mm"),
+        type=finite_float("--pitch-mm", lo=1.0, hi=1000.0, unit="mm"),
         default=45.0,
         help="module side in mm (default 45)",
     )
     p.add_argument(
         "--safety-shift",
-        type=finite_float("safety shift", lo=0.0, hi=0.49, unit="module units"),
+        type=finite_float("--safety-shift", lo=0.0, hi=0.49, unit="module units"),
         default=0.2,
         help="c_s, safety shift of corner-shaped objects in module units (default 0.2)",
     )
-    p.add_argument("--json", action="store_true", help="print the plans as JSON")
+    add_json_force(p)
     p.add_argument(
         "--png", metavar="FILE.png", help="draw the pad, increments, PCOM, COG and fingertips"
     )
+    p.add_argument("--plot", action=Renamed, new="--png FILE.png")
     p.set_defaults(handler=run)
 
 
@@ -79,9 +82,13 @@ def _read_frame(path: str) -> tuple[list[float], list[float] | None]:
         text = sys.stdin.read()
     else:
         try:
-            text = Path(path).read_text()
+            text = Path(path).read_bytes().decode("utf-8")
         except OSError as exc:
             raise InputError(f"cannot read frame file {path!r}: {exc.strerror}") from None
+        except UnicodeDecodeError:
+            raise InputError(
+                f"frame file {path!r} is not text (CSV or JSON expected; a binary file?)"
+            ) from None
     stripped = text.strip()
     if not stripped:
         raise InputError(f"frame file {path!r} is empty")
@@ -92,6 +99,8 @@ def _read_frame(path: str) -> tuple[list[float], list[float] | None]:
             raise InputError(
                 f"frame file {path!r} is not valid JSON: {exc.msg} at line {exc.lineno}"
             ) from None
+        if not isinstance(data, dict):
+            raise InputError(f"frame file {path!r} must hold a JSON object")
         if "delta_kpa" in data:
             return _numbers(data["delta_kpa"], "delta_kpa"), None
         if "pressures_kpa" in data and "reference_kpa" in data:
@@ -102,6 +111,8 @@ def _read_frame(path: str) -> tuple[list[float], list[float] | None]:
             f"frame file {path!r} needs key delta_kpa, or pressures_kpa and reference_kpa"
         )
     rows = [r for r in csv.reader(io.StringIO(stripped)) if any(c.strip() for c in r)]
+    if not rows:
+        raise InputError(f"frame file {path!r} has no values (CSV or JSON expected)")
     header = [c.strip().lower() for c in rows[0]]
     if all(_is_number(c) for c in header):
         if len(rows) != 1:
@@ -149,8 +160,15 @@ def run(args: argparse.Namespace) -> int:
     from softpad.planning import PlannerParams, format_plans, plan_grasps
     from softpad.sensing import increments
 
-    layout = parse_layout(args.layout, pitch_m=args.pitch_mm / 1e3)
+    try:
+        layout = parse_layout(args.layout, pitch_m=args.pitch_mm / 1e3)
+    except InputError as exc:
+        raise InputError(f"--layout {args.layout!r}: {exc}") from None
+    png = check_output(args.png, "--png", force=args.force, suffix=".png")
     reference: list[float] | None
+    source = "--delta" if args.delta is not None else f"--frame {args.frame!r}"
+    if args.pressures is not None:
+        source = "--pressures/--reference"
     if args.delta is not None:
         values, reference = kpa_list(args.delta, "--delta"), None
     elif args.pressures is not None:
@@ -161,30 +179,56 @@ def run(args: argparse.Namespace) -> int:
             kpa_list(args.reference, "--reference"),
         )
     else:
-        values, reference = _read_frame(args.frame)
+        try:
+            values, reference = _read_frame(args.frame)
+        except InputError as exc:
+            if repr(args.frame) in str(exc):
+                raise
+            raise InputError(f"frame file {args.frame!r}: {exc}") from None
     if reference is not None:
+        _check_readings(values, "pressures")
+        _check_readings(reference, "reference")
         if len(values) != layout.n_modules or len(reference) != layout.n_modules:
             raise InputError(
-                f"a {layout.name} pad needs {layout.n_modules} pressures and {layout.n_modules} "
-                f"reference values, got {len(values)} and {len(reference)}"
+                f"--pressures/--reference: a {layout.name} pad needs {layout.n_modules} pressures "
+                f"and {layout.n_modules} reference values, got {len(values)} and {len(reference)}"
             )
         delta = list(increments(values, reference))
     else:
+        if len(values) != layout.n_modules:
+            raise InputError(
+                f"{source}: a {layout.name} pad needs {layout.n_modules} increments "
+                f"(modules 1..{layout.n_modules}), got {len(values)}"
+            )
         delta = values
     params = PlannerParams(
         object_threshold_pa=args.threshold_kpa * 1e3, safety_shift=args.safety_shift
     )
-    plans = plan_grasps(delta, layout, params)
+    try:
+        plans = plan_grasps(delta, layout, params)
+    except InputError as exc:
+        raise InputError(f"{source}: {exc}") from None
+    if png is not None:
+        _save_plot(png, delta, plans, layout, args.json)
     if args.json:
-        print(json.dumps({"objects": [p.to_dict(layout) for p in plans]}))
+        emit({"objects": [p.to_dict(layout) for p in plans]})
     else:
         print(format_plans(delta, plans, layout, params.object_threshold_pa))
-    if args.png:
-        _save_plot(args.png, delta, plans, layout)
     return 0
 
 
-def _save_plot(path: str, delta: list[float], plans: Any, layout: Any) -> None:
+def _check_readings(values_pa: list[float], what: str) -> None:
+    """Readings within the sensor range (-2..10 kPa), else a message suggesting Pa given as kPa."""
+    for i, v in enumerate(values_pa, 1):
+        if not -2e3 <= v <= 10e3:
+            hint = ": pascals given as kPa?" if v > 10e3 else ""
+            raise InputError(
+                f"--{what}: module {i} reads {v / 1e3:g} kPa, outside the sensor range "
+                f"-2..10 kPa{hint}"
+            )
+
+
+def _save_plot(path: Path, delta: list[float], plans: Any, layout: Any, json_mode: bool) -> None:
     import matplotlib
 
     matplotlib.use("Agg")
@@ -194,9 +238,8 @@ def _save_plot(path: str, delta: list[float], plans: Any, layout: Any) -> None:
 
     ax = plot_plans(delta, plans, layout, title="SoftPad plan")
     try:
-        ax.figure.savefig(path, dpi=130, bbox_inches="tight")
-    except (OSError, ValueError) as exc:
-        raise InputError(f"cannot write plot {path!r}: {exc}") from None
+        with atomic_path(path) as tmp:
+            ax.figure.savefig(tmp, dpi=130, bbox_inches="tight")
     finally:
         plt.close(ax.figure)
-    print(f"plot written to {path}", file=sys.stderr)
+    say(f"plot written to {path}", json_mode)

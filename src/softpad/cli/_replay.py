@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import json
 import math
 from typing import Any
 
@@ -52,7 +51,9 @@ def run(args: argparse.Namespace) -> int:
 
     d = compare_replay(args.file)
     if args.json:
-        print(json.dumps(d))
+        from softpad.cli._output import emit
+
+        emit(d)
         return 0 if d["same"] else 1
     print(f"softpad replay: {d['path']} (recorded outcome: {d['outcome']})")
     plan = d["plan"]

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import json
 from typing import Any
 
 _NETWORK = (
@@ -38,7 +39,9 @@ def register(sub: Any) -> None:
         metavar="NAMES",
         help="simulation: catalogue objects put on a sim:// box 1 s after the reference",
     )
+    node.add_argument("--json", action="store_true", help="print the start line as JSON")
     node.set_defaults(handler=run_node)
+    ros.add_argument("--json", action="store_true", help=argparse.SUPPRESS)
     ros.set_defaults(handler=lambda a: _help(ros))
 
     sim = sub.add_parser("sim", help="simulated devices for ROS (docs/ros.md)")
@@ -59,7 +62,9 @@ def register(sub: Any) -> None:
         choices=("move_to", "descend", "stop", "gripper"),
         help="fault injection: the arm goes silent on this command (the box stays served)",
     )
+    arm.add_argument("--json", action="store_true", help="print the served box URL as JSON")
     arm.set_defaults(handler=run_arm_node)
+    sim.add_argument("--json", action="store_true", help=argparse.SUPPRESS)
     sim.set_defaults(handler=lambda a: _help(sim))
 
 
@@ -78,7 +83,10 @@ def run_node(args: argparse.Namespace) -> int:
     if args.place:
         changes["place"] = args.place
     node = PadNode(config.updated(changes))
-    print(f"softpad ros node: box {node.config.box}, {node.layout.name} pad", flush=True)
+    if args.json:
+        print(json.dumps({"box": node.config.box, "layout": node.layout.name}), flush=True)
+    else:
+        print(f"softpad ros node: box {node.config.box}, {node.layout.name} pad", flush=True)
     node.run()
     return 0
 
@@ -87,7 +95,10 @@ def run_arm_node(args: argparse.Namespace) -> int:
     from softpad.ros._sim_arm import SimArmNode
 
     node = SimArmNode(args.box, args.port, args.lose_arm_on)
-    print(f"softpad sim arm-node: box on {node.server.url}, arm on /softpad_arm", flush=True)
+    if args.json:
+        print(json.dumps({"box": node.server.url, "arm": "/softpad_arm"}), flush=True)
+    else:
+        print(f"softpad sim arm-node: box on {node.server.url}, arm on /softpad_arm", flush=True)
     node.serve()
     return 0
 

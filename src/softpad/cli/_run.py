@@ -3,26 +3,26 @@
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import sys
 from typing import Any
 
-from softpad import SCHEMA_VERSION, thesis
-from softpad.cli._args import finite_float
+from softpad import thesis
+from softpad.cli._args import Renamed, add_json_force, finite_float
+from softpad.cli._output import emit, say
+from softpad.cli._paths import atomic_path, check_output
 from softpad.cli._record import add_record_option, open_recorder, run_metadata
-from softpad.errors import HardwareFault
-
-#: Exit code of a run ended by a hardware or link fault (after the verified safe state).
-EXIT_HARDWARE = 3
+from softpad.errors import EXIT_FAILED, EXIT_HARDWARE, EXIT_OK, HardwareFault, InputError
 
 _EPILOG = """examples:
-  softpad run --object banana
-  softpad run --object object-4 --png run.png --record run.mcap
-  softpad run --object object-1 --object object-4       two objects, grasped one after the other
-  softpad run --box 'sim://?seed=3&rate_hz=200' --object charger --json
+  softpad run --objects banana
+  softpad run --objects object-4 --png run.png --record run.mcap
+  softpad run --objects object-1,object-4       two objects, grasped one after the other
+  softpad run --box 'sim://?seed=3&rate_hz=200' --objects charger --json
+  softpad run --objects banana --p0-kpa 1.5 --contact-threshold-kpa 0.12 --window 5
 
 objects: object-1 .. object-6, banana, toy, limes, cylinder, charger (seed, Table 6.1)
+exit code: 0 every grasp held, 1 a grasp not held, 2 bad input, 3 hardware or link fault
 """
 
 
@@ -48,11 +48,11 @@ def register(sub: Any) -> None:
         help="robot URL: sim:// (the simulated box's own, default) or ros1:// (docs/ros.md)",
     )
     p.add_argument(
-        "--object",
-        action="append",
-        metavar="NAME",
-        help="thesis object to place (repeat for several; default banana)",
+        "--objects",
+        metavar="NAME,...",
+        help="thesis objects to place, comma-separated (default banana)",
     )
+    p.add_argument("--object", action="append", help=argparse.SUPPRESS)  # old spelling
     p.add_argument(
         "--gripper",
         choices=("10/4", "6/2", "4/0"),
@@ -60,12 +60,14 @@ def register(sub: Any) -> None:
     )
     p.add_argument(
         "--hold-s",
-        type=finite_float("hold time", lo=0.0, hi=3600.0, unit="s"),
+        type=finite_float("--hold-s", lo=0.0, hi=3600.0, unit="s"),
         default=thesis.HOLD_S,
         help="hold time in s (default %(default)g)",
     )
-    p.add_argument("--json", action="store_true", help="print the timeline as one JSON object")
+    add_thesis_params(p)
+    add_json_force(p, force=False)  # --force comes with --record
     p.add_argument("--png", metavar="FILE.png", help="draw the pressure traces with the phases")
+    p.add_argument("--plot", action=Renamed, new="--png FILE.png")
     add_record_option(p)
     p.add_argument(
         "--foxglove",
@@ -76,22 +78,85 @@ def register(sub: Any) -> None:
     p.set_defaults(handler=run)
 
 
+def add_thesis_params(p: argparse.ArgumentParser) -> None:
+    """The seed's loop parameters (Section 6.2) as options with their physical ranges."""
+    from softpad.cli._args import bounded_int
+
+    g = p.add_argument_group("loop parameters (seed, Section 6.2)")
+    g.add_argument(
+        "--p0-kpa",
+        type=finite_float("--p0-kpa", lo=0.5, hi=2.8, unit="kPa"),
+        default=thesis.P0_PA / 1e3,
+        help="p0, pressure every module is inflated to, kPa, 0.5..2.8 (default 1.1)",
+    )
+    g.add_argument(
+        "--object-threshold-kpa",
+        type=finite_float("--object-threshold-kpa", lo=0.005, hi=1.0, unit="kPa"),
+        default=thesis.OBJECT_THRESHOLD_PA / 1e3,
+        help="t_o, a module holds an object when dP > t_o, kPa, 0.005..1 (default 0.05)",
+    )
+    g.add_argument(
+        "--contact-threshold-kpa",
+        type=finite_float("--contact-threshold-kpa", lo=0.005, hi=1.0, unit="kPa"),
+        default=thesis.CONTACT_THRESHOLD_PA / 1e3,
+        help="t_g, the fingers touch the pad when the average rise > t_g, kPa, 0.005..1 "
+        "(default 0.09)",
+    )
+    g.add_argument(
+        "--window",
+        type=bounded_int("--window", 1, 200),
+        default=thesis.FILTER_WINDOW,
+        help="running-average length of the detectors, samples, 1..200 (default 10)",
+    )
+    g.add_argument(
+        "--approach-speed-mps",
+        type=finite_float("--approach-speed-mps", lo=0.001, hi=0.25, unit="m/s"),
+        default=thesis.APPROACH_SPEED_M_S,
+        help="descent speed towards the pad, m/s, 0.001..0.25 (default 0.05)",
+    )
+
+
+def execution_params(args: argparse.Namespace) -> Any:
+    """ExecutionParams from the options of :func:`add_thesis_params` and ``--hold-s``."""
+    from softpad.control import ExecutionParams, InflationParams
+    from softpad.planning import PlannerParams
+
+    return ExecutionParams(
+        inflation=InflationParams(target_pa=args.p0_kpa * 1e3),
+        planner=PlannerParams(object_threshold_pa=args.object_threshold_kpa * 1e3),
+        contact_threshold_pa=args.contact_threshold_kpa * 1e3,
+        filter_length=args.window,
+        approach_speed_m_s=args.approach_speed_mps,
+        hold_s=args.hold_s,
+    )
+
+
+def _object_names(args: argparse.Namespace) -> list[str]:
+    from softpad.cli._args import name_list
+
+    names: list[str] = name_list(args.objects, "--objects") if args.objects else []
+    for text in args.object or []:
+        names += name_list(text, "--object")
+    return names or ["banana"]
+
+
 def run(args: argparse.Namespace) -> int:
     from softpad.box import open_box
-    from softpad.control import ExecutionParams
+    from softpad.errors import SoftPadError
     from softpad.harness import resolve_objects, run_simulated
-    from softpad.record import RunLog, Tee, check_output
+    from softpad.record import RunLog, Tee
 
-    specs = resolve_objects(args.object)  # unknown names fail before anything starts
-    if args.record:
-        check_output(args.record, args.force)
-    names = [s.name for s in specs]
+    names = [s.name for s in resolve_objects(_object_names(args))]  # fail before any work
+    params = execution_params(args)
+    record_path = check_output(args.record, "--record", force=args.force, suffix=".mcap")
+    png_path = check_output(args.png, "--png", force=args.force, suffix=".png")
+    if args.foxglove is not None and not 0 <= args.foxglove <= 65535:
+        raise InputError(f"--foxglove port must be within 0..65535, got {args.foxglove}")
     log = RunLog({"box": args.box, "objects": names})
-    params = ExecutionParams(hold_s=args.hold_s)
     with open_box(args.box) as box:
         meta = run_metadata("run", box, args.box, names, params, gripper=args.gripper)
-        recorder = open_recorder(args.record, box, meta, args.force)
-        live = _live(args.foxglove, box)
+        recorder = open_recorder(str(record_path) if record_path else None, box, meta, args.force)
+        live = _live(args.foxglove, box, args.json)
         try:
             tee = Tee(log, recorder, live)
             if args.robot == "sim://":
@@ -101,60 +166,90 @@ def run(args: argparse.Namespace) -> int:
 
                 result = run_with_robot_url(args, names, box, tee, params)
         except HardwareFault as exc:
-            return _report_fault(args, log, exc)
-        finally:
-            # whatever happened, what was recorded is kept
+            return _report_fault(args, log, names, exc)
+        except SoftPadError as exc:
+            exc.partial = {"objects": names, "events": _events(log), "frames": len(log)}
+            raise
+        finally:  # whatever happened, what was recorded is kept
             for r in (recorder, live):
                 if r is not None:
                     r.close()
-            if args.png and len(log):
-                log.plot(args.png, title=f"softpad run: {', '.join(names)}")
-    d = {"schema_version": SCHEMA_VERSION, **result.to_dict()}
+            _save_png(log, png_path, names)
+    return _report(args, log, result, names, png_path, record_path)
+
+
+def _report(args: Any, log: Any, result: Any, names: list[str], png: Any, record: Any) -> int:
+    d = result.to_dict()
+    held = result.outcome == "held"
     if args.json:
-        print(json.dumps(d))
-        return 0
-    print(f"softpad run: {', '.join(names)} on {args.box}")
-    for line in _timeline(log, result):
-        print("  " + line)
-    print(f"outcome: {result.outcome}")
-    if args.png:
-        print(f"pressure traces: {args.png}")
-    if args.record:
-        print(f"recording: {args.record}")
-    return 0
+        if not held:
+            d["error"] = {"kind": "failed", "message": f"grasp not held: {result.outcome}"}
+        emit(d)
+    else:
+        print(f"softpad run: {', '.join(names)} on {args.box}")
+        for line in _timeline(log, result):
+            print("  " + line)
+        print(f"outcome: {result.outcome}")
+    for path, what in ((png, "pressure traces"), (record, "recording")):
+        if path is not None:
+            say(f"{what}: {path}", args.json)
+    return EXIT_OK if held else EXIT_FAILED
 
 
-def _live(port: int | None, box: Any) -> Any:
+def _events(log: Any) -> list[Any]:
+    return [[t, kind, data] for t, kind, data in log.events]
+
+
+def _save_png(log: Any, png_path: Any, names: list[str]) -> None:
+    if png_path is None or not len(log):
+        return
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    with atomic_path(png_path) as tmp:
+        fig = log.plot(tmp, title=f"softpad run: {', '.join(names)}")
+    plt.close(fig)
+
+
+def _live(port: int | None, box: Any, json_mode: bool) -> Any:
     if port is None:
         return None
     from softpad.box import SimBox
-    from softpad.errors import InputError
     from softpad.record import FoxgloveLive
 
-    if not 0 <= port <= 65535:
-        raise InputError(f"--foxglove port must be within 0..65535, got {port}")
     robot = box.world.gripper_state if isinstance(box, SimBox) else None
     live = FoxgloveLive(port, robot_state=robot)
-    print(f"foxglove: {live.url} (port {live.port})", flush=True)
+    say(f"foxglove: {live.url} (port {live.port})", json_mode)
     return live
 
 
-def _report_fault(args: argparse.Namespace, log: Any, exc: Exception) -> int:
-    """Print what was detected and the safe state reached; the hardware-fault exit code."""
+def _report_fault(args: argparse.Namespace, log: Any, names: list[str], exc: Exception) -> int:
+    """Print what was detected and the safe state reached; the hardware-fault exit code.
+
+    With ``--json``: ``outcome``, ``faults``, ``safe_state`` and ``phases`` at the top and the
+    contract's ``error`` object (kind ``hardware``, message, events and frames recorded so far).
+    """
     faults = [f.to_dict() for f in getattr(exc, "faults", ())]
     safe = getattr(exc, "safe_state", None)
     d = {
-        "schema_version": SCHEMA_VERSION,
         "outcome": "fault",
-        "error": str(exc),
+        "objects": names,
         "faults": faults,
         "safe_state": None if safe is None else safe.to_dict(),
         "phases": [
             {"phase": e["phase"], "t_s": round(t, 4)} for t, k, e in log.events if k == "phase"
         ],
+        "error": {
+            "kind": "hardware",
+            "message": str(exc),
+            "events": _events(log),
+            "frames": len(log),
+        },
     }
     if args.json:
-        print(json.dumps(d))
+        emit(d)
     else:
         for f in faults:
             print(f"t = {f['t_s']:7.2f} s  fault on channel {f['channel']} ({f['cause']})")
@@ -162,7 +257,7 @@ def _report_fault(args: argparse.Namespace, log: Any, exc: Exception) -> int:
             kpa = ", ".join("nan" if v != v else f"{v / 1e3:.3f}" for v in safe.pressures_pa)
             state = "verified" if safe.verified else f"NOT verified: {safe.reason}"
             print(f"safe state {state}; pressures {kpa} kPa")
-    print(f"softpad run: hardware fault: {exc}", file=sys.stderr)
+    print(f"softpad run: error: hardware fault: {exc}", file=sys.stderr)
     return EXIT_HARDWARE
 
 

@@ -3,17 +3,19 @@
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from typing import Any
 
 from softpad import thesis
+from softpad.cli._args import Renamed, add_json_force, int_ranges, name_list
+from softpad.cli._output import emit, say
 from softpad.cli._record import add_record_option, check_trial_recordings
 from softpad.errors import InputError
 
 _EPILOG = """examples:
   softpad trials                                   all 11 objects x 5 trials (Table 6.1)
-  softpad trials --objects banana,charger --trials 2 --seed 7
+  softpad trials --objects banana,charger --trials 2 --seeds 7
+  softpad trials --objects cylinder --trials 1 --seeds 0-2       three experiments, seeds 0, 1, 2
   softpad trials --objects cylinder --trials 1 --json
 
 Each trial: a fresh MuJoCo world behind the simulated box; inflate to p0, save the reference,
@@ -43,12 +45,18 @@ def register(sub: Any) -> None:
         help="comma-separated catalogue names (default: all of Table 6.1)",
     )
     p.add_argument("--trials", type=int, default=5, help="trials per object (default 5)")
-    p.add_argument("--seed", type=int, default=0, help="experiment seed (default 0)")
+    p.add_argument(
+        "--seeds",
+        default="0",
+        metavar="SEEDS",
+        help="experiment seeds: 7, 0-9 or 0-2,7 (default 0)",
+    )
+    p.add_argument("--seed", action=Renamed, new="--seeds (e.g. --seeds 7 or --seeds 0-9)")
     p.add_argument("--workers", type=int, default=None, help="worker processes (default: all CPUs)")
     p.add_argument(
         "--hold-s", type=float, default=thesis.HOLD_S, help="hold time in s (default %(default)g)"
     )
-    p.add_argument("--json", action="store_true", help="print the results as JSON")
+    add_json_force(p, force=False)
     p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
     add_record_option(p, per_trial=True)
     p.set_defaults(handler=run)
@@ -61,9 +69,7 @@ def select_objects(names_text: str | None) -> list[Any]:
     known = list(object_names())
     if names_text is None:
         return [get_object(n) for n in known]
-    names = [n.strip() for n in names_text.split(",") if n.strip()]
-    if not names:
-        raise InputError("--objects needs at least one object name")
+    names = name_list(names_text, "--objects")
     for n in names:
         if n not in known:
             raise InputError(f"unknown object {n!r}; known objects: {', '.join(known)}")
@@ -114,21 +120,34 @@ def run(args: argparse.Namespace) -> int:
 
     specs = select_objects(args.objects)
     check_counts(args.trials, args.workers)
+    seeds = int_ranges(args.seeds, "--seeds", lo=0, hi=2**32 - 1)
+    if len(seeds) > 100:
+        raise InputError(f"--seeds {args.seeds!r} names {len(seeds)} seeds; at most 100")
     if not math.isfinite(args.hold_s) or not 0 <= args.hold_s <= 600:
         raise InputError(f"--hold-s must be from 0 to 600 s, got {args.hold_s!r}")
+    if args.record and len(seeds) > 1:
+        raise InputError(
+            "--record takes one seed at a time (trial files are named by object and trial)"
+        )
     check_trial_recordings(args.record, specs, args.trials, args.force)
-    exp, _ = run_with_progress(
-        specs,
-        args.trials,
-        not args.no_progress and sys.stderr.isatty(),
-        seed=args.seed,
-        workers=args.workers,
-        config=TrialConfig(trial_execution_params(hold_s=args.hold_s)),
-        record=args.record,
-    )
+    done: list[Any] = []
+    args.partial = {"seeds": seeds, "experiments": done}
+    for seed in seeds:
+        exp, _ = run_with_progress(
+            specs,
+            args.trials,
+            not args.no_progress and sys.stderr.isatty(),
+            seed=seed,
+            workers=args.workers,
+            config=TrialConfig(trial_execution_params(hold_s=args.hold_s)),
+            record=args.record,
+        )
+        done.append(exp.to_dict())
+        say(f"seed {seed}:\n{exp.to_text()}", args.json)
+        say(
+            f"({len(exp.trials)} trials in {exp.wall_time_s:.1f} s on {exp.workers} workers)",
+            args.json,
+        )
     if args.json:
-        print(json.dumps(exp.to_dict(), indent=1))
-    else:
-        print(exp.to_text())
-        print(f"({len(exp.trials)} trials in {exp.wall_time_s:.1f} s on {exp.workers} workers)")
+        emit(done[0] if len(done) == 1 else {"seeds": seeds, "experiments": done})
     return 0

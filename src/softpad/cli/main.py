@@ -2,19 +2,28 @@
 
 Sub-commands are registered by private modules (``_plan``, ``_box``, ...), each with a
 ``register(subparsers)`` function; heavy libraries are imported only inside the handlers.
-Every :class:`~softpad.errors.SoftPadError` becomes a one-line message and exit code 2.
+Every exception becomes a one-line message and the exit code of its class
+(:func:`softpad.errors.exit_code_for`); with ``--json`` stdout carries one JSON object
+``{"schema_version": ..., "error": {"kind", "message", ...}}`` instead.
 """
 
 from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import sys
+import traceback
 from collections.abc import Sequence
-from typing import NoReturn
+from typing import Any, NoReturn
 
 from softpad import __version__
-from softpad.errors import SoftPadError
+from softpad.errors import (
+    EXIT_INPUT,
+    InputError,
+    SoftPadError,
+    exit_code_for,
+)
 
 #: Modules that register sub-commands, in the order they appear in ``softpad --help``.
 _COMMAND_MODULES = (
@@ -29,19 +38,46 @@ _COMMAND_MODULES = (
     "_log",
     "_bench",
     "_ros",
+    "_completion",
 )
 
-EXIT_USAGE = 2
+EXIT_USAGE = EXIT_INPUT
+
+#: Where internal errors (bugs) are reported.
+REPORT_URL = "the SoftPad issue tracker (issues new), with the command line and softpad --version"
+
+EXIT_CODES_HELP = """exit codes (the same for every command):
+  0  success: every grasp held, every study done (for trials, demo, fem: the study ran;
+     its failed grasps are results)
+  1  the job ran but failed (a grasp not held in 'run'; a model that did not converge)
+  2  bad input: usage, values, files (nothing was started)
+  3  hardware or link fault (the box was put in a safe state)
+  4  internal error: a bug; the message says where to report it (--debug shows the traceback)
+
+--json (every command): stdout carries one JSON object with "schema_version" and the result,
+or {"schema_version": 1, "error": {"kind", "message", ...what was gathered before}}; streaming
+commands (box read) print one object per line, the last one the error if any. Human text goes
+to stderr.
+"""
+
+
+class UsageError(InputError):
+    """The command line does not parse (unknown option, missing value)."""
 
 
 class _Parser(argparse.ArgumentParser):
-    """ArgumentParser whose usage errors are one line (the value and what is allowed)."""
+    """ArgumentParser without prefix abbreviations whose usage errors raise :class:`UsageError`."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        kwargs["allow_abbrev"] = False
+        super().__init__(*args, **kwargs)
 
     def error(self, message: str) -> NoReturn:
-        self.exit(EXIT_USAGE, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+        raise UsageError(f"{message} (see {self.prog} --help)")
 
 
 def build_parser() -> argparse.ArgumentParser:
+    """The ``softpad`` parser with every sub-command registered."""
     parser = _Parser(
         prog="softpad",
         description=(
@@ -49,9 +85,15 @@ def build_parser() -> argparse.ArgumentParser:
             "Plans grasps from module pressure increments, runs the closed loop on a simulated "
             "pneumatic box, and models a module with finite elements."
         ),
+        epilog=EXIT_CODES_HELP,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     parser.add_argument("--version", action="version", version=f"softpad {__version__}")
-    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    parser.add_argument(
+        "--debug", action="store_true", help="show the traceback of internal errors"
+    )
+    parser.add_argument("--json", action="store_true", help=argparse.SUPPRESS)
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     for name in _COMMAND_MODULES:
         module = importlib.import_module(f"softpad.cli.{name}")
         module.register(sub)
@@ -59,21 +101,55 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    if not getattr(args, "handler", None):
-        parser.print_help()
-        return EXIT_USAGE
+    """Run the ``softpad`` command line ``argv``; return its exit code."""
+    argv = list(sys.argv[1:] if argv is None else argv)
+    debug = "--debug" in argv or os.environ.get("SOFTPAD_DEBUG") == "1"
+    argv = [a for a in argv if a != "--debug"]
+    json_mode = "--json" in argv
+    name = next((a for a in argv if not a.startswith("-")), "")
+    args: argparse.Namespace | None = None
     try:
+        parser = build_parser()
+        args = parser.parse_args(argv)
+        name = args.command or ""
+        if not getattr(args, "handler", None):
+            parser.print_help(sys.stderr if json_mode else sys.stdout)
+            if json_mode:
+                raise UsageError("a COMMAND is required (see softpad --help)")
+            return EXIT_USAGE
         return int(args.handler(args) or 0)
-    except SoftPadError as exc:
-        print(f"softpad {args.command}: error: {exc}", file=sys.stderr)
-        return EXIT_USAGE
     except KeyboardInterrupt:
-        print(f"softpad {args.command}: interrupted", file=sys.stderr)
+        print(f"softpad {name}: interrupted", file=sys.stderr)
         return 130
     except BrokenPipeError:
         return 0
+    except Exception as exc:  # every error: one line, the exit code of its class
+        return _report(exc, name, json_mode, debug, args)
+
+
+def _report(exc: BaseException, name: str, json_mode: bool, debug: bool, args: Any) -> int:
+    from softpad.cli._output import emit, error_object
+
+    code = exit_code_for(exc)
+    prog = f"softpad {name}".strip()
+    if isinstance(exc, SoftPadError):
+        kind, message = exc.kind, str(exc)
+    elif isinstance(exc, OSError) and exc.filename is not None:  # a file that cannot be used
+        code, kind = EXIT_INPUT, "input"
+        message = f"cannot use file {exc.filename!r}: {exc.strerror or exc}"
+    else:
+        kind = "internal"
+        message = (
+            f"internal error: {type(exc).__name__}: {exc}. This is a bug; please report it to "
+            f"{REPORT_URL}" + ("" if debug else " (rerun with --debug for the traceback)")
+        )
+    if debug:
+        traceback.print_exception(exc, file=sys.stderr)
+    print(f"{prog}: error: {message}", file=sys.stderr)
+    if json_mode:
+        partial = getattr(exc, "partial", None) or getattr(args, "partial", None)
+        emit(error_object(kind, message, partial))
+    return code
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -40,7 +40,15 @@ def read_measurements(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
     src = Path(path)
     if not src.is_file():
         raise InputError(f"measurement file {str(src)!r} does not exist")
-    with src.open(newline="") as fh:
+    try:
+        text = src.read_bytes().decode("utf-8")
+    except UnicodeDecodeError:
+        raise InputError(
+            f"measurement file {str(src)!r} is not text (CSV expected; a binary file?)"
+        ) from None
+    import io
+
+    with io.StringIO(text, newline="") as fh:
         reader = csv.DictReader(fh)
         fields = [f.strip() for f in (reader.fieldnames or [])]
         if "pressure_kpa" not in fields or "height_mm" not in fields:

@@ -6,7 +6,8 @@ from typing import Protocol, runtime_checkable
 
 from numpy.typing import ArrayLike
 
-from softpad.layout import PadLayout
+from softpad.errors import InputError
+from softpad.layout import PadLayout, parse_layout
 from softpad.planning._params import PlannerParams
 from softpad.planning._records import GraspPlan
 from softpad.planning._thesis_rules import plan_with_rules
@@ -45,7 +46,7 @@ class ThesisPlanner:
 
 def plan_grasps(
     delta_pa: ArrayLike,
-    layout: PadLayout | None = None,
+    layout: PadLayout | str | None = None,
     params: PlannerParams | None = None,
 ) -> list[GraspPlan]:
     """Detect the objects on the pad and plan a grasp for each, in module order.
@@ -59,6 +60,10 @@ def plan_grasps(
     params
         Planner parameters (thesis defaults).
     """
+    if isinstance(layout, str):
+        layout = parse_layout(layout)
+    elif layout is not None and not isinstance(layout, PadLayout):
+        raise InputError(f"layout must be a PadLayout or a string like '2x3', got {layout!r}")
     layout = layout or PadLayout()
     params = params or PlannerParams()
     d = check_increments(delta_pa, layout)

@@ -17,9 +17,25 @@ DEFAULT_OBJECT_THRESHOLD_PA = thesis.OBJECT_THRESHOLD_PA
 DEFAULT_CONTACT_THRESHOLD_PA = thesis.CONTACT_THRESHOLD_PA
 
 
+#: Full scale of the module pressure sensors (gauge), pascals: an increment above it is not
+#: a pressure a module can show (pascals given as kPa, or a broken frame).
+SENSOR_FULL_SCALE_PA = 10_000.0
+#: Below this, a non-zero set of increments is under the converter's resolution (2.4 Pa) and
+#: the sensor noise (8 Pa): kPa values given as pascals.
+SMALLEST_PLAUSIBLE_INCREMENT_PA = 1.0
+
+
 def check_increments(delta_pa: ArrayLike, layout: PadLayout) -> np.ndarray:
-    """Validate an increment vector against a layout and return it as floats."""
-    d = np.asarray(delta_pa, dtype=float)
+    """Validate an increment vector against a layout and return it as floats.
+
+    Raises :class:`InputError` for a wrong length, non-finite values, an increment beyond the
+    sensor's full scale (10 kPa: pascals given as kPa?) or a non-zero vector whose largest
+    increment is under 1 Pa (kPa given as pascals?).
+    """
+    try:
+        d = np.asarray(delta_pa, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"increments must be numbers in pascals, got {delta_pa!r}") from None
     if d.ndim != 1 or d.size != layout.n_modules:
         raise InputError(
             f"a {layout.name} pad needs {layout.n_modules} increments (modules 1..{layout.n_modules}), "
@@ -29,14 +45,40 @@ def check_increments(delta_pa: ArrayLike, layout: PadLayout) -> np.ndarray:
     if bad.any():
         i = int(np.argmax(bad))
         raise InputError(f"increment of module {i + 1} must be finite, got {d[i]!r}")
+    big = np.abs(d) > SENSOR_FULL_SCALE_PA
+    if big.any():
+        i = int(np.argmax(big))
+        raise InputError(
+            f"increment of module {i + 1} is {d[i]:g} Pa ({d[i] / 1e3:g} kPa), beyond the sensor's "
+            f"{SENSOR_FULL_SCALE_PA / 1e3:g} kPa full scale: were pascals given as kPa?"
+        )
+    top = float(np.max(np.abs(d))) if d.size else 0.0
+    if 0.0 < top < SMALLEST_PLAUSIBLE_INCREMENT_PA:
+        raise InputError(
+            f"every increment is below {SMALLEST_PLAUSIBLE_INCREMENT_PA:g} Pa (largest {top:g} Pa), "
+            "under the sensor's resolution: were kPa given as pascals? (increments are in Pa)"
+        )
     return d
 
 
 def check_threshold(threshold_pa: float, name: str = "threshold") -> float:
     """Validate a detection threshold (finite, >= 0 Pa)."""
-    t = float(threshold_pa)
+    try:
+        t = float(threshold_pa)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be a pressure in pascals, got {threshold_pa!r}") from None
     if not np.isfinite(t) or t < 0:
         raise InputError(f"{name} must be a finite pressure >= 0 kPa, got {t / 1e3:g} kPa")
+    if t > SENSOR_FULL_SCALE_PA:
+        raise InputError(
+            f"{name} is {t:g} Pa, beyond the sensor's {SENSOR_FULL_SCALE_PA / 1e3:g} kPa full "
+            "scale: were pascals given as kPa?"
+        )
+    if 0.0 < t < SMALLEST_PLAUSIBLE_INCREMENT_PA:
+        raise InputError(
+            f"{name} is {t:g} Pa, under the sensor's resolution: were kPa given as pascals? "
+            "(thresholds are in Pa, e.g. 50 for the thesis's 0.05 kPa)"
+        )
     return t
 
 

@@ -190,11 +190,11 @@ def execute_trial(
         except ExecutionError as exc:
             return _not_detected(base, watcher.seen, t, exc), log
         except HardwareFault as exc:
-            # A module read above the trial's fault limit: after the outcome the trial stands;
-            # before it, the trial is a failure of its own kind. Faults before the object
-            # was placed are real and propagate.
+            # A fault the loop detected (over-pressure, a leak alarm during the adjustment...):
+            # after the outcome the trial stands; before it, the trial is a failure of its own
+            # kind, with the plan when there was one.
             if "plan" not in watcher.seen:
-                raise
+                return _box_fault_unplanned(base, t, execution.phase, exc), log
             if "outcome" not in watcher.seen:
                 return _box_fault(base, watcher.seen, t, execution.phase, exc), log
         sim_time = t.box.time_s
@@ -224,6 +224,18 @@ def _box_fault(
         **_planned(seen, t),
         sim_time_s=t.box.time_s,
         detail=f"box fault in phase {phase}: {exc}",
+    )
+
+
+def _box_fault_unplanned(
+    base: dict[str, Any], t: _Trial, phase: str, exc: Exception
+) -> TrialResult:
+    return TrialResult(
+        **base,
+        success=False,
+        cause="box_fault",
+        sim_time_s=t.box.time_s,
+        detail=f"box fault in phase {phase}, before planning: {exc}",
     )
 
 
