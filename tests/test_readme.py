@@ -33,6 +33,10 @@ QUICK = {
 SKIP = {
     "demo --out report": "the main job (55 MuJoCo trials, minutes); `make demo` runs it",
     "box serve --box sim:// --port 0": "serves until Ctrl-C; tests/cli/test_box_tcp_cli.py serves",
+    "ros node --box sim:// --place banana": "needs a roscore; tests/ros runs it against one",
+    "sim arm-node --port 5757": "needs a roscore; tests/ros runs it against one",
+    "run --robot ros1:// --box tcp://127.0.0.1:5757 --objects banana": "needs a roscore and "
+    "the arm node; tests/ros runs it",
 }
 
 

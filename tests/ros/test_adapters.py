@@ -102,3 +102,21 @@ def test_without_ros_the_node_says_how_to_install_it() -> None:
 def test_run_with_an_unknown_robot_is_one_line() -> None:
     r = _softpad("run", "--robot", "ur5://", "--objects", "banana")
     assert r.returncode == 2 and r.stderr.count("\n") == 1 and "ur5://" in r.stderr
+
+
+def test_without_a_master_the_node_says_so_at_once() -> None:
+    from softpad.ros import rospy_available
+
+    if not rospy_available():
+        pytest.skip("ROS 1 not installed (make ros-deps)")
+    import socket
+
+    with socket.socket() as s:  # a loopback port where no master listens
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    r = _softpad(
+        "ros", "node", "--box", "sim://", ROS_MASTER_URI=f"http://127.0.0.1:{port}",
+        ROS_IP="127.0.0.1", ROS_HOSTNAME="localhost",
+    )  # fmt: skip
+    assert r.returncode == 2 and r.stderr.count("\n") == 1
+    assert f"no ROS master answers at http://127.0.0.1:{port}" in r.stderr

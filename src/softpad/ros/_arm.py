@@ -50,9 +50,9 @@ class Ros1Robot:
     def __init__(
         self, connect_timeout_s: float = 10.0, stale_s: float = 1.0, node_name: str = "softpad_run"
     ) -> None:
-        from softpad.ros._rospy_path import ensure_rospy
+        from softpad.ros._rospy_path import require_master
 
-        rospy = ensure_rospy()
+        rospy = require_master()
         from std_msgs.msg import Float64MultiArray
 
         if not rospy.core.is_initialized():

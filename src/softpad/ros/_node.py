@@ -132,9 +132,9 @@ class PadNode:
     """
 
     def __init__(self, config: NodeConfig, name: str = "softpad") -> None:
-        from softpad.ros._rospy_path import ensure_rospy
+        from softpad.ros._rospy_path import require_master
 
-        self.rospy = ensure_rospy()
+        self.rospy = require_master()
         self.rospy.init_node(name, disable_signals=True)
         params = {
             k: self.rospy.get_param("~" + k) for k in CONFIG_KEYS if self.rospy.has_param("~" + k)

@@ -89,3 +89,23 @@ def rospy_available() -> bool:
     except InputError:
         return False
     return True
+
+
+def require_master() -> ModuleType:
+    """:func:`ensure_rospy`, then check that the ROS master answers (no endless retrying).
+
+    Raises
+    ------
+    InputError
+        When no master answers at ``ROS_MASTER_URI``, naming it and how to start one.
+    """
+    rospy = ensure_rospy()
+    import rosgraph
+
+    uri = rosgraph.get_master_uri()
+    if not rosgraph.is_master_online(uri):
+        raise InputError(
+            f"no ROS master answers at {uri}: start 'roscore' (loopback: "
+            "ROS_MASTER_URI=http://127.0.0.1:11311 ROS_IP=127.0.0.1 ROS_HOSTNAME=localhost)"
+        )
+    return rospy

@@ -68,13 +68,13 @@ class SimArmNode:
     ) -> None:
         from softpad.box import BoxServer, open_box
         from softpad.harness import SimulatedRobot, simulation_extensions
-        from softpad.ros._rospy_path import ensure_rospy
+        from softpad.ros._rospy_path import require_master
 
         if not box_url.startswith("sim://"):
             raise InputError(f"the simulated arm drives a sim:// box, got {box_url!r}")
         if "realtime=" not in box_url:
             box_url += ("&" if "?" in box_url else "?") + "realtime=1"
-        rospy = ensure_rospy()
+        rospy = require_master()
         from std_msgs.msg import Float64MultiArray
 
         box = open_box(box_url)
