@@ -15,7 +15,7 @@ $(VENV)/.installed: pyproject.toml
 venv: $(VENV)/.installed
 
 demo: venv
-	MPLBACKEND=Agg $(BIN)/softpad demo --out report
+	MPLBACKEND=Agg $(BIN)/softpad demo --out report --force
 
 lint: venv
 	$(BIN)/ruff check src tests examples
