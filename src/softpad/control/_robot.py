@@ -42,19 +42,9 @@ class ToolPose:
 
 @dataclass(frozen=True)
 class RobotState:
-    """Where the gripper is, as the robot itself measures it (pad frame).
-
-    Parameters
-    ----------
-    x_m, y_m
-        Centre between the fingertips, metres.
-    z_m
-        Height of the fingertips' lower faces above the pad base, metres.
-    yaw_rad
-        Direction in which the jaws close, radians.
-    width_m
-        Distance between the fingertips' inner faces, metres.
-    """
+    """Where the gripper is, as the robot itself measures it (pad frame): the fields of
+    :class:`ToolPose` (metres, radians) and ``width_m``, the distance between the fingertips'
+    inner faces, metres."""
 
     x_m: float
     y_m: float

@@ -116,12 +116,10 @@ class GripperAwarePlanner:
         self.thesis = ThesisPlanner(params)
         self.seam_width_m = seam_width_m
         self.max_shift, self.max_turn_rad, self.good_share = max_shift, max_turn_rad, good_share
-        self._layout = PadLayout()
 
     def plan(
         self, increments_pa: ArrayLike, objects: list[tuple[int, ...]], layout: PadLayout
     ) -> list[GraspPlan]:
-        self._layout = layout
         plans = self.thesis.plan(increments_pa, objects, layout)
         return [self.improve(p, layout) for p in plans]
 
@@ -134,12 +132,11 @@ class GripperAwarePlanner:
     def improve(self, plan: GraspPlan, layout: PadLayout) -> GraspPlan:
         """The plan itself when a fingertip is sensed and the jaws span the object, else the
         best-scoring candidate (the plan itself when none is better)."""
-        self._layout = layout
         fits = not self._too_wide(plan, plan.theta, layout)
         if fits and self.tip_share(plan.cog, plan.theta, layout) >= self.good_share:
             return plan
         best, best_score = plan, self._score(plan, layout, plan.cog, plan.theta)
-        for cog, theta in self._candidates(plan):
+        for cog, theta in self._candidates(plan, layout):
             score = self._score(plan, layout, cog, theta)
             if score > best_score + 1e-9:
                 best, best_score = (
@@ -148,21 +145,23 @@ class GripperAwarePlanner:
                 )
         return best
 
-    def _too_wide(self, plan: GraspPlan, theta: float, layout: PadLayout | None = None) -> bool:
-        extent = object_extent_m(plan.modules, theta, layout or self._layout)
+    def _too_wide(self, plan: GraspPlan, theta: float, layout: PadLayout) -> bool:
+        extent = object_extent_m(plan.modules, theta, layout)
         return extent > self.gripper.max_width_m
 
-    def _candidates(self, plan: GraspPlan) -> list[tuple[tuple[float, float], float]]:
+    def _candidates(
+        self, plan: GraspPlan, layout: PadLayout
+    ) -> list[tuple[tuple[float, float], float]]:
         out = []
         shifts = np.linspace(-self.max_shift, self.max_shift, 7)
         # the thesis's direction follows the object's shape: turn only to a direction in which
         # the object's outline fits between the jaws
         turns = [0.0]
-        if self._too_wide(plan, plan.theta):
+        if self._too_wide(plan, plan.theta, layout):
             turns += [
                 float(t)
                 for t in np.linspace(-self.max_turn_rad, self.max_turn_rad, 5)
-                if t != 0.0 and not self._too_wide(plan, plan.theta + t)
+                if t != 0.0 and not self._too_wide(plan, plan.theta + t, layout)
             ]
         for turn in turns:
             theta = _wrap(plan.theta + turn)
