@@ -10,6 +10,13 @@ Every back-end must pass :func:`check_conformance`.
 
 from softpad.box._base import Box, ConnectionLost, PressureFrame, ValveCommand
 from softpad.box._conformance import ConformanceError, check_conformance
+from softpad.box._hardware import (
+    FakeValveLines,
+    GpiodValveLines,
+    HardwareBox,
+    IIOReader,
+    ValveLines,
+)
 from softpad.box._protocol import PROTOCOL_VERSION, ProtocolError
 from softpad.box._registry import DEFAULT_URL, backends, open_box, parse_url, register_backend
 from softpad.box._server import BoxServer
@@ -24,12 +31,17 @@ __all__ = [
     "BoxServer",
     "ConformanceError",
     "ConnectionLost",
+    "FakeValveLines",
     "Fault",
+    "GpiodValveLines",
+    "HardwareBox",
+    "IIOReader",
     "PressureFrame",
     "ProtocolError",
     "SimBox",
     "TcpBox",
     "ValveCommand",
+    "ValveLines",
     "backends",
     "check_conformance",
     "open_box",
