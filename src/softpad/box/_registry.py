@@ -31,10 +31,10 @@ def _ensure_builtin() -> None:
         from softpad.box._sim import open_sim_url
 
         register_backend("sim", open_sim_url)
-    if "tcp" not in _BACKENDS:
-        from softpad.box._tcp import open_tcp_url
+    if "zenoh" not in _BACKENDS:
+        from softpad.box._zenoh import open_zenoh_url
 
-        register_backend("tcp", open_tcp_url)
+        register_backend("zenoh", open_zenoh_url)
 
 
 def parse_url(url: str) -> tuple[str, str, dict[str, str]]:
@@ -61,7 +61,8 @@ def open_box(url: str = DEFAULT_URL) -> Box:
     ----------
     url
         ``sim://`` (the simulated box, see :func:`softpad.box.open_sim_url` for its options)
-        or ``tcp://host:port`` (a box served over the network, :class:`softpad.box.TcpBox`).
+        or ``zenoh://host:port[/prefix]`` (a box served by ``softpad box serve``,
+        :class:`softpad.box.ZenohBox`).
 
     Raises
     ------

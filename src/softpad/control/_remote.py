@@ -1,9 +1,9 @@
-"""The grasp loop against a simulator served over the network (``tcp://``).
+"""The grasp loop against a simulator served over zenoh (``zenoh://``).
 
-A ``tcp://`` box carries pressures and valves only. To run the whole simulated loop through
-it, the server of a :class:`~softpad.box.SimBox` also offers the simulator's world and robot
-as protocol extensions (:func:`simulation_extensions`; ``softpad box serve`` adds them when it
-serves a ``sim://`` box), and the client drives them with :class:`RemoteRobot`:
+A ``zenoh://`` box carries pressures and valves only. To run the whole simulated loop through
+it, the daemon serving a :class:`~softpad.box.SimBox` also offers the simulator's world and
+robot as queryables ``PREFIX/ext/OP`` (:func:`simulation_extensions`; ``softpad box serve
+--sim`` adds them), and the controlling client drives them with :class:`RemoteRobot`:
 
 =====================  =================================================  =====================
 request                fields                                             reply
@@ -25,7 +25,7 @@ request                fields                                             reply
 =====================  =================================================  =====================
 
 Every robot request maps one to one onto the served :class:`SimulatedRobot`, so a run over
-``tcp://`` gives exactly the run on the same ``sim://`` box in-process (tested). A real robot
+``zenoh://`` gives the run on the same ``sim://`` box in-process (tested). A real robot
 would not be served this way: it has its own controller behind the :class:`Robot` protocol.
 """
 
@@ -35,7 +35,7 @@ import math
 from collections.abc import Callable
 from typing import Any
 
-from softpad.box import SimBox, TcpBox
+from softpad.box import SimBox, ZenohBox
 from softpad.control._robot import SimulatedRobot, ToolPose
 from softpad.errors import HardwareFault, InputError
 from softpad.layout import PadLayout
@@ -68,7 +68,7 @@ def _number(msg: dict[str, Any], key: str) -> float:
 def simulation_extensions(box: SimBox) -> dict[str, Handler]:
     """Protocol extensions exposing ``box``'s world and a :class:`SimulatedRobot` on it.
 
-    Pass them to :class:`~softpad.box.BoxServer` (``extensions=``).
+    Pass them to :class:`~softpad.box.BoxDaemon` (``services=``).
     """
     world = box.world
     robot = [SimulatedRobot(world)]
@@ -131,9 +131,9 @@ def simulation_extensions(box: SimBox) -> dict[str, Handler]:
     }
 
 
-def has_simulation(box: TcpBox) -> bool:
-    """True when the server of ``box`` offers every request of :data:`SIMULATION_OPS`."""
-    return set(SIMULATION_OPS) <= set(box.extensions)
+def has_simulation(box: ZenohBox) -> bool:
+    """True when the daemon of ``box`` offers every service of :data:`SIMULATION_OPS`."""
+    return set(SIMULATION_OPS) <= set(box.info.get("services", []))
 
 
 def _floats(reply: dict[str, Any], key: str, n: int) -> list[float]:
@@ -150,34 +150,41 @@ def _floats(reply: dict[str, Any], key: str, n: int) -> list[float]:
 
 
 class RemoteRobot:
-    """The :class:`Robot` of a simulator served over ``tcp://`` (see the module docstring).
+    """The :class:`Robot` of a simulator served over ``zenoh://`` (see the module docstring).
+
+    Every call is a query to ``PREFIX/ext/OP``; it takes control of the box (only the
+    controlling client may move the served robot).
 
     Parameters
     ----------
     box
-        An open :class:`~softpad.box.TcpBox` whose server offers :data:`SIMULATION_OPS`.
+        An open :class:`~softpad.box.ZenohBox` whose daemon offers :data:`SIMULATION_OPS`.
     gripper
         Gripper mounting to set up (``"10/4"``, ``"6/2"``, ``"4/0"``); None keeps the served one.
     """
 
-    def __init__(self, box: TcpBox, gripper: str | None = None) -> None:
+    def __init__(self, box: ZenohBox, gripper: str | None = None) -> None:
         if not has_simulation(box):
             raise InputError(
                 f"box at {box.address} serves no simulated world and robot "
-                "(start it with 'softpad box serve --box sim://...')"
+                "(start it with 'softpad box serve --sim')"
             )
         self.box = box
-        reply = box.request("sim.setup", gripper=gripper)
+        box.take_control()
+        reply = self._call("sim.setup", gripper=gripper)
         rows, cols, pitch = _floats(reply, "layout", 3)
         #: Layout of the served pad.
         self.layout = PadLayout(int(rows), int(cols), pitch)
 
+    def _call(self, op: str, **fields: Any) -> dict[str, Any]:
+        return self.box.request(f"ext/{op}", **fields)
+
     def place(self, names: list[str]) -> None:
         """Place catalogue objects on the served pad."""
-        self.box.request("sim.place", objects=list(names))
+        self._call("sim.place", objects=list(names))
 
     def move_to(self, pose: ToolPose, speed_m_s: float) -> None:
-        self.box.request(
+        self._call(
             "robot.move_to",
             x_m=pose.x_m,
             y_m=pose.y_m,
@@ -187,25 +194,25 @@ class RemoteRobot:
         )
 
     def descend(self, speed_m_s: float, min_z_m: float) -> None:
-        self.box.request("robot.descend", speed_m_s=speed_m_s, min_z_m=min_z_m)
+        self._call("robot.descend", speed_m_s=speed_m_s, min_z_m=min_z_m)
 
     def stop(self) -> None:
-        self.box.request("robot.stop")
+        self._call("robot.stop")
 
     def set_gripper(self, width_m: float, speed_m_s: float) -> None:
-        self.box.request("robot.set_gripper", width_m=width_m, speed_m_s=speed_m_s)
+        self._call("robot.set_gripper", width_m=width_m, speed_m_s=speed_m_s)
 
     def is_moving(self) -> bool:
-        return self.box.request("robot.is_moving").get("moving") is True
+        return self._call("robot.is_moving").get("moving") is True
 
     def state(self) -> GripperState:
-        return GripperState(*_floats(self.box.request("robot.state"), "state", 5))
+        return GripperState(*_floats(self._call("robot.state"), "state", 5))
 
     def holding(self) -> bool:
-        return self.box.request("robot.holding").get("holding") is True
+        return self._call("robot.holding").get("holding") is True
 
     def first_touch(self) -> tuple[float, float] | None:
-        reply = self.box.request("robot.first_touch")
+        reply = self._call("robot.first_touch")
         if reply.get("first_touch") is None:
             return None
         t, z = _floats(reply, "first_touch", 2)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from softpad.box import Box, SimBox, TcpBox, open_box
+from softpad.box import Box, SimBox, ZenohBox, open_box
 from softpad.control._execution import ExecutionParams, ExecutionResult, GraspExecution, Recorder
 from softpad.control._remote import RemoteRobot, has_simulation
 from softpad.control._robot import SimulatedRobot
@@ -13,7 +13,7 @@ from softpad.sim import AnalyticWorld, ObjectSpec, SimGripper, get_object, objec
 
 _REMOTE_WORLD = (
     "the simulated loop places objects and moves the gripper in a simulator's world: use a "
-    "sim:// box, or a tcp:// box served by 'softpad box serve --box sim://...' (which offers "
+    "sim:// box, or a zenoh:// box served by 'softpad box serve --sim' (which offers "
     "the world and robot); this box carries pressures and valves only"
 )
 
@@ -43,9 +43,9 @@ def run_simulated(
         ``cylinder``, ``charger``); several objects lying on separate modules are planned and
         grasped one after the other. ``banana`` by default.
     box
-        A :class:`~softpad.box.SimBox` or a ``sim://`` URL; or a ``tcp://`` box whose server
+        A :class:`~softpad.box.SimBox` or a ``sim://`` URL; or a ``zenoh://`` box whose daemon
         offers the simulator's world and robot (:func:`simulation_extensions`, as
-        ``softpad box serve`` does for a ``sim://`` box): the run is then identical.
+        ``softpad box serve --sim`` does): the run is then identical.
     params
         Loop parameters.
     recorder
@@ -64,7 +64,7 @@ def run_simulated(
     b = open_box(box) if isinstance(box, str) else box
     try:
         mounting = gripper or specs[0].gripper
-        if isinstance(b, TcpBox):  # a simulator served over the network: world and robot there
+        if isinstance(b, ZenohBox):  # a simulator served over the network: world and robot there
             if not has_simulation(b):
                 raise InputError(_REMOTE_WORLD)
             remote = RemoteRobot(b, mounting)
