@@ -164,6 +164,7 @@ class BoxDaemon:
         self._heartbeat = 0.0
         self._live: set[str] = set()
         self._venting: set[int] = set()
+        self.last_trip: dict[str, Any] | None = None
         self._last: PressureFrame | None = None
         self._seq = 0
         self._session: Any = None
@@ -310,6 +311,12 @@ class BoxDaemon:
             if who is None:
                 return
             self.stats.watchdog_trips += 1
+            #: The last watchdog trip: client, reason, seconds since its last heartbeat.
+            self.last_trip = {
+                "client": who,
+                "reason": why,
+                "silent_s": time.monotonic() - self._heartbeat,
+            }
             self._safe_state(self.watchdog_action)
         self._say(
             f"watchdog: controller {who} lost ({why}); inflation closed, {self.watchdog_action}"

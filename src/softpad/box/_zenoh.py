@@ -135,9 +135,11 @@ class ZenohBox(Box):
 
     # --- requests ---------------------------------------------------------------------
     def _get(self, key: str, msg: dict[str, Any]) -> dict[str, Any]:
-        replies = self._session.get(
-            f"{self.prefix}/{key}", payload=encode_json(msg), timeout=self.timeout_s
-        )
+        try:
+            payload = encode_json(msg)
+        except (TypeError, ValueError) as exc:
+            raise InputError(f"request {key} cannot be sent: {exc}") from None
+        replies = self._session.get(f"{self.prefix}/{key}", payload=payload, timeout=self.timeout_s)
         for r in replies:
             if r.ok is None:
                 continue
@@ -217,7 +219,10 @@ class ZenohBox(Box):
     def close_valves(self) -> None:
         """Close every valve (only a controlling client can; a monitor changes nothing)."""
         if self._token is not None and not self.closed:
-            super().close_valves()
+            try:
+                super().close_valves()
+            except ControlRefused:
+                pass  # control was lost (watchdog): the daemon already closed the valves
 
     def _close(self) -> None:
         try:
