@@ -9,7 +9,9 @@ one client at a time controls the valves. Safety lives here, whatever the client
 * the controller holds a liveliness token and sends heartbeats; when the token vanishes
   (its process died, its link broke) or no heartbeat came for ``watchdog_s``, every inflation
   valve closes at once and each channel is held (both valves closed) or vented as configured;
-* malformed or oversized payloads are counted and dropped; no input stops the daemon.
+* malformed or oversized payloads are counted and dropped; no input stops the daemon;
+* frames are published from their own thread, so a slow link or monitor never delays the
+  sampling and safety loop (frames it cannot take are counted as unsent).
 
 The served box passes through :func:`guard_box`, the one place where a box-side safety
 wrapper is applied.
@@ -18,6 +20,7 @@ wrapper is applied.
 from __future__ import annotations
 
 import math
+import queue
 import threading
 import time
 import uuid
@@ -68,6 +71,7 @@ class _Stats:
         self.watchdog_trips = 0
         self.vents = 0
         self.faults = 0
+        self.unsent = 0
         self.started = time.monotonic()
         self._intervals: list[float] = []
         self._last: float | None = None
@@ -91,6 +95,7 @@ class _Stats:
             "jitter_std_s": float(iv.std()) if iv.size else None,
             "period_p99_s": float(np.percentile(iv, 99)) if iv.size else None,
             "dropped_samples": self.missed_ticks,
+            "unsent_frames": self.unsent,
             "malformed_payloads": self.malformed,
             "refused_commands": self.refused,
             "watchdog_trips": self.watchdog_trips,
@@ -170,6 +175,7 @@ class BoxDaemon:
         self._session: Any = None
         self._thread: threading.Thread | None = None
         self._decls: list[Any] = []
+        self._outbox: queue.Queue[bytes] = queue.Queue(maxsize=2000)
 
     # --- life cycle -------------------------------------------------------------------
     def start(self) -> BoxDaemon:
@@ -181,7 +187,9 @@ class BoxDaemon:
         except zenoh.ZError as exc:
             raise InputError(f"cannot listen on {', '.join(self.listen)}: {exc}") from None
         s, p = self._session, self.prefix
-        self._pub = s.declare_publisher(f"{p}/frames", express=True)
+        self._pub = s.declare_publisher(
+            f"{p}/frames", express=True, congestion_control=zenoh.CongestionControl.BLOCK
+        )
         for key, fn in (
             ("info", self._on_info),
             ("stats", self._on_stats),
@@ -197,6 +205,8 @@ class BoxDaemon:
                 f"{p}/control/holder/*", self._on_liveliness, history=True
             )
         )
+        self._sender = threading.Thread(target=self._send_loop, name="softpad-sender", daemon=True)
+        self._sender.start()
         self._thread = threading.Thread(
             target=self._sample_loop, name="softpad-sampler", daemon=True
         )
@@ -215,16 +225,19 @@ class BoxDaemon:
     def close(self) -> None:
         """Stop, close every valve, close the box and the session. Idempotent."""
         self._stop.set()
-        if self._thread is not None:
-            self._thread.join(timeout=5.0)
-        with self._lock:
-            try:
-                self.box.close()
-            except SoftPadError as exc:
-                self._say(f"closing the box: {exc}")
-        if self._session is not None:
-            self._session.close()
-            self._session = None
+        try:
+            if self._thread is not None:
+                self._thread.join(timeout=5.0)
+                self._sender.join(timeout=5.0)
+            with self._lock:
+                try:
+                    self.box.close()
+                except SoftPadError as exc:
+                    self._say(f"closing the box: {exc}")
+        finally:
+            if self._session is not None:
+                self._session.close()
+                self._session = None
 
     def __enter__(self) -> BoxDaemon:
         return self.start()
@@ -264,10 +277,27 @@ class BoxDaemon:
                 time.sleep(period)
                 continue
             self._seq += 1
-            self._pub.put(encode_frame(self._seq, mono, frame))
+            try:
+                self._outbox.put_nowait(encode_frame(self._seq, mono, frame))
+            except queue.Full:
+                self.stats.unsent += 1
             self.stats.sampled(mono)
         if paced:
             self.stats.missed_ticks += int(getattr(self.box, "missed_ticks", 0))
+
+    def _send_loop(self) -> None:
+        """Publish queued frames. A slow link may block here, never the sampling and safety
+        loop: when the queue is full, frames are counted as unsent and skipped."""
+        while not self._stop.is_set():
+            try:
+                data = self._outbox.get(timeout=0.1)
+            except queue.Empty:
+                continue
+            try:
+                self._pub.put(data)
+            except Exception as exc:  # the session is closing
+                self._say(f"publishing: {exc}")
+                return
 
     def _safety(self, frame: PressureFrame, mono: float) -> None:
         """Vent channels above the trip level; trip the watchdog on a silent controller."""

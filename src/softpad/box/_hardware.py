@@ -20,7 +20,7 @@ import math
 import time
 from collections.abc import Iterable
 from pathlib import Path
-from typing import IO, Protocol
+from typing import IO, Any, Protocol
 
 import numpy as np
 
@@ -105,7 +105,7 @@ class GpiodValveLines:
             raise HardwareFault(f"cannot request GPIO lines {by_chip}: {exc}") from None
 
     def set(self, values: dict[tuple[str, int], bool]) -> None:
-        per_chip: dict[str, dict[int, object]] = {}
+        per_chip: dict[str, dict[int | str, Any]] = {}
         for (chip, line), on in values.items():
             per_chip.setdefault(chip, {})[line] = self._active if on else self._inactive
         try:
