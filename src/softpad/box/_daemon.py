@@ -180,10 +180,11 @@ class BoxDaemon:
     # --- life cycle -------------------------------------------------------------------
     def start(self) -> BoxDaemon:
         """Open the zenoh session, declare every key and start sampling."""
+        config = session_config("peer", self.listen, **self._auth)  # names a missing zenoh
         import zenoh
 
         try:
-            self._session = zenoh.open(session_config("peer", self.listen, **self._auth))
+            self._session = zenoh.open(config)
         except zenoh.ZError as exc:
             raise InputError(f"cannot listen on {', '.join(self.listen)}: {exc}") from None
         s, p = self._session, self.prefix

@@ -138,7 +138,10 @@ def session_config(
     tls
         ``transport/link/tls`` settings (certificate, private key, root CA).
     """
-    import zenoh
+    try:
+        import zenoh
+    except ImportError:
+        raise InputError("the zenoh link needs eclipse-zenoh: pip install 'softpad[box]'") from None
 
     c = zenoh.Config()
     c.insert_json5("mode", json.dumps(mode))

@@ -70,8 +70,6 @@ class ZenohBox(Box):
             raise InputError(f"zenoh port must be an integer from 1 to 65535, got {port!r}")
         if not (math.isfinite(timeout_s) and timeout_s > 0):
             raise InputError(f"timeout_s must be > 0 s, got {timeout_s!r}")
-        import zenoh
-
         host_part = f"[{host}]" if ":" in host else host
         self.endpoint = f"tcp/{host_part}:{port}"
         self.address = f"zenoh://{host_part}:{port}/{key_prefix}"
