@@ -82,10 +82,11 @@ class ZenohBox(Box):
         self._beat: threading.Thread | None = None
         self._beat_stop = threading.Event()
         self.last: StampedFrame | None = None
+        config = session_config("client", connect=(self.endpoint,), **(auth or {}))
+        import zenoh
+
         try:
-            self._session = zenoh.open(
-                session_config("client", connect=(self.endpoint,), **(auth or {}))
-            )
+            self._session = zenoh.open(config)
         except zenoh.ZError as exc:
             raise ConnectionLost(f"cannot connect to the box at {self.endpoint}: {exc}") from None
         try:
