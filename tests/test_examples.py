@@ -19,3 +19,30 @@ def test_plan_from_increments_example(capsys: pytest.CaptureFixture[str]) -> Non
     assert result["y"] == pytest.approx(-0.10 + 0.045)
     assert result["yaw"] == pytest.approx(math.pi / 4)
     assert "n3-diagonal-corner" in capsys.readouterr().out
+
+
+def test_custom_contact_detector_example() -> None:
+    """The CUSUM plugged into the same execution holds the banana, and detects sooner."""
+    result = runpy.run_path(str(EXAMPLES / "custom_contact_detector.py"))["main"]()
+    assert result["outcome"] == "held"
+    assert result["cusum_delay_s"] is not None and result["thesis_delay_s"] is not None
+    assert result["cusum_delay_s"] < result["thesis_delay_s"]
+
+
+def test_custom_robot_example() -> None:
+    """The logging adapter sees the loop's commands in the seed's order and the grasp holds."""
+    result = runpy.run_path(str(EXAMPLES / "custom_robot.py"))["main"]()
+    assert result["outcome"] == "held"
+    kinds = [c.split()[0] for c in result["commands"]]
+    first = {k: kinds.index(k) for k in ("descend", "stop")}
+    assert kinds[0] == "gripper" and first["descend"] < first["stop"]
+    assert "descend at 0.05 m/s" in result["commands"]
+
+
+def test_pad_4x4_example() -> None:
+    """The banana moved one module up and right on a 4 x 4 pad: the 2 x 3 plan, shifted."""
+    result = runpy.run_path(str(EXAMPLES / "pad_4x4.py"))["main"]()
+    assert result["modules"] == (7, 8, 10)
+    assert result["cog"] == pytest.approx((2.0, 2.0), abs=0.01)
+    assert result["theta"] == pytest.approx(-math.pi / 4)
+    assert result["outcome"] == "held"

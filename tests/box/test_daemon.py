@@ -178,10 +178,10 @@ def test_non_loopback_listen_without_auth_is_refused(
     assert "no authentication" in err and err.count("\n") == 1
 
 
-def test_cli_read_json_stats_and_a_served_run(capsys: pytest.CaptureFixture[str]) -> None:
+def test_cli_read_json_and_stats(capsys: pytest.CaptureFixture[str]) -> None:
     import json
 
-    with served("sim://?seed=4") as (daemon, url):
+    with served("sim://?seed=4") as (_daemon, url):
         assert main(["box", "read", "--box", url, "--count", "20", "--json"]) == 0
         rows = [json.loads(x) for x in capsys.readouterr().out.splitlines()]
         assert np.all(np.diff([r["seq"] for r in rows]) == 1)
@@ -189,10 +189,49 @@ def test_cli_read_json_stats_and_a_served_run(capsys: pytest.CaptureFixture[str]
         assert main(["box", "stats", "--box", url, "--json"]) == 0
         stats = json.loads(capsys.readouterr().out)
         assert stats["frames"] >= 20 and stats["target_rate_hz"] == 100.0
+
+
+def test_served_simulator_holds_the_banana_while_two_monitors_watch(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    """The issue's end-to-end case: daemon and monitors in their own processes, as deployed."""
+    import json
+
+    port = free_port()
+    url = f"zenoh://127.0.0.1:{port}"
+    cli = [sys.executable, "-m", "softpad.cli.main"]
+    serve = subprocess.Popen(
+        [
+            *cli,
+            "box",
+            "serve",
+            "--sim",
+            "--box",
+            "sim://?seed=4",
+            "--listen",
+            f"tcp/127.0.0.1:{port}",
+        ],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.DEVNULL,
+        text=True,
+    )
+    monitors: list[subprocess.Popen[str]] = []
+    try:
+        assert "serving" in serve.stdout.readline()  # type: ignore[union-attr]
+        read = [*cli, "box", "read", "--box", url, "--count", "500", "--json"]
+        monitors = [subprocess.Popen(read, stdout=subprocess.PIPE, text=True) for _ in range(2)]
         argv = ["run", "--box", url, "--object", "banana", "--json", "--hold-s", "0.5"]
         assert main(argv) == 0
         assert json.loads(capsys.readouterr().out)["outcome"] == "held"
-        assert daemon.controller is None
+        for m in monitors:
+            out, _ = m.communicate(timeout=60)
+            seqs = [json.loads(line)["seq"] for line in out.splitlines()]
+            assert len(seqs) == 500
+            np.testing.assert_array_equal(np.diff(seqs), 1)
+    finally:
+        for p in [*monitors, serve]:
+            p.kill()
+            p.wait(timeout=10)
 
 
 def test_nobody_listening_is_one_line(capsys: pytest.CaptureFixture[str]) -> None:

@@ -20,7 +20,7 @@ def free_port() -> int:
 @contextmanager
 def served(url: str = "sim://?seed=4", **kwargs: Any) -> Iterator[tuple[BoxDaemon, str]]:
     """A :class:`BoxDaemon` serving ``url`` on a free loopback port, and its zenoh:// URL."""
-    from softpad.control import simulation_extensions
+    from softpad.harness import simulation_extensions
 
     port = free_port()
     box = open_box(url)

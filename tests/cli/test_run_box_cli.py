@@ -30,7 +30,7 @@ def test_run_json_has_the_documented_keys(capsys, tmp_path) -> None:
         == 0
     )
     d = json.loads(capsys.readouterr().out)
-    for key in ("objects", "contact_detected", "contact_delay_s", "finger_travel_mm", "outcome"):
+    for key in ("objects", "contact_detected", "contact_delay_s", "finger_travel_m", "outcome"):
         assert key in d
     assert d["outcome"] == "held" and d["contact_detected"] is True
     assert set(d["objects"][0]) == {"modules", "pcom", "cog", "theta", "rule", "cog_m"}

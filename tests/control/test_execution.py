@@ -6,8 +6,9 @@ import numpy as np
 import pytest
 
 from softpad.box import ConnectionLost, SimBox, ValveCommand, open_box
-from softpad.control import ExecutionParams, GraspExecution, SimulatedRobot, run_simulated
+from softpad.control import ExecutionParams, GraspExecution
 from softpad.errors import HardwareFault, InputError
+from softpad.harness import SimulatedRobot, run_simulated
 from softpad.record import RunLog
 from softpad.sim import AnalyticWorld, SimGripper, get_object
 
@@ -24,8 +25,8 @@ def test_banana_full_loop() -> None:
     np.testing.assert_allclose(d["objects"][0]["theta"], -np.pi / 4, atol=1e-9)
     # delay from first touch to detection, and the travel it implies at 0.05 m/s
     assert 0.0 < d["contact_delay_s"] < 0.3
-    np.testing.assert_allclose(d["finger_travel_mm"], 0.05 * d["contact_delay_s"] * 1e3, atol=0.51)
-    phases = [p for p, _ in r.phases]
+    np.testing.assert_allclose(d["finger_travel_m"], 0.05 * d["contact_delay_s"], atol=0.51e-3)
+    phases = [p for p, _ in r.result.phases]
     assert phases == [
         "adjust",
         "reference",
@@ -51,9 +52,9 @@ def test_banana_full_loop() -> None:
 
 def test_two_separate_objects_are_grasped_one_after_the_other() -> None:
     r = run_simulated(["object-1", "object-4"], "sim://?seed=5", FAST, gripper="6/2")
-    assert [p.modules for p in r.plans] == [(1, 4), (3, 6)]
-    assert [g.outcome for g in r.grasps] == ["held", "held"]
-    assert r.grasps[0].detected_at_s < r.grasps[1].detected_at_s
+    assert [p.modules for p in r.result.plans] == [(1, 4), (3, 6)]
+    assert [g.outcome for g in r.result.grasps] == ["held", "held"]
+    assert r.result.grasps[0].detected_at_s < r.result.grasps[1].detected_at_s
 
 
 def test_fingertips_on_the_lines_are_not_detected() -> None:
@@ -66,8 +67,7 @@ def test_fingertips_on_the_lines_are_not_detected() -> None:
         SimulatedRobot(world),
         world.layout,
         FAST,
-        None,
-        lambda: world.place_object(get_object("object-3")),
+        place_objects=lambda: world.place_object(get_object("object-3")),
     )
     r = loop.run()
     assert r.plans[0].modules == (1, 2, 3)
@@ -140,11 +140,11 @@ def test_same_seed_same_run() -> None:
 def test_contact_delay_is_consistent_with_the_frames() -> None:
     """The detection comes a whole number of sample periods after the first touch."""
     r = run_simulated(["object-3"], "sim://?seed=8&rate_hz=200", FAST)
-    g = r.grasps[0]
-    assert g.contact_delay_s is not None and g.first_touch_s is not None
-    np.testing.assert_allclose(g.contact_delay_s * 200, round(g.contact_delay_s * 200), atol=1e-6)
+    delay = r.contact_delay_s()
+    assert delay is not None and r.touches[0].first_touch_s is not None
+    np.testing.assert_allclose(delay * 200, round(delay * 200), atol=1e-6)
     # at least half the running-average window (10 samples) passes before detection
-    assert g.contact_delay_s >= 4.5 / 200
+    assert delay >= 4.5 / 200
 
 
 def test_interrupt_closes_the_valves() -> None:
@@ -159,7 +159,7 @@ def test_interrupt_closes_the_valves() -> None:
             if frame.t_s > 1.0 and phase == "adjust":
                 raise KeyboardInterrupt
 
-    loop = GraspExecution(box, SimulatedRobot(world), world.layout, FAST, Interrupting())
+    loop = GraspExecution(box, SimulatedRobot(world), world.layout, FAST, recorder=Interrupting())
     with pytest.raises(KeyboardInterrupt):
         loop.run()
     assert set(box.valves) == {ValveCommand.CLOSED}

@@ -10,7 +10,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from softpad.control import ExecutionParams, run_simulated
+from softpad.control import ExecutionParams
+from softpad.harness import run_simulated
 from softpad.sim import get_object, object_names
 
 NAMES = list(object_names())
@@ -20,11 +21,11 @@ NAMES = list(object_names())
 def test_noisy_loop_reproduces_the_plan_and_holds(name: str) -> None:
     spec = get_object(name)
     r = run_simulated([name], "sim://?seed=1", ExecutionParams(hold_s=0.5))
-    assert len(r.plans) == 1
-    plan = r.plans[0]
+    assert len(r.result.plans) == 1
+    plan = r.result.plans[0]
     assert plan.modules == tuple(spec.expected_modules)
     np.testing.assert_allclose(plan.cog, spec.table_cog, atol=0.06)
     np.testing.assert_allclose(plan.theta, spec.table_theta, atol=1e-9)
     assert r.outcome == "held"
-    g = r.grasps[0]
-    assert g.contact_detected and g.contact_delay_s is not None and 0 < g.contact_delay_s < 0.5
+    delay = r.contact_delay_s()
+    assert r.result.grasps[0].contact_detected and delay is not None and 0 < delay < 0.5

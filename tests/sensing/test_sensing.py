@@ -6,8 +6,8 @@ import pytest
 from softpad.errors import InputError
 from softpad.layout import PadLayout
 from softpad.sensing import (
-    ContactDetector,
     RunningAverage,
+    ThesisContactDetector,
     capture_reference,
     detect_objects,
     increments,
@@ -52,7 +52,7 @@ def test_detect_objects_rejects_negative_threshold() -> None:
 
 
 def test_contact_detector_needs_the_filtered_value_above_threshold() -> None:
-    det = ContactDetector(np.zeros(6), threshold_pa=90.0, window=10)
+    det = ThesisContactDetector(threshold_pa=90.0, window=10, reference_pa=np.zeros(6))
     # A single spike of 500 Pa raises a 10-sample mean by 50 Pa only: no contact.
     assert not det.update([500, 0, 0, 0, 0, 0])
     for _ in range(8):

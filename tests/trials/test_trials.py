@@ -20,13 +20,14 @@ from softpad.trials import (
     perturbed_placement,
     run_experiment,
     run_trial,
+    trial_execution_params,
     trial_seed,
 )
 
 pytestmark = pytest.mark.mujoco
 
 #: Short hold: the 15 s hold of the thesis only adds simulated time to these checks.
-FAST = TrialConfig(hold_s=1.0)
+FAST = TrialConfig(trial_execution_params(hold_s=1.0))
 
 
 def plan(cog: tuple[float, float], theta: float) -> GraspPlan:
@@ -164,7 +165,7 @@ def test_unknown_cause_is_rejected() -> None:
 def test_experiment_in_two_processes_matches_one() -> None:
     """Results depend on the seeds only, not on the number of workers."""
     specs = [get_object("object-2")]
-    config = TrialConfig(hold_s=0.5)
+    config = TrialConfig(trial_execution_params(hold_s=0.5))
     one, _ = run_experiment(specs, trials=2, seed=5, workers=1, config=config)
     two, _ = run_experiment(specs, trials=2, seed=5, workers=2, config=config)
     strip = [{k: v for k, v in t.to_dict().items() if k != "wall_time_s"} for t in one.trials]
@@ -174,7 +175,7 @@ def test_experiment_in_two_processes_matches_one() -> None:
 
 
 def test_a_trial_does_not_depend_on_the_other_objects_of_the_run() -> None:
-    config = TrialConfig(hold_s=0.5)
+    config = TrialConfig(trial_execution_params(hold_s=0.5))
     alone, _ = run_experiment([get_object("object-2")], trials=1, seed=5, workers=1, config=config)
     mixed, _ = run_experiment(
         [get_object("object-4"), get_object("object-2")], trials=1, seed=5, workers=1, config=config
@@ -232,16 +233,20 @@ def test_cli_bad_input(argv: list[str], message: str, capsys: pytest.CaptureFixt
     ("kwargs", "message"),
     [
         ({"hold_s": float("nan")}, "hold_s"),
-        ({"approach_speed_m_s": 0.0}, "speeds must be > 0"),
+        ({"approach_speed_m_s": 0.0}, "approach_speed_m_s"),
         ({"position_sigma_m": -1e-3}, "position_sigma_m"),
+        ({"sample_rate_hz": 0.0}, "sample_rate_hz"),
     ],
-    ids=["nan-hold", "zero-speed", "negative-noise"],
+    ids=["nan-hold", "zero-speed", "negative-noise", "zero-rate"],
 )
 def test_bad_trial_config_is_rejected(kwargs: dict[str, float], message: str) -> None:
     from softpad.errors import InputError
 
     with pytest.raises(InputError, match=message):
-        TrialConfig(**kwargs)
+        if kwargs.keys() & {"hold_s", "approach_speed_m_s"}:
+            trial_execution_params(**kwargs)
+        else:
+            TrialConfig(**kwargs)
 
 
 @pytest.mark.parametrize(

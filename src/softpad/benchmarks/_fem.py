@@ -13,6 +13,7 @@ import time
 
 import numpy as np
 
+from softpad import thesis
 from softpad.benchmarks._common import BenchResult
 
 TARGET_S = 3.0
@@ -43,7 +44,7 @@ REFERENCE_HEIGHT_M = np.array(
 def _sweep(mesh: object) -> tuple[float, np.ndarray]:
     from softpad.fem import ModuleModel, inflation_sweep
 
-    pressures = np.linspace(0.0, 3000.0, 13)
+    pressures = np.linspace(0.0, thesis.MAX_PRESSURE_PA, 13)
     t0 = time.perf_counter()
     model = ModuleModel("neo-hookean", mesh=mesh, contact=False)  # type: ignore[arg-type]
     result = inflation_sweep(pressures_pa=pressures, model=model)

@@ -4,7 +4,7 @@
   seconds per wall second; target >= 100x): idle with an object resting (the hot path), every
   valve open (gas physics every step), and the whole loop on the banana;
 * contact detection with the thesis detector (running average of 10 samples above
-  t_g = 0.09 kPa) at the thesis approach speed 0.05 m/s: time from the first fingertip touch
+  t_g) at the thesis approach speed: time from the first fingertip touch
   to detection and the finger travel in between, medians over the Table 6.1 objects;
 * false alarms of the same detector per hour of idle noise (inflated pad, nothing moving);
 """
@@ -14,6 +14,7 @@ from __future__ import annotations
 import statistics
 import time
 
+from softpad import thesis
 from softpad.benchmarks._common import BenchResult
 
 TARGET_REALTIME = 100.0
@@ -60,14 +61,15 @@ def _speed(quick: bool) -> list[BenchResult]:
                 detail=f"median of {repeats} runs of {sim_s:g} s simulated",
             )
         )
-    from softpad.control import ExecutionParams, run_simulated
+    from softpad.control import ExecutionParams
+    from softpad.harness import run_simulated
 
-    hold = 1.0 if quick else 15.0
+    hold = 1.0 if quick else thesis.HOLD_S
     for rate in (1000, 100):
         t0 = time.perf_counter()
         r = run_simulated(["banana"], f"sim://?rate_hz={rate}&seed=1", ExecutionParams(hold_s=hold))
         wall = time.perf_counter() - t0
-        sim_total = r.phases[-1][1]
+        sim_total = r.result.phases[-1][1]
         f = sim_total / wall
         out.append(
             BenchResult(
@@ -83,7 +85,8 @@ def _speed(quick: bool) -> list[BenchResult]:
 
 
 def _contact(quick: bool) -> list[BenchResult]:
-    from softpad.control import ExecutionParams, run_simulated
+    from softpad.control import ExecutionParams
+    from softpad.harness import run_simulated
     from softpad.sim import object_names
 
     names = list(object_names())[:3] if quick else list(object_names())
@@ -96,12 +99,12 @@ def _contact(quick: bool) -> list[BenchResult]:
                 r = run_simulated(
                     [name], f"sim://?seed={seed}&rate_hz={rate}", ExecutionParams(hold_s=0.0)
                 )
-                g = r.grasps[0]
-                if g.contact_delay_s is None or g.finger_travel_mm is None:
+                delay, travel = r.contact_delay_s(), r.finger_travel_m()
+                if delay is None or travel is None:
                     missed += 1
                     continue
-                delays.append(g.contact_delay_s)
-                travels.append(g.finger_travel_mm)
+                delays.append(delay)
+                travels.append(1e3 * travel)
         n = len(delays) + missed
         detail = f"{n} runs ({len(names)} Table 6.1 objects x {len(seeds)} seeds), {missed} without detection"
         out.append(
@@ -114,7 +117,7 @@ def _contact(quick: bool) -> list[BenchResult]:
         )
         out.append(
             BenchResult(
-                f"finger travel after first touch at 0.05 m/s, {rate} Hz",
+                f"finger travel after first touch at {thesis.APPROACH_SPEED_M_S:g} m/s, {rate} Hz",
                 statistics.median(travels),
                 "mm",
                 detail=detail + f"; range {min(travels):.1f}..{max(travels):.1f} mm",
@@ -127,24 +130,27 @@ def _false_alarms(quick: bool) -> list[BenchResult]:
     import numpy as np
 
     from softpad.box import open_box
-    from softpad.sensing import DEFAULT_CONTACT_THRESHOLD_PA, ContactDetector
+    from softpad.sensing import DEFAULT_CONTACT_THRESHOLD_PA, ThesisContactDetector
 
     hours = 0.1 if quick else 1.0
     out = []
     with open_box("sim://?rate_hz=100&inflated_kpa=1.1&seed=9") as box:
         n = round(hours * 3600 * box.sample_rate_hz)
         ref = np.mean([f.pressures_pa[:6] for f in box.read_many(10)], axis=0)
-        detectors = {t: ContactDetector(ref, t) for t in (DEFAULT_CONTACT_THRESHOLD_PA, 30.0, 20.0)}
+        detectors = {
+            t: ThesisContactDetector(t, reference_pa=ref)
+            for t in (DEFAULT_CONTACT_THRESHOLD_PA, 30.0, 20.0)
+        }
         alarms = dict.fromkeys(detectors, 0)
         for _ in range(n):
             p = box.read().pressures_pa[:6]
             for t, det in detectors.items():
                 if det.update(p):
                     alarms[t] += 1
-                    detectors[t] = ContactDetector(ref, t)
+                    det.reset(ref)
     for t, count in alarms.items():
         label = (
-            "t_g = 0.09 kPa (thesis)"
+            f"t_g = {DEFAULT_CONTACT_THRESHOLD_PA / 1e3:g} kPa (thesis)"
             if t == DEFAULT_CONTACT_THRESHOLD_PA
             else f"{t / 1e3:g} kPa (for the margin)"
         )

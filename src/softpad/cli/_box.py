@@ -236,7 +236,7 @@ def _daemon_for(args: argparse.Namespace) -> Any:
     try:
         services = {}
         if isinstance(box, SimBox):  # the world and robot too, so 'softpad run' works over zenoh
-            from softpad.control import simulation_extensions
+            from softpad.harness import simulation_extensions
 
             services = simulation_extensions(box)
         return BoxDaemon(

@@ -9,6 +9,7 @@ from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from typing import Any
 
+from softpad import thesis
 from softpad.cli._args import finite_float, number_list
 from softpad.errors import InputError
 
@@ -168,8 +169,8 @@ def register(sub: Any) -> None:
     a.add_argument(
         "--threshold-kpa",
         type=finite_float("--threshold-kpa", lo=0.0, unit="kPa"),
-        default=0.05,
-        help="detection threshold of the absolute definition in kPa (default 0.05, t_o)",
+        default=thesis.OBJECT_THRESHOLD_PA / 1e3,
+        help="detection threshold of the absolute definition in kPa (default %(default)g, t_o)",
     )
     a.set_defaults(handler=_sensitivity)
 
@@ -198,8 +199,8 @@ def register(sub: Any) -> None:
     c.add_argument(
         "--threshold-kpa",
         type=finite_float("--threshold-kpa", lo=0.0, unit="kPa"),
-        default=0.05,
-        help="detection threshold in kPa (default 0.05, thesis t_o)",
+        default=thesis.OBJECT_THRESHOLD_PA / 1e3,
+        help="detection threshold in kPa (default %(default)g, thesis t_o)",
     )
     c.add_argument(
         "--noise-kpa",

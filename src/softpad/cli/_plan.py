@@ -10,6 +10,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from softpad import thesis
 from softpad.cli._args import finite_float, kpa_list
 from softpad.errors import InputError
 
@@ -50,8 +51,8 @@ def register(sub: Any) -> None:
     p.add_argument(
         "--threshold-kpa",
         type=finite_float("threshold", lo=0.0, unit="kPa"),
-        default=0.05,
-        help="object-detection threshold t_o in kPa (default 0.05)",
+        default=thesis.OBJECT_THRESHOLD_PA / 1e3,
+        help="object-detection threshold t_o in kPa (default %(default)g)",
     )
     p.add_argument(
         "--pitch-mm",

@@ -8,6 +8,7 @@ import math
 import sys
 from typing import Any
 
+from softpad import SCHEMA_VERSION, thesis
 from softpad.cli._args import finite_float
 
 _EPILOG = """examples:
@@ -28,7 +29,7 @@ def register(sub: Any) -> None:
             "Run the whole grasp loop of the seed's Section 6.2 once on the simulated box: inflate "
             "every module to p0 and save the reference, place the object(s) of the thesis set, plan "
             "the grasp from the pressure increments, move over the centre of grasp, descend at "
-            "0.05 m/s until the pad senses the fingers (running average of 10 samples above t_g), "
+            "the approach speed until the pad senses the fingers (running average of 10 samples above t_g), "
             "close, lift, hold for 15 s, and print the timeline."
         ),
         epilog=_EPILOG,
@@ -49,8 +50,8 @@ def register(sub: Any) -> None:
     p.add_argument(
         "--hold-s",
         type=finite_float("hold time", lo=0.0, hi=3600.0, unit="s"),
-        default=15.0,
-        help="hold time in s (default 15)",
+        default=thesis.HOLD_S,
+        help="hold time in s (default %(default)g)",
     )
     p.add_argument("--json", action="store_true", help="print the timeline as one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="draw the pressure traces with the phases")
@@ -59,7 +60,8 @@ def register(sub: Any) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from softpad.control import ExecutionParams, resolve_objects, run_simulated
+    from softpad.control import ExecutionParams
+    from softpad.harness import resolve_objects, run_simulated
     from softpad.record import RunLog
 
     specs = resolve_objects(args.object)  # unknown names fail before anything starts
@@ -81,7 +83,7 @@ def run(args: argparse.Namespace) -> int:
 
             fig = log.plot(args.plot, title=f"softpad run: {', '.join(names)}")
             plt.close(fig)
-    d = result.to_dict()
+    d = {"schema_version": SCHEMA_VERSION, **result.to_dict()}
     if args.json:
         print(json.dumps(d))
         return 0
@@ -94,60 +96,58 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _fmt(t: float) -> str:
-    return f"t = {t:7.2f} s"
+def _kpa(values: Any) -> str:
+    return " ".join(f"{v / 1e3:.3f}" for v in values)
+
+
+def _modules(d: dict[str, Any]) -> str:
+    return ", ".join(map(str, d["modules"]))
+
+
+def _plan_lines(d: dict[str, Any]) -> list[str]:
+    lines = [f"increments (kPa): {_kpa(d['increments_pa'])}"]
+    for o in d["objects"]:
+        lines.append(
+            f"plan: modules {','.join(map(str, o['modules']))}  PCOM "
+            f"({o['pcom'][0]:.2f}, {o['pcom'][1]:.2f})  COG ({o['cog'][0]:.2f}, {o['cog'][1]:.2f})  "
+            f"theta {o['theta']:+.3f} rad ({math.degrees(o['theta']):+.0f} deg)  [{o['rule']}]"
+        )
+    return lines
+
+
+#: How each event kind of a run reads in the timeline (kinds not listed are not shown).
+_EVENT_TEXT: dict[str, Any] = {
+    "adjusted": lambda d: [
+        f"adjusted: every module within tolerance of {d['target_pa'] / 1e3:.3f} kPa"
+    ],
+    "reference": lambda d: [f"reference saved (kPa): {_kpa(d['reference_pa'])}"],
+    "object_seen": lambda d: [f"object detected on module(s) {_modules(d)}"],
+    "plan": _plan_lines,
+    "contact": lambda d: [f"contact detected on module(s) {_modules(d)}"],
+    "no_contact": lambda d: [
+        f"no contact detected down to {d['z_m'] * 1e3:.1f} mm: gripper not closed"
+    ],
+    "outcome": lambda d: [d["outcome"]],
+}
+_SHOWN_PHASES = ("approach", "descend", "close", "lift", "hold", "release")
 
 
 def _timeline(log: Any, result: Any) -> list[str]:
     lines = []
     for t, kind, d in log.events:
-        if kind == "adjusted":
+        if kind == "phase" and d["phase"] in _SHOWN_PHASES:
+            lines.append(f"t = {t:7.2f} s  {d['phase']}")
+        elif kind in _EVENT_TEXT:
+            lines += [f"t = {t:7.2f} s  {text}" for text in _EVENT_TEXT[kind](d)]
+    for i, g in enumerate(result.result.grasps):
+        delay, travel = result.contact_delay_s(i), result.finger_travel_m(i)
+        if delay is not None and travel is not None:
             lines.append(
-                f"{_fmt(t)}  adjusted: every module within tolerance of {d['target_kpa']:.3f} kPa"
-            )
-        elif kind == "reference":
-            ref = " ".join(f"{v:.3f}" for v in d["reference_kpa"])
-            lines.append(f"{_fmt(t)}  reference saved (kPa, mean of 10 reads): {ref}")
-        elif kind == "object_seen":
-            lines.append(
-                f"{_fmt(t)}  object detected on module(s) {', '.join(map(str, d['modules']))}"
-            )
-        elif kind == "plan":
-            inc = " ".join(f"{v:.3f}" for v in d["increments_kpa"])
-            lines.append(f"{_fmt(t)}  increments (kPa): {inc}")
-            for o in d["objects"]:
-                lines.append(
-                    f"{_fmt(t)}  plan: modules {','.join(map(str, o['modules']))}  PCOM "
-                    f"({o['pcom'][0]:.2f}, {o['pcom'][1]:.2f})  COG ({o['cog'][0]:.2f}, {o['cog'][1]:.2f})  "
-                    f"theta {o['theta']:+.3f} rad ({math.degrees(o['theta']):+.0f} deg)  [{o['rule']}]"
-                )
-        elif kind == "phase" and d["phase"] in (
-            "approach",
-            "descend",
-            "close",
-            "lift",
-            "hold",
-            "release",
-        ):
-            lines.append(f"{_fmt(t)}  {d['phase']}")
-        elif kind == "contact":
-            lines.append(
-                f"{_fmt(t)}  contact detected on module(s) {', '.join(map(str, d['modules']))}"
-            )
-        elif kind == "no_contact":
-            lines.append(
-                f"{_fmt(t)}  no contact detected down to {d['z_m'] * 1e3:.1f} mm: gripper not closed"
-            )
-        elif kind == "outcome":
-            lines.append(f"{_fmt(t)}  {d['outcome']}")
-    for i, g in enumerate(result.grasps, 1):
-        if g.contact_delay_s is not None:
-            lines.append(
-                f"grasp {i}: contact {g.contact_delay_s * 1e3:.0f} ms after the first fingertip touch, "
-                f"finger travel {g.finger_travel_mm:.1f} mm; outcome {g.outcome}"
+                f"grasp {i + 1}: contact {delay * 1e3:.0f} ms after the first fingertip touch, "
+                f"finger travel {travel * 1e3:.1f} mm; outcome {g.outcome}"
             )
         else:
-            lines.append(f"grasp {i}: outcome {g.outcome}")
+            lines.append(f"grasp {i + 1}: outcome {g.outcome}")
     return lines
 
 

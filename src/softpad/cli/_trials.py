@@ -7,6 +7,7 @@ import json
 import sys
 from typing import Any
 
+from softpad import thesis
 from softpad.errors import InputError
 
 _EPILOG = """examples:
@@ -16,7 +17,7 @@ _EPILOG = """examples:
 
 Each trial: a fresh MuJoCo world behind the simulated box; inflate to p0, save the reference,
 place the object with a seeded random shift (3 mm) and turn (3 deg), plan from the pressure
-increments, move over the COG, descend at 0.05 m/s until the pad senses the fingers (t_g),
+increments, move over the COG, descend at the approach speed until the pad senses the fingers (t_g),
 close, lift 10 cm, hold 15 s. Failure causes: contact_not_detected, jaws_hit_object,
 object_outside_jaws, slipped_during_hold, object_too_narrow, object_not_detected.
 """
@@ -43,7 +44,9 @@ def register(sub: Any) -> None:
     p.add_argument("--trials", type=int, default=5, help="trials per object (default 5)")
     p.add_argument("--seed", type=int, default=0, help="experiment seed (default 0)")
     p.add_argument("--workers", type=int, default=None, help="worker processes (default: all CPUs)")
-    p.add_argument("--hold-s", type=float, default=15.0, help="hold time in s (default 15)")
+    p.add_argument(
+        "--hold-s", type=float, default=thesis.HOLD_S, help="hold time in s (default %(default)g)"
+    )
     p.add_argument("--json", action="store_true", help="print the results as JSON")
     p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
     p.set_defaults(handler=run)
@@ -105,7 +108,7 @@ def run_with_progress(
 def run(args: argparse.Namespace) -> int:
     import math
 
-    from softpad.trials import TrialConfig
+    from softpad.trials import TrialConfig, trial_execution_params
 
     specs = select_objects(args.objects)
     check_counts(args.trials, args.workers)
@@ -117,7 +120,7 @@ def run(args: argparse.Namespace) -> int:
         not args.no_progress and sys.stderr.isatty(),
         seed=args.seed,
         workers=args.workers,
-        config=TrialConfig(hold_s=args.hold_s),
+        config=TrialConfig(trial_execution_params(hold_s=args.hold_s)),
     )
     if args.json:
         print(json.dumps(exp.to_dict(), indent=1))

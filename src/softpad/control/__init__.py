@@ -1,14 +1,13 @@
-"""Control: inflation and adjustment, the robot interface, the grasp-execution state machine.
+"""Control: inflation and adjustment, the robot interface, the grasp execution.
 
 ``inflate_and_adjust`` brings every module to p0 within t_adj and saves the reference (seed,
 Section 6.2.1.1); :class:`GraspExecution` runs the closed loop of Section 6.2.2 on any
-:class:`~softpad.box.Box` and :class:`Robot`; :func:`run_simulated` runs it on the simulator
-with objects of the catalogue, in-process or served over ``tcp://`` (:class:`RemoteRobot`,
-:func:`simulation_extensions`).
+:class:`~softpad.box.Box` and :class:`Robot`, with the planner, object detector, contact
+detector and :class:`Recorder` it is given. Nothing here knows the simulator
+(``softpad.harness`` joins the two).
 """
 
 from softpad.control._execution import (
-    OUTCOMES,
     ExecutionError,
     ExecutionParams,
     ExecutionResult,
@@ -26,21 +25,12 @@ from softpad.control._inflation import (
     inflate_and_adjust,
     make_safe,
 )
-from softpad.control._remote import (
-    SIMULATION_OPS,
-    RemoteRobot,
-    has_simulation,
-    simulation_extensions,
-)
-from softpad.control._robot import Robot, SimulatedRobot, ToolPose
-from softpad.control._simulation import resolve_objects, run_simulated
+from softpad.control._robot import Robot, RobotState, ToolPose
 
 __all__ = [
     "DEFAULT_MAX_PRESSURE_PA",
     "DEFAULT_TARGET_PA",
     "DEFAULT_TOLERANCE_PA",
-    "OUTCOMES",
-    "SIMULATION_OPS",
     "AdjustmentResult",
     "ExecutionError",
     "ExecutionParams",
@@ -49,15 +39,10 @@ __all__ = [
     "GraspRecord",
     "InflationParams",
     "Recorder",
-    "RemoteRobot",
     "Robot",
-    "SimulatedRobot",
+    "RobotState",
     "ToolPose",
     "check_frame",
-    "has_simulation",
     "inflate_and_adjust",
     "make_safe",
-    "resolve_objects",
-    "run_simulated",
-    "simulation_extensions",
 ]

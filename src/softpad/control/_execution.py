@@ -1,29 +1,21 @@
-"""Grasp execution: the closed loop of the seed's Section 6.2.2, as a state machine.
+"""Grasp execution: the closed loop of the seed's Section 6.2.2, assembled from parts.
 
-Phases (each logged with its start time through the recorder hook)::
-
-    adjust -> reference -> wait_object -> plan -> for each object:
-        approach (over the COG) -> descend (0.05 m/s) -> close -> lift -> hold (15 s) -> release
-    -> done
-
-Contact is declared when the running average (10 samples) of any module's increment over the
-pressures read just before the descent exceeds t_g = 0.09 kPa; the arm then stops and the jaws
-close. Objects planned as separate (not 8-connected) are grasped one after the other, in the
-planner's order. The box is the clock: every step reads one frame, so in simulation the world
-and the robot advance exactly with the frames.
+:class:`GraspExecution` drives a :class:`~softpad.box.Box` and a :class:`Robot` and takes its
+planner, object detector, contact detector and recorder as arguments (the thesis's by default).
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Protocol
 
 import numpy as np
 from numpy.typing import NDArray
 
-from softpad.box import Box, PressureFrame
+from softpad import thesis
+from softpad.box import Box, PressureFrame, ValveCommand
 from softpad.control._inflation import (
     AdjustmentResult,
     InflationParams,
@@ -31,14 +23,17 @@ from softpad.control._inflation import (
     inflate_and_adjust,
     make_safe,
 )
-from softpad.control._robot import Robot, ToolPose
+from softpad.control._robot import Robot, RobotState, ToolPose
 from softpad.errors import HardwareFault, InputError, SoftPadError
 from softpad.layout import PadLayout
-from softpad.planning import GraspPlan, PlannerParams, plan_grasps
-from softpad.sensing import DEFAULT_CONTACT_THRESHOLD_PA, ContactDetector, RunningAverage
-
-#: Grasp outcomes.
-OUTCOMES = ("held", "dropped", "missed", "contact_not_detected")
+from softpad.planning import GraspPlan, Planner, PlannerParams, ThesisPlanner
+from softpad.sensing import (
+    ContactDetector,
+    ObjectDetector,
+    RunningAverage,
+    ThesisContactDetector,
+    ThesisObjectDetector,
+)
 
 
 class ExecutionError(SoftPadError, RuntimeError):
@@ -46,7 +41,14 @@ class ExecutionError(SoftPadError, RuntimeError):
 
 
 class Recorder(Protocol):
-    """Hook receiving every frame and event of a run (``softpad.record.RunLog`` implements it)."""
+    """Receives every frame and event of a run (``softpad.record.RunLog`` implements it).
+
+    Event kinds and their data (SI units): ``phase`` (phase), ``adjusted`` (target_pa),
+    ``reference`` (reference_pa), ``object_seen`` (modules), ``plan`` (increments_pa, objects),
+    ``contact`` (modules), ``no_contact`` (z_m), ``outcome`` (outcome), ``valve`` (channel,
+    command), ``robot`` (command and its arguments), ``fault`` (message, phase),
+    ``interrupted`` (phase).
+    """
 
     def frame(self, frame: PressureFrame, phase: str) -> None:
         """One frame read during ``phase``."""
@@ -72,15 +74,15 @@ class ExecutionParams:
     Parameters
     ----------
     inflation
-        Inflation/adjustment parameters (p0 = 1.1 kPa, t_adj = 0.03 kPa, max 3 kPa).
+        Inflation/adjustment parameters (p0, t_adj, maximum pressure).
     planner
-        Planner parameters (t_o = 0.05 kPa, c_s = 0.2).
+        Parameters of the default planner and object detector (t_o, c_s).
     contact_threshold_pa
-        t_g, pascals (0.09 kPa).
+        t_g of the default contact detector, pascals.
     filter_length
-        Running-average length of the contact detector and object detector, samples (10).
+        Running-average length of the default contact detector and of the object watch, samples.
     approach_speed_m_s
-        Descent speed towards the pad, m/s (0.05).
+        Descent speed towards the pad, m/s.
     travel_speed_m_s
         Speed of the other arm motions, m/s.
     gripper_speed_m_s
@@ -93,13 +95,13 @@ class ExecutionParams:
     lift_m
         Lift after closing, m.
     hold_s
-        Hold time, seconds (15 s).
+        Hold time, seconds.
     object_wait_s
         Time to wait for an object after the reference, seconds.
     object_settle_s
         Wait between the first sight of an object and the planning reads, seconds.
     planning_reads
-        Reads averaged for planning (10, like the reference).
+        Reads averaged for planning (like the reference).
     pre_descent_reads
         Reads averaged into the contact detector's reference, samples.
     motion_timeout_s
@@ -108,19 +110,19 @@ class ExecutionParams:
 
     inflation: InflationParams = field(default_factory=InflationParams)
     planner: PlannerParams = field(default_factory=PlannerParams)
-    contact_threshold_pa: float = DEFAULT_CONTACT_THRESHOLD_PA
-    filter_length: int = 10
-    approach_speed_m_s: float = 0.05
+    contact_threshold_pa: float = thesis.CONTACT_THRESHOLD_PA
+    filter_length: int = thesis.FILTER_WINDOW
+    approach_speed_m_s: float = thesis.APPROACH_SPEED_M_S
     travel_speed_m_s: float = 0.25
-    gripper_speed_m_s: float = 0.05
+    gripper_speed_m_s: float = thesis.JAW_SPEED_M_S
     approach_height_m: float = 0.12
     min_height_m: float = 0.001
     lift_m: float = 0.08
-    hold_s: float = 15.0
+    hold_s: float = thesis.HOLD_S
     object_wait_s: float = 30.0
     object_settle_s: float = 1.0
-    planning_reads: int = 10
-    pre_descent_reads: int = 10
+    planning_reads: int = thesis.REFERENCE_READS
+    pre_descent_reads: int = thesis.REFERENCE_READS
     motion_timeout_s: float = 20.0
 
     def __post_init__(self) -> None:
@@ -149,7 +151,7 @@ class ExecutionParams:
 
 @dataclass(frozen=True)
 class GraspRecord:
-    """What happened to one planned object.
+    """What happened to one planned object, as the controller saw it.
 
     Attributes
     ----------
@@ -159,17 +161,13 @@ class GraspRecord:
         ``held``, ``dropped`` (held after lifting, lost during the hold), ``missed`` (nothing
         between the closed jaws) or ``contact_not_detected``.
     contact_detected
-        Whether the pad sensed the fingers (filtered increment above t_g).
+        Whether the contact detector sensed the fingers.
     contact_modules
-        Modules whose filtered increment first exceeded t_g.
+        Modules that triggered the contact detector.
     detected_at_s
         Box time of the detection, seconds (None when not detected).
-    first_touch_s
-        Box time of the first fingertip touch (simulation ground truth; None if unknown).
-    contact_delay_s
-        Detection time minus first-touch time, seconds.
-    finger_travel_mm
-        Downward travel of the fingertips from first touch to the stop, millimetres.
+    stop_z_m
+        Fingertip height where the descent stopped (robot's own state), metres.
     """
 
     plan: GraspPlan
@@ -177,25 +175,17 @@ class GraspRecord:
     contact_detected: bool
     contact_modules: tuple[int, ...] = ()
     detected_at_s: float | None = None
-    first_touch_s: float | None = None
-    contact_delay_s: float | None = None
-    finger_travel_mm: float | None = None
+    stop_z_m: float | None = None
 
     def to_dict(self, layout: PadLayout) -> dict[str, Any]:
-        """JSON-ready dict."""
-
-        def r(v: float | None, n: int) -> float | None:
-            return None if v is None else round(v, n)
-
+        """JSON-ready dict (SI units)."""
         return {
             "plan": self.plan.to_dict(layout),
             "outcome": self.outcome,
             "contact_detected": self.contact_detected,
             "contact_modules": list(self.contact_modules),
-            "detected_at_s": r(self.detected_at_s, 4),
-            "first_touch_s": r(self.first_touch_s, 4),
-            "contact_delay_s": r(self.contact_delay_s, 4),
-            "finger_travel_mm": r(self.finger_travel_mm, 3),
+            "detected_at_s": None if self.detected_at_s is None else round(self.detected_at_s, 4),
+            "stop_z_m": None if self.stop_z_m is None else round(self.stop_z_m, 6),
         }
 
 
@@ -241,21 +231,13 @@ class ExecutionResult:
         return bool(self.grasps) and all(g.contact_detected for g in self.grasps)
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dict: ``objects`` as in ``softpad plan --json``, then the first grasp's
-        ``contact_detected``, ``contact_delay_s``, ``finger_travel_mm`` and the overall
-        ``outcome``; every grasp and the phase timeline in detail."""
-        first = self.grasps[0] if self.grasps else None
+        """JSON-ready dict (SI units): ``objects`` as in ``softpad plan --json``, the overall
+        ``outcome``, every grasp and the phase timeline."""
         return {
             "objects": [p.to_dict(self.layout) for p in self.plans],
             "contact_detected": self.contact_detected,
-            "contact_delay_s": None
-            if first is None or first.contact_delay_s is None
-            else round(first.contact_delay_s, 4),
-            "finger_travel_mm": None
-            if first is None or first.finger_travel_mm is None
-            else round(first.finger_travel_mm, 3),
             "outcome": self.outcome,
-            "increments_kpa": [round(float(v) / 1e3, 5) for v in self.increments_pa],
+            "increments_pa": [round(float(v), 2) for v in self.increments_pa],
             "adjustment": self.adjustment.to_dict(),
             "object_seen_at_s": round(self.object_seen_at_s, 4),
             "grasps": [g.to_dict(self.layout) for g in self.grasps],
@@ -263,8 +245,79 @@ class ExecutionResult:
         }
 
 
+class _RecordingBox(Box):
+    """The execution's view of the box: every valve command also becomes a recorder event."""
+
+    def __init__(self, box: Box, recorder: Recorder, clock: Callable[[], float]) -> None:
+        super().__init__()
+        self.inner, self._recorder, self._clock = box, recorder, clock
+
+    @property
+    def channels(self) -> int:
+        return self.inner.channels
+
+    @property
+    def sample_rate_hz(self) -> float:
+        return self.inner.sample_rate_hz
+
+    def _read(self) -> PressureFrame:
+        return self.inner.read()
+
+    def _apply_valve(self, channel: int, command: ValveCommand) -> None:
+        self.inner.set_valve(channel, command)
+        self._recorder.event(self._clock(), "valve", channel=channel, command=command.value)
+
+    def _close(self) -> None:
+        """The caller owns the wrapped box: closing the view closes nothing."""
+
+
+class _RecordingRobot:
+    """The execution's view of the robot: every command also becomes a recorder event."""
+
+    def __init__(self, robot: Robot, recorder: Recorder, clock: Callable[[], float]) -> None:
+        self.inner, self._recorder, self._clock = robot, recorder, clock
+
+    def _log(self, command: str, **data: float) -> None:
+        self._recorder.event(self._clock(), "robot", command=command, **data)
+
+    def move_to(self, pose: ToolPose, speed_m_s: float) -> None:
+        self._log("move_to", **vars(pose), speed_m_s=speed_m_s)
+        self.inner.move_to(pose, speed_m_s)
+
+    def descend(self, speed_m_s: float, min_z_m: float) -> None:
+        self._log("descend", speed_m_s=speed_m_s, min_z_m=min_z_m)
+        self.inner.descend(speed_m_s, min_z_m)
+
+    def stop(self) -> None:
+        self._log("stop")
+        self.inner.stop()
+
+    def set_gripper(self, width_m: float, speed_m_s: float) -> None:
+        self._log("set_gripper", width_m=width_m, speed_m_s=speed_m_s)
+        self.inner.set_gripper(width_m, speed_m_s)
+
+    def is_moving(self) -> bool:
+        return self.inner.is_moving()
+
+    def state(self) -> RobotState:
+        return self.inner.state()
+
+    def holding(self) -> bool:
+        return self.inner.holding()
+
+
 class GraspExecution:
-    """The closed loop on a box and a robot (seed, Section 6.2.2).
+    """The closed loop of the seed's Section 6.2.2, assembled from parts.
+
+    Phases (each logged with its start time through the recorder)::
+
+        adjust -> reference -> wait_object -> plan -> for each object:
+            approach (over the COG) -> descend -> close -> lift -> hold -> release
+        -> done
+
+    The box is the clock: every step reads one frame, so in simulation the world and the
+    robot advance exactly with the frames. The execution sees only what a real system sees:
+    the box's frames, the plans, and the robot's own state.
 
     Parameters
     ----------
@@ -273,13 +326,19 @@ class GraspExecution:
     robot
         The arm and gripper (pad-frame poses).
     layout
-        Pad geometry.
+        Pad geometry (2 x 3, 45 mm by default).
     params
         Loop parameters (thesis defaults).
+    planner
+        Turns objects into grasps; :class:`~softpad.planning.ThesisPlanner` by default.
+    object_detector
+        Finds objects in the filtered increments; the thesis's t_o detector by default.
+    contact_detector
+        Senses the fingers during the descent; the thesis's t_g detector by default.
     recorder
-        Receives every frame and event (e.g. ``softpad.record.RunLog``).
+        Receives every frame and event (frames, phases, plans, valve and robot commands).
     place_objects
-        Called once when the loop starts waiting for an object (simulation: put the object
+        Called once when the loop starts waiting for an object (in simulation: put the object
         on the pad); None on real hardware, where a person places it.
     """
 
@@ -289,20 +348,31 @@ class GraspExecution:
         robot: Robot,
         layout: PadLayout | None = None,
         params: ExecutionParams | None = None,
+        *,
+        planner: Planner | None = None,
+        object_detector: ObjectDetector | None = None,
+        contact_detector: ContactDetector | None = None,
         recorder: Recorder | None = None,
         place_objects: Callable[[], None] | None = None,
     ) -> None:
-        self.box = box
-        self.robot = robot
         self.layout = layout or PadLayout()
-        self.params = params or ExecutionParams()
+        self.params = p = params or ExecutionParams()
         self.recorder: Recorder = recorder if recorder is not None else _NullRecorder()
+        self.planner: Planner = planner or ThesisPlanner(p.planner)
+        self.object_detector: ObjectDetector = object_detector or ThesisObjectDetector(
+            p.planner.object_threshold_pa
+        )
+        self.contact_detector: ContactDetector = contact_detector or ThesisContactDetector(
+            p.contact_threshold_pa, p.filter_length
+        )
         self.place_objects = place_objects
         self.n = self.layout.n_modules
         if self.n > box.channels:
             raise InputError(
                 f"a {self.layout.name} pad needs {self.n} channels, the box has {box.channels}"
             )
+        self.box = _RecordingBox(box, self.recorder, lambda: self._last_t)
+        self.robot = _RecordingRobot(robot, self.recorder, lambda: self._last_t)
         self.phase = "idle"
         self._phases: list[tuple[str, float]] = []
         self._last_t = 0.0
@@ -313,13 +383,12 @@ class GraspExecution:
         self._phases.append((phase, self._last_t))
         self.recorder.event(self._last_t, "phase", phase=phase, **data)
 
-    def _read(self) -> tuple[PressureFrame, NDArray[np.float64]]:
+    def _read(self) -> NDArray[np.float64]:
         frame = self.box.read()
         self._last_t = frame.t_s
         self.recorder.frame(frame, self.phase)
         infl = self.params.inflation
-        p = check_frame(frame, self.n, infl.max_pressure_pa, trip_margin_pa=infl.trip_margin_pa)
-        return frame, p
+        return check_frame(frame, self.n, infl.max_pressure_pa, trip_margin_pa=infl.trip_margin_pa)
 
     def _wait_motion(self, what: str) -> None:
         t0 = self._last_t
@@ -330,8 +399,16 @@ class GraspExecution:
                     f"robot: {what} did not finish within {self.params.motion_timeout_s:g} s"
                 )
 
+    def _move(self, pose: ToolPose, speed_m_s: float, what: str) -> None:
+        self.robot.move_to(pose, speed_m_s)
+        self._wait_motion(what)
+
+    def _gripper(self, width_m: float, speed_m_s: float, what: str) -> None:
+        self.robot.set_gripper(width_m, speed_m_s)
+        self._wait_motion(what)
+
     def _mean_reads(self, n: int) -> NDArray[np.float64]:
-        return np.mean([self._read()[1] for _ in range(n)], axis=0)
+        return np.mean([self._read() for _ in range(n)], axis=0)
 
     # --- the loop -------------------------------------------------------------------
     def run(self) -> ExecutionResult:
@@ -368,144 +445,119 @@ class GraspExecution:
             on_adjusted=self._on_adjusted,
         )
         self.recorder.event(
-            adj.reference_at_s,
-            "reference",
-            reference_kpa=[round(v / 1e3, 5) for v in adj.reference_pa],
+            adj.reference_at_s, "reference", reference_pa=[float(v) for v in adj.reference_pa]
         )
-
         self._enter("wait_object")
         if self.place_objects is not None:
             self.place_objects()
         seen_at = self._wait_for_object(adj.reference_pa)
 
         self._enter("plan")
-        mean = self._mean_reads(p.planning_reads)
-        delta = mean - adj.reference_pa
-        plans = tuple(plan_grasps(delta, self.layout, p.planner))
+        delta = self._mean_reads(p.planning_reads) - adj.reference_pa
+        objects = self.object_detector.objects(delta, self.layout)
+        plans = tuple(self.planner.plan(delta, objects, self.layout))
         self.recorder.event(
             self._last_t,
             "plan",
-            increments_kpa=[round(float(v) / 1e3, 5) for v in delta],
+            increments_pa=[float(v) for v in delta],
             objects=[pl.to_dict(self.layout) for pl in plans],
         )
         if not plans:
             raise ExecutionError("the object disappeared before planning: no module above t_o")
-
-        grasps = [self._grasp(plan) for plan in plans]
+        grasps = tuple(self._grasp(plan) for plan in plans)
         self._enter("done")
-        return ExecutionResult(
-            self.layout, adj, seen_at, delta, plans, tuple(grasps), tuple(self._phases)
-        )
+        return ExecutionResult(self.layout, adj, seen_at, delta, plans, grasps, tuple(self._phases))
 
     def _on_adjust_frame(self, frame: PressureFrame) -> None:
         self._last_t = frame.t_s
         self.recorder.frame(frame, self.phase)
 
     def _on_adjusted(self, t_s: float) -> None:
-        self.recorder.event(t_s, "adjusted", target_kpa=self.params.inflation.target_pa / 1e3)
+        self.recorder.event(t_s, "adjusted", target_pa=self.params.inflation.target_pa)
         self._enter("reference")
 
     def _wait_for_object(self, reference: NDArray[np.float64]) -> float:
+        """Watch the filtered increments until an object has lain still for the settle time."""
         p = self.params
         filt = RunningAverage(p.filter_length)
         t0 = self._last_t
         seen_at: float | None = None
         while True:
-            _, pr = self._read()
-            d = filt.update(pr - reference)
-            if seen_at is None:
-                if filt.full and (d > p.planner.object_threshold_pa).any():
-                    seen_at = self._last_t
-                    self.recorder.event(
-                        seen_at,
-                        "object_seen",
-                        modules=[
-                            int(k) + 1 for k in np.flatnonzero(d > p.planner.object_threshold_pa)
-                        ],
-                    )
-                elif self._last_t - t0 > p.object_wait_s:
-                    raise ExecutionError(
-                        f"no object placed on the pad within {p.object_wait_s:g} s"
-                    )
-            elif self._last_t - seen_at >= p.object_settle_s:
-                return seen_at
+            d = filt.update(self._read() - reference)
+            if seen_at is not None:
+                if self._last_t - seen_at >= p.object_settle_s:
+                    return seen_at
+                continue
+            objects = self.object_detector.objects(d, self.layout) if filt.full else []
+            if objects:
+                seen_at = self._last_t
+                modules = sorted(k for obj in objects for k in obj)
+                self.recorder.event(seen_at, "object_seen", modules=modules)
+            elif self._last_t - t0 > p.object_wait_s:
+                raise ExecutionError(f"no object placed on the pad within {p.object_wait_s:g} s")
 
     def _grasp(self, plan: GraspPlan) -> GraspRecord:
         p = self.params
         x, y = plan.cog_m(self.layout)
+        above = ToolPose(x, y, p.approach_height_m, plan.theta)
         self._enter("approach", modules=list(plan.modules), cog=list(plan.cog), theta=plan.theta)
-        self.robot.set_gripper(1.0, p.travel_speed_m_s)  # fully open (clamped to the mounting)
-        self._wait_motion("opening the gripper")
-        self.robot.move_to(ToolPose(x, y, p.approach_height_m, plan.theta), p.travel_speed_m_s)
-        self._wait_motion("moving over the centre of grasp")
-        reference = self._mean_reads(p.pre_descent_reads)
-
-        self._enter("descend")
-        detector = ContactDetector(reference, p.contact_threshold_pa, p.filter_length)
-        self.robot.descend(p.approach_speed_m_s, p.min_height_m)
-        detected_at: float | None = None
-        t0 = self._last_t
-        while True:
-            _, pr = self._read()
-            if detector.update(pr):
-                self.robot.stop()
-                detected_at = self._last_t
-                self.recorder.event(
-                    detected_at, "contact", modules=list(detector.triggered_modules)
-                )
-                break
-            if not self.robot.is_moving():
-                self.recorder.event(self._last_t, "no_contact", z_m=self.robot.state().z_m)
-                break
-            if self._last_t - t0 > p.motion_timeout_s:
-                raise HardwareFault(
-                    f"robot: descent did not finish within {p.motion_timeout_s:g} s"
-                )
-        touch = self.robot.first_touch()
+        self._gripper(1.0, p.travel_speed_m_s, "opening the gripper")  # clamped to the mounting
+        self._move(above, p.travel_speed_m_s, "moving over the centre of grasp")
+        detected_at = self._descend()
         stop_z = self.robot.state().z_m
-        first_touch_s = touch[0] if touch else None
-        delay = travel = None
-        if touch is not None and detected_at is not None:
-            delay = detected_at - touch[0]
-            travel = (touch[1] - stop_z) * 1e3
-
         if detected_at is None:
+            self._move(above, p.travel_speed_m_s, "retreating")
             outcome = "contact_not_detected"
-            self.robot.move_to(ToolPose(x, y, p.approach_height_m, plan.theta), p.travel_speed_m_s)
-            self._wait_motion("retreating")
         else:
-            self._enter("close")
-            self.robot.set_gripper(0.0, p.gripper_speed_m_s)
-            self._wait_motion("closing the gripper")
-            self._enter("lift")
-            s = self.robot.state()
-            self.robot.move_to(
-                ToolPose(s.x_m, s.y_m, s.z_m + p.lift_m, s.yaw_rad), p.travel_speed_m_s
-            )
-            self._wait_motion("lifting")
-            lifted = self.robot.holding()
-            self._enter("hold")
-            t_hold = self._last_t
-            while self._last_t - t_hold < p.hold_s:
-                self._read()
-            held = self.robot.holding()
-            outcome = "held" if held else ("dropped" if lifted else "missed")
-            self.recorder.event(self._last_t, "outcome", outcome=outcome)
-            self._enter("release")
-            self.robot.set_gripper(1.0, p.travel_speed_m_s)
-            self._wait_motion("opening the gripper")
-            s = self.robot.state()
-            self.robot.move_to(
-                ToolPose(s.x_m, s.y_m, p.approach_height_m, s.yaw_rad), p.travel_speed_m_s
-            )
-            self._wait_motion("moving up")
+            outcome = self._close_lift_hold()
         return GraspRecord(
             plan,
             outcome,
             detected_at is not None,
-            tuple(detector.triggered_modules),
+            self.contact_detector.triggered_modules if detected_at is not None else (),
             detected_at,
-            first_touch_s,
-            delay,
-            travel,
+            stop_z,
         )
+
+    def _descend(self) -> float | None:
+        """Lower the fingers until contact is sensed (box time) or the descent ends (None)."""
+        p = self.params
+        self.contact_detector.reset(self._mean_reads(p.pre_descent_reads))
+        self._enter("descend")
+        self.robot.descend(p.approach_speed_m_s, p.min_height_m)
+        t0 = self._last_t
+        while True:
+            if self.contact_detector.update(self._read()):
+                self.robot.stop()
+                modules = list(self.contact_detector.triggered_modules)
+                self.recorder.event(self._last_t, "contact", modules=modules)
+                return self._last_t
+            if not self.robot.is_moving():
+                self.recorder.event(self._last_t, "no_contact", z_m=self.robot.state().z_m)
+                return None
+            if self._last_t - t0 > p.motion_timeout_s:
+                raise HardwareFault(
+                    f"robot: descent did not finish within {p.motion_timeout_s:g} s"
+                )
+
+    def _close_lift_hold(self) -> str:
+        """Close on the object, lift it, hold it, put it down; the grasp's outcome."""
+        p = self.params
+        self._enter("close")
+        self._gripper(0.0, p.gripper_speed_m_s, "closing the gripper")
+        self._enter("lift")
+        s = self.robot.state()
+        self._move(replace(s.pose, z_m=s.z_m + p.lift_m), p.travel_speed_m_s, "lifting")
+        lifted = self.robot.holding()
+        self._enter("hold")
+        t_hold = self._last_t
+        while self._last_t - t_hold < p.hold_s:
+            self._read()
+        held = self.robot.holding()
+        outcome = "held" if held else ("dropped" if lifted else "missed")
+        self.recorder.event(self._last_t, "outcome", outcome=outcome)
+        self._enter("release")
+        self._gripper(1.0, p.travel_speed_m_s, "opening the gripper")
+        s = self.robot.state()
+        self._move(replace(s.pose, z_m=p.approach_height_m), p.travel_speed_m_s, "moving up")
+        return outcome

@@ -16,16 +16,17 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from softpad import thesis
 from softpad.box import Box, PressureFrame, ValveCommand
 from softpad.errors import HardwareFault, InputError
-from softpad.sensing import RunningAverage
+from softpad.sensing import RunningAverage, capture_reference
 
-#: p0 of the thesis, Pa (Section 6.3: 1.1 kPa, about 9 mm high).
-DEFAULT_TARGET_PA = 1100.0
+#: p0 of the thesis, Pa (:data:`softpad.thesis.P0_PA`).
+DEFAULT_TARGET_PA = thesis.P0_PA
 #: t_adj of the thesis, Pa (Section 6.3).
-DEFAULT_TOLERANCE_PA = 30.0
+DEFAULT_TOLERANCE_PA = thesis.ADJUST_TOLERANCE_PA
 #: Maximum pressure the software ever lets a module reach, Pa (modules are unusable above 2.8 kPa).
-DEFAULT_MAX_PRESSURE_PA = 3000.0
+DEFAULT_MAX_PRESSURE_PA = thesis.MAX_PRESSURE_PA
 
 FrameHook = Callable[[PressureFrame], None]
 
@@ -37,9 +38,9 @@ class InflationParams:
     Parameters
     ----------
     target_pa
-        p0: pressure every module is brought to, pascals (1.1 kPa).
+        p0: pressure every module is brought to, pascals.
     tolerance_pa
-        t_adj: allowed deviation from p0, pascals (0.03 kPa).
+        t_adj: allowed deviation from p0, pascals.
     max_pressure_pa
         Safety limit; a channel above it is vented and the run fails, pascals (3.0 kPa).
     timeout_s
@@ -63,8 +64,8 @@ class InflationParams:
     max_pressure_pa: float = DEFAULT_MAX_PRESSURE_PA
     timeout_s: float = 30.0
     settle_s: float = 0.5
-    reference_reads: int = 10
-    filter_length: int = 10
+    reference_reads: int = thesis.REFERENCE_READS
+    filter_length: int = thesis.FILTER_WINDOW
     max_drift_pa_s: float = 25.0
     trip_margin_pa: float = 50.0
 
@@ -121,9 +122,9 @@ class AdjustmentResult:
     reference_at_s: float
 
     def to_dict(self) -> dict[str, object]:
-        """JSON-ready dict (kPa at the edge)."""
+        """JSON-ready dict (SI units)."""
         return {
-            "reference_kpa": [round(float(v) / 1e3, 5) for v in self.reference_pa],
+            "reference_pa": [round(float(v), 2) for v in self.reference_pa],
             "adjusted_at_s": round(self.adjusted_at_s, 4),
             "reference_at_s": round(self.reference_at_s, 4),
         }
@@ -346,7 +347,7 @@ def inflate_and_adjust(
                     frame, n_modules, params.max_pressure_pa, trip_margin_pa=params.trip_margin_pa
                 )
             )
-        return AdjustmentResult(np.mean(reads, axis=0), adjusted_at, frame.t_s)
+        return AdjustmentResult(capture_reference(reads), adjusted_at, frame.t_s)
     except HardwareFault:
         make_safe(
             box,

@@ -1,4 +1,4 @@
-"""Robot interface of the grasp execution, and the simulated robot.
+"""Robot interface of the grasp execution: target poses, the robot's state, the protocol.
 
 Commands are non-blocking: the execution state machine issues a command, then keeps reading
 the box (which, in simulation, advances the clock and the world) and polls the robot. All
@@ -13,7 +13,6 @@ from dataclasses import dataclass
 from typing import Protocol, runtime_checkable
 
 from softpad.errors import InputError
-from softpad.sim import GripperState, World
 
 
 @dataclass(frozen=True)
@@ -41,6 +40,34 @@ class ToolPose:
                 raise InputError(f"tool pose {n} must be finite, got {getattr(self, n)!r}")
 
 
+@dataclass(frozen=True)
+class RobotState:
+    """Where the gripper is, as the robot itself measures it (pad frame).
+
+    Parameters
+    ----------
+    x_m, y_m
+        Centre between the fingertips, metres.
+    z_m
+        Height of the fingertips' lower faces above the pad base, metres.
+    yaw_rad
+        Direction in which the jaws close, radians.
+    width_m
+        Distance between the fingertips' inner faces, metres.
+    """
+
+    x_m: float
+    y_m: float
+    z_m: float
+    yaw_rad: float
+    width_m: float
+
+    @property
+    def pose(self) -> ToolPose:
+        """The pose part of the state."""
+        return ToolPose(self.x_m, self.y_m, self.z_m, self.yaw_rad)
+
+
 @runtime_checkable
 class Robot(Protocol):
     """What the execution state machine needs from a robot arm with a parallel-jaw gripper."""
@@ -65,85 +92,10 @@ class Robot(Protocol):
         """True while a commanded motion (arm or jaws) is under way."""
         ...
 
-    def state(self) -> GripperState:
+    def state(self) -> RobotState:
         """Current pose and jaw width."""
         ...
 
     def holding(self) -> bool:
         """True when the gripper carries an object (jaw-width sensing on a real gripper)."""
         ...
-
-    def first_touch(self) -> tuple[float, float] | None:
-        """Ground truth in simulation: (time s, fingertip height m) of the first fingertip
-        touch of the current descent; None when unknown (real hardware) or not touched yet."""
-        ...
-
-
-class SimulatedRobot:
-    """A kinematic robot driving the gripper of a simulated :class:`~softpad.sim.World`.
-
-    Parameters
-    ----------
-    world
-        The world whose gripper this robot moves (its clock is advanced by the box).
-    """
-
-    def __init__(self, world: World) -> None:
-        self.world = world
-        self._target: GripperState | None = None
-        self._last: GripperState | None = None
-        self._fresh = False
-
-    def _command(self, target: GripperState, speed_m_s: float) -> None:
-        if not (math.isfinite(speed_m_s) and speed_m_s > 0):
-            raise InputError(f"robot speed must be a positive number of m/s, got {speed_m_s!r}")
-        self._target = target
-        self._fresh = True
-        self.world.command_gripper(target, speed_m_s)
-
-    def move_to(self, pose: ToolPose, speed_m_s: float) -> None:
-        s = self.world.gripper_state()
-        self._command(
-            GripperState(pose.x_m, pose.y_m, pose.z_m, pose.yaw_rad, s.width_m), speed_m_s
-        )
-
-    def descend(self, speed_m_s: float, min_z_m: float) -> None:
-        s = self.world.gripper_state()
-        reset = getattr(self.world, "reset_touch", None)
-        if reset is not None:
-            reset()
-        self._command(GripperState(s.x_m, s.y_m, min_z_m, s.yaw_rad, s.width_m), speed_m_s)
-
-    def stop(self) -> None:
-        s = self.world.gripper_state()
-        self._target = s
-        self.world.command_gripper(s, 0.0)
-
-    def set_gripper(self, width_m: float, speed_m_s: float) -> None:
-        s = self.world.gripper_state()
-        self._command(GripperState(s.x_m, s.y_m, s.z_m, s.yaw_rad, width_m), speed_m_s)
-
-    def is_moving(self) -> bool:
-        s = self.world.gripper_state()
-        if self._target is None or s == self._target:
-            self._last = s
-            return False
-        moved = s != self._last
-        self._last = s
-        if self._fresh:  # a command was just given: allow one step before judging
-            self._fresh = False
-            return True
-        return moved  # False when the jaws stopped on an object short of their target
-
-    def state(self) -> GripperState:
-        return self.world.gripper_state()
-
-    def holding(self) -> bool:
-        return self.world.holding()
-
-    def first_touch(self) -> tuple[float, float] | None:
-        t = getattr(self.world, "first_touch_s", None)
-        z = getattr(self.world, "first_touch_z_m", None)
-        if t is None or z is None:
-            return None
-        return float(t), float(z)

@@ -21,6 +21,7 @@ from typing import Any
 
 import numpy as np
 
+from softpad import thesis
 from softpad.errors import InputError, check_finite
 from softpad.fem._geometry import LoadPatch, MeshOptions, ModuleGeometry
 from softpad.fem._materials import MaterialModel
@@ -84,7 +85,7 @@ class ChamberResult:
         """Pressure rise above the initial pressure, Pa."""
         return self.pressure_pa - self.initial_pressure_pa
 
-    def min_detectable_mass_kg(self, threshold_pa: float = 50.0) -> float:
+    def min_detectable_mass_kg(self, threshold_pa: float = thesis.OBJECT_THRESHOLD_PA) -> float:
         """Smallest mass whose pressure rise reaches ``threshold_pa`` (Pa), kg.
 
         Uses the small-load slope (the response is linear for masses of a few grams). Pass
@@ -96,7 +97,7 @@ class ChamberResult:
             raise InputError(f"detection threshold must be > 0 Pa, got {thr!r} Pa")
         return thr / self.rise_per_kg_pa
 
-    def to_dict(self, threshold_pa: float = 50.0) -> dict[str, Any]:
+    def to_dict(self, threshold_pa: float = thesis.OBJECT_THRESHOLD_PA) -> dict[str, Any]:
         """Results with units in the keys."""
         return {
             "model": self.model,
@@ -127,7 +128,7 @@ class ChamberResult:
             path, ["mass_g", "delta_pressure_kpa", "volume_ml", "height_mm"], list(rows)
         )
 
-    def plot(self, ax: Any = None, threshold_pa: float = 50.0) -> Any:
+    def plot(self, ax: Any = None, threshold_pa: float = thesis.OBJECT_THRESHOLD_PA) -> Any:
         """Plot the pressure rise (kPa) against mass (g) with the detection threshold."""
         ax = new_axes(ax)
         ax.plot(self.mass_kg * 1e3, self.delta_pressure_pa * 1e-3, marker="o", label="sealed FEM")
@@ -168,7 +169,7 @@ def sealed_rise_per_force(
 
 def sealed_chamber_study(
     material: str | MaterialModel = "neo-hookean",
-    initial_pressure_pa: float = 1100.0,
+    initial_pressure_pa: float = thesis.P0_PA,
     masses_kg: Sequence[float] = (0.006, 0.0126, 0.05, 0.1),
     footprint: LoadPatch = BRICK_FOOTPRINT,
     dead_volume_m3: float = DEFAULT_DEAD_VOLUME_M3,

@@ -29,6 +29,7 @@ from typing import Any
 
 import numpy as np
 
+from softpad import thesis
 from softpad.errors import InputError, check_finite
 from softpad.fem._geometry import LoadPatch, MeshOptions, ModuleGeometry
 from softpad.fem._materials import MaterialModel
@@ -42,7 +43,7 @@ CHARACTERISTIC_PATH = Path(str(resources.files("softpad") / "data" / "module_cha
 CHARACTERISTIC_VERSION = 1
 
 #: Default pressure grid of the shipped table, Pa (0..3 kPa every 100 Pa).
-DEFAULT_PRESSURES_PA = np.linspace(0.0, 3000.0, 31)
+DEFAULT_PRESSURES_PA = np.linspace(0.0, thesis.MAX_PRESSURE_PA, 31)
 #: Default load grid of the shipped table, N (fine near zero for light objects).
 DEFAULT_LOADS_N = np.array(
     [0.0, 0.02, 0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5, 0.75, 1.0, 1.5, 2.0, 2.5, 3.0]

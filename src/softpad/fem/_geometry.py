@@ -6,10 +6,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from softpad import thesis
 from softpad.errors import InputError, check_finite
 
 #: Module width of the prototype, m (thesis Section 6.1: 45 x 45 mm air channel).
-DEFAULT_WIDTH_M = 0.045
+DEFAULT_WIDTH_M = thesis.MODULE_PITCH_M
 #: Upper-layer thickness of the prototype, m (thesis Section 6.1: 1.5 mm).
 DEFAULT_THICKNESS_M = 0.0015
 

@@ -243,11 +243,6 @@ class ModuleModel:
         vector[2::3] = -0.25 * nodal / total
         return vector
 
-    def set_load_patch(self, patch: LoadPatch) -> None:
-        """Change the loaded region of the top face (takes effect at the next solve)."""
-        self.load_patch = patch
-        self._load_unit = self._patch_load_vector(patch)
-
     # ------------------------------------------------------------------ state access
     @property
     def displacement(self) -> np.ndarray:

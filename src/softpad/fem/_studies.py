@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 
+from softpad import thesis
 from softpad.errors import InputError, check_finite
 from softpad.fem._geometry import LoadPatch, MeshOptions, ModuleGeometry
 from softpad.fem._materials import MaterialModel, get_material
@@ -149,7 +150,9 @@ def inflation_sweep(
     ConvergenceError
         When the model has no equilibrium on the way to a pressure (a pressure maximum).
     """
-    p = _pressures(np.linspace(0.0, 3000.0, 13) if pressures_pa is None else pressures_pa)
+    p = _pressures(
+        np.linspace(0.0, thesis.MAX_PRESSURE_PA, 13) if pressures_pa is None else pressures_pa
+    )
     m = model or ModuleModel(material, geometry=geometry, mesh=mesh, contact=False)
     heights, volumes = [], []
     for i, pi in enumerate(p):
@@ -465,7 +468,7 @@ class SensitivityResult:
     area_m2: np.ndarray
     centre_response_m3_per_n: np.ndarray
     probe_mass_kg: float = 0.0126
-    threshold_pa: float = 50.0
+    threshold_pa: float = thesis.OBJECT_THRESHOLD_PA
     detectable_area_m2: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     @property
@@ -536,7 +539,7 @@ def sensitive_area_study(
     mesh: MeshOptions | None = None,
     progress: ProgressCallback | None = None,
     probe_mass_kg: float = 0.0126,
-    threshold_pa: float = 50.0,
+    threshold_pa: float = thesis.OBJECT_THRESHOLD_PA,
     dead_volume_m3: float | None = None,
 ) -> SensitivityResult:
     """Sensitive area against pressure (thesis Section 6.1.2; definition in the result).

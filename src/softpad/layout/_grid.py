@@ -9,10 +9,11 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import NDArray
 
+from softpad import thesis
 from softpad.errors import LayoutError
 
 #: Module pitch of the thesis prototype: 45 mm square modules (seed, Section 6.1.1).
-DEFAULT_PITCH_M = 0.045
+DEFAULT_PITCH_M = thesis.MODULE_PITCH_M
 
 _LAYOUT_RE = re.compile(r"^\s*(\d+)\s*[xX]\s*(\d+)\s*$")
 
@@ -127,12 +128,6 @@ class PadLayout:
         c = min(int(np.floor(x)), self.cols - 1)
         r_from_bottom = min(int(np.floor(y)), self.rows - 1)
         return self.module_at(self.rows - 1 - r_from_bottom, c)
-
-    def are_adjacent(self, a: int, b: int) -> bool:
-        """True when modules a != b share an edge or a corner (8-neighbourhood)."""
-        ra, ca = self.row_col(a)
-        rb, cb = self.row_col(b)
-        return a != b and abs(ra - rb) <= 1 and abs(ca - cb) <= 1
 
     def neighbours(self, module: int) -> tuple[int, ...]:
         """8-neighbours of a module, sorted."""

@@ -5,13 +5,14 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from softpad import thesis
 from softpad.errors import InputError
 
 #: The three ways the thesis mounted the Sawyer gripper: (max width, min width) in metres.
 GRIPPER_CONFIGS_M: dict[str, tuple[float, float]] = {
-    "wide": (0.10, 0.04),
-    "medium": (0.06, 0.02),
-    "narrow": (0.04, 0.0),
+    "wide": thesis.GRIPPER_MOUNTINGS_M["10/4"],
+    "medium": thesis.GRIPPER_MOUNTINGS_M["6/2"],
+    "narrow": thesis.GRIPPER_MOUNTINGS_M["4/0"],
 }
 
 
@@ -35,9 +36,9 @@ class GripperSpec:
 
     max_width_m: float = 0.06
     min_width_m: float = 0.02
-    finger_length_m: float = 0.095
-    tip_width_m: float = 0.016
-    tip_thickness_m: float = 0.008
+    finger_length_m: float = thesis.FINGER_LENGTH_M
+    tip_width_m: float = thesis.FINGERTIP_WIDTH_M
+    tip_thickness_m: float = thesis.FINGERTIP_THICKNESS_M
 
     def __post_init__(self) -> None:
         for name in ("max_width_m", "finger_length_m", "tip_width_m", "tip_thickness_m"):

@@ -6,8 +6,9 @@ direction theta) with the thesis's rules, generalised to R x C pads (docs/planne
 """
 
 from softpad.planning._cases import FIG_6_7, RULE_CASES, TABLE_6_1, PlanCase
+from softpad.planning._params import DEFAULT_SAFETY_SHIFT, PlannerParams
 from softpad.planning._pcom import pcom
-from softpad.planning._plan import DEFAULT_SAFETY_SHIFT, PlannerParams, plan_grasps, plan_object
+from softpad.planning._plan import Planner, ThesisPlanner, plan_grasps
 from softpad.planning._records import GraspPlan
 from softpad.planning._render import ascii_pad, format_plans, plot_plans
 
@@ -18,11 +19,12 @@ __all__ = [
     "TABLE_6_1",
     "GraspPlan",
     "PlanCase",
+    "Planner",
     "PlannerParams",
+    "ThesisPlanner",
     "ascii_pad",
     "format_plans",
     "pcom",
     "plan_grasps",
-    "plan_object",
     "plot_plans",
 ]

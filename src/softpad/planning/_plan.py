@@ -1,61 +1,46 @@
-"""Planner entry points: objects from increments, one plan per object."""
+"""Planner entry points: the :class:`Planner` protocol, the thesis's planner, ``plan_grasps``."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from typing import Protocol, runtime_checkable
 
 from numpy.typing import ArrayLike
 
-from softpad.errors import InputError
 from softpad.layout import PadLayout
+from softpad.planning._params import PlannerParams
 from softpad.planning._records import GraspPlan
-from softpad.sensing._objects import (
-    DEFAULT_OBJECT_THRESHOLD_PA,
-    check_increments,
-    check_threshold,
-)
-
-#: c_s in the thesis: safety shift for corner-shaped objects, module units (Section 6.2.1.3).
-DEFAULT_SAFETY_SHIFT = 0.2
+from softpad.planning._thesis_rules import plan_with_rules
+from softpad.sensing._objects import check_increments
 
 
-@dataclass(frozen=True)
-class PlannerParams:
-    """Parameters of the grasp planner.
+@runtime_checkable
+class Planner(Protocol):
+    """Turns the increments of the objects found on the pad into grasp plans."""
+
+    def plan(
+        self, increments_pa: ArrayLike, objects: list[tuple[int, ...]], layout: PadLayout
+    ) -> list[GraspPlan]:
+        """One plan per object (``objects``: sorted 1-based modules each), in grasp order."""
+        ...
+
+
+class ThesisPlanner:
+    """The thesis's rules (Section 6.2.1.3), generalised to R x C pads (docs/planner.md).
 
     Parameters
     ----------
-    object_threshold_pa
-        t_o: a module is touched when dP > t_o (pascals), 50 Pa in the thesis.
-    safety_shift
-        c_s: shift away from the corner of corner-shaped objects, module units, 0.2 in the thesis.
-    default_theta
-        Direction used when the shape gives none (N = 1, 2x2 square), radians.
+    params
+        Planner parameters (t_o, c_s, default theta).
     """
 
-    object_threshold_pa: float = DEFAULT_OBJECT_THRESHOLD_PA
-    safety_shift: float = DEFAULT_SAFETY_SHIFT
-    default_theta: float = 0.0
+    def __init__(self, params: PlannerParams | None = None) -> None:
+        self.params = params or PlannerParams()
 
-    def __post_init__(self) -> None:
-        check_threshold(self.object_threshold_pa, "object threshold")
-        if not (0.0 <= self.safety_shift < 0.5):
-            raise InputError(
-                f"safety shift must be in [0, 0.5) module units, got {self.safety_shift!r}"
-            )
-
-
-def plan_object(
-    delta_pa: ArrayLike,
-    modules: tuple[int, ...],
-    layout: PadLayout,
-    params: PlannerParams | None = None,
-) -> GraspPlan:
-    """Plan the grasp of one object that touches ``modules``."""
-    from softpad.planning._thesis_rules import plan_with_rules
-
-    d = check_increments(delta_pa, layout)
-    return plan_with_rules(d, tuple(sorted(modules)), layout, params or PlannerParams())
+    def plan(
+        self, increments_pa: ArrayLike, objects: list[tuple[int, ...]], layout: PadLayout
+    ) -> list[GraspPlan]:
+        d = check_increments(increments_pa, layout)
+        return [plan_with_rules(d, tuple(sorted(g)), layout, self.params) for g in objects]
 
 
 def plan_grasps(
@@ -74,8 +59,6 @@ def plan_grasps(
     params
         Planner parameters (thesis defaults).
     """
-    from softpad.planning._thesis_rules import plan_with_rules
-
     layout = layout or PadLayout()
     params = params or PlannerParams()
     d = check_increments(delta_pa, layout)

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -55,13 +54,3 @@ class GraspPlan:
             "rule": self.rule,
             "cog_m": list(self.cog_m(layout)),
         }
-
-
-def normalize_theta(theta: float) -> float:
-    """Map an angle to (-pi/2, pi/2]: a parallel-jaw grasp is the same under theta + pi."""
-    t = math.fmod(theta, math.pi)
-    if t <= -math.pi / 2 + 1e-12:
-        t += math.pi
-    elif t > math.pi / 2 + 1e-12:
-        t -= math.pi
-    return t

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
@@ -24,11 +23,9 @@ from softpad.planning._geometry import (
     project_on_line,
     theta_perpendicular,
 )
+from softpad.planning._params import PlannerParams
 from softpad.planning._pcom import pcom as compute_pcom
 from softpad.planning._records import GraspPlan
-
-if TYPE_CHECKING:  # pragma: no cover
-    from softpad.planning._plan import PlannerParams
 
 Point = tuple[float, float]
 

@@ -1,15 +1,17 @@
 """Sensing primitives: filters, reference capture, increments, objects, contact.
 
 Pure functions and small state classes; every pressure is a gauge pressure in pascals.
-Thesis symbols: t_o (object threshold, 0.05 kPa), t_g (contact threshold, 0.09 kPa),
+Thesis symbols (values in :mod:`softpad.thesis`): t_o (object threshold), t_g (contact threshold),
 running average of 10 samples, reference = mean of 10 reads (seed, Sections 6.2.1.1 and 6.3).
 """
 
-from softpad.sensing._contact import ContactDetector
+from softpad.sensing._contact import ContactDetector, ThesisContactDetector
 from softpad.sensing._filters import RunningAverage, capture_reference, increments
 from softpad.sensing._objects import (
     DEFAULT_CONTACT_THRESHOLD_PA,
     DEFAULT_OBJECT_THRESHOLD_PA,
+    ObjectDetector,
+    ThesisObjectDetector,
     detect_objects,
 )
 
@@ -17,7 +19,10 @@ __all__ = [
     "DEFAULT_CONTACT_THRESHOLD_PA",
     "DEFAULT_OBJECT_THRESHOLD_PA",
     "ContactDetector",
+    "ObjectDetector",
     "RunningAverage",
+    "ThesisContactDetector",
+    "ThesisObjectDetector",
     "capture_reference",
     "detect_objects",
     "increments",

@@ -1,6 +1,8 @@
-"""Gripper-contact detection on the filtered pressure increments."""
+"""Gripper-contact detection: the :class:`ContactDetector` protocol and the thesis's detector."""
 
 from __future__ import annotations
+
+from typing import Protocol, runtime_checkable
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -9,7 +11,30 @@ from softpad.sensing._filters import DEFAULT_FILTER_LENGTH, RunningAverage
 from softpad.sensing._objects import DEFAULT_CONTACT_THRESHOLD_PA, check_threshold
 
 
-class ContactDetector:
+@runtime_checkable
+class ContactDetector(Protocol):
+    """A streaming detector of the fingers touching the pad.
+
+    The execution calls :meth:`reset` with the pressures read just before the descent (object
+    on the pad, fingers above it), then :meth:`update` with every frame of the descent until it
+    returns True; :attr:`triggered_modules` then names the modules that showed the contact.
+    """
+
+    @property
+    def triggered_modules(self) -> tuple[int, ...]:
+        """1-based modules that triggered the detection (empty before it)."""
+        ...
+
+    def reset(self, reference_pa: ArrayLike) -> None:
+        """Start over, taking increments from ``reference_pa`` (one value per module, Pa)."""
+        ...
+
+    def update(self, pressures_pa: ArrayLike) -> bool:
+        """Feed one frame (Pa per module); True once contact is detected, and from then on."""
+        ...
+
+
+class ThesisContactDetector:
     """The thesis's contact detector (seed, Section 6.2.2).
 
     Contact is declared on the first frame where the running average (``window`` samples) of
@@ -19,37 +44,48 @@ class ContactDetector:
 
     Parameters
     ----------
-    reference_pa
-        Pressures of every channel just before the approach starts (object already on the pad),
-        pascals. Increments are taken from these.
     threshold_pa
-        t_g, 90 Pa by default.
+        t_g, pascals (:data:`softpad.thesis.CONTACT_THRESHOLD_PA`).
     window
-        Running-average length, 10 samples by default.
+        Running-average length, samples (:data:`softpad.thesis.FILTER_WINDOW`).
+    reference_pa
+        Optional reference to start with (same as calling :meth:`reset`).
     """
 
     def __init__(
         self,
-        reference_pa: ArrayLike,
         threshold_pa: float = DEFAULT_CONTACT_THRESHOLD_PA,
         window: int = DEFAULT_FILTER_LENGTH,
+        reference_pa: ArrayLike | None = None,
     ) -> None:
-        self.reference_pa = np.asarray(reference_pa, dtype=float).copy()
         self.threshold_pa = check_threshold(threshold_pa, "contact threshold")
         self._filter = RunningAverage(window)
-        for _ in range(window):
+        self.reference_pa: NDArray[np.float64] | None = None
+        self._triggered: tuple[int, ...] = ()
+        if reference_pa is not None:
+            self.reset(reference_pa)
+
+    @property
+    def triggered_modules(self) -> tuple[int, ...]:
+        return self._triggered
+
+    def reset(self, reference_pa: ArrayLike) -> None:
+        self.reference_pa = np.asarray(reference_pa, dtype=float).copy()
+        self._filter.reset()
+        for _ in range(self._filter.length):
             self._filter.update(np.zeros_like(self.reference_pa))
-        self.triggered_modules: tuple[int, ...] = ()
+        self._triggered = ()
 
     def update(self, pressures_pa: ArrayLike) -> bool:
-        """Feed one frame; return True once contact is detected (and from then on)."""
-        if self.triggered_modules:
+        if self._triggered:
             return True
+        if self.reference_pa is None:
+            raise RuntimeError("ThesisContactDetector.update called before reset")
         filtered: NDArray[np.float64] = self._filter.update(
             np.asarray(pressures_pa, dtype=float) - self.reference_pa
         )
         hits = np.flatnonzero(filtered > self.threshold_pa)
         if hits.size:
-            self.triggered_modules = tuple(int(k) + 1 for k in hits)
+            self._triggered = tuple(int(k) + 1 for k in hits)
             return True
         return False

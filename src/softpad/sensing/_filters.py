@@ -7,12 +7,13 @@ from collections import deque
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from softpad import thesis
 from softpad.errors import InputError
 
 #: Length of the running-average filter of the thesis (seed, Section 6.3).
-DEFAULT_FILTER_LENGTH = 10
+DEFAULT_FILTER_LENGTH = thesis.FILTER_WINDOW
 #: Number of reads averaged into the reference (seed, Fig. 6.8 caption).
-DEFAULT_REFERENCE_READS = 10
+DEFAULT_REFERENCE_READS = thesis.REFERENCE_READS
 
 
 def _as_pressures(values: ArrayLike, name: str) -> NDArray[np.float64]:

@@ -2,16 +2,19 @@
 
 from __future__ import annotations
 
+from typing import Protocol, runtime_checkable
+
 import numpy as np
 from numpy.typing import ArrayLike
 
+from softpad import thesis
 from softpad.errors import InputError
 from softpad.layout import PadLayout
 
-#: t_o in the thesis: 0.05 kPa detects one 12.6 g Lego Duplo brick (seed, Section 6.3).
-DEFAULT_OBJECT_THRESHOLD_PA = 50.0
-#: t_g in the thesis: 0.09 kPa on the filtered increment means the gripper touched the pad.
-DEFAULT_CONTACT_THRESHOLD_PA = 90.0
+#: t_o (:data:`softpad.thesis.OBJECT_THRESHOLD_PA`).
+DEFAULT_OBJECT_THRESHOLD_PA = thesis.OBJECT_THRESHOLD_PA
+#: t_g (:data:`softpad.thesis.CONTACT_THRESHOLD_PA`).
+DEFAULT_CONTACT_THRESHOLD_PA = thesis.CONTACT_THRESHOLD_PA
 
 
 def check_increments(delta_pa: ArrayLike, layout: PadLayout) -> np.ndarray:
@@ -57,3 +60,28 @@ def detect_objects(
     t = check_threshold(threshold_pa)
     touched = [int(k) + 1 for k in np.flatnonzero(d > t)]
     return layout.connected_groups(touched)
+
+
+@runtime_checkable
+class ObjectDetector(Protocol):
+    """Finds the objects lying on the pad from (filtered) pressure increments."""
+
+    def objects(self, increments_pa: ArrayLike, layout: PadLayout) -> list[tuple[int, ...]]:
+        """One sorted tuple of 1-based modules per object; empty when nothing lies there."""
+        ...
+
+
+class ThesisObjectDetector:
+    """The thesis's detector: modules above t_o, 8-connected groups (Section 6.2.1.2).
+
+    Parameters
+    ----------
+    threshold_pa
+        t_o, pascals (:data:`softpad.thesis.OBJECT_THRESHOLD_PA`).
+    """
+
+    def __init__(self, threshold_pa: float = DEFAULT_OBJECT_THRESHOLD_PA) -> None:
+        self.threshold_pa = check_threshold(threshold_pa, "object threshold")
+
+    def objects(self, increments_pa: ArrayLike, layout: PadLayout) -> list[tuple[int, ...]]:
+        return detect_objects(increments_pa, layout, self.threshold_pa)

@@ -16,6 +16,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from numpy.typing import NDArray
 
+from softpad import thesis
 from softpad.errors import InputError
 from softpad.layout import GripperSpec, PadLayout
 from softpad.sim._footprint import (
@@ -32,11 +33,7 @@ from softpad.sim._objects import ObjectSpec, Placement
 from softpad.sim._world import GripperState
 
 #: Opening ranges of the thesis's gripper mountings, (max, min) width in metres (Section 6.3).
-GRIPPER_MOUNTINGS: dict[str, tuple[float, float]] = {
-    "10/4": (0.10, 0.04),
-    "6/2": (0.06, 0.02),
-    "4/0": (0.04, 0.0),
-}
+GRIPPER_MOUNTINGS = thesis.GRIPPER_MOUNTINGS_M
 
 
 @dataclass(frozen=True)
@@ -68,9 +65,9 @@ class SimGripper:
 
     max_width_m: float = 0.10
     min_width_m: float = 0.04
-    finger_length_m: float = 0.095
-    tip_thickness_m: float = 0.008
-    tip_width_m: float = 0.016
+    finger_length_m: float = thesis.FINGER_LENGTH_M
+    tip_thickness_m: float = thesis.FINGERTIP_THICKNESS_M
+    tip_width_m: float = thesis.FINGERTIP_WIDTH_M
     tip_stiffness_n_m: float = 125.0
     grip_force_n: float = 20.0
     friction: float = 0.5

@@ -28,6 +28,7 @@ from typing import Any, Protocol, runtime_checkable
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from softpad import thesis
 from softpad.errors import InputError
 
 #: Name of the packaged FEM table (written by the FEM issue).
@@ -87,7 +88,7 @@ class AnalyticCharacteristic:
         A_eff, area on which a load acts like a pressure, m^2.
     """
 
-    reference_pressure_pa: float = 1100.0
+    reference_pressure_pa: float = thesis.P0_PA
     reference_volume_m3: float = 8.0e-6
     compliance_m3_pa: float = 3.8e-9
     reference_height_m: float = 9.0e-3
@@ -377,7 +378,7 @@ def default_characteristic() -> ModuleCharacteristic:
 
 def sealed_sensitivity_pa_n(
     characteristic: ModuleCharacteristic,
-    pressure_pa: float = 1100.0,
+    pressure_pa: float = thesis.P0_PA,
     tubing_volume_m3: float = 2.0e-6,
     atmosphere_pa: float = 101325.0,
     load_n: float = 0.0,

@@ -37,6 +37,7 @@ import math
 from dataclasses import dataclass
 from typing import Any, Protocol
 
+from softpad import thesis
 from softpad.errors import InputError, check_finite
 from softpad.layout import PadLayout
 
@@ -142,11 +143,7 @@ class PadPhysics:
 
 
 #: The three mountings of the thesis's gripper: (maximum, minimum) width, metres (Section 6.3).
-GRIPPER_MOUNTINGS: dict[str, tuple[float, float]] = {
-    "10/4": (0.10, 0.04),
-    "6/2": (0.06, 0.02),
-    "4/0": (0.04, 0.0),
-}
+GRIPPER_MOUNTINGS = thesis.GRIPPER_MOUNTINGS_M
 
 
 def parse_mounting(text: str) -> tuple[float, float]:
@@ -208,9 +205,9 @@ class MujocoGripper:
     """
 
     mounting: str = "10/4"
-    finger_length_m: float = 0.095
-    tip_thickness_m: float = 4e-3
-    tip_width_m: float = 16e-3
+    finger_length_m: float = thesis.FINGER_LENGTH_M
+    tip_thickness_m: float = 4e-3  # the MuJoCo sole: thinner than GripperSpec's, docs/trials.md
+    tip_width_m: float = thesis.FINGERTIP_WIDTH_M
     grip_force_n: float = 20.0
     servo_stiffness_n_m: float = 4000.0
     friction: float = 0.8

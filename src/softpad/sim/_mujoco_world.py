@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from softpad import thesis
 from softpad.errors import InputError, check_finite
 from softpad.layout import PadLayout
 from softpad.sim._mujoco_model import (
@@ -585,7 +586,7 @@ class MujocoWorld:
             self._hand[:3] = self._hand[:3] + delta * (step / dist)
         step = self._speed_m_s * dt
         dyaw = self._goal[3] - self._hand[3]
-        ystep = self._speed_m_s / 0.05 * dt
+        ystep = self._speed_m_s / thesis.APPROACH_SPEED_M_S * dt
         self._hand[3] = (
             self._goal[3] if abs(dyaw) <= ystep else self._hand[3] + math.copysign(ystep, dyaw)
         )

@@ -105,6 +105,16 @@ class World(Protocol):
         """True when an object is between the closed jaws and is carried by the gripper."""
         ...
 
+    #: Ground truth of the current descent: box time of the first fingertip touch, s
+    #: (None before it); scores a trial, never seen by the controller.
+    first_touch_s: float | None
+    #: Ground truth: fingertip height at the first touch, m (None before it).
+    first_touch_z_m: float | None
+
+    def reset_touch(self) -> None:
+        """Forget the first-touch record (the simulated robot calls it before a descent)."""
+        ...
+
     def place_object(self, spec: ObjectSpec, placement: Placement | None = None) -> None:
         """Put an object on the pad (at ``spec.placement`` by default)."""
         ...

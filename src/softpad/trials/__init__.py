@@ -1,10 +1,11 @@
 """Grasp trials: the thesis's Experiment 2 (Table 6.1) in rigid-body physics.
 
 A sub-package of its own because a trial drives every layer below it (the MuJoCo world in
-``softpad.sim``, the simulated box, the inflation and robot of ``softpad.control``, the
-planner) and so must sit above them; ``softpad.sim`` may not import ``softpad.control``.
+``softpad.sim``, the simulated box and robot of ``softpad.harness``, the execution of
+``softpad.control``) and so sits above them.
 """
 
+from softpad.trials._config import TrialConfig, trial_execution_params
 from softpad.trials._records import (
     FAILURE_CAUSES,
     THESIS_OVERALL_SUCCESS,
@@ -14,7 +15,6 @@ from softpad.trials._records import (
     TrialResult,
 )
 from softpad.trials._runner import (
-    TrialConfig,
     perturbed_placement,
     run_experiment,
     run_trial,
@@ -32,5 +32,6 @@ __all__ = [
     "perturbed_placement",
     "run_experiment",
     "run_trial",
+    "trial_execution_params",
     "trial_seed",
 ]

@@ -3,7 +3,7 @@
 One trial: a fresh MuJoCo world behind the simulated box (``sim://`` physics: chamber gas,
 valves, sensor noise), the pad inflated to p0 and its reference saved, the object placed with a
 seeded random pose perturbation, the pressure increments planned by the thesis planner, the
-gripper moved over the centre of grasp, lowered at 0.05 m/s until the pad senses the fingers
+gripper moved over the centre of grasp, lowered at the approach speed until the pad senses the fingers
 (running average of 10 samples above t_g), closed, lifted and held for 15 s. The outcome and,
 for a failure, its cause are read from the physics.
 
@@ -14,100 +14,19 @@ number of workers.
 
 from __future__ import annotations
 
-import math
 import os
 import time
 import zlib
 from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
 
 from softpad.errors import InputError
+from softpad.trials._config import TrialConfig
 from softpad.trials._records import ExperimentResult, TrialResult
-
-
-@dataclass(frozen=True)
-class TrialConfig:
-    """Parameters of a trial (thesis values where the thesis gives them).
-
-    Parameters
-    ----------
-    position_sigma_m
-        Standard deviation of the random shift of the object's placement in x and y, metres
-        (the thesis placed objects by hand "similarly to Fig. 6.10"; 3 mm).
-    yaw_sigma_rad
-        Standard deviation of the random rotation of the placement, radians (3 degrees).
-    approach_speed_m_s
-        Descent speed, m/s (0.05 m/s, Section 6.3).
-    travel_speed_m_s
-        Speed of the moves over the object and of the lift, m/s.
-    jaw_speed_m_s
-        Closing speed of the jaws, m/s.
-    lift_m
-        Lift height, metres.
-    hold_s
-        Hold time, seconds (15 s, Section 6.3).
-    clearance_m
-        Free space left on each side of the object when the jaws open for the approach,
-        metres: the opening is the object's extent along the closing direction, where the
-        fingers come down, plus twice this, within the mounting's range (the thesis chose the
-        mounting per object and does not give the opening; we choose it as an operator would
-        command the Sawyer gripper).
-    settle_s
-        Time the object is left to settle on the pad before the planner reads it, seconds.
-    inflated_start
-        Start with the modules already near p0 (as between trials of a session) instead of
-        deflated; the adjustment to p0 within t_adj and the reference capture always run.
-    sample_rate_hz
-        Box sample rate, hertz.
-    noise
-        Sensor noise on (the box's defaults, like Fig. 6.8) or off.
-    max_pressure_pa
-        Pressure above which the loop stops on a box fault, pascals. The thesis's 3 kPa is
-        an inflation limit; a gripper pressing an object into the pad reads more, so the
-        trials stop only near the sensor's 10 kPa full scale (9.5 kPa).
-    record_trace
-        Keep every frame and event in a :class:`softpad.record.RunLog` (its ``plot`` draws the
-        pressure traces with the phases, like Fig. 6.8).
-    """
-
-    position_sigma_m: float = 3e-3
-    yaw_sigma_rad: float = math.radians(3.0)
-    approach_speed_m_s: float = 0.05
-    travel_speed_m_s: float = 0.2
-    jaw_speed_m_s: float = 0.05
-    lift_m: float = 0.10
-    hold_s: float = 15.0
-    clearance_m: float = 0.01
-    settle_s: float = 1.5
-    inflated_start: bool = True
-    sample_rate_hz: float = 100.0
-    noise: bool = True
-    record_trace: bool = False
-    max_pressure_pa: float = 9.5e3
-
-    def __post_init__(self) -> None:
-        for name in (
-            "position_sigma_m",
-            "yaw_sigma_rad",
-            "approach_speed_m_s",
-            "travel_speed_m_s",
-            "jaw_speed_m_s",
-            "lift_m",
-            "hold_s",
-            "clearance_m",
-            "settle_s",
-            "sample_rate_hz",
-            "max_pressure_pa",
-        ):
-            v = getattr(self, name)
-            if not isinstance(v, int | float) or not math.isfinite(v) or v < 0:
-                raise InputError(f"trial parameter {name} must be a finite number >= 0, got {v!r}")
-        if self.approach_speed_m_s <= 0 or self.travel_speed_m_s <= 0 or self.jaw_speed_m_s <= 0:
-            raise InputError("trial speeds must be > 0 m/s")
 
 
 def trial_seed(seed: int, object_name: str, trial: int) -> int:

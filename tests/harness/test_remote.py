@@ -9,8 +9,9 @@ import numpy as np
 import pytest
 
 from softpad.box import SimBox, ValveCommand, ZenohBox, open_box
-from softpad.control import ExecutionParams, RemoteRobot, ToolPose, run_simulated
+from softpad.control import ExecutionParams, ToolPose
 from softpad.errors import InputError
+from softpad.harness import RemoteRobot, run_simulated
 from softpad.record import RunLog
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "box"))
@@ -30,7 +31,7 @@ def test_remote_robot_moves_the_served_gripper() -> None:
         np.testing.assert_allclose(
             [s.x_m, s.y_m, s.z_m, s.yaw_rad], [0.05, 0.04, 0.03, 0.3], atol=1e-9
         )
-        assert remote.holding() is False and remote.first_touch() is None
+        assert remote.holding() is False and remote.touches() == []
 
 
 @pytest.mark.parametrize(
@@ -66,9 +67,13 @@ def test_loop_over_zenoh_holds_the_banana_with_the_local_plan_and_closes_valves(
         result = run_simulated(["banana"], url, params, recorder=log)
         local = run_simulated(["banana"], "sim://?seed=4", params)
         assert result.outcome == local.outcome == "held"
-        assert [g.plan.modules for g in result.grasps] == [g.plan.modules for g in local.grasps]
+        assert [g.plan.modules for g in result.result.grasps] == [
+            g.plan.modules for g in local.result.grasps
+        ]
         np.testing.assert_allclose(
-            [g.plan.cog for g in result.grasps], [g.plan.cog for g in local.grasps], atol=0.05
+            [g.plan.cog for g in result.result.grasps],
+            [g.plan.cog for g in local.result.grasps],
+            atol=0.05,
         )
         assert len(log) > 100
         box = daemon.box

@@ -20,8 +20,8 @@ request                fields                                             reply
 ``robot.state``                                                           ``state`` [x_m, y_m,
                                                                           z_m, yaw_rad, width_m]
 ``robot.holding``                                                         ``holding``
-``robot.first_touch``                                                     ``first_touch`` [t_s,
-                                                                          z_m] or null
+``robot.touches``                                                         ``touches`` [[t_s, z_m]
+                                                                          or null per descent]
 =====================  =================================================  =====================
 
 Every robot request maps one to one onto the served :class:`SimulatedRobot`, so a run over
@@ -36,10 +36,11 @@ from collections.abc import Callable
 from typing import Any
 
 from softpad.box import SimBox, ZenohBox
-from softpad.control._robot import SimulatedRobot, ToolPose
+from softpad.control import RobotState, ToolPose
 from softpad.errors import HardwareFault, InputError
+from softpad.harness._robot import SimulatedRobot, TouchTruth
 from softpad.layout import PadLayout
-from softpad.sim import AnalyticWorld, GripperState, SimGripper, get_object
+from softpad.sim import AnalyticWorld, SimGripper, get_object
 
 Handler = Callable[[dict[str, Any]], dict[str, Any]]
 
@@ -54,7 +55,7 @@ SIMULATION_OPS = (
     "robot.is_moving",
     "robot.state",
     "robot.holding",
-    "robot.first_touch",
+    "robot.touches",
 )
 
 
@@ -113,9 +114,13 @@ def simulation_extensions(box: SimBox) -> dict[str, Handler]:
         s = robot[0].state()
         return {"state": [s.x_m, s.y_m, s.z_m, s.yaw_rad, s.width_m]}
 
-    def first_touch(msg: dict[str, Any]) -> dict[str, Any]:
-        touch = robot[0].first_touch()
-        return {"first_touch": None if touch is None else list(touch)}
+    def touches(msg: dict[str, Any]) -> dict[str, Any]:
+        return {
+            "touches": [
+                None if t.first_touch_s is None else [t.first_touch_s, t.first_touch_z_m]
+                for t in robot[0].touches
+            ]
+        }
 
     return {
         "sim.setup": setup,
@@ -127,7 +132,7 @@ def simulation_extensions(box: SimBox) -> dict[str, Handler]:
         "robot.is_moving": lambda msg: {"moving": bool(robot[0].is_moving())},
         "robot.state": state,
         "robot.holding": lambda msg: {"holding": bool(robot[0].holding())},
-        "robot.first_touch": first_touch,
+        "robot.touches": touches,
     }
 
 
@@ -205,15 +210,19 @@ class RemoteRobot:
     def is_moving(self) -> bool:
         return self._call("robot.is_moving").get("moving") is True
 
-    def state(self) -> GripperState:
-        return GripperState(*_floats(self._call("robot.state"), "state", 5))
+    def state(self) -> RobotState:
+        return RobotState(*_floats(self._call("robot.state"), "state", 5))
 
     def holding(self) -> bool:
         return self._call("robot.holding").get("holding") is True
 
-    def first_touch(self) -> tuple[float, float] | None:
-        reply = self._call("robot.first_touch")
-        if reply.get("first_touch") is None:
-            return None
-        t, z = _floats(reply, "first_touch", 2)
-        return t, z
+    def touches(self) -> list[TouchTruth]:
+        """Ground truth of every descent so far (simulation only; scores a run)."""
+        out = []
+        for t in self._call("robot.touches").get("touches") or []:
+            if t is None:
+                out.append(TouchTruth(None, None))
+            else:
+                ts, z = _floats({"t": t}, "t", 2)
+                out.append(TouchTruth(ts, z))
+        return out

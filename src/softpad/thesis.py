@@ -1,0 +1,104 @@
+"""The seed's numbers, in SI units, each with the section of the thesis it comes from.
+
+This module is the one home of the thesis's parameters: every default elsewhere in the library
+refers to a name here. Where the seed gives no number, the comment says where the value comes
+from. The seed is the PhD thesis in the project's shared folder, chapters 6 and 7.
+"""
+
+from __future__ import annotations
+
+import math
+
+# --- Pad and module geometry -----------------------------------------------------------------
+#: Side of one square module and the pitch of the grid, m (Section 6.1.2: 45 x 45 mm air channel).
+MODULE_PITCH_M = 0.045
+#: Rows and columns of the prototype pad (Section 6.1.2, Fig. 6.4a: 2 x 3).
+PROTOTYPE_ROWS = 2
+PROTOTYPE_COLS = 3
+#: Channels of the Pneumaticbox (Section 6.1.1: 8 channels).
+BOX_CHANNELS = 8
+
+# --- Inflation (Section 6.2.1.1) -------------------------------------------------------------
+#: p0, the initial inflating pressure of every module, Pa (1.1 kPa: a module about 9 mm high).
+P0_PA = 1100.0
+#: Usable range of p0, Pa (Section 6.2.1.1: 0.5 to 2.8 kPa).
+P0_RANGE_PA = (500.0, 2800.0)
+#: t_adj, tolerance of the initial adjustment, Pa (0.03 kPa).
+ADJUST_TOLERANCE_PA = 30.0
+#: Reads averaged into the reference after the adjustment (Section 6.2.1.1: 10 reads).
+REFERENCE_READS = 10
+#: Largest pressure the software lets a module reach, Pa (Section 7.2: the FEM studies and the
+#: module's rated range end at 3 kPa).
+MAX_PRESSURE_PA = 3000.0
+
+# --- Sensing (Sections 6.2.1.2, 6.2.2, 6.3) --------------------------------------------------
+#: t_o, object-detection threshold on the increment, Pa (0.05 kPa detects a 12.6 g Duplo brick).
+OBJECT_THRESHOLD_PA = 50.0
+#: t_g, gripper-contact threshold on the filtered increment, Pa (0.09 kPa).
+CONTACT_THRESHOLD_PA = 90.0
+#: Length of the running average of the pressure readings, samples (10).
+FILTER_WINDOW = 10
+
+# --- Planning (Section 6.2.1.3) --------------------------------------------------------------
+#: c_s, safety shift of corner-shaped objects, module units (0.2).
+SAFETY_SHIFT = 0.2
+
+# --- Robot and gripper (Section 6.3) ---------------------------------------------------------
+#: Approach (descent) speed of the arm towards the pad, m/s (0.05 m/s).
+APPROACH_SPEED_M_S = 0.05
+#: Time the lifted object is held, s (15 s).
+HOLD_S = 15.0
+#: Length of the gripper's fingers, m (9.5 cm).
+FINGER_LENGTH_M = 0.095
+#: The three mountings of the Sawyer's parallel gripper, name -> (max width, min width), m
+#: (Section 6.3: 10/4, 6/2 and 4/0 cm).
+GRIPPER_MOUNTINGS_M: dict[str, tuple[float, float]] = {
+    "10/4": (0.10, 0.04),
+    "6/2": (0.06, 0.02),
+    "4/0": (0.04, 0.0),
+}
+#: Fingertip size across the closing direction, m. The seed gives no number ("very small
+#: tips"); 16 mm is the width of the Rethink Electric Parallel Gripper's standard fingertip.
+FINGERTIP_WIDTH_M = 0.016
+#: Fingertip size along the closing direction, m. Not in the seed; small enough (8 mm) that a
+#: tip can lie on a non-sensitive line between modules, as Section 6.3 reports.
+FINGERTIP_THICKNESS_M = 0.008
+
+#: Closing speed of each jaw, m/s. Not in the seed; chosen equal to the approach speed so that
+#: the jaws meet an object as gently as the fingers meet the pad.
+JAW_SPEED_M_S = APPROACH_SPEED_M_S
+
+# --- Experiment 2 (Section 6.3, Table 6.1) ---------------------------------------------------
+#: Trials per object (5).
+TRIALS_PER_OBJECT = 5
+#: Overall success of Experiment 2 (52 of 55).
+EXPERIMENT_2_SUCCESSES = (52, 55)
+
+#: Largest rotation of a grasp direction, rad (theta is reported in (-pi/2, pi/2]; DESIGN.md).
+THETA_RANGE_RAD = (-math.pi / 2, math.pi / 2)
+
+__all__ = [
+    "ADJUST_TOLERANCE_PA",
+    "APPROACH_SPEED_M_S",
+    "BOX_CHANNELS",
+    "CONTACT_THRESHOLD_PA",
+    "EXPERIMENT_2_SUCCESSES",
+    "FILTER_WINDOW",
+    "FINGERTIP_THICKNESS_M",
+    "FINGERTIP_WIDTH_M",
+    "FINGER_LENGTH_M",
+    "GRIPPER_MOUNTINGS_M",
+    "HOLD_S",
+    "JAW_SPEED_M_S",
+    "MAX_PRESSURE_PA",
+    "MODULE_PITCH_M",
+    "OBJECT_THRESHOLD_PA",
+    "P0_PA",
+    "P0_RANGE_PA",
+    "PROTOTYPE_COLS",
+    "PROTOTYPE_ROWS",
+    "REFERENCE_READS",
+    "SAFETY_SHIFT",
+    "THETA_RANGE_RAD",
+    "TRIALS_PER_OBJECT",
+]

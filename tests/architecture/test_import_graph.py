@@ -1,0 +1,79 @@
+"""The layering of docs/architecture.md, read from the source's import statements."""
+
+from __future__ import annotations
+
+import ast
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import softpad
+
+SRC = Path(softpad.__file__).parent
+
+#: Sub-packages each sub-package may import (besides itself, ``errors`` and ``thesis``).
+ALLOWED: dict[str, set[str]] = {
+    "layout": set(),
+    "sensing": {"layout"},
+    "planning": {"layout", "sensing"},
+    "fem": set(),
+    "sim": {"layout", "fem"},
+    "box": {"sim", "layout"},
+    "control": {"box", "layout", "sensing", "planning"},
+    "record": {"box", "layout", "planning"},
+    "harness": {"box", "control", "layout", "sim", "planning", "sensing"},
+    "trials": {"box", "control", "harness", "layout", "planning", "record", "sensing", "sim"},
+}
+
+
+def _imports(path: Path) -> set[str]:
+    """Top-level softpad sub-packages imported anywhere in a module (lazy imports included)."""
+    found: set[str] = set()
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        names: list[str] = []
+        if isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+            names = [node.module]
+            if node.module == "softpad":  # ``from softpad import thesis`` names a module
+                names = [f"softpad.{a.name}" for a in node.names if not a.name.startswith("_")]
+        elif isinstance(node, ast.Import):
+            names = [a.name for a in node.names]
+        found |= {n.split(".")[1] for n in names if n.startswith("softpad.")}
+    return found
+
+
+@pytest.mark.parametrize("package", sorted(ALLOWED))
+def test_package_imports_only_lower_layers(package: str) -> None:
+    bad = {}
+    for path in sorted((SRC / package).glob("*.py")):
+        extra = _imports(path) - ALLOWED[package] - {package, "errors", "thesis"}
+        if extra:
+            bad[path.name] = sorted(extra)
+    assert not bad, f"softpad.{package} imports higher layers: {bad}"
+
+
+@pytest.mark.parametrize("package", ["control", "planning", "sensing"])
+def test_controller_side_never_imports_the_simulator(package: str) -> None:
+    for path in sorted((SRC / package).glob("*.py")):
+        assert not _imports(path) & {"sim", "harness", "trials"}, path.name
+
+
+def test_the_checker_sees_a_forbidden_import(tmp_path: Path) -> None:
+    """The AST reader finds plain, lazy and from-package imports (so the tests above can fail)."""
+    f = tmp_path / "m.py"
+    f.write_text(
+        "import softpad.sim\ndef f():\n    from softpad.harness import x\n"
+        "from softpad import trials, __version__\n"
+    )
+    assert _imports(f) == {"sim", "harness", "trials"}
+
+
+def test_importing_the_controller_loads_no_simulator_world() -> None:
+    code = (
+        "import sys, softpad.control, softpad.planning, softpad.sensing;"
+        "bad = [m for m in ('softpad.harness', 'softpad.trials', 'mujoco', 'felupe') "
+        "if m in sys.modules]; print(bad); sys.exit(1 if bad else 0)"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert out.returncode == 0, out.stdout + out.stderr
