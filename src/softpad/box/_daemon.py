@@ -47,16 +47,22 @@ DEFAULT_MAX_PRESSURE_PA = 3000.0
 
 
 def guard_box(box: Box, max_pressure_pa: float) -> Box:
-    """The box the daemon serves: ``box`` wrapped by the box-side safety layer when present.
+    """The box the daemon serves: ``box`` with the box-side safety layer set to the limit.
 
-    The daemon itself vents channels above the trip level and refuses over-limit inflation;
-    a dedicated wrapper (``softpad.box.SafeBox``) adds its checks on top when installed.
+    This is the one switch between the daemon and the safety layer. The daemon itself vents
+    channels above its trip level and refuses over-limit inflation; where the
+    :class:`~softpad.box.Box` base carries a safety guard (``safety_limits``, the ``safety``
+    branch), its maximum is set to ``max_pressure_pa`` as well, so both act.
     """
-    try:
-        from softpad.box import _safety  # type: ignore[attr-defined]
-    except ImportError:
-        return box
-    return _safety.SafeBox(box, max_pressure_pa=max_pressure_pa)  # type: ignore[no-any-return]
+    import dataclasses
+
+    limits = getattr(box, "safety_limits", None)
+    if limits is not None and dataclasses.is_dataclass(limits):
+        release = min(getattr(limits, "release_pa", max_pressure_pa), max_pressure_pa - 200.0)
+        box.safety_limits = dataclasses.replace(  # type: ignore[attr-defined]
+            limits, max_pressure_pa=max_pressure_pa, release_pa=release
+        )
+    return box
 
 
 class _Stats:
@@ -381,11 +387,14 @@ class BoxDaemon:
         except _Refused as exc:
             self.stats.refused += 1
             return {"ok": False, "kind": exc.kind, "error": str(exc)}
+        except HardwareFault as exc:
+            if type(exc).__name__ != "SafetyTrip":  # the Box base's own safety refusal
+                return {"ok": False, "kind": "hardware", "error": str(exc)}
+            self.stats.refused += 1
+            return {"ok": False, "kind": "safety", "error": str(exc)}
         except InputError as exc:
             self.stats.malformed += 1
             return {"ok": False, "kind": "input", "error": str(exc)}
-        except HardwareFault as exc:
-            return {"ok": False, "kind": "hardware", "error": str(exc)}
         except Exception as exc:
             self._say(f"error answering {msg.get('_key')}: {type(exc).__name__}: {exc}")
             return {"ok": False, "kind": "hardware", "error": f"daemon error: {exc}"}
