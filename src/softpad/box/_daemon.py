@@ -56,8 +56,8 @@ def guard_box(box: Box, max_pressure_pa: float) -> Box:
     """
     import dataclasses
 
-    limits = getattr(box, "safety_limits", None)
-    if limits is not None and dataclasses.is_dataclass(limits):
+    limits: Any = getattr(box, "safety_limits", None)
+    if limits is not None and dataclasses.is_dataclass(limits) and not isinstance(limits, type):
         release = min(getattr(limits, "release_pa", max_pressure_pa), max_pressure_pa - 200.0)
         box.safety_limits = dataclasses.replace(  # type: ignore[attr-defined]
             limits, max_pressure_pa=max_pressure_pa, release_pa=release
