@@ -14,16 +14,17 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from softpad import thesis
 from softpad.errors import InputError
 
-#: Thesis defaults (seed, Section 6.2; softpad.thesis when it lands), pascals / samples.
-DEFAULT_P0_PA = 1100.0
-DEFAULT_ADJUST_TOLERANCE_PA = 30.0
-DEFAULT_OBJECT_THRESHOLD_PA = 50.0
-DEFAULT_CONTACT_THRESHOLD_PA = 90.0
-DEFAULT_FILTER_WINDOW = 10
-DEFAULT_MAX_PRESSURE_PA = 3000.0
-DEFAULT_PITCH_M = 0.045
+#: Thesis defaults (seed, Section 6.2, from :mod:`softpad.thesis`), pascals / samples / metres.
+DEFAULT_P0_PA = thesis.P0_PA
+DEFAULT_ADJUST_TOLERANCE_PA = thesis.ADJUST_TOLERANCE_PA
+DEFAULT_OBJECT_THRESHOLD_PA = thesis.OBJECT_THRESHOLD_PA
+DEFAULT_CONTACT_THRESHOLD_PA = thesis.CONTACT_THRESHOLD_PA
+DEFAULT_FILTER_WINDOW = thesis.FILTER_WINDOW
+DEFAULT_MAX_PRESSURE_PA = thesis.MAX_PRESSURE_PA
+DEFAULT_PITCH_M = thesis.MODULE_PITCH_M
 
 WATCHDOG_ACTIONS = ("hold", "vent")
 
@@ -374,14 +375,16 @@ def _thresholds(raw: dict[str, Any]) -> Thresholds:
         return _range(f"thresholds.{key}", v, lo, hi, " kPa") * 1e3
 
     th = Thresholds(
-        p0_pa=kpa("p0_kpa", DEFAULT_P0_PA, 0.1, 10.0),
+        p0_pa=kpa("p0_kpa", DEFAULT_P0_PA, *(v / 1e3 for v in thesis.P0_RANGE_PA)),
         adjust_tolerance_pa=kpa("t_adj_kpa", DEFAULT_ADJUST_TOLERANCE_PA, 0.001, 1.0),
         object_threshold_pa=kpa("t_o_kpa", DEFAULT_OBJECT_THRESHOLD_PA, 0.001, 5.0),
         contact_threshold_pa=kpa("t_g_kpa", DEFAULT_CONTACT_THRESHOLD_PA, 0.001, 5.0),
         filter_window=int(
             _range("thresholds.window", _get(t, "window", "thresholds", int, 10), 1, 1000)
         ),
-        max_pressure_pa=kpa("max_pressure_kpa", DEFAULT_MAX_PRESSURE_PA, 0.2, 20.0),
+        max_pressure_pa=kpa(
+            "max_pressure_kpa", DEFAULT_MAX_PRESSURE_PA, 0.2, thesis.MAX_PRESSURE_PA / 1e3
+        ),
     )
     if th.p0_pa + th.adjust_tolerance_pa >= th.max_pressure_pa:
         raise ConfigError(
@@ -397,8 +400,10 @@ def parse_installation(raw: dict[str, Any], source: str = "<dict>") -> Installat
     gripper = _table(raw, "gripper")
     _unknown(gripper, {"mounting"}, "gripper")
     mounting = _get(gripper, "mounting", "gripper", str, "10/4")
-    if mounting not in ("10/4", "6/2", "4/0"):
-        raise ConfigError(f"gripper.mounting must be one of 10/4, 6/2, 4/0; got {mounting!r}")
+    if mounting not in thesis.GRIPPER_MOUNTINGS_M:
+        raise ConfigError(
+            f"gripper.mounting must be one of {', '.join(thesis.GRIPPER_MOUNTINGS_M)}; got {mounting!r}"
+        )
     return Installation(
         box=_box(raw),
         link=_link(raw),
