@@ -107,3 +107,19 @@ def test_cli_check_prints_units_and_names_errors(
     broken.write_text("[pad\n")
     assert main(["config", "check", str(broken)]) == 2
     assert "not valid TOML" in capsys.readouterr().err
+
+
+def test_run_takes_thresholds_from_the_installation_file(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """t_g from the file reaches the contact detector: 2.9 kPa is never reached, so no contact."""
+    import json
+
+    site = tmp_path / "site.toml"
+    site.write_text("[thresholds]\nt_g_kpa = 2.9\n")
+    assert main(["run", "--object", "banana", "--config", str(site), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["outcome"] == "contact_not_detected"
+    assert (
+        main(["run", "--object", "banana", "--config", str(SITE), "--json", "--hold-s", "1"]) == 0
+    )
+    assert json.loads(capsys.readouterr().out)["outcome"] == "held"

@@ -53,6 +53,11 @@ def register(sub: Any) -> None:
         default=thesis.HOLD_S,
         help="hold time in s (default %(default)g)",
     )
+    p.add_argument(
+        "--config",
+        metavar="FILE.toml",
+        help="installation file: thresholds (p0, t_adj, t_o, t_g, window, maximum) and gripper",
+    )
     p.add_argument("--json", action="store_true", help="print the timeline as one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="draw the pressure traces with the phases")
     p.add_argument("--log", metavar="FILE.npz", help="save every frame and event")
@@ -72,8 +77,13 @@ def run(args: argparse.Namespace) -> int:
     names = [s.name for s in specs]
     log = RunLog({"box": args.box, "objects": names})
     params = ExecutionParams(hold_s=args.hold_s)
+    parts: dict[str, Any] = {}
+    gripper = args.gripper
+    if args.config:
+        params, parts, mounting = _from_installation(args.config, params)
+        gripper = gripper or mounting
     try:
-        result = run_simulated(names, args.box, params, log, gripper=args.gripper)
+        result = run_simulated(names, args.box, params, log, gripper=gripper, **parts)
     finally:
         # whatever happened, what was logged is kept
         if args.log:
@@ -94,6 +104,32 @@ def run(args: argparse.Namespace) -> int:
     if args.plot:
         print(f"pressure traces: {args.plot}")
     return 0
+
+
+def _from_installation(path: str, params: Any) -> tuple[Any, dict[str, Any], str | None]:
+    """Loop parameters, detector parts and gripper mounting from an installation file."""
+    import dataclasses
+
+    from softpad.config import load_installation
+    from softpad.sensing import ThesisObjectDetector
+
+    inst = load_installation(path)
+    th = inst.thresholds
+    inflation = dataclasses.replace(
+        params.inflation,
+        target_pa=th.p0_pa,
+        tolerance_pa=th.adjust_tolerance_pa,
+        max_pressure_pa=th.max_pressure_pa,
+        filter_length=th.filter_window,
+    )
+    params = dataclasses.replace(
+        params,
+        inflation=inflation,
+        contact_threshold_pa=th.contact_threshold_pa,
+        filter_length=th.filter_window,
+    )
+    parts = {"object_detector": ThesisObjectDetector(threshold_pa=th.object_threshold_pa)}
+    return params, parts, inst.gripper_mounting
 
 
 def _kpa(values: Any) -> str:

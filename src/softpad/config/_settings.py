@@ -126,7 +126,7 @@ class Installation:
     link: LinkSettings = field(default_factory=LinkSettings)
     pad: PadSettings = field(default_factory=PadSettings)
     thresholds: Thresholds = field(default_factory=Thresholds)
-    gripper_mounting: str = "10/4"
+    gripper_mounting: str | None = None
     source: str = "<defaults>"
 
 
@@ -399,8 +399,8 @@ def parse_installation(raw: dict[str, Any], source: str = "<dict>") -> Installat
     _unknown(raw, {"box", "link", "pad", "thresholds", "gripper"}, "")
     gripper = _table(raw, "gripper")
     _unknown(gripper, {"mounting"}, "gripper")
-    mounting = _get(gripper, "mounting", "gripper", str, "10/4")
-    if mounting not in thesis.GRIPPER_MOUNTINGS_M:
+    mounting = _get(gripper, "mounting", "gripper", str, None)
+    if mounting is not None and mounting not in thesis.GRIPPER_MOUNTINGS_M:
         raise ConfigError(
             f"gripper.mounting must be one of {', '.join(thesis.GRIPPER_MOUNTINGS_M)}; got {mounting!r}"
         )
@@ -465,5 +465,6 @@ def describe(inst: Installation) -> list[str]:
         f"t_o {th.object_threshold_pa / 1e3:g} kPa, t_g {th.contact_threshold_pa / 1e3:g} kPa, "
         f"window {th.filter_window} samples, max {th.max_pressure_pa / 1e3:g} kPa"
     )
-    out.append(f"gripper.mounting = {inst.gripper_mounting} (max/min width, cm)")
+    mounting = inst.gripper_mounting or "each object's catalogue mounting (Section 6.3)"
+    out.append(f"gripper.mounting = {mounting} (max/min width, cm)")
     return out
