@@ -63,7 +63,7 @@ def test_bad_remote_requests_are_input_errors(call, match: str) -> None:
 def test_loop_over_zenoh_holds_the_banana_with_the_local_plan_and_closes_valves() -> None:
     params = ExecutionParams(hold_s=0.5)
     log = RunLog()
-    with served() as (daemon, url):
+    with served(lockstep_frames=2) as (daemon, url):
         result = run_simulated(["banana"], url, params, recorder=log)
         local = run_simulated(["banana"], "sim://?seed=4", params)
         assert result.outcome == local.outcome == "held"

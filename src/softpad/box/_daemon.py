@@ -131,6 +131,11 @@ class BoxDaemon:
         A controller silent (no heartbeat) this long, seconds, loses control: valves close.
     watchdog_action
         ``"hold"`` (every valve closed) or ``"vent"`` (every channel deflated).
+    lockstep_frames
+        For a simulated box: while a client controls it, sample at most this many frames
+        ahead of the last frame the controller acknowledged reading (``PREFIX/control/ack``),
+        so the simulated world runs on the controller's time, never ahead of what it has seen.
+        None (hardware): free-running.
     services
         Extra queryables ``PREFIX/ext/OP`` (the served simulator's world and robot); a handler
         takes the request and returns the reply's fields. Only the controller may call them.
@@ -153,6 +158,7 @@ class BoxDaemon:
         services: Mapping[str, Handler] | None = None,
         auth: Mapping[str, Any] | None = None,
         log: Callable[[str], None] | None = None,
+        lockstep_frames: int | None = None,
     ) -> None:
         if watchdog_action not in ("hold", "vent"):
             raise InputError(f"watchdog action must be hold or vent, got {watchdog_action!r}")
@@ -173,6 +179,7 @@ class BoxDaemon:
         self.stats = _Stats(float(box.sample_rate_hz))
         self.controller: str | None = None
         self._heartbeat = 0.0
+        self._taken_at = 0.0
         self._live: set[str] = set()
         self._venting: set[int] = set()
         self.last_trip: dict[str, Any] | None = None
@@ -182,6 +189,9 @@ class BoxDaemon:
         self._thread: threading.Thread | None = None
         self._decls: list[Any] = []
         self._outbox: queue.Queue[bytes] = queue.Queue(maxsize=2000)
+        self.lockstep_frames = lockstep_frames
+        self._acked = 0
+        self._ack_event = threading.Event()
 
     # --- life cycle -------------------------------------------------------------------
     def start(self) -> BoxDaemon:
@@ -207,6 +217,7 @@ class BoxDaemon:
         ):
             self._decls.append(s.declare_queryable(f"{p}/{key}", self._guarded(fn)))
         self._decls.append(s.declare_subscriber(f"{p}/control/heartbeat", self._on_heartbeat))
+        self._decls.append(s.declare_subscriber(f"{p}/control/ack", self._on_ack))
         self._decls.append(
             s.liveliness().declare_subscriber(
                 f"{p}/control/holder/*", self._on_liveliness, history=True
@@ -262,6 +273,8 @@ class BoxDaemon:
         paced = bool(getattr(self.box, "self_paced", False))
         due = time.monotonic()
         while not self._stop.is_set():
+            if self._wait_for_controller():
+                due = time.monotonic()  # the simulated clock waited: not a missed tick
             if not paced:
                 due += period
                 now = time.monotonic()
@@ -291,6 +304,31 @@ class BoxDaemon:
             self.stats.sampled(mono)
         if paced:
             self.stats.missed_ticks += int(getattr(self.box, "missed_ticks", 0))
+
+    def _wait_for_controller(self) -> bool:
+        """Lock-step: hold sampling while the controller is behind; True when it waited."""
+        waited = False
+        while (
+            self.lockstep_frames is not None
+            and self.controller is not None
+            and self._seq - self._acked >= self.lockstep_frames
+            and not self._stop.is_set()
+        ):
+            waited = True
+            self._ack_event.wait(0.01)
+            self._ack_event.clear()
+            self._check_controller(time.monotonic())
+        return waited
+
+    def _on_ack(self, sample: Any) -> None:
+        try:
+            msg = decode_request(sample.payload.to_bytes())
+            seq = msg.get("seq")
+            if msg.get("client") == self.controller and isinstance(seq, int):
+                self._acked = max(self._acked, seq)
+                self._ack_event.set()
+        except Exception:
+            self.stats.malformed += 1
 
     def _send_loop(self) -> None:
         """Publish queued frames. A slow link may block here, never the sampling and safety
@@ -322,8 +360,18 @@ class BoxDaemon:
                 self.box.set_valve(ch, ValveCommand.CLOSED)
         if not math.isfinite(frame.supply_pa):
             self._close_inflation()
-        if self.controller is not None and mono - self._heartbeat > self.watchdog_s:
+        self._check_controller(mono)
+
+    def _check_controller(self, mono: float) -> None:
+        """Withdraw control from a controller without heartbeats, or whose liveliness token
+        has not appeared within the watchdog time of taking control."""
+        c = self.controller
+        if c is None:
+            return
+        if mono - self._heartbeat > self.watchdog_s:
             self._trip(f"no heartbeat for {mono - self._heartbeat:.3f} s")
+        elif c not in self._live and mono - self._taken_at > self.watchdog_s:
+            self._trip("its liveliness token never appeared")
 
     def _close_inflation(self) -> None:
         for ch, cmd in enumerate(self.box.valves, 1):
@@ -438,13 +486,6 @@ class BoxDaemon:
 
     def _on_take(self, msg: dict[str, Any]) -> dict[str, Any]:
         c = self._client(msg)
-        deadline = time.monotonic() + 1.0
-        while c not in self._live and time.monotonic() < deadline:
-            time.sleep(0.005)  # the token travels on the same link; it is usually there
-        if c not in self._live:
-            raise _Refused(
-                "control", f"declare the liveliness token {self.prefix}/control/holder/{c} first"
-            )
         with self._lock:
             if self.controller not in (None, c):
                 raise _Refused(
@@ -452,10 +493,13 @@ class BoxDaemon:
                     f"box is controlled by client {self.controller}; it must release control "
                     "or vanish (watchdog) first",
                 )
+            # granted now; the liveliness token (declared before the request, on the same
+            # link) must be seen within the watchdog time or control is withdrawn
             self.controller = c
-            self._heartbeat = time.monotonic()
+            self._heartbeat = self._taken_at = time.monotonic()
+            self._acked = self._seq
         self._say(f"client {c} took control")
-        return {"controller": c, "watchdog_s": self.watchdog_s}
+        return {"controller": c, "watchdog_s": self.watchdog_s, "seq": self._seq}
 
     def _on_release(self, msg: dict[str, Any]) -> dict[str, Any]:
         c = self._require_control(msg)

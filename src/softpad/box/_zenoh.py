@@ -27,7 +27,7 @@ from softpad.box._link import (
 from softpad.errors import HardwareFault, InputError
 
 #: Seconds to wait for a frame or a reply before the link counts as lost.
-DEFAULT_TIMEOUT_S = 3.0
+DEFAULT_TIMEOUT_S = 5.0
 
 
 class ControlRefused(HardwareFault):
@@ -79,6 +79,7 @@ class ZenohBox(Box):
         self.dropped = 0
         self._queue: queue.Queue[StampedFrame] = queue.Queue(maxsize=queue_frames)
         self._token: Any = None
+        self._ack: Any = None
         self._beat: threading.Thread | None = None
         self._beat_stop = threading.Event()
         self.last: StampedFrame | None = None
@@ -119,6 +120,8 @@ class ZenohBox(Box):
                 f"no frame from the box at {self.endpoint} for {self.timeout_s:g} s"
             ) from None
         self.last = f
+        if self._ack is not None:  # a lock-stepped simulator waits for the controller
+            self._ack.put(encode_json({"client": self.client_id, "seq": f.seq}))
         return f
 
     @property
@@ -185,7 +188,11 @@ class ZenohBox(Box):
         except BaseException:
             self._token.undeclare()
             self._token = None
+            if self._ack is not None:
+                self._ack.undeclare()
+                self._ack = None
             raise
+        self._ack = self._session.declare_publisher(f"{self.prefix}/control/ack", express=True)
         period = float(reply.get("watchdog_s", 0.5)) / 5
         self._beat_stop.clear()
         self._beat = threading.Thread(target=self._heartbeats, args=(period,), daemon=True)
@@ -210,6 +217,9 @@ class ZenohBox(Box):
                 self._beat.join(timeout=2.0)
             self._token.undeclare()
             self._token = None
+            if self._ack is not None:
+                self._ack.undeclare()
+                self._ack = None
 
     def _apply_valve(self, channel: int, command: ValveCommand) -> None:
         self.take_control()
@@ -233,7 +243,7 @@ class ZenohBox(Box):
 
 
 def open_zenoh_url(location: str, options: dict[str, str]) -> ZenohBox:
-    """Factory for ``zenoh://HOST:PORT[/KEY-PREFIX]?timeout_s=3``."""
+    """Factory for ``zenoh://HOST:PORT[/KEY-PREFIX]?timeout_s=5``."""
     from urllib.parse import urlsplit
 
     unknown = set(options) - {"timeout_s"}

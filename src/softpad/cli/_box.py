@@ -101,6 +101,12 @@ def _register_serve(bsub: Any) -> None:
         type=finite_float("watchdog time", lo=0.01, hi=60.0, unit="s"),
         help="controller silence that closes the inflation valves, s (default 0.5)",
     )
+    s.add_argument(
+        "--realtime",
+        action="store_true",
+        help="with --sim: run the simulator on the wall clock even when its controller lags "
+        "(default: at most 2 frames ahead of the frames the controller has read)",
+    )
     s.add_argument("--duration-s", type=float, help="stop after this long (default: run forever)")
     s.set_defaults(handler=serve)
 
@@ -247,6 +253,7 @@ def _daemon_for(args: argparse.Namespace) -> Any:
             watchdog_s=args.watchdog_s or link.watchdog_s,
             watchdog_action=link.watchdog_action,
             services=services,
+            lockstep_frames=2 if services and not args.realtime else None,
             auth=_auth(link),
             log=lambda text: print(f"softpad box serve: {text}", file=sys.stderr, flush=True),
         )

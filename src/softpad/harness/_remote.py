@@ -81,6 +81,7 @@ def simulation_extensions(box: SimBox) -> dict[str, Handler]:
             if isinstance(world, AnalyticWorld):
                 world.gripper = gripper
         robot[0] = SimulatedRobot(world)
+        commanded()
         lay = world.layout
         return {"layout": [lay.rows, lay.cols, lay.pitch_m]}
 
@@ -93,21 +94,38 @@ def simulation_extensions(box: SimBox) -> dict[str, Handler]:
             world.place_object(s)
         return {}
 
+    # The served robot judges motion once per simulation step ("stopped" = no change since the
+    # previous step); a client polling several times within one step must get the same answer.
+    judged: dict[str, Any] = {"t_s": None, "moving": True}
+
+    def commanded() -> None:
+        judged["t_s"] = None
+
+    def is_moving(msg: dict[str, Any]) -> dict[str, Any]:
+        if judged["t_s"] != box.time_s:
+            judged["moving"] = bool(robot[0].is_moving())
+            judged["t_s"] = box.time_s
+        return {"moving": judged["moving"]}
+
     def move_to(msg: dict[str, Any]) -> dict[str, Any]:
         pose = ToolPose(*(_number(msg, k) for k in ("x_m", "y_m", "z_m", "yaw_rad")))
         robot[0].move_to(pose, _number(msg, "speed_m_s"))
+        commanded()
         return {}
 
     def descend(msg: dict[str, Any]) -> dict[str, Any]:
         robot[0].descend(_number(msg, "speed_m_s"), _number(msg, "min_z_m"))
+        commanded()
         return {}
 
     def stop(msg: dict[str, Any]) -> dict[str, Any]:
         robot[0].stop()
+        commanded()
         return {}
 
     def set_gripper(msg: dict[str, Any]) -> dict[str, Any]:
         robot[0].set_gripper(_number(msg, "width_m"), _number(msg, "speed_m_s"))
+        commanded()
         return {}
 
     def state(msg: dict[str, Any]) -> dict[str, Any]:
@@ -129,7 +147,7 @@ def simulation_extensions(box: SimBox) -> dict[str, Handler]:
         "robot.descend": descend,
         "robot.stop": stop,
         "robot.set_gripper": set_gripper,
-        "robot.is_moving": lambda msg: {"moving": bool(robot[0].is_moving())},
+        "robot.is_moving": is_moving,
         "robot.state": state,
         "robot.holding": lambda msg: {"holding": bool(robot[0].holding())},
         "robot.touches": touches,
