@@ -17,7 +17,17 @@ from softpad import __version__
 from softpad.errors import SoftPadError
 
 #: Modules that register sub-commands, in the order they appear in ``softpad --help``.
-_COMMAND_MODULES = ("_plan", "_run", "_box", "_config", "_trials", "_fem", "_demo", "_bench")
+_COMMAND_MODULES = (
+    "_plan",
+    "_run",
+    "_box",
+    "_config",
+    "_trials",
+    "_compare",
+    "_fem",
+    "_demo",
+    "_bench",
+)
 
 EXIT_USAGE = 2
 

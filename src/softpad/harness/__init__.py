@@ -8,6 +8,11 @@ against a simulator served over ``zenoh://`` (:class:`RemoteRobot`,
 :func:`simulation_extensions`).
 """
 
+from softpad.harness._inflation_study import (
+    InflationPoint,
+    inflation_study,
+    recommend_p0,
+)
 from softpad.harness._remote import (
     SIMULATION_OPS,
     RemoteRobot,
@@ -19,11 +24,14 @@ from softpad.harness._run import SimulatedRun, resolve_objects, run_simulated
 
 __all__ = [
     "SIMULATION_OPS",
+    "InflationPoint",
     "RemoteRobot",
     "SimulatedRobot",
     "SimulatedRun",
     "TouchTruth",
     "has_simulation",
+    "inflation_study",
+    "recommend_p0",
     "resolve_objects",
     "run_simulated",
     "simulation_extensions",

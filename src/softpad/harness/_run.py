@@ -96,7 +96,7 @@ def run_simulated(
         ``cylinder``, ``charger``); several objects lying on separate modules are planned and
         grasped one after the other. ``banana`` when None.
     box
-        A :class:`~softpad.box.SimBox` or a ``sim://`` URL; or a ``tcp://`` box whose server
+        A :class:`~softpad.box.SimBox` or a ``sim://`` URL; or a ``zenoh://`` box whose daemon
         offers the simulator's world and robot (``softpad box serve --sim``).
     params
         Loop parameters.

@@ -6,6 +6,14 @@ direction theta) with the thesis's rules, generalised to R x C pads (docs/planne
 """
 
 from softpad.planning._cases import FIG_6_7, RULE_CASES, TABLE_6_1, PlanCase
+from softpad.planning._gripper_aware import (
+    DEFAULT_SEAM_WIDTH_M,
+    PLANNERS,
+    GripperAwarePlanner,
+    make_planner,
+    object_extent_m,
+    sensed_share,
+)
 from softpad.planning._params import DEFAULT_SAFETY_SHIFT, PlannerParams
 from softpad.planning._pcom import pcom
 from softpad.planning._plan import Planner, ThesisPlanner, plan_grasps
@@ -14,17 +22,23 @@ from softpad.planning._render import ascii_pad, format_plans, plot_plans
 
 __all__ = [
     "DEFAULT_SAFETY_SHIFT",
+    "DEFAULT_SEAM_WIDTH_M",
     "FIG_6_7",
+    "PLANNERS",
     "RULE_CASES",
     "TABLE_6_1",
     "GraspPlan",
+    "GripperAwarePlanner",
     "PlanCase",
     "Planner",
     "PlannerParams",
     "ThesisPlanner",
     "ascii_pad",
     "format_plans",
+    "make_planner",
+    "object_extent_m",
     "pcom",
     "plan_grasps",
     "plot_plans",
+    "sensed_share",
 ]

@@ -6,6 +6,15 @@ running average of 10 samples, reference = mean of 10 reads (seed, Sections 6.2.
 """
 
 from softpad.sensing._contact import ContactDetector, ThesisContactDetector
+from softpad.sensing._cusum import (
+    CONTACT_DETECTORS,
+    DEFAULT_CUSUM_DRIFT_PA,
+    DEFAULT_CUSUM_THRESHOLD_PA,
+    CusumContactDetector,
+    calibrate_cusum_threshold,
+    cusum_peak_pa,
+    make_contact_detector,
+)
 from softpad.sensing._filters import RunningAverage, capture_reference, increments
 from softpad.sensing._objects import (
     DEFAULT_CONTACT_THRESHOLD_PA,
@@ -16,14 +25,21 @@ from softpad.sensing._objects import (
 )
 
 __all__ = [
+    "CONTACT_DETECTORS",
     "DEFAULT_CONTACT_THRESHOLD_PA",
+    "DEFAULT_CUSUM_DRIFT_PA",
+    "DEFAULT_CUSUM_THRESHOLD_PA",
     "DEFAULT_OBJECT_THRESHOLD_PA",
     "ContactDetector",
+    "CusumContactDetector",
     "ObjectDetector",
     "RunningAverage",
     "ThesisContactDetector",
     "ThesisObjectDetector",
+    "calibrate_cusum_threshold",
     "capture_reference",
+    "cusum_peak_pa",
     "detect_objects",
     "increments",
+    "make_contact_detector",
 ]

@@ -5,6 +5,7 @@ A sub-package of its own because a trial drives every layer below it (the MuJoCo
 ``softpad.control``) and so sits above them.
 """
 
+from softpad.trials._compare import DEFAULT_PAIRS, compare, wilson_interval
 from softpad.trials._config import TrialConfig, trial_execution_params
 from softpad.trials._records import (
     FAILURE_CAUSES,
@@ -22,6 +23,7 @@ from softpad.trials._runner import (
 )
 
 __all__ = [
+    "DEFAULT_PAIRS",
     "FAILURE_CAUSES",
     "THESIS_OVERALL_SUCCESS",
     "THESIS_TABLE_6_1",
@@ -29,9 +31,11 @@ __all__ = [
     "ObjectSummary",
     "TrialConfig",
     "TrialResult",
+    "compare",
     "perturbed_placement",
     "run_experiment",
     "run_trial",
     "trial_execution_params",
     "trial_seed",
+    "wilson_interval",
 ]

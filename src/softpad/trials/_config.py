@@ -39,6 +39,10 @@ class TrialConfig:
         Sensor noise on (the box's defaults, like Fig. 6.8) or off.
     record_trace
         Keep every frame and event in a :class:`softpad.record.RunLog`.
+    planner
+        Planner by name (:data:`softpad.planning.PLANNERS`), given the trial's gripper.
+    detector
+        Contact detector by name (:data:`softpad.sensing.CONTACT_DETECTORS`).
     """
 
     execution: ExecutionParams = field(default_factory=lambda: trial_execution_params())
@@ -49,12 +53,23 @@ class TrialConfig:
     sample_rate_hz: float = 100.0
     noise: bool = True
     record_trace: bool = False
+    planner: str = "thesis"
+    detector: str = "thesis"
 
     def __post_init__(self) -> None:
         for name in ("position_sigma_m", "yaw_sigma_rad", "clearance_m", "sample_rate_hz"):
             v = getattr(self, name)
             if not isinstance(v, int | float) or not math.isfinite(v) or v < 0:
                 raise InputError(f"trial parameter {name} must be a finite number >= 0, got {v!r}")
+        from softpad.planning import PLANNERS
+        from softpad.sensing import CONTACT_DETECTORS
+
+        if self.planner not in PLANNERS:
+            raise InputError(f"unknown planner {self.planner!r}; use one of {', '.join(PLANNERS)}")
+        if self.detector not in CONTACT_DETECTORS:
+            raise InputError(
+                f"unknown contact detector {self.detector!r}; use one of {', '.join(CONTACT_DETECTORS)}"
+            )
         if self.sample_rate_hz <= 0:
             raise InputError("trial sample_rate_hz must be > 0 Hz")
 

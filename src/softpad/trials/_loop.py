@@ -127,6 +127,17 @@ class _Trial:
         )
         self.robot = SimulatedRobot(self.world, max_opening_m=self.gripper.max_width_m)
 
+    def planner(self) -> Any:
+        """The configured planner, told the trial gripper's geometry (a published spec)."""
+        from softpad.layout import GripperSpec
+        from softpad.planning import make_planner
+
+        g = self.gripper
+        spec = GripperSpec(
+            g.max_width_m, g.min_width_m, g.finger_length_m, g.tip_width_m, g.tip_thickness_m
+        )
+        return make_planner(self.config.planner, spec, self.config.execution.planner)
+
     def place(self) -> None:
         from softpad.sim import Placement
 
@@ -147,6 +158,7 @@ def execute_trial(
     from softpad.control import ExecutionError, GraspExecution
     from softpad.errors import HardwareFault
     from softpad.record import RunLog
+    from softpad.sensing import make_contact_detector
 
     t = _Trial(spec, placement, seed, config, opening_m, mounting)
     log = RunLog({"object": spec.name, "seed": seed}) if config.record_trace else None
@@ -156,7 +168,8 @@ def execute_trial(
         t.robot,
         t.world.layout,
         config.execution,
-        planner=None if plan_override is None else _FixedPlanner(plan_override),
+        planner=_FixedPlanner(plan_override) if plan_override is not None else t.planner(),
+        contact_detector=make_contact_detector(config.detector),
         recorder=watcher,
         place_objects=t.place,
     )

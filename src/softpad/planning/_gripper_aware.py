@@ -1,0 +1,213 @@
+"""A planner that knows the gripper: fingertips on sensitive area, opening that spans the object.
+
+The thesis's two seam failures came from a fingertip landing on the non-sensitive seam between
+modules (Section 6.3). :class:`GripperAwarePlanner` starts from the thesis's plan and keeps it
+whenever a fingertip lies on sensitive area; otherwise it tries grasps shifted along and across
+the closing direction (turned too, when the object's outline is wider than the jaws open along
+the thesis's direction), and takes the best by the score
+
+    score = sensed response of the better-placed fingertip - shift_cost * shift / max_shift
+            - turn_cost * |turn| / max_turn
+
+among those whose centre stays on the object's modules, with a penalty of 1 when the object's
+extent estimated from the pad (its modules' outline, projected on the closing direction) is
+wider than the jaws open.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from softpad import thesis
+from softpad.errors import InputError
+from softpad.layout import GripperSpec, PadLayout
+from softpad.planning._params import PlannerParams
+from softpad.planning._plan import ThesisPlanner
+from softpad.planning._records import GraspPlan
+
+#: Width of the bonded, non-sensitive seam between two chambers, m. A pad specification
+#: (measured on the pad; the simulated MuJoCo pad has 5 mm), not a thesis number.
+DEFAULT_SEAM_WIDTH_M = 5e-3
+
+#: Offsets of the sample points on a fingertip, as fractions of its sides.
+_TIP_GRID = np.array([(a, b) for a in (-0.4, 0.0, 0.4) for b in (-0.4, -0.2, 0.0, 0.2, 0.4)])
+
+
+#: Relative response of a module to a small load at a distance from its centre (Chebyshev
+#: distance, m), from the project's FEM of the 45 mm module (issue 10's audit: 0.67 at 13.6 mm,
+#: 0.44 at 17.2 mm, 0.18 at 20.2 mm from the centre; nothing on the bonded seam at 22.5 mm).
+RESPONSE_DISTANCE_M = (0.0, 0.0136, 0.0172, 0.0202, 0.0225)
+RESPONSE_RELATIVE = (1.0, 0.67, 0.44, 0.18, 0.0)
+
+
+def sensed_share(
+    tip_xy_m: tuple[float, float],
+    theta: float,
+    gripper: GripperSpec,
+    layout: PadLayout,
+    seam_width_m: float = DEFAULT_SEAM_WIDTH_M,
+) -> float:
+    """Mean relative response of the modules under a fingertip's sole (0..1).
+
+    Each sample point of the sole counts with the response of the module it lies on at its
+    distance from the module's centre (:data:`RESPONSE_RELATIVE`, scaled to the pitch), zero on
+    the seam (half its width from a boundary) and off the pad.
+    """
+    d = np.array([math.cos(theta), math.sin(theta)])
+    n = np.array([-d[1], d[0]])
+    pts = (
+        np.asarray(tip_xy_m)
+        + np.outer(_TIP_GRID[:, 0] * gripper.tip_thickness_m, d)
+        + np.outer(_TIP_GRID[:, 1] * gripper.tip_width_m, n)
+    ) / layout.pitch_m
+    inside = (pts[:, 0] >= 0) & (pts[:, 0] <= layout.cols) & (pts[:, 1] >= 0)
+    inside &= pts[:, 1] <= layout.rows
+    off_centre = np.abs(pts - np.floor(pts) - 0.5).max(axis=1)  # module units, 0..0.5
+    scale = layout.pitch_m / thesis.MODULE_PITCH_M
+    response = np.interp(
+        off_centre * layout.pitch_m, np.array(RESPONSE_DISTANCE_M) * scale, RESPONSE_RELATIVE
+    )
+    on_seam = off_centre > 0.5 - 0.5 * seam_width_m / layout.pitch_m
+    return float(np.mean(np.where(inside & ~on_seam, response, 0.0)))
+
+
+def object_extent_m(modules: tuple[int, ...], theta: float, layout: PadLayout) -> float:
+    """Extent of an object's modules along ``theta``, metres (an upper bound of the object's)."""
+    d = np.array([math.cos(theta), math.sin(theta)])
+    corners = np.array([(-0.5, -0.5), (-0.5, 0.5), (0.5, -0.5), (0.5, 0.5)])
+    pts = np.vstack([np.asarray(layout.center(k)) + corners for k in modules])
+    proj = pts @ d
+    return float(proj.max() - proj.min()) * layout.pitch_m
+
+
+class GripperAwarePlanner:
+    """The thesis's planner, corrected so that the fingers are sensed (a ``Planner``).
+
+    Parameters
+    ----------
+    gripper
+        Jaw geometry: opening range, fingertip size.
+    params
+        Parameters of the underlying thesis planner.
+    seam_width_m
+        Width of the non-sensitive seam between modules, metres.
+    max_shift
+        Largest shift of the centre of grasp tried, module units.
+    max_turn_rad
+        Largest turn of the closing direction tried, radians.
+    good_share
+        Sensed share of the better fingertip from which a grasp is kept as it is.
+    """
+
+    def __init__(
+        self,
+        gripper: GripperSpec | None = None,
+        params: PlannerParams | None = None,
+        seam_width_m: float = DEFAULT_SEAM_WIDTH_M,
+        max_shift: float = 0.3,
+        max_turn_rad: float = math.radians(30.0),
+        good_share: float = 0.5,
+    ) -> None:
+        self.gripper = gripper or GripperSpec()
+        self.thesis = ThesisPlanner(params)
+        self.seam_width_m = seam_width_m
+        self.max_shift, self.max_turn_rad, self.good_share = max_shift, max_turn_rad, good_share
+        self._layout = PadLayout()
+
+    def plan(
+        self, increments_pa: ArrayLike, objects: list[tuple[int, ...]], layout: PadLayout
+    ) -> list[GraspPlan]:
+        self._layout = layout
+        plans = self.thesis.plan(increments_pa, objects, layout)
+        return [self.improve(p, layout) for p in plans]
+
+    def tip_share(self, cog: tuple[float, float], theta: float, layout: PadLayout) -> float:
+        """Sensed share of the better-placed fingertip for a grasp at ``cog`` (module units)."""
+        xy = tuple(np.asarray(cog) * layout.pitch_m)
+        tips = self.gripper.fingertip_centres((float(xy[0]), float(xy[1])), theta)
+        return max(sensed_share(t, theta, self.gripper, layout, self.seam_width_m) for t in tips)
+
+    def improve(self, plan: GraspPlan, layout: PadLayout) -> GraspPlan:
+        """The plan itself when a fingertip is sensed and the jaws span the object, else the
+        best-scoring candidate (the plan itself when none is better)."""
+        self._layout = layout
+        fits = not self._too_wide(plan, plan.theta, layout)
+        if fits and self.tip_share(plan.cog, plan.theta, layout) >= self.good_share:
+            return plan
+        best, best_score = plan, self._score(plan, layout, plan.cog, plan.theta)
+        for cog, theta in self._candidates(plan):
+            score = self._score(plan, layout, cog, theta)
+            if score > best_score + 1e-9:
+                best, best_score = (
+                    replace(plan, cog=cog, theta=theta, rule=plan.rule + "+gripper"),
+                    score,
+                )
+        return best
+
+    def _too_wide(self, plan: GraspPlan, theta: float, layout: PadLayout | None = None) -> bool:
+        extent = object_extent_m(plan.modules, theta, layout or self._layout)
+        return extent > self.gripper.max_width_m
+
+    def _candidates(self, plan: GraspPlan) -> list[tuple[tuple[float, float], float]]:
+        out = []
+        shifts = np.linspace(-self.max_shift, self.max_shift, 7)
+        # the thesis's direction follows the object's shape: turn only to a direction in which
+        # the object's outline fits between the jaws
+        turns = [0.0]
+        if self._too_wide(plan, plan.theta):
+            turns += [
+                float(t)
+                for t in np.linspace(-self.max_turn_rad, self.max_turn_rad, 5)
+                if t != 0.0 and not self._too_wide(plan, plan.theta + t)
+            ]
+        for turn in turns:
+            theta = _wrap(plan.theta + turn)
+            d = np.array([math.cos(theta), math.sin(theta)])
+            n = np.array([-d[1], d[0]])
+            for a in shifts:
+                for b in shifts:
+                    # along the closing direction the object's width is unknown: small steps only
+                    c = np.asarray(plan.cog) + a / 3 * d + b * n
+                    out.append(((round(float(c[0]), 4), round(float(c[1]), 4)), theta))
+        return out
+
+    def _score(
+        self, plan: GraspPlan, layout: PadLayout, cog: tuple[float, float], theta: float
+    ) -> float:
+        if layout.module_containing(*cog) not in plan.modules:
+            return -math.inf
+        # the modules' outline overestimates the object: an outline wider than the jaws is a
+        # penalty (a narrower direction is preferred), not a veto
+        too_wide = self._too_wide(plan, theta, layout)
+        shift = math.dist(cog, plan.cog) / self.max_shift
+        turn = abs(_wrap(theta - plan.theta)) / max(self.max_turn_rad, 1e-9)
+        return self.tip_share(cog, theta, layout) - 0.2 * shift - 0.1 * turn - 1.0 * too_wide
+
+
+def _wrap(theta: float) -> float:
+    """Angle in (-pi/2, pi/2] (a parallel-jaw grasp is the same under theta + pi)."""
+    t = math.fmod(theta, math.pi)
+    if t <= -math.pi / 2:
+        t += math.pi
+    elif t > math.pi / 2:
+        t -= math.pi
+    return t
+
+
+#: Planners by name (``--planner``).
+PLANNERS = ("thesis", "gripper-aware")
+
+
+def make_planner(
+    name: str, gripper: GripperSpec | None = None, params: PlannerParams | None = None
+) -> ThesisPlanner | GripperAwarePlanner:
+    """A planner by name: ``thesis`` or ``gripper-aware`` (which needs the gripper's geometry)."""
+    if name == "thesis":
+        return ThesisPlanner(params)
+    if name == "gripper-aware":
+        return GripperAwarePlanner(gripper, params)
+    raise InputError(f"unknown planner {name!r}; use one of {', '.join(PLANNERS)}")

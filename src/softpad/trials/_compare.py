@@ -1,0 +1,116 @@
+"""Side-by-side comparison of planner/detector pairs on Experiment 2 over many seeds."""
+
+from __future__ import annotations
+
+import statistics
+from collections import Counter
+from collections.abc import Callable, Sequence
+from dataclasses import replace
+from typing import Any
+
+import numpy as np
+
+from softpad import SCHEMA_VERSION
+from softpad.errors import InputError
+from softpad.trials._config import TrialConfig
+from softpad.trials._records import TrialResult
+from softpad.trials._runner import run_experiment
+
+#: The pairs ``softpad compare`` runs by default: the thesis's and the best found here.
+DEFAULT_PAIRS = (("thesis", "thesis"), ("gripper-aware", "cusum"))
+
+
+def wilson_interval(successes: int, trials: int) -> tuple[float, float]:
+    """95 % Wilson score interval of a success rate (scipy's binomial test)."""
+    from scipy.stats import binomtest
+
+    if trials == 0:
+        return (0.0, 1.0)
+    ci = binomtest(successes, trials).proportion_ci(confidence_level=0.95, method="wilson")
+    return (round(float(ci.low), 4), round(float(ci.high), 4))
+
+
+def idle_false_alarms_per_hour(detector: str, hours: float, seed: int = 7) -> float:
+    """False contact alarms per hour of an idle pad (noise and sensor drift on), 100 Hz.
+
+    The detector is re-armed with the same reference after every alarm.
+    """
+    from softpad.box import open_box
+    from softpad.sensing import make_contact_detector
+
+    det = make_contact_detector(detector)
+    alarms = 0
+    with open_box(f"sim://?rate_hz=100&inflated_kpa=1.1&seed={seed}") as box:
+        ref = np.mean([f.pressures_pa[:6] for f in box.read_many(10)], axis=0)
+        det.reset(ref)
+        for _ in range(round(hours * 3600 * box.sample_rate_hz)):
+            if det.update(box.read().pressures_pa[:6]):
+                alarms += 1
+                det.reset(ref)
+    return alarms / hours
+
+
+def _quantiles(values: list[float]) -> tuple[float | None, float | None]:
+    if not values:
+        return None, None
+    return round(statistics.median(values), 5), round(float(np.percentile(values, 95)), 5)
+
+
+def summarise(trials: Sequence[TrialResult]) -> dict[str, Any]:
+    """Success, its interval, failures by cause, detection delay and finger travel."""
+    ok = sum(t.success for t in trials)
+    delays = [t.contact_delay_s for t in trials if t.contact_delay_s is not None]
+    travels = [1e-3 * t.finger_travel_mm for t in trials if t.finger_travel_mm is not None]
+    d50, d95 = _quantiles(delays)
+    f50, f95 = _quantiles(travels)
+    return {
+        "trials": len(trials),
+        "successes": ok,
+        "success": round(ok / len(trials), 4) if trials else None,
+        "success_interval": list(wilson_interval(ok, len(trials))),
+        "failures": dict(Counter(t.cause for t in trials if not t.success and t.cause)),
+        "delay_s_median": d50,
+        "delay_s_p95": d95,
+        "finger_travel_m_median": f50,
+        "finger_travel_m_p95": f95,
+    }
+
+
+def compare(
+    specs: Sequence[Any],
+    seeds: Sequence[int],
+    pairs: Sequence[tuple[str, str]] = DEFAULT_PAIRS,
+    config: TrialConfig | None = None,
+    trials: int = 5,
+    workers: int | None = None,
+    idle_hours: float = 1.0,
+    on_trial: Callable[[TrialResult], None] | None = None,
+) -> dict[str, Any]:
+    """Experiment 2 for every (planner, detector) pair over ``seeds``; one result per pair.
+
+    Returns the ``softpad compare --json`` document: ``combinations``, each with ``planner``,
+    ``detector``, overall ``success``, ``success_interval``, delays, finger travel,
+    ``false_alarms_per_hour`` (idle pad, ``idle_hours`` at 100 Hz) and ``objects``.
+    """
+    if not seeds:
+        raise InputError("compare needs at least one seed")
+    config = config or TrialConfig()
+    combos = []
+    for planner, detector in pairs:
+        cfg = replace(config, planner=planner, detector=detector)
+        results: list[TrialResult] = []
+        for seed in seeds:
+            exp, _ = run_experiment(specs, trials, seed, workers, cfg, on_trial)
+            results += exp.trials
+        by_object = {s.name: [t for t in results if t.object == s.name] for s in specs}
+        combos.append(
+            {
+                "planner": planner,
+                "detector": detector,
+                **summarise(results),
+                "false_alarms_per_hour": idle_false_alarms_per_hour(detector, idle_hours),
+                "idle_hours": idle_hours,
+                "objects": [{"name": n, **summarise(ts)} for n, ts in by_object.items()],
+            }
+        )
+    return {"schema_version": SCHEMA_VERSION, "seeds": list(seeds), "combinations": combos}

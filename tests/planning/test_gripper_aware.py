@@ -1,0 +1,88 @@
+"""The gripper-aware planner: the thesis's grasp where it is sensed, a sensed one where not."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from softpad.errors import InputError
+from softpad.layout import GripperSpec, PadLayout
+from softpad.planning import (
+    TABLE_6_1,
+    GripperAwarePlanner,
+    ThesisPlanner,
+    make_planner,
+    object_extent_m,
+    sensed_share,
+)
+from softpad.sensing import detect_objects
+
+LAYOUT = PadLayout()
+GRIPPER = GripperSpec(max_width_m=0.06, min_width_m=0.02, tip_thickness_m=4e-3)
+
+
+def _plans(name: str) -> tuple:
+    case = next(c for c in TABLE_6_1 if c.name == name)
+    objects = detect_objects(case.delta_pa, LAYOUT)
+    planner = GripperAwarePlanner(GRIPPER)
+    return (
+        ThesisPlanner().plan(case.delta_pa, objects, LAYOUT)[0],
+        planner.plan(case.delta_pa, objects, LAYOUT)[0],
+        planner,
+    )
+
+
+def test_response_is_full_at_the_centre_and_none_on_the_seam() -> None:
+    centre = LAYOUT.to_metres((1.5, 0.5))
+    seam = LAYOUT.to_metres((1.0, 0.5))  # the line between modules 4 and 5
+    assert sensed_share(tuple(centre), 0.0, GRIPPER, LAYOUT) > 0.9
+    thin = GripperSpec(tip_width_m=4e-3, tip_thickness_m=4e-3)
+    assert sensed_share(tuple(seam), 0.0, thin, LAYOUT) == 0.0
+    off_pad = (-0.05, 0.02)
+    assert sensed_share(off_pad, 0.0, GRIPPER, LAYOUT) == 0.0
+
+
+@pytest.mark.parametrize(
+    "name", [c.name for c in TABLE_6_1 if c.name not in ("object-1",)], ids=str
+)
+def test_reduces_to_the_thesis_where_a_tip_is_sensed(name: str) -> None:
+    thesis, aware, planner = _plans(name)
+    sensed = planner.tip_share(thesis.cog, thesis.theta, LAYOUT) >= planner.good_share
+    if sensed and not planner._too_wide(thesis, thesis.theta, LAYOUT):
+        assert aware == thesis
+    else:  # kept unless a candidate scores better: never worse
+        assert planner._score(aware, LAYOUT, aware.cog, aware.theta) >= planner._score(
+            thesis, LAYOUT, thesis.cog, thesis.theta
+        )
+
+
+def test_object_1_tip_on_the_seam_is_moved_onto_a_module() -> None:
+    """Object 1 (modules 3, 6): the thesis's (2.5, 1, 0) centres both tips on the 3|6 seam."""
+    thesis, aware, planner = _plans("object-1")
+    assert thesis.cog == pytest.approx((2.5, 1.0))
+    before = planner.tip_share(thesis.cog, thesis.theta, LAYOUT)
+    after = planner.tip_share(aware.cog, aware.theta, LAYOUT)
+    assert before < 0.5 <= after
+    assert LAYOUT.module_containing(*aware.cog) in (3, 6)
+    assert aware.rule.endswith("+gripper") and aware.modules == thesis.modules
+
+
+def test_cylinder_keeps_its_direction_and_moves_along_its_axis() -> None:
+    """All six modules: the outline (90 mm across the rows) is wider than the 6 cm jaws in
+    every direction, so the thesis's direction across the can is kept; the centre may move
+    along the can (across the jaws) but only a third as far along the closing direction."""
+    thesis, aware, planner = _plans("cylinder")
+    assert object_extent_m(aware.modules, aware.theta, LAYOUT) > GRIPPER.max_width_m
+    assert math.isclose(aware.theta, thesis.theta)
+    dx, dy = aware.cog[0] - thesis.cog[0], aware.cog[1] - thesis.cog[1]
+    assert abs(dy) <= planner.max_shift / 3 + 1e-9 and abs(dx) <= planner.max_shift + 1e-9
+    assert planner.tip_share(aware.cog, aware.theta, LAYOUT) >= planner.tip_share(
+        thesis.cog, thesis.theta, LAYOUT
+    )
+
+
+def test_planner_names() -> None:
+    assert isinstance(make_planner("gripper-aware", GRIPPER), GripperAwarePlanner)
+    with pytest.raises(InputError, match="unknown planner 'magic'"):
+        make_planner("magic")
