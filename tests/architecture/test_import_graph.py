@@ -37,7 +37,11 @@ def _imports(path: Path) -> set[str]:
         if isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
             names = [node.module]
             if node.module == "softpad":  # ``from softpad import thesis`` names a module
-                names = [f"softpad.{a.name}" for a in node.names if not a.name.startswith("_")]
+                names = [
+                    f"softpad.{a.name}"
+                    for a in node.names
+                    if (SRC / a.name).is_dir() or (SRC / f"{a.name}.py").is_file()
+                ]
         elif isinstance(node, ast.Import):
             names = [a.name for a in node.names]
         found |= {n.split(".")[1] for n in names if n.startswith("softpad.")}
