@@ -97,10 +97,13 @@ def test_lost_connection_raises_connection_lost() -> None:
     [
         ({"target_pa": float("nan")}, "target_pa"),
         ({"tolerance_pa": -1.0}, "tolerance_pa"),
-        ({"target_pa": 2990.0}, "below the maximum"),
+        ({"target_pa": 2990.0}, "usable range"),
+        ({"target_pa": 1.1}, "usable range 0.5..2.8 kPa, got 1.1 Pa"),
+        ({"target_pa": 2800.0, "max_pressure_pa": 2800.0}, "below the maximum"),
+        ({"max_pressure_pa": 1e6, "target_pa": 2000.0}, "full scale 10 kPa"),
         ({"reference_reads": 0}, "reference reads"),
     ],
-    ids=["nan", "negative", "too-high", "reads"],
+    ids=["nan", "negative", "too-high", "kpa-as-pa", "over-own-max", "max-1e6", "reads"],
 )
 def test_bad_parameters(kwargs, match) -> None:
     with pytest.raises(InputError, match=match):

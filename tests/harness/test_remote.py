@@ -42,13 +42,25 @@ def test_remote_robot_moves_the_served_gripper() -> None:
             lambda r: r._call("robot.descend", speed_m_s=None, min_z_m=0.0),
             "speed_m_s must be a finite number, got None",
         ),
-        (lambda r: r.set_gripper(0.01, -1.0), "robot speed must be a positive number"),
+        (lambda r: r.set_gripper(0.01, -1.0), "robot speed must be > 0"),
         (lambda r: r.place(["teapot"]), "unknown object 'teapot'"),
         (lambda r: r._call("sim.place", objects="banana"), "objects must be a list of names"),
         (lambda r: r._call("robot.fly"), "unknown service 'robot.fly'"),
         (lambda r: r._call("sim.setup", gripper="12/5"), "12/5"),
+        (lambda r: r.move_to(ToolPose(1e300, 0.0, 0.1, 0.0), 0.1), "x_m must be within"),
+        (lambda r: r.set_gripper(-1.0, 0.1), "width_m must be within"),
     ],
-    ids=["nan", "missing", "negative-speed", "object", "objects-type", "unknown-op", "mounting"],
+    ids=[
+        "nan",
+        "missing",
+        "negative-speed",
+        "object",
+        "objects-type",
+        "unknown-op",
+        "mounting",
+        "x-1e300",
+        "width-negative",
+    ],
 )
 def test_bad_remote_requests_are_input_errors(call, match: str) -> None:
     with served() as (daemon, url), open_box(url) as box:
@@ -80,3 +92,21 @@ def test_loop_over_zenoh_holds_the_banana_with_the_local_plan_and_closes_valves(
         assert isinstance(box, SimBox)
         assert set(box.valves) == {ValveCommand.CLOSED}
         assert daemon.controller is None
+
+
+@pytest.mark.parametrize(
+    ("call", "match"),
+    [
+        (lambda r: r.move_to(ToolPose(1e300, 0.0, 0.1, 0.0), 0.1), "x_m"),
+        (lambda r: r.move_to(ToolPose(0.0, 0.0, -5.0, 0.0), 0.1), "z_m"),
+        (lambda r: r.set_gripper(-1.0, 0.1), "width_m"),
+        (lambda r: r.move_to(ToolPose(0.0, 0.0, 0.1, 0.0), 1e9), "speed"),
+    ],
+    ids=["x-1e300", "z-below", "width-negative", "speed-huge"],
+)
+def test_simulated_robot_refuses_targets_outside_workspace(call, match) -> None:
+    from softpad.harness import SimulatedRobot
+    from softpad.sim import AnalyticWorld
+
+    with pytest.raises(InputError, match=match):
+        call(SimulatedRobot(AnalyticWorld()))

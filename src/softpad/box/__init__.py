@@ -22,6 +22,7 @@ from softpad.box._hardware import (
 )
 from softpad.box._link import MAX_PAYLOAD_BYTES, StampedFrame, decode_frame, encode_frame
 from softpad.box._registry import DEFAULT_URL, backends, open_box, parse_url, register_backend
+from softpad.box._safety import RATED_MAX_PRESSURE_PA, SafetyGuard, SafetyLimits, SafetyTrip
 from softpad.box._sim import FAULT_KINDS, Fault, SimBox, open_sim_url
 from softpad.box._zenoh import ControlRefused, ZenohBox, open_zenoh_url
 
@@ -29,6 +30,7 @@ __all__ = [
     "DEFAULT_URL",
     "FAULT_KINDS",
     "MAX_PAYLOAD_BYTES",
+    "RATED_MAX_PRESSURE_PA",
     "Box",
     "BoxDaemon",
     "ConformanceError",
@@ -40,6 +42,9 @@ __all__ = [
     "HardwareBox",
     "IIOReader",
     "PressureFrame",
+    "SafetyGuard",
+    "SafetyLimits",
+    "SafetyTrip",
     "SimBox",
     "StampedFrame",
     "ValveCommand",

@@ -16,6 +16,7 @@ from types import TracebackType
 import numpy as np
 from numpy.typing import NDArray
 
+from softpad.box._safety import SafetyGuard, SafetyLimits
 from softpad.errors import HardwareFault, InputError
 
 
@@ -86,13 +87,18 @@ class Box(ABC):
 
     Subclasses implement :attr:`channels`, :attr:`sample_rate_hz`, :meth:`_read`,
     :meth:`_apply_valve` and :meth:`_close`; the base class validates arguments, tracks the
-    commanded valve states and gives the context-manager protocol. Every back-end must pass
+    commanded valve states, enforces the safety limits (:class:`~softpad.box.SafetyGuard`:
+    every frame read is checked, an over-pressure or invalid channel is vented and refuses
+    inflate commands until it is below the release level) and gives the context-manager
+    protocol. Every back-end must pass
     :func:`softpad.box.check_conformance`.
     """
 
     def __init__(self) -> None:
         self._closed = False
         self._valves: list[ValveCommand] | None = None
+        self._guard: SafetyGuard | None = None
+        self._limits = SafetyLimits()
 
     # --- to implement ---------------------------------------------------------------
     @property
@@ -130,6 +136,25 @@ class Box(ABC):
             self._valves = [ValveCommand.CLOSED] * self.channels
         return tuple(self._valves)
 
+    @property
+    def safety(self) -> SafetyGuard:
+        """The box-side safety guard (limits, tripped channels, trip history)."""
+        if self._guard is None:
+            self._guard = SafetyGuard(self.channels, self._limits)
+        return self._guard
+
+    @property
+    def safety_limits(self) -> SafetyLimits:
+        """Limits enforced on every channel (settable; a new guard starts untripped)."""
+        return self._limits
+
+    @safety_limits.setter
+    def safety_limits(self, limits: SafetyLimits) -> None:
+        if not isinstance(limits, SafetyLimits):
+            raise InputError(f"safety limits must be a SafetyLimits, got {limits!r}")
+        self._limits = limits
+        self._guard = None
+
     def _check_open(self) -> None:
         if self._closed:
             raise InputError("the box is closed")
@@ -149,7 +174,17 @@ class Box(ABC):
     def read(self) -> PressureFrame:
         """Read one frame: every channel's gauge pressure and the supply pressure."""
         self._check_open()
-        return self._read()
+        frame = self._read()
+        for ch in self.safety.check(frame.t_s, frame.pressures_pa):
+            self._vent(ch)
+        return frame
+
+    def _vent(self, channel: int) -> None:
+        """Open the deflation valve of a tripped channel (inflation closed)."""
+        if self._valves is None:
+            self._valves = [ValveCommand.CLOSED] * self.channels
+        self._apply_valve(channel, ValveCommand.DEFLATE)
+        self._valves[channel - 1] = ValveCommand.DEFLATE
 
     def read_many(self, n: int) -> list[PressureFrame]:
         """Read ``n`` consecutive frames."""
@@ -158,12 +193,24 @@ class Box(ABC):
         return [self.read() for _ in range(n)]
 
     def set_valve(self, channel: int, command: ValveCommand | str) -> None:
-        """Command the valves of one channel (1-based)."""
+        """Command the valves of one channel (1-based).
+
+        Raises
+        ------
+        SafetyTrip
+            ``inflate`` on a tripped channel (over the trip level or invalid reading, not yet
+            below the release level). Other commands on a tripped channel leave it venting.
+        """
         self._check_open()
         ch = self.check_channel(channel)
         cmd = ValveCommand.parse(command)
         if self._valves is None:
             self._valves = [ValveCommand.CLOSED] * self.channels
+        guard = self.safety
+        if guard.tripped[ch - 1]:
+            if cmd is ValveCommand.INFLATE:
+                raise guard.refuse_inflate(ch)
+            cmd = ValveCommand.DEFLATE
         self._apply_valve(ch, cmd)
         self._valves[ch - 1] = cmd
 

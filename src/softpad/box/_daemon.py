@@ -38,6 +38,7 @@ from softpad.box._link import (
     encode_json,
     session_config,
 )
+from softpad.box._safety import SafetyTrip
 from softpad.errors import HardwareFault, InputError, SoftPadError
 
 Handler = Callable[[dict[str, Any]], dict[str, Any]]
@@ -47,21 +48,20 @@ DEFAULT_MAX_PRESSURE_PA = 3000.0
 
 
 def guard_box(box: Box, max_pressure_pa: float) -> Box:
-    """The box the daemon serves: ``box`` with the box-side safety layer set to the limit.
+    """The box the daemon serves: ``box`` with its box-side safety guard set to the limit.
 
-    This is the one switch between the daemon and the safety layer. The daemon itself vents
-    channels above its trip level and refuses over-limit inflation; where the
-    :class:`~softpad.box.Box` base carries a safety guard (``safety_limits``, the ``safety``
-    branch), its maximum is set to ``max_pressure_pa`` as well, so both act.
+    This is the one switch between the daemon and the safety layer
+    (:class:`~softpad.box.SafetyGuard` in the :class:`~softpad.box.Box` base): its maximum is
+    set to ``max_pressure_pa`` (release level kept below it). The daemon adds its own venting
+    above the trip level, the watchdog and the refusal of commands from non-controllers.
     """
     import dataclasses
 
-    limits: Any = getattr(box, "safety_limits", None)
-    if limits is not None and dataclasses.is_dataclass(limits) and not isinstance(limits, type):
-        release = min(getattr(limits, "release_pa", max_pressure_pa), max_pressure_pa - 200.0)
-        box.safety_limits = dataclasses.replace(  # type: ignore[attr-defined]
-            limits, max_pressure_pa=max_pressure_pa, release_pa=release
-        )
+    limits = box.safety_limits
+    release = min(limits.release_pa, max_pressure_pa - limits.trip_margin_pa - 100.0)
+    box.safety_limits = dataclasses.replace(
+        limits, max_pressure_pa=max_pressure_pa, release_pa=release
+    )
     return box
 
 
@@ -435,11 +435,11 @@ class BoxDaemon:
         except _Refused as exc:
             self.stats.refused += 1
             return {"ok": False, "kind": exc.kind, "error": str(exc)}
-        except HardwareFault as exc:
-            if type(exc).__name__ != "SafetyTrip":  # the Box base's own safety refusal
-                return {"ok": False, "kind": "hardware", "error": str(exc)}
+        except SafetyTrip as exc:  # the Box base's guard refused (over the trip level)
             self.stats.refused += 1
             return {"ok": False, "kind": "safety", "error": str(exc)}
+        except HardwareFault as exc:
+            return {"ok": False, "kind": "hardware", "error": str(exc)}
         except InputError as exc:
             self.stats.malformed += 1
             return {"ok": False, "kind": "input", "error": str(exc)}

@@ -74,6 +74,10 @@ class Fault:
             raise InputError(f"fault time must be >= 0 s, got {self.at_s!r}")
         if self.kind == "stuck":
             ValveCommand.parse(str(self.arg))
+        if self.kind == "leak" and self.arg is not None:
+            a = float(self.arg)  # type: ignore[arg-type]
+            if not (math.isfinite(a) and 0 < a <= 1e-5):
+                raise InputError(f"leak area must be > 0 and at most 10 mm^2, got {a * 1e6:g} mm^2")
 
     @classmethod
     def parse(cls, text: str) -> Fault:

@@ -225,6 +225,16 @@ class ZenohBox(Box):
         self.take_control()
         self.request("valves", channel=channel, command=command.value)
 
+    def _vent(self, channel: int) -> None:
+        """The client-side guard vents only when this client controls the box; a monitor
+        leaves venting to the daemon's own guard (it never takes control to vent)."""
+        if self._token is None:
+            return
+        try:
+            super()._vent(channel)
+        except ControlRefused:
+            pass  # control lost: the daemon's watchdog and guard have the valves
+
     def close_valves(self) -> None:
         """Close every valve (only a controlling client can; a monitor changes nothing)."""
         if self._token is not None and not self.closed:

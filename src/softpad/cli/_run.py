@@ -10,6 +10,10 @@ from typing import Any
 
 from softpad import SCHEMA_VERSION, thesis
 from softpad.cli._args import finite_float
+from softpad.errors import HardwareFault
+
+#: Exit code of a run ended by a hardware or link fault (after the verified safe state).
+EXIT_HARDWARE = 3
 
 _EPILOG = """examples:
   softpad run --object banana
@@ -84,6 +88,8 @@ def run(args: argparse.Namespace) -> int:
         gripper = gripper or mounting
     try:
         result = run_simulated(names, args.box, params, log, gripper=gripper, **parts)
+    except HardwareFault as exc:
+        return _report_fault(args, log, exc)
     finally:
         # whatever happened, what was logged is kept
         if args.log:
@@ -130,6 +136,33 @@ def _from_installation(path: str, params: Any) -> tuple[Any, dict[str, Any], str
     )
     parts = {"object_detector": ThesisObjectDetector(threshold_pa=th.object_threshold_pa)}
     return params, parts, inst.gripper_mounting
+
+
+def _report_fault(args: argparse.Namespace, log: Any, exc: Exception) -> int:
+    """Print what was detected and the safe state reached; the hardware-fault exit code."""
+    faults = [f.to_dict() for f in getattr(exc, "faults", ())]
+    safe = getattr(exc, "safe_state", None)
+    d = {
+        "schema_version": SCHEMA_VERSION,
+        "outcome": "fault",
+        "error": str(exc),
+        "faults": faults,
+        "safe_state": None if safe is None else safe.to_dict(),
+        "phases": [
+            {"phase": e["phase"], "t_s": round(t, 4)} for t, k, e in log.events if k == "phase"
+        ],
+    }
+    if args.json:
+        print(json.dumps(d))
+    else:
+        for f in faults:
+            print(f"t = {f['t_s']:7.2f} s  fault on channel {f['channel']} ({f['cause']})")
+        if safe is not None:
+            kpa = ", ".join("nan" if v != v else f"{v / 1e3:.3f}" for v in safe.pressures_pa)
+            state = "verified" if safe.verified else f"NOT verified: {safe.reason}"
+            print(f"safe state {state}; pressures {kpa} kPa")
+    print(f"softpad run: hardware fault: {exc}", file=sys.stderr)
+    return EXIT_HARDWARE
 
 
 def _kpa(values: Any) -> str:

@@ -26,23 +26,41 @@ from softpad.control._inflation import (
     make_safe,
 )
 from softpad.control._robot import Robot, RobotState, ToolPose
+from softpad.control._safety import (
+    DetectedFault,
+    FaultMonitor,
+    FaultThresholds,
+    MonitoredFault,
+    RunSafety,
+    SafeStateResult,
+    check_valves,
+    reach_safe_state,
+)
 
 __all__ = [
     "DEFAULT_MAX_PRESSURE_PA",
     "DEFAULT_TARGET_PA",
     "DEFAULT_TOLERANCE_PA",
     "AdjustmentResult",
+    "DetectedFault",
     "ExecutionError",
     "ExecutionParams",
     "ExecutionResult",
+    "FaultMonitor",
+    "FaultThresholds",
     "GraspExecution",
     "GraspRecord",
     "InflationParams",
+    "MonitoredFault",
     "Recorder",
     "Robot",
     "RobotState",
+    "RunSafety",
+    "SafeStateResult",
     "ToolPose",
     "check_frame",
+    "check_valves",
     "inflate_and_adjust",
     "make_safe",
+    "reach_safe_state",
 ]

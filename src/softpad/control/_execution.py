@@ -19,11 +19,10 @@ from softpad.box import Box, PressureFrame, ValveCommand
 from softpad.control._inflation import (
     AdjustmentResult,
     InflationParams,
-    check_frame,
     inflate_and_adjust,
-    make_safe,
 )
 from softpad.control._robot import Robot, RobotState, ToolPose
+from softpad.control._safety import DetectedFault, RunSafety, SafeStateResult
 from softpad.errors import HardwareFault, InputError, SoftPadError
 from softpad.layout import PadLayout
 from softpad.planning import GraspPlan, Planner, PlannerParams, ThesisPlanner
@@ -207,6 +206,11 @@ class ExecutionResult:
         One record per executed plan.
     phases
         (phase name, start time s) in order.
+    faults
+        Faults detected (empty on a run that ended normally; a faulted run raises, with its
+        faults and safe state attached to the exception).
+    safe_state
+        Result of the verified safe state when one was reached, else None.
     """
 
     layout: PadLayout
@@ -216,6 +220,8 @@ class ExecutionResult:
     plans: tuple[GraspPlan, ...]
     grasps: tuple[GraspRecord, ...]
     phases: tuple[tuple[str, float], ...]
+    faults: tuple[DetectedFault, ...] = ()
+    safe_state: SafeStateResult | None = None
 
     @property
     def outcome(self) -> str:
@@ -242,6 +248,8 @@ class ExecutionResult:
             "object_seen_at_s": round(self.object_seen_at_s, 4),
             "grasps": [g.to_dict(self.layout) for g in self.grasps],
             "phases": [{"phase": n, "t_s": round(t, 4)} for n, t in self.phases],
+            "faults": [f.to_dict() for f in self.faults],
+            "safe_state": None if self.safe_state is None else self.safe_state.to_dict(),
         }
 
 
@@ -251,6 +259,13 @@ class _RecordingBox(Box):
     def __init__(self, box: Box, recorder: Recorder, clock: Callable[[], float]) -> None:
         super().__init__()
         self.inner, self._recorder, self._clock = box, recorder, clock
+        # one safety guard: the wrapped box's (its limits, its trips)
+        self._limits, self._guard = box.safety_limits, box.safety
+
+    @property
+    def valves(self) -> tuple[ValveCommand, ...]:
+        """The wrapped box's valve states (its safety guard may vent a channel)."""
+        return self.inner.valves
 
     @property
     def channels(self) -> int:
@@ -376,6 +391,9 @@ class GraspExecution:
         self.phase = "idle"
         self._phases: list[tuple[str, float]] = []
         self._last_t = 0.0
+        infl = p.inflation
+        #: Fault monitor of every frame and the safe state of this run.
+        self.safety = RunSafety(self.box, self.n, infl.max_pressure_pa, infl.trip_margin_pa)
 
     # --- plumbing -------------------------------------------------------------------
     def _enter(self, phase: str, **data: Any) -> None:
@@ -387,8 +405,7 @@ class GraspExecution:
         frame = self.box.read()
         self._last_t = frame.t_s
         self.recorder.frame(frame, self.phase)
-        infl = self.params.inflation
-        return check_frame(frame, self.n, infl.max_pressure_pa, trip_margin_pa=infl.trip_margin_pa)
+        return self.safety.watch(frame)
 
     def _wait_motion(self, what: str) -> None:
         t0 = self._last_t
@@ -416,23 +433,28 @@ class GraspExecution:
         try:
             return self._run()
         except HardwareFault as exc:
-            self.recorder.event(self._last_t, "fault", message=str(exc), phase=self.phase)
-            self._make_safe()
+            self._make_safe(exc)
             raise
         except KeyboardInterrupt:  # a user's Ctrl-C must not leave valves open
             self.recorder.event(self._last_t, "interrupted", phase=self.phase)
-            self._make_safe()
+            self._make_safe(HardwareFault("interrupted"))
             raise
 
-    def _make_safe(self) -> None:
-        self.robot.stop()
-        make_safe(
-            self.box,
-            self.n,
-            self.params.inflation.max_pressure_pa,
-            on_frame=lambda f: self.recorder.frame(f, "safe"),
-            trip_margin_pa=self.params.inflation.trip_margin_pa,
+    def _make_safe(self, exc: HardwareFault) -> None:
+        """Stop the arm (holding what it holds), record the fault, reach the verified safe state."""
+        try:
+            self.robot.stop()
+        except HardwareFault:
+            pass  # a robot behind a lost link cannot be stopped from here
+        f = self.safety.fail(exc, self._last_t, lambda fr: self.recorder.frame(fr, "safe"))
+        self.recorder.event(
+            f.t_s, "fault", message=f.message, phase=self.phase, channel=f.channel, cause=f.cause
         )
+        s = self.safety.safe_state
+        if s is not None:
+            d = s.to_dict()
+            del d["t_s"]
+            self.recorder.event(s.t_s, "safe_state", **d)
 
     def _run(self) -> ExecutionResult:
         p = self.params
@@ -443,10 +465,12 @@ class GraspExecution:
             p.inflation,
             on_frame=self._on_adjust_frame,
             on_adjusted=self._on_adjusted,
+            safe_state=False,
         )
         self.recorder.event(
             adj.reference_at_s, "reference", reference_pa=[float(v) for v in adj.reference_pa]
         )
+        self.safety.monitor.set_reference(adj.reference_pa)
         self._enter("wait_object")
         if self.place_objects is not None:
             self.place_objects()
@@ -465,12 +489,18 @@ class GraspExecution:
         if not plans:
             raise ExecutionError("the object disappeared before planning: no module above t_o")
         grasps = tuple(self._grasp(plan) for plan in plans)
+        self._enter("valve_check")
+        self.safety.check_valves(self._read)
         self._enter("done")
-        return ExecutionResult(self.layout, adj, seen_at, delta, plans, grasps, tuple(self._phases))
+        faults = tuple(self.safety.faults)
+        return ExecutionResult(
+            self.layout, adj, seen_at, delta, plans, grasps, tuple(self._phases), faults
+        )
 
     def _on_adjust_frame(self, frame: PressureFrame) -> None:
         self._last_t = frame.t_s
         self.recorder.frame(frame, self.phase)
+        self.safety.watch(frame)
 
     def _on_adjusted(self, t_s: float) -> None:
         self.recorder.event(t_s, "adjusted", target_pa=self.params.inflation.target_pa)

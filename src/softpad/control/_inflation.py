@@ -12,6 +12,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
@@ -19,6 +20,9 @@ from numpy.typing import NDArray
 from softpad import thesis
 from softpad.box import Box, PressureFrame, ValveCommand
 from softpad.errors import HardwareFault, InputError
+
+if TYPE_CHECKING:
+    from softpad.control._safety import SafeStateResult
 from softpad.sensing import RunningAverage, capture_reference
 
 #: p0 of the thesis, Pa (:data:`softpad.thesis.P0_PA`).
@@ -27,6 +31,8 @@ DEFAULT_TARGET_PA = thesis.P0_PA
 DEFAULT_TOLERANCE_PA = thesis.ADJUST_TOLERANCE_PA
 #: Maximum pressure the software ever lets a module reach, Pa (modules are unusable above 2.8 kPa).
 DEFAULT_MAX_PRESSURE_PA = thesis.MAX_PRESSURE_PA
+#: Full scale of the box's pressure sensors, Pa: no limit can be checked above it.
+SENSOR_FULL_SCALE_PA = 10.0e3
 
 FrameHook = Callable[[PressureFrame], None]
 
@@ -91,6 +97,19 @@ class InflationParams:
         ):
             raise InputError(
                 f"trip margin must be in [0, {self.max_pressure_pa:g}) Pa, got {self.trip_margin_pa!r}"
+            )
+        lo, hi = thesis.P0_RANGE_PA
+        if not lo <= self.target_pa <= hi:
+            raise InputError(
+                f"target pressure must be within the module's usable range "
+                f"{lo / 1e3:g}..{hi / 1e3:g} kPa, got {self.target_pa!r} Pa "
+                f"({self.target_pa / 1e3:g} kPa; pressures are in pascals)"
+            )
+        if self.max_pressure_pa >= SENSOR_FULL_SCALE_PA:
+            raise InputError(
+                f"maximum pressure must be below the sensor's full scale "
+                f"{SENSOR_FULL_SCALE_PA / 1e3:g} kPa (the module's rating is "
+                f"{thesis.MAX_PRESSURE_PA / 1e3:g} kPa), got {self.max_pressure_pa / 1e3:g} kPa"
             )
         if self.target_pa + self.tolerance_pa >= self.trip_pressure_pa:
             raise InputError(
@@ -176,39 +195,18 @@ def make_safe(
     box: Box,
     n_modules: int,
     max_pressure_pa: float,
-    timeout_s: float = 5.0,
+    timeout_s: float = 30.0,
     on_frame: FrameHook | None = None,
     trip_margin_pa: float = 0.0,
-) -> None:
-    """Put the box in its safe state: inflation valves closed, no module above the maximum.
+) -> SafeStateResult:
+    """Put the box in its verified safe state (see :func:`softpad.control.reach_safe_state`).
 
-    Closes every valve, then opens the deflation valve of any module whose reading goes above
-    ``max_pressure_pa`` and leaves it open (a stuck-open inflation valve is then outflowed: the
-    deflation path is sized for it). Returns once every vented module is below the maximum
-    (or after ``timeout_s`` of box time). A box that cannot be reached is left as it is.
+    Kept for callers of the earlier API; ``trip_margin_pa`` is unused (the safe state vents a
+    channel 50 Pa below the maximum).
     """
-    if box.closed:
-        return
-    trip = max_pressure_pa - trip_margin_pa
-    try:
-        box.close_valves()
-        venting = np.zeros(n_modules, dtype=bool)
-        filt = RunningAverage(5)
-        t_end = None
-        while True:
-            frame = box.read()
-            if on_frame is not None:
-                on_frame(frame)
-            t_end = frame.t_s + timeout_s if t_end is None else t_end
-            p = filt.update(np.nan_to_num(frame.pressures_pa[:n_modules], nan=0.0))
-            start = (p > trip) & ~venting
-            for k in np.flatnonzero(start):
-                box.set_valve(int(k) + 1, ValveCommand.DEFLATE)
-            venting |= start
-            if (filt.full and (p <= trip).all()) or frame.t_s >= t_end:
-                break
-    except HardwareFault:
-        pass  # unreachable box: leave it
+    from softpad.control._safety import reach_safe_state
+
+    return reach_safe_state(box, n_modules, max_pressure_pa, timeout_s=timeout_s, on_frame=on_frame)
 
 
 def inflate_and_adjust(
@@ -217,6 +215,7 @@ def inflate_and_adjust(
     params: InflationParams | None = None,
     on_frame: FrameHook | None = None,
     on_adjusted: Callable[[float], None] | None = None,
+    safe_state: bool = True,
 ) -> AdjustmentResult:
     """Bring modules 1..n_modules to p0 within t_adj and save the reference (Section 6.2.1.1).
 
@@ -233,6 +232,9 @@ def inflate_and_adjust(
     on_adjusted
         Called with the box time when every module is within tolerance, before the
         reference reads.
+    safe_state
+        On a fault, reach the verified safe state before raising (its result is attached to
+        the exception as ``safe_state``); False leaves that to the caller.
 
     Raises
     ------
@@ -348,12 +350,9 @@ def inflate_and_adjust(
                 )
             )
         return AdjustmentResult(capture_reference(reads), adjusted_at, frame.t_s)
-    except HardwareFault:
-        make_safe(
-            box,
-            n_modules,
-            params.max_pressure_pa,
-            on_frame=on_frame,
-            trip_margin_pa=params.trip_margin_pa,
-        )
+    except HardwareFault as exc:
+        if safe_state and not hasattr(exc, "safe_state"):
+            exc.safe_state = make_safe(  # type: ignore[attr-defined]
+                box, n_modules, params.max_pressure_pa, on_frame=on_frame
+            )
         raise

@@ -9,6 +9,32 @@ from softpad.control import RobotState, ToolPose
 from softpad.errors import InputError
 from softpad.sim import GripperState, World
 
+#: Reach of the simulated arm around the pad's origin in x and y, metres (pad frame).
+WORKSPACE_XY_M = 1.0
+#: Lowest and highest fingertip height of the simulated arm, metres (pad frame).
+WORKSPACE_Z_M = (-0.01, 1.0)
+#: Widest gripper opening that may be commanded, metres (wider commands are clamped to the
+#: mounting's maximum by the gripper).
+MAX_COMMAND_WIDTH_M = 1.0
+#: Fastest commanded arm or jaw speed, m/s.
+MAX_SPEED_M_S = 2.0
+
+
+def check_target(x_m: float, y_m: float, z_m: float, width_m: float) -> None:
+    """Raise InputError unless a target lies in the simulated arm's workspace.
+
+    Finite coordinates within +/- ``WORKSPACE_XY_M`` in x and y, a height within
+    ``WORKSPACE_Z_M`` and a gripper width within 0 .. ``MAX_COMMAND_WIDTH_M``.
+    """
+    for name, v, lo, hi in (
+        ("x_m", x_m, -WORKSPACE_XY_M, WORKSPACE_XY_M),
+        ("y_m", y_m, -WORKSPACE_XY_M, WORKSPACE_XY_M),
+        ("z_m", z_m, *WORKSPACE_Z_M),
+        ("width_m", width_m, 0.0, MAX_COMMAND_WIDTH_M),
+    ):
+        if not (math.isfinite(v) and lo <= v <= hi):
+            raise InputError(f"robot target {name} must be within {lo:g}..{hi:g} m, got {v!r}")
+
 
 @dataclass(frozen=True)
 class TouchTruth:
@@ -60,8 +86,11 @@ class SimulatedRobot:
             self._descending = False
 
     def _command(self, target: GripperState, speed_m_s: float) -> None:
-        if not (math.isfinite(speed_m_s) and speed_m_s > 0):
-            raise InputError(f"robot speed must be a positive number of m/s, got {speed_m_s!r}")
+        if not (math.isfinite(speed_m_s) and 0 < speed_m_s <= MAX_SPEED_M_S):
+            raise InputError(
+                f"robot speed must be > 0 and at most {MAX_SPEED_M_S:g} m/s, got {speed_m_s!r}"
+            )
+        check_target(target.x_m, target.y_m, target.z_m, target.width_m)
         self._target = target
         self._fresh = True
         self.world.command_gripper(target, speed_m_s)

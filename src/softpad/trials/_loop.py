@@ -106,7 +106,7 @@ class _Trial:
         opening_m: float | None,
         mounting: str | None,
     ) -> None:
-        from softpad.box import SimBox
+        from softpad.box import SafetyLimits, SimBox
         from softpad.harness import SimulatedRobot
         from softpad.sim._mujoco_model import MujocoGripper
         from softpad.sim._mujoco_world import MujocoWorld
@@ -124,6 +124,12 @@ class _Trial:
             sensor=SensorParams() if config.noise else SensorParams.ideal(),
             # between trials of a session the modules stay near p0 (1 kPa, under it)
             initial_pressure_pa=1.0e3 if config.inflated_start else 0.0,
+        )
+        # the box-side limit follows the trials' fault limit (a gripper pressing an object
+        # into the pad reads above the 3 kPa inflation maximum: trial_execution_params)
+        max_pa = config.execution.inflation.max_pressure_pa
+        self.box.safety_limits = SafetyLimits(
+            max_pressure_pa=max_pa, release_pa=min(2500.0, max_pa - 500.0)
         )
         self.robot = SimulatedRobot(self.world, max_opening_m=self.gripper.max_width_m)
 

@@ -1,0 +1,161 @@
+"""Box-side safety: a hard maximum pressure per channel, enforced under every back-end.
+
+Every :class:`~softpad.box.Box` owns a :class:`SafetyGuard` (the base class calls it on every
+frame read and every valve command), so the simulated box, a box served over ``zenoh://`` and the
+box daemon on real hardware all run the same checks, whatever the client does:
+
+* a channel whose reading, plus the rise expected before the next frame, exceeds the trip level
+  ``max_pressure_pa - trip_margin_pa`` is *tripped*: its deflation valve is opened (inflation
+  closed) at once;
+* a channel whose reading is invalid (NaN, or outside the sensor's range: a broken wire reads
+  its rail) is tripped too: the box cannot know its pressure, so it vents;
+* while tripped, an ``inflate`` command on the channel raises :class:`SafetyTrip` (a
+  :class:`~softpad.errors.HardwareFault`) and ``closed``/``deflate`` commands leave it venting;
+  the trip is released once a valid reading is below ``release_pa``; the channel then keeps
+  venting until the client commands it otherwise.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+
+from softpad import thesis
+from softpad.errors import HardwareFault, InputError
+
+#: The module's rated maximum pressure, Pa (seed, Section 6.3: modules are usable 0.5..2.8 kPa;
+#: the thesis's box never takes them above 3 kPa).
+RATED_MAX_PRESSURE_PA = thesis.MAX_PRESSURE_PA
+
+
+class SafetyTrip(HardwareFault):
+    """A command the box refuses because a channel is tripped (over-pressure or bad sensor)."""
+
+
+@dataclass(frozen=True)
+class SafetyLimits:
+    """Limits the box enforces on every channel, whatever the client commands.
+
+    Parameters
+    ----------
+    max_pressure_pa
+        Hard maximum gauge pressure of a module, pascals (3 kPa, the module's rating).
+    trip_margin_pa
+        The trip acts on a reading this far below the maximum, pascals (50 Pa: about six
+        standard deviations of the simulated sensor's 8 Pa white noise).
+    release_pa
+        A tripped channel is released once a valid reading is below this, pascals (2.5 kPa).
+    sensor_min_pa, sensor_max_pa
+        Range of the pressure sensor, pascals (-2..10 kPa); a reading at or beyond a rail is
+        invalid (a broken wire reads its lower rail).
+    rise_window
+        Frames over which the guard estimates each channel's rise rate; the reading plus the
+        rise expected over one sample period is compared with the trip level.
+    """
+
+    max_pressure_pa: float = RATED_MAX_PRESSURE_PA
+    trip_margin_pa: float = 50.0
+    release_pa: float = 2500.0
+    sensor_min_pa: float = -2000.0
+    sensor_max_pa: float = 10000.0
+    rise_window: int = 10
+
+    def __post_init__(self) -> None:
+        for n in ("max_pressure_pa", "trip_margin_pa", "release_pa", "sensor_min_pa"):
+            v = getattr(self, n)
+            if not (isinstance(v, int | float) and math.isfinite(v)):
+                raise InputError(f"safety {n} must be a finite number, got {v!r}")
+        if not (isinstance(self.sensor_max_pa, int | float) and math.isfinite(self.sensor_max_pa)):
+            raise InputError(f"safety sensor_max_pa must be finite, got {self.sensor_max_pa!r}")
+        if not 0 < self.max_pressure_pa < self.sensor_max_pa:
+            raise InputError(
+                f"maximum pressure {self.max_pressure_pa / 1e3:g} kPa must be > 0 and below the "
+                f"sensor's full scale {self.sensor_max_pa / 1e3:g} kPa"
+            )
+        if not 0 <= self.trip_margin_pa < self.max_pressure_pa:
+            raise InputError(
+                f"trip margin must be in [0, {self.max_pressure_pa:g}) Pa, got {self.trip_margin_pa!r}"
+            )
+        if not 0 < self.release_pa < self.trip_pa:
+            raise InputError(
+                f"release pressure {self.release_pa / 1e3:g} kPa must be > 0 and below the trip "
+                f"level {self.trip_pa / 1e3:g} kPa"
+            )
+        if not self.sensor_min_pa < 0:
+            raise InputError(f"sensor lower rail must be < 0 Pa, got {self.sensor_min_pa!r}")
+        if not (isinstance(self.rise_window, int) and self.rise_window >= 2):
+            raise InputError(f"rise window must be an integer >= 2, got {self.rise_window!r}")
+
+    @property
+    def trip_pa(self) -> float:
+        """Reading (plus expected rise) at which a channel is tripped, pascals."""
+        return self.max_pressure_pa - self.trip_margin_pa
+
+
+@dataclass
+class SafetyGuard:
+    """State of the box-side safety of ``channels`` channels (pure: no I/O).
+
+    :meth:`check` takes every frame's readings and returns the channels that must be vented
+    now; :meth:`allows_inflate` tells whether an inflate command may pass. ``trips`` keeps
+    (t_s, channel, cause) of every trip for diagnostics.
+    """
+
+    channels: int
+    limits: SafetyLimits = field(default_factory=SafetyLimits)
+    tripped: NDArray[np.bool_] = field(init=False)
+    trips: list[tuple[float, int, str]] = field(init=False, default_factory=list)
+    _history: list[NDArray[np.float64]] = field(init=False, default_factory=list)
+    _times: list[float] = field(init=False, default_factory=list)
+
+    def __post_init__(self) -> None:
+        self.tripped = np.zeros(self.channels, dtype=bool)
+
+    def check(self, t_s: float, pressures_pa: NDArray[np.float64]) -> list[int]:
+        """Update with one frame; return the 1-based channels newly tripped (to vent now)."""
+        if self._times and t_s == self._times[-1]:
+            return []  # the same frame seen again (a wrapper sharing this guard)
+        lim = self.limits
+        p = np.asarray(pressures_pa, dtype=float)[: self.channels]
+        self._history.append(p)
+        self._times.append(t_s)
+        if len(self._history) > lim.rise_window:
+            del self._history[0], self._times[0]
+        invalid = ~np.isfinite(p) | (p <= lim.sensor_min_pa) | (p >= lim.sensor_max_pa)
+        rise = np.zeros_like(p)
+        if len(self._history) >= 2 and self._times[-1] > self._times[0]:
+            span = self._times[-1] - self._times[0]
+            slope = (p - self._history[0]) / span
+            period = span / (len(self._history) - 1)
+            rise = np.nan_to_num(np.maximum(slope, 0.0) * period)
+        with np.errstate(invalid="ignore"):
+            over = np.nan_to_num(p + rise, nan=0.0) > lim.trip_pa
+            below = np.nan_to_num(p, nan=np.inf) < lim.release_pa
+        release = self.tripped & below & ~invalid
+        self.tripped &= ~release
+        new = (over | invalid) & ~self.tripped
+        self.tripped |= new
+        for k in np.flatnonzero(new):
+            cause = (
+                f"reading {p[k] / 1e3:.3f} kPa is not valid"
+                if invalid[k]
+                else f"{p[k] / 1e3:.3f} kPa over the trip level {lim.trip_pa / 1e3:.3f} kPa"
+            )
+            self.trips.append((t_s, int(k) + 1, cause))
+        return [int(k) + 1 for k in np.flatnonzero(new)]
+
+    def allows_inflate(self, channel: int) -> bool:
+        """Whether an inflate command on ``channel`` (1-based) may pass."""
+        return not bool(self.tripped[channel - 1])
+
+    def refuse_inflate(self, channel: int) -> SafetyTrip:
+        """The error raised for a refused inflate command on ``channel``."""
+        cause = next((c for _, ch, c in reversed(self.trips) if ch == channel), "tripped")
+        return SafetyTrip(
+            f"channel {channel}: inflate refused by the box's safety limit (maximum "
+            f"{self.limits.max_pressure_pa / 1e3:g} kPa): {cause}; venting until below "
+            f"{self.limits.release_pa / 1e3:g} kPa"
+        )

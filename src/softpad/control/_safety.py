@@ -1,0 +1,574 @@
+"""The verified safe state, and fault monitoring of every frame in every phase.
+
+:func:`reach_safe_state` closes inflation, vents any channel above its limit or rising with its
+inflation valve closed (stuck open), and keeps reading until every channel is valid, at or below
+the maximum and not rising for ``quiet_s`` of box time; otherwise it names the channel it could
+not make safe and what it tried.
+
+:class:`FaultMonitor` is pure: fed every frame and the commanded valve states, it returns the
+first fault it sees (sensor NaN, dropout or out of range, over-pressure, supply loss, a sealed
+channel falling below its reference or rising steadily without a command). Its thresholds come
+from the simulated box's noise and drift figures (docs/box-and-simulator.md, "Safety").
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections import deque
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from softpad.box import RATED_MAX_PRESSURE_PA, Box, ConnectionLost, PressureFrame, ValveCommand
+from softpad.errors import HardwareFault, InputError
+
+
+@dataclass(frozen=True)
+class DetectedFault:
+    """A fault seen by the :class:`FaultMonitor`.
+
+    Attributes
+    ----------
+    t_s
+        Box time of the frame that showed it, seconds.
+    channel
+        1-based channel, or None for a box-wide fault (supply).
+    cause
+        Short machine-readable cause: ``sensor_nan``, ``sensor_dropout``, ``sensor_range``,
+        ``over_pressure``, ``supply_loss``, ``falling`` (leak or stuck-open deflation valve),
+        ``rising`` (stuck-open inflation valve), ``no_response`` (a valve that does not act).
+    message
+        One line for people.
+    """
+
+    t_s: float
+    channel: int | None
+    cause: str
+    message: str
+
+    def to_dict(self) -> dict[str, object]:
+        """JSON-ready dict."""
+        return {
+            "t_s": round(self.t_s, 4),
+            "channel": self.channel,
+            "cause": self.cause,
+            "message": self.message,
+        }
+
+
+class MonitoredFault(HardwareFault):
+    """A :class:`HardwareFault` carrying the :class:`DetectedFault` that raised it."""
+
+    def __init__(self, fault: DetectedFault) -> None:
+        super().__init__(fault.message)
+        self.fault = fault
+
+
+@dataclass(frozen=True)
+class FaultThresholds:
+    """Thresholds of the :class:`FaultMonitor` (sources in docs/box-and-simulator.md).
+
+    Parameters
+    ----------
+    max_pressure_pa
+        Hard maximum, pascals; a filtered reading above ``max - trip_margin_pa`` is a fault.
+    trip_margin_pa
+        Pascals below the maximum at which the monitor trips (50 Pa).
+    floor_pa
+        A reading below this is a sensor dropout (a module cannot be under vacuum), pascals.
+    sensor_max_pa
+        A reading at or above the sensor's full scale is out of range, pascals.
+    supply_min_pa
+        A filtered supply reading below this is a supply loss, pascals (half the 10 kPa supply).
+    fall_pa
+        A sealed channel whose filtered reading drops this far below its reference is falling
+        (leak, stuck-open deflation valve), pascals: 60 Pa is 5 sigma of the filtered noise
+        plus drift (8 Pa / sqrt(10) and 3 Pa rms: 4 Pa; difference of two: 5.6 Pa) with room for
+        the adjustment tolerance (30 Pa).
+    rise_pa_s
+        A sealed channel rising faster than this over each of ``rise_windows`` consecutive
+        windows of ``window_s`` is rising without a command, Pa/s (50 Pa/s: 5 sigma of the
+        slope of a 10-sample mean over 0.5 s; a load step settles within one window).
+    window_s
+        Length of one rise window, seconds.
+    rise_windows
+        Consecutive rising windows needed.
+    filter_length
+        Running-average length of the monitored readings, samples.
+    """
+
+    max_pressure_pa: float = RATED_MAX_PRESSURE_PA
+    trip_margin_pa: float = 50.0
+    floor_pa: float = -500.0
+    sensor_max_pa: float = 10.0e3
+    supply_min_pa: float = 5.0e3
+    fall_pa: float = 60.0
+    rise_pa_s: float = 50.0
+    window_s: float = 0.5
+    rise_windows: int = 3
+    filter_length: int = 10
+
+    def __post_init__(self) -> None:
+        for n in ("max_pressure_pa", "fall_pa", "rise_pa_s", "window_s", "sensor_max_pa"):
+            v = getattr(self, n)
+            if not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
+                raise InputError(f"fault threshold {n} must be a positive number, got {v!r}")
+        for n in ("trip_margin_pa", "supply_min_pa"):
+            v = getattr(self, n)
+            if not (isinstance(v, int | float) and math.isfinite(v) and v >= 0):
+                raise InputError(f"fault threshold {n} must be a number >= 0, got {v!r}")
+        for n in ("rise_windows", "filter_length"):
+            v = getattr(self, n)
+            if not (isinstance(v, int) and v >= 1):
+                raise InputError(f"fault threshold {n} must be an integer >= 1, got {v!r}")
+
+
+class FaultMonitor:
+    """Watch every frame for faults (pure: no I/O; fed frames and commanded valve states).
+
+    Parameters
+    ----------
+    n_modules
+        Channels 1..n_modules are watched.
+    thresholds
+        Fault thresholds.
+
+    Notes
+    -----
+    A channel counts as *sealed* once its valves have been closed for a whole filter length;
+    only sealed channels are judged for falling or rising. The falling check needs a reference
+    (:meth:`set_reference`, the pressures saved after the adjustment): loads only ever raise a
+    sealed module's pressure above it, so a drop below it means air is escaping.
+    """
+
+    def __init__(self, n_modules: int, thresholds: FaultThresholds | None = None) -> None:
+        self.n = int(n_modules)
+        self.th = thresholds or FaultThresholds()
+        self.reference_pa: NDArray[np.float64] | None = None
+        self._buf: deque[NDArray[np.float64]] = deque(maxlen=self.th.filter_length)
+        self._supply: deque[float] = deque(maxlen=self.th.filter_length)
+        self._sealed_frames = np.zeros(self.n, dtype=np.int64)
+        self._window_start: tuple[float, NDArray[np.float64]] | None = None
+        self._rising = np.zeros(self.n, dtype=np.int64)
+        # sealed (for a whole filter length) at the start of the current window and ever since
+        self._sealed_window = np.zeros(self.n, dtype=bool)
+
+    def set_reference(self, reference_pa: Sequence[float] | NDArray[np.float64]) -> None:
+        """Pressures the sealed modules must not fall below (the saved reference), pascals."""
+        self.reference_pa = np.asarray(reference_pa, dtype=float)[: self.n].copy()
+
+    def update(self, frame: PressureFrame, valves: Sequence[ValveCommand]) -> DetectedFault | None:
+        """Judge one frame given the valve commands in force; the first fault found, or None."""
+        p = frame.pressures_pa[: self.n]
+        t = frame.t_s
+        bad = self._check_raw(t, p)
+        if bad is not None:
+            return bad
+        sealed_now = np.array([v is ValveCommand.CLOSED for v in valves[: self.n]])
+        self._sealed_frames = np.where(sealed_now, self._sealed_frames + 1, 0)
+        self._buf.append(p.copy())
+        self._supply.append(float(frame.supply_pa))
+        if len(self._buf) < self.th.filter_length:
+            return None
+        mean = np.mean(self._buf, axis=0)
+        supply = float(np.mean(self._supply))
+        th = self.th
+        if not supply >= th.supply_min_pa:
+            return DetectedFault(
+                t,
+                None,
+                "supply_loss",
+                f"supply pressure {supply / 1e3:.2f} kPa is below {th.supply_min_pa / 1e3:g} kPa "
+                f"at t = {t:.2f} s (supply lost?)",
+            )
+        sealed = self._sealed_frames >= th.filter_length
+        return self._check_trend(t, mean, sealed)
+
+    def _check_raw(self, t: float, p: NDArray[np.float64]) -> DetectedFault | None:
+        th = self.th
+        lo, hi = p.min(), p.max()
+        if th.floor_pa <= lo and hi <= th.max_pressure_pa - th.trip_margin_pa:
+            return None  # NaN fails both comparisons, so the usual case is one pass
+        for k in range(self.n):
+            v = p[k]
+            if not math.isfinite(v):
+                return DetectedFault(
+                    t,
+                    k + 1,
+                    "sensor_nan",
+                    f"channel {k + 1}: pressure sensor gives no valid "
+                    f"reading (NaN) at t = {t:.2f} s",
+                )
+            if v < th.floor_pa:
+                return DetectedFault(
+                    t,
+                    k + 1,
+                    "sensor_dropout",
+                    f"channel {k + 1}: pressure sensor reads "
+                    f"{v / 1e3:.2f} kPa at t = {t:.2f} s (sensor dropout?)",
+                )
+            if v >= th.sensor_max_pa:
+                return DetectedFault(
+                    t,
+                    k + 1,
+                    "sensor_range",
+                    f"channel {k + 1}: pressure sensor at its full "
+                    f"scale ({v / 1e3:.2f} kPa) at t = {t:.2f} s",
+                )
+            if v > th.max_pressure_pa - th.trip_margin_pa:
+                return DetectedFault(
+                    t,
+                    k + 1,
+                    "over_pressure",
+                    f"channel {k + 1}: pressure {v / 1e3:.3f} kPa "
+                    f"tripped the safety limit {(th.max_pressure_pa - th.trip_margin_pa) / 1e3:.3f}"
+                    f" kPa (maximum {th.max_pressure_pa / 1e3:.2f} kPa) at t = {t:.2f} s "
+                    "(valve stuck open?)",
+                )
+        return None
+
+    def _check_trend(
+        self, t: float, mean: NDArray[np.float64], sealed: NDArray[np.bool_]
+    ) -> DetectedFault | None:
+        th = self.th
+        ref = self.reference_pa
+        if ref is not None:
+            low = sealed & (mean < ref - th.fall_pa)
+            if low.any():
+                k = int(np.argmax(low))
+                return DetectedFault(
+                    t,
+                    k + 1,
+                    "falling",
+                    f"channel {k + 1}: {mean[k] / 1e3:.3f} kPa with its "
+                    f"valves closed, {(ref[k] - mean[k]):.0f} Pa below its reference at "
+                    f"t = {t:.2f} s (leak or deflation valve stuck open?)",
+                )
+        self._sealed_window &= sealed
+        if self._window_start is None or not sealed.any():
+            self._window_start = (t, mean.copy())
+            self._sealed_window = sealed.copy()
+            self._rising[:] = 0
+            return None
+        t0, m0 = self._window_start
+        if t - t0 < th.window_s:
+            return None
+        slope = (mean - m0) / (t - t0)
+        judged = self._sealed_window & (slope > th.rise_pa_s)
+        self._rising = np.where(judged, self._rising + 1, 0)
+        self._window_start = (t, mean.copy())
+        self._sealed_window = sealed.copy()
+        up = self._rising >= th.rise_windows
+        if up.any():
+            k = int(np.argmax(up))
+            return DetectedFault(
+                t,
+                k + 1,
+                "rising",
+                f"channel {k + 1}: rising {slope[k]:.0f} Pa/s with its "
+                f"inflation valve closed at t = {t:.2f} s (inflation valve stuck open?)",
+            )
+        return None
+
+
+#: A module cannot be under vacuum: a reading below this is a failed sensor, pascals.
+_FLOOR_PA = FaultThresholds().floor_pa
+
+
+@dataclass(frozen=True)
+class SafeStateResult:
+    """Outcome of :func:`reach_safe_state`.
+
+    Attributes
+    ----------
+    verified
+        True when every channel read valid, at or below the maximum and not rising for the
+        quiet time, with every inflation valve commanded closed.
+    pressures_pa
+        Last filtered pressure of every module, pascals (NaN where the sensor gave none).
+    channel_unsafe
+        The channel that could not be made safe (None when verified, or when the box could
+        not be reached: see ``reason``).
+    tried
+        What was done, in order (one line each).
+    t_s
+        Box time when the watch ended, seconds.
+    reason
+        Why it is not verified ("" when verified).
+    """
+
+    verified: bool
+    pressures_pa: NDArray[np.float64]
+    channel_unsafe: int | None
+    tried: tuple[str, ...]
+    t_s: float
+    reason: str = ""
+
+    def to_dict(self) -> dict[str, object]:
+        """JSON-ready dict (SI units; None where a sensor gave no valid reading)."""
+        return {
+            "verified": self.verified,
+            "pressures_pa": [
+                None if not math.isfinite(v) else round(float(v), 1) for v in self.pressures_pa
+            ],
+            "channel_unsafe": self.channel_unsafe,
+            "tried": list(self.tried),
+            "t_s": round(self.t_s, 4),
+            "reason": self.reason,
+        }
+
+
+def reach_safe_state(
+    box: Box,
+    n_modules: int,
+    max_pressure_pa: float = RATED_MAX_PRESSURE_PA,
+    *,
+    vent: Sequence[int] = (),
+    quiet_s: float = 2.0,
+    timeout_s: float = 30.0,
+    rise_pa_s: float = 50.0,
+    on_frame: Callable[[PressureFrame], None] | None = None,
+) -> SafeStateResult:
+    """Bring the box to a verified safe state: inflation closed, nothing over the maximum or rising.
+
+    Closes every inflation valve (channels in ``vent``, and any the box has tripped, are vented
+    instead), then reads frames: a channel reading above ``max_pressure_pa`` minus 50 Pa or
+    rising faster than ``rise_pa_s`` over 0.5 s with its inflation valve closed (stuck open) is
+    vented. Returns verified once every module reads valid, at or below the maximum and has not
+    risen more than ``rise_pa_s * 0.5 s`` over the last ``quiet_s``; after ``timeout_s`` of box
+    time without that, returns unverified naming the worst channel.
+    """
+    tried: list[str] = []
+    last = np.full(n_modules, np.nan)
+    t = 0.0
+    if box.closed:
+        return SafeStateResult(False, last, None, (), t, "the box is closed")
+    try:
+        venting = _close_inflation(box, n_modules, vent, tried)
+        window: deque[tuple[float, NDArray[np.float64]]] = deque()
+        filt: deque[NDArray[np.float64]] = deque(maxlen=10)
+        t_start: float | None = None
+        while True:
+            frame = box.read()
+            if on_frame is not None:
+                on_frame(frame)
+            t = frame.t_s
+            t_start = t if t_start is None else t_start
+            p = frame.pressures_pa[:n_modules].astype(float)
+            filt.append(p)
+            last = np.mean(filt, axis=0)
+            window.append((t, last))
+            while window and t - window[0][0] > quiet_s:
+                window.popleft()
+            new = _channels_to_vent(box, last, window, venting, max_pressure_pa, rise_pa_s)
+            for k, why in new:
+                box.set_valve(k + 1, ValveCommand.DEFLATE)
+                venting[k] = True
+                tried.append(f"vented channel {k + 1} ({why}) at t = {t:.2f} s")
+            ok, worst, reason = _judge(last, window, len(filt), max_pressure_pa, rise_pa_s, quiet_s)
+            if ok and t - t_start >= quiet_s:
+                tried.append(f"verified at t = {t:.2f} s")
+                return SafeStateResult(True, last, None, tuple(tried), t)
+            if t - t_start >= timeout_s:
+                return SafeStateResult(False, last, worst, tuple(tried), t, reason)
+    except ConnectionLost as exc:
+        return SafeStateResult(False, last, None, tuple(tried), t, f"box unreachable: {exc}")
+    except HardwareFault as exc:  # a refused command or a back-end fault while venting
+        return SafeStateResult(False, last, None, tuple(tried), t, str(exc))
+
+
+def _close_inflation(
+    box: Box, n_modules: int, vent: Sequence[int], tried: list[str]
+) -> NDArray[np.bool_]:
+    venting = np.zeros(n_modules, dtype=bool)
+    for ch in range(1, box.channels + 1):
+        if ch <= n_modules and (ch in vent or box.safety.tripped[ch - 1]):
+            box.set_valve(ch, ValveCommand.DEFLATE)
+            venting[ch - 1] = True
+        else:
+            box.set_valve(ch, ValveCommand.CLOSED)
+    tried.append("closed every inflation valve")
+    if venting.any():
+        chans = ", ".join(str(int(k) + 1) for k in np.flatnonzero(venting))
+        tried.append(f"vented channel {chans} (suspect or tripped)")
+    return venting
+
+
+def _channels_to_vent(
+    box: Box,
+    p: NDArray[np.float64],
+    window: deque[tuple[float, NDArray[np.float64]]],
+    venting: NDArray[np.bool_],
+    max_pressure_pa: float,
+    rise_pa_s: float,
+) -> list[tuple[int, str]]:
+    out = []
+    t1, p1 = window[-1]
+    # rise over the last half second (the window's part that is at least that old)
+    older = [(t0, p0) for t0, p0 in window if t1 - t0 >= 0.5]
+    slope = (p1 - older[-1][1]) / (t1 - older[-1][0]) if older else np.zeros_like(p1)
+    for k in np.flatnonzero(~venting):
+        if not math.isfinite(p[k]) or p[k] < _FLOOR_PA:
+            out.append((int(k), "no valid reading"))
+        elif p[k] > max_pressure_pa - 50.0:
+            out.append((int(k), f"{p[k] / 1e3:.3f} kPa, over the limit"))
+        elif slope[k] > rise_pa_s:
+            out.append((int(k), f"rising {slope[k]:.0f} Pa/s with inflation closed"))
+        elif box.safety.tripped[k]:
+            out.append((int(k), "tripped by the box"))
+    return out
+
+
+def _judge(
+    p: NDArray[np.float64],
+    window: deque[tuple[float, NDArray[np.float64]]],
+    n_filtered: int,
+    max_pressure_pa: float,
+    rise_pa_s: float,
+    quiet_s: float,
+) -> tuple[bool, int | None, str]:
+    invalid = ~np.isfinite(p) | (np.nan_to_num(p) < _FLOOR_PA)
+    if invalid.any():
+        k = int(np.argmax(invalid))
+        return False, k + 1, f"channel {k + 1}: no valid reading, its pressure cannot be verified"
+    over = p > max_pressure_pa
+    if over.any():
+        k = int(np.argmax(p))
+        return False, k + 1, f"channel {k + 1}: {p[k] / 1e3:.3f} kPa is above the maximum"
+    rise = p - np.min([w for _, w in window], axis=0)
+    tol = rise_pa_s * 0.5
+    if (rise > tol).any() or n_filtered < 10:
+        k = int(np.argmax(rise))
+        return False, k + 1, f"channel {k + 1}: still rising ({rise[k]:.0f} Pa in {quiet_s:g} s)"
+    return True, None, ""
+
+
+_CHANNEL = re.compile(r"channel (\d+)")
+
+
+def describe_fault(exc: HardwareFault, t_s: float) -> DetectedFault:
+    """The :class:`DetectedFault` behind ``exc`` (parsed from its message when not monitored)."""
+    if isinstance(exc, MonitoredFault):
+        return exc.fault
+    m = _CHANNEL.search(str(exc))
+    cause = type(exc).__name__
+    if isinstance(exc, ConnectionLost):
+        cause = "link_lost"
+    elif "could not reach" in str(exc):
+        cause = "adjust_failed"
+    elif "leak" in str(exc):
+        cause = "falling"
+    elif "supply" in str(exc):
+        cause = "supply_loss"
+    elif str(exc).startswith("robot"):
+        cause = "robot"
+    return DetectedFault(t_s, int(m.group(1)) if m else None, cause, str(exc))
+
+
+class RunSafety:
+    """Safety of one run of the loop: the fault monitor of every frame and the safe state.
+
+    Parameters
+    ----------
+    box
+        The run's box.
+    n_modules
+        Modules on the pad (channels 1..n).
+    max_pressure_pa, trip_margin_pa
+        The run's maximum and trip margin (from the inflation parameters), pascals.
+    """
+
+    def __init__(
+        self, box: Box, n_modules: int, max_pressure_pa: float, trip_margin_pa: float
+    ) -> None:
+        self.box = box
+        self.n = n_modules
+        self.max_pressure_pa = max_pressure_pa
+        self.monitor = FaultMonitor(
+            n_modules,
+            FaultThresholds(max_pressure_pa=max_pressure_pa, trip_margin_pa=trip_margin_pa),
+        )
+        self.faults: list[DetectedFault] = []
+        self.safe_state: SafeStateResult | None = None
+        #: Box time of the last frame watched, seconds.
+        self.last_t = 0.0
+
+    def watch(self, frame: PressureFrame) -> NDArray[np.float64]:
+        """Judge one frame; return the module pressures or raise :class:`MonitoredFault`."""
+        self.last_t = frame.t_s
+        fault = self.monitor.update(frame, self.box.valves)
+        if fault is not None:
+            raise MonitoredFault(fault)
+        return frame.pressures_pa[: self.n]
+
+    def check_valves(self, read: Callable[[], NDArray[np.float64]]) -> None:
+        """Run :func:`check_valves` through ``read``; the falling check is suspended during the
+        pulses and its reference moved to the pressures they leave."""
+        self.monitor.reference_pa = None
+        check_valves(self.box, self.n, read, clock=lambda: self.last_t)
+        rows = [read() for _ in range(self.monitor.th.filter_length)]
+        self.monitor.set_reference(np.mean(rows, axis=0))
+
+    def fail(
+        self, exc: HardwareFault, t_s: float, on_frame: Callable[[PressureFrame], None]
+    ) -> DetectedFault:
+        """Record the fault behind ``exc``, reach the verified safe state, attach both to ``exc``."""
+        fault = describe_fault(exc, t_s)
+        self.faults.append(fault)
+        suspect = [fault.channel] if fault.channel is not None else []
+        self.safe_state = reach_safe_state(
+            self.box, self.n, self.max_pressure_pa, vent=suspect, on_frame=on_frame
+        )
+        exc.faults = tuple(self.faults)  # type: ignore[attr-defined]
+        exc.safe_state = self.safe_state  # type: ignore[attr-defined]
+        return fault
+
+
+def check_valves(
+    box: Box,
+    n_modules: int,
+    read: Callable[[], NDArray[np.float64]],
+    pulse_s: float = 0.5,
+    min_change_pa: float = 40.0,
+    clock: Callable[[], float] = lambda: math.nan,
+) -> None:
+    """Pulse every module's deflation then inflation valve and check the pressure answers.
+
+    Deflates every module for ``pulse_s``, then inflates for ``pulse_s``, then closes; a module
+    whose filtered pressure does not fall (then rise) by ``min_change_pa`` has a valve that does
+    not open (stuck closed, or no supply) and raises :class:`MonitoredFault`. ``read`` reads one
+    frame (the caller's, so that every frame passes its monitor) and returns the module
+    pressures; ``clock`` gives the box time of the last frame (for the fault's time stamp).
+    """
+
+    def mean_of(n: int) -> tuple[float, NDArray[np.float64]]:
+        return clock(), np.mean([read() for _ in range(n)], axis=0)
+
+    for cmd, sign, what in (
+        (ValveCommand.DEFLATE, -1.0, "deflation"),
+        (ValveCommand.INFLATE, 1.0, "inflation"),
+    ):
+        _, before = mean_of(5)
+        for ch in range(1, n_modules + 1):
+            box.set_valve(ch, cmd)
+        steps = max(1, round(pulse_s * box.sample_rate_hz) - 5)
+        for _ in range(steps):
+            read()
+        for ch in range(1, n_modules + 1):
+            box.set_valve(ch, ValveCommand.CLOSED)
+        t, after = mean_of(5)
+        dead = sign * (after - before) < min_change_pa
+        if dead.any():
+            k = int(np.argmax(dead))
+            raise MonitoredFault(
+                DetectedFault(
+                    t,
+                    k + 1,
+                    "no_response",
+                    f"channel {k + 1}: {what} valve does not act (pressure changed "
+                    f"{after[k] - before[k]:+.0f} Pa in a {pulse_s:g} s pulse; stuck closed?)",
+                )
+            )

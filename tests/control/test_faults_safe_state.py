@@ -1,0 +1,133 @@
+"""Fault monitoring in every phase and the verified safe state (issue 17)."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from softpad.box import PressureFrame, SimBox, ValveCommand, open_box
+from softpad.cli.main import main
+from softpad.control import FaultMonitor, FaultThresholds, reach_safe_state
+
+MAX = 3000.0
+#: Stated margin of the true pressure over the maximum: sensor offset (3 x 20 Pa rms), noise
+#: (3 x 8 Pa) and one frame of the fastest rise (530 Pa/s at 100 Hz).
+MARGIN_PA = 100.0
+CLOSED = [ValveCommand.CLOSED] * 6
+
+
+def _frame(t: float, p: list[float], supply: float = 10e3) -> PressureFrame:
+    return PressureFrame(t, np.array(p, dtype=float), supply)
+
+
+@pytest.mark.parametrize(
+    ("value", "cause"),
+    [
+        (float("nan"), "sensor_nan"),
+        (-2000.0, "sensor_dropout"),
+        (10e3, "sensor_range"),
+        (2960.0, "over_pressure"),
+    ],
+    ids=["nan", "dropout", "full-scale", "over"],
+)
+def test_monitor_flags_bad_readings_at_once(value: float, cause: str) -> None:
+    mon = FaultMonitor(6)
+    p = [1100.0] * 6
+    p[2] = value
+    f = mon.update(_frame(0.01, p), CLOSED)
+    assert f is not None and f.channel == 3 and f.cause == cause
+
+
+def test_monitor_quiet_on_noise_and_load_steps() -> None:
+    """Thesis-like noise (8 Pa) and drift plus a 400 Pa load step must raise nothing."""
+    rng = np.random.default_rng(0)
+    mon = FaultMonitor(6)
+    mon.set_reference(np.full(6, 1100.0))
+    for i in range(6000):
+        t = (i + 1) * 0.01
+        load = 400.0 if 20 <= t < 40 else 0.0
+        p = 1100.0 + load + rng.normal(0, 8.0, 6) + 3.0 * np.sin(t / 2)
+        assert mon.update(_frame(t, list(p)), CLOSED) is None
+
+
+@pytest.mark.parametrize(
+    ("slope", "cause"), [(-200.0, "falling"), (300.0, "rising")], ids=["leak", "stuck-inflate"]
+)
+def test_monitor_flags_a_sealed_channel_changing_without_command(slope: float, cause: str) -> None:
+    mon = FaultMonitor(6)
+    mon.set_reference(np.full(6, 1100.0))
+    for i in range(1000):
+        t = (i + 1) * 0.01
+        p = [1100.0] * 6
+        p[4] += slope * max(0.0, t - 1.0)
+        f = mon.update(_frame(t, p), CLOSED)
+        if f is not None:
+            assert f.channel == 5 and f.cause == cause
+            assert t - 1.0 < 2.0  # detection delay bound: 3 windows of 0.5 s + filter
+            return
+    pytest.fail("not detected")
+
+
+def test_monitor_flags_supply_loss() -> None:
+    mon = FaultMonitor(6)
+    faults = [mon.update(_frame(i * 0.01, [1100.0] * 6, 0.0), CLOSED) for i in range(1, 12)]
+    assert any(f is not None and f.cause == "supply_loss" for f in faults)
+
+
+def test_bad_thresholds() -> None:
+    from softpad.errors import InputError
+
+    with pytest.raises(InputError, match="rise_pa_s"):
+        FaultThresholds(rise_pa_s=-1.0)
+
+
+def test_safe_state_vents_a_stuck_inflation_valve_and_verifies() -> None:
+    box = SimBox(seed=3, initial_pressure_pa=1100.0)
+    box.inject_fault(
+        __import__("softpad.box", fromlist=["Fault"]).Fault("stuck", 3, 0.0, "inflate")
+    )
+    res = reach_safe_state(box, 6)
+    assert res.verified, res.reason
+    assert box.valves[2] is ValveCommand.DEFLATE
+    assert any("vented channel 3" in s for s in res.tried)
+    peak = 0.0
+    for _ in range(3000):  # 30 s after: stays below the maximum
+        box.read()
+        peak = max(peak, float(box.true_pressures_pa[2]))
+    assert peak <= MAX
+
+
+def test_safe_state_names_a_channel_it_cannot_verify() -> None:
+    box = open_box("sim://?inflated_kpa=1.1&faults=nan:2")
+    res = reach_safe_state(box, 6, timeout_s=3.0)
+    assert not res.verified and res.channel_unsafe == 2
+    assert "no valid reading" in res.reason
+
+
+@pytest.mark.parametrize(
+    ("spec", "channel", "cause"),
+    [
+        ("stuck:3:inflate", 3, "adjust_failed"),
+        ("stuck:3:deflate@12", 3, "falling"),
+        ("supply_loss@12", None, "supply_loss"),
+        ("leak:3:0.5@12", 3, "falling"),
+        ("stuck:3:closed@12", 3, "no_response"),
+        ("stuck:2:inflate@12", 2, "rising"),
+        ("nan:5@8", 5, "sensor_nan"),
+    ],
+    ids=lambda v: str(v),
+)
+def test_run_fault_detected_reported_and_safe(capsys, spec, channel, cause) -> None:
+    code = main(["run", "--box", f"sim://?faults={spec}", "--object", "banana", "--json"])
+    assert code == 3
+    d = json.loads(capsys.readouterr().out)
+    assert d["outcome"] == "fault"
+    assert [(f["channel"], f["cause"]) for f in d["faults"]] == [(channel, cause)]
+    s = d["safe_state"]
+    if cause == "sensor_nan":
+        assert not s["verified"] and s["channel_unsafe"] == channel
+    else:
+        assert s["verified"], s
+        assert max(s["pressures_pa"]) <= MAX
