@@ -23,10 +23,15 @@ ALLOWED: dict[str, set[str]] = {
     "sim": {"layout", "fem"},
     "box": {"sim", "layout", "config"},
     "control": {"box", "layout", "sensing", "planning"},
-    "record": {"box", "layout", "planning"},
+    # record replays the controller's decisions on recordings (ExecutionParams, detectors)
+    "record": {"box", "control", "layout", "planning", "sensing"},
     "harness": {"box", "control", "layout", "sim", "planning", "sensing"},
     "trials": {"box", "control", "harness", "layout", "planning", "record", "sensing", "sim"},
 }
+
+
+def _is_module(name: str) -> bool:
+    return not name.startswith("_") and ((SRC / name).is_dir() or (SRC / f"{name}.py").is_file())
 
 
 def _imports(path: Path) -> set[str]:
@@ -37,11 +42,8 @@ def _imports(path: Path) -> set[str]:
         if isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
             names = [node.module]
             if node.module == "softpad":  # ``from softpad import thesis`` names a module
-                names = [
-                    f"softpad.{a.name}"
-                    for a in node.names
-                    if (SRC / a.name).is_dir() or (SRC / f"{a.name}.py").is_file()
-                ]
+                # only sub-packages and modules count (``SCHEMA_VERSION`` is a constant)
+                names = [f"softpad.{a.name}" for a in node.names if _is_module(a.name)]
         elif isinstance(node, ast.Import):
             names = [a.name for a in node.names]
         found |= {n.split(".")[1] for n in names if n.startswith("softpad.")}

@@ -100,7 +100,7 @@ def test_table_output_is_readable(capsys: pytest.CaptureFixture[str]) -> None:
 
 def test_plot_is_written(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     png = tmp_path / "plan.png"
-    code, _, _ = run(capsys, "plan", "--delta", BANANA, "--plot", str(png))
+    code, _, _ = run(capsys, "plan", "--delta", BANANA, "--png", str(png))
     assert code == 0
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 

@@ -11,7 +11,7 @@ from softpad.cli.main import main
 
 
 def test_run_json_has_the_documented_keys(capsys, tmp_path) -> None:
-    log = tmp_path / "run.npz"
+    log = tmp_path / "run.mcap"
     assert (
         main(
             [
@@ -21,7 +21,7 @@ def test_run_json_has_the_documented_keys(capsys, tmp_path) -> None:
                 "--hold-s",
                 "1",
                 "--json",
-                "--log",
+                "--record",
                 str(log),
                 "--box",
                 "sim://?seed=3",
@@ -40,7 +40,7 @@ def test_run_json_has_the_documented_keys(capsys, tmp_path) -> None:
 
 def test_run_prints_a_timeline_and_plots(capsys, tmp_path) -> None:
     png = tmp_path / "trace.png"
-    assert main(["run", "--object", "banana", "--hold-s", "1", "--plot", str(png)]) == 0
+    assert main(["run", "--object", "banana", "--hold-s", "1", "--png", str(png)]) == 0
     out = capsys.readouterr().out
     for text in (
         "adjusted",
@@ -60,11 +60,11 @@ def test_run_prints_a_timeline_and_plots(capsys, tmp_path) -> None:
         (["run", "--object", "teapot"], "unknown object 'teapot'"),
         (["run", "--box", "serial://x:1"], "unknown box URL scheme 'serial'"),
         (["run", "--box", "sim://?speed=2"], "unknown sim:// option 'speed'"),
-        (["run", "--log", "run.txt"], "--log must name a .npz file"),
+        (["run", "--record", "run.txt"], "recordings are MCAP files ending in .mcap"),
         (["box", "read", "--box", "sim://?rate_hz=-5"], "sample rate"),
         (["box", "read", "--count", "-1"], "--count must be >= 0"),
     ],
-    ids=["object", "scheme", "option", "log", "rate", "count"],
+    ids=["object", "scheme", "option", "record", "rate", "count"],
 )
 def test_errors_are_one_line_and_exit_2(capsys, argv, message) -> None:
     assert main(argv) == 2
@@ -85,12 +85,21 @@ def test_box_read_json(capsys) -> None:
     assert [r["t_s"] for r in rows] == [0.01, 0.02] and len(rows[0]["pressures_kpa"]) == 8
 
 
-def test_failed_run_still_saves_its_log(capsys, tmp_path) -> None:
-    from softpad.record import RunLog
+def test_failed_run_still_saves_its_recording(capsys, tmp_path) -> None:
+    from softpad.record import load_recording
 
-    path = tmp_path / "fault.npz"
-    argv = ["run", "--box", "sim://?seed=1&faults=nan:4@6.5", "--hold-s", "1", "--log", str(path)]
+    path = tmp_path / "fault.mcap"
+    argv = [
+        "run",
+        "--box",
+        "sim://?seed=1&faults=nan:4@6.5",
+        "--hold-s",
+        "1",
+        "--record",
+        str(path),
+    ]
     assert main(argv) == 3  # the hardware-fault code
     assert "channel 4" in capsys.readouterr().err
-    log = RunLog.load(path)
-    assert log.t_s[-1] >= 6.49 and log.events_of("fault")
+    run = load_recording(path)
+    assert run.complete and run.t_s[-1] >= 6.49 and run.events_of("fault")
+    assert run.outcome == "fault"

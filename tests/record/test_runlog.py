@@ -1,12 +1,10 @@
-"""Run log: hook, save/load round trip, CSV, corrupt files, Fig. 6.8-like plot."""
+"""Run log (in-memory recorder): hook, CSV, conversion to a RecordedRun, Fig. 6.8-like plot."""
 
 from __future__ import annotations
 
 import numpy as np
-import pytest
 
 from softpad.box import PressureFrame
-from softpad.errors import InputError
 from softpad.record import RunLog
 
 
@@ -20,40 +18,35 @@ def _log() -> RunLog:
     return log
 
 
-def test_save_load_round_trip(tmp_path) -> None:
-    log = _log()
-    path = log.save(tmp_path / "run.npz")
-    back = RunLog.load(path)
-    np.testing.assert_array_equal(back.t_s, log.t_s)
-    np.testing.assert_array_equal(back.pressures_pa, log.pressures_pa)  # NaN kept
-    assert back.phases == log.phases and back.meta == {"box": "sim://"}
-    assert back.events == [(0.05, "contact", {"modules": [1, 5], "value": 2.5})]
-
-
-def test_phase_spans_and_csv() -> None:
+def test_phase_spans_and_csv_export_with_events(tmp_path) -> None:
     log = _log()
     assert [s[0] for s in log.phase_spans()] == ["adjust", "hold"]
-    csv = log.to_csv().splitlines()
-    assert csv[0].startswith("t_s,phase,p1_kpa") and len(csv) == 21
-    assert ",," in csv[6]  # the NaN reading is an empty field
+    csv = log.to_recorded().to_csv(tmp_path / "run.csv").read_text().splitlines()
+    assert csv[0].startswith("t_s,wall_ns,phase,p1_pa") and csv[0].endswith("event,event_json")
+    assert len(csv) == 1 + 20 + 1  # header, frames, the contact event
+    nan_row = next(line.split(",") for line in csv if line.startswith("0.06,"))
+    assert nan_row[6] == "" and float(nan_row[5]) == 1105.0  # NaN of channel 4: empty field
+    event = next(line for line in csv if ",contact," in line)
+    assert event.startswith("0.05,") and "modules" in event
 
 
-@pytest.mark.parametrize("content", [b"garbage", b""], ids=["garbage", "empty"])
-def test_corrupt_or_missing_log(tmp_path, content: bytes) -> None:
-    bad = tmp_path / "bad.npz"
-    bad.write_bytes(content)
-    with pytest.raises(InputError, match="corrupt"):
-        RunLog.load(bad)
-    with pytest.raises(InputError, match="does not exist"):
-        RunLog.load(tmp_path / "none.npz")
-    with pytest.raises(InputError, match=r"\.npz"):
-        _log().save(tmp_path / "run.json")
+def test_to_recorded_keeps_frames_and_events() -> None:
+    log = _log()
+    run = log.to_recorded()
+    np.testing.assert_array_equal(run.pressures_pa, log.pressures_pa)  # NaN kept
+    assert run.events_of("contact") == [(0.05, {"modules": [1, 5], "value": 2.5})]
 
 
-def test_plot_writes_a_png_with_one_line_per_module(tmp_path) -> None:
+def test_plot_writes_a_png_with_one_line_per_module_and_keeps_the_backend(tmp_path) -> None:
     import matplotlib
 
-    matplotlib.use("Agg")
-    fig = _log().plot(tmp_path / "trace.png", channels=6)
+    backend = matplotlib.get_backend()
+    log = _log()
+    log.meta["layout"] = "2x3"
+    fig = log.plot(tmp_path / "trace.png")
     assert (tmp_path / "trace.png").stat().st_size > 1000
-    assert len(fig.axes[0].lines) >= 6
+    ax = fig.axes[0]
+    labels = ax.get_legend_handles_labels()[1]
+    assert [lb for lb in labels if lb.startswith("module")] == [f"module {k}" for k in range(1, 7)]
+    assert ax.get_xlabel() == "box time (s)" and ax.get_ylabel() == "gauge pressure (kPa)"
+    assert matplotlib.get_backend() == backend

@@ -21,9 +21,11 @@ def register_backend(scheme: str, factory: Callable[[str, dict[str, str]], Box])
 
 
 def backends() -> tuple[str, ...]:
-    """Registered URL schemes."""
+    """Registered URL schemes (and those offered through :data:`ENTRY_POINT_GROUP`)."""
+    from importlib.metadata import entry_points
+
     _ensure_builtin()
-    return tuple(sorted(_BACKENDS))
+    return tuple(sorted(set(_BACKENDS) | {ep.name for ep in entry_points(group=ENTRY_POINT_GROUP)}))
 
 
 def _ensure_builtin() -> None:
@@ -35,6 +37,23 @@ def _ensure_builtin() -> None:
         from softpad.box._zenoh import open_zenoh_url
 
         register_backend("zenoh", open_zenoh_url)
+
+
+#: Entry-point group through which installed packages offer box back-ends by URL scheme (the
+#: ``replay://`` back-end of ``softpad.record`` comes this way: the box layer imports nothing
+#: above it).
+ENTRY_POINT_GROUP = "softpad.box_backends"
+
+
+def _from_entry_points(scheme: str) -> Callable[[str, dict[str, str]], Box] | None:
+    from importlib.metadata import entry_points
+
+    for ep in entry_points(group=ENTRY_POINT_GROUP):
+        if ep.name.lower() == scheme:
+            factory: Callable[[str, dict[str, str]], Box] = ep.load()
+            register_backend(scheme, factory)
+            return factory
+    return None
 
 
 def parse_url(url: str) -> tuple[str, str, dict[str, str]]:
@@ -62,7 +81,9 @@ def open_box(url: str = DEFAULT_URL) -> Box:
     url
         ``sim://`` (the simulated box, see :func:`softpad.box.open_sim_url` for its options)
         or ``zenoh://host:port[/prefix]`` (a box served by ``softpad box serve``,
-        :class:`softpad.box.ZenohBox`).
+        :class:`softpad.box.ZenohBox`)
+        or ``replay://run.mcap[?speed=fast|recorded|FACTOR]`` (a recording played back,
+        :class:`softpad.record.ReplayBox`).
 
     Raises
     ------
@@ -71,7 +92,7 @@ def open_box(url: str = DEFAULT_URL) -> Box:
     """
     _ensure_builtin()
     scheme, location, options = parse_url(url)
-    factory = _BACKENDS.get(scheme)
+    factory = _BACKENDS.get(scheme) or _from_entry_points(scheme)
     if factory is None:
         raise InputError(
             f"unknown box URL scheme {scheme!r} in {url!r}; available: {', '.join(backends())}"

@@ -1,4 +1,5 @@
-"""``softpad box read|monitor|stats|serve|inflate``: frames, the box daemon, inflation."""
+"""``softpad box read|monitor|stats|serve|inflate``: frames, live views, the box daemon,
+inflation."""
 
 from __future__ import annotations
 
@@ -34,6 +35,23 @@ def _box_arg(p: argparse.ArgumentParser, default: str = "sim://") -> None:
     p.add_argument("--box", default=default, metavar="URL", help=f"box URL (default {default})")
 
 
+_MONITOR_EPILOG = """examples:
+  softpad box monitor --foxglove                         the simulated box, ws://127.0.0.1:8765
+  softpad box monitor --foxglove --port 0 --box 'sim://?object=banana&inflated_kpa=1.1'
+  then in Foxglove: Open connection -> Foxglove WebSocket -> ws://127.0.0.1:8765
+  (docs/foxglove-layout.json: a pressure plot per module and the pad picture)
+
+Serves /softpad/module_K/pressure (Pa), /softpad/supply/pressure and /softpad/pad (3D picture)
+to any number of viewers, on 127.0.0.1 only, at the box's pace (never faster than real time).
+Ctrl-C stops. 'softpad run --foxglove PORT' serves a whole run (plans, contact, robot) live.
+"""
+
+_INFLATE_EPILOG = """examples:
+  softpad box inflate                                 the simulated box, to p0
+  softpad box inflate --box zenoh://127.0.0.1:7447 --json
+"""
+
+
 def register(sub: Any) -> None:
     p = sub.add_parser(
         "box",
@@ -58,11 +76,18 @@ def register(sub: Any) -> None:
     r.set_defaults(handler=read)
     m = bsub.add_parser(
         "monitor",
-        help="show live values of a box on one refreshing line (read-only)",
-        description="Live pressures (kPa) and the frame rate; a monitor never commands valves.",
+        help="watch a box live: one refreshing line, or Foxglove (--foxglove; read-only)",
+        description=(
+            "Live pressures (kPa), frame rate and lost frames on one line; with --foxglove the "
+            "frames are served to Foxglove viewers. A monitor never commands valves."
+        ),
+        epilog=_MONITOR_EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    _box_arg(m, "zenoh://127.0.0.1:7447")
-    m.add_argument("--count", type=int, default=0, help="frames, 0 until Ctrl-C (default 0)")
+    m.add_argument("--box", default="sim://", metavar="URL", help="box URL (default sim://)")
+    m.add_argument("--foxglove", action="store_true", help="serve to Foxglove (WebSocket)")
+    m.add_argument("--port", type=int, default=8765, help="port on 127.0.0.1 (0: a free one)")
+    m.add_argument("--count", type=int, default=0, help="frames, 0 for endless (default 0)")
     m.set_defaults(handler=monitor)
     st = bsub.add_parser(
         "stats",
@@ -176,6 +201,12 @@ def monitor(args: argparse.Namespace) -> int:
     import time
 
     from softpad.box import open_box
+    from softpad.errors import InputError
+
+    if args.foxglove:
+        return _monitor_foxglove(args)
+    if args.count < 0:
+        raise InputError(f"--count must be >= 0 (0: endless), got {args.count}")
 
     with open_box(args.box) as box:
         i, t0, gaps, last = 0, time.monotonic(), 0, None
@@ -326,4 +357,38 @@ def inflate(args: argparse.Namespace) -> int:
             f"adjusted at t = {res.adjusted_at_s:.2f} s; reference (kPa) saved at "
             f"t = {res.reference_at_s:.2f} s: {ref}"
         )
+    return 0
+
+
+def _monitor_foxglove(args: argparse.Namespace) -> int:
+    """Read frames from the box and publish them to Foxglove, paced to real time."""
+    import sys
+    import time
+
+    from softpad.box import open_box
+    from softpad.errors import InputError
+    from softpad.record import FoxgloveLive
+
+    if not 0 <= args.port <= 65535:
+        raise InputError(f"--port must be within 0..65535, got {args.port}")
+    if args.count < 0:
+        raise InputError(f"--count must be >= 0 (0: endless), got {args.count}")
+    with open_box(args.box) as box, FoxgloveLive(args.port) as live:
+        print(
+            f"foxglove: {live.url} (port {live.port}); serving {args.box}; Ctrl-C stops", flush=True
+        )
+        wall0 = t0 = None
+        i = 0
+        try:
+            while args.count == 0 or i < args.count:
+                f = box.read()
+                if wall0 is None or t0 is None:
+                    wall0, t0 = time.monotonic(), f.t_s
+                delay = wall0 + (f.t_s - t0) - time.monotonic()
+                if delay > 0:  # a simulated box runs faster than real time: keep pace
+                    time.sleep(delay)
+                live.frame(f, "monitor")
+                i += 1
+        except KeyboardInterrupt:
+            print("softpad box monitor: stopped", file=sys.stderr)
     return 0

@@ -7,6 +7,8 @@ import math
 from pathlib import Path
 from typing import Any
 
+from softpad.cli._record import add_record_option, check_trial_recordings
+
 
 def register(sub: Any) -> None:
     p = sub.add_parser(
@@ -26,6 +28,7 @@ def register(sub: Any) -> None:
     p.add_argument("--seed", type=int, default=0, help="experiment seed (default 0)")
     p.add_argument("--workers", type=int, default=None, help="worker processes (default: CPUs)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    add_record_option(p, per_trial=True)
     p.set_defaults(handler=run)
 
 
@@ -38,6 +41,7 @@ def run(args: argparse.Namespace) -> int:
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     specs = [get_object(n) for n in object_names()]
+    check_trial_recordings(args.record, specs, args.trials, args.force)
     # the planner on the thesis's reference increments first (instant), then the experiment
     _reference_plans(out)
     # the thesis's Fig. 6.8 shows an object on modules 1 and 4: object 4 lies there
@@ -50,6 +54,7 @@ def run(args: argparse.Namespace) -> int:
         seed=args.seed,
         workers=args.workers,
         trace_object=trace_object,
+        record=args.record,
     )
     print(exp.to_text())
     paths = write_report(

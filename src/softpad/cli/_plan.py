@@ -68,7 +68,7 @@ def register(sub: Any) -> None:
     )
     p.add_argument("--json", action="store_true", help="print the plans as JSON")
     p.add_argument(
-        "--plot", metavar="FILE.png", help="draw the pad, increments, PCOM, COG and fingertips"
+        "--png", metavar="FILE.png", help="draw the pad, increments, PCOM, COG and fingertips"
     )
     p.set_defaults(handler=run)
 
@@ -179,8 +179,8 @@ def run(args: argparse.Namespace) -> int:
         print(json.dumps({"objects": [p.to_dict(layout) for p in plans]}))
     else:
         print(format_plans(delta, plans, layout, params.object_threshold_pa))
-    if args.plot:
-        _save_plot(args.plot, delta, plans, layout)
+    if args.png:
+        _save_plot(args.png, delta, plans, layout)
     return 0
 
 

@@ -10,6 +10,7 @@ from typing import Any
 
 from softpad import SCHEMA_VERSION, thesis
 from softpad.cli._args import finite_float
+from softpad.cli._record import add_record_option, open_recorder, run_metadata
 from softpad.errors import HardwareFault
 
 #: Exit code of a run ended by a hardware or link fault (after the verified safe state).
@@ -17,7 +18,7 @@ EXIT_HARDWARE = 3
 
 _EPILOG = """examples:
   softpad run --object banana
-  softpad run --object object-4 --plot run.png --log run.npz
+  softpad run --object object-4 --png run.png --record run.mcap
   softpad run --object object-1 --object object-4       two objects, grasped one after the other
   softpad run --box 'sim://?seed=3&rate_hz=200' --object charger --json
 
@@ -63,21 +64,26 @@ def register(sub: Any) -> None:
         help="installation file: thresholds (p0, t_adj, t_o, t_g, window, maximum) and gripper",
     )
     p.add_argument("--json", action="store_true", help="print the timeline as one JSON object")
-    p.add_argument("--plot", metavar="FILE.png", help="draw the pressure traces with the phases")
-    p.add_argument("--log", metavar="FILE.npz", help="save every frame and event")
+    p.add_argument("--png", metavar="FILE.png", help="draw the pressure traces with the phases")
+    add_record_option(p)
+    p.add_argument(
+        "--foxglove",
+        type=int,
+        metavar="PORT",
+        help="serve the run live to Foxglove on ws://127.0.0.1:PORT (0: a free port)",
+    )
     p.set_defaults(handler=run)
 
 
 def run(args: argparse.Namespace) -> int:
+    from softpad.box import open_box
     from softpad.control import ExecutionParams
     from softpad.harness import resolve_objects, run_simulated
-    from softpad.record import RunLog
+    from softpad.record import RunLog, Tee, check_output
 
     specs = resolve_objects(args.object)  # unknown names fail before anything starts
-    if args.log and not str(args.log).endswith(".npz"):
-        from softpad.errors import InputError
-
-        raise InputError(f"--log must name a .npz file, got {args.log!r}")
+    if args.record:
+        check_output(args.record, args.force)
     names = [s.name for s in specs]
     log = RunLog({"box": args.box, "objects": names})
     params = ExecutionParams(hold_s=args.hold_s)
@@ -86,19 +92,22 @@ def run(args: argparse.Namespace) -> int:
     if args.config:
         params, parts, mounting = _from_installation(args.config, params)
         gripper = gripper or mounting
-    try:
-        result = run_simulated(names, args.box, params, log, gripper=gripper, **parts)
-    except HardwareFault as exc:
-        return _report_fault(args, log, exc)
-    finally:
-        # whatever happened, what was logged is kept
-        if args.log:
-            log.save(args.log)
-        if args.plot and len(log):
-            import matplotlib.pyplot as plt
-
-            fig = log.plot(args.plot, title=f"softpad run: {', '.join(names)}")
-            plt.close(fig)
+    with open_box(args.box) as box:
+        meta = run_metadata("run", box, args.box, names, params, gripper=gripper)
+        recorder = open_recorder(args.record, box, meta, args.force)
+        live = _live(args.foxglove, box)
+        try:
+            tee = Tee(log, recorder, live)
+            result = run_simulated(names, box, params, tee, gripper=gripper, **parts)
+        except HardwareFault as exc:
+            return _report_fault(args, log, exc)
+        finally:
+            # whatever happened, what was recorded is kept
+            for r in (recorder, live):
+                if r is not None:
+                    r.close()
+            if args.png and len(log):
+                log.plot(args.png, title=f"softpad run: {', '.join(names)}")
     d = {"schema_version": SCHEMA_VERSION, **result.to_dict()}
     if args.json:
         print(json.dumps(d))
@@ -107,8 +116,10 @@ def run(args: argparse.Namespace) -> int:
     for line in _timeline(log, result):
         print("  " + line)
     print(f"outcome: {result.outcome}")
-    if args.plot:
-        print(f"pressure traces: {args.plot}")
+    if args.png:
+        print(f"pressure traces: {args.png}")
+    if args.record:
+        print(f"recording: {args.record}")
     return 0
 
 
@@ -136,6 +147,21 @@ def _from_installation(path: str, params: Any) -> tuple[Any, dict[str, Any], str
     )
     parts = {"object_detector": ThesisObjectDetector(threshold_pa=th.object_threshold_pa)}
     return params, parts, inst.gripper_mounting
+
+
+def _live(port: int | None, box: Any) -> Any:
+    if port is None:
+        return None
+    from softpad.box import SimBox
+    from softpad.errors import InputError
+    from softpad.record import FoxgloveLive
+
+    if not 0 <= port <= 65535:
+        raise InputError(f"--foxglove port must be within 0..65535, got {port}")
+    robot = box.world.gripper_state if isinstance(box, SimBox) else None
+    live = FoxgloveLive(port, robot_state=robot)
+    print(f"foxglove: {live.url} (port {live.port})", flush=True)
+    return live
 
 
 def _report_fault(args: argparse.Namespace, log: Any, exc: Exception) -> int:

@@ -8,6 +8,7 @@ import sys
 from typing import Any
 
 from softpad import thesis
+from softpad.cli._record import add_record_option, check_trial_recordings
 from softpad.errors import InputError
 
 _EPILOG = """examples:
@@ -49,6 +50,7 @@ def register(sub: Any) -> None:
     )
     p.add_argument("--json", action="store_true", help="print the results as JSON")
     p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
+    add_record_option(p, per_trial=True)
     p.set_defaults(handler=run)
 
 
@@ -114,6 +116,7 @@ def run(args: argparse.Namespace) -> int:
     check_counts(args.trials, args.workers)
     if not math.isfinite(args.hold_s) or not 0 <= args.hold_s <= 600:
         raise InputError(f"--hold-s must be from 0 to 600 s, got {args.hold_s!r}")
+    check_trial_recordings(args.record, specs, args.trials, args.force)
     exp, _ = run_with_progress(
         specs,
         args.trials,
@@ -121,6 +124,7 @@ def run(args: argparse.Namespace) -> int:
         seed=args.seed,
         workers=args.workers,
         config=TrialConfig(trial_execution_params(hold_s=args.hold_s)),
+        record=args.record,
     )
     if args.json:
         print(json.dumps(exp.to_dict(), indent=1))

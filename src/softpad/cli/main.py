@@ -26,6 +26,8 @@ _COMMAND_MODULES = (
     "_compare",
     "_fem",
     "_demo",
+    "_replay",
+    "_log",
     "_bench",
 )
 

@@ -1,8 +1,49 @@
-"""Records of runs: every frame, event and plan, saved/loaded, plotted like Fig. 6.8.
+"""Records of runs: MCAP recording (ROS 2 message types), reading back, replay, log tools, plots.
 
-:class:`RunLog` is the recorder hook of :class:`softpad.control.GraspExecution`.
+:class:`McapRecorder` is the recorder of :class:`softpad.control.GraspExecution` that writes a
+rosbag2-compatible MCAP file (crash-safe, flushed every 100 ms); :func:`load_recording` reads it
+back as a :class:`RecordedRun` (summary, plots, CSV/Parquet export); :func:`recover` repairs a
+file cut short by a crash; ``replay://run.mcap`` plays it back as a box (:class:`ReplayBox`);
+:func:`compare_replay` runs today's sensing and planning on it. :class:`RunLog` is the
+in-memory recorder, :class:`Tee` sends a run to several recorders.
 """
 
-from softpad.record._log import LOG_FORMAT, RunLog
+from softpad.record._live import FoxgloveLive
+from softpad.record._log import RunLog
+from softpad.record._mcap import FLUSH_PERIOD_S, McapRecorder, check_output
+from softpad.record._read import RecordedRun, load_recording, recover
+from softpad.record._replay import ReplayBox, compare_replay, open_replay_url
+from softpad.record._schemas import (
+    EVENT_TOPIC,
+    OWN_TYPES,
+    PLAN_TOPIC,
+    RECORDING_FORMAT,
+    ROBOT_POSE_TOPIC,
+    SUPPLY_TOPIC,
+    VALVE_TOPIC,
+    module_topic,
+)
+from softpad.record._tee import Tee
 
-__all__ = ["LOG_FORMAT", "RunLog"]
+__all__ = [
+    "EVENT_TOPIC",
+    "FLUSH_PERIOD_S",
+    "OWN_TYPES",
+    "PLAN_TOPIC",
+    "RECORDING_FORMAT",
+    "ROBOT_POSE_TOPIC",
+    "SUPPLY_TOPIC",
+    "VALVE_TOPIC",
+    "FoxgloveLive",
+    "McapRecorder",
+    "RecordedRun",
+    "ReplayBox",
+    "RunLog",
+    "Tee",
+    "check_output",
+    "compare_replay",
+    "load_recording",
+    "module_topic",
+    "open_replay_url",
+    "recover",
+]

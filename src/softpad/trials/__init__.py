@@ -19,6 +19,7 @@ from softpad.trials._runner import (
     perturbed_placement,
     run_experiment,
     run_trial,
+    trial_recording_path,
     trial_seed,
 )
 
@@ -36,6 +37,7 @@ __all__ = [
     "run_experiment",
     "run_trial",
     "trial_execution_params",
+    "trial_recording_path",
     "trial_seed",
     "wilson_interval",
 ]

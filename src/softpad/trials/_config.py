@@ -39,6 +39,9 @@ class TrialConfig:
         Sensor noise on (the box's defaults, like Fig. 6.8) or off.
     record_trace
         Keep every frame and event in a :class:`softpad.record.RunLog`.
+    record_path
+        Record the trial as MCAP into this file (:class:`softpad.record.McapRecorder`;
+        overwritten: the caller checks it first, see :func:`softpad.trials.trial_recording_path`).
     planner
         Planner by name (:data:`softpad.planning.PLANNERS`), given the trial's gripper.
     detector
@@ -53,6 +56,7 @@ class TrialConfig:
     sample_rate_hz: float = 100.0
     noise: bool = True
     record_trace: bool = False
+    record_path: str | None = None
     planner: str = "thesis"
     detector: str = "thesis"
 

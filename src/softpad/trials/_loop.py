@@ -10,6 +10,7 @@ was between the jaws when they closed.
 
 from __future__ import annotations
 
+import contextlib
 from typing import Any
 
 import numpy as np
@@ -163,12 +164,13 @@ def execute_trial(
     :class:`softpad.record.RunLog` when ``config.record_trace``."""
     from softpad.control import ExecutionError, GraspExecution
     from softpad.errors import HardwareFault
-    from softpad.record import RunLog
+    from softpad.record import RunLog, Tee
     from softpad.sensing import make_contact_detector
 
     t = _Trial(spec, placement, seed, config, opening_m, mounting)
     log = RunLog({"object": spec.name, "seed": seed}) if config.record_trace else None
-    watcher = _TrialWatcher(t, log)
+    mcap = _trial_recorder(t, seed)
+    watcher = _TrialWatcher(t, Tee(log, mcap) if mcap is not None else log)
     execution = GraspExecution(
         t.box,
         t.robot,
@@ -182,7 +184,7 @@ def execute_trial(
     base: dict[str, Any] = dict(
         object=spec.name, trial=0, seed=seed, placement=placement, mounting=t.gripper.mounting
     )
-    with t.box:
+    with t.box, mcap if mcap is not None else contextlib.nullcontext():
         try:
             execution.run()
         except ExecutionError as exc:
@@ -274,3 +276,18 @@ def _cause(
             )
         return "object_outside_jaws", "the jaws closed without the object between them"
     return "slipped_during_hold", f"squeezed, then lost ({outcome})"
+
+
+def _trial_recorder(t: _Trial, seed: int) -> Any:
+    """The trial's MCAP recorder when ``config.record_path`` (gripper pose from the world)."""
+    if t.config.record_path is None:
+        return None
+    from dataclasses import asdict
+
+    from softpad.record import McapRecorder
+
+    meta: dict[str, Any] = {"command": "trials", "objects": [t.spec.name], "seed": seed}
+    meta.update(layout=t.world.layout.name, placement=list(t.placement), box="sim (MuJoCo)")
+    meta.update(params=asdict(t.config.execution), mounting=t.gripper.mounting)
+    meta.update(planner=t.config.planner, contact_detector=t.config.detector)
+    return McapRecorder(t.config.record_path, meta, force=True, robot_state=t.world.gripper_state)

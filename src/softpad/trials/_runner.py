@@ -20,6 +20,7 @@ import zlib
 from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import replace
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -27,6 +28,13 @@ import numpy as np
 from softpad.errors import InputError
 from softpad.trials._config import TrialConfig
 from softpad.trials._records import ExperimentResult, TrialResult
+
+
+def trial_recording_path(base: str | Path, object_name: str, trial: int) -> Path:
+    """File of one trial's recording for ``--record BASE.mcap``: ``BASE-OBJECT-tK.mcap``
+    (K from 1)."""
+    b = Path(base)
+    return b.with_name(f"{b.stem}-{object_name}-t{trial + 1}{b.suffix}")
 
 
 def trial_seed(seed: int, object_name: str, trial: int) -> int:
@@ -116,6 +124,7 @@ def run_experiment(
     config: TrialConfig | None = None,
     on_trial: Callable[[TrialResult], None] | None = None,
     trace_object: str | None = None,
+    record: str | Path | None = None,
 ) -> tuple[ExperimentResult, Any | None]:
     """Run ``trials`` trials of every object, in parallel processes.
 
@@ -136,6 +145,8 @@ def run_experiment(
         Called with every finished trial (progress bars, logs), in completion order.
     trace_object
         Record the pressure trace of trial 0 of this object.
+    record
+        Record every trial as MCAP, into :func:`trial_recording_path` files of this base name.
 
     Returns
     -------
@@ -150,6 +161,8 @@ def run_experiment(
     for spec in specs:
         for k in range(trials):
             cfg = replace(config, record_trace=(spec.name == trace_object and k == 0))
+            if record is not None:
+                cfg = replace(cfg, record_path=str(trial_recording_path(record, spec.name, k)))
             tasks.append((spec, k, trial_seed(seed, spec.name, k), cfg))
     n_cpu = (
         len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1

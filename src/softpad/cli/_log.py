@@ -1,0 +1,124 @@
+"""``softpad log info|plot|export|recover FILE.mcap``: look into a recording."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from typing import Any
+
+_EPILOG = """examples:
+  softpad log info run.mcap                 topics, duration, objects, plan, contact, outcome
+  softpad log info run.mcap --json
+  softpad log plot run.mcap --png traces.png --pad-png pad.png
+  softpad log export run.mcap --out run.csv (or run.parquet, needs pyarrow)
+  softpad log recover crashed.mcap --out fixed.mcap
+
+A recording cut short by a crash (kill -9, power loss) is read up to its last flushed chunk;
+'recover' rewrites it as a complete, indexed MCAP for other tools.
+"""
+
+
+def register(sub: Any) -> None:
+    p = sub.add_parser(
+        "log",
+        help="summarise, plot, export or recover a recording (.mcap)",
+        description="Look into a recording written by --record.",
+        epilog=_EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    actions = p.add_subparsers(dest="action", metavar="ACTION", required=True)
+    info = actions.add_parser("info", help="topics, duration, objects, plans, contact, outcome")
+    info.add_argument("file", metavar="FILE.mcap")
+    info.add_argument("--json", action="store_true", help="print the summary as JSON")
+    plot = actions.add_parser("plot", help="pressure traces with phases; the pad with the grasp")
+    plot.add_argument("file", metavar="FILE.mcap")
+    plot.add_argument("--png", metavar="FILE", required=True, help="pressure traces picture")
+    plot.add_argument("--pad-png", metavar="FILE", help="pad picture with objects and grasps")
+    export = actions.add_parser("export", help="frames and events as CSV or Parquet")
+    export.add_argument("file", metavar="FILE.mcap")
+    export.add_argument("--out", metavar="FILE", required=True, help="FILE.csv or FILE.parquet")
+    recover = actions.add_parser("recover", help="rewrite a crash-truncated recording")
+    recover.add_argument("file", metavar="FILE.mcap")
+    recover.add_argument("--out", metavar="FILE.mcap", help="default: FILE.recovered.mcap")
+    recover.add_argument("--force", action="store_true", help="overwrite --out")
+    p.set_defaults(handler=run)
+
+
+def _topics(path: str) -> list[tuple[str, str, int]]:
+    from mcap.reader import make_reader
+
+    with open(path, "rb") as f:
+        summary = make_reader(f).get_summary()
+    if summary is None or summary.statistics is None:
+        return []
+    counts = summary.statistics.channel_message_counts
+    return sorted(
+        (ch.topic, summary.schemas[ch.schema_id].name, counts.get(cid, 0))
+        for cid, ch in summary.channels.items()
+    )
+
+
+def _info(run: Any, as_json: bool) -> None:
+    s = run.summary()
+    s["topics"] = [
+        {"topic": t, "type": ty, "messages": n}
+        for t, ty, n in (_topics(s["path"]) if run.complete else [])
+    ]
+    if as_json:
+        print(json.dumps(s))
+        return
+    print(
+        f"{s['path']}: {s['frames']} frames of {s['channels']} channels over {s['duration_s']:.2f} s"
+    )
+    print(
+        f"  recorded {s['wall_clock_start']} by softpad {s['software_version']}, {s['sample_rate_hz']:g} Hz"
+    )
+    if not s["complete"]:
+        print(
+            "  cut short (crash?): read up to the last flushed chunk; 'softpad log recover' fixes it"
+        )
+    print(f"  objects: {', '.join(s['objects'] or []) or '-'}")
+    for o in s["plans"]:
+        print(
+            f"  plan: modules {','.join(map(str, o['modules']))}  COG ({o['cog'][0]:.2f}, {o['cog'][1]:.2f})  theta {o['theta']:+.3f} rad  [{o['rule']}]"
+        )
+    for c in s["contact"]:
+        print(f"  contact: t = {c['t_s']:.3f} s on module(s) {', '.join(map(str, c['modules']))}")
+    print(
+        f"  events {s['events']}, valve commands {s['valve_commands']}, robot poses {s['robot_poses']}"
+    )
+    print(f"  outcome: {s['outcome']}")
+    for t in s["topics"]:
+        print(f"  {t['topic']:32s} {t['type']:36s} {t['messages']}")
+
+
+def run(args: argparse.Namespace) -> int:
+    from softpad.errors import InputError
+    from softpad.record import load_recording, recover
+
+    if args.action == "recover":
+        out = recover(args.file, args.out, args.force)
+        print(f"recovered {len(load_recording(out))} frames into {out}")
+        return 0
+    rec = load_recording(args.file)
+    if not rec.complete:
+        print(
+            f"note: {args.file} was cut short; read up to its last flushed chunk", file=sys.stderr
+        )
+    if args.action == "info":
+        _info(rec, args.json)
+    elif args.action == "plot":
+        rec.plot(args.png)
+        if args.pad_png:
+            rec.plot_pad(args.pad_png)
+        print(f"pressure traces: {args.png}" + (f"; pad: {args.pad_png}" if args.pad_png else ""))
+    else:
+        if args.out.endswith(".csv"):
+            rec.to_csv(args.out)
+        elif args.out.endswith(".parquet"):
+            rec.to_parquet(args.out)
+        else:
+            raise InputError(f"--out must end in .csv or .parquet, got {args.out!r}")
+        print(f"{len(rec)} frames and {len(rec.events)} events written to {args.out}")
+    return 0

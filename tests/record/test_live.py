@@ -1,0 +1,74 @@
+"""``softpad box monitor --foxglove``: a websocket client receives the module pressures."""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import struct
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+pytest.importorskip("foxglove")
+websockets = pytest.importorskip("websockets")
+
+#: Subprotocol of the Foxglove WebSocket protocol.
+SUBPROTOCOL = "foxglove.sdk.v1"
+
+
+async def _receive_pressures(url: str, topic: str, n: int) -> tuple[dict, list[dict]]:
+    from websockets.asyncio.client import connect
+
+    async with connect(url, subprotocols=[SUBPROTOCOL], open_timeout=30) as ws:
+        channels: dict[str, dict] = {}
+        info: dict = {}
+        while topic not in channels:
+            msg = json.loads(await asyncio.wait_for(ws.recv(), 30))
+            if msg["op"] == "serverInfo":
+                info = msg
+            elif msg["op"] == "advertise":
+                channels.update({c["topic"]: c for c in msg["channels"]})
+        sub = {"op": "subscribe", "subscriptions": [{"id": 7, "channelId": channels[topic]["id"]}]}
+        await ws.send(json.dumps(sub))
+        received = []
+        while len(received) < n:
+            data = await asyncio.wait_for(ws.recv(), 30)
+            if isinstance(data, bytes) and data[0] == 0x01:  # message data
+                sub_id, _log_time = struct.unpack_from("<IQ", data, 1)
+                assert sub_id == 7
+                received.append(json.loads(data[13:]))
+        return info, received
+
+
+def test_monitor_serves_module_pressures_to_a_websocket_client() -> None:
+    url_box = "sim://?inflated_kpa=1.1&noise=0"
+    entry = "import sys; from softpad.cli.main import main; sys.exit(main(sys.argv[1:]))"
+    argv = ["-c", entry, "box", "monitor", "--foxglove", "--port", "0"]
+    child = subprocess.Popen(
+        [sys.executable, *argv, "--box", url_box], stdout=subprocess.PIPE, text=True
+    )
+    try:
+        assert child.stdout is not None
+        line = child.stdout.readline()
+        assert line.startswith("foxglove: ws://127.0.0.1:"), line
+        url = line.split()[1]
+        info, msgs = asyncio.run(_receive_pressures(url, "/softpad/module_3/pressure", 5))
+    finally:
+        child.terminate()
+        child.wait(timeout=30)
+    assert info["name"] == "softpad"
+    assert [m["header"]["frame_id"] for m in msgs] == ["softpad_module_3"] * 5
+    # inflated to 1.1 kPa without noise: every reading is p0 within 1 Pa
+    for m in msgs:
+        assert m["fluid_pressure"] == pytest.approx(1100.0, abs=1.0)
+    stamps = [m["header"]["stamp"]["sec"] + 1e-9 * m["header"]["stamp"]["nsec"] for m in msgs]
+    assert np.all(np.diff(stamps) > 0)
+
+
+def test_monitor_needs_a_viewer(capsys) -> None:
+    from softpad.cli.main import main
+
+    assert main(["box", "monitor"]) == 2
+    assert "add --foxglove" in capsys.readouterr().err

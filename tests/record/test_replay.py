@@ -1,0 +1,105 @@
+"""Replay: the regression recordings in tests/data/, the replay:// box, ``softpad replay``."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from softpad.box import ConnectionLost, check_conformance, open_box
+from softpad.cli.main import main
+from softpad.errors import InputError
+from softpad.record import ReplayBox, compare_replay, load_recording
+
+DATA = Path(__file__).resolve().parents[1] / "data"
+RECORDINGS = sorted(DATA.glob("*.mcap"))
+
+
+def test_there_are_regression_recordings() -> None:
+    assert len(RECORDINGS) >= 3
+
+
+@pytest.mark.parametrize("path", RECORDINGS, ids=[p.stem for p in RECORDINGS])
+def test_replay_reproduces_plan_and_contact_sample(path: Path) -> None:
+    d = compare_replay(path)
+    assert d["plan"]["recorded"], "a regression case must hold a plan"
+    assert d["plan"]["same"], (d["plan"]["recorded"], d["plan"]["now"])
+    assert d["contacts"] and all(c["same"] for c in d["contacts"]), d["contacts"]
+    assert d["same"]
+
+
+def test_replay_notices_a_change_of_the_contact_threshold() -> None:
+    run = load_recording(DATA / "banana.mcap")
+    run.metadata["params"]["contact_threshold_pa"] = (
+        3 * run.metadata["params"]["contact_threshold_pa"]
+    )
+    d = compare_replay(run)
+    assert d["plan"]["same"] and not d["same"]
+    c = d["contacts"][0]
+    assert c["now"] is None or c["now"]["t_s"] > c["recorded"]["t_s"]
+
+
+def test_replay_box_passes_conformance() -> None:
+    check_conformance(open_box(f"replay://{DATA / 'banana.mcap'}"))
+
+
+def test_replay_box_plays_the_recorded_frames_and_keeps_valve_commands() -> None:
+    run = load_recording(DATA / "cylinder.mcap")
+    with open_box(f"replay://{DATA / 'cylinder.mcap'}?speed=recorded") as box:
+        assert isinstance(box, ReplayBox) and box.speed == 1.0
+        assert box.channels == 6 and box.sample_rate_hz == pytest.approx(100.0)
+        frames = box.read_many(3)
+        box.set_valve(2, "inflate")
+        assert box.commands == [(frames[-1].t_s, 2, box.valves[1])]
+    np.testing.assert_array_equal([f.t_s for f in frames], run.t_s[:3])
+    np.testing.assert_array_equal(frames[2].pressures_pa, run.pressures_pa[2])
+    fast = ReplayBox(run)
+    fast.read_many(len(run))
+    with pytest.raises(ConnectionLost, match="ended"):
+        fast.read()
+
+
+@pytest.mark.parametrize(
+    ("url", "message"),
+    [
+        ("replay://", "needs a file"),
+        ("replay://nowhere.mcap", "does not exist"),
+        (f"replay://{DATA / 'banana.mcap'}?speed=-1", "factor must be > 0"),
+        (f"replay://{DATA / 'banana.mcap'}?speed=warp", "'fast', 'recorded'"),
+        (f"replay://{DATA / 'banana.mcap'}?loop=1", "unknown replay:// option 'loop'"),
+    ],
+    ids=["empty", "missing", "negative", "word", "option"],
+)
+def test_bad_replay_urls(url: str, message: str) -> None:
+    with pytest.raises(InputError, match=message):
+        open_box(url)
+
+
+def test_replay_cli_json_and_text(capsys) -> None:
+    path = DATA / "object-1_object-4.mcap"
+    assert main(["replay", str(path), "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert len(d["plan"]["now"]) == 2 and len(d["contacts"]) == 2
+    assert main(["replay", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert "plan: same" in out and "verdict: today's code decides what was recorded" in out
+
+
+def test_foxglove_layout_plots_the_recorded_topics() -> None:
+    """docs/foxglove-layout.json plots topics that a recording (and the live view) has."""
+    from softpad.record._live import PAD_TOPIC
+
+    layout = json.loads((DATA.parents[1] / "docs" / "foxglove-layout.json").read_text())
+    run_topics = {f"/softpad/module_{k}/pressure" for k in range(1, 7)} | {
+        "/softpad/supply/pressure"
+    }
+    paths = [p["value"] for cfg in layout["configById"].values() for p in cfg.get("paths", [])]
+    assert {p.split(".")[0] for p in paths} == run_topics
+    assert all(p.endswith(".fluid_pressure") for p in paths)
+    assert layout["configById"]["3D!softpadpad"]["topics"] == {PAD_TOPIC: {"visible": True}}
+    from rosbags.highlevel import AnyReader
+
+    with AnyReader([DATA / "banana.mcap"]) as reader:
+        assert run_topics <= {c.topic for c in reader.connections}
