@@ -65,6 +65,12 @@ def register(sub: Any) -> None:
         help="hold time in s (default %(default)g)",
     )
     add_thesis_params(p)
+    p.add_argument(
+        "--config",
+        metavar="FILE.toml",
+        help="installation file: thresholds (p0, t_adj, t_o, t_g, window, maximum) and gripper; "
+        "its values replace the loop parameters above",
+    )
     add_json_force(p, force=False)  # --force comes with --record
     p.add_argument("--png", metavar="FILE.png", help="draw the pressure traces with the phases")
     p.add_argument("--plot", action=Renamed, new="--png FILE.png")
@@ -153,14 +159,19 @@ def run(args: argparse.Namespace) -> int:
     if args.foxglove is not None and not 0 <= args.foxglove <= 65535:
         raise InputError(f"--foxglove port must be within 0..65535, got {args.foxglove}")
     log = RunLog({"box": args.box, "objects": names})
+    parts: dict[str, Any] = {}
+    gripper = args.gripper
+    if args.config:
+        params, parts, mounting = _from_installation(args.config, params)
+        gripper = gripper or mounting
     with open_box(args.box) as box:
-        meta = run_metadata("run", box, args.box, names, params, gripper=args.gripper)
+        meta = run_metadata("run", box, args.box, names, params, gripper=gripper)
         recorder = open_recorder(str(record_path) if record_path else None, box, meta, args.force)
         live = _live(args.foxglove, box, args.json)
         try:
             tee = Tee(log, recorder, live)
             if args.robot == "sim://":
-                result = run_simulated(names, box, params, tee, gripper=args.gripper)
+                result = run_simulated(names, box, params, tee, gripper=gripper, **parts)
             else:
                 from softpad.cli._ros import run_with_robot_url
 
@@ -211,6 +222,32 @@ def _save_png(log: Any, png_path: Any, names: list[str]) -> None:
     with atomic_path(png_path) as tmp:
         fig = log.plot(tmp, title=f"softpad run: {', '.join(names)}")
     plt.close(fig)
+
+
+def _from_installation(path: str, params: Any) -> tuple[Any, dict[str, Any], str | None]:
+    """Loop parameters, detector parts and gripper mounting from an installation file."""
+    import dataclasses
+
+    from softpad.config import load_installation
+    from softpad.sensing import ThesisObjectDetector
+
+    inst = load_installation(path)
+    th = inst.thresholds
+    inflation = dataclasses.replace(
+        params.inflation,
+        target_pa=th.p0_pa,
+        tolerance_pa=th.adjust_tolerance_pa,
+        max_pressure_pa=th.max_pressure_pa,
+        filter_length=th.filter_window,
+    )
+    params = dataclasses.replace(
+        params,
+        inflation=inflation,
+        contact_threshold_pa=th.contact_threshold_pa,
+        filter_length=th.filter_window,
+    )
+    parts = {"object_detector": ThesisObjectDetector(threshold_pa=th.object_threshold_pa)}
+    return params, parts, inst.gripper_mounting
 
 
 def _live(port: int | None, box: Any, json_mode: bool) -> Any:

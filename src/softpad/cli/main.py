@@ -30,6 +30,7 @@ _COMMAND_MODULES = (
     "_plan",
     "_run",
     "_box",
+    "_config",
     "_trials",
     "_compare",
     "_fem",
