@@ -68,8 +68,8 @@ def register(sub: Any) -> None:
     p.add_argument(
         "--config",
         metavar="FILE.toml",
-        help="installation file: thresholds (p0, t_adj, t_o, t_g, window, maximum) and gripper; "
-        "its values replace the loop parameters above",
+        help="installation file: thresholds (p0, t_adj, t_o, t_g, window, maximum), gripper and "
+        "box link; the options above given on the command line win",
     )
     add_json_force(p, force=False)  # --force comes with --record
     p.add_argument("--png", metavar="FILE.png", help="draw the pressure traces with the phases")
@@ -159,11 +159,9 @@ def run(args: argparse.Namespace) -> int:
     if args.foxglove is not None and not 0 <= args.foxglove <= 65535:
         raise InputError(f"--foxglove port must be within 0..65535, got {args.foxglove}")
     log = RunLog({"box": args.box, "objects": names})
-    parts: dict[str, Any] = {}
-    gripper = args.gripper
+    gripper = args.gripper  # the installation file's mounting when it names one
     if args.config:
-        params, parts, mounting = _from_installation(args.config, params)
-        gripper = gripper or mounting
+        params = _from_installation(args.config, params)
     with open_box(args.box) as box:
         meta = run_metadata("run", box, args.box, names, params, gripper=gripper)
         recorder = open_recorder(str(record_path) if record_path else None, box, meta, args.force)
@@ -171,7 +169,7 @@ def run(args: argparse.Namespace) -> int:
         try:
             tee = Tee(log, recorder, live)
             if args.robot == "sim://":
-                result = run_simulated(names, box, params, tee, gripper=gripper, **parts)
+                result = run_simulated(names, box, params, tee, gripper=gripper)
             else:
                 from softpad.cli._ros import run_with_robot_url
 
@@ -224,30 +222,22 @@ def _save_png(log: Any, png_path: Any, names: list[str]) -> None:
     plt.close(fig)
 
 
-def _from_installation(path: str, params: Any) -> tuple[Any, dict[str, Any], str | None]:
-    """Loop parameters, detector parts and gripper mounting from an installation file."""
+def _from_installation(path: str, params: Any) -> Any:
+    """What the options do not cover from an installation file: the adjustment tolerance,
+    the maximum pressure and the inflation's window (its thresholds, window and gripper are
+    already the options' defaults, ``softpad.cli._installation``)."""
     import dataclasses
 
     from softpad.config import load_installation
-    from softpad.sensing import ThesisObjectDetector
 
-    inst = load_installation(path)
-    th = inst.thresholds
+    th = load_installation(path).thresholds
     inflation = dataclasses.replace(
         params.inflation,
-        target_pa=th.p0_pa,
         tolerance_pa=th.adjust_tolerance_pa,
         max_pressure_pa=th.max_pressure_pa,
-        filter_length=th.filter_window,
+        filter_length=params.filter_length,
     )
-    params = dataclasses.replace(
-        params,
-        inflation=inflation,
-        contact_threshold_pa=th.contact_threshold_pa,
-        filter_length=th.filter_window,
-    )
-    parts = {"object_detector": ThesisObjectDetector(threshold_pa=th.object_threshold_pa)}
-    return params, parts, inst.gripper_mounting
+    return dataclasses.replace(params, inflation=inflation)
 
 
 def _live(port: int | None, box: Any, json_mode: bool) -> Any:
