@@ -17,6 +17,9 @@ code  meaning
 
 from __future__ import annotations
 
+from collections.abc import Iterable
+from typing import Any
+
 EXIT_OK = 0
 """Success."""
 EXIT_FAILED = 1
@@ -84,3 +87,49 @@ def check_finite(name: str, value: float) -> float:
     if not math.isfinite(v):
         raise InputError(f"{name} must be a finite number, got {value!r}")
     return v
+
+
+def check_fields(
+    owner: object,
+    what: str,
+    positive: Iterable[str] = (),
+    non_negative: Iterable[str] = (),
+    counts: Iterable[str] = (),
+) -> None:
+    """Check the named attributes of a parameters record, raising :class:`InputError` that
+    names ``what`` (``"execution"``), the attribute and its value.
+
+    Parameters
+    ----------
+    owner
+        The record (usually ``self`` in a frozen dataclass's ``__post_init__``).
+    positive, non_negative
+        Attributes that must be finite numbers > 0, or >= 0.
+    counts
+        Attributes that must be integers >= 1.
+    """
+    import math
+
+    def number(v: object) -> bool:
+        return isinstance(v, int | float) and math.isfinite(v)
+
+    for rule, ok, names in (
+        ("a positive number", lambda v: number(v) and v > 0, positive),
+        ("a number >= 0", lambda v: number(v) and v >= 0, non_negative),
+        ("an integer >= 1", lambda v: isinstance(v, int) and v >= 1, counts),
+    ):
+        for n in names:
+            v = getattr(owner, n)
+            if not ok(v):
+                raise InputError(f"{what} {n} must be {rule}, got {v!r}")
+
+
+def parse_json(text: str, what: str) -> Any:
+    """``json.loads(text)``, or an :class:`InputError` saying that ``what`` (``"frame file
+    'x.json'"``) is not valid JSON, with the reason and the line."""
+    import json
+
+    try:
+        return json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise InputError(f"{what} is not valid JSON: {exc.msg} at line {exc.lineno}") from None

@@ -3,7 +3,10 @@
 from __future__ import annotations
 
 import argparse
+import functools
 import math
+import sys
+from typing import Any
 
 from softpad.errors import InputError
 
@@ -114,10 +117,99 @@ class Renamed(argparse.Action):
         parser.error(f"{'/'.join(self.option_strings)} is now {self.new}")
 
 
-def add_json_force(p: argparse.ArgumentParser, force: bool = True) -> None:
-    """``--json`` (one JSON object on stdout) and, for commands that write files, ``--force``."""
-    p.add_argument(
-        "--json", action="store_true", help="print one JSON object on stdout (text on stderr)"
+#: Help of ``--json`` where a command says nothing more specific.
+JSON_HELP = "print one JSON object on stdout (text on stderr)"
+
+
+def add_command(
+    sub: Any,
+    name: str,
+    help: str,
+    description: str | None = None,
+    epilog: str | None = None,
+    *,
+    json: str | None = JSON_HELP,
+    force: bool = False,
+) -> argparse.ArgumentParser:
+    """Register the sub-command ``name`` under ``sub`` (an ``add_subparsers`` action).
+
+    Parameters
+    ----------
+    help
+        One line in the list of commands of the parent's ``--help``.
+    description, epilog
+        Text above and below the options, printed as written (wrapped by hand; usually a
+        module constant).
+    json
+        Help of the command's ``--json`` option; ``None`` adds none.
+    force
+        Add ``--force`` (overwrite existing output files), for commands that write files.
+    """
+    p: argparse.ArgumentParser = sub.add_parser(
+        name,
+        help=help,
+        description=description,
+        epilog=epilog,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
     )
+    if json is not None:
+        p.add_argument("--json", action="store_true", help=json)
     if force:
         p.add_argument("--force", action="store_true", help="overwrite existing output files")
+    return p
+
+
+def add_group(sub: Any, name: str, *texts: str | None, metavar: str = "ACTION") -> Any:
+    """Register ``name`` as a group of sub-commands and return its ``add_subparsers`` action.
+
+    ``texts`` are the help, description and epilog of :func:`add_command`. The group alone
+    (``softpad box``) prints its help on stderr and is a usage error naming the ``metavar``
+    and the sub-commands.
+    """
+    p = add_command(sub, name, *texts, json=argparse.SUPPRESS)  # type: ignore[arg-type]
+    actions = p.add_subparsers(dest=f"{name}_command", metavar=metavar)
+    p.set_defaults(handler=functools.partial(_missing, p, actions))
+    return actions
+
+
+def _missing(parser: argparse.ArgumentParser, actions: Any, args: argparse.Namespace) -> int:
+    """Handler of a group called without its sub-command (see :func:`add_group`)."""
+    from softpad.cli.main import UsageError
+
+    parser.print_help(sys.stderr)
+    names = list(actions.choices)
+    listing = ", ".join(names[:-1]) + (" or " if len(names) > 1 else "") + names[-1]
+    article = "an" if actions.metavar[0] in "AEIOU" else "a"
+    raise UsageError(
+        f"{article} {actions.metavar} is required: {listing} (see {parser.prog} --help)"
+    )
+
+
+def add_box_option(
+    p: argparse.ArgumentParser, default: str | None = "sim://", help: str | None = None
+) -> None:
+    """``--box URL``: the box to open (:func:`softpad.box.open_box`)."""
+    p.add_argument(
+        "--box", default=default, metavar="URL", help=help or f"box URL (default {default})"
+    )
+
+
+def add_number(p: Any, flag: str, help: str, default: float | None = None, **limits: Any) -> None:
+    """``flag`` taking a finite number; ``limits`` are :func:`finite_float`'s ``lo``, ``hi``
+    and ``unit``; ``p`` is a parser or an argument group."""
+    p.add_argument(flag, type=finite_float(flag, **limits), default=default, help=help)
+
+
+def add_p0_option(p: Any) -> None:
+    """``--p0-kpa``: the pressure every module is inflated to (p0, seed Section 6.2.1.1)."""
+    from softpad import thesis
+
+    add_number(
+        p,
+        "--p0-kpa",
+        "p0, pressure every module is inflated to, kPa, 0.5..2.8 (default 1.1)",
+        thesis.P0_PA / 1e3,
+        lo=0.5,
+        hi=2.8,
+        unit="kPa",
+    )

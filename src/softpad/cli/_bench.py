@@ -6,7 +6,7 @@ import argparse
 import importlib
 from typing import Any
 
-from softpad.cli._args import add_json_force, name_list
+from softpad.cli._args import add_command, name_list
 from softpad.cli._output import emit
 from softpad.errors import InputError
 
@@ -14,16 +14,16 @@ from softpad.errors import InputError
 def register(sub: Any) -> None:
     from softpad.benchmarks import BENCH_MODULES
 
-    p = sub.add_parser(
+    p = add_command(
+        sub,
         "bench",
-        help="measure speed and detection figures (medians)",
-        description="Run the benchmarks: " + ", ".join(BENCH_MODULES) + ". Figures are medians.",
+        "measure speed and detection figures (medians)",
+        "Run the benchmarks: " + ", ".join(BENCH_MODULES) + ". Figures are medians.",
     )
     p.add_argument(
         "--only", metavar="NAMES", help="comma-separated subset of: " + ", ".join(BENCH_MODULES)
     )
     p.add_argument("--quick", action="store_true", help="fewer repeats (a smoke run)")
-    add_json_force(p, force=False)
     p.set_defaults(handler=run)
 
 

@@ -7,7 +7,7 @@ import argparse
 import sys
 from typing import Any
 
-from softpad.cli._args import finite_float
+from softpad.cli._args import add_box_option, add_command, add_group, add_number, add_p0_option
 from softpad.cli._output import emit
 
 _EPILOG = """examples:
@@ -31,10 +31,6 @@ installation file; otherwise the daemon refuses to start. Ctrl-C or SIGTERM stop
 """
 
 
-def _box_arg(p: argparse.ArgumentParser, default: str = "sim://") -> None:
-    p.add_argument("--box", default=default, metavar="URL", help=f"box URL (default {default})")
-
-
 _MONITOR_EPILOG = """examples:
   softpad box monitor --foxglove                         the simulated box, ws://127.0.0.1:8765
   softpad box monitor --foxglove --port 0 --box 'sim://?object=banana&inflated_kpa=1.1'
@@ -52,72 +48,87 @@ _INFLATE_EPILOG = """examples:
 """
 
 
+_MONITOR_DESCRIPTION = """\
+Live pressures (kPa), frame rate and lost frames on one line; with --foxglove the frames are
+served to Foxglove viewers. A monitor never commands valves."""
+
+_INFLATE_DESCRIPTION = """\
+Bring every module to p0 within t_adj and print the reference (mean of 10 reads); works on
+any box URL, e.g. a zenoh:// box served by 'softpad box serve'."""
+
+
 def register(sub: Any) -> None:
-    p = sub.add_parser(
+    bsub = add_group(
+        sub,
         "box",
-        help="talk to a pneumatic box: read, monitor, serve (zenoh daemon), inflate",
-        description="Pneumatic box utilities.",
+        "talk to a pneumatic box: read, monitor, serve (zenoh daemon), inflate",
+        "Pneumatic box utilities.",
     )
-    bsub = p.add_subparsers(dest="box_command", metavar="ACTION")
-    fmt = argparse.RawDescriptionHelpFormatter
-    r = bsub.add_parser(
-        "read",
-        help="print frames (gauge pressure of every channel and the supply, kPa)",
-        description="Read frames from a box and print one line per frame (kPa).",
-        epilog=_EPILOG,
-        formatter_class=fmt,
+    r = _action(
+        bsub,
+        read,
+        "print frames (gauge pressure of every channel and the supply, kPa)",
+        "Read frames from a box and print one line per frame (kPa).",
+        _EPILOG,
+        json="JSON lines: seq, t_s, pressures_pa, supply_pa (the last the error if any)",
     )
-    _box_arg(r)
     r.add_argument("--count", type=int, default=10, help="frames, 0 for endless (default 10)")
     r.add_argument("--every", type=int, default=1, help="print every k-th frame (default 1)")
-    r.add_argument(
-        "--json",
-        action="store_true",
-        help="JSON lines: seq, t_s, pressures_pa, supply_pa (the last the error if any)",
+    m = _action(
+        bsub,
+        monitor,
+        "watch a box live: one refreshing line, or Foxglove (--foxglove; read-only)",
+        _MONITOR_DESCRIPTION,
+        _MONITOR_EPILOG,
+        json="with --foxglove: the viewer URL as JSON",
     )
-    r.set_defaults(handler=read)
-    m = bsub.add_parser(
-        "monitor",
-        help="watch a box live: one refreshing line, or Foxglove (--foxglove; read-only)",
-        description=(
-            "Live pressures (kPa), frame rate and lost frames on one line; with --foxglove the "
-            "frames are served to Foxglove viewers. A monitor never commands valves."
-        ),
-        epilog=_MONITOR_EPILOG,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-    )
-    m.add_argument("--box", default="sim://", metavar="URL", help="box URL (default sim://)")
     m.add_argument("--foxglove", action="store_true", help="serve to Foxglove (WebSocket)")
     m.add_argument("--port", type=int, default=8765, help="port on 127.0.0.1 (0: a free one)")
     m.add_argument("--count", type=int, default=0, help="frames, 0 for endless (default 0)")
-    m.add_argument("--json", action="store_true", help="with --foxglove: the viewer URL as JSON")
-    m.set_defaults(handler=monitor)
-    st = bsub.add_parser(
-        "stats",
-        help="sampling figures of a served box: achieved rate, jitter, dropped samples",
-        description="Ask a box daemon for its sampling statistics.",
+    _action(
+        bsub,
+        stats,
+        "sampling figures of a served box: achieved rate, jitter, dropped samples",
+        "Ask a box daemon for its sampling statistics.",
+        json="print one JSON object",
+        box="zenoh://127.0.0.1:7447",
     )
-    _box_arg(st, "zenoh://127.0.0.1:7447")
-    st.add_argument("--json", action="store_true", help="print one JSON object")
-    st.set_defaults(handler=stats)
     _register_serve(bsub)
-    _register_inflate(bsub)
-    p.add_argument("--json", action="store_true", help=argparse.SUPPRESS)
-    p.set_defaults(handler=_usage, _parser=p)
+    i = _action(
+        bsub,
+        inflate,
+        "inflate every module to p0 and save the reference (Section 6.2.1.1)",
+        _INFLATE_DESCRIPTION,
+        json="print the result as one JSON object",
+    )
+    i.add_argument("--modules", type=int, default=6, help="modules on the pad (default 6)")
+    add_p0_option(i)
+
+
+def _action(
+    bsub: Any, handler: Any, *texts: str, json: str, box: str = "sim://", box_help: str = ""
+) -> argparse.ArgumentParser:
+    """The parser of the box action ``handler`` (named like it: ``read`` is ``box read``),
+    with ``--box`` (default ``box``); ``texts`` as for :func:`add_command`."""
+    p = add_command(bsub, handler.__name__, *texts, json=json)
+    add_box_option(p, box, box_help or None)
+    p.set_defaults(handler=handler)
+    return p
 
 
 def _register_serve(bsub: Any) -> None:
-    s = bsub.add_parser(
-        "serve",
-        help="run the box daemon: serve the simulator or the hardware over zenoh",
-        description="Serve a box over zenoh (frames pushed, valve commands acknowledged).",
-        epilog=_SERVE_EPILOG,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
+    s = _action(
+        bsub,
+        serve,
+        "run the box daemon: serve the simulator or the hardware over zenoh",
+        "Serve a box over zenoh (frames pushed, valve commands acknowledged).",
+        _SERVE_EPILOG,
+        json="print the endpoints as one JSON object",
+        box_help="with --sim: the sim:// URL",
     )
     what = s.add_mutually_exclusive_group(required=True)
     what.add_argument("--sim", action="store_true", help="serve the simulated box (--box URL)")
     what.add_argument("--hardware", metavar="FILE.toml", help="serve the real box wired in FILE")
-    s.add_argument("--box", default="sim://", metavar="URL", help="with --sim: the sim:// URL")
     s.add_argument("--config", metavar="FILE.toml", help="installation file (link, thresholds)")
     s.add_argument(
         "--listen",
@@ -125,10 +136,13 @@ def _register_serve(bsub: Any) -> None:
         metavar="ENDPOINT",
         help="zenoh endpoint (default tcp/127.0.0.1:7447 or the installation file's)",
     )
-    s.add_argument(
+    add_number(
+        s,
         "--watchdog-s",
-        type=finite_float("watchdog time", lo=0.01, hi=60.0, unit="s"),
-        help="controller silence that closes the inflation valves, s (default 0.5)",
+        "controller silence that closes the inflation valves, s (default 0.5)",
+        lo=0.01,
+        hi=60.0,
+        unit="s",
     )
     s.add_argument(
         "--realtime",
@@ -137,38 +151,6 @@ def _register_serve(bsub: Any) -> None:
         "(default: at most 2 frames ahead of the frames the controller has read)",
     )
     s.add_argument("--duration-s", type=float, help="stop after this long (default: run forever)")
-    s.add_argument("--json", action="store_true", help="print the endpoints as one JSON object")
-    s.set_defaults(handler=serve)
-
-
-def _register_inflate(bsub: Any) -> None:
-    i = bsub.add_parser(
-        "inflate",
-        help="inflate every module to p0 and save the reference (Section 6.2.1.1)",
-        description=(
-            "Bring every module to p0 within t_adj and print the reference (mean of 10 reads); "
-            "works on any box URL, e.g. a zenoh:// box served by 'softpad box serve'."
-        ),
-    )
-    _box_arg(i)
-    i.add_argument("--modules", type=int, default=6, help="modules on the pad (default 6)")
-    i.add_argument(
-        "--p0-kpa",
-        type=finite_float("--p0-kpa", lo=0.5, hi=2.8, unit="kPa"),
-        default=1.1,
-        help="target pressure p0, kPa, 0.5..2.8 (default 1.1)",
-    )
-    i.add_argument("--json", action="store_true", help="print the result as one JSON object")
-    i.set_defaults(handler=inflate)
-
-
-def _usage(args: argparse.Namespace) -> int:
-    from softpad.cli.main import UsageError
-
-    args._parser.print_help(sys.stderr)
-    raise UsageError(
-        "an ACTION is required: read, monitor, stats, serve or inflate (see softpad box --help)"
-    )
 
 
 def _stamped(box: Any, i: int) -> tuple[int, Any]:

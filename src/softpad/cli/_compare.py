@@ -6,7 +6,7 @@ import argparse
 import sys
 from typing import Any
 
-from softpad.cli._args import int_ranges
+from softpad.cli._args import add_command, int_ranges
 from softpad.errors import InputError
 
 _EPILOG = """examples:
@@ -16,23 +16,25 @@ _EPILOG = """examples:
 """
 
 
+_DESCRIPTION = """\
+Run Experiment 2 (MuJoCo trials) for each planner/detector pair over the given seeds and
+print per-pair and per-object success with 95 % Wilson intervals, failures by cause,
+detection delay and finger travel (median, p95) and the detector's false alarms per hour on
+an idle pad with noise and drift."""
+
+
 def register(sub: Any) -> None:
-    p = sub.add_parser(
+    from softpad.cli._trials import add_trial_options
+
+    p = add_command(
+        sub,
         "compare",
-        help="compare planner/detector pairs on Experiment 2 over many seeds",
-        description=(
-            "Run Experiment 2 (MuJoCo trials) for each planner/detector pair over the given "
-            "seeds and print per-pair and per-object success with 95 % Wilson intervals, "
-            "failures by cause, detection delay and finger travel (median, p95) and the "
-            "detector's false alarms per hour on an idle pad with noise and drift."
-        ),
-        epilog=_EPILOG,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-        allow_abbrev=False,
+        "compare planner/detector pairs on Experiment 2 over many seeds",
+        _DESCRIPTION,
+        _EPILOG,
+        json="print the comparison as one JSON object",
     )
-    p.add_argument("--seeds", default="0-9", metavar="A-B|A,B,...", help="seeds (default 0-9)")
-    p.add_argument("--objects", metavar="NAME,...", help="catalogue names (default: all)")
-    p.add_argument("--trials", type=int, default=5, help="trials per object and seed (default 5)")
+    add_trial_options(p, seeds="0-9")
     p.add_argument(
         "--pair",
         action="append",
@@ -40,10 +42,7 @@ def register(sub: Any) -> None:
         help="a pair to run (repeatable; default thesis:thesis and gripper-aware:cusum)",
     )
     p.add_argument("--idle-hours", type=float, default=1.0, help="idle time for false alarms")
-    p.add_argument("--workers", type=int, default=None, help="worker processes (default: all CPUs)")
-    p.add_argument("--json", action="store_true", help="print the comparison as one JSON object")
     p.add_argument("--png", metavar="FILE.png", help="draw success and delay per pair")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
     p.set_defaults(handler=run)
 
 

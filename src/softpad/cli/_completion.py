@@ -5,6 +5,8 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
+from softpad.cli._args import add_command
+
 _EPILOG = """examples:
   softpad completion bash > ~/.local/share/bash-completion/completions/softpad
   softpad completion zsh > ~/.zfunc/_softpad       (with fpath+=~/.zfunc; autoload -U compinit)
@@ -13,15 +15,15 @@ _EPILOG = """examples:
 
 
 def register(sub: Any) -> None:
-    p = sub.add_parser(
+    p = add_command(
+        sub,
         "completion",
-        help="print a shell completion script (bash or zsh)",
-        description="Print the completion script of the softpad command for bash or zsh.",
-        epilog=_EPILOG,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
+        "print a shell completion script (bash or zsh)",
+        "Print the completion script of the softpad command for bash or zsh.",
+        _EPILOG,
+        json='print {"script": ...} as JSON',
     )
     p.add_argument("shell", choices=("bash", "zsh"), help="the shell")
-    p.add_argument("--json", action="store_true", help='print {"script": ...} as JSON')
     p.set_defaults(handler=run)
 
 

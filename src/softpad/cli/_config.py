@@ -3,34 +3,27 @@
 from __future__ import annotations
 
 import argparse
-import sys
 from typing import Any
+
+from softpad.cli._args import add_command, add_group
 
 
 def register(sub: Any) -> None:
-    p = sub.add_parser(
+    csub = add_group(
+        sub,
         "config",
-        help="installation file (TOML): check it and print the resolved values",
-        description="Installation file utilities (see examples/site.toml, docs/hardware.md).",
+        "installation file (TOML): check it and print the resolved values",
+        "Installation file utilities (see examples/site.toml, docs/hardware.md).",
     )
-    csub = p.add_subparsers(dest="config_command", metavar="ACTION")
-    c = csub.add_parser(
+    c = add_command(
+        csub,
         "check",
-        help="validate FILE and print every resolved value with its unit",
-        description="Validate an installation file; a wrong value is named with its key (exit 2).",
+        "validate FILE and print every resolved value with its unit",
+        "Validate an installation file; a wrong value is named with its key (exit 2).",
+        json="print the resolved settings as JSON",
     )
     c.add_argument("file", metavar="FILE.toml")
-    c.add_argument("--json", action="store_true", help="print the resolved settings as JSON")
     c.set_defaults(handler=check)
-    p.add_argument("--json", action="store_true", help=argparse.SUPPRESS)
-    p.set_defaults(handler=_usage, _parser=p)
-
-
-def _usage(args: argparse.Namespace) -> int:
-    from softpad.cli.main import UsageError
-
-    args._parser.print_help(sys.stderr)
-    raise UsageError("an ACTION is required: check (see softpad config --help)")
 
 
 def check(args: argparse.Namespace) -> int:

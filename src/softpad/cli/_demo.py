@@ -7,42 +7,36 @@ import math
 from pathlib import Path
 from typing import Any
 
-from softpad.cli._args import Renamed, add_json_force, bounded_int
+from softpad.cli._args import add_command
 from softpad.cli._output import emit, say
 from softpad.cli._paths import check_output_dir
 from softpad.cli._record import add_record_option, check_trial_recordings
 from softpad.errors import InputError
 
+_DESCRIPTION = """\
+Run the thesis's Experiment 2 in simulation: the 11 objects of Table 6.1, 5 grasp trials
+each, every trial the full closed loop (simulated box, planner, contact detection, grasp,
+15 s hold) in a MuJoCo world, in parallel processes with a progress bar. Writes a report
+folder: the table (Markdown, CSV, JSON), every planned grasp over the pad (like Fig. 6.10),
+the pressure traces of one trial (like Fig. 6.8), and the planner's Table 6.1 plans from
+reference increments."""
+
 
 def register(sub: Any) -> None:
-    p = sub.add_parser(
+    from softpad.cli._trials import add_trial_options
+
+    p = add_command(
+        sub,
         "demo",
-        help="run the main job: the thesis's Experiment 2 (11 objects x 5 grasps) on MuJoCo",
-        description=(
-            "Run the thesis's Experiment 2 in simulation: the 11 objects of Table 6.1, 5 grasp "
-            "trials each, every trial the full closed loop (simulated box, planner, contact "
-            "detection, grasp, 15 s hold) in a MuJoCo world, in parallel processes with a "
-            "progress bar. Writes a report folder: the table (Markdown, CSV, JSON), every "
-            "planned grasp over the pad (like Fig. 6.10), the pressure traces of one trial "
-            "(like Fig. 6.8), and the planner's Table 6.1 plans from reference increments."
-        ),
-    )
+        "run the main job: the thesis's Experiment 2 (11 objects x 5 grasps) on MuJoCo",
+        _DESCRIPTION,
+    )  # --force comes with --record
     p.add_argument(
         "--out",
         default="report",
         help="report folder, absent or empty unless --force (default: report)",
     )
-    p.add_argument("--trials", type=int, default=5, help="trials per object (default 5)")
-    p.add_argument(
-        "--seeds",
-        type=bounded_int("--seeds", 0, 2**32 - 1),
-        default=0,
-        help="experiment seed, one value (default 0)",
-    )
-    p.add_argument("--seed", action=Renamed, new="--seeds")
-    add_json_force(p, force=False)  # --force comes with --record
-    p.add_argument("--workers", type=int, default=None, help="worker processes (default: CPUs)")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    add_trial_options(p, objects=False, one_seed=True)
     add_record_option(p, per_trial=True)
     p.set_defaults(handler=run)
 

@@ -9,7 +9,7 @@ from contextlib import contextmanager
 from typing import Any
 
 from softpad import thesis
-from softpad.cli._args import add_json_force, bounded_int, finite_float, number_list
+from softpad.cli._args import add_command, add_group, add_number, bounded_int, number_list
 from softpad.cli._output import emit
 from softpad.cli._paths import atomic_path, check_output
 from softpad.errors import InputError
@@ -46,7 +46,18 @@ def _model_name(text: str) -> str:
     return name
 
 
-def _add_common(p: argparse.ArgumentParser, model: bool = True, geometry: bool = True) -> None:
+_DESCRIPTION = """\
+Finite-element model of one SoftPad module: the upper silicone layer (quarter model, lateral
+faces fixed, follower pressure on the lower face, nearly incompressible hyperelastic material
+of thesis Table 7.1)."""
+
+_PRESSURES_KPA = "0.5,0.96,1.42,1.88,2.34,2.8"
+
+
+def _add_study(fem_sub: Any, name: str, help: str, model: bool = True) -> argparse.ArgumentParser:
+    """A study's parser with the options every study has (``--model``/``--param`` unless not
+    ``model``, geometry, mesh, outputs, progress)."""
+    p = add_command(fem_sub, name, help, force=True)
     if model:
         p.add_argument(
             "--model",
@@ -61,19 +72,8 @@ def _add_common(p: argparse.ArgumentParser, model: bool = True, geometry: bool =
             metavar="NAME=VALUE",
             help="override a preset parameter (moduli in Pa), e.g. --param mu=30000; repeatable",
         )
-    if geometry:
-        p.add_argument(
-            "--thickness-mm",
-            type=finite_float("--thickness-mm", unit="mm"),
-            default=1.5,
-            help="upper-layer thickness in mm (default 1.5)",
-        )
-        p.add_argument(
-            "--width-mm",
-            type=finite_float("--width-mm", unit="mm"),
-            default=45.0,
-            help="module width in mm (default 45)",
-        )
+    add_number(p, "--thickness-mm", "upper-layer thickness in mm (default 1.5)", 1.5, unit="mm")
+    add_number(p, "--width-mm", "module width in mm (default 45)", 45.0, unit="mm")
     p.add_argument(
         "--mesh",
         choices=("coarse", "default", "fine"),
@@ -82,33 +82,45 @@ def _add_common(p: argparse.ArgumentParser, model: bool = True, geometry: bool =
     )
     p.add_argument("--csv", metavar="FILE.csv", help="write the results as CSV")
     p.add_argument("--png", metavar="FILE.png", help="write a plot as PNG")
-    add_json_force(p)
     p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
+    return p
+
+
+def _add_pressure(p: argparse.ArgumentParser, help: str, default: float) -> None:
+    """``--pressure-kpa``: one pressure of the study, 0..10 kPa."""
+    add_number(p, "--pressure-kpa", help, default, lo=0.0, hi=10.0, unit="kPa")
+
+
+def _add_object_threshold(p: argparse.ArgumentParser, help: str) -> None:
+    """``--threshold-kpa``: the object-detection threshold t_o the sensitivity is judged by."""
+    add_number(p, "--threshold-kpa", help, thesis.OBJECT_THRESHOLD_PA / 1e3, lo=0.0, unit="kPa")
 
 
 def register(sub: Any) -> None:
-    p = sub.add_parser(
+    fem_sub = add_group(
+        sub,
         "fem",
-        help="finite-element design studies of one module (FElupe)",
-        description=(
-            "Finite-element model of one SoftPad module: the upper silicone layer (quarter "
-            "model, lateral faces fixed, follower pressure on the lower face, nearly "
-            "incompressible hyperelastic material of thesis Table 7.1)."
-        ),
-        epilog=_EPILOG,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
+        "finite-element design studies of one module (FElupe)",
+        _DESCRIPTION,
+        _EPILOG,
+        metavar="STUDY",
     )
-    fem_sub = p.add_subparsers(dest="fem_command", metavar="STUDY")
-    p.add_argument("--json", action="store_true", help=argparse.SUPPRESS)
-    p.set_defaults(handler=lambda args: _usage(p))
+    for add in (_sweep_study, _design_study, _stiffness_study, _sensitivity_study):
+        add(fem_sub)
+    for add in (_chamber_study, _fit_studies, _characteristic_study):
+        add(fem_sub)
 
-    s = fem_sub.add_parser("sweep", help="centre height against pressure (Fig. 7.2b)")
-    _add_common(s)
-    s.add_argument(
+
+def _sweep_study(fem_sub: Any) -> None:
+    s = _add_study(fem_sub, "sweep", "centre height against pressure (Fig. 7.2b)")
+    add_number(
+        s,
         "--max-pressure-kpa",
-        type=finite_float("--max-pressure-kpa", lo=0.0, hi=10.0, unit="kPa"),
-        default=3.0,
-        help="highest pressure in kPa (default 3)",
+        "highest pressure in kPa (default 3)",
+        3.0,
+        lo=0.0,
+        hi=10.0,
+        unit="kPa",
     )
     s.add_argument(
         "--points",
@@ -121,8 +133,11 @@ def register(sub: Any) -> None:
     )
     s.set_defaults(handler=_sweep)
 
-    d = fem_sub.add_parser("design", help="height at 1 kPa against thickness or width (Fig. 7.3)")
-    _add_common(d, model=False)
+
+def _design_study(fem_sub: Any) -> None:
+    d = _add_study(
+        fem_sub, "design", "height at 1 kPa against thickness or width (Fig. 7.3)", model=False
+    )
     d.add_argument("--parameter", choices=("thickness", "width"), default="thickness")
     d.add_argument(
         "--values-mm",
@@ -134,63 +149,48 @@ def register(sub: Any) -> None:
         default="neo-hookean,yeoh",
         help="comma-separated presets (default neo-hookean,yeoh)",
     )
-    d.add_argument(
-        "--pressure-kpa",
-        type=finite_float("--pressure-kpa", lo=0.0, hi=10.0, unit="kPa"),
-        default=1.0,
-        help="inflating pressure in kPa (default 1)",
-    )
+    _add_pressure(d, "inflating pressure in kPa (default 1)", 1.0)
     d.set_defaults(handler=_design)
 
-    k = fem_sub.add_parser(
-        "stiffness", help="equivalent stiffness under a central load (Fig. 6.3c)"
-    )
-    _add_common(k)
-    k.add_argument(
-        "--pressures-kpa", default="0.5,0.96,1.42,1.88,2.34,2.8", help="pressures in kPa"
-    )
+
+def _stiffness_study(fem_sub: Any) -> None:
+    k = _add_study(fem_sub, "stiffness", "equivalent stiffness under a central load (Fig. 6.3c)")
+    k.add_argument("--pressures-kpa", default=_PRESSURES_KPA, help="pressures in kPa")
     k.add_argument("--forces-n", default="0.2,0.5,0.8", help="loads in N (default 0.2,0.5,0.8)")
-    k.add_argument(
-        "--radius-mm",
-        type=finite_float("--radius-mm", unit="mm"),
-        default=10.0,
-        help="radius of the loaded central disc in mm (default 10)",
+    add_number(
+        k, "--radius-mm", "radius of the loaded central disc in mm (default 10)", 10.0, unit="mm"
     )
     k.set_defaults(handler=_stiffness)
 
-    a = fem_sub.add_parser("sensitivity", help="sensitive area against pressure (Section 6.1.2)")
-    _add_common(a)
-    a.add_argument(
-        "--pressures-kpa", default="0.5,0.96,1.42,1.88,2.34,2.8", help="pressures in kPa"
-    )
-    a.add_argument(
+
+def _sensitivity_study(fem_sub: Any) -> None:
+    a = _add_study(fem_sub, "sensitivity", "sensitive area against pressure (Section 6.1.2)")
+    a.add_argument("--pressures-kpa", default=_PRESSURES_KPA, help="pressures in kPa")
+    add_number(
+        a,
         "--fraction",
-        type=finite_float("--fraction", lo=0.0, hi=1.0),
-        default=0.5,
-        help="response threshold relative to the centre (default 0.5)",
+        "response threshold relative to the centre (default 0.5)",
+        0.5,
+        lo=0.0,
+        hi=1.0,
     )
-    a.add_argument(
+    add_number(
+        a,
         "--probe-g",
-        type=finite_float("--probe-g", lo=0.0, unit="g"),
-        default=12.6,
-        help="probe mass of the absolute (sealed-chamber) definition in g (default 12.6)",
+        "probe mass of the absolute (sealed-chamber) definition in g (default 12.6)",
+        12.6,
+        lo=0.0,
+        unit="g",
     )
-    a.add_argument(
-        "--threshold-kpa",
-        type=finite_float("--threshold-kpa", lo=0.0, unit="kPa"),
-        default=thesis.OBJECT_THRESHOLD_PA / 1e3,
-        help="detection threshold of the absolute definition in kPa (default %(default)g, t_o)",
+    _add_object_threshold(
+        a, "detection threshold of the absolute definition in kPa (default %(default)g, t_o)"
     )
     a.set_defaults(handler=_sensitivity)
 
-    c = fem_sub.add_parser("chamber", help="sealed chamber: pressure rise of a load, minimum mass")
-    _add_common(c)
-    c.add_argument(
-        "--pressure-kpa",
-        type=finite_float("--pressure-kpa", lo=0.0, hi=10.0, unit="kPa"),
-        default=1.1,
-        help="pressure when the valves close, kPa (default 1.1)",
-    )
+
+def _chamber_study(fem_sub: Any) -> None:
+    c = _add_study(fem_sub, "chamber", "sealed chamber: pressure rise of a load, minimum mass")
+    _add_pressure(c, "pressure when the valves close, kPa (default 1.1)", 1.1)
     c.add_argument(
         "--footprint-mm",
         default="42x31",
@@ -199,48 +199,47 @@ def register(sub: Any) -> None:
     c.add_argument(
         "--masses-g", default="6,12.6,50,100", help="masses in g (default 6,12.6,50,100)"
     )
-    c.add_argument(
+    add_number(
+        c,
         "--dead-volume-ml",
-        type=finite_float("--dead-volume-ml", lo=0.0, unit="mL"),
-        default=3.1416,
-        help="tubing and sensor dead volume in mL (default 3.14: 1 m of 2 mm tubing)",
+        "tubing and sensor dead volume in mL (default 3.14: 1 m of 2 mm tubing)",
+        3.1416,
+        lo=0.0,
+        unit="mL",
     )
-    c.add_argument(
-        "--threshold-kpa",
-        type=finite_float("--threshold-kpa", lo=0.0, unit="kPa"),
-        default=thesis.OBJECT_THRESHOLD_PA / 1e3,
-        help="detection threshold in kPa (default %(default)g, thesis t_o)",
-    )
-    c.add_argument(
+    _add_object_threshold(c, "detection threshold in kPa (default %(default)g, thesis t_o)")
+    add_number(
+        c,
         "--noise-kpa",
-        type=finite_float("--noise-kpa", lo=0.0, unit="kPa"),
-        help="sensor noise (rms) in kPa; if given the threshold is N_SIGMA times it",
+        "sensor noise (rms) in kPa; if given the threshold is N_SIGMA times it",
+        lo=0.0,
+        unit="kPa",
     )
-    c.add_argument(
-        "--n-sigma",
-        type=finite_float("--n-sigma", lo=0.0),
-        default=3.0,
-        help="threshold in noise rms units with --noise-kpa (default 3)",
+    add_number(
+        c, "--n-sigma", "threshold in noise rms units with --noise-kpa (default 3)", 3.0, lo=0.0
     )
     c.set_defaults(handler=_chamber)
 
-    f = fem_sub.add_parser("fit", help="fit a model's parameters to measured heights")
-    _add_common(f)
-    f.add_argument("--data", required=True, metavar="CSV", help="pressure_kpa,height_mm file")
+
+def _fit_studies(fem_sub: Any) -> None:
+    data_help = "pressure_kpa,height_mm file"
+    f = _add_study(fem_sub, "fit", "fit a model's parameters to measured heights")
+    f.add_argument("--data", required=True, metavar="CSV", help=data_help)
     f.add_argument("--free", metavar="NAMES", help="parameters to fit (default: all moduli)")
     f.add_argument("--max-evals", type=int, default=60, help="budget of sweeps (default 60)")
     f.set_defaults(handler=_fit)
-
-    m = fem_sub.add_parser("compare", help="rank the presets by RMSE on measured heights")
-    _add_common(m, model=False)
-    m.add_argument("--data", required=True, metavar="CSV", help="pressure_kpa,height_mm file")
+    m = _add_study(fem_sub, "compare", "rank the presets by RMSE on measured heights", model=False)
+    m.add_argument("--data", required=True, metavar="CSV", help=data_help)
     m.add_argument("--models", default=",".join(_MODELS), help="presets to compare (default all)")
     m.set_defaults(handler=_compare)
 
-    t = fem_sub.add_parser(
-        "characteristic", help="tabulate volume and height against pressure and load (.npz)"
+
+def _characteristic_study(fem_sub: Any) -> None:
+    t = _add_study(
+        fem_sub,
+        "characteristic",
+        "tabulate volume and height against pressure and load (.npz)",
     )
-    _add_common(t)
     t.add_argument(
         "--out",
         metavar="FILE.npz",
@@ -252,20 +251,15 @@ def register(sub: Any) -> None:
     t.add_argument(
         "--pressures-kpa", help="pressures in kPa starting at 0 (default 0..3 every 0.1)"
     )
-    t.add_argument(
+    add_number(
+        t,
         "--gap-volume-ml",
-        type=finite_float("--gap-volume-ml", lo=0.0, unit="mL"),
-        default=0.2,
-        help="residual air under the flat layer added to every volume, mL (default 0.2)",
+        "residual air under the flat layer added to every volume, mL (default 0.2)",
+        0.2,
+        lo=0.0,
+        unit="mL",
     )
     t.set_defaults(handler=_characteristic)
-
-
-def _usage(p: argparse.ArgumentParser) -> int:
-    from softpad.cli.main import UsageError
-
-    p.print_help(sys.stderr)
-    raise UsageError("a STUDY is required (see softpad fem --help)")
 
 
 def _check_outputs(args: argparse.Namespace) -> None:
@@ -382,6 +376,24 @@ def _outputs(args: argparse.Namespace, result: Any) -> None:
         _save_figure(result.plot(), args.png)
 
 
+def _run_study(
+    args: argparse.Namespace, label: str, study: Callable[..., Any], *a: Any, **kw: Any
+) -> Any:
+    """``study(*a, **kw)`` (a :mod:`softpad.fem` study) on the command's geometry and mesh,
+    with a progress bar named ``label``."""
+    with _progress(args, label) as progress:
+        return study(*a, geometry=_geometry(args), mesh=_mesh(args), progress=progress, **kw)
+
+
+def _written_or_emitted(args: argparse.Namespace, result: Any) -> bool:
+    """Write ``--csv``/``--png``; with ``--json`` print the result's dict and return True
+    (nothing more to print)."""
+    _outputs(args, result)
+    if args.json:
+        emit(result.to_dict())
+    return bool(args.json)
+
+
 # ---------------------------------------------------------------------------- handlers
 def _sweep(args: argparse.Namespace) -> int:
     import numpy as np
@@ -419,19 +431,16 @@ def _design(args: argparse.Namespace) -> int:
     values = _numbers(
         args.values_mm or defaults[args.parameter], "--values-mm", 1e-3, positive=True
     )
-    with _progress(args, f"design {args.parameter}") as progress:
-        result = design_sweep(
-            args.parameter,
-            values,
-            materials=_models(args.models),
-            pressure_pa=args.pressure_kpa * 1e3,
-            geometry=_geometry(args),
-            mesh=_mesh(args),
-            progress=progress,
-        )
-    _outputs(args, result)
-    if args.json:
-        emit(result.to_dict())
+    result = _run_study(
+        args,
+        f"design {args.parameter}",
+        design_sweep,
+        args.parameter,
+        values,
+        materials=_models(args.models),
+        pressure_pa=args.pressure_kpa * 1e3,
+    )
+    if _written_or_emitted(args, result):
         return 0
     print(f"centre height (mm) at {args.pressure_kpa:g} kPa against {args.parameter}")
     print(f"{args.parameter}_mm  " + "  ".join(f"{m:>13}" for m in result.models))
@@ -451,19 +460,16 @@ def _stiffness(args: argparse.Namespace) -> int:
             f"--radius-mm must be > 0 and below half the module width ({args.width_mm / 2:g} mm), "
             f"got {args.radius_mm:g}"
         )
-    with _progress(args, "stiffness") as progress:
-        result = stiffness_study(
-            _material(args),
-            pressures,
-            forces,
-            args.radius_mm * 1e-3,
-            geometry=_geometry(args),
-            mesh=_mesh(args),
-            progress=progress,
-        )
-    _outputs(args, result)
-    if args.json:
-        emit(result.to_dict())
+    result = _run_study(
+        args,
+        "stiffness",
+        stiffness_study,
+        _material(args),
+        pressures,
+        forces,
+        args.radius_mm * 1e-3,
+    )
+    if _written_or_emitted(args, result):
         return 0
     k = result.stiffness_n_per_m * 1e-3
     print(f"model {result.model}: equivalent stiffness (N/mm); * = layer touches the base")
@@ -482,20 +488,17 @@ def _sensitivity(args: argparse.Namespace) -> int:
 
     _check_outputs(args)
     pressures = _numbers(args.pressures_kpa, "--pressures-kpa", 1e3, positive=True)
-    with _progress(args, "sensitivity") as progress:
-        result = sensitive_area_study(
-            _material(args),
-            pressures,
-            fraction=args.fraction,
-            geometry=_geometry(args),
-            mesh=_mesh(args),
-            progress=progress,
-            probe_mass_kg=args.probe_g * 1e-3,
-            threshold_pa=args.threshold_kpa * 1e3,
-        )
-    _outputs(args, result)
-    if args.json:
-        emit(result.to_dict())
+    result = _run_study(
+        args,
+        "sensitivity",
+        sensitive_area_study,
+        _material(args),
+        pressures,
+        fraction=args.fraction,
+        probe_mass_kg=args.probe_g * 1e-3,
+        threshold_pa=args.threshold_kpa * 1e3,
+    )
+    if _written_or_emitted(args, result):
         return 0
     print(
         f"model {result.model}: sensitive area = top-face region where a small load changes the "
@@ -558,17 +561,16 @@ def _chamber(args: argparse.Namespace) -> int:
         threshold = args.n_sigma * args.noise_kpa * 1e3
     if threshold <= 0:
         raise InputError(f"detection threshold must be > 0 kPa, got {threshold * 1e-3:g}")
-    with _progress(args, "chamber") as progress:
-        result = sealed_chamber_study(
-            _material(args),
-            args.pressure_kpa * 1e3,
-            masses,
-            footprint=_footprint(args.footprint_mm, args.width_mm),
-            dead_volume_m3=args.dead_volume_ml * 1e-6,
-            geometry=_geometry(args),
-            mesh=_mesh(args),
-            progress=progress,
-        )
+    result = _run_study(
+        args,
+        "chamber",
+        sealed_chamber_study,
+        _material(args),
+        args.pressure_kpa * 1e3,
+        masses,
+        footprint=_footprint(args.footprint_mm, args.width_mm),
+        dead_volume_m3=args.dead_volume_ml * 1e-6,
+    )
     if args.csv:
         with atomic_path(args.csv) as tmp:
             result.to_csv(tmp)
@@ -607,22 +609,19 @@ def _fit(args: argparse.Namespace) -> int:
     free = [s.strip() for s in args.free.split(",") if s.strip()] if args.free else None
     if args.max_evals < 1:
         raise InputError(f"--max-evals must be >= 1, got {args.max_evals}")
-    with _progress(args, f"fit {args.model}") as progress:
-        result = fit_material(
-            pressure,
-            height,
-            _material(args),
-            free=free,
-            geometry=_geometry(args),
-            mesh=_mesh(args),
-            max_evaluations=args.max_evals,
-            progress=progress,
-        )
-    _outputs(args, result)
-    info = result.to_dict()
-    if args.json:
-        emit(info)
+    result = _run_study(
+        args,
+        f"fit {args.model}",
+        fit_material,
+        pressure,
+        height,
+        _material(args),
+        free=free,
+        max_evaluations=args.max_evals,
+    )
+    if _written_or_emitted(args, result):
         return 0
+    info = result.to_dict()
     print(f"model {args.model}: RMSE {info['initial_rmse_mm']:.4f} mm -> {info['rmse_mm']:.4f} mm")
     for name, value in info["parameters"].items():
         print(f"  {name} = {value:.6g} (was {info['initial_parameters'][name]:.6g})")
@@ -634,18 +633,15 @@ def _compare(args: argparse.Namespace) -> int:
 
     _check_outputs(args)
     pressure, height = read_measurements(args.data)
-    with _progress(args, "compare") as progress:
-        result = compare_models(
-            pressure,
-            height,
-            _models(args.models),
-            geometry=_geometry(args),
-            mesh=_mesh(args),
-            progress=progress,
-        )
-    _outputs(args, result)
-    if args.json:
-        emit(result.to_dict())
+    result = _run_study(
+        args,
+        "compare",
+        compare_models,
+        pressure,
+        height,
+        _models(args.models),
+    )
+    if _written_or_emitted(args, result):
         return 0
     print("rank  model           RMSE_mm")
     for i, (name, err) in enumerate(zip(result.models, result.rmse_m, strict=True), 1):
@@ -659,16 +655,15 @@ def _characteristic(args: argparse.Namespace) -> int:
     _check_outputs(args)
     pressures = _numbers(args.pressures_kpa, "--pressures-kpa", 1e3) if args.pressures_kpa else None
     loads = _numbers(args.loads_n, "--loads-n") if args.loads_n else None
-    with _progress(args, "characteristic") as progress:
-        result = module_characteristic(
-            _material(args),
-            pressures_pa=pressures,
-            loads_n=loads,
-            geometry=_geometry(args),
-            mesh=_mesh(args),
-            progress=progress,
-            gap_volume_m3=args.gap_volume_ml * 1e-6,
-        )
+    result = _run_study(
+        args,
+        "characteristic",
+        module_characteristic,
+        _material(args),
+        pressures_pa=pressures,
+        loads_n=loads,
+        gap_volume_m3=args.gap_volume_ml * 1e-6,
+    )
     out = args.out
     with atomic_path(out) as tmp:
         result.to_npz(tmp)

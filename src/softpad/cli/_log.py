@@ -6,6 +6,8 @@ import argparse
 import sys
 from typing import Any
 
+from softpad.cli._args import add_command, add_group
+
 _EPILOG = """examples:
   softpad log info run.mcap                 topics, duration, objects, plan, contact, outcome
   softpad log info run.mcap --json
@@ -19,32 +21,36 @@ A recording cut short by a crash (kill -9, power loss) is read up to its last fl
 
 
 def register(sub: Any) -> None:
-    p = sub.add_parser(
+    actions = add_group(
+        sub,
         "log",
-        help="summarise, plot, export or recover a recording (.mcap)",
-        description="Look into a recording written by --record.",
-        epilog=_EPILOG,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
+        "summarise, plot, export or recover a recording (.mcap)",
+        "Look into a recording written by --record.",
+        _EPILOG,
     )
-    actions = p.add_subparsers(dest="action", metavar="ACTION", required=True)
-    info = actions.add_parser("info", help="topics, duration, objects, plans, contact, outcome")
+    info = add_command(
+        actions,
+        "info",
+        "topics, duration, objects, plans, contact, outcome",
+        json="print the summary as JSON",
+    )
     info.add_argument("file", metavar="FILE.mcap")
-    info.add_argument("--json", action="store_true", help="print the summary as JSON")
-    plot = actions.add_parser("plot", help="pressure traces with phases; the pad with the grasp")
+    written = "print the written files as JSON"
+    plot = add_command(
+        actions, "plot", "pressure traces with phases; the pad with the grasp", json=written
+    )
     plot.add_argument("file", metavar="FILE.mcap")
     plot.add_argument("--png", metavar="FILE", required=True, help="pressure traces picture")
     plot.add_argument("--pad-png", metavar="FILE", help="pad picture with objects and grasps")
-    export = actions.add_parser("export", help="frames and events as CSV or Parquet")
+    export = add_command(actions, "export", "frames and events as CSV or Parquet", json=written)
     export.add_argument("file", metavar="FILE.mcap")
     export.add_argument("--out", metavar="FILE", required=True, help="FILE.csv or FILE.parquet")
-    recover = actions.add_parser("recover", help="rewrite a crash-truncated recording")
+    recover = add_command(actions, "recover", "rewrite a crash-truncated recording", json=written)
     recover.add_argument("file", metavar="FILE.mcap")
     recover.add_argument("--out", metavar="FILE.mcap", help="default: FILE.recovered.mcap")
     recover.add_argument("--force", action="store_true", help="overwrite --out")
-    for q in (plot, export, recover):
-        q.add_argument("--json", action="store_true", help="print the written files as JSON")
-    p.add_argument("--json", action="store_true", help=argparse.SUPPRESS)
-    p.set_defaults(handler=run)
+    for q in (info, plot, export, recover):
+        q.set_defaults(handler=run)
 
 
 def _topics(path: str) -> list[tuple[str, str, int]]:
@@ -101,7 +107,7 @@ def run(args: argparse.Namespace) -> int:
     from softpad.errors import InputError
     from softpad.record import load_recording, recover
 
-    if args.action == "recover":
+    if args.log_command == "recover":
         out = recover(args.file, args.out, args.force)
         n = len(load_recording(out))
         _done(args, f"recovered {n} frames into {out}", files=[str(out)], frames=n)
@@ -111,9 +117,9 @@ def run(args: argparse.Namespace) -> int:
         print(
             f"note: {args.file} was cut short; read up to its last flushed chunk", file=sys.stderr
         )
-    if args.action == "info":
+    if args.log_command == "info":
         _info(rec, args.json)
-    elif args.action == "plot":
+    elif args.log_command == "plot":
         rec.plot(args.png)
         if args.pad_png:
             rec.plot_pad(args.pad_png)

@@ -5,16 +5,15 @@ from __future__ import annotations
 import argparse
 import csv
 import io
-import json
 import sys
 from pathlib import Path
 from typing import Any
 
 from softpad import thesis
-from softpad.cli._args import Renamed, add_json_force, finite_float, kpa_list
+from softpad.cli._args import Renamed, add_command, add_number, kpa_list
 from softpad.cli._output import emit, say
 from softpad.cli._paths import atomic_path, check_output
-from softpad.errors import InputError
+from softpad.errors import InputError, parse_json
 
 _EPILOG = """examples:
   softpad plan --delta 0,0.124,0.078,0.109,0,0          banana on modules 2, 3, 4
@@ -27,18 +26,21 @@ in module order, or a single line of N increments in kPa.
 """
 
 
+_DESCRIPTION = """\
+Detect the objects on the pad (modules with dP above t_o, 8-connected groups), compute each
+one's pressure-based centre of mass (PCOM, Eq. 6.1) and plan a top grasp: centre of grasp COG
+(module units and metres) and the direction theta in which the jaws close (radians from the
+pad x axis)."""
+
+
 def register(sub: Any) -> None:
-    p = sub.add_parser(
+    p = add_command(
+        sub,
         "plan",
-        help="plan top grasps from module pressure increments",
-        description=(
-            "Detect the objects on the pad (modules with dP above t_o, 8-connected groups), "
-            "compute each one's pressure-based centre of mass (PCOM, Eq. 6.1) and plan a top "
-            "grasp: centre of grasp COG (module units and metres) and the direction theta in "
-            "which the jaws close (radians from the pad x axis)."
-        ),
-        epilog=_EPILOG,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
+        "plan top grasps from module pressure increments",
+        _DESCRIPTION,
+        _EPILOG,
+        force=True,
     )
     src = p.add_mutually_exclusive_group(required=True)
     src.add_argument("--delta", metavar="D1,...,DN", help="increments dP in kPa, modules 1..N")
@@ -50,25 +52,27 @@ def register(sub: Any) -> None:
         "--reference", metavar="R1,...,RN", help="reference pressures in kPa for --pressures"
     )
     p.add_argument("--layout", default="2x3", help="pad layout ROWSxCOLS (default 2x3)")
-    p.add_argument(
+    add_number(
+        p,
         "--threshold-kpa",
-        type=finite_float("--threshold-kpa", lo=0.001, hi=10.0, unit="kPa"),
-        default=thesis.OBJECT_THRESHOLD_PA / 1e3,
-        help="object-detection threshold t_o in kPa (default %(default)g)",
+        "object-detection threshold t_o in kPa (default %(default)g)",
+        thesis.OBJECT_THRESHOLD_PA / 1e3,
+        lo=0.001,
+        hi=10.0,
+        unit="kPa",
     )
-    p.add_argument(
-        "--pitch-mm",
-        type=finite_float("--pitch-mm", lo=1.0, hi=1000.0, unit="mm"),
-        default=45.0,
-        help="module side in mm (default 45)",
+    add_number(
+        p, "--pitch-mm", "module side in mm (default 45)", 45.0, lo=1.0, hi=1000.0, unit="mm"
     )
-    p.add_argument(
+    add_number(
+        p,
         "--safety-shift",
-        type=finite_float("--safety-shift", lo=0.0, hi=0.49, unit="module units"),
-        default=0.2,
-        help="c_s, safety shift of corner-shaped objects in module units (default 0.2)",
+        "c_s, safety shift of corner-shaped objects in module units (default 0.2)",
+        0.2,
+        lo=0.0,
+        hi=0.49,
+        unit="module units",
     )
-    add_json_force(p)
     p.add_argument(
         "--png", metavar="FILE.png", help="draw the pad, increments, PCOM, COG and fingertips"
     )
@@ -93,12 +97,7 @@ def _read_frame(path: str) -> tuple[list[float], list[float] | None]:
     if not stripped:
         raise InputError(f"frame file {path!r} is empty")
     if stripped.startswith("{"):
-        try:
-            data = json.loads(stripped)
-        except json.JSONDecodeError as exc:
-            raise InputError(
-                f"frame file {path!r} is not valid JSON: {exc.msg} at line {exc.lineno}"
-            ) from None
+        data = parse_json(stripped, f"frame file {path!r}")
         if not isinstance(data, dict):
             raise InputError(f"frame file {path!r} must hold a JSON object")
         if "delta_kpa" in data:

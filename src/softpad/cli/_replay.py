@@ -6,6 +6,8 @@ import argparse
 import math
 from typing import Any
 
+from softpad.cli._args import add_command
+
 _EPILOG = """examples:
   softpad replay run.mcap
   softpad replay tests/data/banana.mcap --json
@@ -15,20 +17,22 @@ exit status: 0 when today's code decides what was recorded (same plan, same cont
 """
 
 
+_DESCRIPTION = """\
+Play a recording's frames through today's reference capture, object detection and grasp
+planning, and contact detection, and print what the code decides now next to what was
+recorded: the same plan? the same contact sample?"""
+
+
 def register(sub: Any) -> None:
-    p = sub.add_parser(
+    p = add_command(
+        sub,
         "replay",
-        help="re-run today's sensing, planning and contact detection on a recording",
-        description=(
-            "Play a recording's frames through today's reference capture, object detection and "
-            "grasp planning, and contact detection, and print what the code decides now next to "
-            "what was recorded: the same plan? the same contact sample?"
-        ),
-        epilog=_EPILOG,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
+        "re-run today's sensing, planning and contact detection on a recording",
+        _DESCRIPTION,
+        _EPILOG,
+        json="print the comparison as one JSON object",
     )
     p.add_argument("file", metavar="FILE.mcap", help="a recording (softpad run --record)")
-    p.add_argument("--json", action="store_true", help="print the comparison as one JSON object")
     p.set_defaults(handler=run)
 
 

@@ -6,56 +6,59 @@ import argparse
 import json
 from typing import Any
 
-_NETWORK = (
-    "ROS networking: set ROS_MASTER_URI=http://127.0.0.1:11311, ROS_IP=127.0.0.1 and "
-    "ROS_HOSTNAME=localhost (loopback only)."
-)
+from softpad.cli._args import add_box_option, add_command, add_group
+
+_NETWORK = """\
+ROS networking: set ROS_MASTER_URI=http://127.0.0.1:11311, ROS_IP=127.0.0.1 and
+ROS_HOSTNAME=localhost (loopback only)."""
+
+_NODE_DESCRIPTION = f"""\
+Open the box, inflate and adjust every module, save the reference, then publish every frame
+(/softpad/module_K/pressure, /softpad/pressures), the objects and grasps (/softpad/objects,
+/softpad/grasps), /softpad/contact, /diagnostics and the static transforms; services
+~inflate, ~capture_reference, ~plan. ROS parameters (~box, ~pad_x_m, ...) override the
+config file. {_NETWORK}"""
+
+_ARM_DESCRIPTION = f"""\
+Own a simulated box and its world; serve the box on zenoh://127.0.0.1:PORT and the arm on
+/softpad_arm/command and /softpad_arm/state, so that 'softpad run --robot ros1:// --box
+zenoh://127.0.0.1:PORT' runs the loop with the arm in ROS. {_NETWORK}"""
 
 
 def register(sub: Any) -> None:
-    ros = sub.add_parser(
+    rsub = add_group(
+        sub,
         "ros",
-        help="ROS 1 node of the pad (rospy; docs/ros.md)",
-        description="ROS 1 adapters of SoftPad. " + _NETWORK,
+        "ROS 1 node of the pad (rospy; docs/ros.md)",
+        f"ROS 1 adapters of SoftPad. {_NETWORK}",
+        metavar="COMMAND",
     )
-    rsub = ros.add_subparsers(dest="ros_command", metavar="COMMAND")
-    node = rsub.add_parser(
+    node = add_command(
+        rsub,
         "node",
-        help="the pad as a ROS node: pressures, objects, grasps, contact, diagnostics",
-        description=(
-            "Open the box, inflate and adjust every module, save the reference, then publish "
-            "every frame (/softpad/module_K/pressure, /softpad/pressures), the objects and grasps "
-            "(/softpad/objects, /softpad/grasps), /softpad/contact, /diagnostics and the static "
-            "transforms; services ~inflate, ~capture_reference, ~plan. ROS parameters (~box, "
-            "~pad_x_m, ...) override the config file. " + _NETWORK
-        ),
-        epilog="example:\n  softpad ros node --box sim:// --place banana",
-        formatter_class=argparse.RawDescriptionHelpFormatter,
+        "the pad as a ROS node: pressures, objects, grasps, contact, diagnostics",
+        _NODE_DESCRIPTION,
+        "example:\n  softpad ros node --box sim:// --place banana",
+        json="print the start line as JSON",
     )
     node.add_argument("--config", metavar="FILE.json", help="installation file (docs/ros.md)")
-    node.add_argument("--box", metavar="URL", help="box URL (overrides the config; default sim://)")
+    add_box_option(node, None, "box URL (overrides the config; default sim://)")
     node.add_argument(
         "--place",
         metavar="NAMES",
         help="simulation: catalogue objects put on a sim:// box 1 s after the reference",
     )
-    node.add_argument("--json", action="store_true", help="print the start line as JSON")
     node.set_defaults(handler=run_node)
-    ros.add_argument("--json", action="store_true", help=argparse.SUPPRESS)
-    ros.set_defaults(handler=lambda a: _help(ros))
 
-    sim = sub.add_parser("sim", help="simulated devices for ROS (docs/ros.md)")
-    ssub = sim.add_subparsers(dest="sim_command", metavar="COMMAND")
-    arm = ssub.add_parser(
+    ssub = add_group(sub, "sim", "simulated devices for ROS (docs/ros.md)", metavar="COMMAND")
+    arm = add_command(
+        ssub,
         "arm-node",
-        help="simulated arm on ROS (ros1:// contract) sharing its world with a served sim box",
-        description=(
-            "Own a simulated box and its world; serve the box on zenoh://127.0.0.1:PORT and the arm "
-            "on /softpad_arm/command and /softpad_arm/state, so that 'softpad run --robot ros1:// "
-            "--box zenoh://127.0.0.1:PORT' runs the loop with the arm in ROS. " + _NETWORK
-        ),
+        "simulated arm on ROS (ros1:// contract) sharing its world with a served sim box",
+        _ARM_DESCRIPTION,
+        json="print the served box URL as JSON",
     )
-    arm.add_argument("--box", default="sim://", metavar="URL", help="sim:// URL (default sim://)")
+    add_box_option(arm, help="sim:// URL (default sim://)")
     arm.add_argument(
         "--port",
         type=int,
@@ -67,15 +70,7 @@ def register(sub: Any) -> None:
         choices=("move_to", "descend", "stop", "gripper"),
         help="fault injection: the arm goes silent on this command (the box stays served)",
     )
-    arm.add_argument("--json", action="store_true", help="print the served box URL as JSON")
     arm.set_defaults(handler=run_arm_node)
-    sim.add_argument("--json", action="store_true", help=argparse.SUPPRESS)
-    sim.set_defaults(handler=lambda a: _help(sim))
-
-
-def _help(parser: argparse.ArgumentParser) -> int:
-    parser.print_help()
-    return 2
 
 
 def run_node(args: argparse.Namespace) -> int:

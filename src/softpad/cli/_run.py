@@ -8,7 +8,7 @@ import sys
 from typing import Any
 
 from softpad import thesis
-from softpad.cli._args import Renamed, add_json_force, finite_float
+from softpad.cli._args import Renamed, add_box_option, add_command, add_number, add_p0_option
 from softpad.cli._output import emit, say
 from softpad.cli._paths import atomic_path, check_output
 from softpad.cli._record import add_record_option, open_recorder, run_metadata
@@ -26,21 +26,23 @@ exit code: 0 every grasp held, 1 a grasp not held, 2 bad input, 3 hardware or li
 """
 
 
+_DESCRIPTION = """\
+Run the whole grasp loop of the seed's Section 6.2 once on the simulated box: inflate every
+module to p0 and save the reference, place the object(s) of the thesis set, plan the grasp
+from the pressure increments, move over the centre of grasp, descend at the approach speed
+until the pad senses the fingers (running average of 10 samples above t_g), close, lift,
+hold for 15 s, and print the timeline."""
+
+
 def register(sub: Any) -> None:
-    p = sub.add_parser(
+    p = add_command(
+        sub,
         "run",
-        help="run the closed loop (inflate, reference, plan, approach, contact, grasp, hold)",
-        description=(
-            "Run the whole grasp loop of the seed's Section 6.2 once on the simulated box: inflate "
-            "every module to p0 and save the reference, place the object(s) of the thesis set, plan "
-            "the grasp from the pressure increments, move over the centre of grasp, descend at "
-            "the approach speed until the pad senses the fingers (running average of 10 samples above t_g), "
-            "close, lift, hold for 15 s, and print the timeline."
-        ),
-        epilog=_EPILOG,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
+        "run the closed loop (inflate, reference, plan, approach, contact, grasp, hold)",
+        _DESCRIPTION,
+        _EPILOG,
     )
-    p.add_argument("--box", default="sim://", metavar="URL", help="box URL (default sim://)")
+    add_box_option(p)
     p.add_argument(
         "--robot",
         default="sim://",
@@ -58,11 +60,14 @@ def register(sub: Any) -> None:
         choices=("10/4", "6/2", "4/0"),
         help="gripper mounting, max/min width in cm (default: the object's, Section 6.3)",
     )
-    p.add_argument(
+    add_number(
+        p,
         "--hold-s",
-        type=finite_float("--hold-s", lo=0.0, hi=3600.0, unit="s"),
-        default=thesis.HOLD_S,
-        help="hold time in s (default %(default)g)",
+        "hold time in s (default %(default)g)",
+        thesis.HOLD_S,
+        lo=0.0,
+        hi=3600.0,
+        unit="s",
     )
     add_thesis_params(p)
     p.add_argument(
@@ -71,7 +76,6 @@ def register(sub: Any) -> None:
         help="installation file: thresholds (p0, t_adj, t_o, t_g, window, maximum), gripper and "
         "box link; the options above given on the command line win",
     )
-    add_json_force(p, force=False)  # --force comes with --record
     p.add_argument("--png", metavar="FILE.png", help="draw the pressure traces with the phases")
     p.add_argument("--plot", action=Renamed, new="--png FILE.png")
     add_record_option(p)
@@ -89,36 +93,42 @@ def add_thesis_params(p: argparse.ArgumentParser) -> None:
     from softpad.cli._args import bounded_int
 
     g = p.add_argument_group("loop parameters (seed, Section 6.2)")
-    g.add_argument(
-        "--p0-kpa",
-        type=finite_float("--p0-kpa", lo=0.5, hi=2.8, unit="kPa"),
-        default=thesis.P0_PA / 1e3,
-        help="p0, pressure every module is inflated to, kPa, 0.5..2.8 (default 1.1)",
-    )
-    g.add_argument(
-        "--object-threshold-kpa",
-        type=finite_float("--object-threshold-kpa", lo=0.005, hi=1.0, unit="kPa"),
-        default=thesis.OBJECT_THRESHOLD_PA / 1e3,
-        help="t_o, a module holds an object when dP > t_o, kPa, 0.005..1 (default 0.05)",
-    )
-    g.add_argument(
-        "--contact-threshold-kpa",
-        type=finite_float("--contact-threshold-kpa", lo=0.005, hi=1.0, unit="kPa"),
-        default=thesis.CONTACT_THRESHOLD_PA / 1e3,
-        help="t_g, the fingers touch the pad when the average rise > t_g, kPa, 0.005..1 "
-        "(default 0.09)",
-    )
+    add_p0_option(g)
+    for flag, default_pa, meaning in (
+        (
+            "--object-threshold-kpa",
+            thesis.OBJECT_THRESHOLD_PA,
+            "t_o, a module holds an object when dP > t_o",
+        ),
+        (
+            "--contact-threshold-kpa",
+            thesis.CONTACT_THRESHOLD_PA,
+            "t_g, the fingers touch the pad when the average rise > t_g",
+        ),
+    ):
+        add_number(
+            g,
+            flag,
+            f"{meaning}, kPa, 0.005..1 (default {default_pa / 1e3:g})",
+            default_pa / 1e3,
+            lo=0.005,
+            hi=1.0,
+            unit="kPa",
+        )
     g.add_argument(
         "--window",
         type=bounded_int("--window", 1, 200),
         default=thesis.FILTER_WINDOW,
         help="running-average length of the detectors, samples, 1..200 (default 10)",
     )
-    g.add_argument(
+    add_number(
+        g,
         "--approach-speed-mps",
-        type=finite_float("--approach-speed-mps", lo=0.001, hi=0.25, unit="m/s"),
-        default=thesis.APPROACH_SPEED_M_S,
-        help="descent speed towards the pad, m/s, 0.001..0.25 (default 0.05)",
+        "descent speed towards the pad, m/s, 0.001..0.25 (default 0.05)",
+        thesis.APPROACH_SPEED_M_S,
+        lo=0.001,
+        hi=0.25,
+        unit="m/s",
     )
 
 

@@ -7,7 +7,7 @@ import sys
 from typing import Any
 
 from softpad import thesis
-from softpad.cli._args import Renamed, add_json_force, int_ranges, name_list
+from softpad.cli._args import Renamed, add_command, bounded_int, int_ranges, name_list
 from softpad.cli._output import emit, say
 from softpad.cli._record import add_record_option, check_trial_recordings
 from softpad.errors import InputError
@@ -26,40 +26,52 @@ object_outside_jaws, slipped_during_hold, object_too_narrow, object_not_detected
 """
 
 
+_DESCRIPTION = """\
+Run the closed loop (simulated box, thesis planner, contact detection, grasp, 15 s hold) on
+the objects of Table 6.1 in a MuJoCo world, several trials each with random placement, and
+print a Table 6.1-like table with the overall success rate next to the thesis's 94.5 %."""
+
+
 def register(sub: Any) -> None:
-    p = sub.add_parser(
+    p = add_command(
+        sub,
         "trials",
-        help="run grasp trials of the thesis's Experiment 2 (Table 6.1) on MuJoCo",
-        description=(
-            "Run the closed loop (simulated box, thesis planner, contact detection, grasp, "
-            "15 s hold) on the objects of Table 6.1 in a MuJoCo world, several trials each with "
-            "random placement, and print a Table 6.1-like table with the overall success rate "
-            "next to the thesis's 94.5 %."
-        ),
-        epilog=_EPILOG,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
+        "run grasp trials of the thesis's Experiment 2 (Table 6.1) on MuJoCo",
+        _DESCRIPTION,
+        _EPILOG,
     )
-    p.add_argument(
-        "--objects",
-        metavar="NAME,...",
-        help="comma-separated catalogue names (default: all of Table 6.1)",
-    )
-    p.add_argument("--trials", type=int, default=5, help="trials per object (default 5)")
-    p.add_argument(
-        "--seeds",
-        default="0",
-        metavar="SEEDS",
-        help="experiment seeds: 7, 0-9 or 0-2,7 (default 0)",
-    )
-    p.add_argument("--seed", action=Renamed, new="--seeds (e.g. --seeds 7 or --seeds 0-9)")
-    p.add_argument("--workers", type=int, default=None, help="worker processes (default: all CPUs)")
+    add_trial_options(p)
     p.add_argument(
         "--hold-s", type=float, default=thesis.HOLD_S, help="hold time in s (default %(default)g)"
     )
-    add_json_force(p, force=False)
-    p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
     add_record_option(p, per_trial=True)
     p.set_defaults(handler=run)
+
+
+def add_trial_options(
+    p: Any, seeds: str = "0", objects: bool = True, one_seed: bool = False
+) -> None:
+    """The options of the commands that run Experiment 2 (``trials``, ``compare``, ``demo``):
+    ``--objects`` (unless not ``objects``), ``--trials``, ``--seeds`` (a range with default
+    ``seeds``, or one value with ``one_seed``), ``--workers`` and ``--no-progress``."""
+    if objects:
+        p.add_argument(
+            "--objects",
+            metavar="NAME,...",
+            help="comma-separated catalogue names (default: all of Table 6.1)",
+        )
+    p.add_argument("--trials", type=int, default=5, help="trials per object (default 5)")
+    if one_seed:
+        seed = bounded_int("--seeds", 0, 2**32 - 1)
+        p.add_argument(
+            "--seeds", type=seed, default=0, help="experiment seed, one value (default 0)"
+        )
+    else:
+        help = f"experiment seeds: 7, 0-9 or 0-2,7 (default {seeds})"
+        p.add_argument("--seeds", default=seeds, metavar="SEEDS", help=help)
+    p.add_argument("--seed", action=Renamed, new="--seeds (e.g. --seeds 7 or --seeds 0-9)")
+    p.add_argument("--workers", type=int, default=None, help="worker processes (default: all CPUs)")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
 
 
 def select_objects(names_text: str | None) -> list[Any]:

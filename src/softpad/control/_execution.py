@@ -6,7 +6,6 @@ planner, object detector, contact detector and recorder as arguments (the thesis
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from typing import Any, Protocol
@@ -23,7 +22,7 @@ from softpad.control._inflation import (
 )
 from softpad.control._robot import Robot, RobotState, ToolPose
 from softpad.control._safety import DetectedFault, RunSafety, SafeStateResult
-from softpad.errors import HardwareFault, InputError, SoftPadError
+from softpad.errors import HardwareFault, InputError, SoftPadError, check_fields
 from softpad.layout import PadLayout
 from softpad.planning import GraspPlan, Planner, PlannerParams, ThesisPlanner
 from softpad.sensing import (
@@ -125,27 +124,22 @@ class ExecutionParams:
     motion_timeout_s: float = 20.0
 
     def __post_init__(self) -> None:
-        for n in (
-            "contact_threshold_pa",
-            "approach_speed_m_s",
-            "travel_speed_m_s",
-            "gripper_speed_m_s",
-            "approach_height_m",
-            "lift_m",
-            "object_wait_s",
-            "motion_timeout_s",
-        ):
-            v = getattr(self, n)
-            if not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
-                raise InputError(f"execution {n} must be a positive number, got {v!r}")
-        for n in ("hold_s", "object_settle_s", "min_height_m"):
-            v = getattr(self, n)
-            if not (isinstance(v, int | float) and math.isfinite(v) and v >= 0):
-                raise InputError(f"execution {n} must be a number >= 0, got {v!r}")
-        for n in ("filter_length", "planning_reads", "pre_descent_reads"):
-            v = getattr(self, n)
-            if not (isinstance(v, int) and v >= 1):
-                raise InputError(f"execution {n} must be an integer >= 1, got {v!r}")
+        check_fields(
+            self,
+            "execution",
+            positive=(
+                "contact_threshold_pa",
+                "approach_speed_m_s",
+                "travel_speed_m_s",
+                "gripper_speed_m_s",
+                "approach_height_m",
+                "lift_m",
+                "object_wait_s",
+                "motion_timeout_s",
+            ),
+            non_negative=("hold_s", "object_settle_s", "min_height_m"),
+            counts=("filter_length", "planning_reads", "pre_descent_reads"),
+        )
 
 
 @dataclass(frozen=True)

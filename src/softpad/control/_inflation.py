@@ -19,7 +19,7 @@ from numpy.typing import NDArray
 
 from softpad import thesis
 from softpad.box import Box, PressureFrame, ValveCommand
-from softpad.errors import HardwareFault, InputError
+from softpad.errors import HardwareFault, InputError, check_fields
 
 if TYPE_CHECKING:
     from softpad.control._safety import SafeStateResult
@@ -81,17 +81,18 @@ class InflationParams:
         return self.max_pressure_pa - self.trip_margin_pa
 
     def __post_init__(self) -> None:
-        for n in (
-            "target_pa",
-            "tolerance_pa",
-            "max_pressure_pa",
-            "timeout_s",
-            "settle_s",
-            "max_drift_pa_s",
-        ):
-            v = getattr(self, n)
-            if not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
-                raise InputError(f"inflation {n} must be a positive number, got {v!r}")
+        check_fields(
+            self,
+            "inflation",
+            positive=(
+                "target_pa",
+                "tolerance_pa",
+                "max_pressure_pa",
+                "timeout_s",
+                "settle_s",
+                "max_drift_pa_s",
+            ),
+        )
         if not (
             math.isfinite(self.trip_margin_pa) and 0 <= self.trip_margin_pa < self.max_pressure_pa
         ):

@@ -23,7 +23,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from softpad.box import RATED_MAX_PRESSURE_PA, Box, ConnectionLost, PressureFrame, ValveCommand
-from softpad.errors import HardwareFault, InputError
+from softpad.errors import HardwareFault, check_fields
 
 
 @dataclass(frozen=True)
@@ -112,18 +112,13 @@ class FaultThresholds:
     filter_length: int = 10
 
     def __post_init__(self) -> None:
-        for n in ("max_pressure_pa", "fall_pa", "rise_pa_s", "window_s", "sensor_max_pa"):
-            v = getattr(self, n)
-            if not (isinstance(v, int | float) and math.isfinite(v) and v > 0):
-                raise InputError(f"fault threshold {n} must be a positive number, got {v!r}")
-        for n in ("trip_margin_pa", "supply_min_pa"):
-            v = getattr(self, n)
-            if not (isinstance(v, int | float) and math.isfinite(v) and v >= 0):
-                raise InputError(f"fault threshold {n} must be a number >= 0, got {v!r}")
-        for n in ("rise_windows", "filter_length"):
-            v = getattr(self, n)
-            if not (isinstance(v, int) and v >= 1):
-                raise InputError(f"fault threshold {n} must be an integer >= 1, got {v!r}")
+        check_fields(
+            self,
+            "fault threshold",
+            positive=("max_pressure_pa", "fall_pa", "rise_pa_s", "window_s", "sensor_max_pa"),
+            non_negative=("trip_margin_pa", "supply_min_pa"),
+            counts=("rise_windows", "filter_length"),
+        )
 
 
 class FaultMonitor:
