@@ -7,7 +7,8 @@ a :class:`ValveCommand`. The simulated box (``sim://``, :class:`SimBox`) is the 
 :class:`BoxDaemon` (``softpad box serve``) with the same interface; :class:`HardwareBox`
 drives the real Pneumaticbox (GPIO valves, IIO sensors). The hand-written ``tcp://``
 protocol of earlier versions is gone.
-Every back-end must pass :func:`check_conformance`.
+Every back-end must pass :func:`check_conformance`; :class:`BoxWrapper` is the base of views
+that add something around a box (a hook around reads, an event per valve command).
 """
 
 from softpad.box._base import Box, ConnectionLost, PressureFrame, ValveCommand
@@ -24,6 +25,7 @@ from softpad.box._link import MAX_PAYLOAD_BYTES, StampedFrame, decode_frame, enc
 from softpad.box._registry import DEFAULT_URL, backends, open_box, parse_url, register_backend
 from softpad.box._safety import RATED_MAX_PRESSURE_PA, SafetyGuard, SafetyLimits, SafetyTrip
 from softpad.box._sim import FAULT_KINDS, Fault, SimBox, open_sim_url
+from softpad.box._wrapper import BoxWrapper
 from softpad.box._zenoh import ControlRefused, ZenohBox, open_zenoh_url
 
 __all__ = [
@@ -33,6 +35,7 @@ __all__ = [
     "RATED_MAX_PRESSURE_PA",
     "Box",
     "BoxDaemon",
+    "BoxWrapper",
     "ConformanceError",
     "ConnectionLost",
     "ControlRefused",

@@ -14,7 +14,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from softpad import thesis
-from softpad.box import Box, PressureFrame, ValveCommand
+from softpad.box import Box, BoxWrapper, PressureFrame, ValveCommand
 from softpad.control._inflation import (
     AdjustmentResult,
     InflationParams,
@@ -247,37 +247,18 @@ class ExecutionResult:
         }
 
 
-class _RecordingBox(Box):
-    """The execution's view of the box: every valve command also becomes a recorder event."""
+class _RecordingBox(BoxWrapper):
+    """The execution's view of the box: every valve command also becomes a recorder event.
+    The caller owns the wrapped box; the view shares its safety guard (its limits, its trips)."""
 
     def __init__(self, box: Box, recorder: Recorder, clock: Callable[[], float]) -> None:
-        super().__init__()
-        self.inner, self._recorder, self._clock = box, recorder, clock
-        # one safety guard: the wrapped box's (its limits, its trips)
+        super().__init__(box, owns_inner=False)
+        self._recorder, self._clock = recorder, clock
         self._limits, self._guard = box.safety_limits, box.safety
 
-    @property
-    def valves(self) -> tuple[ValveCommand, ...]:
-        """The wrapped box's valve states (its safety guard may vent a channel)."""
-        return self.inner.valves
-
-    @property
-    def channels(self) -> int:
-        return self.inner.channels
-
-    @property
-    def sample_rate_hz(self) -> float:
-        return self.inner.sample_rate_hz
-
-    def _read(self) -> PressureFrame:
-        return self.inner.read()
-
     def _apply_valve(self, channel: int, command: ValveCommand) -> None:
-        self.inner.set_valve(channel, command)
+        super()._apply_valve(channel, command)
         self._recorder.event(self._clock(), "valve", channel=channel, command=command.value)
-
-    def _close(self) -> None:
-        """The caller owns the wrapped box: closing the view closes nothing."""
 
 
 class _RecordingRobot:

@@ -172,13 +172,8 @@ class FaultMonitor:
         supply = float(np.mean(self._supply))
         th = self.th
         if not supply >= th.supply_min_pa:
-            return DetectedFault(
-                t,
-                None,
-                "supply_loss",
-                f"supply pressure {supply / 1e3:.2f} kPa is below {th.supply_min_pa / 1e3:g} kPa "
-                f"at t = {t:.2f} s (supply lost?)",
-            )
+            what = f"supply pressure {supply / 1e3:.2f} kPa is below {th.supply_min_pa / 1e3:g} kPa"
+            return _fault(t, None, "supply_loss", what, "supply lost?")
         sealed = self._sealed_frames >= th.filter_length
         return self._check_trend(t, mean, sealed)
 
@@ -190,39 +185,20 @@ class FaultMonitor:
         for k in range(self.n):
             v = p[k]
             if not math.isfinite(v):
-                return DetectedFault(
-                    t,
-                    k + 1,
-                    "sensor_nan",
-                    f"channel {k + 1}: pressure sensor gives no valid "
-                    f"reading (NaN) at t = {t:.2f} s",
-                )
+                return _fault(t, k, "sensor_nan", "pressure sensor gives no valid reading (NaN)")
             if v < th.floor_pa:
-                return DetectedFault(
-                    t,
-                    k + 1,
-                    "sensor_dropout",
-                    f"channel {k + 1}: pressure sensor reads "
-                    f"{v / 1e3:.2f} kPa at t = {t:.2f} s (sensor dropout?)",
-                )
+                what = f"pressure sensor reads {v / 1e3:.2f} kPa"
+                return _fault(t, k, "sensor_dropout", what, "sensor dropout?")
             if v >= th.sensor_max_pa:
-                return DetectedFault(
-                    t,
-                    k + 1,
-                    "sensor_range",
-                    f"channel {k + 1}: pressure sensor at its full "
-                    f"scale ({v / 1e3:.2f} kPa) at t = {t:.2f} s",
-                )
+                what = f"pressure sensor at its full scale ({v / 1e3:.2f} kPa)"
+                return _fault(t, k, "sensor_range", what)
             if v > th.max_pressure_pa - th.trip_margin_pa:
-                return DetectedFault(
-                    t,
-                    k + 1,
-                    "over_pressure",
-                    f"channel {k + 1}: pressure {v / 1e3:.3f} kPa "
-                    f"tripped the safety limit {(th.max_pressure_pa - th.trip_margin_pa) / 1e3:.3f}"
-                    f" kPa (maximum {th.max_pressure_pa / 1e3:.2f} kPa) at t = {t:.2f} s "
-                    "(valve stuck open?)",
+                what = (
+                    f"pressure {v / 1e3:.3f} kPa tripped the safety limit "
+                    f"{(th.max_pressure_pa - th.trip_margin_pa) / 1e3:.3f} kPa "
+                    f"(maximum {th.max_pressure_pa / 1e3:.2f} kPa)"
                 )
+                return _fault(t, k, "over_pressure", what, "valve stuck open?")
         return None
 
     def _check_trend(
@@ -234,14 +210,11 @@ class FaultMonitor:
             low = sealed & (mean < ref - th.fall_pa)
             if low.any():
                 k = int(np.argmax(low))
-                return DetectedFault(
-                    t,
-                    k + 1,
-                    "falling",
-                    f"channel {k + 1}: {mean[k] / 1e3:.3f} kPa with its "
-                    f"valves closed, {(ref[k] - mean[k]):.0f} Pa below its reference at "
-                    f"t = {t:.2f} s (leak or deflation valve stuck open?)",
+                what = (
+                    f"{mean[k] / 1e3:.3f} kPa with its valves closed, "
+                    f"{(ref[k] - mean[k]):.0f} Pa below its reference"
                 )
+                return _fault(t, k, "falling", what, "leak or deflation valve stuck open?")
         self._sealed_window &= sealed
         if self._window_start is None or not sealed.any():
             self._window_start = (t, mean.copy())
@@ -259,14 +232,18 @@ class FaultMonitor:
         up = self._rising >= th.rise_windows
         if up.any():
             k = int(np.argmax(up))
-            return DetectedFault(
-                t,
-                k + 1,
-                "rising",
-                f"channel {k + 1}: rising {slope[k]:.0f} Pa/s with its "
-                f"inflation valve closed at t = {t:.2f} s (inflation valve stuck open?)",
-            )
+            what = f"rising {slope[k]:.0f} Pa/s with its inflation valve closed"
+            return _fault(t, k, "rising", what, "inflation valve stuck open?")
         return None
+
+
+def _fault(t: float, k: int | None, kind: str, what: str, guess: str = "") -> DetectedFault:
+    """The fault ``kind`` of channel index ``k`` (None: the supply) at ``t``, with the message
+    ``"channel K: WHAT at t = T s (GUESS)"``."""
+    where = "" if k is None else f"channel {k + 1}: "
+    cause = f" ({guess})" if guess else ""
+    channel = None if k is None else k + 1
+    return DetectedFault(t, channel, kind, f"{where}{what} at t = {t:.2f} s{cause}")
 
 
 #: A module cannot be under vacuum: a reading below this is a failed sensor, pascals.

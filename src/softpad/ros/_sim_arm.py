@@ -17,36 +17,22 @@ import threading
 from collections.abc import Callable
 from typing import Any
 
-from softpad.box import Box, PressureFrame, SimBox, ValveCommand
+from softpad.box import Box, BoxWrapper, PressureFrame, SimBox
 from softpad.errors import InputError
 
 
-class _HookedBox(Box):
+class _HookedBox(BoxWrapper):
     """A box that calls ``before`` ahead of every read of ``inner`` and ``after`` with it."""
 
     def __init__(self, inner: Box, before: Callable[[], None], after: Callable[[], None]) -> None:
-        super().__init__()
-        self.inner, self.before, self.after = inner, before, after
-
-    @property
-    def channels(self) -> int:
-        return self.inner.channels
-
-    @property
-    def sample_rate_hz(self) -> float:
-        return self.inner.sample_rate_hz
+        super().__init__(inner)
+        self.before, self.after = before, after
 
     def _read(self) -> PressureFrame:
         self.before()
-        frame = self.inner.read()
+        frame = super()._read()
         self.after()
         return frame
-
-    def _apply_valve(self, channel: int, command: ValveCommand) -> None:
-        self.inner.set_valve(channel, command)
-
-    def _close(self) -> None:
-        self.inner.close()
 
 
 def _free_loopback_port() -> int:
