@@ -34,14 +34,8 @@ def test_sim_backend_passes_conformance(url: str) -> None:
     check_conformance(open_box(url))
 
 
-def test_zenoh_backend_passes_conformance() -> None:
+def test_zenoh_backend_passes_conformance(served) -> None:
     """The zenoh back-end, against a simulated box served on loopback by the daemon."""
-    import sys
-    from pathlib import Path
-
-    sys.path.insert(0, str(Path(__file__).resolve().parent))
-    from zenoh_helpers import served
-
     with served("sim://?seed=5") as (daemon, url):
         check_conformance(open_box(url + "?timeout_s=5"))
         assert daemon.controller is None  # closing gave control back

@@ -75,14 +75,8 @@ def test_invalid_reading_vents_and_refuses_inflate(fault: str) -> None:
             box.set_valve(4, "inflate")
 
 
-def test_zenoh_client_holding_inflate_never_exceeds_max() -> None:
+def test_zenoh_client_holding_inflate_never_exceeds_max(served) -> None:
     """Only the served box's guard protects the module: the client's own guard is relaxed."""
-    import sys
-    from pathlib import Path
-
-    sys.path.insert(0, str(Path(__file__).resolve().parent))
-    from zenoh_helpers import served
-
     with served("sim://?seed=2&rate_hz=50") as (daemon, url):
         inner = daemon.box
         assert isinstance(inner, SimBox)

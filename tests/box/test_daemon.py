@@ -19,9 +19,6 @@ from softpad.box import MAX_PAYLOAD_BYTES, ControlRefused, ValveCommand, ZenohBo
 from softpad.box._link import session_config
 from softpad.cli.main import main
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from zenoh_helpers import free_port, served
-
 
 def _until(cond, what: str, limit_s: float = 20.0) -> None:
     """Poll ``cond`` (bounded: fails naming ``what`` after ``limit_s``)."""
@@ -32,7 +29,7 @@ def _until(cond, what: str, limit_s: float = 20.0) -> None:
         time.sleep(0.01)
 
 
-def test_many_monitors_receive_contiguous_sequence_numbers() -> None:
+def test_many_monitors_receive_contiguous_sequence_numbers(served) -> None:
     with served("sim://?rate_hz=500&inflated_kpa=1.1") as (_daemon, url):
         monitors = [open_box(url) for _ in range(4)]
         try:
@@ -44,7 +41,7 @@ def test_many_monitors_receive_contiguous_sequence_numbers() -> None:
         np.testing.assert_array_equal(np.diff(s), 1)
 
 
-def test_control_is_held_by_one_client_and_handed_over() -> None:
+def test_control_is_held_by_one_client_and_handed_over(served) -> None:
     with served() as (daemon, url):
         a, b = open_box(url), open_box(url)
         assert isinstance(a, ZenohBox) and isinstance(b, ZenohBox)
@@ -74,7 +71,7 @@ time.sleep(600)
 
 
 @pytest.mark.parametrize("action", ["hold", "vent"])
-def test_watchdog_closes_inflation_when_the_controller_is_killed(action: str) -> None:
+def test_watchdog_closes_inflation_when_the_controller_is_killed(action: str, served) -> None:
     with served("sim://?seed=2", watchdog_s=0.3, watchdog_action=action) as (daemon, url):
         proc = subprocess.Popen(
             [sys.executable, "-c", _CONTROLLER, url], stdout=subprocess.PIPE, text=True
@@ -100,7 +97,7 @@ def test_watchdog_closes_inflation_when_the_controller_is_killed(action: str) ->
         assert daemon.stats.watchdog_trips == 1
 
 
-def test_silent_controller_loses_control_by_heartbeat() -> None:
+def test_silent_controller_loses_control_by_heartbeat(served) -> None:
     with served(watchdog_s=0.2) as (daemon, url):
         box = open_box(url)
         assert isinstance(box, ZenohBox)
@@ -114,7 +111,7 @@ def test_silent_controller_loses_control_by_heartbeat() -> None:
         box.close()
 
 
-def test_over_limit_inflation_is_refused_and_overpressure_vented() -> None:
+def test_over_limit_inflation_is_refused_and_overpressure_vented(served) -> None:
     # modules start at 1.1 kPa; this box's maximum is 1.2 kPa (trip 1.15 kPa)
     with served("sim://?inflated_kpa=1.1&noise=0", max_pressure_pa=1200.0) as (daemon, url):
         with open_box(url) as box:
@@ -148,7 +145,7 @@ def test_over_limit_inflation_is_refused_and_overpressure_vented() -> None:
     ],
     ids=["not-utf8", "not-object", "nan", "unbalanced", "oversized", "bad-client"],
 )
-def test_malformed_payloads_are_counted_and_dropped(payload: bytes) -> None:
+def test_malformed_payloads_are_counted_and_dropped(payload: bytes, served) -> None:
     import zenoh
 
     with served() as (daemon, url):
@@ -179,7 +176,7 @@ def test_non_loopback_listen_without_auth_is_refused(
     assert "no authentication" in err and err.count("\n") == 1
 
 
-def test_cli_read_json_and_stats(capsys: pytest.CaptureFixture[str]) -> None:
+def test_cli_read_json_and_stats(capsys: pytest.CaptureFixture[str], served) -> None:
     import json
 
     with served("sim://?seed=4") as (_daemon, url):
@@ -193,7 +190,7 @@ def test_cli_read_json_and_stats(capsys: pytest.CaptureFixture[str]) -> None:
 
 
 def test_served_simulator_holds_the_banana_while_two_monitors_watch(
-    capsys: pytest.CaptureFixture[str],
+    capsys: pytest.CaptureFixture[str], free_port
 ) -> None:
     """The issue's end-to-end case: daemon and monitors in their own processes, as deployed."""
     import json
@@ -235,7 +232,7 @@ def test_served_simulator_holds_the_banana_while_two_monitors_watch(
             p.wait(timeout=10)
 
 
-def test_nobody_listening_is_one_line(capsys: pytest.CaptureFixture[str]) -> None:
+def test_nobody_listening_is_one_line(capsys: pytest.CaptureFixture[str], free_port) -> None:
     port = free_port()
     url = f"zenoh://127.0.0.1:{port}?timeout_s=0.5"
     assert (

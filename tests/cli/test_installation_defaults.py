@@ -38,13 +38,9 @@ def test_the_file_sets_the_default_and_the_command_line_wins(
 
 
 def test_the_box_link_of_the_file_is_the_default_box(
-    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], free_port
 ) -> None:
-    import socket
-
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        port = s.getsockname()[1]
+    port = free_port()
     site = tmp_path / "site.toml"
     site.write_text(f'[link]\nconnect = ["tcp/127.0.0.1:{port}"]\n')
     code = main(["box", "read", "--count", "1", "--config", str(site)])  # zenoh://...:port

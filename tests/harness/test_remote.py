@@ -2,9 +2,6 @@
 
 from __future__ import annotations
 
-import sys
-from pathlib import Path
-
 import numpy as np
 import pytest
 
@@ -14,11 +11,8 @@ from softpad.errors import InputError
 from softpad.harness import RemoteRobot, run_simulated
 from softpad.record import RunLog
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "box"))
-from zenoh_helpers import served
 
-
-def test_remote_robot_moves_the_served_gripper() -> None:
+def test_remote_robot_moves_the_served_gripper(served) -> None:
     with served() as (_daemon, url), open_box(url) as box:
         assert isinstance(box, ZenohBox)
         remote = RemoteRobot(box, gripper="10/4")
@@ -62,7 +56,7 @@ def test_remote_robot_moves_the_served_gripper() -> None:
         "width-negative",
     ],
 )
-def test_bad_remote_requests_are_input_errors(call, match: str) -> None:
+def test_bad_remote_requests_are_input_errors(call, match: str, served) -> None:
     with served() as (daemon, url), open_box(url) as box:
         assert isinstance(box, ZenohBox)
         robot = RemoteRobot(box)
@@ -72,7 +66,7 @@ def test_bad_remote_requests_are_input_errors(call, match: str) -> None:
         assert daemon.controller == box.client_id
 
 
-def test_loop_over_zenoh_holds_the_banana_with_the_local_plan_and_closes_valves() -> None:
+def test_loop_over_zenoh_holds_the_banana_with_the_local_plan_and_closes_valves(served) -> None:
     params = ExecutionParams(hold_s=0.5)
     log = RunLog()
     with served(lockstep_frames=2) as (daemon, url):

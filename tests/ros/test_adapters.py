@@ -104,16 +104,12 @@ def test_run_with_an_unknown_robot_is_one_line() -> None:
     assert r.returncode == 2 and r.stderr.count("\n") == 1 and "ur5://" in r.stderr
 
 
-def test_without_a_master_the_node_says_so_at_once() -> None:
+def test_without_a_master_the_node_says_so_at_once(free_port) -> None:
     from softpad.ros import rospy_available
 
     if not rospy_available():
         pytest.skip("ROS 1 not installed (make ros-deps)")
-    import socket
-
-    with socket.socket() as s:  # a loopback port where no master listens
-        s.bind(("127.0.0.1", 0))
-        port = s.getsockname()[1]
+    port = free_port()  # a loopback port where no master listens
     r = _softpad(
         "ros", "node", "--box", "sim://", ROS_MASTER_URI=f"http://127.0.0.1:{port}",
         ROS_IP="127.0.0.1", ROS_HOSTNAME="localhost",

@@ -12,7 +12,6 @@ import os
 import re
 import shutil
 import signal
-import socket
 import subprocess
 import sys
 import time
@@ -29,12 +28,6 @@ pytestmark = pytest.mark.skipif(
     reason="ROS 1 not installed (make ros-deps, as root, installs Debian's packages)",
 )
 SOFTPAD = str(Path(sys.executable).with_name("softpad"))
-
-
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
 
 
 def _wait(predicate, timeout_s: float, what: str):  # type: ignore[no-untyped-def]
@@ -76,8 +69,8 @@ class _Procs:
 
 
 @pytest.fixture(scope="module")
-def master(tmp_path_factory: pytest.TempPathFactory) -> Iterator[dict[str, str]]:
-    port = _free_port()
+def master(tmp_path_factory: pytest.TempPathFactory, free_port) -> Iterator[dict[str, str]]:
+    port = free_port()
     env = dict(os.environ)
     env.update(
         ROS_MASTER_URI=f"http://127.0.0.1:{port}",

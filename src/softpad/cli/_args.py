@@ -200,6 +200,11 @@ def add_number(p: Any, flag: str, help: str, default: float | None = None, **lim
     p.add_argument(flag, type=finite_float(flag, **limits), default=default, help=help)
 
 
+def add_integer(p: Any, flag: str, help: str, default: int, lo: int, hi: int) -> None:
+    """``flag`` taking an integer from ``lo`` to ``hi`` (see :func:`bounded_int`)."""
+    p.add_argument(flag, type=bounded_int(flag, lo, hi), default=default, help=help)
+
+
 def add_p0_option(p: Any) -> None:
     """``--p0-kpa``: the pressure every module is inflated to (p0, seed Section 6.2.1.1)."""
     from softpad import thesis

@@ -9,7 +9,13 @@ from contextlib import contextmanager
 from typing import Any
 
 from softpad import thesis
-from softpad.cli._args import add_command, add_group, add_number, bounded_int, number_list
+from softpad.cli._args import (
+    add_command,
+    add_group,
+    add_integer,
+    add_number,
+    number_list,
+)
 from softpad.cli._output import emit
 from softpad.cli._paths import atomic_path, check_output
 from softpad.errors import InputError
@@ -122,12 +128,7 @@ def _sweep_study(fem_sub: Any) -> None:
         hi=10.0,
         unit="kPa",
     )
-    s.add_argument(
-        "--points",
-        type=bounded_int("--points", 2, 200),
-        default=13,
-        help="number of pressures, 2..200 (default 13)",
-    )
+    add_integer(s, "--points", "number of pressures, 2..200 (default 13)", 13, 2, 200)
     s.add_argument(
         "--vtu", metavar="FILE.vtu", help="write the deformed module at the last pressure"
     )

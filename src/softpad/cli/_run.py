@@ -8,7 +8,14 @@ import sys
 from typing import Any
 
 from softpad import thesis
-from softpad.cli._args import Renamed, add_box_option, add_command, add_number, add_p0_option
+from softpad.cli._args import (
+    Renamed,
+    add_box_option,
+    add_command,
+    add_integer,
+    add_number,
+    add_p0_option,
+)
 from softpad.cli._output import emit, say
 from softpad.cli._paths import atomic_path, check_output
 from softpad.cli._record import add_record_option, open_recorder, run_metadata
@@ -90,7 +97,6 @@ def register(sub: Any) -> None:
 
 def add_thesis_params(p: argparse.ArgumentParser) -> None:
     """The seed's loop parameters (Section 6.2) as options with their physical ranges."""
-    from softpad.cli._args import bounded_int
 
     g = p.add_argument_group("loop parameters (seed, Section 6.2)")
     add_p0_option(g)
@@ -115,12 +121,8 @@ def add_thesis_params(p: argparse.ArgumentParser) -> None:
             hi=1.0,
             unit="kPa",
         )
-    g.add_argument(
-        "--window",
-        type=bounded_int("--window", 1, 200),
-        default=thesis.FILTER_WINDOW,
-        help="running-average length of the detectors, samples, 1..200 (default 10)",
-    )
+    window_help = "running-average length of the detectors, samples, 1..200 (default 10)"
+    add_integer(g, "--window", window_help, thesis.FILTER_WINDOW, 1, 200)
     add_number(
         g,
         "--approach-speed-mps",

@@ -7,7 +7,7 @@ import sys
 from typing import Any
 
 from softpad import thesis
-from softpad.cli._args import Renamed, add_command, bounded_int, int_ranges, name_list
+from softpad.cli._args import Renamed, add_command, add_integer, int_ranges, name_list
 from softpad.cli._output import emit, say
 from softpad.cli._record import add_record_option, check_trial_recordings
 from softpad.errors import InputError
@@ -62,10 +62,7 @@ def add_trial_options(
         )
     p.add_argument("--trials", type=int, default=5, help="trials per object (default 5)")
     if one_seed:
-        seed = bounded_int("--seeds", 0, 2**32 - 1)
-        p.add_argument(
-            "--seeds", type=seed, default=0, help="experiment seed, one value (default 0)"
-        )
+        add_integer(p, "--seeds", "experiment seed, one value (default 0)", 0, 0, 2**32 - 1)
     else:
         help = f"experiment seeds: 7, 0-9 or 0-2,7 (default {seeds})"
         p.add_argument("--seeds", default=seeds, metavar="SEEDS", help=help)

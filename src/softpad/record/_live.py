@@ -21,6 +21,7 @@ from collections.abc import Callable
 from typing import Any
 
 from softpad.box import PressureFrame
+from softpad.record._closing import ClosedOnExit
 from softpad.record._mcap import jsonable
 from softpad.record._schemas import (
     EVENT_TOPIC,
@@ -67,7 +68,7 @@ def _stamp(t_s: float) -> dict[str, int]:
     return {"sec": int(sec), "nsec": min(round((t_s - sec) * 1e9), 999_999_999)}
 
 
-class FoxgloveLive:
+class FoxgloveLive(ClosedOnExit):
     """Serve a run live to Foxglove (a ``softpad.control.Recorder``).
 
     Parameters
@@ -212,9 +213,3 @@ class FoxgloveLive:
         if not self.closed:
             self.closed = True
             self.server.stop()
-
-    def __enter__(self) -> FoxgloveLive:
-        return self
-
-    def __exit__(self, *exc: object) -> None:
-        self.close()

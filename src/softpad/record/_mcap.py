@@ -24,6 +24,7 @@ import numpy as np
 from softpad.box import PressureFrame
 from softpad.errors import InputError
 from softpad.record import _schemas as S
+from softpad.record._closing import ClosedOnExit
 
 #: Longest wall time between two flushes of the file, seconds (the most a crash can lose).
 FLUSH_PERIOD_S = 0.1
@@ -80,7 +81,7 @@ def check_output(path: str | Path, force: bool = False) -> Path:
     return p
 
 
-class McapRecorder:
+class McapRecorder(ClosedOnExit):
     """Record a run into an MCAP file (a ``softpad.control.Recorder``).
 
     Parameters
@@ -261,9 +262,3 @@ class McapRecorder:
         finally:
             self.closed = True
             self._file.close()
-
-    def __enter__(self) -> McapRecorder:
-        return self
-
-    def __exit__(self, *exc: object) -> None:
-        self.close()

@@ -1,0 +1,43 @@
+"""Fixtures shared by the test folders: loopback ports and a served simulated box."""
+
+from __future__ import annotations
+
+import socket
+from collections.abc import Callable, Iterator
+from contextlib import AbstractContextManager, contextmanager
+from typing import Any
+
+import pytest
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+@contextmanager
+def _served(url: str = "sim://?seed=4", **kwargs: Any) -> Iterator[tuple[Any, str]]:
+    from softpad.box import BoxDaemon, SimBox, open_box
+    from softpad.harness import simulation_extensions
+
+    port = _free_port()
+    box = open_box(url)
+    services = simulation_extensions(box) if isinstance(box, SimBox) else None
+    daemon = BoxDaemon(box, (f"tcp/127.0.0.1:{port}",), services=services, **kwargs)
+    with daemon:
+        yield daemon, f"zenoh://127.0.0.1:{port}"
+
+
+@pytest.fixture(scope="session")
+def free_port() -> Callable[[], int]:
+    """``free_port()``: a TCP port on 127.0.0.1 that nobody listens on right now."""
+    return _free_port
+
+
+@pytest.fixture(scope="session")
+def served() -> Callable[..., AbstractContextManager[tuple[Any, str]]]:
+    """``with served(url="sim://?seed=4", **daemon_options) as (daemon, zenoh_url)``: a
+    :class:`~softpad.box.BoxDaemon` serving ``url`` (with the simulator's services for a
+    ``sim://`` box) on a free loopback port."""
+    return _served
