@@ -5,7 +5,11 @@ Thesis symbols (values in :mod:`softpad.thesis`): t_o (object threshold), t_g (c
 running average of 10 samples, reference = mean of 10 reads (seed, Sections 6.2.1.1 and 6.3).
 """
 
-from softpad.sensing._contact import ContactDetector, ThesisContactDetector
+from softpad.sensing._contact import (
+    ContactDetector,
+    LatchingContactDetector,
+    ThesisContactDetector,
+)
 from softpad.sensing._cusum import (
     CONTACT_DETECTORS,
     DEFAULT_CUSUM_DRIFT_PA,
@@ -32,6 +36,7 @@ __all__ = [
     "DEFAULT_OBJECT_THRESHOLD_PA",
     "ContactDetector",
     "CusumContactDetector",
+    "LatchingContactDetector",
     "ObjectDetector",
     "RunningAverage",
     "ThesisContactDetector",

@@ -34,7 +34,50 @@ class ContactDetector(Protocol):
         ...
 
 
-class ThesisContactDetector:
+class LatchingContactDetector:
+    """Base of the contact detectors that latch on a per-module statistic of the rise.
+
+    Every frame's rise over the reference (Pa per module) goes to :meth:`_statistic`; the
+    first frame where any module's statistic exceeds ``threshold_pa`` names the triggered
+    modules, and :meth:`update` returns True from then on until :meth:`reset`. Subclasses set
+    ``threshold_pa`` and implement :meth:`_statistic` and :meth:`_restart`.
+    """
+
+    threshold_pa: float
+
+    def __init__(self) -> None:
+        self.reference_pa: NDArray[np.float64] | None = None
+        self._triggered: tuple[int, ...] = ()
+
+    @property
+    def triggered_modules(self) -> tuple[int, ...]:
+        return self._triggered
+
+    def reset(self, reference_pa: ArrayLike) -> None:
+        self.reference_pa = np.asarray(reference_pa, dtype=float).copy()
+        self._triggered = ()
+        self._restart(self.reference_pa.shape[0])
+
+    def update(self, pressures_pa: ArrayLike) -> bool:
+        if self._triggered:
+            return True
+        if self.reference_pa is None:
+            raise RuntimeError(f"{type(self).__name__}.update called before reset")
+        rise = np.asarray(pressures_pa, dtype=float) - self.reference_pa
+        hits = np.flatnonzero(self._statistic(rise) > self.threshold_pa)
+        self._triggered = tuple(int(k) + 1 for k in hits)
+        return bool(self._triggered)
+
+    def _restart(self, modules: int) -> None:
+        """Clear the statistic's state for a pad of ``modules`` modules."""
+        raise NotImplementedError
+
+    def _statistic(self, rise_pa: NDArray[np.float64]) -> NDArray[np.float64]:
+        """The statistic of every module after this frame's rise, pascals."""
+        raise NotImplementedError
+
+
+class ThesisContactDetector(LatchingContactDetector):
     """The thesis's contact detector (seed, Section 6.2.2).
 
     Contact is declared on the first frame where the running average (``window`` samples) of
@@ -58,34 +101,17 @@ class ThesisContactDetector:
         window: int = DEFAULT_FILTER_LENGTH,
         reference_pa: ArrayLike | None = None,
     ) -> None:
+        super().__init__()
         self.threshold_pa = check_threshold(threshold_pa, "contact threshold")
         self._filter = RunningAverage(window)
-        self.reference_pa: NDArray[np.float64] | None = None
-        self._triggered: tuple[int, ...] = ()
         if reference_pa is not None:
             self.reset(reference_pa)
 
-    @property
-    def triggered_modules(self) -> tuple[int, ...]:
-        return self._triggered
-
-    def reset(self, reference_pa: ArrayLike) -> None:
-        self.reference_pa = np.asarray(reference_pa, dtype=float).copy()
+    def _restart(self, modules: int) -> None:
         self._filter.reset()
-        for _ in range(self._filter.length):
-            self._filter.update(np.zeros_like(self.reference_pa))
-        self._triggered = ()
+        for _ in range(self._filter.length):  # primed with zero increments (the reference)
+            self._filter.update(np.zeros(modules))
 
-    def update(self, pressures_pa: ArrayLike) -> bool:
-        if self._triggered:
-            return True
-        if self.reference_pa is None:
-            raise RuntimeError("ThesisContactDetector.update called before reset")
-        filtered: NDArray[np.float64] = self._filter.update(
-            np.asarray(pressures_pa, dtype=float) - self.reference_pa
-        )
-        hits = np.flatnonzero(filtered > self.threshold_pa)
-        if hits.size:
-            self._triggered = tuple(int(k) + 1 for k in hits)
-            return True
-        return False
+    def _statistic(self, rise_pa: NDArray[np.float64]) -> NDArray[np.float64]:
+        filtered: NDArray[np.float64] = self._filter.update(rise_pa)
+        return filtered

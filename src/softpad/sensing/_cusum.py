@@ -19,7 +19,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from softpad.errors import InputError
-from softpad.sensing._contact import ContactDetector
+from softpad.sensing._contact import ContactDetector, LatchingContactDetector
 
 #: Noise allowance of the default CUSUM, Pa per sample: above the sensor's 8 Pa rms white noise
 #: (softpad.sim.SensorParams) by almost four sigma.
@@ -37,7 +37,7 @@ def _positive(name: str, value: float) -> float:
     return v
 
 
-class CusumContactDetector:
+class CusumContactDetector(LatchingContactDetector):
     """One-sided CUSUM per module (a :class:`~softpad.sensing.ContactDetector`).
 
     Parameters
@@ -53,38 +53,22 @@ class CusumContactDetector:
         drift_pa: float = DEFAULT_CUSUM_DRIFT_PA,
         threshold_pa: float = DEFAULT_CUSUM_THRESHOLD_PA,
     ) -> None:
+        super().__init__()
         self.drift_pa = _positive("CUSUM drift", drift_pa)
         self.threshold_pa = _positive("CUSUM threshold", threshold_pa)
-        self._reference: NDArray[np.float64] | None = None
         self._g: NDArray[np.float64] = np.zeros(0)
-        self._triggered: tuple[int, ...] = ()
-
-    @property
-    def triggered_modules(self) -> tuple[int, ...]:
-        return self._triggered
 
     @property
     def statistic_pa(self) -> NDArray[np.float64]:
         """Current CUSUM statistic of every module, pascals."""
         return self._g.copy()
 
-    def reset(self, reference_pa: ArrayLike) -> None:
-        self._reference = np.asarray(reference_pa, dtype=float).copy()
-        self._g = np.zeros_like(self._reference)
-        self._triggered = ()
+    def _restart(self, modules: int) -> None:
+        self._g = np.zeros(modules)
 
-    def update(self, pressures_pa: ArrayLike) -> bool:
-        if self._triggered:
-            return True
-        if self._reference is None:
-            raise RuntimeError("CusumContactDetector.update called before reset")
-        rise = np.asarray(pressures_pa, dtype=float) - self._reference
-        self._g = np.maximum(0.0, self._g + rise - self.drift_pa)
-        hits = np.flatnonzero(self._g > self.threshold_pa)
-        if hits.size:
-            self._triggered = tuple(int(k) + 1 for k in hits)
-            return True
-        return False
+    def _statistic(self, rise_pa: NDArray[np.float64]) -> NDArray[np.float64]:
+        self._g = np.maximum(0.0, self._g + rise_pa - self.drift_pa)
+        return self._g
 
 
 def cusum_peak_pa(increments_pa: ArrayLike, drift_pa: float) -> float:
