@@ -97,8 +97,6 @@ class ZenohBox(Box):
         except BaseException:
             self._session.close()
             raise
-        self._channels = int(self.info["channels"])
-        self._rate = float(self.info["sample_rate_hz"])
 
     # --- frames -----------------------------------------------------------------------
     def _on_frame(self, sample: Any) -> None:
@@ -127,11 +125,13 @@ class ZenohBox(Box):
 
     @property
     def channels(self) -> int:
-        return self._channels
+        """Channels of the served box, from its ``info``."""
+        return int(self.info["channels"])
 
     @property
     def sample_rate_hz(self) -> float:
-        return self._rate
+        """Frame rate of the served box, from its ``info``, hertz."""
+        return float(self.info["sample_rate_hz"])
 
     def _read(self) -> PressureFrame:
         return self.read_stamped().frame

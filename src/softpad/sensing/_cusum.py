@@ -20,6 +20,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from softpad.errors import InputError
 from softpad.sensing._contact import ContactDetector, LatchingContactDetector
+from softpad.sensing._objects import check_threshold
 
 #: Noise allowance of the default CUSUM, Pa per sample: above the sensor's 8 Pa rms white noise
 #: (softpad.sim.SensorParams) by almost four sigma.
@@ -28,13 +29,6 @@ DEFAULT_CUSUM_DRIFT_PA = 30.0
 #: simulated hours of idle pad at 100 Hz with noise and drift: largest idle statistic 23.5 Pa,
 #: margin 2 on max(23.5, drift) (``softpad bench --only detectors`` re-measures it).
 DEFAULT_CUSUM_THRESHOLD_PA = 60.0
-
-
-def _positive(name: str, value: float) -> float:
-    v = float(value)
-    if not math.isfinite(v) or v <= 0:
-        raise InputError(f"{name} must be a positive number of Pa, got {value!r}")
-    return v
 
 
 class CusumContactDetector(LatchingContactDetector):
@@ -54,8 +48,8 @@ class CusumContactDetector(LatchingContactDetector):
         threshold_pa: float = DEFAULT_CUSUM_THRESHOLD_PA,
     ) -> None:
         super().__init__()
-        self.drift_pa = _positive("CUSUM drift", drift_pa)
-        self.threshold_pa = _positive("CUSUM threshold", threshold_pa)
+        self.drift_pa = check_threshold(drift_pa, "CUSUM drift", positive=True)
+        self.threshold_pa = check_threshold(threshold_pa, "CUSUM threshold", positive=True)
         self._g: NDArray[np.float64] = np.zeros(0)
 
     @property

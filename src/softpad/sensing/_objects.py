@@ -61,14 +61,16 @@ def check_increments(delta_pa: ArrayLike, layout: PadLayout) -> np.ndarray:
     return d
 
 
-def check_threshold(threshold_pa: float, name: str = "threshold") -> float:
-    """Validate a detection threshold (finite, >= 0 Pa)."""
+def check_threshold(threshold_pa: float, name: str = "threshold", positive: bool = False) -> float:
+    """Validate a detection threshold: finite, >= 0 Pa (> 0 with ``positive``), within the
+    sensor's full scale."""
     try:
         t = float(threshold_pa)
     except (TypeError, ValueError):
         raise InputError(f"{name} must be a pressure in pascals, got {threshold_pa!r}") from None
-    if not np.isfinite(t) or t < 0:
-        raise InputError(f"{name} must be a finite pressure >= 0 kPa, got {t / 1e3:g} kPa")
+    if not np.isfinite(t) or t < 0 or (positive and t == 0):
+        bound = "> 0" if positive else ">= 0"
+        raise InputError(f"{name} must be a finite pressure {bound} kPa, got {t / 1e3:g} kPa")
     if t > SENSOR_FULL_SCALE_PA:
         raise InputError(
             f"{name} is {t:g} Pa, beyond the sensor's {SENSOR_FULL_SCALE_PA / 1e3:g} kPa full "
