@@ -41,3 +41,20 @@ def served() -> Callable[..., AbstractContextManager[tuple[Any, str]]]:
     :class:`~softpad.box.BoxDaemon` serving ``url`` (with the simulator's services for a
     ``sim://`` box) on a free loopback port."""
     return _served
+
+
+@pytest.fixture
+def cli(capsys: pytest.CaptureFixture[str]) -> Callable[..., tuple[int, str, str]]:
+    """``cli(*argv)``: run the ``softpad`` command in this process and return its exit code,
+    stdout and stderr (argparse's own exits count as exit codes)."""
+    from softpad.cli.main import main
+
+    def run(*argv: str) -> tuple[int, str, str]:
+        try:
+            code = main(list(argv))
+        except SystemExit as exc:
+            code = int(exc.code or 0)
+        out, err = capsys.readouterr()
+        return code, out, err
+
+    return run

@@ -7,26 +7,15 @@ from pathlib import Path
 
 import pytest
 
-from softpad.cli.main import main
-
 PNG = b"\x89PNG\r\n\x1a\n"
-
-
-def _run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
-    try:
-        code = main(list(argv))
-    except SystemExit as exc:
-        code = int(exc.code or 0)
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 @pytest.mark.slow
 @pytest.mark.mujoco
-def test_demo_writes_the_report(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_demo_writes_the_report(tmp_path: Path, cli) -> None:
     out = tmp_path / "report"
-    code, stdout, _ = _run(
-        capsys, "demo", "--out", str(out), "--trials", "1", "--workers", "2", "--no-progress"
+    code, stdout, _ = cli(
+        "demo", "--out", str(out), "--trials", "1", "--workers", "2", "--no-progress"
     )
     assert code == 0
     for name in ("table.md", "table.csv", "results.json", "README.md"):
@@ -44,16 +33,16 @@ def test_demo_writes_the_report(tmp_path: Path, capsys: pytest.CaptureFixture[st
 
 
 def test_bench_planning_reports_medians_against_the_target(
-    capsys: pytest.CaptureFixture[str],
+    cli,
 ) -> None:
-    code, out, _ = _run(capsys, "bench", "--only", "planning", "--quick", "--json")
+    code, out, _ = cli("bench", "--only", "planning", "--quick", "--json")
     assert code == 0
     rows = json.loads(out)["results"]
     assert {r["suite"] for r in rows} == {"planning"}
     assert all(r["unit"] == "us" and r["value"] > 0 and r["target"] == "<= 50 us" for r in rows)
 
 
-def test_bench_unknown_suite_is_a_one_line_error(capsys: pytest.CaptureFixture[str]) -> None:
-    code, _, err = _run(capsys, "bench", "--only", "planning,warp")
+def test_bench_unknown_suite_is_a_one_line_error(cli) -> None:
+    code, _, err = cli("bench", "--only", "planning,warp")
     assert code == 2
     assert "unknown benchmark 'warp'" in err and len(err.strip().splitlines()) == 1

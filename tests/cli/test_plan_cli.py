@@ -11,23 +11,11 @@ from pathlib import Path
 
 import pytest
 
-from softpad.cli.main import main
-
 BANANA = "0,0.124,0.078,0.109,0,0"
 
 
-def run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
-    """Run the CLI in process; argparse's own errors (SystemExit) count as exit codes."""
-    try:
-        code = main(list(argv))
-    except SystemExit as exc:
-        code = int(exc.code or 0)
-    out, err = capsys.readouterr()
-    return code, out, err
-
-
-def test_json_has_exactly_the_documented_keys(capsys: pytest.CaptureFixture[str]) -> None:
-    code, out, _ = run(capsys, "plan", "--delta", BANANA, "--json")
+def test_json_has_exactly_the_documented_keys(cli) -> None:
+    code, out, _ = cli("plan", "--delta", BANANA, "--json")
     assert code == 0
     data = json.loads(out)
     assert list(data) == ["schema_version", "objects"]
@@ -39,20 +27,19 @@ def test_json_has_exactly_the_documented_keys(capsys: pytest.CaptureFixture[str]
     assert obj["cog_m"] == pytest.approx([0.045, 0.045])
 
 
-def test_pitch_scales_cog_in_metres(capsys: pytest.CaptureFixture[str]) -> None:
-    _, out, _ = run(capsys, "plan", "--delta", BANANA, "--pitch-mm", "30", "--json")
+def test_pitch_scales_cog_in_metres(cli) -> None:
+    _, out, _ = cli("plan", "--delta", BANANA, "--pitch-mm", "30", "--json")
     assert json.loads(out)["objects"][0]["cog_m"] == pytest.approx([0.03, 0.03])
 
 
-def test_threshold_flag_changes_detection(capsys: pytest.CaptureFixture[str]) -> None:
-    _, out, _ = run(capsys, "plan", "--delta", BANANA, "--threshold-kpa", "0.1", "--json")
+def test_threshold_flag_changes_detection(cli) -> None:
+    _, out, _ = cli("plan", "--delta", BANANA, "--threshold-kpa", "0.1", "--json")
     assert [o["modules"] for o in json.loads(out)["objects"]] == [[2, 4]]
 
 
-def test_pressures_with_reference_equal_delta(capsys: pytest.CaptureFixture[str]) -> None:
-    _, a, _ = run(capsys, "plan", "--delta", BANANA, "--json")
-    _, b, _ = run(
-        capsys,
+def test_pressures_with_reference_equal_delta(cli) -> None:
+    _, a, _ = cli("plan", "--delta", BANANA, "--json")
+    _, b, _ = cli(
         "plan",
         "--pressures",
         "1.1,1.224,1.178,1.209,1.1,1.1",
@@ -76,31 +63,29 @@ def test_pressures_with_reference_equal_delta(capsys: pytest.CaptureFixture[str]
     ],
     ids=["json", "csv-delta", "csv-one-line", "csv-pressures"],
 )
-def test_frame_files(tmp_path: Path, capsys: pytest.CaptureFixture[str], content: str) -> None:
+def test_frame_files(tmp_path: Path, cli, content: str) -> None:
     f = tmp_path / "frame.txt"
     f.write_text(content)
-    code, out, _ = run(capsys, "plan", "--frame", str(f), "--json")
+    code, out, _ = cli("plan", "--frame", str(f), "--json")
     assert code == 0
     assert json.loads(out)["objects"][0]["modules"] == [2, 3, 4]
 
 
-def test_frame_from_stdin(
-    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
-) -> None:
+def test_frame_from_stdin(monkeypatch: pytest.MonkeyPatch, cli) -> None:
     monkeypatch.setattr(sys, "stdin", io.StringIO('{"delta_kpa": [0,0,0.062,0,0,0.062]}'))
-    _, out, _ = run(capsys, "plan", "--frame", "-", "--json")
+    _, out, _ = cli("plan", "--frame", "-", "--json")
     assert json.loads(out)["objects"][0]["cog"] == [2.5, 1.0]
 
 
-def test_table_output_is_readable(capsys: pytest.CaptureFixture[str]) -> None:
-    code, out, _ = run(capsys, "plan", "--delta", BANANA)
+def test_table_output_is_readable(cli) -> None:
+    code, out, _ = cli("plan", "--delta", BANANA)
     assert code == 0
     assert "modules 2, 3, 4" in out and "-45.0 deg" in out and "n3-diagonal-corner" in out
 
 
-def test_plot_is_written(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_plot_is_written(tmp_path: Path, cli) -> None:
     png = tmp_path / "plan.png"
-    code, _, _ = run(capsys, "plan", "--delta", BANANA, "--png", str(png))
+    code, _, _ = cli("plan", "--delta", BANANA, "--png", str(png))
     assert code == 0
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
@@ -132,10 +117,8 @@ def test_plot_is_written(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> 
         "missing-file",
     ],
 )
-def test_bad_input_is_one_line_and_exit_2(
-    capsys: pytest.CaptureFixture[str], argv: list[str], message: str
-) -> None:
-    code, _, err = run(capsys, "plan", *argv)
+def test_bad_input_is_one_line_and_exit_2(cli, argv: list[str], message: str) -> None:
+    code, _, err = cli("plan", *argv)
     assert code == 2
     assert message in err
     assert "Traceback" not in err
@@ -153,12 +136,10 @@ def test_bad_input_is_one_line_and_exit_2(
     ],
     ids=["bad-json", "bad-key", "bad-header", "empty"],
 )
-def test_corrupt_frame_files(
-    tmp_path: Path, capsys: pytest.CaptureFixture[str], content: str, message: str
-) -> None:
+def test_corrupt_frame_files(tmp_path: Path, cli, content: str, message: str) -> None:
     f = tmp_path / "frame"
     f.write_text(content)
-    code, _, err = run(capsys, "plan", "--frame", str(f))
+    code, _, err = cli("plan", "--frame", str(f))
     assert code == 2 and message in err
 
 

@@ -7,21 +7,9 @@ import json
 import numpy as np
 import pytest
 
-from softpad.cli.main import main
 
-
-def run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
-    try:
-        code = main(list(argv))
-    except SystemExit as exc:
-        code = int(exc.code or 0)
-    out, err = capsys.readouterr()
-    return code, out, err
-
-
-def test_sweep_json_has_exactly_the_documented_keys(capsys: pytest.CaptureFixture[str]) -> None:
-    code, out, _ = run(
-        capsys,
+def test_sweep_json_has_exactly_the_documented_keys(cli) -> None:
+    code, out, _ = cli(
         "fem", "sweep", "--model", "yeoh", "--mesh", "coarse", "--points", "3",
         "--max-pressure-kpa", "1", "--json",
     )  # fmt: skip
@@ -33,7 +21,7 @@ def test_sweep_json_has_exactly_the_documented_keys(capsys: pytest.CaptureFixtur
     assert payload["height_mm"][0] == 0.0 and 8.0 < payload["height_mm"][2] < 10.0
 
 
-def test_param_overrides_the_preset(capsys: pytest.CaptureFixture[str]) -> None:
+def test_param_overrides_the_preset(cli) -> None:
     argv = [
         "fem",
         "sweep",
@@ -45,15 +33,14 @@ def test_param_overrides_the_preset(capsys: pytest.CaptureFixture[str]) -> None:
         "1",
         "--json",
     ]
-    _, stiff, _ = run(capsys, *argv)
-    code, soft, _ = run(capsys, *argv, "--param", "mu=30000")
+    _, stiff, _ = cli(*argv)
+    code, soft, _ = cli(*argv, "--param", "mu=30000")
     assert code == 0
     assert json.loads(soft)["height_mm"][1] > json.loads(stiff)["height_mm"][1] + 0.5
 
 
-def test_sweep_writes_csv_png_vtu(tmp_path, capsys: pytest.CaptureFixture[str]) -> None:
-    code, out, _ = run(
-        capsys,
+def test_sweep_writes_csv_png_vtu(tmp_path, cli) -> None:
+    code, out, _ = cli(
         "fem", "sweep", "--mesh", "coarse", "--points", "3", "--max-pressure-kpa", "0.6",
         "--thickness-mm", "2", "--csv", str(tmp_path / "h.csv"), "--png", str(tmp_path / "h.png"),
         "--vtu", str(tmp_path / "m.vtu"),
@@ -63,12 +50,11 @@ def test_sweep_writes_csv_png_vtu(tmp_path, capsys: pytest.CaptureFixture[str]) 
         assert (tmp_path / name).stat().st_size > 0
 
 
-def test_characteristic_writes_a_loadable_table(tmp_path, capsys) -> None:
+def test_characteristic_writes_a_loadable_table(tmp_path, cli) -> None:
     from softpad.fem import ModuleCharacteristic
 
     out_path = tmp_path / "c.npz"
-    code, out, _ = run(
-        capsys,
+    code, out, _ = cli(
         "fem", "characteristic", "--mesh", "coarse", "--pressures-kpa", "0,1",
         "--loads-n", "0,0.2", "--out", str(out_path),
     )  # fmt: skip
@@ -77,11 +63,11 @@ def test_characteristic_writes_a_loadable_table(tmp_path, capsys) -> None:
     np.testing.assert_allclose(table.pressure_pa, [0.0, 1000.0])
 
 
-def test_fit_from_a_csv(tmp_path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_fit_from_a_csv(tmp_path, cli) -> None:
     data = tmp_path / "m.csv"
     data.write_text("pressure_kpa,height_mm\n0.5,5.0\n1.0,6.6\n")
-    code, out, _ = run(
-        capsys, "fem", "fit", "--data", str(data), "--model", "neo-hookean", "--mesh", "coarse",
+    code, out, _ = cli(
+        "fem", "fit", "--data", str(data), "--model", "neo-hookean", "--mesh", "coarse",
         "--max-evals", "4", "--json",
     )  # fmt: skip
     assert code == 0
@@ -102,23 +88,21 @@ def test_fit_from_a_csv(tmp_path, capsys: pytest.CaptureFixture[str]) -> None:
     ],
     ids=["design", "stiffness", "sensitivity", "chamber"],
 )
-def test_study_commands_write_json_csv_png(
-    tmp_path, capsys: pytest.CaptureFixture[str], argv: list[str], key: str
-) -> None:
+def test_study_commands_write_json_csv_png(tmp_path, cli, argv: list[str], key: str) -> None:
     csv, png = tmp_path / "r.csv", tmp_path / "r.png"
-    code, out, _ = run(
-        capsys, "fem", *argv, "--mesh", "coarse", "--json", "--csv", str(csv), "--png", str(png)
+    code, out, _ = cli(
+        "fem", *argv, "--mesh", "coarse", "--json", "--csv", str(csv), "--png", str(png)
     )
     assert code == 0
     assert key in json.loads(out)
     assert csv.stat().st_size > 0 and png.stat().st_size > 0
 
 
-def test_compare_ranks_models_from_a_csv(tmp_path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_compare_ranks_models_from_a_csv(tmp_path, cli) -> None:
     data = tmp_path / "m.csv"
     data.write_text("pressure_kpa,height_mm\n0.5,6.1\n1.0,8.0\n2.0,11.2\n")
-    code, out, _ = run(
-        capsys, "fem", "compare", "--data", str(data), "--models", "yeoh,neo-hookean",
+    code, out, _ = cli(
+        "fem", "compare", "--data", str(data), "--models", "yeoh,neo-hookean",
         "--mesh", "coarse",
     )  # fmt: skip
     assert code == 0
@@ -161,10 +145,8 @@ def test_compare_ranks_models_from_a_csv(tmp_path, capsys: pytest.CaptureFixture
         "param-without-value",
     ],
 )
-def test_bad_input_is_one_line_and_exit_2(
-    capsys: pytest.CaptureFixture[str], argv: list[str], fragment: str
-) -> None:
-    code, _, err = run(capsys, *argv)
+def test_bad_input_is_one_line_and_exit_2(cli, argv: list[str], fragment: str) -> None:
+    code, _, err = cli(*argv)
     assert code == 2
     assert fragment in err
     assert len(err.strip().splitlines()) == 1
