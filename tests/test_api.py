@@ -34,3 +34,23 @@ def test_planner_import_does_not_load_heavy_libraries() -> None:
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == ""
+
+
+@pytest.mark.parametrize(
+    ("change", "message"),
+    [
+        ({"lift_m": 0.0}, "execution lift_m must be a positive number, got 0.0"),
+        ({"hold_s": float("nan")}, "execution hold_s must be a number >= 0, got nan"),
+        ({"filter_length": 2.5}, "execution filter_length must be an integer >= 1, got 2.5"),
+    ],
+    ids=["positive", "non-negative", "count"],
+)
+def test_parameter_records_name_the_bad_field(change: dict, message: str) -> None:
+    import dataclasses
+
+    from softpad.control import ExecutionParams
+    from softpad.errors import InputError
+
+    with pytest.raises(InputError) as info:
+        dataclasses.replace(ExecutionParams(), **change)
+    assert str(info.value) == message

@@ -41,6 +41,20 @@ def test_zenoh_backend_passes_conformance(served) -> None:
         assert daemon.controller is None  # closing gave control back
 
 
+def test_a_box_wrapper_passes_conformance_and_closes_what_it_owns() -> None:
+    from softpad.box import BoxWrapper
+
+    inner = open_box("sim://?seed=3")
+    check_conformance(BoxWrapper(inner))
+    assert inner.closed  # the wrapper owned it
+    view_of = open_box("sim://?seed=3")
+    with BoxWrapper(view_of, owns_inner=False) as view:
+        view.set_valve(2, "inflate")
+        assert view.valves == view_of.valves and view_of.valves[1] is ValveCommand.INFLATE
+    assert not view_of.closed and view_of.valves[1] is ValveCommand.CLOSED
+    view_of.close()
+
+
 def test_every_registered_backend_is_checked() -> None:
     """A new scheme must be added to the conformance cases (replay://, offered by softpad.record
     through the entry point, is checked in tests/record/test_replay.py)."""

@@ -237,6 +237,25 @@ def test_every_parser_refuses_abbreviations_and_offers_json() -> None:
         assert "--plot" not in options or name in ("run", "plan"), name  # only the renamed stub
 
 
+@pytest.mark.parametrize(
+    ("group", "names"),
+    [
+        ("box", "read, monitor, stats, serve or inflate"),
+        ("config", "check"),
+        ("fem", "sweep, design, stiffness, sensitivity, chamber, fit, compare or characteristic"),
+        ("log", "info, plot, export or recover"),
+        ("ros", "node"),
+        ("sim", "arm-node"),
+    ],
+    ids=lambda v: v.split(",")[0],
+)
+def test_a_group_without_its_command_is_a_usage_error_naming_them(capsys, group, names) -> None:
+    assert main([group, "--json"]) == 2
+    captured = capsys.readouterr()
+    assert f"is required: {names} (see softpad {group} --help)" in captured.err.splitlines()[-1]
+    assert json.loads(captured.out)["error"]["kind"] == "input"
+
+
 def test_abbreviated_options_are_usage_errors(capsys) -> None:
     assert main(["fem", "compare", "--data", "x.csv", "--model", "yeoh"]) == 2
     assert "--model" in capsys.readouterr().err
