@@ -57,12 +57,14 @@ GRIPPER_MOUNTINGS_M: dict[str, tuple[float, float]] = {
     "6/2": (0.06, 0.02),
     "4/0": (0.04, 0.0),
 }
-#: Fingertip size across the closing direction, m. The seed gives no number ("very small
-#: tips"); 16 mm is the width of the Rethink Electric Parallel Gripper's standard fingertip.
+#: Fingertip size across the closing direction, m. The seed gives no number, only that the tips
+#: were "very small for the chosen gripper" (Section 6.3). 16 mm is the Rethink Robotics
+#: electric parallel gripper's basic hard tip (the Sawyer's standard tip): collision box
+#: 16 x 6.5 x 37 mm in RethinkRobotics/intera_common,
+#: intera_tools_description/urdf/electric_gripper/fingers/basic_hard_tip.xacro.
 FINGERTIP_WIDTH_M = 0.016
-#: Fingertip size along the closing direction, m. Not in the seed; small enough (8 mm) that a
-#: tip can lie on a non-sensitive line between modules, as Section 6.3 reports.
-FINGERTIP_THICKNESS_M = 0.008
+#: Fingertip size along the closing direction, m: 6.5 mm, the same basic hard tip (source above).
+FINGERTIP_THICKNESS_M = 0.0065
 
 #: Closing speed of each jaw, m/s. Not in the seed; chosen equal to the approach speed so that
 #: the jaws meet an object as gently as the fingers meet the pad.

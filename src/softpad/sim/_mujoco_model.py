@@ -39,7 +39,7 @@ from typing import Any, Protocol
 
 from softpad import thesis
 from softpad.errors import InputError, check_finite
-from softpad.layout import PadLayout
+from softpad.layout import GripperSpec, PadLayout
 
 # Collision bits.
 _PAD, _OBJ, _FINGER, _SOLE = 1, 2, 4, 8
@@ -186,23 +186,13 @@ class MujocoGripper:
         minimum opening in cm.
     finger_length_m
         From the palm to the lower face of the tips, metres (9.5 cm).
-    tip_thickness_m
-        Tip size along the closing direction, metres. The thesis's tips are "very small", small
-        enough to touch only a line between modules (its failure for object 5 and the charger,
-        Section 6.3); 4 mm, 1 mm less than our lines, so a tip can lie entirely on a line and
-        go unsensed. (The planner's drawing gripper, :class:`softpad.layout.GripperSpec`, and
-        the analytic world use 8 mm, which could never fit on a 5 mm line.)
-    tip_width_m
-        Tip size across the closing direction, metres; 16 mm, the width of
-        :class:`softpad.layout.GripperSpec` and of the analytic world's tips. Across a line
-        (e.g. object 1's thesis grasp (2.5, 1, 0), whose only tip on the pad lies over the line
-        between modules 2 and 5) a 16 mm tip reaches 5.5 mm past the line's edges on both
-        sides and touches a dome's flank unless it is far from the dome's centre; a 10 mm
-        tip reaches 2.5 mm, touches nothing and senses object 1's grasp in 2 of
-        15 trials (seeds 0-2; 16 mm: see docs/trials.md). Lying along a line (the tips of a
-        grasp along x centred on a column line) it stays unsensed at any width. The grip does
-        not depend on it: a 50 g brick squeezed by 10 or 16 mm tips rises 51 mm with the hand
-        within 0.02 mm (``tests/sim/test_mujoco_world.py``).
+    tip_thickness_m, tip_width_m
+        Tip size along and across the closing direction, metres: the planner's
+        :class:`softpad.layout.GripperSpec` (6.5 x 16 mm, the Sawyer gripper's basic hard tip;
+        sources in :mod:`softpad.thesis`), one set of figures for the planner, the analytic
+        world and this model (:meth:`from_spec`, :attr:`geometry`). Never changed to make a
+        trial pass: a 6.5 mm tip is wider than a 5 mm line, so whether a tip over a line is
+        sensed follows from the pad's response, not from the tip size.
     grip_force_n
         Force limit of each jaw's servo, newtons (squeeze force once closed on an object).
     servo_stiffness_n_m
@@ -215,7 +205,7 @@ class MujocoGripper:
 
     mounting: str = "10/4"
     finger_length_m: float = thesis.FINGER_LENGTH_M
-    tip_thickness_m: float = 4e-3  # the MuJoCo sole: thinner than GripperSpec's, docs/trials.md
+    tip_thickness_m: float = thesis.FINGERTIP_THICKNESS_M
     tip_width_m: float = thesis.FINGERTIP_WIDTH_M
     grip_force_n: float = 20.0
     servo_stiffness_n_m: float = 4000.0
@@ -235,6 +225,30 @@ class MujocoGripper:
                 "friction",
                 "sole_stroke_m",
             ),
+        )
+
+    @classmethod
+    def from_spec(cls, spec: GripperSpec, **physics: Any) -> MujocoGripper:
+        """The MuJoCo gripper of a :class:`softpad.layout.GripperSpec`: its mounting (max/min
+        width), finger length and tips; ``physics`` sets the contact fields (grip force...)."""
+        mounting = f"{spec.max_width_m * 100:g}/{spec.min_width_m * 100:g}"
+        return cls(
+            mounting=mounting,
+            finger_length_m=spec.finger_length_m,
+            tip_thickness_m=spec.tip_thickness_m,
+            tip_width_m=spec.tip_width_m,
+            **physics,
+        )
+
+    @property
+    def geometry(self) -> GripperSpec:
+        """The geometry alone, as the planner's :class:`softpad.layout.GripperSpec`."""
+        return GripperSpec(
+            self.max_width_m,
+            self.min_width_m,
+            self.finger_length_m,
+            self.tip_width_m,
+            self.tip_thickness_m,
         )
 
     @property

@@ -27,14 +27,19 @@ THESIS_TABLE_6_1: dict[str, tuple[float, tuple[float, float, float], int]] = {
 #: Overall success rate of the thesis's Experiment 2 (52 of 55 trials).
 THESIS_OVERALL_SUCCESS = 0.945
 
-#: Why a trial failed. The first four are the causes the issue names (the thesis reports the
-#: first and the third); ``object_too_narrow``: the object was between the jaws but thinner
+#: Why a trial failed, decided in this order from the physics and the true object:
+#: ``contact_not_detected`` (the fingers reached the pad base unsensed: tips on a seam or off
+#: the pad; the thesis's failure for object 5 and the charger); ``cog_outside_object`` (the
+#: grasp failed and its planned COG lay outside the object's footprint: the thesis's cylinder
+#: failure); ``jaws_hit_object`` (a jaw came down on the object); ``object_outside_jaws``;
+#: ``slipped_during_hold``; ``object_too_narrow``: the object was between the jaws but thinner
 #: than the mounting's minimum width; ``object_not_detected``: the planner found nothing;
 #: ``box_fault``: the loop stopped on a box fault (a module read above the 3 kPa limit, which
 #: the simulated box's module model reaches when a fingertip pushes a module with more than
 #: about 1.5 N).
 FAILURE_CAUSES = (
     "contact_not_detected",
+    "cog_outside_object",
     "jaws_hit_object",
     "object_outside_jaws",
     "slipped_during_hold",
