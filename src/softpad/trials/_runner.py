@@ -14,6 +14,7 @@ number of workers.
 
 from __future__ import annotations
 
+import math
 import os
 import time
 import zlib
@@ -191,6 +192,11 @@ def run_experiment(
         masses_g={s.name: s.mass_kg * 1e3 for s in specs},
         wall_time_s=time.perf_counter() - t0,
         workers=workers,
+        seeds=(seed,),
+        placement_noise={
+            "position_sigma_mm": round(config.position_sigma_m * 1e3, 6),
+            "yaw_sigma_deg": round(math.degrees(config.yaw_sigma_rad), 6),
+        },
     )
     return exp, trace
 
