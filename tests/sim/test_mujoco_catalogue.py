@@ -13,10 +13,20 @@ pytestmark = pytest.mark.mujoco
 #: Force on a module equivalent to t_o = 50 Pa at the box's sealed sensitivity (0.70 kPa/N), N.
 T_O_FORCE_N = 50.0 / 700.0
 
-#: Objects whose rigid-body rest differs from the thesis's module list, and why (none: the
-#: cylinder's central bead stands 0.45 mm back from its end rims, so that its right-hand
-#: modules carry about 0.1 N each, like the analytic world's; docs/make_objects.py).
-_KNOWN_DIFFERENT: dict[str, tuple[int, ...]] = {}
+
+
+def _modules_under(name: str) -> set[int]:
+    """Modules whose square lies partly under the object's top-view footprint (1 mm grid)."""
+    from softpad.trials._geometry import object_outlines_m, point_in_polygon
+
+    spec, pitch = get_object(name), 0.045
+    polys = object_outlines_m(spec, spec.placement)
+    under = set()
+    for x in np.arange(0.0005, 3 * pitch, 1e-3):
+        for y in np.arange(0.0005, 2 * pitch, 1e-3):
+            if any(point_in_polygon((x, y), p) for p in polys):
+                under.add(int(x // pitch) + 3 * (1 - int(y // pitch)) + 1)
+    return under
 
 
 @pytest.mark.parametrize("name", object_names())
@@ -39,5 +49,7 @@ def test_object_rests_on_its_modules(name: str) -> None:
     )
     assert world.object_speed_m_s(name) < 1e-3
     assert world.object_pose(name).tilt_rad < 0.1
-    loaded = tuple(int(k) + 1 for k in np.flatnonzero(loads > T_O_FORCE_N))
-    assert loaded == _KNOWN_DIFFERENT.get(name, tuple(spec.expected_modules))
+    # a module is loaded above t_o only where the object lies over it (which modules those
+    # are, against the thesis's, is the prediction that docs/trials.md reports)
+    loaded = {int(k) + 1 for k in np.flatnonzero(loads > T_O_FORCE_N)}
+    assert loaded and loaded <= _modules_under(name)

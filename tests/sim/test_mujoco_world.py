@@ -100,8 +100,10 @@ def descend_fingers(world: MujocoWorld, x_m: float, y_m: float, width_m: float) 
 )
 def test_fingertip_on_line_loads_no_module(x_units: float, on_module: bool) -> None:
     """Tip centres 45 mm apart (x +- 22.5 mm): both on module tops, or, with the gripper
-    centred at x = 1.5 units, both on the lines at x = 1 and x = 2 units."""
-    gripper = MujocoGripper(mounting="10/4")
+    centred at x = 1.5 units, both on the lines at x = 1 and x = 2 units. The tips are 4 mm
+    thick, narrower than the 5 mm line, so that one centred on a line can rest on it alone
+    (the Sawyer's 6.5 mm tip reaches the domes' flanks: docs/trials.md)."""
+    gripper = MujocoGripper(mounting="10/4", tip_thickness_m=0.004)
     world = MujocoWorld(gripper=gripper)
     # inner faces at +-22.5 mm from the centre; tip centres at +-(22.5 + 2.5) mm
     width = PITCH - gripper.tip_thickness_m

@@ -111,6 +111,7 @@ class _Trial:
         opening_m: float | None,
         mounting: str | None,
         truth: Any | None = None,
+        gripper: Any | None = None,
     ) -> None:
         from softpad.box import SafetyLimits, SimBox
         from softpad.harness import SimulatedRobot
@@ -123,7 +124,7 @@ class _Trial:
         self.truth = spec if truth is None else truth
         self.placement = placement
         self.placed = _Placed(*placement)
-        self.geometry = GripperSpec(*parse_mounting(mounting or spec.gripper))
+        self.geometry = gripper or GripperSpec(*parse_mounting(mounting or spec.gripper))
         self.gripper = MujocoGripper.from_spec(self.geometry)
         self.world = MujocoWorld(gripper=self.gripper)
         self.box = SimBox(
@@ -168,6 +169,7 @@ def execute_trial(
     mounting: str | None = None,
     truth: Any | None = None,
     recorder: Any | None = None,
+    gripper: Any | None = None,
 ) -> tuple[TrialResult, Any | None]:
     """Run one trial; see :func:`softpad.trials.run_trial`. Returns the result and the run's
     :class:`softpad.record.RunLog` when ``config.record_trace``; ``recorder`` also hears every
@@ -177,7 +179,7 @@ def execute_trial(
     from softpad.record import RunLog, Tee
     from softpad.sensing import make_contact_detector
 
-    t = _Trial(spec, placement, seed, config, opening_m, mounting, truth)
+    t = _Trial(spec, placement, seed, config, opening_m, mounting, truth, gripper)
     log = RunLog({"object": spec.name, "seed": seed}) if config.record_trace else None
     mcap = _trial_recorder(t, seed)
     watcher = _TrialWatcher(t, Tee(log, mcap, recorder))

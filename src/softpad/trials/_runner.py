@@ -69,6 +69,7 @@ def run_trial(
     mounting: str | None = None,
     truth: Any | None = None,
     recorder: Any | None = None,
+    gripper: Any | None = None,
 ) -> tuple[TrialResult, Any | None]:
     """Run one grasp trial of ``spec`` in a fresh MuJoCo world.
 
@@ -98,6 +99,10 @@ def run_trial(
     recorder
         A :class:`softpad.control.Recorder` that also hears every frame and event of the loop
         (the robot's commands are ``robot`` events).
+    gripper
+        A :class:`softpad.layout.GripperSpec` (mounting widths and tips) instead of the
+        mounting's with the Sawyer's tips: a design study, e.g. the thicker tips the thesis
+        recommends.
 
     Returns
     -------
@@ -119,6 +124,7 @@ def run_trial(
         mounting=mounting,
         truth=truth,
         recorder=recorder,
+        gripper=gripper,
     )
     result = replace(result, trial=trial, wall_time_s=time.perf_counter() - t0)
     return result, trace
