@@ -9,8 +9,9 @@ Every number below comes from a named source, never from a trial or a wished-for
   height): 16 mm pitch, 19.2 mm brick body, 9.6 mm plate; a 2 x N piece measures
   31.8 x (16 N - 0.2) mm (0.1 mm play each side, as on System bricks). Studs (4.5 mm) are left
   out: they sit on top, where neither the pad nor the fingertips touch;
-* the banana: YCB 011_banana, about 36 mm thick (YCB object list, Calli et al. 2015); its
-  length here (126 mm along its curve) was not checked against the YCB mesh (no copy here);
+* the banana: YCB 011_banana, its spine and thickness from the convex hulls of YCB's scanned
+  model (YcbBanana/collision_vhacd.obj in eleramp/pybullet-object-models): 192 mm long,
+  38 mm thick;
 * limes: 49 mm across (a common Persian lime), three in a net lying in a flat triangle,
   touching; the seed gives only their total mass (187 g);
 * the cylinder: 50 mm x 125 mm can with "a heavy small part in one side" (seed); the shell is
@@ -134,20 +135,32 @@ obj("object-6", 0.122, by_volume([box("three 2x8 bricks", duplo(8), W2, 3 * BRIC
     "bottom row.")
 
 
-def seg(name, p0, p1, r):
+def seg(name, p0, p1, r):  # noqa: D103
     dx, dy = p1[0] - p0[0], p1[1] - p0[1]
     return lying_cylinder(name, r, math.hypot(dx, dy), (p0[0] + p1[0]) / 2, (p0[1] + p1[1]) / 2,
                           math.atan2(dy, dx))
 
 
-# the banana's curve from module 4 over the corner of modules 1/2/4/5 to module 3 (seed: "lays on
-# modules 2, 3 and 4"), 36 mm thick (YCB)
-B = [(0.014, 0.016), (0.045, 0.046), (0.080, 0.068), (0.122, 0.072)]
-obj("banana", 0.0598, by_volume([seg("stem end", B[0], B[1], 0.018), seg("middle", B[1], B[2], 0.018),
-                                 seg("tip end", B[2], B[3], 0.018)], 0.0598),
-    0.0, 0.0, 0.0, [2, 3, 4], [1.0, 1.0], -pi / 4, "6/2",
-    "The YCB banana (011, 36 mm thick) as three lying cylinders along a curve from module 4 over "
-    "the corner of modules 1/2/4/5 to module 3; one density.")
+# The YCB banana (011_banana): its spine and thickness read off the convex hulls of YCB's scanned
+# model (collision_vhacd.obj of YcbBanana in eleramp/pybullet-object-models, metres, banana
+# frame: length along x, 192 mm from -0.075 to 0.117; 38 mm thick; ends curving to -y). Points
+# (x, y) of the spine and the radius of each stretch between them.
+YCB_BANANA_SPINE = [(-0.070, -0.045), (-0.045, -0.020), (-0.010, 0.003), (0.040, 0.006),
+                    (0.080, -0.003), (0.112, -0.020)]
+YCB_BANANA_RADII = [0.008, 0.016, 0.019, 0.019, 0.014]
+# Laid with its chord parallel to the line from module 4's centre to module 3's, its middle (the
+# scan's origin) on module 2's centre and its ends towards modules 4 and 3 (seed: "it lays on
+# modules 2, 3, and 4"); the ends reach past the pad's edges, as a 192 mm banana on a
+# 135 x 90 mm pad must.
+(_x0, _y0), (_x1, _y1) = YCB_BANANA_SPINE[0], YCB_BANANA_SPINE[-1]
+CHORD = math.atan2(1.0, 2.0) - math.atan2(_y1 - _y0, _x1 - _x0)
+banana_parts = [seg(f"stretch {k + 1}", YCB_BANANA_SPINE[k], YCB_BANANA_SPINE[k + 1], r)
+                for k, r in enumerate(YCB_BANANA_RADII)]
+obj("banana", 0.0598, by_volume(banana_parts, 0.0598),
+    1.5 * U, 1.5 * U, CHORD, [2, 3, 4], [1.0, 1.0], -pi / 4, "6/2",
+    "The YCB banana (011: 192 mm long, 38 mm thick, spine from YCB's scanned model) as five "
+    "lying cylinders along its curve, one density, 59.8 g (Table 6.1; YCB lists 66 g); its "
+    "middle on module 2, its ends towards modules 4 and 3 and past the pad's edges.")
 obj("toy", 0.1316, by_volume([
         box("body", 0.036, 0.036, 0.04, 1.5 * U, 0.5 * U, 0),
         box("left arm", 0.055, 0.022, 0.03, 1.5 * U - 0.032, 0.5 * U + 0.032, 0, 3 * pi / 4),
