@@ -17,7 +17,7 @@ from softpad.cli.main import main
 
 @pytest.fixture
 def server() -> Iterator[BoxServer]:
-    srv = BoxServer(open_box("sim://?seed=1&object=banana&inflated_kpa=1.1"), "127.0.0.1", 0)
+    srv = BoxServer(open_box("sim://?seed=1&object=object-5&inflated_kpa=1.1"), "127.0.0.1", 0)
     thread = threading.Thread(target=srv.serve, daemon=True)
     thread.start()
     yield srv
@@ -41,7 +41,7 @@ def test_box_read_over_tcp(capsys, server: BoxServer) -> None:
     frames = [json.loads(line) for line in out.splitlines()]
     assert [f["t_s"] for f in frames] == [0.01, 0.02, 0.03]
     assert all(len(f["pressures_kpa"]) == 8 for f in frames)
-    assert 1.0 < frames[0]["pressures_kpa"][2] < 1.4  # the banana rests on module 3
+    assert 1.0 < frames[0]["pressures_kpa"][2] < 1.4  # object 5 rests on module 3
 
 
 def test_box_inflate_over_tcp(capsys, server: BoxServer) -> None:
@@ -122,7 +122,7 @@ def test_box_serve_prints_its_port_and_stops_when_the_client_leaves(capsys) -> N
         assert line.startswith("serving sim:// on tcp://127.0.0.1:")
         url = line.split(" on ")[1].split()[0]
         # the served simulator offers its world and robot: the whole loop runs through it
-        assert main(["run", "--box", url, "--object", "banana", "--hold-s", "0", "--json"]) == 0
+        assert main(["run", "--box", url, "--object", "object-5", "--hold-s", "0", "--json"]) == 0
         assert proc.wait(timeout=20) == 0
         err = proc.stderr.read() if proc.stderr else ""
         assert "session ended (closed by the client); valves closed" in err

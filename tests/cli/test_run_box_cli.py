@@ -40,13 +40,13 @@ def test_run_json_has_the_documented_keys(capsys, tmp_path) -> None:
 
 def test_run_prints_a_timeline_and_plots(capsys, tmp_path) -> None:
     png = tmp_path / "trace.png"
-    assert main(["run", "--objects", "banana", "--hold-s", "1", "--png", str(png)]) == 0
+    assert main(["run", "--objects", "object-5", "--hold-s", "1", "--png", str(png)]) == 0
     out = capsys.readouterr().out
     for text in (
         "adjusted",
         "reference saved",
-        "object detected on module(s) 2, 3, 4",
-        "plan: modules 2,3,4",
+        "object detected on module(s) 1, 2, 3",
+        "plan: modules 1,2,3",
         "contact detected",
         "outcome: held",
     ):

@@ -80,8 +80,8 @@ def test_bad_remote_requests_are_input_errors(served: BoxServer, call, match: st
 def test_loop_over_tcp_logs_the_same_frames_and_leaves_valves_closed(served: BoxServer) -> None:
     params = ExecutionParams(hold_s=0.5)
     remote_log, local_log = RunLog(), RunLog()
-    result = run_simulated(["banana"], served.url, params, recorder=remote_log)
-    local = run_simulated(["banana"], "sim://?seed=4", params, recorder=local_log)
+    result = run_simulated(["object-5"], served.url, params, recorder=remote_log)
+    local = run_simulated(["object-5"], "sim://?seed=4", params, recorder=local_log)
     assert result.outcome == local.outcome == "held"
     assert result.to_dict() == local.to_dict()  # ground truth included
     np.testing.assert_array_equal(remote_log.t_s, local_log.t_s)
