@@ -15,9 +15,10 @@ ROOT = Path(__file__).resolve().parents[1]
 
 #: Long commands and the quick variant the test runs instead (same options, smaller job).
 QUICK = {
-    "run --objects banana --png run.png": "run --objects banana --png run.png --hold-s 1",
+    "run --objects object-5 --png run.png": "run --objects object-5 --png run.png --hold-s 1",
     "run --objects charger --json": "run --objects charger --json --hold-s 1",
-    "run --objects banana --record run.mcap": "run --objects banana --record run.mcap --hold-s 1",
+    "run --objects object-5 --record run.mcap": "run --objects object-5 --record run.mcap "
+    "--hold-s 1",
     "box monitor --foxglove": "box monitor --foxglove --port 0 --count 20",
     "trials --objects banana,toy --trials 2": "trials --objects banana --trials 1 --workers 1 "
     "--hold-s 1 --no-progress",
@@ -33,9 +34,9 @@ QUICK = {
 SKIP = {
     "demo --out report": "the main job (55 MuJoCo trials, minutes); `make demo` runs it",
     "box serve --box sim:// --port 0": "serves until Ctrl-C; tests/cli/test_box_tcp_cli.py serves",
-    "ros node --box sim:// --place banana": "needs a roscore; tests/ros runs it against one",
+    "ros node --box sim:// --place object-5": "needs a roscore; tests/ros runs it against one",
     "sim arm-node --port 5757": "needs a roscore; tests/ros runs it against one",
-    "run --robot ros1:// --box tcp://127.0.0.1:5757 --objects banana": "needs a roscore and "
+    "run --robot ros1:// --box tcp://127.0.0.1:5757 --objects object-5": "needs a roscore and "
     "the arm node; tests/ros runs it",
 }
 
@@ -67,7 +68,7 @@ def test_readme_command_runs(command: str, tmp_path: Path, monkeypatch, capsys) 
     shutil.copy(ROOT / "examples" / "frame.csv", tmp_path / "examples" / "frame.csv")
     monkeypatch.chdir(tmp_path)
     if "run.mcap" in command and "--record" not in command:  # a recording made by the README
-        assert main(["run", "--objects", "banana", "--record", "run.mcap", "--hold-s", "1"]) == 0
+        assert main(["run", "--objects", "object-5", "--record", "run.mcap", "--hold-s", "1"]) == 0
     argv = shlex.split(QUICK.get(command, command))
     words = [w for w in argv if w not in (">",)]
     redirect = None

@@ -7,6 +7,7 @@ import pytest
 
 from softpad.sim import GRAVITY_M_S2, get_object, object_names
 from softpad.sim._mujoco_world import MujocoWorld
+from softpad.trials._geometry import object_outlines_m
 
 pytestmark = pytest.mark.mujoco
 
@@ -17,7 +18,7 @@ T_O_FORCE_N = 50.0 / 700.0
 
 def _modules_under(name: str) -> set[int]:
     """Modules whose square lies partly under the object's top-view footprint (1 mm grid)."""
-    from softpad.trials._geometry import object_outlines_m, point_in_polygon
+    from softpad.trials._geometry import point_in_polygon
 
     spec, pitch = get_object(name), 0.045
     polys = object_outlines_m(spec, spec.placement)
@@ -43,12 +44,16 @@ def test_object_rests_on_its_modules(name: str) -> None:
     # domes' edges: 3 %); loose parts may also rest partly on a non-sensitive line between
     # the domes (up to 5 % of their weight)
     weight = spec.mass_kg * GRAVITY_M_S2
-    low = 0.95 if spec.extra.get("loose_parts") else 1 - 5e-3
+    # objects reaching past the modules (the 192 mm banana's ends) rest partly on the rim
+    polys = object_outlines_m(spec, spec.placement)
+    overhangs = any(((p < 0) | (p > (0.135, 0.09))).any() for p in polys)
+    low = 0.95 if spec.extra.get("loose_parts") or overhangs else 1 - 5e-3
     assert (
         weight * low <= loads.sum() <= weight * (1.05 if name in ("cylinder", "limes") else 1.005)
     )
     assert world.object_speed_m_s(name) < 1e-3
-    assert world.object_pose(name).tilt_rad < 0.1
+    # an object reaching past the pad dips towards the rim, 9 mm below the domes' tops
+    assert world.object_pose(name).tilt_rad < (0.15 if overhangs else 0.1)
     # a module is loaded above t_o only where the object lies over it (which modules those
     # are, against the thesis's, is the prediction that docs/trials.md reports)
     loaded = {int(k) + 1 for k in np.flatnonzero(loads > T_O_FORCE_N)}

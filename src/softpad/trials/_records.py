@@ -182,8 +182,8 @@ class ObjectSummary:
     representative
         The plan of the first trial with one: (x_COG, y_COG, theta), module units and radians.
     planned
-        The predicted grasp over all trials: median x_COG and y_COG of the trials' plans and
-        their most frequent theta, or None when no trial planned.
+        The predicted grasp over all trials: the trials' most frequent theta and the median
+        x_COG and y_COG of the trials that planned it, or None when no trial planned.
     theta_share
         Fraction of the planned trials whose theta is that most frequent one.
     """
@@ -255,7 +255,8 @@ class ObjectSummary:
 def _predicted_grasp(
     ts: list[TrialResult],
 ) -> tuple[tuple[float, float, float] | None, float | None]:
-    """Median COG and most frequent theta of the trials' plans, and that theta's share."""
+    """Most frequent theta of the trials' plans, the median COG of the plans with that theta,
+    and that theta's share of the plans."""
     plans = [(t.cog, t.theta) for t in ts if t.cog is not None and t.theta is not None]
     if not plans:
         return None, None
@@ -264,8 +265,10 @@ def _predicted_grasp(
         key = round(th, 6)
         counts[key] = counts.get(key, 0) + 1
     theta = max(counts, key=lambda k: counts[k])
-    xs = [c[0] for c, _ in plans]
-    ys = [c[1] for c, _ in plans]
+    # the COG of the trials that planned that direction (a plan that flips between two
+    # directions has two COGs; their median would lie between them, on neither)
+    xs = [c[0] for c, th in plans if round(th, 6) == theta]
+    ys = [c[1] for c, th in plans if round(th, 6) == theta]
     planned = (statistics.median(xs), statistics.median(ys), theta)
     return planned, counts[theta] / len(plans)
 
