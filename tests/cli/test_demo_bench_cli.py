@@ -25,7 +25,7 @@ def _run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]
 @pytest.mark.mujoco
 def test_demo_writes_the_report(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     out = tmp_path / "report"
-    code, stdout, _ = _run(
+    code, _, _ = _run(
         capsys, "demo", "--out", str(out), "--trials", "1", "--workers", "2", "--no-progress"
     )
     assert code == 0

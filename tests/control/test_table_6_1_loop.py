@@ -53,7 +53,9 @@ def test_held_rate_over_seeds_agrees_with_the_reference(name: str) -> None:
     ref = REFERENCE_HELD_OF_40[name]
     table = [[held, len(SEEDS) - held], [ref, 40 - ref]]
     p = float(fisher_exact(table).pvalue)
-    assert p >= ALPHA, f"{name}: held {held}/{len(SEEDS)} against {ref}/40 (p = {p:.2g}): {outcomes}"
+    assert p >= ALPHA, (
+        f"{name}: held {held}/{len(SEEDS)} against {ref}/40 (p = {p:.2g}): {outcomes}"
+    )
 
 
 def test_fisher_test_has_the_power_to_fail() -> None:

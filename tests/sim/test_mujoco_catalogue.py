@@ -15,7 +15,6 @@ pytestmark = pytest.mark.mujoco
 T_O_FORCE_N = 50.0 / 700.0
 
 
-
 def _modules_under(name: str) -> set[int]:
     """Modules whose square lies partly under the object's top-view footprint (1 mm grid)."""
     from softpad.trials._geometry import point_in_polygon

@@ -13,7 +13,6 @@ from softpad.planning import GraspPlan
 from softpad.sim import get_object
 from softpad.trials import (
     FAILURE_CAUSES,
-    THESIS_TABLE_6_1,
     ExperimentResult,
     TrialConfig,
     TrialResult,
@@ -166,7 +165,12 @@ def test_experiment_summary_and_json_schema() -> None:
     assert d["overall_success"] == 0.75
     # next to the thesis: 5/5 each; the limes' thesis grasp (1.5, 0.8, 0) against (1, 1, 0)
     assert d["thesis"]["successes"] == 10 and d["thesis"]["trials"] == 10
-    assert limes["grasp_difference"] == {"dx": -0.5, "dy": 0.2, "distance": 0.5385, "theta_rad": 0.0}
+    assert limes["grasp_difference"] == {
+        "dx": -0.5,
+        "dy": 0.2,
+        "distance": 0.5385,
+        "theta_rad": 0.0,
+    }
     assert "75.0 %" in exp.to_markdown()
     assert exp.to_csv().splitlines()[0].startswith("object,weight_g")
 

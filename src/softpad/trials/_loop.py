@@ -18,8 +18,6 @@ from __future__ import annotations
 import contextlib
 from typing import Any
 
-import numpy as np
-
 from softpad.trials._config import TrialConfig
 from softpad.trials._geometry import distance_to_object_m, half_extent_along_m
 from softpad.trials._records import TrialResult

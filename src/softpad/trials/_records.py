@@ -443,19 +443,6 @@ class ExperimentResult:
             )
         return rows
 
-    _HEADS = {
-        "object": "object",
-        "weight_g": "weight (g)",
-        "planned_grasp": "planned grasp (median)",
-        "thesis_grasp": "thesis grasp",
-        "difference": "difference",
-        "success": "success",
-        "interval": "95 % interval",
-        "thesis_success": "thesis",
-        "failures": "failures",
-        "thesis_failures": "thesis failures",
-    }
-
     def _summary_line(self) -> str:
         o, t = self.overall(), self.thesis_overall()
         lo, hi = o["success_interval"]
@@ -470,20 +457,18 @@ class ExperimentResult:
 
     def to_markdown(self) -> str:
         """The table in Markdown, with the overall rate next to the thesis's."""
-        cols = list(self._HEADS)
-        head = "| " + " | ".join(self._HEADS[c] for c in cols) + " |\n"
+        cols = list(_HEADS)
+        head = "| " + " | ".join(_HEADS[c] for c in cols) + " |\n"
         head += "|" + "|".join("---:" if c in ("weight_g", "success") else "---" for c in cols)
-        body = "".join(
-            "| " + " | ".join(r[c] for c in cols) + " |\n" for r in self.table_rows()
-        )
+        body = "".join("| " + " | ".join(r[c] for c in cols) + " |\n" for r in self.table_rows())
         return head + "|\n" + body + "\n" + self._summary_line() + "\n"
 
     def to_text(self) -> str:
         """The table as aligned plain text (the CLI's output)."""
         rows = self.table_rows()
-        cols = list(self._HEADS)
-        widths = [max(len(self._HEADS[c]), *(len(r[c]) for r in rows)) for c in cols]
-        lines = ["  ".join(self._HEADS[c].ljust(w) for c, w in zip(cols, widths, strict=True))]
+        cols = list(_HEADS)
+        widths = [max(len(_HEADS[c]), *(len(r[c]) for r in rows)) for c in cols]
+        lines = ["  ".join(_HEADS[c].ljust(w) for c, w in zip(cols, widths, strict=True))]
         lines += ["  ".join(r[c].ljust(w) for c, w in zip(cols, widths, strict=True)) for r in rows]
         lines.append(self._summary_line())
         return "\n".join(lines)
@@ -496,6 +481,21 @@ class ExperimentResult:
         writer.writeheader()
         writer.writerows(rows)
         return buf.getvalue()
+
+
+#: Column titles of the Table 6.1-like table.
+_HEADS: dict[str, str] = {
+    "object": "object",
+    "weight_g": "weight (g)",
+    "planned_grasp": "predicted grasp",
+    "thesis_grasp": "thesis grasp",
+    "difference": "difference",
+    "success": "success",
+    "interval": "95 % interval",
+    "thesis_success": "thesis",
+    "failures": "failures",
+    "thesis_failures": "thesis failures",
+}
 
 
 def _fmt_causes(causes: dict[str, int]) -> str:
