@@ -126,7 +126,9 @@ def _floats(text: str, key: str) -> list[float]:
 
 
 def test_node_publishes_pressures_diagnostics_and_the_plan(procs: _Procs) -> None:
-    node, log = procs.start("node", SOFTPAD, "ros", "node", "--box", "sim://", "--place", "object-5")
+    node, log = procs.start(
+        "node", SOFTPAD, "ros", "node", "--box", "sim://", "--place", "object-5"
+    )
 
     def grasps() -> str:
         assert node.poll() is None, log.read_text()
