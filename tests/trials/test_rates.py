@@ -5,7 +5,7 @@ compared with a reference measured on 50 other trials (seeds 200-204, 10 trials 
 settings; ``python tests/trials/test_rates.py`` prints them) by Fisher's exact test: the test
 fails when the counts are unlikely to share one rate (two-sided p < 0.001), i.e. when the
 physics or the loop changed, not when one placement was unlucky. The charger is the informative
-case (its 55 mm body in the 6 cm jaws: about half its grasps fail); object 3 is held almost
+case (its 55 mm body in the 6 cm jaws: more than half its grasps fail); object 3 is held almost
 always.
 """
 
@@ -21,7 +21,7 @@ pytestmark = [pytest.mark.mujoco, pytest.mark.slow]
 
 CONFIG = TrialConfig(trial_execution_params(hold_s=1.0))
 #: Held trials out of 50 (seeds 200-204, 10 trials each, CONFIG).
-REFERENCE_HELD_OF_50 = {"object-3": 50, "charger": 25}
+REFERENCE_HELD_OF_50 = {"object-3": 48, "charger": 19}
 ALPHA = 1e-3
 
 
