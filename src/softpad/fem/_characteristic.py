@@ -51,9 +51,9 @@ DEFAULT_LOADS_N = np.array(
 #: Default load patch: a centred 30 mm square (a fingertip or the part of an object's
 #: weight resting on one module).
 DEFAULT_LOAD_PATCH = LoadPatch.square(0.030)
-#: Residual air under a flat layer (acetate channel, tube inlet), m^3; the simulator's analytic
-#: characteristic uses the same 0.2 mL.
-DEFAULT_GAP_VOLUME_M3 = 0.2e-6
+#: Residual air under a flat layer (acetate channel, tube inlet), m^3
+#: (:data:`softpad.thesis.CHAMBER_GAP_VOLUME_M3`, shared with the simulator).
+DEFAULT_GAP_VOLUME_M3 = thesis.CHAMBER_GAP_VOLUME_M3
 
 
 @dataclass(frozen=True)

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from softpad import thesis
 from softpad.errors import InputError
 from softpad.sim._characteristic import ModuleCharacteristic
 
@@ -39,8 +40,9 @@ class PneumaticParams:
     air_density_kg_m3
         Air density at atmospheric pressure and room temperature, kg/m^3.
     tubing_volume_m3
-        Dead volume of the tube and valve manifold of one channel, m^3 (about 1 m of 1.6 mm
-        bore silicone tube: 2 mL).
+        Dead volume of the tube and valve manifold of one channel, m^3
+        (:data:`softpad.thesis.TUBING_VOLUME_M3`, 3.14 mL, the figure the FEM's sealed chamber
+        uses too).
     supply_pa
         Regulated supply gauge pressure, pascals (our choice: 10 kPa).
     inflate_orifice_m2
@@ -56,7 +58,7 @@ class PneumaticParams:
 
     atmosphere_pa: float = 101325.0
     air_density_kg_m3: float = 1.204
-    tubing_volume_m3: float = 2.0e-6
+    tubing_volume_m3: float = thesis.TUBING_VOLUME_M3
     supply_pa: float = 10.0e3
     inflate_orifice_m2: float = 1.6e-8
     deflate_orifice_m2: float = 3.0e-8
