@@ -148,6 +148,8 @@ class SimBox(Box):
     ) -> None:
         super().__init__()
         self.world: World = world if world is not None else AnalyticWorld()
+        # worlds that weight loads by the FEM response evaluate it at the chambers' pressure
+        self._operate = getattr(self.world, "set_operating_pressure", lambda p: None)
         n_mod = self.world.layout.n_modules
         if not isinstance(channels, int) or not n_mod <= channels <= 64:
             raise InputError(
@@ -175,6 +177,7 @@ class SimBox(Box):
                 raise InputError(
                     f"initial pressure must be within 0..5 kPa, got {initial_pressure_pa / 1e3:g} kPa"
                 )
+            self._operate(float(initial_pressure_pa))
             self.chambers.set_state(
                 np.full(n_mod, float(initial_pressure_pa)), self.world.module_loads_n()
             )
@@ -269,6 +272,7 @@ class SimBox(Box):
             values, supply = sensors.sample(chambers.pressure_pa, supply_true, False)
         elif chambers.solved:  # heights follow the exact solves (every <= 20 ms)
             self._heights = chambers.heights_m()
+            self._operate(float(np.median(chambers.pressure_pa[: self._n_mod])))
             values, supply = sensors.sample(chambers.pressure_pa, supply_true, True)
         else:  # a linear stretch between solves: readings precomputed along the ramp
             hit = sensors.next_on_ramp(chambers.solve_count, supply_true)
