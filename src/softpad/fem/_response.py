@@ -26,7 +26,17 @@ from softpad.fem._materials import MaterialModel
 from softpad.fem._model import ModuleModel, ProgressCallback
 
 #: Pressures of the shipped response, Pa: the usable range of p0 (Section 6.2.1.1).
-DEFAULT_RESPONSE_PRESSURES_PA = (500.0, 700.0, 900.0, 1100.0, 1400.0, 1700.0, 2000.0, 2400.0, 2800.0)
+DEFAULT_RESPONSE_PRESSURES_PA = (
+    500.0,
+    700.0,
+    900.0,
+    1100.0,
+    1400.0,
+    1700.0,
+    2000.0,
+    2400.0,
+    2800.0,
+)
 #: The characteristic's load patch (the response's equivalent loads refer to it).
 REFERENCE_PATCH = LoadPatch.square(0.030)
 

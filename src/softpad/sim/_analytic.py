@@ -271,7 +271,11 @@ class AnalyticWorld:
         """Press a rigid flat block on the pad: ``force_n`` spread uniformly over a rectangle
         (``size_m`` = sides along its x and y, rotated by ``yaw_rad``) centred at ``center_m``
         (pad frame); replaces the previous block. ``force_n = 0`` lifts it."""
-        for name, v in (("force", force_n), ("yaw", yaw_rad), *zip(("x", "y"), center_m)):
+        for name, v in (
+            ("force", force_n),
+            ("yaw", yaw_rad),
+            *zip(("x", "y"), center_m, strict=True),
+        ):
             if not math.isfinite(v):
                 raise InputError(f"probe {name} must be finite, got {v!r}")
         if force_n < 0:

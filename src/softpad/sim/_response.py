@@ -221,7 +221,9 @@ class ModuleResponse:
         step_m: float = RESPONSE_STEP_M,
     ) -> float:
         """Mean of ``s`` over a rectangle (uniform pressure on it), module-centred, m^3/N."""
-        return float(self.influence(rect_points(center_m, size_m, yaw_rad, step_m), pressure_pa).mean())
+        return float(
+            self.influence(rect_points(center_m, size_m, yaw_rad, step_m), pressure_pa).mean()
+        )
 
     def reference_influence(self, pressure_pa: float) -> float:
         """Mean of ``s`` over the characteristic's centred load patch, sampled like every other
