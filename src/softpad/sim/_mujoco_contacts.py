@@ -65,6 +65,8 @@ class ContactSensing:
     ----------
     loads
         Equivalent load on every module at the last MuJoCo step, N.
+    forces
+        Plain normal contact force on every module top at the last step, N.
     pressure_pa
         Chamber pressure at which the response is evaluated, Pa.
     first_touch_s
@@ -87,6 +89,7 @@ class ContactSensing:
         self._mj = mujoco
         self._force = np.zeros(6)
         self.loads = np.zeros(n_modules)
+        self.forces = np.zeros(n_modules)
         self.first_touch_s: float | None = None
         self.first_touch_z_m: float | None = None
         self.tip_hit_object: str | None = None
@@ -143,11 +146,13 @@ class ContactSensing:
         """Equivalent load per module of normal forces on module tops at contact points."""
         n = len(self.loads)
         if not ks:
+            self.forces = np.zeros(n)
             return np.zeros(n)
         k, f = np.array(ks), np.array(forces)
+        self.forces = np.bincount(k, weights=f, minlength=n)
         if self.response is not None and self._centres is not None:
             r = self.response.response
-            local = np.array(points) - self._centres[k]
+            local = (np.array(points) - self._centres[k]) / self.response.scale
             f = f * r.influence(local, self.pressure_pa) / r.reference_influence(self.pressure_pa)
         return np.bincount(k, weights=f, minlength=n)
 

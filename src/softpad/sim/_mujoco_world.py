@@ -253,6 +253,11 @@ class MujocoWorld:
         shears the membrane, is left out), plus a probe block (:meth:`press`)."""
         return self._sensing.loads + self._probe_loads
 
+    def module_forces_n(self) -> NDArray[np.float64]:
+        """Plain normal contact force on each module top, N (diagnostics: what the response
+        weights into :meth:`module_loads_n`)."""
+        return self._sensing.forces.copy()
+
     @property
     def operating_pressure_pa(self) -> float:
         """Chamber pressure at which the response is evaluated, Pa."""

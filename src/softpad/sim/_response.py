@@ -287,7 +287,9 @@ class PadResponse:
 
     Module k's chamber is a square of the response's chamber side centred on the module;
     points between chambers (the bonded seam, :data:`softpad.thesis.SEAM_WIDTH_M`) or off the
-    pad load none.
+    pad load none. On a pad whose pitch differs from the FEM module's (chamber side plus seam)
+    the response is scaled to the pitch, an approximation: regenerate it for such a module
+    (``softpad fem response --width-mm``) for its own figures.
 
     Parameters
     ----------
@@ -300,16 +302,19 @@ class PadResponse:
     def __init__(self, layout: PadLayout | None = None, response: ModuleResponse | None = None):
         self.layout = layout or PadLayout()
         self.response = response or default_response()
-        if self.response.chamber_side_m > self.layout.pitch_m * (1 + 1e-9):
-            raise InputError(
-                f"chamber side {self.response.chamber_side_m * 1e3:g} mm exceeds the module "
-                f"pitch {self.layout.pitch_m * 1e3:g} mm"
-            )
+        seam = float(self.response.meta.get("seam_width_m", 0.0))
+        #: Pad pitch over the FEM module's pitch (1 for the default pad).
+        self.scale = self.layout.pitch_m / (self.response.chamber_side_m + seam)
+
+    @property
+    def chamber_side_m(self) -> float:
+        """Side of every chamber on this pad, metres."""
+        return self.scale * self.response.chamber_side_m
 
     @property
     def seam_width_m(self) -> float:
         """Bonded width between neighbouring chambers, metres."""
-        return max(self.layout.pitch_m - self.response.chamber_side_m, 0.0)
+        return max(self.layout.pitch_m - self.chamber_side_m, 0.0)
 
     def module_centers_m(self) -> NDArray[np.float64]:
         """Centre of every module in the pad frame, (n_modules, 2), metres (module order)."""
@@ -328,7 +333,7 @@ class PadResponse:
         col = np.floor(pts[:, 0] / pitch).astype(np.int64)
         rb = np.floor(pts[:, 1] / pitch).astype(np.int64)
         local = pts - (np.column_stack([col, rb]) + 0.5) * pitch
-        half = 0.5 * self.response.chamber_side_m
+        half = 0.5 * self.chamber_side_m
         ok = (col >= 0) & (col < lay.cols) & (rb >= 0) & (rb < lay.rows)
         ok &= (np.abs(local[:, 0]) < half) & (np.abs(local[:, 1]) < half)
         idx = np.where(ok, (lay.rows - 1 - rb) * lay.cols + col, -1)
@@ -343,7 +348,7 @@ class PadResponse:
         the characteristic's central patch.
         """
         idx, local = self.locate(points_m)
-        s = self.response.influence(local, pressure_pa)
+        s = self.response.influence(local / self.scale, pressure_pa)
         w = np.where(idx >= 0, s, 0.0) / self.response.reference_influence(pressure_pa)
         return idx, w
 
