@@ -7,7 +7,6 @@ import pytest
 
 from softpad.errors import InputError
 from softpad.sim import (
-    GRAVITY_M_S2,
     AnalyticWorld,
     GripperState,
     SimGripper,
