@@ -16,6 +16,7 @@ from softpad.sim._characteristic import (
     packaged_table_path,
     sealed_sensitivity_pa_n,
 )
+from softpad.sim._disturbances import DisturbanceParams, Disturbances
 from softpad.sim._footprint import (
     DEFAULT_LINE_WIDTH_M,
     GRAVITY_M_S2,
@@ -54,6 +55,8 @@ __all__ = [
     "AnalyticCharacteristic",
     "AnalyticWorld",
     "ChamberBank",
+    "DisturbanceParams",
+    "Disturbances",
     "GripperContacts",
     "GripperState",
     "ModuleCharacteristic",
