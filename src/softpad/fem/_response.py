@@ -4,7 +4,7 @@ For each pressure p0 of the usable range the inflated, unloaded layer is solved,
 solve gives ``dw/dp`` of every top-face node (:meth:`ModuleModel.pressure_sensitivity`); by
 reciprocity that is ``s = -dV/dF`` of a point force there. With the chamber compliance and
 volume this gives the small-load pressure rise of a sealed chamber for a flat load of any
-footprint at any position (:class:`softpad.sim.ModuleResponse`), which the simulator reads from
+footprint at any position (:class:`ModuleResponse`), which the simulator reads from
 ``softpad/data/module_response.npz``; ``softpad fem response`` regenerates it.
 
 Mesh convergence (:func:`response_convergence`): the responses that matter to the simulator
@@ -24,6 +24,7 @@ from softpad.errors import InputError, check_finite
 from softpad.fem._geometry import LoadPatch, MeshOptions, ModuleGeometry
 from softpad.fem._materials import MaterialModel
 from softpad.fem._model import ModuleModel, ProgressCallback
+from softpad.fem._response_table import RESPONSE_VERSION, ModuleResponse
 
 #: Pressures of the shipped response, Pa: the usable range of p0 (Section 6.2.1.1).
 DEFAULT_RESPONSE_PRESSURES_PA = (
@@ -70,7 +71,7 @@ def module_response(
     geometry: ModuleGeometry | None = None,
     mesh: MeshOptions | None = None,
     progress: ProgressCallback | None = None,
-) -> Any:
+) -> ModuleResponse:
     """Tabulate the module's response to vertical loads over a range of pressures.
 
     Parameters
@@ -84,11 +85,9 @@ def module_response(
 
     Returns
     -------
-    softpad.sim.ModuleResponse
+    ModuleResponse
         ``s`` on the quarter's top nodes, volume and compliance per pressure.
     """
-    from softpad.sim._response import RESPONSE_VERSION, ModuleResponse
-
     p = np.array([check_finite("pressure", v) for v in pressures_pa], dtype=float)
     if p.size < 1 or (p.size > 1 and not (np.diff(p) > 0).all()) or p[0] <= 0:
         raise InputError(f"response pressures must be increasing and > 0 Pa, got {list(p)}")
