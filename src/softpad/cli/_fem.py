@@ -248,9 +248,9 @@ def register(sub: Any) -> None:
         help="output file (default ./characteristic.npz); developers regenerate the shipped "
         "table with --out src/softpad/data/module_characteristic.npz --force",
     )
-    t.add_argument("--loads-n", help="loads in N starting at 0 (default 0..3 N, 15 values)")
+    t.add_argument("--loads-n", help="loads in N starting at 0 (default 0..6 N, 18 values)")
     t.add_argument(
-        "--pressures-kpa", help="pressures in kPa starting at 0 (default 0..3 every 0.1)"
+        "--pressures-kpa", help="pressures in kPa starting at 0 (default 0..5 every 0.1)"
     )
     t.add_argument(
         "--gap-volume-ml",

@@ -176,6 +176,7 @@ def _map(args: argparse.Namespace) -> int:
 
     size = _footprint(args)
     png = check_output(args.png, "--png", force=args.force, suffix=".png")
+    assert png is not None  # --png is required
     with _open_sim(args.box) as box:
         world, step = box.world, args.step_mm * 1e-3
         lay = world.layout

@@ -149,9 +149,17 @@ class ModuleResponse:
     def to_npz(self, path: str | Path) -> Path:
         """Write the table (arrays of :data:`_ARRAYS` plus ``meta`` as a JSON string)."""
         p = Path(path)
-        arrays = {k: np.asarray(getattr(self, k)) for k in _ARRAYS}
-        with p.open("wb") as fh:
-            np.savez_compressed(fh, **arrays, meta=np.array(json.dumps(self.meta)))
+        np.savez_compressed(
+            p,
+            pressure_pa=self.pressure_pa,
+            axis_m=self.axis_m,
+            influence_m3_n=self.influence_m3_n,
+            volume_m3=self.volume_m3,
+            compliance_m3_pa=self.compliance_m3_pa,
+            reference_influence_m3_n=self.reference_influence_m3_n,
+            reference_patch_m=self.reference_patch_m,
+            meta=np.array(json.dumps(self.meta, sort_keys=True)),
+        )
         return p
 
     # --- evaluation ---------------------------------------------------------------------------

@@ -149,12 +149,12 @@ class ContactSensing:
             self.forces = np.zeros(n)
             return np.zeros(n)
         k, f = np.array(ks), np.array(forces)
-        self.forces = np.bincount(k, weights=f, minlength=n)
+        self.forces = np.bincount(k, weights=f, minlength=n).astype(float)
         if self.response is not None and self._centres is not None:
             r = self.response.response
             local = (np.array(points) - self._centres[k]) / self.response.scale
             f = f * r.influence(local, self.pressure_pa) / r.reference_influence(self.pressure_pa)
-        return np.bincount(k, weights=f, minlength=n)
+        return np.bincount(k, weights=f, minlength=n).astype(float)
 
     def _touched(self, time_s: float, tip_z_m: float) -> None:
         self.first_touch_s = time_s

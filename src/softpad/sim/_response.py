@@ -156,7 +156,8 @@ class PadResponse:
         idx, w = self.weights(points_m, pressure_pa)
         f = np.broadcast_to(np.asarray(forces_n, dtype=float), w.shape)
         on = idx >= 0
-        return np.bincount(idx[on], weights=(f * w)[on], minlength=self.layout.n_modules)
+        loads = np.bincount(idx[on], weights=(f * w)[on], minlength=self.layout.n_modules)
+        return loads.astype(float)
 
     def rect_equivalent_loads(
         self,
