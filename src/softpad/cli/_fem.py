@@ -202,8 +202,9 @@ def register(sub: Any) -> None:
     c.add_argument(
         "--dead-volume-ml",
         type=finite_float("--dead-volume-ml", lo=0.0, unit="mL"),
-        default=3.1416,
-        help="tubing and sensor dead volume in mL (default 3.14: 1 m of 2 mm tubing)",
+        default=round((thesis.TUBING_VOLUME_M3 + thesis.CHAMBER_GAP_VOLUME_M3) * 1e6, 4),
+        help="dead volume in mL: tubing (1 m of 2 mm bore) plus the 0.2 mL gap under the flat "
+        "layer, as in the simulator (default %(default)g)",
     )
     c.add_argument(
         "--threshold-kpa",
