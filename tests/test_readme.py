@@ -27,6 +27,10 @@ QUICK = {
     "fem design --models neo-hookean --png design.png": "fem design --models neo-hookean "
     "--png design.png --mesh coarse --values-mm 1.5,2",
     "fem chamber": "fem chamber --mesh coarse --masses-g 12.6",
+    "fem response --out response.npz": "fem response --out response.npz --mesh coarse "
+    "--pressures-kpa 1.1 --no-convergence --no-progress",
+    "pad map --force-n 0.1236 --footprint-mm 42,31 --png map.png": "pad map --force-n 0.1236 "
+    "--footprint-mm 42,31 --png map.png --step-mm 10",
     "bench": "bench --only planning --quick",
     "compare --seeds 0-19 --json": "compare --seeds 0 --json --objects banana --trials 1 "
     "--workers 1 --idle-hours 0.01 --no-progress",

@@ -34,7 +34,9 @@ def test_run_json_has_the_documented_keys(capsys, tmp_path) -> None:
         assert key in d
     assert d["outcome"] == "held" and d["contact_detected"] is True
     assert set(d["objects"][0]) == {"modules", "pcom", "cog", "theta", "rule", "cog_m"}
-    np.testing.assert_allclose(d["objects"][0]["cog"], [0.5, 1.2], atol=0.03)
+    # Table 6.1 plans (0.5, 1.2); the simulator predicts it within 0.1 module units
+    # (tests/sim/test_table_6_1.py: COG_TOLERANCE)
+    np.testing.assert_allclose(d["objects"][0]["cog"], [0.5, 1.2], atol=0.1)
     assert log.stat().st_size > 0
 
 

@@ -8,10 +8,11 @@ the right, y up the columns, z up), SI units.
 What is modelled (seed, Sections 6.1-6.3)
 -----------------------------------------
 * **Pad.** A rigid base; on it one *module top* per module: a thin box whose side is the
-  module's sensitive area at the inflating pressure, carried by a body on a vertical slide joint
-  whose spring holds it at the inflated height. Between the tops, and around the pad, the base
-  shows as rigid, lower *lines* (the bonded grid walls of the mould, Fig. 6.2): a fingertip that
-  lands there loads no module, which is the failure mode of Section 6.3.
+  module's chamber, carried by a body on a vertical slide joint whose spring holds it at the
+  inflated height. Around the pad (and between the tops where a seam is set) the base shows as
+  a rigid, lower rim. How much a contact squeezes a chamber is the FEM response at the contact
+  point (small near the clamped edges: a fingertip between two modules is barely sensed, the
+  failure mode of Section 6.3).
 * **Compliance.** Two stiffnesses, because a sealed pneumatic module is stiff for a load spread
   over its whole top (the gas carries it) and soft for a small indenter (the membrane bends
   locally): the slide joint of a top has the *distributed* stiffness, the sole of each fingertip
@@ -60,15 +61,12 @@ class PadPhysics:
         about 9 mm, Section 6.3). The box replaces it with its own characteristic at run time
         (see :meth:`MujocoWorld.step`).
     sensitive_side_m
-        Side of the square base of a module's dome, the area that transmits load to the
-        chamber, metres. 40 mm leaves 5 mm non-sensitive lines between the 45 mm modules (the
-        bonded grid walls of the mould, Fig. 6.2). A 4 mm fingertip centred on a line slips
-        between the domes to the line and loads no module; 1 mm off centre it presses a
-        dome's rim and is detected (measured, docs/trials.md):
-        rare misses, as in the thesis (2 of 55 trials). The thesis's sensitive-area figure (a cap whose base grows from
-        about 20 mm at 0.5 kPa to 45 mm at 2.8 kPa, Section 6.1.2) would make the lines far
-        wider at 1.1 kPa; with them most of the thesis's own grasps (e.g. object 1 with the
-        6 cm mounting) would land both fingertips off the modules, against its 94.5 % success.
+        Side of the square base of a module's dome, metres: the chamber under it
+        (:data:`softpad.thesis.CHAMBER_SIDE_M`, the 45 mm acetate of Section 6.1.1), so
+        neighbouring domes meet at the seam (:data:`softpad.thesis.SEAM_WIDTH_M`). What a
+        contact on a dome squeezes is not set here: the world weights each contact force by
+        the FEM module response at its point (:class:`~softpad.sim.PadResponse`), which falls
+        to zero at the clamped edge.
     line_height_m
         Height of the non-sensitive lines and rim (the bonded silicone over the grid walls),
         metres: one 1.5 mm layer over the base.
@@ -77,9 +75,10 @@ class PadPhysics:
     distributed_stiffness_n_m
         Vertical stiffness of a module top's slide joint under a load spread over it, N/m:
         400 N/m, soft enough that an object sinks about 1 mm and rests on all the modules it
-        spans. The gas's own stiffness (the FEM's dV/dp = 3.8 mL/kPa over about 10 mL of gas:
-        about 0.7 mm per newton, 1.4 kN/m) reaches MuJoCo through the box's module heights
-        (see :meth:`MujocoWorld.step`), not through this spring.
+        spans. The sealed chamber's own stiffness (with the FEM characteristic at 1.1 kPa a
+        newton on the central 30 x 30 mm patch lowers the top centre by 0.88 mm: about
+        1.1 kN/m) reaches MuJoCo through the box's module heights (see
+        :meth:`MujocoWorld.step`), not through this spring.
     distributed_damping_n_s_m
         Damping of that joint, N s/m: 20 N s/m, about twice the critical
         2 sqrt(k (m + armature)) = 9.3 N s/m, so a load put on a module does not overshoot.
@@ -107,7 +106,7 @@ class PadPhysics:
     """
 
     free_height_m: float = 8.3e-3
-    sensitive_side_m: float = 40e-3
+    sensitive_side_m: float = thesis.CHAMBER_SIDE_M
     line_height_m: float = 1.5e-3
     rim_m: float = 15e-3
     distributed_stiffness_n_m: float = 400.0
@@ -191,8 +190,8 @@ class MujocoGripper:
         :class:`softpad.layout.GripperSpec` (6.5 x 16 mm, the Sawyer gripper's basic hard tip;
         sources in :mod:`softpad.thesis`), one set of figures for the planner, the analytic
         world and this model (:meth:`from_spec`, :attr:`geometry`). Never changed to make a
-        trial pass: a 6.5 mm tip is wider than a 5 mm line, so whether a tip over a line is
-        sensed follows from the pad's response, not from the tip size.
+        trial pass: whether a tip over the seam between modules is sensed follows from
+        the pad's FEM response (:mod:`softpad.sim._response`), not from the tip size.
     grip_force_n
         Force limit of each jaw's servo, newtons (squeeze force once closed on an object).
     servo_stiffness_n_m
