@@ -19,10 +19,13 @@ _EPILOG = """examples:
   softpad trials --objects cylinder --trials 1 --json
 
 Each trial: a fresh MuJoCo world behind the simulated box; inflate to p0, save the reference,
-place the object with a seeded random shift (3 mm) and turn (3 deg), plan from the pressure
-increments, move over the COG, descend at the approach speed until the pad senses the fingers (t_g),
-close, lift 10 cm, hold 15 s. Failure causes: contact_not_detected, jaws_hit_object,
-object_outside_jaws, slipped_during_hold, object_too_narrow, object_not_detected.
+place the object with a seeded random shift (3 mm standard deviation in x and y) and turn
+(3 deg), plan from the pressure increments, open the jaws to the mounting's width, move over
+the COG, descend at the approach speed until the pad senses the fingers (t_g), close, lift
+10 cm, hold 15 s. Several seeds are pooled: per object trials, successes, a 95 % Wilson
+interval and failures by cause, next to Table 6.1 (5/5 or 4/5) and the thesis's failures.
+Failure causes: contact_not_detected, cog_outside_object, jaws_hit_object, object_outside_jaws,
+slipped_during_hold, object_too_narrow, object_not_detected, box_fault.
 """
 
 
@@ -139,8 +142,10 @@ def run(args: argparse.Namespace) -> int:
             "--record takes one seed at a time (trial files are named by object and trial)"
         )
     check_trial_recordings(args.record, specs, args.trials, args.force)
+    from softpad.trials import ExperimentResult
+
     done: list[Any] = []
-    args.partial = {"seeds": seeds, "experiments": done}
+    args.partial = {"seeds": seeds, "completed_seeds": [e.seed for e in done]}
     for seed in seeds:
         exp, _ = run_with_progress(
             specs,
@@ -151,12 +156,16 @@ def run(args: argparse.Namespace) -> int:
             config=TrialConfig(trial_execution_params(hold_s=args.hold_s)),
             record=args.record,
         )
-        done.append(exp.to_dict())
-        say(f"seed {seed}:\n{exp.to_text()}", args.json)
-        say(
-            f"({len(exp.trials)} trials in {exp.wall_time_s:.1f} s on {exp.workers} workers)",
-            args.json,
-        )
+        done.append(exp)
+        args.partial["completed_seeds"] = [e.seed for e in done]
+        if len(seeds) > 1:
+            say(f"seed {seed}: {exp.overall()['successes']}/{len(exp.trials)} held", args.json)
+    pooled = ExperimentResult.pooled(done)
+    say(pooled.to_text(), args.json)
+    say(
+        f"({len(pooled.trials)} trials in {pooled.wall_time_s:.1f} s on {pooled.workers} workers)",
+        args.json,
+    )
     if args.json:
-        emit(done[0] if len(done) == 1 else {"seeds": seeds, "experiments": done})
+        emit(pooled.to_dict())
     return 0

@@ -35,6 +35,7 @@ _COMMAND_MODULES = (
     "_trials",
     "_compare",
     "_fem",
+    "_pad",
     "_demo",
     "_replay",
     "_log",
