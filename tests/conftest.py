@@ -46,7 +46,8 @@ def served() -> Callable[..., AbstractContextManager[tuple[Any, str]]]:
 @pytest.fixture
 def cli(capsys: pytest.CaptureFixture[str]) -> Callable[..., tuple[int, str, str]]:
     """``cli(*argv)``: run the ``softpad`` command in this process and return its exit code,
-    stdout and stderr (argparse's own exits count as exit codes)."""
+    stdout and stderr (argparse's own exits count as exit codes); a traceback on stderr fails
+    the test (the CLI contract: one line per error)."""
     from softpad.cli.main import main
 
     def run(*argv: str) -> tuple[int, str, str]:
@@ -55,6 +56,7 @@ def cli(capsys: pytest.CaptureFixture[str]) -> Callable[..., tuple[int, str, str
         except SystemExit as exc:
             code = int(exc.code or 0)
         out, err = capsys.readouterr()
+        assert "Traceback" not in err, err
         return code, out, err
 
     return run

@@ -242,7 +242,10 @@ def test_every_parser_refuses_abbreviations_and_offers_json() -> None:
     [
         ("box", "read, monitor, stats, serve or inflate"),
         ("config", "check"),
-        ("fem", "sweep, design, stiffness, sensitivity, chamber, fit, compare or characteristic"),
+        (
+            "fem",
+            "sweep, design, stiffness, sensitivity, chamber, fit, compare, characteristic or response",
+        ),
         ("log", "info, plot, export or recover"),
         ("pad", "probe or map"),
         ("ros", "node"),

@@ -9,25 +9,13 @@ import numpy as np
 import pytest
 
 from softpad import thesis
-from softpad.cli.main import main
 from softpad.sim import default_response, packaged_response_path
 
 
-def _run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
-    try:
-        code = main(list(argv))
-    except SystemExit as exc:
-        code = int(exc.code or 0)
-    out, err = capsys.readouterr()
-    assert "Traceback" not in err
-    return code, out, err
-
-
-def test_probe_json_echoes_the_inputs_and_falls_from_centre_to_seam(capsys) -> None:
+def test_probe_json_echoes_the_inputs_and_falls_from_centre_to_seam(cli) -> None:
     rises = []
     for at in ("0.5,0.5", "0.8333,0.5", "1,0.5"):
-        code, out, _ = _run(
-            capsys,
+        code, out, _ = cli(
             "pad",
             "probe",
             "--at",
@@ -49,9 +37,9 @@ def test_probe_json_echoes_the_inputs_and_falls_from_centre_to_seam(capsys) -> N
     assert rises[0] > rises[1] > rises[2] > 0
 
 
-def test_probe_text_lists_every_module(capsys) -> None:
-    code, out, _ = _run(
-        capsys, "pad", "probe", "--at", "1.5,1.5", "--force-n", "0.1236", "--footprint-mm", "42,31"
+def test_probe_text_lists_every_module(cli) -> None:
+    code, out, _ = cli(
+        "pad", "probe", "--at", "1.5,1.5", "--force-n", "0.1236", "--footprint-mm", "42,31"
     )
     assert code == 0
     rows = [line.split() for line in out.splitlines() if line.strip()[:1].isdigit()]
@@ -83,15 +71,15 @@ def test_probe_text_lists_every_module(capsys) -> None:
         ),
     ],
 )
-def test_probe_bad_input_exits_2_naming_the_value(capsys, argv, names) -> None:  # type: ignore[no-untyped-def]
-    code, out, err = _run(capsys, "pad", "probe", *argv)
+def test_probe_bad_input_exits_2_naming_the_value(cli, argv, names) -> None:  # type: ignore[no-untyped-def]
+    code, out, err = cli("pad", "probe", *argv)
     assert code == 2
     assert names in err and len(err.strip().splitlines()) == 1
-    code, out, _ = _run(capsys, "pad", "probe", *argv, "--json")
+    code, out, _ = cli("pad", "probe", *argv, "--json")
     assert code == 2 and "error" in json.loads(out)
 
 
-def test_map_writes_a_png_and_refuses_to_overwrite(capsys, tmp_path: Path) -> None:
+def test_map_writes_a_png_and_refuses_to_overwrite(cli, tmp_path: Path) -> None:
     png = tmp_path / "map.png"
     argv = [
         "pad",
@@ -105,17 +93,16 @@ def test_map_writes_a_png_and_refuses_to_overwrite(capsys, tmp_path: Path) -> No
         "--step-mm",
         "5",
     ]
-    code, out, _ = _run(capsys, *argv, "--json")
+    code, out, _ = cli(*argv, "--json")
     assert code == 0 and png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     data = json.loads(out)
     assert 0 < data["smallest_kpa"] < data["largest_kpa"] < 0.2
-    code, _, err = _run(capsys, *argv)
+    code, _, err = cli(*argv)
     assert code == 2 and "exists" in err
 
 
-def test_map_needs_an_inflated_pad(capsys, tmp_path: Path) -> None:
-    code, _, err = _run(
-        capsys,
+def test_map_needs_an_inflated_pad(cli, tmp_path: Path) -> None:
+    code, _, err = cli(
         "pad",
         "map",
         "--force-n",
@@ -131,10 +118,10 @@ def test_map_needs_an_inflated_pad(capsys, tmp_path: Path) -> None:
 
 
 @pytest.mark.slow
-def test_fem_response_regenerates_the_packaged_table(capsys, tmp_path: Path) -> None:
+def test_fem_response_regenerates_the_packaged_table(cli, tmp_path: Path) -> None:
     out = tmp_path / "r.npz"
-    code, text, _ = _run(
-        capsys, "fem", "response", "--out", str(out), "--no-convergence", "--no-progress", "--json"
+    code, text, _ = cli(
+        "fem", "response", "--out", str(out), "--no-convergence", "--no-progress", "--json"
     )
     assert code == 0 and json.loads(text)["path"] == str(out)
     from softpad.sim import ModuleResponse
