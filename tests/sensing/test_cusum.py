@@ -70,3 +70,14 @@ def test_bad_names_and_values_are_refused() -> None:
         make_contact_detector("glr")
     with pytest.raises(InputError, match="CUSUM threshold"):
         CusumContactDetector(threshold_pa=float("nan"))
+
+
+def test_count_alarms_rearms_with_the_reference_after_each_alarm() -> None:
+    from softpad.sensing import ThesisContactDetector, count_alarms
+
+    reference = np.zeros(6)
+    quiet, step = np.zeros(6), np.r_[200.0, np.zeros(5)]  # 200 Pa on module 1: above t_g
+    frames = [quiet] * 5 + [step] * 40
+    # the 10-sample average passes 90 Pa on the 5th step frame; re-armed, again 5 frames later
+    assert count_alarms(ThesisContactDetector(window=10), reference, frames) == 8
+    assert count_alarms(ThesisContactDetector(window=10), reference, [quiet] * 100) == 0

@@ -102,6 +102,17 @@ def _add_object_threshold(p: argparse.ArgumentParser, help: str) -> None:
     add_number(p, "--threshold-kpa", help, thesis.OBJECT_THRESHOLD_PA / 1e3, lo=0.0, unit="kPa")
 
 
+def _add_table_output(p: argparse.ArgumentParser, default: str, shipped: str) -> None:
+    """``--out FILE.npz`` of a study that tabulates what ``softpad/data/<shipped>`` holds."""
+    p.add_argument(
+        "--out",
+        metavar="FILE.npz",
+        default=default,
+        help=f"output file (default ./{default}); developers regenerate the shipped table with "
+        f"--out src/softpad/data/{shipped} --force",
+    )
+
+
 def register(sub: Any) -> None:
     fem_sub = add_group(
         sub,
@@ -242,13 +253,7 @@ def _characteristic_study(fem_sub: Any) -> None:
         "characteristic",
         "tabulate volume and height against pressure and load (.npz)",
     )
-    t.add_argument(
-        "--out",
-        metavar="FILE.npz",
-        default="characteristic.npz",
-        help="output file (default ./characteristic.npz); developers regenerate the shipped "
-        "table with --out src/softpad/data/module_characteristic.npz --force",
-    )
+    _add_table_output(t, "characteristic.npz", "module_characteristic.npz")
     t.add_argument("--loads-n", help="loads in N starting at 0 (default 0..6 N, 18 values)")
     t.add_argument(
         "--pressures-kpa", help="pressures in kPa starting at 0 (default 0..5 every 0.1)"
@@ -270,13 +275,7 @@ def _response_study(fem_sub: Any) -> None:
         "response",
         "chamber response to a load at every point of the module, 0.5..2.8 kPa (.npz)",
     )
-    r.add_argument(
-        "--out",
-        metavar="FILE.npz",
-        default="module_response.npz",
-        help="output file (default ./module_response.npz); developers regenerate the shipped "
-        "table with --out src/softpad/data/module_response.npz --force",
-    )
+    _add_table_output(r, "module_response.npz", "module_response.npz")
     r.add_argument(
         "--pressures-kpa", help="increasing pressures in kPa (default 0.5..2.8, 9 values)"
     )

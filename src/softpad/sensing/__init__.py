@@ -9,6 +9,7 @@ from softpad.sensing._contact import (
     ContactDetector,
     LatchingContactDetector,
     ThesisContactDetector,
+    count_alarms,
 )
 from softpad.sensing._cusum import (
     CONTACT_DETECTORS,
@@ -43,6 +44,7 @@ __all__ = [
     "ThesisObjectDetector",
     "calibrate_cusum_threshold",
     "capture_reference",
+    "count_alarms",
     "cusum_peak_pa",
     "detect_objects",
     "increments",

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from typing import Protocol, runtime_checkable
 
 import numpy as np
@@ -115,3 +116,18 @@ class ThesisContactDetector(LatchingContactDetector):
     def _statistic(self, rise_pa: NDArray[np.float64]) -> NDArray[np.float64]:
         filtered: NDArray[np.float64] = self._filter.update(rise_pa)
         return filtered
+
+
+def count_alarms(
+    detector: ContactDetector, reference_pa: ArrayLike, frames: Iterable[ArrayLike]
+) -> int:
+    """Contact alarms of ``detector`` over ``frames`` (Pa per module) on which nothing touches
+    the pad: every one is false. The detector starts from ``reference_pa`` and is re-armed
+    with it after every alarm."""
+    detector.reset(reference_pa)
+    alarms = 0
+    for pressures_pa in frames:
+        if detector.update(pressures_pa):
+            alarms += 1
+            detector.reset(reference_pa)
+    return alarms
