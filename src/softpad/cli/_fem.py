@@ -102,8 +102,10 @@ def _add_object_threshold(p: argparse.ArgumentParser, help: str) -> None:
     add_number(p, "--threshold-kpa", help, thesis.OBJECT_THRESHOLD_PA / 1e3, lo=0.0, unit="kPa")
 
 
-def _add_table_output(p: argparse.ArgumentParser, default: str, shipped: str) -> None:
-    """``--out FILE.npz`` of a study that tabulates what ``softpad/data/<shipped>`` holds."""
+def _table_study(fem_sub: Any, name: str, help: str, default: str, shipped: str) -> Any:
+    """A study that writes a table (``--out FILE.npz``, default ``default``) of the kind
+    shipped as ``softpad/data/<shipped>``."""
+    p = _add_study(fem_sub, name, help)
     p.add_argument(
         "--out",
         metavar="FILE.npz",
@@ -111,6 +113,7 @@ def _add_table_output(p: argparse.ArgumentParser, default: str, shipped: str) ->
         help=f"output file (default ./{default}); developers regenerate the shipped table with "
         f"--out src/softpad/data/{shipped} --force",
     )
+    return p
 
 
 def register(sub: Any) -> None:
@@ -124,7 +127,7 @@ def register(sub: Any) -> None:
     )
     for add in (_sweep_study, _design_study, _stiffness_study, _sensitivity_study):
         add(fem_sub)
-    for add in (_chamber_study, _fit_studies, _characteristic_study, _response_study):
+    for add in (_chamber_study, _fit_studies, _table_studies):
         add(fem_sub)
 
 
@@ -247,13 +250,14 @@ def _fit_studies(fem_sub: Any) -> None:
     m.set_defaults(handler=_compare)
 
 
-def _characteristic_study(fem_sub: Any) -> None:
-    t = _add_study(
+def _table_studies(fem_sub: Any) -> None:
+    t = _table_study(
         fem_sub,
         "characteristic",
         "tabulate volume and height against pressure and load (.npz)",
+        "characteristic.npz",
+        "module_characteristic.npz",
     )
-    _add_table_output(t, "characteristic.npz", "module_characteristic.npz")
     t.add_argument("--loads-n", help="loads in N starting at 0 (default 0..6 N, 18 values)")
     t.add_argument(
         "--pressures-kpa", help="pressures in kPa starting at 0 (default 0..5 every 0.1)"
@@ -267,15 +271,13 @@ def _characteristic_study(fem_sub: Any) -> None:
         unit="mL",
     )
     t.set_defaults(handler=_characteristic)
-
-
-def _response_study(fem_sub: Any) -> None:
-    r = _add_study(
+    r = _table_study(
         fem_sub,
         "response",
         "chamber response to a load at every point of the module, 0.5..2.8 kPa (.npz)",
+        "module_response.npz",
+        "module_response.npz",
     )
-    _add_table_output(r, "module_response.npz", "module_response.npz")
     r.add_argument(
         "--pressures-kpa", help="increasing pressures in kPa (default 0.5..2.8, 9 values)"
     )
