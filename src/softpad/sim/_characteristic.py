@@ -389,7 +389,12 @@ class TabulatedCharacteristic:
 
 def packaged_table_path() -> Path | None:
     """Path of the packaged FEM table, or None when it is not installed."""
-    res = resources.files("softpad").joinpath("data", PACKAGED_TABLE)
+    return packaged_data_path(PACKAGED_TABLE)
+
+
+def packaged_data_path(name: str) -> Path | None:
+    """Path of the package data file ``softpad/data/NAME``, or None when it is not installed."""
+    res = resources.files("softpad").joinpath("data", name)
     try:
         p = Path(str(res))
     except TypeError:  # pragma: no cover - zipped installs

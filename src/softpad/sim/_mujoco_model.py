@@ -41,6 +41,7 @@ from typing import Any, Protocol
 from softpad import thesis
 from softpad.errors import InputError, check_finite
 from softpad.layout import GripperSpec, PadLayout
+from softpad.sim._objects import PartSpec
 
 # Collision bits.
 _PAD, _OBJ, _FINGER, _SOLE = 1, 2, 4, 8
@@ -283,33 +284,8 @@ class PartLike(Protocol):
     axis: str
 
 
-@dataclass(frozen=True)
-class ObjectPart:
-    """A part with the fields of the catalogue schema (see :class:`PartLike`), for objects built
-    in code (tests, user scripts)."""
-
-    shape: str
-    mass_kg: float
-    pos_m: tuple[float, float, float]
-    yaw_rad: float = 0.0
-    size_m: tuple[float, float, float] | None = None
-    radius_m: float | None = None
-    length_m: float | None = None
-    axis: str = "z"
-
-    def __post_init__(self) -> None:
-        if self.shape not in ("box", "cylinder", "sphere"):
-            raise InputError(f"part shape must be box, cylinder or sphere, got {self.shape!r}")
-        if self.shape == "box" and (self.size_m is None or len(self.size_m) != 3):
-            raise InputError("a box part needs size_m = (lx, ly, lz) in metres")
-        if self.shape != "box" and (self.radius_m is None or self.radius_m <= 0):
-            raise InputError(f"a {self.shape} part needs radius_m > 0")
-        if self.shape == "cylinder" and (self.length_m is None or self.length_m <= 0):
-            raise InputError("a cylinder part needs length_m > 0")
-        if not 0 < check_finite("part mass", self.mass_kg) <= 5.0:
-            raise InputError(f"part mass must be in (0, 5000] g, got {self.mass_kg * 1e3:g} g")
-        if self.axis not in ("x", "y", "z"):
-            raise InputError(f"cylinder axis must be x, y or z, got {self.axis!r}")
+#: A part built in code (tests, user scripts): the catalogue's :class:`PartSpec`.
+ObjectPart = PartSpec
 
 
 def _quat_mul(a: tuple[float, ...], b: tuple[float, ...]) -> tuple[float, float, float, float]:

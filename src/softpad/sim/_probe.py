@@ -111,7 +111,8 @@ def probe_box(
     after = np.mean([f.pressures_pa[:n] for f in box.read_many(reads)], axis=0)
     world.press(at_m, size_m, 0.0)
     gas = {"tubing_volume_m3": box.pneumatics.tubing_volume_m3}
-    fem = world.response.sealed_rise_pa(at_m, size_m, force_n, p_op, **gas)
+    eq = world.response.rect_equivalent_loads(at_m, size_m, force_n, p_op)
+    fem = world.response.sealed_rise_pa(eq, p_op, **gas)
     return ProbeResult(ref, after - ref, np.asarray(fem))
 
 

@@ -20,7 +20,6 @@ file (NumPy only) and turns loads into what the gas physics needs:
 from __future__ import annotations
 
 from functools import lru_cache
-from importlib import resources
 from pathlib import Path
 
 import numpy as np
@@ -53,12 +52,9 @@ __all__ = [
 
 def packaged_response_path() -> Path | None:
     """Path of the packaged FEM response, or None when it is not installed."""
-    res = resources.files("softpad").joinpath("data", PACKAGED_RESPONSE)
-    try:
-        p = Path(str(res))
-    except TypeError:  # pragma: no cover - zipped installs
-        return None
-    return p if p.is_file() else None
+    from softpad.sim._characteristic import packaged_data_path
+
+    return packaged_data_path(PACKAGED_RESPONSE)
 
 
 @lru_cache(maxsize=1)
@@ -172,17 +168,12 @@ class PadResponse:
         return self.equivalent_loads(pts, force_n / len(pts), pressure_pa)
 
     def sealed_rise_pa(
-        self,
-        center_m: ArrayLike,
-        size_m: ArrayLike,
-        force_n: float,
-        pressure_pa: float,
-        yaw_rad: float = 0.0,
-        **gas: float,
+        self, equivalent_loads_n: ArrayLike, pressure_pa: float, **gas: float
     ) -> NDArray[np.float64]:
-        """The FEM's small-load pressure rise of every sealed module, Pa, for a force spread
-        uniformly over a rectangle: ``F <s>_k / (dV/dp + (V + V_gap + V_t) / (p_atm + p))``."""
-        eq = self.rect_equivalent_loads(center_m, size_m, force_n, pressure_pa, yaw_rad)
+        """The FEM's small-load pressure rise of every sealed module, Pa, for its equivalent
+        loads (e.g. :meth:`rect_equivalent_loads`): ``F <s>_k / (dV/dp + (V + V_gap + V_t) /
+        (p_atm + p))``."""
+        eq = np.asarray(equivalent_loads_n, dtype=float)
         s_ref = self.response.reference_influence(pressure_pa)
         return np.asarray(eq * s_ref * self.response.sealed_rise_per_newton(pressure_pa, **gas))
 

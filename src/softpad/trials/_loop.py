@@ -16,6 +16,7 @@ are read only to score the trial.
 from __future__ import annotations
 
 import contextlib
+from dataclasses import dataclass
 from typing import Any
 
 from softpad.trials._config import TrialConfig
@@ -157,36 +158,45 @@ class _Trial:
         self.world.place_object(self.spec, Placement(*self.placement))
 
 
+@dataclass(frozen=True)
+class TrialOverrides:
+    """What a study changes in one trial (the arguments of :func:`softpad.trials.run_trial`
+    of the same names): a forced plan, opening, mounting, gripper, the geometry that scores it
+    and a recorder that also hears the loop."""
+
+    plan: Any | None = None
+    opening_m: float | None = None
+    mounting: str | None = None
+    truth: Any | None = None
+    recorder: Any | None = None
+    gripper: Any | None = None
+
+
 def execute_trial(
     spec: Any,
     placement: tuple[float, float, float],
     seed: int,
     config: TrialConfig,
-    plan_override: Any | None = None,
-    opening_m: float | None = None,
-    mounting: str | None = None,
-    truth: Any | None = None,
-    recorder: Any | None = None,
-    gripper: Any | None = None,
+    overrides: TrialOverrides | None = None,
 ) -> tuple[TrialResult, Any | None]:
     """Run one trial; see :func:`softpad.trials.run_trial`. Returns the result and the run's
-    :class:`softpad.record.RunLog` when ``config.record_trace``; ``recorder`` also hears every
-    frame and event of the loop."""
+    :class:`softpad.record.RunLog` when ``config.record_trace``."""
     from softpad.control import ExecutionError, GraspExecution
     from softpad.errors import HardwareFault
     from softpad.record import RunLog, Tee
     from softpad.sensing import make_contact_detector
 
-    t = _Trial(spec, placement, seed, config, opening_m, mounting, truth, gripper)
+    o = overrides or TrialOverrides()
+    t = _Trial(spec, placement, seed, config, o.opening_m, o.mounting, o.truth, o.gripper)
     log = RunLog({"object": spec.name, "seed": seed}) if config.record_trace else None
     mcap = _trial_recorder(t, seed)
-    watcher = _TrialWatcher(t, Tee(log, mcap, recorder))
+    watcher = _TrialWatcher(t, Tee(log, mcap, o.recorder))
     execution = GraspExecution(
         t.box,
         t.robot,
         t.world.layout,
         config.execution,
-        planner=_FixedPlanner(plan_override) if plan_override is not None else t.planner(),
+        planner=_FixedPlanner(o.plan) if o.plan is not None else t.planner(),
         contact_detector=make_contact_detector(config.detector),
         recorder=watcher,
         place_objects=t.place,
@@ -204,7 +214,7 @@ def execute_trial(
             # after the outcome the trial stands; before it, the trial is a failure of its own
             # kind, with the plan when there was one.
             if "plan" not in watcher.seen:
-                return _box_fault_unplanned(base, t, execution.phase, exc), log
+                return _box_fault(base, None, t, execution.phase, exc), log
             if "outcome" not in watcher.seen:
                 return _box_fault(base, watcher.seen, t, execution.phase, exc), log
         sim_time = t.box.time_s
@@ -225,27 +235,17 @@ def _not_detected(
 
 
 def _box_fault(
-    base: dict[str, Any], seen: dict[str, Any], t: _Trial, phase: str, exc: Exception
+    base: dict[str, Any], seen: dict[str, Any] | None, t: _Trial, phase: str, exc: Exception
 ) -> TrialResult:
+    """A box fault's result; ``seen`` None: the fault came before planning."""
+    when = "" if seen is not None else ", before planning"
     return TrialResult(
         **base,
         success=False,
         cause="box_fault",
-        **_planned(seen, t),
+        **(_planned(seen, t) if seen is not None else {}),
         sim_time_s=t.box.time_s,
-        detail=f"box fault in phase {phase}: {exc}",
-    )
-
-
-def _box_fault_unplanned(
-    base: dict[str, Any], t: _Trial, phase: str, exc: Exception
-) -> TrialResult:
-    return TrialResult(
-        **base,
-        success=False,
-        cause="box_fault",
-        sim_time_s=t.box.time_s,
-        detail=f"box fault in phase {phase}, before planning: {exc}",
+        detail=f"box fault in phase {phase}{when}: {exc}",
     )
 
 

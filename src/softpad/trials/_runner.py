@@ -108,24 +108,14 @@ def run_trial(
     -------
     The trial's result, and its :class:`softpad.record.RunLog` when ``config.record_trace``.
     """
-    from softpad.trials._loop import execute_trial
+    from softpad.trials._loop import TrialOverrides, execute_trial
 
     config = config or TrialConfig()
     if placement is None:
         placement = perturbed_placement(spec, seed, config)
     t0 = time.perf_counter()
-    result, trace = execute_trial(
-        spec,
-        placement,
-        seed,
-        config,
-        plan_override,
-        opening_m=opening_m,
-        mounting=mounting,
-        truth=truth,
-        recorder=recorder,
-        gripper=gripper,
-    )
+    o = TrialOverrides(plan_override, opening_m, mounting, truth, recorder, gripper)
+    result, trace = execute_trial(spec, placement, seed, config, o)
     result = replace(result, trial=trial, wall_time_s=time.perf_counter() - t0)
     return result, trace
 
