@@ -54,6 +54,12 @@ def register(sub: Any) -> None:
     p.add_argument("--seed", action=Renamed, new="--seeds (e.g. --seeds 7 or --seeds 0-9)")
     p.add_argument("--workers", type=int, default=None, help="worker processes (default: all CPUs)")
     p.add_argument(
+        "--scheduler",
+        metavar="tcp://127.0.0.1:PORT|local",
+        help="run every seed's trials as Dask tasks: on this running scheduler (loopback), or "
+        "'local' for a Dask cluster of --workers processes on 127.0.0.1",
+    )
+    p.add_argument(
         "--hold-s", type=float, default=thesis.HOLD_S, help="hold time in s (default %(default)g)"
     )
     add_json_force(p, force=False)
@@ -132,6 +138,8 @@ def run(args: argparse.Namespace) -> int:
     check_trial_recordings(args.record, specs, args.trials, args.force)
     done: list[Any] = []
     args.partial = {"seeds": seeds, "experiments": done}
+    if getattr(args, "scheduler", None) is not None:
+        return _run_on_dask(args, specs, seeds, done)
     for seed in seeds:
         exp, _ = run_with_progress(
             specs,
@@ -148,6 +156,38 @@ def run(args: argparse.Namespace) -> int:
             f"({len(exp.trials)} trials in {exp.wall_time_s:.1f} s on {exp.workers} workers)",
             args.json,
         )
+    if args.json:
+        emit(done[0] if len(done) == 1 else {"seeds": seeds, "experiments": done})
+    return 0
+
+
+def _run_on_dask(args: argparse.Namespace, specs: list[Any], seeds: list[int], done: list[Any]) -> int:
+    """``--scheduler``: every seed's trials as Dask tasks (softpad.design's client)."""
+    from softpad.design import check_scheduler_address, run_experiment_on_dask
+    from softpad.trials import TrialConfig, trial_execution_params
+
+    if args.record:
+        raise InputError("--record is not available with --scheduler (trials run on Dask workers)")
+    address = None if args.scheduler == "local" else check_scheduler_address(args.scheduler)
+    bar = progress_bar(len(specs) * args.trials * len(seeds), not args.no_progress and sys.stderr.isatty())
+    try:
+        exps = run_experiment_on_dask(
+            specs,
+            args.trials,
+            seeds,
+            TrialConfig(trial_execution_params(hold_s=args.hold_s)),
+            scheduler=address,
+            workers=args.workers,
+            on_trial=(lambda r: bar.update(1)) if bar is not None else None,
+        )
+    finally:
+        if bar is not None:
+            bar.close()
+    for seed, exp in zip(seeds, exps, strict=True):
+        done.append(exp.to_dict())
+        say(f"seed {seed}:\n{exp.to_text()}", args.json)
+    say(f"({sum(len(e.trials) for e in exps)} trials in {exps[0].wall_time_s:.1f} s on "
+        f"{exps[0].workers} Dask workers)", args.json)
     if args.json:
         emit(done[0] if len(done) == 1 else {"seeds": seeds, "experiments": done})
     return 0

@@ -33,6 +33,7 @@ _COMMAND_MODULES = (
     "_trials",
     "_compare",
     "_fem",
+    "_design",
     "_demo",
     "_replay",
     "_log",
