@@ -29,7 +29,17 @@ ALLOWED: dict[str, set[str]] = {
     # the ROS adapters translate; the simulated arm node uses the harness and the catalogue
     "ros": {"box", "control", "harness", "layout", "planning", "sensing", "sim"},
     # design sweeps evaluate pads with the FEM and simulated trials
-    "design": {"box", "control", "fem", "harness", "layout", "planning", "sensing", "sim", "trials"},
+    "design": {
+        "box",
+        "control",
+        "fem",
+        "harness",
+        "layout",
+        "planning",
+        "sensing",
+        "sim",
+        "trials",
+    },
 }
 
 

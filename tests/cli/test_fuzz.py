@@ -43,6 +43,7 @@ def stubbed() -> Iterator[Path]:
     import softpad.cli._demo
     import softpad.cli._trials
     import softpad.control
+    import softpad.design
     import softpad.fem
     import softpad.harness
 
@@ -53,6 +54,7 @@ def stubbed() -> Iterator[Path]:
     mp.setattr(softpad.cli._bench, "importlib", types.SimpleNamespace(import_module=_started))
     mp.setattr(softpad.control, "inflate_and_adjust", _started)
     mp.setattr(softpad.box, "BoxServer", _started)
+    mp.setattr(softpad.design, "design_sweep", _started)
     for name in (
         "ModuleModel",
         "inflation_sweep",
@@ -109,6 +111,28 @@ OPTIONS = (
     ]
     + [(["trials"], o) for o in ("--objects", "--trials", "--seeds", "--workers", "--hold-s")]
     + [(["demo"], o) for o in ("--out", "--trials", "--seeds", "--workers")]
+    + [
+        (["design", "--quick"], o)
+        for o in (
+            "--example",
+            "--objects",
+            "--grid",
+            "--pitch-mm",
+            "--thickness-mm",
+            "--material",
+            "--p0-kpa",
+            "--trials",
+            "--seeds",
+            "--hold-s",
+            "--planner",
+            "--detector",
+            "--scheduler",
+            "--workers",
+            "--cache",
+            "--csv",
+            "--png",
+        )
+    ]
     + [
         (["bench"], "--only"),
         (["completion"], "--shell-positional"),

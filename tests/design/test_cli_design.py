@@ -23,8 +23,18 @@ SWEEP_TIMEOUT_S = 300
 
 
 def _design(*args: str, cache: Path) -> dict:
-    cmd = [str(BIN / "softpad"), "design", "--example", "thesis-set", "--quick", "--json",
-           "--no-progress", "--cache", str(cache), *args]
+    cmd = [
+        str(BIN / "softpad"),
+        "design",
+        "--example",
+        "thesis-set",
+        "--quick",
+        "--json",
+        "--no-progress",
+        "--cache",
+        str(cache),
+        *args,
+    ]
     out = subprocess.run(cmd, capture_output=True, text=True, timeout=SWEEP_TIMEOUT_S, check=False)
     assert out.returncode == 0, out.stderr[-2000:]
     return json.loads(out.stdout)
@@ -47,10 +57,22 @@ def scheduler_address() -> Iterator[str]:
     port = _free_port()
     address = f"tcp://127.0.0.1:{port}"
     loopback = ["--dashboard-address", "127.0.0.1:0"]
-    procs = [subprocess.Popen(
-        [str(BIN / "dask"), "scheduler", "--host", "127.0.0.1", "--port", str(port), "--no-dashboard", *loopback],
-        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-    )]
+    procs = [
+        subprocess.Popen(
+            [
+                str(BIN / "dask"),
+                "scheduler",
+                "--host",
+                "127.0.0.1",
+                "--port",
+                str(port),
+                "--no-dashboard",
+                *loopback,
+            ],
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+        )
+    ]
     try:
         deadline = time.monotonic() + 60
         while True:
@@ -60,11 +82,25 @@ def scheduler_address() -> Iterator[str]:
             except OSError:
                 assert time.monotonic() < deadline, "the dask scheduler did not start in 60 s"
                 time.sleep(0.3)
-        procs.append(subprocess.Popen(
-            [str(BIN / "dask"), "worker", address, "--host", "127.0.0.1", "--nworkers", "2",
-             "--nthreads", "1", "--no-dashboard", *loopback],
-            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-        ))
+        procs.append(
+            subprocess.Popen(
+                [
+                    str(BIN / "dask"),
+                    "worker",
+                    address,
+                    "--host",
+                    "127.0.0.1",
+                    "--nworkers",
+                    "2",
+                    "--nthreads",
+                    "1",
+                    "--no-dashboard",
+                    *loopback,
+                ],
+                stdout=subprocess.DEVNULL,
+                stderr=subprocess.DEVNULL,
+            )
+        )
         yield address
     finally:
         for p in reversed(procs):
@@ -80,8 +116,17 @@ def scheduler_address() -> Iterator[str]:
 def test_quick_sweep_ranks_eight_designs_with_the_baseline(local_run: dict) -> None:
     designs = local_run["designs"]
     assert len(designs) >= 8
-    keys = {"name", "baseline", "rows", "cols", "pitch_mm", "success", "success_interval",
-            "min_detectable_mass_g", "detection_delay_ms"}
+    keys = {
+        "name",
+        "baseline",
+        "rows",
+        "cols",
+        "pitch_mm",
+        "success",
+        "success_interval",
+        "min_detectable_mass_g",
+        "detection_delay_ms",
+    }
     for d in designs:
         assert keys <= set(d)
         lo, hi = d["success_interval"]
@@ -94,7 +139,11 @@ def test_quick_sweep_ranks_eight_designs_with_the_baseline(local_run: dict) -> N
     assert 7.0 < base[0]["min_detectable_mass_g"] < 11.0
     assert [d["rank"] for d in designs] == list(range(1, len(designs) + 1))
     # smaller modules feel lighter objects: the mass falls with the pitch
-    by_pitch = {d["pitch_mm"]: d["min_detectable_mass_g"] for d in designs if d["thickness_mm"] == 1.5 and d["p0_kpa"] == 1.1 and d["material"] == "neo-hookean"}
+    by_pitch = {
+        d["pitch_mm"]: d["min_detectable_mass_g"]
+        for d in designs
+        if d["thickness_mm"] == 1.5 and d["p0_kpa"] == 1.1 and d["material"] == "neo-hookean"
+    }
     assert by_pitch[23.0] < by_pitch[34.0] < by_pitch[45.0]
 
 

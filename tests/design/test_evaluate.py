@@ -34,11 +34,15 @@ def response() -> dict:
 
 def _fem(d: PadDesign) -> dict:
     v = d.fem_variables()
-    return dict(width_m=v["width_m"], thickness_m=v["thickness_m"], material=v["material"], p0_pa=v["p0_pa"])
+    return dict(
+        width_m=v["width_m"], thickness_m=v["thickness_m"], material=v["material"], p0_pa=v["p0_pa"]
+    )
 
 
 def test_thesis_pad_holds_the_banana_and_detects_contact(response: dict) -> None:
-    rows = run_design_trials(THESIS_DESIGN, response, _set("banana", "charger"), 0, TrialOptions(hold_s=1.0))
+    rows = run_design_trials(
+        THESIS_DESIGN, response, _set("banana", "charger"), 0, TrialOptions(hold_s=1.0)
+    )
     assert [r["object"] for r in rows] == ["banana", "charger"]
     for r in rows:
         assert r["success"] and r["outcome"] == "held"
@@ -65,7 +69,12 @@ def test_trials_run_on_another_grid(response: dict) -> None:
 
 @pytest.mark.parametrize(
     ("changes", "named"),
-    [({"trials": 0}, "trials"), ({"planner": "x"}, "planner"), ({"detector": "x"}, "detector"), ({"hold_s": -1.0}, "hold")],
+    [
+        ({"trials": 0}, "trials"),
+        ({"planner": "x"}, "planner"),
+        ({"detector": "x"}, "detector"),
+        ({"hold_s": -1.0}, "hold"),
+    ],
     ids=["trials", "planner", "detector", "hold"],
 )
 def test_bad_options(changes: dict, named: str) -> None:

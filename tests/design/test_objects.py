@@ -61,14 +61,32 @@ def test_centre_and_offset_placements() -> None:
     [
         ('schema = "x"\n', "schema"),
         ('schema = "softpad-object-set/1"\n', r"\[\[object\]\]"),
-        ('schema = "softpad-object-set/1"\n[[object]]\nname = "a"\nmass_g = -1\nsize_mm = [1,1,1]\n', "mass_g"),
+        (
+            'schema = "softpad-object-set/1"\n[[object]]\nname = "a"\nmass_g = -1\nsize_mm = [1,1,1]\n',
+            "mass_g",
+        ),
         ('schema = "softpad-object-set/1"\n[[object]]\nname = "a"\nmass_g = 10\n', "size_mm"),
         ('schema = "softpad-object-set/1"\n[[object]]\nname = "a"\ncatalogue = "pear"\n', "pear"),
-        ('schema = "softpad-object-set/1"\n[[object]]\nname = "a"\ncatalogue = "toy"\nplacement = "left"\n', "placement"),
-        ('schema = "softpad-object-set/1"\n[[object]]\nname = "a"\ncatalogue = "toy"\ngripper = "9/9"\n', "gripper"),
+        (
+            'schema = "softpad-object-set/1"\n[[object]]\nname = "a"\ncatalogue = "toy"\nplacement = "left"\n',
+            "placement",
+        ),
+        (
+            'schema = "softpad-object-set/1"\n[[object]]\nname = "a"\ncatalogue = "toy"\ngripper = "9/9"\n',
+            "gripper",
+        ),
         ("schema = \n", "not valid TOML"),
     ],
-    ids=["schema", "no-objects", "mass", "size", "unknown-catalogue", "placement", "gripper", "toml"],
+    ids=[
+        "schema",
+        "no-objects",
+        "mass",
+        "size",
+        "unknown-catalogue",
+        "placement",
+        "gripper",
+        "toml",
+    ],
 )
 def test_bad_object_set_names_the_problem(tmp_path: Path, text: str, named: str) -> None:
     f = tmp_path / "set.toml"

@@ -23,7 +23,9 @@ def test_height_and_volume_match_the_fem_docs(thesis_response: FemResponse) -> N
     assert r.compliance_m3_pa * 1e9 == pytest.approx(3.71, abs=0.05)
 
 
-def test_small_load_slope_matches_the_sealed_equilibrium_solve(thesis_response: FemResponse) -> None:
+def test_small_load_slope_matches_the_sealed_equilibrium_solve(
+    thesis_response: FemResponse,
+) -> None:
     """The linearised rise (one tangent solve) against softpad.fem's sealed-chamber study,
     which solves the nonlinear sealed equilibrium for a 6 g brick: within 3 %."""
     from softpad.fem import LoadPatch, sealed_chamber_study
@@ -52,8 +54,14 @@ def test_fitted_characteristic_reproduces_the_sealed_rise(thesis_response: FemRe
 
 def test_sensitivity_map_peaks_at_the_centre(thesis_response: FemResponse) -> None:
     r = thesis_response
-    centre = next(v for (x, y), v in zip(r.map_xy_m, r.map_rise_pa_n, strict=True) if x == 0 and y == 0)
-    edge = [v for (x, y), v in zip(r.map_xy_m, r.map_rise_pa_n, strict=True) if max(x, y) >= 0.0225 - 1e-9]
+    centre = next(
+        v for (x, y), v in zip(r.map_xy_m, r.map_rise_pa_n, strict=True) if x == 0 and y == 0
+    )
+    edge = [
+        v
+        for (x, y), v in zip(r.map_xy_m, r.map_rise_pa_n, strict=True)
+        if max(x, y) >= 0.0225 - 1e-9
+    ]
     assert centre == pytest.approx(max(r.map_rise_pa_n))
     assert max(edge) == pytest.approx(0.0, abs=1e-6 * centre)  # clamped edges feel nothing
     assert 0.2 < r.sensitive_fraction < 0.8

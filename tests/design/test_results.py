@@ -13,7 +13,12 @@ from softpad.design import COLUMNS, THESIS_DESIGN, DesignRow, PadDesign, SweepRe
 def _row(design: PadDesign, ok: int, n: int, mass_g: float) -> DesignRow:
     return DesignRow(
         design=design,
-        response={"height_mm": 8.0, "rise_kpa_per_n": 0.5, "min_detectable_mass_g": mass_g, "sensitive_fraction": 0.5},
+        response={
+            "height_mm": 8.0,
+            "rise_kpa_per_n": 0.5,
+            "min_detectable_mass_g": mass_g,
+            "sensitive_fraction": 0.5,
+        },
         successes=ok,
         trials=n,
         success_interval=(0.0, 1.0),
@@ -49,8 +54,17 @@ def test_ranking_and_pareto_flags(result: SweepResult) -> None:
 
 def test_json_csv_parquet_png_report(result: SweepResult, tmp_path: Path) -> None:
     d = result.to_dict()
-    assert {"name", "baseline", "rows", "cols", "pitch_mm", "success", "success_interval",
-            "min_detectable_mass_g", "detection_delay_ms"} <= set(d["designs"][0])
+    assert {
+        "name",
+        "baseline",
+        "rows",
+        "cols",
+        "pitch_mm",
+        "success",
+        "success_interval",
+        "min_detectable_mass_g",
+        "detection_delay_ms",
+    } <= set(d["designs"][0])
     with result.to_csv(tmp_path / "t.csv").open() as f:
         rows = list(csv.DictReader(f))
     assert list(rows[0]) == list(COLUMNS) and rows[1]["baseline"] == "True"

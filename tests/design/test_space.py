@@ -18,7 +18,12 @@ from softpad.errors import InputError
 def test_thesis_design_is_the_prototype() -> None:
     d = THESIS_DESIGN
     assert (d.rows, d.cols, d.pitch_m, d.thickness_m, d.material, d.p0_pa) == (
-        2, 3, 0.045, 0.0015, "neo-hookean", 1100.0,
+        2,
+        3,
+        0.045,
+        0.0015,
+        "neo-hookean",
+        1100.0,
     )
     assert d.is_thesis and d.n_modules == 6
     assert PadDesign(name="another name").is_thesis  # identity is the variables, not the name

@@ -12,8 +12,22 @@ from softpad.cli.main import main
 pytestmark = [pytest.mark.mujoco, pytest.mark.slow]
 
 
-def test_trials_on_a_local_dask_cluster_match_the_process_pool(capsys: pytest.CaptureFixture[str]) -> None:
-    common = ["trials", "--objects", "banana", "--trials", "1", "--seeds", "0-1", "--hold-s", "1", "--json", "--no-progress"]
+def test_trials_on_a_local_dask_cluster_match_the_process_pool(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    common = [
+        "trials",
+        "--objects",
+        "banana",
+        "--trials",
+        "1",
+        "--seeds",
+        "0-1",
+        "--hold-s",
+        "1",
+        "--json",
+        "--no-progress",
+    ]
     assert main([*common, "--workers", "1"]) == 0
     pool = json.loads(capsys.readouterr().out)
     assert main([*common, "--workers", "1", "--scheduler", "local"]) == 0
@@ -26,5 +40,10 @@ def test_trials_on_a_local_dask_cluster_match_the_process_pool(capsys: pytest.Ca
 
 
 def test_trials_scheduler_must_be_loopback(capsys: pytest.CaptureFixture[str]) -> None:
-    assert main(["trials", "--objects", "banana", "--trials", "1", "--scheduler", "tcp://10.1.1.1:8786"]) == 2
+    assert (
+        main(
+            ["trials", "--objects", "banana", "--trials", "1", "--scheduler", "tcp://10.1.1.1:8786"]
+        )
+        == 2
+    )
     assert "127.0.0.1" in capsys.readouterr().err

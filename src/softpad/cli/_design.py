@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import argparse
+import math
 import sys
+from pathlib import Path
 from typing import Any
 
 from softpad import thesis
@@ -40,23 +42,45 @@ def register(sub: Any) -> None:
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     src = p.add_mutually_exclusive_group()
-    src.add_argument("--example", metavar="NAME", help="packaged object set: " + ", ".join(EXAMPLE_SETS))
+    src.add_argument(
+        "--example", metavar="NAME", help="packaged object set: " + ", ".join(EXAMPLE_SETS)
+    )
     src.add_argument("--objects", metavar="FILE.toml", help="object set file (docs/design.md)")
-    p.add_argument("--gripper", choices=("10/4", "6/2", "4/0"), help="one mounting for every object")
+    p.add_argument(
+        "--gripper", choices=("10/4", "6/2", "4/0"), help="one mounting for every object"
+    )
     p.add_argument("--grid", metavar="RxC,...", help="grids, e.g. 2x3,3x4")
-    p.add_argument("--pitch-mm", metavar="V,...", help="module pitches in mm (list or start:stop:step)")
+    p.add_argument(
+        "--pitch-mm", metavar="V,...", help="module pitches in mm (list or start:stop:step)"
+    )
     p.add_argument("--thickness-mm", metavar="V,...", help="layer thicknesses in mm")
     p.add_argument("--material", metavar="NAME,...", help="material presets (softpad fem --help)")
     p.add_argument("--p0-kpa", metavar="V,...", help="inflating pressures in kPa")
-    p.add_argument("--quick", action="store_true",
-                   help="the 8 quick designs unless variables are given, 1 trial, 2 s hold, coarser FEM mesh")
-    p.add_argument("--trials", type=int, default=None, help="trials per object and seed (default 5; --quick 1)")
-    p.add_argument("--seeds", default="0", metavar="SEEDS", help="experiment seeds: 0, 0-2 (default 0)")
-    p.add_argument("--hold-s", type=float, default=None, help=f"hold time in s (default {thesis.HOLD_S:g}; --quick 2)")
+    p.add_argument(
+        "--quick",
+        action="store_true",
+        help="the 8 quick designs unless variables are given, 1 trial, 2 s hold, coarser FEM mesh",
+    )
+    p.add_argument(
+        "--trials", type=int, default=None, help="trials per object and seed (default 5; --quick 1)"
+    )
+    p.add_argument(
+        "--seeds", default="0", metavar="SEEDS", help="experiment seeds: 0, 0-2 (default 0)"
+    )
+    p.add_argument(
+        "--hold-s",
+        type=float,
+        default=None,
+        help=f"hold time in s (default {thesis.HOLD_S:g}; --quick 2)",
+    )
     p.add_argument("--planner", default="thesis", help="planner: thesis, gripper-aware")
     p.add_argument("--detector", default="thesis", help="contact detector: thesis, cusum")
-    p.add_argument("--scheduler", metavar="tcp://127.0.0.1:PORT", help="a running Dask scheduler on loopback")
-    p.add_argument("--workers", type=int, default=None, help="local cluster worker processes (default: CPUs)")
+    p.add_argument(
+        "--scheduler", metavar="tcp://127.0.0.1:PORT", help="a running Dask scheduler on loopback"
+    )
+    p.add_argument(
+        "--workers", type=int, default=None, help="local cluster worker processes (default: CPUs)"
+    )
     p.add_argument("--cache", metavar="DIR", help="result cache (default ~/.cache/softpad/design)")
     p.add_argument("--no-cache", action="store_true", help="compute everything, keep nothing")
     p.add_argument("--csv", metavar="FILE.csv", help="write the ranked table as CSV")
@@ -78,10 +102,20 @@ def _designs(args: argparse.Namespace) -> list[Any]:
     base = d.THESIS_DESIGN
     space = d.DesignSpace(
         grids=d.parse_grids(args.grid) if args.grid else ((base.rows, base.cols),),
-        pitches_m=d.parse_values(args.pitch_mm, "--pitch-mm", 1e-3, d.LIMITS["pitch_m"]) if args.pitch_mm else (base.pitch_m,),
-        thicknesses_m=d.parse_values(args.thickness_mm, "--thickness-mm", 1e-3, d.LIMITS["thickness_m"]) if args.thickness_mm else (base.thickness_m,),
-        materials=tuple(name_list(args.material, "--material")) if args.material else (base.material,),
-        p0s_pa=d.parse_values(args.p0_kpa, "--p0-kpa", 1e3, d.LIMITS["p0_pa"]) if args.p0_kpa else (base.p0_pa,),
+        pitches_m=d.parse_values(args.pitch_mm, "--pitch-mm", 1e-3, d.LIMITS["pitch_m"])
+        if args.pitch_mm
+        else (base.pitch_m,),
+        thicknesses_m=d.parse_values(
+            args.thickness_mm, "--thickness-mm", 1e-3, d.LIMITS["thickness_m"]
+        )
+        if args.thickness_mm
+        else (base.thickness_m,),
+        materials=tuple(name_list(args.material, "--material"))
+        if args.material
+        else (base.material,),
+        p0s_pa=d.parse_values(args.p0_kpa, "--p0-kpa", 1e3, d.LIMITS["p0_pa"])
+        if args.p0_kpa
+        else (base.p0_pa,),
     )
     if space.size > 500:
         raise InputError(f"the options span {space.size} designs; at most 500 per sweep")
@@ -106,46 +140,76 @@ def _object_set(args: argparse.Namespace) -> Any:
     if args.objects:
         s = load_object_set(args.objects)
     else:
-        s = example_object_set(args.example or "thesis-set")
+        s = example_object_set("thesis-set" if args.example is None else args.example)
     return s.with_gripper(args.gripper)
 
 
 def run(args: argparse.Namespace) -> int:
-    from softpad.design import ResultCache, TrialOptions, check_scheduler_address, default_cache_dir, design_sweep
+    from softpad.design import (
+        ResultCache,
+        TrialOptions,
+        check_scheduler_address,
+        design_sweep,
+    )
 
     object_set = _object_set(args)
     designs = _designs(args)
     seeds = int_ranges(args.seeds, "--seeds", lo=0, hi=2**32 - 1)
     if len(seeds) > 100:
         raise InputError(f"--seeds names {len(seeds)} seeds; at most 100")
-    options = TrialOptions(
-        trials=args.trials if args.trials is not None else (1 if args.quick else 5),
-        planner=args.planner,
-        detector=args.detector,
-        hold_s=args.hold_s if args.hold_s is not None else (2.0 if args.quick else thesis.HOLD_S),
-    )
+    trials = args.trials if args.trials is not None else (1 if args.quick else 5)
+    if not 1 <= trials <= 100:
+        raise InputError(f"--trials must be from 1 to 100, got {trials}")
+    hold_s = args.hold_s if args.hold_s is not None else (2.0 if args.quick else thesis.HOLD_S)
+    if not (math.isfinite(hold_s) and 0 <= hold_s <= 60):
+        raise InputError(f"--hold-s must be from 0 to 60 s, got {hold_s!r}")
+    options = TrialOptions(trials, args.planner, args.detector, hold_s)
     if args.scheduler is not None:
         check_scheduler_address(args.scheduler)
     if args.workers is not None and not 1 <= args.workers <= 256:
         raise InputError(f"--workers must be from 1 to 256, got {args.workers}")
     outputs = _outputs(args)
-    cache = ResultCache(None if args.no_cache else (args.cache or default_cache_dir()))
+    cache = ResultCache(None if args.no_cache else _cache_dir(args.cache))
     bar = _bar(not args.no_progress and sys.stderr.isatty())
     try:
         result = design_sweep(
-            designs, object_set, options, seeds, quick=args.quick, scheduler=args.scheduler,
-            workers=args.workers, cache=cache, progress=bar,
+            designs,
+            object_set,
+            options,
+            seeds,
+            quick=args.quick,
+            scheduler=args.scheduler,
+            workers=args.workers,
+            cache=cache,
+            progress=bar,
         )
     finally:
         if bar is not None:
             bar.close()
     _write(result, outputs)
     say(result.to_text(), args.json)
-    say(f"({result.meta['computed']} tasks computed, {result.meta['cached']} cached, "
-        f"{result.meta['wall_time_s']:.1f} s)", args.json)
+    say(
+        f"({result.meta['computed']} tasks computed, {result.meta['cached']} cached, "
+        f"{result.meta['wall_time_s']:.1f} s)",
+        args.json,
+    )
     if args.json:
         emit(result.to_dict())
     return 0
+
+
+def _cache_dir(text: str | None) -> Path:
+    """The cache folder (created now, so that an unusable one fails before any work)."""
+    from softpad.design import default_cache_dir
+
+    path = default_cache_dir() if text is None else Path(text)
+    if text is not None and not text.strip():
+        raise InputError("--cache needs a folder name, got an empty value")
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InputError(f"--cache {str(path)!r} cannot be used: {exc.strerror or exc}") from None
+    return path
 
 
 def _write(result: Any, outputs: dict[str, Any]) -> None:
@@ -173,7 +237,14 @@ class _Bar:
         from tqdm import tqdm
 
         if self.bar is None:
-            self.bar = tqdm(total=total, desc="design tasks", unit="task", file=sys.stderr, dynamic_ncols=True, initial=done - 1)
+            self.bar = tqdm(
+                total=total,
+                desc="design tasks",
+                unit="task",
+                file=sys.stderr,
+                dynamic_ncols=True,
+                initial=done - 1,
+            )
         self.bar.set_postfix_str(what[:40])
         self.bar.update(1)
 

@@ -161,7 +161,9 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _run_on_dask(args: argparse.Namespace, specs: list[Any], seeds: list[int], done: list[Any]) -> int:
+def _run_on_dask(
+    args: argparse.Namespace, specs: list[Any], seeds: list[int], done: list[Any]
+) -> int:
     """``--scheduler``: every seed's trials as Dask tasks (softpad.design's client)."""
     from softpad.design import check_scheduler_address, run_experiment_on_dask
     from softpad.trials import TrialConfig, trial_execution_params
@@ -169,7 +171,9 @@ def _run_on_dask(args: argparse.Namespace, specs: list[Any], seeds: list[int], d
     if args.record:
         raise InputError("--record is not available with --scheduler (trials run on Dask workers)")
     address = None if args.scheduler == "local" else check_scheduler_address(args.scheduler)
-    bar = progress_bar(len(specs) * args.trials * len(seeds), not args.no_progress and sys.stderr.isatty())
+    bar = progress_bar(
+        len(specs) * args.trials * len(seeds), not args.no_progress and sys.stderr.isatty()
+    )
     try:
         exps = run_experiment_on_dask(
             specs,
@@ -186,8 +190,11 @@ def _run_on_dask(args: argparse.Namespace, specs: list[Any], seeds: list[int], d
     for seed, exp in zip(seeds, exps, strict=True):
         done.append(exp.to_dict())
         say(f"seed {seed}:\n{exp.to_text()}", args.json)
-    say(f"({sum(len(e.trials) for e in exps)} trials in {exps[0].wall_time_s:.1f} s on "
-        f"{exps[0].workers} Dask workers)", args.json)
+    say(
+        f"({sum(len(e.trials) for e in exps)} trials in {exps[0].wall_time_s:.1f} s on "
+        f"{exps[0].workers} Dask workers)",
+        args.json,
+    )
     if args.json:
         emit(done[0] if len(done) == 1 else {"seeds": seeds, "experiments": done})
     return 0

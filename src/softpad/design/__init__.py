@@ -70,11 +70,11 @@ __all__ = [
     "has_dask",
     "load_object_set",
     "object_set_from_dict",
+    "parse_grids",
+    "parse_values",
     "rank_rows",
     "run_design_trials",
     "run_experiment_on_dask",
     "run_sweep",
-    "parse_grids",
-    "parse_values",
     "stable_hash",
 ]

@@ -59,8 +59,14 @@ class TrialOptions:
         from softpad.planning import PLANNERS
         from softpad.sensing import CONTACT_DETECTORS
 
-        if isinstance(self.trials, bool) or not isinstance(self.trials, int) or not 1 <= self.trials <= 100:
-            raise InputError(f"trials per object must be an integer from 1 to 100, got {self.trials!r}")
+        if (
+            isinstance(self.trials, bool)
+            or not isinstance(self.trials, int)
+            or not 1 <= self.trials <= 100
+        ):
+            raise InputError(
+                f"trials per object must be an integer from 1 to 100, got {self.trials!r}"
+            )
         if self.planner not in PLANNERS:
             raise InputError(f"unknown planner {self.planner!r}; use one of {', '.join(PLANNERS)}")
         if self.detector not in CONTACT_DETECTORS:
@@ -111,7 +117,13 @@ def run_design_trials(
 
 
 def _one_trial(
-    design: Any, characteristic: Any, object_set: Any, obj: Any, seed: int, k: int, options: TrialOptions
+    design: Any,
+    characteristic: Any,
+    object_set: Any,
+    obj: Any,
+    seed: int,
+    k: int,
+    options: TrialOptions,
 ) -> dict[str, Any]:
     """One trial of one object (see :func:`run_design_trials`)."""
     from softpad.box import SafetyLimits, SimBox
@@ -128,7 +140,9 @@ def _one_trial(
     world = AnalyticWorld(layout, SimGripper.mounting(object_set.mounting(obj)))
     spec = obj.placed_on((design.cols * design.pitch_m, design.rows * design.pitch_m))
     s = trial_seed(seed, obj.name, k)
-    noise = TrialConfig(position_sigma_m=options.position_sigma_m, yaw_sigma_rad=options.yaw_sigma_rad)
+    noise = TrialConfig(
+        position_sigma_m=options.position_sigma_m, yaw_sigma_rad=options.yaw_sigma_rad
+    )
     placement = Placement(*perturbed_placement(spec, s, noise))
     params = trial_execution_params(
         inflation=InflationParams(target_pa=design.p0_pa, max_pressure_pa=9.5e3),
@@ -159,15 +173,30 @@ def _one_trial(
         try:
             result = loop.run()
         except ExecutionError:
-            return {**record, "success": False, "outcome": "object_not_detected",
-                    "contact_delay_s": None, "sim_time_s": box.time_s}
+            return {
+                **record,
+                "success": False,
+                "outcome": "object_not_detected",
+                "contact_delay_s": None,
+                "sim_time_s": box.time_s,
+            }
         except HardwareFault:
-            return {**record, "success": False, "outcome": "box_fault",
-                    "contact_delay_s": None, "sim_time_s": box.time_s}
+            return {
+                **record,
+                "success": False,
+                "outcome": "box_fault",
+                "contact_delay_s": None,
+                "sim_time_s": box.time_s,
+            }
     delay = None
     if result.grasps and robot.touches:
         g, t = result.grasps[0], robot.touches[0]
         if g.detected_at_s is not None and t.first_touch_s is not None:
             delay = float(g.detected_at_s - t.first_touch_s)
-    return {**record, "success": result.outcome == "held", "outcome": result.outcome,
-            "contact_delay_s": delay, "sim_time_s": box.time_s}
+    return {
+        **record,
+        "success": result.outcome == "held",
+        "outcome": result.outcome,
+        "contact_delay_s": delay,
+        "sim_time_s": box.time_s,
+    }

@@ -44,7 +44,10 @@ OBJECT_SET_SCHEMA = "softpad-object-set/1"
 #: Object sets shipped with the package (``--example NAME``).
 EXAMPLE_SETS = ("thesis-set", "blocks")
 _MOUNTINGS = ("10/4", "6/2", "4/0")
-_THESIS_PAD_M = (thesis.PROTOTYPE_COLS * thesis.MODULE_PITCH_M, thesis.PROTOTYPE_ROWS * thesis.MODULE_PITCH_M)
+_THESIS_PAD_M = (
+    thesis.PROTOTYPE_COLS * thesis.MODULE_PITCH_M,
+    thesis.PROTOTYPE_ROWS * thesis.MODULE_PITCH_M,
+)
 
 
 @dataclass(frozen=True)
@@ -130,7 +133,9 @@ class ObjectSet:
         if len(set(names)) != len(names):
             raise InputError(f"object set {self.name!r}: object names must be unique, got {names}")
         if self.gripper is not None and self.gripper not in _MOUNTINGS:
-            raise InputError(f"gripper must be one of {', '.join(_MOUNTINGS)}, got {self.gripper!r}")
+            raise InputError(
+                f"gripper must be one of {', '.join(_MOUNTINGS)}, got {self.gripper!r}"
+            )
         object.__setattr__(self, "_names", names)
 
     @property
@@ -151,8 +156,11 @@ class ObjectSet:
         return {
             "gripper": self.gripper,
             "objects": [
-                {"spec": o.spec.to_dict() if hasattr(o.spec, "to_dict") else repr(o.spec),
-                 "placement": o.placement, "offset": list(o.offset)}
+                {
+                    "spec": o.spec.to_dict() if hasattr(o.spec, "to_dict") else repr(o.spec),
+                    "placement": o.placement,
+                    "offset": list(o.offset),
+                }
                 for o in self.objects
             ],
         }
@@ -173,7 +181,9 @@ def load_object_set(path: str | Path) -> ObjectSet:
 def example_object_set(name: str) -> ObjectSet:
     """A packaged object set by name (:data:`EXAMPLE_SETS`)."""
     if name not in EXAMPLE_SETS:
-        raise InputError(f"unknown example object set {name!r}; use one of {', '.join(EXAMPLE_SETS)}")
+        raise InputError(
+            f"unknown example object set {name!r}; use one of {', '.join(EXAMPLE_SETS)}"
+        )
     res = resources.files("softpad").joinpath("data", "object_sets", f"{name}.toml")
     data = tomllib.loads(res.read_text(encoding="utf-8"))
     return object_set_from_dict(data, source=f"example:{name}")
@@ -182,7 +192,9 @@ def example_object_set(name: str) -> ObjectSet:
 def object_set_from_dict(data: dict[str, Any], source: str = "") -> ObjectSet:
     """An :class:`ObjectSet` from parsed TOML."""
     if data.get("schema") != OBJECT_SET_SCHEMA:
-        raise InputError(f"object set {source!r}: schema must be {OBJECT_SET_SCHEMA!r}, got {data.get('schema')!r}")
+        raise InputError(
+            f"object set {source!r}: schema must be {OBJECT_SET_SCHEMA!r}, got {data.get('schema')!r}"
+        )
     entries = data.get("object")
     if not isinstance(entries, list) or not entries:
         raise InputError(f"object set {source!r}: needs at least one [[object]] table")
@@ -197,7 +209,9 @@ def _set_object(entry: Any, index: int) -> SetObject:
     name = entry["name"]
     gripper = entry.get("gripper")
     if gripper is not None and gripper not in _MOUNTINGS:
-        raise InputError(f"object {name!r}: gripper must be one of {', '.join(_MOUNTINGS)}, got {gripper!r}")
+        raise InputError(
+            f"object {name!r}: gripper must be one of {', '.join(_MOUNTINGS)}, got {gripper!r}"
+        )
     if "catalogue" in entry:
         from softpad.sim import get_object
 
@@ -248,7 +262,11 @@ def _primitive_spec(name: str, entry: dict[str, Any]) -> Any:
     elif shape == "cylinder":
         r = _number(entry, "diameter_mm", name) * 0.5e-3
         length = _number(entry, "length_mm", name) * 1e-3
-        part = PartSpec("cylinder", mass, (0.0, 0.0, r), radius_m=r, length_m=length, axis="x", name=name)
+        part = PartSpec(
+            "cylinder", mass, (0.0, 0.0, r), radius_m=r, length_m=length, axis="x", name=name
+        )
     else:
         raise InputError(f"object {name!r}: shape must be 'box' or 'cylinder', got {shape!r}")
-    return ObjectSpec(name, mass, (part,), Placement(0.0, 0.0), gripper=entry.get("gripper", "10/4"))
+    return ObjectSpec(
+        name, mass, (part,), Placement(0.0, 0.0), gripper=entry.get("gripper", "10/4")
+    )

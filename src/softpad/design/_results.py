@@ -13,10 +13,28 @@ from softpad.design._space import PadDesign
 
 #: Columns of the CSV/Parquet table, in order (units in the names).
 COLUMNS = (
-    "rank", "name", "baseline", "rows", "cols", "pitch_mm", "thickness_mm", "material",
-    "p0_kpa", "modules", "successes", "trials", "success", "success_low", "success_high",
-    "min_detectable_mass_g", "detection_delay_ms", "height_mm", "rise_kpa_per_n",
-    "sensitive_fraction", "pareto", "failures",
+    "rank",
+    "name",
+    "baseline",
+    "rows",
+    "cols",
+    "pitch_mm",
+    "thickness_mm",
+    "material",
+    "p0_kpa",
+    "modules",
+    "successes",
+    "trials",
+    "success",
+    "success_low",
+    "success_high",
+    "min_detectable_mass_g",
+    "detection_delay_ms",
+    "height_mm",
+    "rise_kpa_per_n",
+    "sensitive_fraction",
+    "pareto",
+    "failures",
 )
 
 
@@ -86,14 +104,20 @@ class DesignRow:
         """The row as one flat record of :data:`COLUMNS`."""
         d = self.to_dict()
         lo, hi = self.success_interval
-        d.update(success_low=lo, success_high=hi, height_mm=self.response["height_mm"],
-                 rise_kpa_per_n=self.response["rise_kpa_per_n"],
-                 sensitive_fraction=self.response["sensitive_fraction"],
-                 failures=";".join(f"{k}={v}" for k, v in sorted(self.failures.items())))
+        d.update(
+            success_low=lo,
+            success_high=hi,
+            height_mm=self.response["height_mm"],
+            rise_kpa_per_n=self.response["rise_kpa_per_n"],
+            sensitive_fraction=self.response["sensitive_fraction"],
+            failures=";".join(f"{k}={v}" for k, v in sorted(self.failures.items())),
+        )
         return {k: d[k] for k in COLUMNS}
 
 
-def design_row(design: PadDesign, response: dict[str, Any], trials: list[dict[str, Any]]) -> DesignRow:
+def design_row(
+    design: PadDesign, response: dict[str, Any], trials: list[dict[str, Any]]
+) -> DesignRow:
     """Aggregate one design's FEM response and trial records."""
     from softpad.design._response import FemResponse
     from softpad.trials import wilson_interval
@@ -123,7 +147,9 @@ def rank_rows(rows: list[DesignRow]) -> list[DesignRow]:
     """The rows with Pareto flags and ranks, best first."""
     from dataclasses import replace
 
-    flagged = [replace(r, pareto=not any(_dominates(o, r) for o in rows if o is not r)) for r in rows]
+    flagged = [
+        replace(r, pareto=not any(_dominates(o, r) for o in rows if o is not r)) for r in rows
+    ]
     order = sorted(
         flagged,
         key=lambda r: (
@@ -165,7 +191,10 @@ class SweepResult:
 
     def to_dict(self, with_trials: bool = False) -> dict[str, Any]:
         """``{"object_set", "designs": [...ranked rows], ...meta}``."""
-        d: dict[str, Any] = {"object_set": self.object_set, "designs": [r.to_dict() for r in self.rows]}
+        d: dict[str, Any] = {
+            "object_set": self.object_set,
+            "designs": [r.to_dict() for r in self.rows],
+        }
         d.update(self.meta)
         if with_trials:
             d["trials"] = self.trials
@@ -184,7 +213,9 @@ class SweepResult:
                 f" {lo:>6.2f}-{hi:<6.2f} {r.min_detectable_mass_g:>7.1f} {delay:>8} "
                 f"{r.response['height_mm']:>5.1f}  {'P' if r.pareto else ''}"
             )
-        lines.append("* the thesis's pad (baseline); P: on the Pareto front (success, minimum detectable mass, modules)")
+        lines.append(
+            "* the thesis's pad (baseline); P: on the Pareto front (success, minimum detectable mass, modules)"
+        )
         return "\n".join(lines)
 
     def to_csv(self, path: str | Path) -> Path:
@@ -205,7 +236,9 @@ class SweepResult:
             import pyarrow as pa
             import pyarrow.parquet as pq
         except ImportError:
-            raise InputError("Parquet output needs pyarrow: pip install 'softpad[design]'") from None
+            raise InputError(
+                "Parquet output needs pyarrow: pip install 'softpad[design]'"
+            ) from None
         pq.write_table(pa.Table.from_pylist([r.flat() for r in self.rows]), str(path))
         return Path(path)
 
@@ -220,16 +253,41 @@ class SweepResult:
         fig, ax = plt.subplots(figsize=(7, 4.5))
         xs = [r.design.n_modules for r in self.rows]
         ys = [r.success for r in self.rows]
-        err = [[r.success - r.success_interval[0] for r in self.rows], [r.success_interval[1] - r.success for r in self.rows]]
+        err = [
+            [r.success - r.success_interval[0] for r in self.rows],
+            [r.success_interval[1] - r.success for r in self.rows],
+        ]
         ax.errorbar(xs, ys, yerr=err, fmt="none", ecolor="0.7", lw=1)
-        sc = ax.scatter(xs, ys, c=[r.min_detectable_mass_g for r in self.rows], cmap="viridis_r", s=60, zorder=3)
+        sc = ax.scatter(
+            xs, ys, c=[r.min_detectable_mass_g for r in self.rows], cmap="viridis_r", s=60, zorder=3
+        )
         fig.colorbar(sc, ax=ax, label="minimum detectable mass (g)")
         front = sorted((r for r in self.rows if r.pareto), key=lambda r: r.design.n_modules)
-        ax.plot([r.design.n_modules for r in front], [r.success for r in front], "k--", lw=0.8, label="Pareto front")
+        ax.plot(
+            [r.design.n_modules for r in front],
+            [r.success for r in front],
+            "k--",
+            lw=0.8,
+            label="Pareto front",
+        )
         b = self.baseline
-        ax.scatter([b.design.n_modules], [b.success], s=200, facecolors="none", edgecolors="r", label="thesis pad", zorder=4)
+        ax.scatter(
+            [b.design.n_modules],
+            [b.success],
+            s=200,
+            facecolors="none",
+            edgecolors="r",
+            label="thesis pad",
+            zorder=4,
+        )
         for r in self.rows:
-            ax.annotate(str(r.rank), (r.design.n_modules, r.success), textcoords="offset points", xytext=(5, 4), fontsize=8)
+            ax.annotate(
+                str(r.rank),
+                (r.design.n_modules, r.success),
+                textcoords="offset points",
+                xytext=(5, 4),
+                fontsize=8,
+            )
         ax.set_xlabel("modules (cost proxy)")
         ax.set_ylabel("grasp success rate")
         ax.set_title(f"design sweep on {self.object_set}")

@@ -63,7 +63,11 @@ class PadDesign:
             lo, hi = LIMITS[key]
             if isinstance(v, bool) or not isinstance(v, int) or not lo <= v <= hi:
                 raise InputError(f"design {key} must be an integer from {lo} to {hi}, got {v!r}")
-        for key, unit, scale in (("pitch_m", "mm", 1e3), ("thickness_m", "mm", 1e3), ("p0_pa", "kPa", 1e-3)):
+        for key, unit, scale in (
+            ("pitch_m", "mm", 1e3),
+            ("thickness_m", "mm", 1e3),
+            ("p0_pa", "kPa", 1e-3),
+        ):
             v = getattr(self, key)
             lo, hi = LIMITS[key]
             if not isinstance(v, int | float) or not math.isfinite(v) or not lo <= v <= hi:
@@ -199,27 +203,14 @@ QUICK_DESIGNS: tuple[PadDesign, ...] = (
 )
 
 
-def parse_values(text: str, name: str, scale: float, limits: tuple[float, float]) -> tuple[float, ...]:
+def parse_values(
+    text: str, name: str, scale: float, limits: tuple[float, float]
+) -> tuple[float, ...]:
     """Numbers of a design option: ``1,1.5,2`` or ``1:2:0.5`` (start:stop:step, inclusive),
     in the option's unit, returned in SI (times ``scale``)."""
     values: list[float] = []
     for part in text.split(","):
-        part = part.strip()
-        try:
-            if ":" in part:
-                a, b, s = (float(x) for x in part.split(":"))
-                if s <= 0 or b < a:
-                    raise ValueError
-                n = int(math.floor((b - a) / s + 1e-9)) + 1
-                if n > 100:
-                    raise InputError(f"{name}: range {part!r} has {n} values, at most 100")
-                values.extend(a + i * s for i in range(n))
-            else:
-                values.append(float(part))
-        except ValueError:
-            raise InputError(
-                f"{name}: expected numbers like 1,1.5 or start:stop:step, got {part!r}"
-            ) from None
+        values.extend(_values_of(part.strip(), name))
     si = tuple(round(v * scale, 12) for v in values)
     lo, hi = limits
     for v in si:
@@ -241,3 +232,22 @@ def parse_grids(text: str) -> tuple[tuple[int, int], ...]:
             raise InputError(f"--grid: rows and columns must be {lo:g}..{hi:g}, got {part.strip()}")
         out.append((r, c))
     return tuple(out)
+
+
+def _values_of(part: str, name: str) -> list[float]:
+    """One item of a design option: a number or ``start:stop:step`` (at most 100 values)."""
+    try:
+        numbers = [float(x) for x in part.split(":")] if part else []
+    except ValueError:
+        numbers = []
+    if len(numbers) == 1:
+        return numbers
+    if len(numbers) != 3 or not all(math.isfinite(x) for x in numbers):
+        raise InputError(f"{name}: expected numbers like 1,1.5 or start:stop:step, got {part!r}")
+    a, b, step = numbers
+    if step <= 0 or b < a:
+        raise InputError(f"{name}: range {part!r} needs start <= stop and a step > 0")
+    n = math.floor((b - a) / step + 1e-9) + 1
+    if n > 100:
+        raise InputError(f"{name}: range {part!r} has {n} values, at most 100")
+    return [a + i * step for i in range(n)]

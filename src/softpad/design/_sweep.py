@@ -45,7 +45,11 @@ def _fem_task(design: PadDesign, cells: int) -> dict[str, Any]:
 
 
 def _trials_task(
-    design: PadDesign, response: dict[str, Any], object_set: ObjectSet, seed: int, options: TrialOptions
+    design: PadDesign,
+    response: dict[str, Any],
+    object_set: ObjectSet,
+    seed: int,
+    options: TrialOptions,
 ) -> list[dict[str, Any]]:
     """The trials of one design and seed (a Dask task)."""
     return run_design_trials(design, response, object_set, seed, options)
@@ -120,7 +124,9 @@ def run_sweep(
     designs = _with_baseline(designs)
     if not seeds or len(set(seeds)) != len(seeds):
         raise InputError(f"seeds must be distinct and at least one, got {list(seeds)}")
-    fem_keys = {d.name: cache.key("fem", {**d.fem_variables(), "cells": FEM_CELLS[quick]}) for d in designs}
+    fem_keys = {
+        d.name: cache.key("fem", {**d.fem_variables(), "cells": FEM_CELLS[quick]}) for d in designs
+    }
     common = {"objects": object_set.fingerprint(), "options": options.to_dict()}
     tasks: list[SweepTask] = []
     for d in designs:
@@ -138,10 +144,19 @@ def run_sweep(
     n_cached = len({t.key for t in tasks}) - len(missing)
     used = 0
     if missing:
-        used = _compute(missing, done, object_set, options, quick, scheduler, workers, cache, progress, n_cached)
+        used = _compute(
+            missing, done, object_set, options, quick, scheduler, workers, cache, progress, n_cached
+        )
     responses = {d.name: done[fem_keys[d.name]] for d in designs}
-    trials = {d.name: [r for t in tasks if t.kind == "trials" and t.design.name == d.name for r in done[t.key]] for d in designs}
-    return SweepRaw(tuple(designs), responses, trials, len(missing), n_cached, time.perf_counter() - t0, used)
+    trials = {
+        d.name: [
+            r for t in tasks if t.kind == "trials" and t.design.name == d.name for r in done[t.key]
+        ]
+        for d in designs
+    }
+    return SweepRaw(
+        tuple(designs), responses, trials, len(missing), n_cached, time.perf_counter() - t0, used
+    )
 
 
 def _with_baseline(designs: Sequence[PadDesign]) -> list[PadDesign]:
@@ -185,7 +200,9 @@ def _compute(
         futures: dict[Any, SweepTask] = {}
         for t in missing:
             if t.kind == "fem":
-                fut = client.submit(_fem_task, t.design, FEM_CELLS[quick], key=f"fem-{t.key}", pure=False)
+                fut = client.submit(
+                    _fem_task, t.design, FEM_CELLS[quick], key=f"fem-{t.key}", pure=False
+                )
                 fem_futures[t.key] = fut
                 futures[fut] = t
         ordered = {t.key: t for t in missing}
@@ -195,8 +212,14 @@ def _compute(
             fkey = cache.key("fem", {**t.design.fem_variables(), "cells": FEM_CELLS[quick]})
             response = fem_futures.get(fkey, done.get(fkey))
             fut = client.submit(
-                _trials_task, t.design, response, object_set, t.seed, options,
-                key=f"trials-{t.key}", pure=False,
+                _trials_task,
+                t.design,
+                response,
+                object_set,
+                t.seed,
+                options,
+                key=f"trials-{t.key}",
+                pure=False,
             )
             futures[fut] = t
         count = n_cached
@@ -207,9 +230,12 @@ def _compute(
             cache.put(t.kind, t.key, result)
             count += 1
             if progress is not None:
-                progress(count, total, f"{t.kind} {t.design.name}" + ("" if t.seed is None else f" seed {t.seed}"))
+                progress(
+                    count,
+                    total,
+                    f"{t.kind} {t.design.name}" + ("" if t.seed is None else f" seed {t.seed}"),
+                )
     return n_workers
-
 
 
 def _compute_here(

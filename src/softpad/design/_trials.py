@@ -62,7 +62,9 @@ def run_experiment_on_dask(
         raise InputError("no objects to try")
     config = config or TrialConfig()
     if config.record_path is not None or config.record_trace:
-        raise InputError("recording trials is not available on Dask (--record needs --workers without --scheduler)")
+        raise InputError(
+            "recording trials is not available on Dask (--record needs --workers without --scheduler)"
+        )
     results: dict[tuple[int, str, int], Any] = {}
     t0 = time.perf_counter()
     with dask_client(scheduler, workers) as client:
@@ -70,7 +72,9 @@ def run_experiment_on_dask(
 
         n_workers = len(client.scheduler_info().get("workers", {})) or 1
         futures = {
-            client.submit(_trial_task, spec, k, s, config, key=f"trial-{s}-{spec.name}-{k}-{time.time_ns()}"): (s, spec.name, k)
+            client.submit(
+                _trial_task, spec, k, s, config, key=f"trial-{s}-{spec.name}-{k}-{time.time_ns()}"
+            ): (s, spec.name, k)
             for s in seeds
             for spec in specs
             for k in range(trials)
