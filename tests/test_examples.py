@@ -47,3 +47,19 @@ def test_pad_4x4_example() -> None:
     assert result["cog"] == pytest.approx((2.0, 2.0), abs=0.01)
     assert result["theta"] == pytest.approx(-math.pi / 4)
     assert result["outcome"] == "held"
+
+
+@pytest.mark.fem
+def test_design_sweep_example(capsys: pytest.CaptureFixture[str]) -> None:
+    """Four designs ranked on the blocks set; the thesis's pad is the baseline; a 35 mm module
+    feels lighter masses than the 45 mm one (FEM)."""
+    result = runpy.run_path(str(EXAMPLES / "design_sweep.py"))["main"]()
+    designs = {d["name"]: d for d in result["designs"]}
+    assert len(designs) == 4 and sum(d["baseline"] for d in designs.values()) == 1
+    thesis = next(d for d in designs.values() if d["baseline"])
+    assert (
+        designs["3x3-35mm-t1.5-neo-hookean-p1.1"]["min_detectable_mass_g"]
+        < thesis["min_detectable_mass_g"]
+    )
+    assert all(d["trials"] == 3 for d in designs.values())
+    assert "thesis 2x3 45 mm *" in capsys.readouterr().out

@@ -26,6 +26,11 @@ QUICK = {
     "--png design.png --mesh coarse --values-mm 1.5,2",
     "fem chamber": "fem chamber --mesh coarse --masses-g 12.6",
     "bench": "bench --only planning --quick",
+    "design --example thesis-set --quick": "design --example blocks --quick --grid 2x3 "
+    "--hold-s 0.5 --no-cache --workers 1 --no-progress",
+    "design --example thesis-set --quick --json --png pareto.png --csv designs.csv": "design "
+    "--example blocks --quick --grid 2x3 --json --png pareto.png --csv designs.csv --hold-s 0.5 "
+    "--no-cache --workers 1 --no-progress",
     "compare --seeds 0-19 --json": "compare --seeds 0 --json --objects banana --trials 1 "
     "--workers 1 --idle-hours 0.01 --no-progress",
 }
