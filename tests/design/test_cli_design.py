@@ -46,12 +46,7 @@ def _free_port() -> int:
         return int(s.getsockname()[1])
 
 
-@pytest.fixture(scope="module")
-def local_run(tmp_path_factory: pytest.TempPathFactory) -> dict:
-    return _design("--workers", "2", cache=tmp_path_factory.mktemp("cache-local"))
-
-
-@pytest.fixture(scope="module")
+@pytest.fixture
 def scheduler_address() -> Iterator[str]:
     """``dask scheduler`` and one ``dask worker`` (2 processes) on 127.0.0.1, stopped after."""
     port = _free_port()
@@ -113,7 +108,19 @@ def scheduler_address() -> Iterator[str]:
                 p.wait(timeout=5)
 
 
-def test_quick_sweep_ranks_eight_designs_with_the_baseline(local_run: dict) -> None:
+def test_quick_sweep_on_a_local_cluster_and_on_a_loopback_scheduler(
+    scheduler_address: str, tmp_path: Path
+) -> None:
+    """One test (the sweep runs once per xdist worker otherwise): the local cluster's table,
+    then the same from the separately started scheduler and worker, with an empty cache."""
+    local_run = _design("--workers", "2", cache=tmp_path / "cache-local")
+    _check_table(local_run)
+    remote = _design("--scheduler", scheduler_address, cache=tmp_path / "cache-remote")
+    assert remote["computed"] == local_run["computed"] and remote["cached"] == 0
+    assert remote["designs"] == local_run["designs"]
+
+
+def _check_table(local_run: dict) -> None:
     designs = local_run["designs"]
     assert len(designs) >= 8
     keys = {
@@ -145,14 +152,6 @@ def test_quick_sweep_ranks_eight_designs_with_the_baseline(local_run: dict) -> N
         if d["thickness_mm"] == 1.5 and d["p0_kpa"] == 1.1 and d["material"] == "neo-hookean"
     }
     assert by_pitch[23.0] < by_pitch[34.0] < by_pitch[45.0]
-
-
-def test_scheduler_on_loopback_gives_the_same_table(
-    local_run: dict, scheduler_address: str, tmp_path: Path
-) -> None:
-    remote = _design("--scheduler", scheduler_address, cache=tmp_path / "cache")
-    assert remote["computed"] == local_run["computed"] and remote["cached"] == 0
-    assert remote["designs"] == local_run["designs"]
 
 
 def test_bad_options_one_line_exit_2(capsys: pytest.CaptureFixture[str]) -> None:
