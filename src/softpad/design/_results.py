@@ -243,54 +243,61 @@ class SweepResult:
         return Path(path)
 
     def plot(self, path: str | Path | None = None) -> Any:
-        """Pareto plot: success rate (with interval) against module count, colour = minimum
-        detectable mass; the front joined, the thesis's pad marked. Returns the figure."""
+        """Pareto plot: success rate (95 % interval bars) against the minimum detectable mass,
+        colour = module count; designs on the (success, mass, modules) front ringed in black,
+        the thesis's pad in red; each point labelled with its rank. Returns the figure."""
         import matplotlib
 
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
 
-        fig, ax = plt.subplots(figsize=(7, 4.5))
-        xs = [r.design.n_modules for r in self.rows]
+        fig, ax = plt.subplots(figsize=(7.5, 4.8))
+        xs = [r.min_detectable_mass_g for r in self.rows]
         ys = [r.success for r in self.rows]
         err = [
             [r.success - r.success_interval[0] for r in self.rows],
             [r.success_interval[1] - r.success for r in self.rows],
         ]
-        ax.errorbar(xs, ys, yerr=err, fmt="none", ecolor="0.7", lw=1)
+        ax.errorbar(xs, ys, yerr=err, fmt="none", ecolor="0.75", lw=1, zorder=1)
+        edges = ["k" if r.pareto else "none" for r in self.rows]
         sc = ax.scatter(
-            xs, ys, c=[r.min_detectable_mass_g for r in self.rows], cmap="viridis_r", s=60, zorder=3
+            xs,
+            ys,
+            c=[r.design.n_modules for r in self.rows],
+            cmap="viridis",
+            s=70,
+            edgecolors=edges,
+            linewidths=1.5,
+            zorder=3,
         )
-        fig.colorbar(sc, ax=ax, label="minimum detectable mass (g)")
-        front = sorted((r for r in self.rows if r.pareto), key=lambda r: r.design.n_modules)
-        ax.plot(
-            [r.design.n_modules for r in front],
-            [r.success for r in front],
-            "k--",
-            lw=0.8,
-            label="Pareto front",
-        )
+        fig.colorbar(sc, ax=ax, label="modules (cost proxy)")
         b = self.baseline
         ax.scatter(
-            [b.design.n_modules],
+            [b.min_detectable_mass_g],
             [b.success],
-            s=200,
+            s=260,
             facecolors="none",
             edgecolors="r",
+            lw=1.5,
             label="thesis pad",
             zorder=4,
         )
+        ax.scatter([], [], s=70, facecolors="none", edgecolors="k", label="Pareto front")
+        seen: dict[tuple[float, float], int] = {}
         for r in self.rows:
+            key = (round(r.min_detectable_mass_g, 1), round(r.success, 3))
+            k = seen[key] = seen.get(key, -1) + 1
             ax.annotate(
                 str(r.rank),
-                (r.design.n_modules, r.success),
+                (r.min_detectable_mass_g, r.success),
                 textcoords="offset points",
-                xytext=(5, 4),
+                xytext=(6 + 9 * k, 4),
                 fontsize=8,
             )
-        ax.set_xlabel("modules (cost proxy)")
+        ax.set_xlabel("minimum detectable mass at t_o (g, FEM)")
         ax.set_ylabel("grasp success rate")
-        ax.set_title(f"design sweep on {self.object_set}")
+        ax.set_ylim(-0.05, 1.05)
+        ax.set_title(f"design sweep on {self.object_set} (numbers: rank)")
         ax.legend(loc="lower right", fontsize=8)
         fig.tight_layout()
         if path is not None:
