@@ -19,6 +19,7 @@ QUICK = {
     "run --objects charger --json": "run --objects charger --json --hold-s 1",
     "run --objects banana --record run.mcap": "run --objects banana --record run.mcap --hold-s 1",
     "box monitor --foxglove": "box monitor --foxglove --port 0 --count 20",
+    "box monitor": "box monitor --count 20",
     "trials --objects banana,toy --trials 2": "trials --objects banana --trials 1 --workers 1 "
     "--hold-s 1 --no-progress",
     "fem sweep --model yeoh --json": "fem sweep --model yeoh --json --mesh coarse --points 3",
@@ -37,10 +38,12 @@ QUICK = {
 #: Commands not run, with the reason.
 SKIP = {
     "demo --out report": "the main job (55 MuJoCo trials, minutes); `make demo` runs it",
-    "box serve --box sim:// --port 0": "serves until Ctrl-C; tests/cli/test_box_tcp_cli.py serves",
+    "box serve --sim": "serves until Ctrl-C on the fixed port 7447; tests/box/test_daemon.py serves",
+    "run --box zenoh://127.0.0.1:7447 --objects banana": "needs the daemon above; "
+    "tests/harness/test_remote.py runs the loop through a served box",
     "ros node --box sim:// --place banana": "needs a roscore; tests/ros runs it against one",
     "sim arm-node --port 5757": "needs a roscore; tests/ros runs it against one",
-    "run --robot ros1:// --box tcp://127.0.0.1:5757 --objects banana": "needs a roscore and "
+    "run --robot ros1:// --box zenoh://127.0.0.1:5757 --objects banana": "needs a roscore and "
     "the arm node; tests/ros runs it",
 }
 
@@ -69,7 +72,8 @@ def test_readme_command_runs(command: str, tmp_path: Path, monkeypatch, capsys) 
     if command in SKIP:
         pytest.skip(SKIP[command])
     (tmp_path / "examples").mkdir()
-    shutil.copy(ROOT / "examples" / "frame.csv", tmp_path / "examples" / "frame.csv")
+    for name in ("frame.csv", "site.toml"):
+        shutil.copy(ROOT / "examples" / name, tmp_path / "examples" / name)
     monkeypatch.chdir(tmp_path)
     if "run.mcap" in command and "--record" not in command:  # a recording made by the README
         assert main(["run", "--objects", "banana", "--record", "run.mcap", "--hold-s", "1"]) == 0

@@ -19,8 +19,9 @@ ALLOWED: dict[str, set[str]] = {
     "sensing": {"layout"},
     "planning": {"layout", "sensing"},
     "fem": set(),
+    "config": set(),
     "sim": {"layout", "fem"},
-    "box": {"sim", "layout"},
+    "box": {"sim", "layout", "config"},
     "control": {"box", "layout", "sensing", "planning"},
     # record replays the controller's decisions on recordings (ExecutionParams, detectors)
     "record": {"box", "control", "layout", "planning", "sensing"},

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import threading
-
 import numpy as np
 import pytest
 
@@ -36,25 +34,23 @@ def test_sim_backend_passes_conformance(url: str) -> None:
     check_conformance(open_box(url))
 
 
-def test_tcp_backend_passes_conformance() -> None:
-    """The network back-end, against a simulated box served on loopback."""
-    from softpad.box import BoxServer
+def test_zenoh_backend_passes_conformance() -> None:
+    """The zenoh back-end, against a simulated box served on loopback by the daemon."""
+    import sys
+    from pathlib import Path
 
-    with BoxServer(open_box("sim://?seed=5"), "127.0.0.1", 0) as server:
-        thread = threading.Thread(target=server.serve, daemon=True)
-        thread.start()
-        try:
-            check_conformance(open_box(server.url + "?timeout_s=5"))
-        finally:
-            server.stop()
-            thread.join(timeout=5)
-    assert not thread.is_alive()
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    from zenoh_helpers import served
+
+    with served("sim://?seed=5") as (daemon, url):
+        check_conformance(open_box(url + "?timeout_s=5"))
+        assert daemon.controller is None  # closing gave control back
 
 
 def test_every_registered_backend_is_checked() -> None:
     """A new scheme must be added to the conformance cases (replay://, offered by softpad.record
     through the entry point, is checked in tests/record/test_replay.py)."""
-    assert backends() == ("replay", "sim", "tcp")
+    assert backends() == ("replay", "sim", "zenoh")
 
 
 class _BrokenBox(Box):

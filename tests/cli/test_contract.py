@@ -78,7 +78,9 @@ def test_link_fault_exits_3_with_json(capsys) -> None:
     s = socket.create_server(("127.0.0.1", 0))
     port = s.getsockname()[1]
     s.close()
-    code, data, _ = _json(capsys, "box", "inflate", "--box", f"tcp://127.0.0.1:{port}", "--json")
+    code, data, _ = _json(
+        capsys, "box", "inflate", "--box", f"zenoh://127.0.0.1:{port}?timeout_s=1", "--json"
+    )
     assert code == 3 and data["error"]["kind"] == "hardware"
 
 
@@ -97,7 +99,9 @@ def test_internal_error_exits_4_naming_where_to_report(capsys, monkeypatch) -> N
 
 
 def test_streaming_json_ends_with_the_error_line(capsys) -> None:
-    code = main(["box", "read", "--box", "tcp://127.0.0.1:1", "--count", "2", "--json"])
+    code = main(
+        ["box", "read", "--box", "zenoh://127.0.0.1:1?timeout_s=1", "--count", "2", "--json"]
+    )
     lines = capsys.readouterr().out.strip().splitlines()
     assert code == 3 and json.loads(lines[-1])["error"]["kind"] == "hardware"
     code = main(["box", "read", "--count", "3", "--json"])
@@ -340,7 +344,7 @@ def test_run_passes_the_thesis_parameters_in_si(monkeypatch, capsys) -> None:
         (["bench", "--only", ","], "--only needs"),
         (["trials", "--objects", "banana,banana"], "'banana' is named twice"),
         (["trials", "--seeds=-1"], "--seeds: '-1'"),
-        (["run", "--box", "tcp://[::1:5757"], "malformed box URL"),
+        (["run", "--box", "zenoh://[::1:5757"], "malformed box URL"),
         (["run", "--box", "sim://?seed=-1", "--hold-s", "0"], "seed must be >= 0"),
     ],
 )

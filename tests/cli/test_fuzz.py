@@ -53,7 +53,7 @@ def stubbed() -> Iterator[Path]:
     mp.setattr(softpad.cli._demo, "_reference_plans", _started)
     mp.setattr(softpad.cli._bench, "importlib", types.SimpleNamespace(import_module=_started))
     mp.setattr(softpad.control, "inflate_and_adjust", _started)
-    mp.setattr(softpad.box, "BoxServer", _started)
+    mp.setattr(softpad.box, "BoxDaemon", _started)
     mp.setattr(softpad.design, "design_sweep", _started)
     for name in (
         "ModuleModel",
@@ -106,8 +106,10 @@ OPTIONS = (
         (["box", "read"], "--every"),
         (["box", "inflate"], "--modules"),
         (["box", "inflate"], "--p0-kpa"),
-        (["box", "serve"], "--port"),
-        (["box", "serve"], "--idle-timeout-s"),
+        (["box", "serve", "--sim"], "--listen"),
+        (["box", "serve", "--sim"], "--watchdog-s"),
+        (["box", "serve", "--sim"], "--duration-s"),
+        (["box", "stats"], "--box"),
     ]
     + [(["trials"], o) for o in ("--objects", "--trials", "--seeds", "--workers", "--hold-s")]
     + [(["demo"], o) for o in ("--out", "--trials", "--seeds", "--workers")]
@@ -324,12 +326,13 @@ _SIM_KEYS = [
     "faults",
     "bogus",
 ]
-_BAD_TCP = [
-    "tcp://[::1:5757",
-    "tcp://127.0.0.1:99999",
-    "tcp://127.0.0.1:-1",
-    "tcp://127.0.0.1:abc",
-    "tcp://",
+_BAD_URLS = [
+    "zenoh://[::1:5757",
+    "zenoh://127.0.0.1:99999",
+    "zenoh://127.0.0.1:-1",
+    "zenoh://127.0.0.1:abc",
+    "zenoh://",
+    "tcp://127.0.0.1:5757",
     "tcp://127.0.0.1",
     "tcp://127.0.0.1:1/x",
     "://",
@@ -345,7 +348,7 @@ _BAD_TCP = [
 )
 @given(
     url=st.one_of(
-        st.sampled_from(_BAD_TCP),
+        st.sampled_from(_BAD_URLS),
         st.lists(
             st.tuples(st.sampled_from(_SIM_KEYS), values.map(lambda v: v.replace("&", ""))),
             max_size=3,

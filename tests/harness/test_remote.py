@@ -1,43 +1,37 @@
-"""The simulated world and robot served over tcp:// (RemoteRobot, simulation_extensions)."""
+"""The simulated world and robot served over zenoh (RemoteRobot, simulation_extensions)."""
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
 
-from softpad.box import BoxServer, SimBox, TcpBox, ValveCommand, open_box
+from softpad.box import SimBox, ValveCommand, ZenohBox, open_box
 from softpad.control import ExecutionParams, ToolPose
 from softpad.errors import InputError
-from softpad.harness import RemoteRobot, SimulatedRobot, run_simulated, simulation_extensions
+from softpad.harness import RemoteRobot, run_simulated
 from softpad.record import RunLog
 
-
-@pytest.fixture
-def served(serve_box: Callable[..., BoxServer]) -> BoxServer:
-    box = open_box("sim://?seed=4")
-    assert isinstance(box, SimBox)
-    return serve_box(box, extensions=simulation_extensions(box))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "box"))
+from zenoh_helpers import served
 
 
-def test_remote_robot_moves_the_served_gripper_like_the_local_one(served: BoxServer) -> None:
-    local_box = open_box("sim://?seed=4")
-    assert isinstance(local_box, SimBox)
-    local = SimulatedRobot(local_box.world)
-    with open_box(served.url) as box:
-        assert isinstance(box, TcpBox)
+def test_remote_robot_moves_the_served_gripper() -> None:
+    with served() as (_daemon, url), open_box(url) as box:
+        assert isinstance(box, ZenohBox)
         remote = RemoteRobot(box, gripper="10/4")
         assert (remote.layout.rows, remote.layout.cols) == (2, 3)
-        for robot, b in ((local, local_box), (remote, box)):
-            robot.set_gripper(1.0, 0.1)
-            robot.move_to(ToolPose(0.05, 0.04, 0.03, 0.3), 0.1)
-            b.read_many(200)
-        assert remote.state() == local.state()
-        assert remote.is_moving() is local.is_moving() is False
-        assert remote.holding() is local.holding() is False
-        assert remote.touches() == local.touches == []
-    local_box.close()
+        remote.set_gripper(0.08, 0.1)
+        remote.move_to(ToolPose(0.05, 0.04, 0.03, 0.3), 0.5)
+        while remote.is_moving():
+            box.read()
+        s = remote.state()
+        np.testing.assert_allclose(
+            [s.x_m, s.y_m, s.z_m, s.yaw_rad], [0.05, 0.04, 0.03, 0.3], atol=1e-9
+        )
+        assert remote.holding() is False and remote.touches() == []
 
 
 @pytest.mark.parametrize(
@@ -45,14 +39,14 @@ def test_remote_robot_moves_the_served_gripper_like_the_local_one(served: BoxSer
     [
         (lambda r: r.descend(float("nan"), 0.001), "cannot be sent"),
         (
-            lambda r: r.box.request("robot.descend", speed_m_s=None, min_z_m=0.0),
+            lambda r: r._call("robot.descend", speed_m_s=None, min_z_m=0.0),
             "speed_m_s must be a finite number, got None",
         ),
         (lambda r: r.set_gripper(0.01, -1.0), "robot speed must be > 0"),
         (lambda r: r.place(["teapot"]), "unknown object 'teapot'"),
-        (lambda r: r.box.request("sim.place", objects="banana"), "objects must be a list of names"),
-        (lambda r: r.box.request("robot.fly"), "does not offer 'robot.fly'"),
-        (lambda r: r.box.request("sim.setup", gripper="12/5"), "12/5"),
+        (lambda r: r._call("sim.place", objects="banana"), "objects must be a list of names"),
+        (lambda r: r._call("robot.fly"), "unknown service 'robot.fly'"),
+        (lambda r: r._call("sim.setup", gripper="12/5"), "12/5"),
         (lambda r: r.move_to(ToolPose(1e300, 0.0, 0.1, 0.0), 0.1), "x_m must be within"),
         (lambda r: r.set_gripper(-1.0, 0.1), "width_m must be within"),
     ],
@@ -68,28 +62,36 @@ def test_remote_robot_moves_the_served_gripper_like_the_local_one(served: BoxSer
         "width-negative",
     ],
 )
-def test_bad_remote_requests_are_input_errors(served: BoxServer, call, match: str) -> None:
-    with open_box(served.url) as box:
-        assert isinstance(box, TcpBox)
+def test_bad_remote_requests_are_input_errors(call, match: str) -> None:
+    with served() as (daemon, url), open_box(url) as box:
+        assert isinstance(box, ZenohBox)
         robot = RemoteRobot(box)
         with pytest.raises(InputError, match=match):
             call(robot)
         box.read()  # the session goes on
+        assert daemon.controller == box.client_id
 
 
-def test_loop_over_tcp_logs_the_same_frames_and_leaves_valves_closed(served: BoxServer) -> None:
+def test_loop_over_zenoh_holds_the_banana_with_the_local_plan_and_closes_valves() -> None:
     params = ExecutionParams(hold_s=0.5)
-    remote_log, local_log = RunLog(), RunLog()
-    result = run_simulated(["banana"], served.url, params, recorder=remote_log)
-    local = run_simulated(["banana"], "sim://?seed=4", params, recorder=local_log)
-    assert result.outcome == local.outcome == "held"
-    assert result.to_dict() == local.to_dict()  # ground truth included
-    np.testing.assert_array_equal(remote_log.t_s, local_log.t_s)
-    np.testing.assert_array_equal(remote_log.pressures_pa, local_log.pressures_pa)
-    assert remote_log.events == local_log.events
-    box = served.box
-    assert isinstance(box, SimBox)
-    assert set(box.valves) == {ValveCommand.CLOSED}
+    log = RunLog()
+    with served(lockstep_frames=2) as (daemon, url):
+        result = run_simulated(["banana"], url, params, recorder=log)
+        local = run_simulated(["banana"], "sim://?seed=4", params)
+        assert result.outcome == local.outcome == "held"
+        assert [g.plan.modules for g in result.result.grasps] == [
+            g.plan.modules for g in local.result.grasps
+        ]
+        np.testing.assert_allclose(
+            [g.plan.cog for g in result.result.grasps],
+            [g.plan.cog for g in local.result.grasps],
+            atol=0.05,
+        )
+        assert len(log) > 100
+        box = daemon.box
+        assert isinstance(box, SimBox)
+        assert set(box.valves) == {ValveCommand.CLOSED}
+        assert daemon.controller is None
 
 
 @pytest.mark.parametrize(

@@ -67,8 +67,9 @@ def test_monitor_serves_module_pressures_to_a_websocket_client() -> None:
     assert np.all(np.diff(stamps) > 0)
 
 
-def test_monitor_needs_a_viewer(capsys) -> None:
+def test_monitor_without_foxglove_prints_a_live_line(capsys) -> None:
     from softpad.cli.main import main
 
-    assert main(["box", "monitor"]) == 2
-    assert "add --foxglove" in capsys.readouterr().err
+    assert main(["box", "monitor", "--count", "20"]) == 0
+    out = capsys.readouterr().out
+    assert "seq        20" in out and "lost 0" in out

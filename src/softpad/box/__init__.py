@@ -3,43 +3,61 @@
 ``open_box("sim://?seed=1")`` returns a :class:`Box`; frames are :class:`PressureFrame`
 (gauge pressures in pascals per channel plus the supply pressure); each channel's valves take
 a :class:`ValveCommand`. The simulated box (``sim://``, :class:`SimBox`) is the default;
-``tcp://host:port`` (:class:`TcpBox`) reaches a box served over the network by
-:class:`BoxServer` (``softpad box serve``) with the same interface.
+``zenoh://host:port[/prefix]`` (:class:`ZenohBox`) reaches a box served over zenoh by
+:class:`BoxDaemon` (``softpad box serve``) with the same interface; :class:`HardwareBox`
+drives the real Pneumaticbox (GPIO valves, IIO sensors). The hand-written ``tcp://``
+protocol of earlier versions is gone.
 Every back-end must pass :func:`check_conformance`.
 """
 
 from softpad.box._base import Box, ConnectionLost, PressureFrame, ValveCommand
 from softpad.box._conformance import ConformanceError, check_conformance
-from softpad.box._protocol import PROTOCOL_VERSION, ProtocolError
+from softpad.box._daemon import BoxDaemon, guard_box
+from softpad.box._hardware import (
+    FakeValveLines,
+    GpiodValveLines,
+    HardwareBox,
+    IIOReader,
+    ValveLines,
+)
+from softpad.box._link import MAX_PAYLOAD_BYTES, StampedFrame, decode_frame, encode_frame
 from softpad.box._registry import DEFAULT_URL, backends, open_box, parse_url, register_backend
 from softpad.box._safety import RATED_MAX_PRESSURE_PA, SafetyGuard, SafetyLimits, SafetyTrip
-from softpad.box._server import BoxServer
 from softpad.box._sim import FAULT_KINDS, Fault, SimBox, open_sim_url
-from softpad.box._tcp import TcpBox, open_tcp_url
+from softpad.box._zenoh import ControlRefused, ZenohBox, open_zenoh_url
 
 __all__ = [
     "DEFAULT_URL",
     "FAULT_KINDS",
-    "PROTOCOL_VERSION",
+    "MAX_PAYLOAD_BYTES",
     "RATED_MAX_PRESSURE_PA",
     "Box",
-    "BoxServer",
+    "BoxDaemon",
     "ConformanceError",
     "ConnectionLost",
+    "ControlRefused",
+    "FakeValveLines",
     "Fault",
+    "GpiodValveLines",
+    "HardwareBox",
+    "IIOReader",
     "PressureFrame",
-    "ProtocolError",
     "SafetyGuard",
     "SafetyLimits",
     "SafetyTrip",
     "SimBox",
-    "TcpBox",
+    "StampedFrame",
     "ValveCommand",
+    "ValveLines",
+    "ZenohBox",
     "backends",
     "check_conformance",
+    "decode_frame",
+    "encode_frame",
+    "guard_box",
     "open_box",
     "open_sim_url",
-    "open_tcp_url",
+    "open_zenoh_url",
     "parse_url",
     "register_backend",
 ]

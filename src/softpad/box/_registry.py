@@ -33,10 +33,10 @@ def _ensure_builtin() -> None:
         from softpad.box._sim import open_sim_url
 
         register_backend("sim", open_sim_url)
-    if "tcp" not in _BACKENDS:
-        from softpad.box._tcp import open_tcp_url
+    if "zenoh" not in _BACKENDS:
+        from softpad.box._zenoh import open_zenoh_url
 
-        register_backend("tcp", open_tcp_url)
+        register_backend("zenoh", open_zenoh_url)
 
 
 #: Entry-point group through which installed packages offer box back-ends by URL scheme (the
@@ -83,7 +83,8 @@ def open_box(url: str = DEFAULT_URL) -> Box:
     ----------
     url
         ``sim://`` (the simulated box, see :func:`softpad.box.open_sim_url` for its options)
-        or ``tcp://host:port`` (a box served over the network, :class:`softpad.box.TcpBox`)
+        or ``zenoh://host:port[/prefix]`` (a box served by ``softpad box serve``,
+        :class:`softpad.box.ZenohBox`)
         or ``replay://run.mcap[?speed=fast|recorded|FACTOR]`` (a recording played back,
         :class:`softpad.record.ReplayBox`).
 

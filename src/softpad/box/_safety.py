@@ -1,7 +1,7 @@
 """Box-side safety: a hard maximum pressure per channel, enforced under every back-end.
 
 Every :class:`~softpad.box.Box` owns a :class:`SafetyGuard` (the base class calls it on every
-frame read and every valve command), so the simulated box, a box served over ``tcp://`` and the
+frame read and every valve command), so the simulated box, a box served over ``zenoh://`` and the
 box daemon on real hardware all run the same checks, whatever the client does:
 
 * a channel whose reading, plus the rise expected before the next frame, exceeds the trip level

@@ -50,13 +50,18 @@ def register(sub: Any) -> None:
         "arm-node",
         help="simulated arm on ROS (ros1:// contract) sharing its world with a served sim box",
         description=(
-            "Own a simulated box and its world; serve the box on tcp://127.0.0.1:PORT and the arm "
+            "Own a simulated box and its world; serve the box on zenoh://127.0.0.1:PORT and the arm "
             "on /softpad_arm/command and /softpad_arm/state, so that 'softpad run --robot ros1:// "
-            "--box tcp://127.0.0.1:PORT' runs the loop with the arm in ROS. " + _NETWORK
+            "--box zenoh://127.0.0.1:PORT' runs the loop with the arm in ROS. " + _NETWORK
         ),
     )
     arm.add_argument("--box", default="sim://", metavar="URL", help="sim:// URL (default sim://)")
-    arm.add_argument("--port", type=int, default=5757, help="TCP port of the box (0: a free one)")
+    arm.add_argument(
+        "--port",
+        type=int,
+        default=5757,
+        help="port of the served box, zenoh on tcp/127.0.0.1 (0: a free one)",
+    )
     arm.add_argument(
         "--lose-arm-on",
         choices=("move_to", "descend", "stop", "gripper"),
@@ -96,9 +101,9 @@ def run_arm_node(args: argparse.Namespace) -> int:
 
     node = SimArmNode(args.box, args.port, args.lose_arm_on)
     if args.json:
-        print(json.dumps({"box": node.server.url, "arm": "/softpad_arm"}), flush=True)
+        print(json.dumps({"box": node.url, "arm": "/softpad_arm"}), flush=True)
     else:
-        print(f"softpad sim arm-node: box on {node.server.url}, arm on /softpad_arm", flush=True)
+        print(f"softpad sim arm-node: box on {node.url}, arm on /softpad_arm", flush=True)
     node.serve()
     return 0
 

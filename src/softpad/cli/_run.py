@@ -65,6 +65,12 @@ def register(sub: Any) -> None:
         help="hold time in s (default %(default)g)",
     )
     add_thesis_params(p)
+    p.add_argument(
+        "--config",
+        metavar="FILE.toml",
+        help="installation file: thresholds (p0, t_adj, t_o, t_g, window, maximum), gripper and "
+        "box link; the options above given on the command line win",
+    )
     add_json_force(p, force=False)  # --force comes with --record
     p.add_argument("--png", metavar="FILE.png", help="draw the pressure traces with the phases")
     p.add_argument("--plot", action=Renamed, new="--png FILE.png")
@@ -153,14 +159,17 @@ def run(args: argparse.Namespace) -> int:
     if args.foxglove is not None and not 0 <= args.foxglove <= 65535:
         raise InputError(f"--foxglove port must be within 0..65535, got {args.foxglove}")
     log = RunLog({"box": args.box, "objects": names})
+    gripper = args.gripper  # the installation file's mounting when it names one
+    if args.config:
+        params = _from_installation(args.config, params)
     with open_box(args.box) as box:
-        meta = run_metadata("run", box, args.box, names, params, gripper=args.gripper)
+        meta = run_metadata("run", box, args.box, names, params, gripper=gripper)
         recorder = open_recorder(str(record_path) if record_path else None, box, meta, args.force)
         live = _live(args.foxglove, box, args.json)
         try:
             tee = Tee(log, recorder, live)
             if args.robot == "sim://":
-                result = run_simulated(names, box, params, tee, gripper=args.gripper)
+                result = run_simulated(names, box, params, tee, gripper=gripper)
             else:
                 from softpad.cli._ros import run_with_robot_url
 
@@ -211,6 +220,24 @@ def _save_png(log: Any, png_path: Any, names: list[str]) -> None:
     with atomic_path(png_path) as tmp:
         fig = log.plot(tmp, title=f"softpad run: {', '.join(names)}")
     plt.close(fig)
+
+
+def _from_installation(path: str, params: Any) -> Any:
+    """What the options do not cover from an installation file: the adjustment tolerance,
+    the maximum pressure and the inflation's window (its thresholds, window and gripper are
+    already the options' defaults, ``softpad.cli._installation``)."""
+    import dataclasses
+
+    from softpad.config import load_installation
+
+    th = load_installation(path).thresholds
+    inflation = dataclasses.replace(
+        params.inflation,
+        tolerance_pa=th.adjust_tolerance_pa,
+        max_pressure_pa=th.max_pressure_pa,
+        filter_length=params.filter_length,
+    )
+    return dataclasses.replace(params, inflation=inflation)
 
 
 def _live(port: int | None, box: Any, json_mode: bool) -> Any:

@@ -18,6 +18,7 @@ from collections.abc import Sequence
 from typing import Any, NoReturn
 
 from softpad import __version__
+from softpad.cli._installation import add_config_options, apply_installation
 from softpad.errors import (
     EXIT_INPUT,
     InputError,
@@ -30,6 +31,7 @@ _COMMAND_MODULES = (
     "_plan",
     "_run",
     "_box",
+    "_config",
     "_trials",
     "_compare",
     "_fem",
@@ -98,6 +100,7 @@ def build_parser() -> argparse.ArgumentParser:
     for name in _COMMAND_MODULES:
         module = importlib.import_module(f"softpad.cli.{name}")
         module.register(sub)
+    add_config_options(parser)
     return parser
 
 
@@ -111,6 +114,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     args: argparse.Namespace | None = None
     try:
         parser = build_parser()
+        apply_installation(parser, argv)
         args = parser.parse_args(argv)
         name = args.command or ""
         if not getattr(args, "handler", None):

@@ -4,7 +4,7 @@ The control layer knows nothing of the simulator; this package joins them.
 :class:`SimulatedRobot` implements :class:`softpad.control.Robot` on a
 :class:`softpad.sim.World` and logs each descent's first fingertip touch (ground truth, used
 only to score a run); :func:`run_simulated` runs the loop with catalogue objects, in-process or
-against a simulator served over ``tcp://`` (:class:`RemoteRobot`,
+against a simulator served over ``zenoh://`` (:class:`RemoteRobot`,
 :func:`simulation_extensions`).
 """
 

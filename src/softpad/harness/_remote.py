@@ -1,9 +1,9 @@
-"""The simulated world and robot served over the network with a ``tcp://`` box.
+"""The grasp loop against a simulator served over zenoh (``zenoh://``).
 
-A ``tcp://`` box carries pressures and valves only. To run the whole simulated loop through
-it, the server of a :class:`~softpad.box.SimBox` also offers the simulator's world and robot
-as protocol extensions (:func:`simulation_extensions`; ``softpad box serve`` adds them when it
-serves a ``sim://`` box), and the client drives them with :class:`RemoteRobot`:
+A ``zenoh://`` box carries pressures and valves only. To run the whole simulated loop through
+it, the daemon serving a :class:`~softpad.box.SimBox` also offers the simulator's world and
+robot as queryables ``PREFIX/ext/OP`` (:func:`simulation_extensions`; ``softpad box serve
+--sim`` adds them), and the controlling client drives them with :class:`RemoteRobot`:
 
 =====================  =================================================  =====================
 request                fields                                             reply
@@ -25,7 +25,7 @@ request                fields                                             reply
 =====================  =================================================  =====================
 
 Every robot request maps one to one onto the served :class:`SimulatedRobot`, so a run over
-``tcp://`` gives exactly the run on the same ``sim://`` box in-process (tested). A real robot
+``zenoh://`` gives the run on the same ``sim://`` box in-process (tested). A real robot
 would not be served this way: it has its own controller behind the :class:`Robot` protocol.
 """
 
@@ -35,7 +35,7 @@ import math
 from collections.abc import Callable
 from typing import Any
 
-from softpad.box import SimBox, TcpBox
+from softpad.box import SimBox, ZenohBox
 from softpad.control import RobotState, ToolPose
 from softpad.errors import HardwareFault, InputError
 from softpad.harness._robot import SimulatedRobot, TouchTruth
@@ -69,17 +69,17 @@ def _number(msg: dict[str, Any], key: str) -> float:
 def simulation_extensions(box: SimBox) -> dict[str, Handler]:
     """Protocol extensions exposing ``box``'s world and a :class:`SimulatedRobot` on it.
 
-    Pass them to :class:`~softpad.box.BoxServer` (``extensions=``).
+    Pass them to :class:`~softpad.box.BoxDaemon` (``services=``).
     """
     sim = _SimulationService(box)
     return {
         "sim.setup": sim.setup,
         "sim.place": sim.place,
-        "robot.move_to": sim.move_to,
-        "robot.descend": sim.descend,
-        "robot.stop": sim.stop,
-        "robot.set_gripper": sim.set_gripper,
-        "robot.is_moving": lambda msg: {"moving": bool(sim.robot.is_moving())},
+        "robot.move_to": sim.commanding(sim.move_to),
+        "robot.descend": sim.commanding(sim.descend),
+        "robot.stop": sim.commanding(lambda msg: sim.robot.stop()),
+        "robot.set_gripper": sim.commanding(sim.set_gripper),
+        "robot.is_moving": sim.is_moving,
         "robot.state": sim.state,
         "robot.holding": lambda msg: {"holding": bool(sim.robot.holding())},
         "robot.touches": sim.touches,
@@ -88,11 +88,28 @@ def simulation_extensions(box: SimBox) -> dict[str, Handler]:
 
 class _SimulationService:
     """The handlers of :func:`simulation_extensions`: a served box's world and the simulated
-    robot on it (replaced by each ``sim.setup``)."""
+    robot on it (replaced by each ``sim.setup``).
+
+    The served robot judges motion once per simulation step ("stopped" = no change since the
+    previous step); a client polling several times within one step gets the same answer.
+    """
 
     def __init__(self, box: SimBox) -> None:
+        self.box = box
         self.world = box.world
         self.robot = SimulatedRobot(self.world)
+        self._judged_at: float | None = None
+        self._moving = True
+
+    def commanding(self, fn: Callable[[dict[str, Any]], None]) -> Handler:
+        """A handler running ``fn`` and forgetting the last motion judgement."""
+
+        def handler(msg: dict[str, Any]) -> dict[str, Any]:
+            fn(msg)
+            self._judged_at = None
+            return {}
+
+        return handler
 
     def setup(self, msg: dict[str, Any]) -> dict[str, Any]:
         mounting = msg.get("gripper")
@@ -101,6 +118,7 @@ class _SimulationService:
             if isinstance(self.world, AnalyticWorld):
                 self.world.gripper = gripper
         self.robot = SimulatedRobot(self.world)
+        self._judged_at = None
         lay = self.world.layout
         return {"layout": [lay.rows, lay.cols, lay.pitch_m]}
 
@@ -113,22 +131,21 @@ class _SimulationService:
             self.world.place_object(s)
         return {}
 
-    def move_to(self, msg: dict[str, Any]) -> dict[str, Any]:
+    def is_moving(self, msg: dict[str, Any]) -> dict[str, Any]:
+        if self._judged_at != self.box.time_s:
+            self._moving = bool(self.robot.is_moving())
+            self._judged_at = self.box.time_s
+        return {"moving": self._moving}
+
+    def move_to(self, msg: dict[str, Any]) -> None:
         pose = ToolPose(*(_number(msg, k) for k in ("x_m", "y_m", "z_m", "yaw_rad")))
         self.robot.move_to(pose, _number(msg, "speed_m_s"))
-        return {}
 
-    def descend(self, msg: dict[str, Any]) -> dict[str, Any]:
+    def descend(self, msg: dict[str, Any]) -> None:
         self.robot.descend(_number(msg, "speed_m_s"), _number(msg, "min_z_m"))
-        return {}
 
-    def stop(self, msg: dict[str, Any]) -> dict[str, Any]:
-        self.robot.stop()
-        return {}
-
-    def set_gripper(self, msg: dict[str, Any]) -> dict[str, Any]:
+    def set_gripper(self, msg: dict[str, Any]) -> None:
         self.robot.set_gripper(_number(msg, "width_m"), _number(msg, "speed_m_s"))
-        return {}
 
     def state(self, msg: dict[str, Any]) -> dict[str, Any]:
         s = self.robot.state()
@@ -143,9 +160,9 @@ class _SimulationService:
         }
 
 
-def has_simulation(box: TcpBox) -> bool:
-    """True when the server of ``box`` offers every request of :data:`SIMULATION_OPS`."""
-    return set(SIMULATION_OPS) <= set(box.extensions)
+def has_simulation(box: ZenohBox) -> bool:
+    """True when the daemon of ``box`` offers every service of :data:`SIMULATION_OPS`."""
+    return set(SIMULATION_OPS) <= set(box.info.get("services", []))
 
 
 def _floats(reply: dict[str, Any], key: str, n: int) -> list[float]:
@@ -162,34 +179,41 @@ def _floats(reply: dict[str, Any], key: str, n: int) -> list[float]:
 
 
 class RemoteRobot:
-    """The :class:`Robot` of a simulator served over ``tcp://`` (see the module docstring).
+    """The :class:`Robot` of a simulator served over ``zenoh://`` (see the module docstring).
+
+    Every call is a query to ``PREFIX/ext/OP``; it takes control of the box (only the
+    controlling client may move the served robot).
 
     Parameters
     ----------
     box
-        An open :class:`~softpad.box.TcpBox` whose server offers :data:`SIMULATION_OPS`.
+        An open :class:`~softpad.box.ZenohBox` whose daemon offers :data:`SIMULATION_OPS`.
     gripper
         Gripper mounting to set up (``"10/4"``, ``"6/2"``, ``"4/0"``); None keeps the served one.
     """
 
-    def __init__(self, box: TcpBox, gripper: str | None = None) -> None:
+    def __init__(self, box: ZenohBox, gripper: str | None = None) -> None:
         if not has_simulation(box):
             raise InputError(
                 f"box at {box.address} serves no simulated world and robot "
-                "(start it with 'softpad box serve --box sim://...')"
+                "(start it with 'softpad box serve --sim')"
             )
         self.box = box
-        reply = box.request("sim.setup", gripper=gripper)
+        box.take_control()
+        reply = self._call("sim.setup", gripper=gripper)
         rows, cols, pitch = _floats(reply, "layout", 3)
         #: Layout of the served pad.
         self.layout = PadLayout(int(rows), int(cols), pitch)
 
+    def _call(self, op: str, **fields: Any) -> dict[str, Any]:
+        return self.box.request(f"ext/{op}", **fields)
+
     def place(self, names: list[str]) -> None:
         """Place catalogue objects on the served pad."""
-        self.box.request("sim.place", objects=list(names))
+        self._call("sim.place", objects=list(names))
 
     def move_to(self, pose: ToolPose, speed_m_s: float) -> None:
-        self.box.request(
+        self._call(
             "robot.move_to",
             x_m=pose.x_m,
             y_m=pose.y_m,
@@ -199,27 +223,27 @@ class RemoteRobot:
         )
 
     def descend(self, speed_m_s: float, min_z_m: float) -> None:
-        self.box.request("robot.descend", speed_m_s=speed_m_s, min_z_m=min_z_m)
+        self._call("robot.descend", speed_m_s=speed_m_s, min_z_m=min_z_m)
 
     def stop(self) -> None:
-        self.box.request("robot.stop")
+        self._call("robot.stop")
 
     def set_gripper(self, width_m: float, speed_m_s: float) -> None:
-        self.box.request("robot.set_gripper", width_m=width_m, speed_m_s=speed_m_s)
+        self._call("robot.set_gripper", width_m=width_m, speed_m_s=speed_m_s)
 
     def is_moving(self) -> bool:
-        return self.box.request("robot.is_moving").get("moving") is True
+        return self._call("robot.is_moving").get("moving") is True
 
     def state(self) -> RobotState:
-        return RobotState(*_floats(self.box.request("robot.state"), "state", 5))
+        return RobotState(*_floats(self._call("robot.state"), "state", 5))
 
     def holding(self) -> bool:
-        return self.box.request("robot.holding").get("holding") is True
+        return self._call("robot.holding").get("holding") is True
 
     def touches(self) -> list[TouchTruth]:
         """Ground truth of every descent so far (simulation only; scores a run)."""
         out = []
-        for t in self.box.request("robot.touches").get("touches") or []:
+        for t in self._call("robot.touches").get("touches") or []:
             if t is None:
                 out.append(TouchTruth(None, None))
             else:

@@ -6,7 +6,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from softpad.box import Box, SimBox, TcpBox, open_box
+from softpad.box import Box, SimBox, ZenohBox, open_box
 from softpad.control import ExecutionParams, ExecutionResult, GraspExecution, Recorder
 from softpad.errors import InputError
 from softpad.harness._remote import RemoteRobot, has_simulation
@@ -15,7 +15,7 @@ from softpad.sim import AnalyticWorld, ObjectSpec, SimGripper, get_object, objec
 
 _REMOTE_WORLD = (
     "the simulated loop places objects and moves the gripper in a simulator's world: use a "
-    "sim:// box, or a tcp:// box served by 'softpad box serve --box sim://...' (which offers "
+    "sim:// box, or a zenoh:// box served by 'softpad box serve --sim' (which offers "
     "the world and robot); this box carries pressures and valves only"
 )
 
@@ -96,8 +96,8 @@ def run_simulated(
         ``cylinder``, ``charger``); several objects lying on separate modules are planned and
         grasped one after the other. ``banana`` when None.
     box
-        A :class:`~softpad.box.SimBox` or a ``sim://`` URL; or a ``tcp://`` box whose server
-        offers the simulator's world and robot (``softpad box serve --box sim://...``).
+        A :class:`~softpad.box.SimBox` or a ``sim://`` URL; or a ``zenoh://`` box whose daemon
+        offers the simulator's world and robot (``softpad box serve --sim``).
     params
         Loop parameters.
     recorder
@@ -118,7 +118,7 @@ def run_simulated(
     b = open_box(box) if isinstance(box, str) else box
     try:
         mounting = gripper or specs[0].gripper
-        if isinstance(b, TcpBox):  # a simulator served over the network: world and robot there
+        if isinstance(b, ZenohBox):  # a simulator served over the network: world and robot there
             return _run_remote(b, specs, mounting, params, recorder, parts)
         if not isinstance(b, SimBox):
             raise InputError(f"{_REMOTE_WORLD} (got a {type(b).__name__})")
@@ -142,7 +142,7 @@ def run_simulated(
 
 
 def _run_remote(
-    box: TcpBox,
+    box: ZenohBox,
     specs: list[ObjectSpec],
     mounting: str,
     params: ExecutionParams | None,

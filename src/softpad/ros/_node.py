@@ -39,7 +39,7 @@ class NodeConfig:
     Parameters
     ----------
     box
-        Box URL (``sim://``, ``tcp://127.0.0.1:PORT``, ...).
+        Box URL (``sim://``, ``zenoh://127.0.0.1:PORT``, ...).
     layout
         Pad layout ``RxC``.
     pad

@@ -19,8 +19,8 @@ def run_with_robot(
 ) -> Any:
     """Run :class:`softpad.control.GraspExecution` once on ``box`` with ``robot``.
 
-    When the box is a simulator served over ``tcp://`` (``softpad sim arm-node`` or
-    ``softpad box serve --box sim://``), the gripper mounting is set up and the catalogue
+    When the box is a simulator served over ``zenoh://`` (``softpad sim arm-node`` or
+    ``softpad box serve --sim``), the gripper mounting is set up and the catalogue
     ``objects`` are placed through its ``sim.setup``/``sim.place`` requests; on any other box a
     person places the object and the pad layout is the default 2 x 3.
 
@@ -30,7 +30,7 @@ def run_with_robot(
         The timeline and outcome. A fault (box or arm lost) raises
         :class:`~softpad.errors.HardwareFault` after the box was made safe.
     """
-    from softpad.box import TcpBox, open_box
+    from softpad.box import ZenohBox, open_box
     from softpad.control import GraspExecution
     from softpad.harness import resolve_objects
     from softpad.layout import PadLayout
@@ -41,15 +41,17 @@ def run_with_robot(
     owned = isinstance(box, str)
     b = open_box(box) if isinstance(box, str) else box
     try:
-        if isinstance(b, TcpBox) and {"sim.setup", "sim.place"} <= set(b.extensions):
-            tcp = b
-            rows, cols, pitch = tcp.request("sim.setup", gripper=gripper or specs[0].gripper)[
-                "layout"
-            ]
+        if isinstance(b, ZenohBox) and {"sim.setup", "sim.place"} <= set(
+            b.info.get("services", [])
+        ):
+            served = b
+            served.take_control()  # only the controller may call the services
+            mounting = gripper or specs[0].gripper
+            rows, cols, pitch = served.request("ext/sim.setup", gripper=mounting)["layout"]
             layout = PadLayout(int(rows), int(cols), float(pitch))
 
             def place() -> None:
-                tcp.request("sim.place", objects=names)
+                served.request("ext/sim.place", objects=names)
 
         loop = GraspExecution(b, robot, layout, params, recorder=recorder, place_objects=place)
         try:

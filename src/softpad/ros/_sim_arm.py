@@ -1,13 +1,13 @@
 """``softpad sim arm-node``: a simulated arm honouring the ``ros1://`` contract.
 
 The simulated arm must move the gripper of the same world whose pressures the box reports, so
-this one process owns the simulated box and its world: it serves the box over ``tcp://`` on
-127.0.0.1 (the :class:`~softpad.box.BoxServer` of ``softpad box serve``, with the simulator's
-``sim.setup``/``sim.place`` requests so a run can place catalogue objects), and the arm over
+this one process owns the simulated box and its world: it serves the box over ``zenoh://`` on
+127.0.0.1 (the :class:`~softpad.box.BoxDaemon` of ``softpad box serve``, with the simulator's
+``sim.setup``/``sim.place`` services so a run can place catalogue objects), and the arm over
 ROS (:data:`~softpad.ros.ARM_COMMAND_TOPIC` in, :data:`~softpad.ros.ARM_STATE_TOPIC` out). The
-box is paced to the wall clock (``realtime=1``) so that ROS latencies count as they would on
-hardware. Commands are applied between two frames, in the thread that serves the box, so the
-world is only touched from one thread.
+daemon samples the box on the wall clock (no lock-step) so that ROS latencies count as they
+would on hardware. Commands are applied between two frames, in the daemon's sampling thread,
+so the world is only touched from one thread.
 """
 
 from __future__ import annotations
@@ -49,15 +49,25 @@ class _HookedBox(Box):
         self.inner.close()
 
 
+def _free_loopback_port() -> int:
+    """A TCP port free on 127.0.0.1 now (the daemon listens there next)."""
+    import socket
+
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
 class SimArmNode:
     """The simulated arm node (module docstring).
 
     Parameters
     ----------
     box_url
-        A ``sim://`` URL; ``realtime=1`` is added unless it sets ``realtime``.
+        A ``sim://`` URL (sampled on the wall clock by the daemon).
     port
-        TCP port of the served box on 127.0.0.1 (0: a free one, see :attr:`server`).
+        Port of the served box's zenoh endpoint ``tcp/127.0.0.1:PORT`` (0: a free one, see
+        :attr:`url`).
     lose_arm_on
         Fault injection: on this command (``move_to``, ``descend``, ``stop``, ``gripper``) the
         arm's ROS side goes silent, as if its driver died, while the box stays served.
@@ -66,14 +76,12 @@ class SimArmNode:
     def __init__(
         self, box_url: str = "sim://", port: int = 0, lose_arm_on: str | None = None
     ) -> None:
-        from softpad.box import BoxServer, open_box
+        from softpad.box import BoxDaemon, open_box
         from softpad.harness import SimulatedRobot, simulation_extensions
         from softpad.ros._rospy_path import require_master
 
         if not box_url.startswith("sim://"):
             raise InputError(f"the simulated arm drives a sim:// box, got {box_url!r}")
-        if "realtime=" not in box_url:
-            box_url += ("&" if "?" in box_url else "?") + "realtime=1"
         rospy = require_master()
         from std_msgs.msg import Float64MultiArray
 
@@ -91,11 +99,14 @@ class SimArmNode:
         self._current = self._done = 0.0
         self._snapshot = self._take_snapshot()
         ext = simulation_extensions(box)
-        self.server = BoxServer(
+        port = port or _free_loopback_port()
+        #: URL of the served box.
+        self.url = f"zenoh://127.0.0.1:{port}"
+        self.server = BoxDaemon(
             _HookedBox(box, self._apply_commands, self._after_read),
-            port=port,
-            extensions={k: ext[k] for k in ("sim.setup", "sim.place")},
-        )
+            (f"tcp/127.0.0.1:{port}",),
+            services={k: ext[k] for k in ("sim.setup", "sim.place")},
+        ).start()
         from softpad.ros._arm import ARM_COMMAND_TOPIC, ARM_STATE_TOPIC
 
         rospy.init_node("softpad_sim_arm", disable_signals=True)
@@ -154,7 +165,7 @@ class SimArmNode:
     def serve(self) -> None:
         """Serve the box until interrupted (the ROS side runs in rospy's threads)."""
         try:
-            self.server.serve()
+            self.server.wait()
         finally:
             self._timer.shutdown()
             self.server.close()

@@ -1,0 +1,587 @@
+"""The box daemon (``softpad box serve``): one box served over zenoh to many clients.
+
+A sampling thread reads the box at a fixed rate and publishes every frame (push); valve
+commands arrive as queries and are acknowledged; any number of monitors subscribe read-only;
+one client at a time controls the valves. Safety lives here, whatever the clients do:
+
+* a channel above the trip level (``max_pressure_pa - trip_margin_pa``) is vented and an
+  inflate command on it is refused;
+* the controller holds a liveliness token and sends heartbeats; when the token vanishes
+  (its process died, its link broke) or no heartbeat came for ``watchdog_s``, every inflation
+  valve closes at once and each channel is held (both valves closed) or vented as configured;
+* malformed or oversized payloads are counted and dropped; no input stops the daemon;
+* frames are published from their own thread, so a slow link or monitor never delays the
+  sampling and safety loop (frames it cannot take are counted as unsent).
+
+The served box passes through :func:`guard_box`, the one place where a box-side safety
+wrapper is applied.
+"""
+
+from __future__ import annotations
+
+import math
+import queue
+import threading
+import time
+import uuid
+from collections.abc import Callable, Mapping
+from typing import Any
+
+import numpy as np
+
+from softpad import __version__
+from softpad.box._base import Box, PressureFrame, ValveCommand
+from softpad.box._link import (
+    DEFAULT_PREFIX,
+    decode_request,
+    encode_frame,
+    encode_json,
+    session_config,
+)
+from softpad.box._safety import SafetyTrip
+from softpad.errors import HardwareFault, InputError, SoftPadError
+
+Handler = Callable[[dict[str, Any]], dict[str, Any]]
+
+#: Default maximum module pressure, pascals (thesis usable range ends at 2.8 kPa; 3 kPa max).
+DEFAULT_MAX_PRESSURE_PA = 3000.0
+
+
+def guard_box(box: Box, max_pressure_pa: float) -> Box:
+    """The box the daemon serves: ``box`` with its box-side safety guard set to the limit.
+
+    This is the one switch between the daemon and the safety layer
+    (:class:`~softpad.box.SafetyGuard` in the :class:`~softpad.box.Box` base): its maximum is
+    set to ``max_pressure_pa`` (release level kept below it). The daemon adds its own venting
+    above the trip level, the watchdog and the refusal of commands from non-controllers.
+    """
+    import dataclasses
+
+    limits = box.safety_limits
+    release = min(limits.release_pa, max_pressure_pa - limits.trip_margin_pa - 100.0)
+    box.safety_limits = dataclasses.replace(
+        limits, max_pressure_pa=max_pressure_pa, release_pa=release
+    )
+    return box
+
+
+class _Stats:
+    """Running figures of the sampling loop (rate, jitter, dropped, malformed)."""
+
+    def __init__(self, rate_hz: float) -> None:
+        self.rate_hz = rate_hz
+        self.frames = 0
+        self.missed_ticks = 0
+        self.malformed = 0
+        self.refused = 0
+        self.watchdog_trips = 0
+        self.vents = 0
+        self.faults = 0
+        self.unsent = 0
+        self.started = time.monotonic()
+        self._intervals: list[float] = []
+        self._last: float | None = None
+
+    def sampled(self, mono: float) -> None:
+        self.frames += 1
+        if self._last is not None:
+            self._intervals.append(mono - self._last)
+            if len(self._intervals) > 20000:
+                del self._intervals[:10000]
+        self._last = mono
+
+    def to_dict(self) -> dict[str, Any]:
+        iv = np.asarray(self._intervals[-10000:])
+        elapsed = max(time.monotonic() - self.started, 1e-9)
+        return {
+            "target_rate_hz": self.rate_hz,
+            "achieved_rate_hz": round(self.frames / elapsed, 2),
+            "frames": self.frames,
+            "period_mean_s": float(iv.mean()) if iv.size else None,
+            "jitter_std_s": float(iv.std()) if iv.size else None,
+            "period_p99_s": float(np.percentile(iv, 99)) if iv.size else None,
+            "dropped_samples": self.missed_ticks,
+            "unsent_frames": self.unsent,
+            "malformed_payloads": self.malformed,
+            "refused_commands": self.refused,
+            "watchdog_trips": self.watchdog_trips,
+            "safety_vents": self.vents,
+            "box_faults": self.faults,
+            "uptime_s": round(elapsed, 3),
+        }
+
+
+class BoxDaemon:
+    """Serve ``box`` over zenoh (see the module docstring and :mod:`softpad.box._link`).
+
+    Parameters
+    ----------
+    box
+        The box to serve; closed by :meth:`close`.
+    listen
+        Zenoh endpoints to listen on (``tcp/127.0.0.1:7447``); the caller checked the policy
+        (:func:`softpad.config.check_remote_policy`).
+    key_prefix
+        Zenoh key prefix of every key of this box.
+    max_pressure_pa
+        Hard maximum gauge pressure of every channel, pascals.
+    trip_margin_pa
+        Venting starts this far below the maximum, pascals.
+    watchdog_s
+        A controller silent (no heartbeat) this long, seconds, loses control: valves close.
+    watchdog_action
+        ``"hold"`` (every valve closed) or ``"vent"`` (every channel deflated).
+    lockstep_frames
+        For a simulated box: while a client controls it, sample at most this many frames
+        ahead of the last frame the controller acknowledged reading (``PREFIX/control/ack``),
+        so the simulated world runs on the controller's time, never ahead of what it has seen.
+        None (hardware): free-running.
+    services
+        Extra queryables ``PREFIX/ext/OP`` (the served simulator's world and robot); a handler
+        takes the request and returns the reply's fields. Only the controller may call them.
+    auth
+        Keyword arguments of :func:`softpad.box._link.session_config` (user/password, TLS).
+    log
+        Called with one line per event; None: silent.
+    """
+
+    def __init__(
+        self,
+        box: Box,
+        listen: tuple[str, ...] = ("tcp/127.0.0.1:7447",),
+        key_prefix: str = DEFAULT_PREFIX,
+        *,
+        max_pressure_pa: float = DEFAULT_MAX_PRESSURE_PA,
+        trip_margin_pa: float = 50.0,
+        watchdog_s: float = 0.5,
+        watchdog_action: str = "hold",
+        services: Mapping[str, Handler] | None = None,
+        auth: Mapping[str, Any] | None = None,
+        log: Callable[[str], None] | None = None,
+        lockstep_frames: int | None = None,
+    ) -> None:
+        if watchdog_action not in ("hold", "vent"):
+            raise InputError(f"watchdog action must be hold or vent, got {watchdog_action!r}")
+        if not (math.isfinite(watchdog_s) and 0.01 <= watchdog_s <= 60):
+            raise InputError(f"watchdog time must be within 0.01..60 s, got {watchdog_s!r}")
+        self.box = guard_box(box, max_pressure_pa)
+        self.listen = tuple(listen)
+        self.prefix = key_prefix.rstrip("/")
+        self.max_pressure_pa = float(max_pressure_pa)
+        self.trip_pa = float(max_pressure_pa - trip_margin_pa)
+        self.watchdog_s = float(watchdog_s)
+        self.watchdog_action = watchdog_action
+        self.services = dict(services or {})
+        self._auth = dict(auth or {})
+        self._log = log
+        self._lock = threading.RLock()
+        self._stop = threading.Event()
+        self.stats = _Stats(float(box.sample_rate_hz))
+        self.controller: str | None = None
+        self._heartbeat = 0.0
+        self._taken_at = 0.0
+        self._live: set[str] = set()
+        self._venting: set[int] = set()
+        self.last_trip: dict[str, Any] | None = None
+        self._last: PressureFrame | None = None
+        self._seq = 0
+        self._session: Any = None
+        self._thread: threading.Thread | None = None
+        self._decls: list[Any] = []
+        self._outbox: queue.Queue[bytes] = queue.Queue(maxsize=2000)
+        self.lockstep_frames = lockstep_frames
+        self._acked = 0
+        self._ack_event = threading.Event()
+
+    # --- life cycle -------------------------------------------------------------------
+    def start(self) -> BoxDaemon:
+        """Open the zenoh session, declare every key and start sampling."""
+        config = session_config("peer", self.listen, **self._auth)  # names a missing zenoh
+        import zenoh
+
+        try:
+            self._session = zenoh.open(config)
+        except zenoh.ZError as exc:
+            raise InputError(f"cannot listen on {', '.join(self.listen)}: {exc}") from None
+        s, p = self._session, self.prefix
+        self._pub = s.declare_publisher(
+            f"{p}/frames", express=True, congestion_control=zenoh.CongestionControl.BLOCK
+        )
+        for key, fn in (
+            ("info", self._on_info),
+            ("stats", self._on_stats),
+            ("valves", self._on_valves),
+            ("control/take", self._on_take),
+            ("control/release", self._on_release),
+            ("ext/*", self._on_service),
+        ):
+            self._decls.append(s.declare_queryable(f"{p}/{key}", self._guarded(fn)))
+        self._decls.append(s.declare_subscriber(f"{p}/control/heartbeat", self._on_heartbeat))
+        self._decls.append(s.declare_subscriber(f"{p}/control/ack", self._on_ack))
+        self._decls.append(
+            s.liveliness().declare_subscriber(
+                f"{p}/control/holder/*", self._on_liveliness, history=True
+            )
+        )
+        self._sender = threading.Thread(target=self._send_loop, name="softpad-sender", daemon=True)
+        self._sender.start()
+        self._thread = threading.Thread(
+            target=self._sample_loop, name="softpad-sampler", daemon=True
+        )
+        self._thread.start()
+        self._say(f"serving {type(self.box).__name__} on {', '.join(self.listen)} key {p}")
+        return self
+
+    def wait(self, timeout_s: float | None = None) -> bool:
+        """Block until :meth:`stop` (True) or ``timeout_s`` passed (False)."""
+        return self._stop.wait(timeout_s)
+
+    def stop(self) -> None:
+        """Stop sampling (thread-safe)."""
+        self._stop.set()
+
+    def close(self) -> None:
+        """Stop, close every valve, close the box and the session. Idempotent."""
+        self._stop.set()
+        try:
+            if self._thread is not None:
+                self._thread.join(timeout=5.0)
+                self._sender.join(timeout=5.0)
+            with self._lock:
+                try:
+                    self.box.close()
+                except SoftPadError as exc:
+                    self._say(f"closing the box: {exc}")
+        finally:
+            if self._session is not None:
+                self._session.close()
+                self._session = None
+
+    def __enter__(self) -> BoxDaemon:
+        return self.start()
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def _say(self, text: str) -> None:
+        if self._log is not None:
+            self._log(text)
+
+    # --- sampling ---------------------------------------------------------------------
+    def _sample_loop(self) -> None:
+        period = 1.0 / self.stats.rate_hz
+        paced = bool(getattr(self.box, "self_paced", False))
+        due = time.monotonic()
+        while not self._stop.is_set():
+            if self._wait_for_controller():
+                due = time.monotonic()  # the simulated clock waited: not a missed tick
+            if not paced:
+                due += period
+                now = time.monotonic()
+                if now < due:
+                    time.sleep(due - now)
+                elif now - due > period:
+                    missed = int((now - due) / period)
+                    self.stats.missed_ticks += missed
+                    due += missed * period
+            try:
+                with self._lock:
+                    frame = self.box.read()
+                    mono = time.monotonic()
+                    self._last = frame
+                    self._safety(frame, mono)
+            except SoftPadError as exc:
+                self.stats.faults += 1
+                self._say(f"box fault: {exc}; valves closed")
+                self._safe_state("hold")
+                time.sleep(period)
+                continue
+            self._seq += 1
+            try:
+                self._outbox.put_nowait(encode_frame(self._seq, mono, frame))
+            except queue.Full:
+                self.stats.unsent += 1
+            self.stats.sampled(mono)
+        if paced:
+            self.stats.missed_ticks += int(getattr(self.box, "missed_ticks", 0))
+
+    def _wait_for_controller(self) -> bool:
+        """Lock-step: hold sampling while the controller is behind; True when it waited."""
+        waited = False
+        while (
+            self.lockstep_frames is not None
+            and self.controller is not None
+            and self._seq - self._acked >= self.lockstep_frames
+            and not self._stop.is_set()
+        ):
+            waited = True
+            self._ack_event.wait(0.01)
+            self._ack_event.clear()
+            self._check_controller(time.monotonic())
+        return waited
+
+    def _on_ack(self, sample: Any) -> None:
+        try:
+            msg = decode_request(sample.payload.to_bytes())
+            seq = msg.get("seq")
+            if msg.get("client") == self.controller and isinstance(seq, int):
+                self._acked = max(self._acked, seq)
+                self._ack_event.set()
+        except Exception:
+            self.stats.malformed += 1
+
+    def _send_loop(self) -> None:
+        """Publish queued frames. A slow link may block here, never the sampling and safety
+        loop: when the queue is full, frames are counted as unsent and skipped."""
+        while not self._stop.is_set():
+            try:
+                data = self._outbox.get(timeout=0.1)
+            except queue.Empty:
+                continue
+            try:
+                self._pub.put(data)
+            except Exception as exc:  # the session is closing
+                self._say(f"publishing: {exc}")
+                return
+
+    def _safety(self, frame: PressureFrame, mono: float) -> None:
+        """Vent channels above the trip level; trip the watchdog on a silent controller."""
+        p = frame.pressures_pa
+        for k in range(frame.channels):
+            ch = k + 1
+            if math.isfinite(p[k]) and p[k] > self.trip_pa:
+                if ch not in self._venting:
+                    self._venting.add(ch)
+                    self.stats.vents += 1
+                    self._say(f"channel {ch} at {p[k]:.0f} Pa > {self.trip_pa:.0f} Pa: venting")
+                self.box.set_valve(ch, ValveCommand.DEFLATE)
+            elif ch in self._venting and (not math.isfinite(p[k]) or p[k] < self.trip_pa - 200):
+                self._venting.discard(ch)
+                self.box.set_valve(ch, ValveCommand.CLOSED)
+        if not math.isfinite(frame.supply_pa):
+            self._close_inflation()
+        self._check_controller(mono)
+
+    def _check_controller(self, mono: float) -> None:
+        """Withdraw control from a controller without heartbeats, or whose liveliness token
+        has not appeared within the watchdog time of taking control."""
+        c = self.controller
+        if c is None:
+            return
+        if mono - self._heartbeat > self.watchdog_s:
+            self._trip(f"no heartbeat for {mono - self._heartbeat:.3f} s")
+        elif c not in self._live and mono - self._taken_at > self.watchdog_s:
+            self._trip("its liveliness token never appeared")
+
+    def _close_inflation(self) -> None:
+        for ch, cmd in enumerate(self.box.valves, 1):
+            if cmd is ValveCommand.INFLATE:
+                self.box.set_valve(ch, ValveCommand.CLOSED)
+
+    def _safe_state(self, action: str) -> None:
+        with self._lock:
+            try:
+                self._close_inflation()
+                target = ValveCommand.DEFLATE if action == "vent" else ValveCommand.CLOSED
+                for ch in range(1, self.box.channels + 1):
+                    if ch not in self._venting:
+                        self.box.set_valve(ch, target)
+            except SoftPadError as exc:
+                self._say(f"could not reach the safe state: {exc}")
+
+    def _trip(self, why: str) -> None:
+        """Watchdog: the controller is gone; close inflation, hold or vent, free control."""
+        with self._lock:
+            who, self.controller = self.controller, None
+            if who is None:
+                return
+            self.stats.watchdog_trips += 1
+            #: The last watchdog trip: client, reason, seconds since its last heartbeat.
+            self.last_trip = {
+                "client": who,
+                "reason": why,
+                "silent_s": time.monotonic() - self._heartbeat,
+            }
+            self._safe_state(self.watchdog_action)
+        self._say(
+            f"watchdog: controller {who} lost ({why}); inflation closed, {self.watchdog_action}"
+        )
+
+    # --- requests ---------------------------------------------------------------------
+    def _guarded(self, fn: Handler) -> Callable[[Any], None]:
+        """Wrap a handler: decode, count malformed input, always reply, never raise."""
+
+        def on_query(query: Any) -> None:
+            try:
+                payload = query.payload.to_bytes() if query.payload is not None else None
+                try:
+                    msg = decode_request(payload)
+                except InputError as exc:
+                    self.stats.malformed += 1
+                    reply = {"ok": False, "kind": "input", "error": str(exc)}
+                else:
+                    msg["_key"] = str(query.key_expr)
+                    reply = self._answer(fn, msg)
+                query.reply(query.key_expr, encode_json(reply))
+            except Exception as exc:
+                self.stats.malformed += 1
+                self._say(f"dropped a query: {type(exc).__name__}: {exc}")
+
+        return on_query
+
+    def _answer(self, fn: Handler, msg: dict[str, Any]) -> dict[str, Any]:
+        try:
+            return {"ok": True, **fn(msg)}
+        except _Refused as exc:
+            self.stats.refused += 1
+            return {"ok": False, "kind": exc.kind, "error": str(exc)}
+        except SafetyTrip as exc:  # the Box base's guard refused (over the trip level)
+            self.stats.refused += 1
+            return {"ok": False, "kind": "safety", "error": str(exc)}
+        except HardwareFault as exc:
+            return {"ok": False, "kind": "hardware", "error": str(exc)}
+        except InputError as exc:
+            self.stats.malformed += 1
+            return {"ok": False, "kind": "input", "error": str(exc)}
+        except Exception as exc:
+            self._say(f"error answering {msg.get('_key')}: {type(exc).__name__}: {exc}")
+            return {"ok": False, "kind": "hardware", "error": f"daemon error: {exc}"}
+
+    def _client(self, msg: dict[str, Any]) -> str:
+        c = msg.get("client")
+        if not isinstance(c, str) or not 0 < len(c) <= 64 or "/" in c or "*" in c:
+            raise InputError(f"client must be an id string (1..64 characters), got {c!r}")
+        return c
+
+    def _require_control(self, msg: dict[str, Any]) -> str:
+        c = self._client(msg)
+        if self.controller != c:
+            holder = self.controller or "nobody"
+            raise _Refused(
+                "control",
+                f"client {c} does not control the box (controller: {holder}); take control first",
+            )
+        return c
+
+    def info(self) -> dict[str, Any]:
+        """What the daemon advertises on ``PREFIX/info``."""
+        return {
+            "channels": self.box.channels,
+            "sample_rate_hz": float(self.box.sample_rate_hz),
+            "max_pressure_pa": self.max_pressure_pa,
+            "trip_pressure_pa": self.trip_pa,
+            "watchdog_s": self.watchdog_s,
+            "watchdog_action": self.watchdog_action,
+            "box": type(self.box).__name__,
+            "controller": self.controller,
+            "services": sorted(self.services),
+            "version": f"softpad {__version__}",
+        }
+
+    def _on_info(self, msg: dict[str, Any]) -> dict[str, Any]:
+        return self.info()
+
+    def _on_stats(self, msg: dict[str, Any]) -> dict[str, Any]:
+        return {**self.stats.to_dict(), "controller": self.controller, "seq": self._seq}
+
+    def _on_take(self, msg: dict[str, Any]) -> dict[str, Any]:
+        c = self._client(msg)
+        with self._lock:
+            if self.controller not in (None, c):
+                raise _Refused(
+                    "control",
+                    f"box is controlled by client {self.controller}; it must release control "
+                    "or vanish (watchdog) first",
+                )
+            # granted now; the liveliness token (declared before the request, on the same
+            # link) must be seen within the watchdog time or control is withdrawn
+            self.controller = c
+            self._heartbeat = self._taken_at = time.monotonic()
+            self._acked = self._seq
+        self._say(f"client {c} took control")
+        return {"controller": c, "watchdog_s": self.watchdog_s, "seq": self._seq}
+
+    def _on_release(self, msg: dict[str, Any]) -> dict[str, Any]:
+        c = self._require_control(msg)
+        with self._lock:
+            self._safe_state("hold")
+            self.controller = None
+        self._say(f"client {c} released control; valves closed")
+        return {}
+
+    def _on_heartbeat(self, sample: Any) -> None:
+        try:
+            msg = decode_request(sample.payload.to_bytes())
+            if msg.get("client") == self.controller:
+                self._heartbeat = time.monotonic()
+        except InputError:
+            self.stats.malformed += 1
+        except Exception:
+            self.stats.malformed += 1
+
+    def _on_liveliness(self, sample: Any) -> None:
+        try:
+            import zenoh
+
+            client = str(sample.key_expr).rsplit("/", 1)[-1]
+            if sample.kind == zenoh.SampleKind.PUT:
+                self._live.add(client)
+            else:
+                self._live.discard(client)
+                if client == self.controller:
+                    self._trip("its liveliness token vanished")
+        except Exception as exc:
+            self._say(f"liveliness: {exc}")
+
+    def _on_valves(self, msg: dict[str, Any]) -> dict[str, Any]:
+        self._require_control(msg)
+        ch = msg.get("channel")
+        if isinstance(ch, float) and ch.is_integer():
+            ch = int(ch)
+        with self._lock:
+            ch = self.box.check_channel(ch)  # type: ignore[arg-type]
+            cmd = ValveCommand.parse(msg.get("command"))  # type: ignore[arg-type]
+            if cmd is ValveCommand.INFLATE:
+                self._check_inflate(ch)
+            if ch in self._venting and cmd is not ValveCommand.DEFLATE:
+                raise _Refused("safety", f"channel {ch} is being vented above the maximum")
+            self.box.set_valve(ch, cmd)
+            return {"valves": [v.value for v in self.box.valves]}
+
+    def _check_inflate(self, ch: int) -> None:
+        last = self._last
+        if last is None:
+            return
+        p = float(last.pressures_pa[ch - 1])
+        if not math.isfinite(p):
+            raise _Refused(
+                "safety", f"channel {ch} has no valid pressure reading: inflation refused"
+            )
+        if p >= self.trip_pa:
+            raise _Refused(
+                "safety",
+                f"channel {ch} at {p:.0f} Pa: inflation refused at or above "
+                f"{self.trip_pa:.0f} Pa (maximum {self.max_pressure_pa:.0f} Pa)",
+            )
+
+    def _on_service(self, msg: dict[str, Any]) -> dict[str, Any]:
+        op = str(msg.pop("_key")).rsplit("/", 1)[-1]
+        handler = self.services.get(op)
+        if handler is None:
+            raise InputError(f"unknown service {op!r}; offered: {', '.join(sorted(self.services))}")
+        self._require_control(msg)
+        with self._lock:
+            return handler({**msg, "op": op})
+
+
+class _Refused(SoftPadError):
+    """A request refused by policy (control held by another client, safety limit)."""
+
+    def __init__(self, kind: str, message: str) -> None:
+        super().__init__(message)
+        self.kind = kind
+
+
+def new_client_id() -> str:
+    """A random client id (the liveliness token's last key chunk)."""
+    return uuid.uuid4().hex[:16]

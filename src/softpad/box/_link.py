@@ -1,0 +1,171 @@
+"""What the box daemon and its clients share over zenoh: key names, payloads, session config.
+
+Keys under the daemon's prefix (``softpad/box`` by default):
+
+==========================  ===========  ================================================
+key                         kind         payload
+==========================  ===========  ================================================
+``PREFIX/frames``           publication  binary frame (:func:`encode_frame`), every sample
+``PREFIX/info``             queryable    JSON: channels, sample_rate_hz, limits, services
+``PREFIX/stats``            queryable    JSON: achieved rate, jitter, dropped, malformed
+``PREFIX/control/take``     queryable    JSON ``{"client": ID}``: take control (ack/refusal)
+``PREFIX/control/release``  queryable    JSON ``{"client": ID}``
+``PREFIX/control/holder/ID`` liveliness  the controlling client's token (vanishes with it)
+``PREFIX/control/heartbeat`` publication JSON ``{"client": ID}`` from the controller
+``PREFIX/valves``           queryable    JSON ``{"client": ID, "channel": k, "command": c}``
+``PREFIX/ext/OP``           queryable    JSON: a served simulator's world and robot
+==========================  ===========  ================================================
+
+Every query is answered with a JSON object ``{"ok": true, ...}`` or ``{"ok": false, "kind":
+K, "error": MESSAGE}`` (``K``: ``input``, ``control``, ``safety``, ``hardware``). Payloads
+larger than :data:`MAX_PAYLOAD_BYTES` or not a JSON object are counted and dropped.
+
+Network rule: multicast scouting and gossip are off, and only the endpoints given are used.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import struct
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from softpad.box._base import PressureFrame
+from softpad.errors import InputError
+
+#: Largest accepted request payload, bytes.
+MAX_PAYLOAD_BYTES = 4096
+
+#: Default key prefix of a box.
+DEFAULT_PREFIX = "softpad/box"
+
+_HEAD = struct.Struct("<QddHH")  # seq, mono_s, t_s, channels, reserved; then supply + channels
+_MAGIC = 0x5350  # "SP"
+
+
+@dataclass(frozen=True, slots=True)
+class StampedFrame:
+    """A frame as the daemon published it.
+
+    Attributes
+    ----------
+    seq
+        Sequence number, +1 per published frame (a gap is a frame lost on the way).
+    mono_s
+        The daemon's monotonic clock when the frame was sampled, seconds.
+    frame
+        The pressures (box time ``frame.t_s``).
+    """
+
+    seq: int
+    mono_s: float
+    frame: PressureFrame
+
+    def to_dict(self) -> dict[str, object]:
+        """JSON-ready: ``seq``, ``mono_s``, ``t_s``, ``pressures_kpa``, ``supply_kpa``."""
+        return {"seq": self.seq, "mono_s": round(self.mono_s, 6), **self.frame.to_dict()}
+
+
+def encode_frame(seq: int, mono_s: float, frame: PressureFrame) -> bytes:
+    """Binary frame: little-endian header (seq u64, mono_s f64, t_s f64, channels u16, magic
+    u16) then supply_pa and each channel's pressure as f64 (NaN: no valid reading)."""
+    n = frame.channels
+    head = _HEAD.pack(seq, mono_s, frame.t_s, n, _MAGIC)
+    body = np.empty(n + 1)
+    body[0] = frame.supply_pa
+    body[1:] = frame.pressures_pa
+    return head + body.astype("<f8").tobytes()
+
+
+def decode_frame(data: bytes) -> StampedFrame:
+    """Inverse of :func:`encode_frame`; InputError on a payload that is not a frame."""
+    if len(data) < _HEAD.size:
+        raise InputError(f"frame payload of {len(data)} bytes is too short")
+    seq, mono, t, n, magic = _HEAD.unpack_from(data)
+    if magic != _MAGIC or len(data) != _HEAD.size + 8 * (n + 1):
+        raise InputError(f"not a softpad frame ({len(data)} bytes, {n} channels)")
+    body = np.frombuffer(data, dtype="<f8", offset=_HEAD.size).astype(np.float64)
+    return StampedFrame(seq, mono, PressureFrame(t, body[1:].copy(), float(body[0])))
+
+
+def decode_request(data: bytes | None) -> dict[str, Any]:
+    """A request payload as a JSON object; InputError naming what is wrong (size, syntax)."""
+    if data is None:
+        return {}
+    if len(data) > MAX_PAYLOAD_BYTES:
+        raise InputError(f"payload of {len(data)} bytes exceeds the limit of {MAX_PAYLOAD_BYTES}")
+    try:
+        msg = json.loads(data.decode("utf-8"), parse_constant=_no_constant)
+    except (UnicodeDecodeError, json.JSONDecodeError, ValueError) as exc:
+        raise InputError(f"malformed JSON payload: {exc}") from None
+    if not isinstance(msg, dict):
+        raise InputError(f"payload must be a JSON object, got {type(msg).__name__}")
+    return msg
+
+
+def _no_constant(token: str) -> Any:
+    raise ValueError(f"{token} is not valid JSON")
+
+
+def encode_json(msg: dict[str, Any]) -> bytes:
+    """Compact JSON bytes (NaN refused)."""
+    return json.dumps(msg, allow_nan=False, separators=(",", ":")).encode()
+
+
+def session_config(
+    mode: str,
+    listen: tuple[str, ...] = (),
+    connect: tuple[str, ...] = (),
+    *,
+    user: str | None = None,
+    password: str | None = None,
+    dictionary_file: str | None = None,
+    tls: dict[str, str] | None = None,
+) -> Any:
+    """A :class:`zenoh.Config` with multicast scouting and gossip off and explicit endpoints.
+
+    Parameters
+    ----------
+    mode
+        ``"peer"`` (the daemon) or ``"client"`` (everyone else).
+    listen, connect
+        Zenoh endpoints (``tcp/127.0.0.1:7447``); nothing else is listened on or scouted.
+    user, password, dictionary_file
+        Zenoh user/password authentication (the listener checks ``dictionary_file``).
+    tls
+        ``transport/link/tls`` settings (certificate, private key, root CA).
+    """
+    try:
+        import zenoh
+    except ImportError:
+        raise InputError("the zenoh link needs eclipse-zenoh: pip install 'softpad[box]'") from None
+
+    c = zenoh.Config()
+    c.insert_json5("mode", json.dumps(mode))
+    c.insert_json5("scouting/multicast/enabled", "false")
+    c.insert_json5("scouting/gossip/enabled", "false")
+    c.insert_json5("listen/endpoints", json.dumps(list(listen)))
+    c.insert_json5("connect/endpoints", json.dumps(list(connect)))
+    if mode == "client":
+        c.insert_json5("connect/timeout_ms", "3000")
+    if user is not None:
+        auth: dict[str, str] = {"user": user}
+        if password is not None:
+            auth["password"] = password
+        if dictionary_file is not None:
+            auth["dictionary_file"] = dictionary_file
+        c.insert_json5("transport/auth/usrpwd", json.dumps(auth))
+    if tls:
+        c.insert_json5("transport/link/tls", json.dumps(tls))
+    return c
+
+
+def check_number(msg: dict[str, Any], key: str) -> float:
+    """``msg[key]`` as a finite float, else InputError naming the key and value."""
+    v = msg.get(key)
+    if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
+        raise InputError(f"{key} must be a finite number, got {v!r}")
+    return float(v)

@@ -1,0 +1,84 @@
+"""``--config FILE.toml`` on every command: the installation file's values become the defaults.
+
+Options given on the command line still win: the file only replaces the built-in defaults
+(the seed's values) of the options it has a value for. The box daemon (``box serve``) reads
+the file itself (wiring, link), and the ROS commands take their own JSON configuration.
+"""
+
+from __future__ import annotations
+
+import argparse
+from collections.abc import Iterator, Sequence
+from typing import Any
+
+#: Parsers that read ``--config`` themselves (another meaning or another format).
+OWN_CONFIG = ("softpad box serve", "softpad ros node", "softpad sim arm-node")
+_HELP = "installation file (TOML): its thresholds, gripper, pad and box link are the defaults"
+
+
+def leaf_parsers(parser: argparse.ArgumentParser) -> Iterator[argparse.ArgumentParser]:
+    """Every parser under ``parser`` that has no sub-commands of its own."""
+    subs = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
+    if not subs:
+        yield parser
+    for action in subs:
+        for child in dict.fromkeys(action.choices.values()):
+            yield from leaf_parsers(child)
+
+
+def add_config_options(parser: argparse.ArgumentParser) -> None:
+    """Give every command without one a ``--config FILE.toml`` option."""
+    for p in leaf_parsers(parser):
+        if p.prog != "softpad" and "--config" not in p._option_string_actions:
+            p.add_argument("--config", metavar="FILE.toml", help=_HELP)
+
+
+def config_path(argv: Sequence[str]) -> str | None:
+    """The value of the last ``--config`` in ``argv`` (None without one)."""
+    path = None
+    for i, word in enumerate(argv):
+        if word == "--config" and i + 1 < len(argv):
+            path = argv[i + 1]
+        elif word.startswith("--config="):
+            path = word.split("=", 1)[1]
+    return path
+
+
+def _defaults(inst: Any) -> dict[str, Any]:
+    """Option destinations and the installation's values for them (CLI units)."""
+    th, pad, link = inst.thresholds, inst.pad, inst.link
+    out: dict[str, Any] = {
+        "p0_kpa": th.p0_pa / 1e3,
+        "object_threshold_kpa": th.object_threshold_pa / 1e3,
+        "contact_threshold_kpa": th.contact_threshold_pa / 1e3,
+        "window": th.filter_window,
+        "layout": f"{pad.rows}x{pad.cols}",
+        "pitch_mm": pad.pitch_m * 1e3,
+    }
+    if inst.gripper_mounting is not None:
+        out["gripper"] = inst.gripper_mounting
+    if link.connect:
+        host_port = link.connect[0].split("/", 1)[1]
+        out["box"] = f"zenoh://{host_port}/{link.key_prefix}"
+    return out
+
+
+def apply_installation(parser: argparse.ArgumentParser, argv: Sequence[str]) -> None:
+    """Make the installation file named by ``--config`` in ``argv`` the defaults of every
+    command that does not read it itself (see the module docstring)."""
+    path = config_path(argv)
+    if path is None:
+        return
+    words = [w for w in argv if not w.startswith("-")]
+    if any(" ".join(["softpad", *words[:2]]).startswith(p) for p in OWN_CONFIG):
+        return
+    from softpad.config import load_installation
+
+    values = _defaults(load_installation(path))
+    values["threshold_kpa"] = values["object_threshold_kpa"]  # plan's t_o
+    for p in leaf_parsers(parser):
+        if p.prog.split()[1:2] == ["fem"]:  # fem's thresholds are another quantity
+            continue
+        for action in p._actions:
+            if action.dest in values and action.dest != "help":
+                action.default = values[action.dest]

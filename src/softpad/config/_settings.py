@@ -1,0 +1,470 @@
+"""The installation file: one TOML file describing a SoftPad installation.
+
+Read with the standard library (:mod:`tomllib`) and validated into frozen dataclasses; every
+error names the key (``box.channel.3.inflate_line``) and the offending value. Units are in the
+key names (``offset_pa``, ``pitch_mm``); the settings hold SI values.
+"""
+
+from __future__ import annotations
+
+import ipaddress
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from softpad import thesis
+from softpad.errors import InputError
+
+#: Thesis defaults (seed, Section 6.2, from :mod:`softpad.thesis`), pascals / samples / metres.
+DEFAULT_P0_PA = thesis.P0_PA
+DEFAULT_ADJUST_TOLERANCE_PA = thesis.ADJUST_TOLERANCE_PA
+DEFAULT_OBJECT_THRESHOLD_PA = thesis.OBJECT_THRESHOLD_PA
+DEFAULT_CONTACT_THRESHOLD_PA = thesis.CONTACT_THRESHOLD_PA
+DEFAULT_FILTER_WINDOW = thesis.FILTER_WINDOW
+DEFAULT_MAX_PRESSURE_PA = thesis.MAX_PRESSURE_PA
+DEFAULT_PITCH_M = thesis.MODULE_PITCH_M
+
+WATCHDOG_ACTIONS = ("hold", "vent")
+
+
+class ConfigError(InputError):
+    """The installation file is unreadable or a value in it is wrong (the message names it)."""
+
+
+@dataclass(frozen=True, slots=True)
+class ChannelWiring:
+    """Wiring and calibration of one pneumatic channel.
+
+    ``pressure_pa = offset_pa + gain * pa_per_count * raw_count`` (raw_count read from IIO).
+    """
+
+    channel: int
+    gpiochip: str
+    inflate_line: int
+    deflate_line: int
+    iio_device: int
+    iio_channel: int
+    offset_pa: float = 0.0
+    gain: float = 1.0
+    pa_per_count: float = 1.0
+
+    def pressure_pa(self, raw_count: float) -> float:
+        """Calibrated gauge pressure, pascals, of one raw ADC count."""
+        return self.offset_pa + self.gain * self.pa_per_count * raw_count
+
+
+@dataclass(frozen=True, slots=True)
+class BoxSettings:
+    """The box's wiring: channels (1-based, in order), the supply sensor, the sampling rate."""
+
+    channels: tuple[ChannelWiring, ...] = ()
+    supply: ChannelWiring | None = None
+    sample_rate_hz: float = 1000.0
+    iio_root: str = "/sys/bus/iio/devices"
+
+
+@dataclass(frozen=True, slots=True)
+class LinkSettings:
+    """The zenoh link: endpoints, authentication, watchdog.
+
+    Listening beyond 127.0.0.1 needs ``allow_remote = true`` and authentication (user and
+    password file, or TLS certificate and key).
+    """
+
+    listen: tuple[str, ...] = ("tcp/127.0.0.1:7447",)
+    connect: tuple[str, ...] = ()
+    key_prefix: str = "softpad/box"
+    allow_remote: bool = False
+    user: str | None = None
+    password_file: str | None = None
+    tls_certificate: str | None = None
+    tls_private_key: str | None = None
+    tls_root_ca: str | None = None
+    watchdog_s: float = 0.5
+    watchdog_action: str = "hold"
+
+    @property
+    def has_auth(self) -> bool:
+        """True when user/password or TLS authentication is configured."""
+        return (self.user is not None and self.password_file is not None) or (
+            self.tls_certificate is not None and self.tls_private_key is not None
+        )
+
+
+@dataclass(frozen=True, slots=True)
+class PadSettings:
+    """Pad layout (rows x cols), module pitch (m) and pose in the robot base frame (m, rad)."""
+
+    rows: int = 2
+    cols: int = 3
+    pitch_m: float = DEFAULT_PITCH_M
+    x_m: float = 0.0
+    y_m: float = 0.0
+    z_m: float = 0.0
+    yaw_rad: float = 0.0
+
+
+@dataclass(frozen=True, slots=True)
+class Thresholds:
+    """Thesis thresholds (Section 6.2), pascals: p0, t_adj, t_o, t_g; filter window; maximum."""
+
+    p0_pa: float = DEFAULT_P0_PA
+    adjust_tolerance_pa: float = DEFAULT_ADJUST_TOLERANCE_PA
+    object_threshold_pa: float = DEFAULT_OBJECT_THRESHOLD_PA
+    contact_threshold_pa: float = DEFAULT_CONTACT_THRESHOLD_PA
+    filter_window: int = DEFAULT_FILTER_WINDOW
+    max_pressure_pa: float = DEFAULT_MAX_PRESSURE_PA
+
+
+@dataclass(frozen=True, slots=True)
+class Installation:
+    """Every setting of one installation (see :func:`load_installation`)."""
+
+    box: BoxSettings = field(default_factory=BoxSettings)
+    link: LinkSettings = field(default_factory=LinkSettings)
+    pad: PadSettings = field(default_factory=PadSettings)
+    thresholds: Thresholds = field(default_factory=Thresholds)
+    gripper_mounting: str | None = None
+    source: str = "<defaults>"
+
+
+# --- typed getters that name the key --------------------------------------------------
+def _get(table: dict[str, Any], key: str, where: str, kind: type, default: Any) -> Any:
+    if key not in table:
+        return default
+    v = table[key]
+    name = f"{where}.{key}" if where else key
+    if kind is float:
+        if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
+            raise ConfigError(f"{name} must be a finite number, got {v!r}")
+        return float(v)
+    if kind is int and (isinstance(v, bool) or not isinstance(v, int)):
+        raise ConfigError(f"{name} must be an integer, got {v!r}")
+    if kind is bool and not isinstance(v, bool):
+        raise ConfigError(f"{name} must be true or false, got {v!r}")
+    if kind is str and not isinstance(v, str):
+        raise ConfigError(f"{name} must be a string, got {v!r}")
+    if kind is list and not (isinstance(v, list) and all(isinstance(s, str) for s in v)):
+        raise ConfigError(f"{name} must be a list of strings, got {v!r}")
+    return v
+
+
+def _range(name: str, v: float, lo: float, hi: float, unit: str = "") -> float:
+    if not lo <= v <= hi:
+        raise ConfigError(f"{name} must be within {lo:g}..{hi:g}{unit}, got {v!r}")
+    return v
+
+
+def _table(raw: dict[str, Any], key: str, where: str = "") -> dict[str, Any]:
+    v = raw.get(key, {})
+    if not isinstance(v, dict):
+        raise ConfigError(f"{where + '.' if where else ''}{key} must be a table, got {v!r}")
+    return v
+
+
+def _unknown(table: dict[str, Any], allowed: set[str], where: str) -> None:
+    extra = sorted(set(table) - allowed)
+    if extra:
+        raise ConfigError(
+            f"unknown key {where + '.' if where else ''}{extra[0]}; allowed: {', '.join(sorted(allowed))}"
+        )
+
+
+_WIRING_KEYS = {
+    "gpiochip",
+    "inflate_line",
+    "deflate_line",
+    "iio_device",
+    "iio_channel",
+    "offset_pa",
+    "gain",
+    "pa_per_count",
+}
+
+
+def _wiring(t: dict[str, Any], where: str, channel: int, valves: bool) -> ChannelWiring:
+    _unknown(t, _WIRING_KEYS, where)
+    lines = []
+    for key in ("inflate_line", "deflate_line"):
+        v = _get(t, key, where, int, None if valves else -1)
+        if v is None:
+            raise ConfigError(f"{where}.{key} is missing (GPIO line offset of the valve)")
+        if valves and v < 0:
+            raise ConfigError(f"{where}.{key} must be a line offset >= 0, got {v}")
+        lines.append(v)
+    dev = _get(t, "iio_device", where, int, None)
+    adc = _get(t, "iio_channel", where, int, None)
+    if dev is None or adc is None:
+        missing = "iio_device" if dev is None else "iio_channel"
+        raise ConfigError(
+            f"{where}.{missing} is missing (IIO device N / in_voltageK of the sensor)"
+        )
+    for key, v in (("iio_device", dev), ("iio_channel", adc)):
+        if v < 0:
+            raise ConfigError(f"{where}.{key} must be >= 0, got {v}")
+    gain = _get(t, "gain", where, float, 1.0)
+    ppc = _get(t, "pa_per_count", where, float, 1.0)
+    if gain == 0 or ppc == 0:
+        raise ConfigError(f"{where}: gain and pa_per_count must be non-zero, got {gain}, {ppc}")
+    return ChannelWiring(
+        channel=channel,
+        gpiochip=_get(t, "gpiochip", where, str, "/dev/gpiochip0"),
+        inflate_line=lines[0],
+        deflate_line=lines[1],
+        iio_device=dev,
+        iio_channel=adc,
+        offset_pa=_get(t, "offset_pa", where, float, 0.0),
+        gain=gain,
+        pa_per_count=ppc,
+    )
+
+
+def _box(raw: dict[str, Any]) -> BoxSettings:
+    t = _table(raw, "box")
+    _unknown(t, {"channel", "supply", "sample_rate_hz", "iio_root"}, "box")
+    chans = t.get("channel", [])
+    if not isinstance(chans, list) or not all(isinstance(c, dict) for c in chans):
+        raise ConfigError(
+            f"box.channel must be an array of tables ([[box.channel]]), got {chans!r}"
+        )
+    if len(chans) > 64:
+        raise ConfigError(f"box.channel: at most 64 channels, got {len(chans)}")
+    wiring = tuple(_wiring(c, f"box.channel.{i}", i, True) for i, c in enumerate(chans, 1))
+    seen: dict[tuple[str, int], str] = {}
+    for w in wiring:
+        for key, line in (("inflate_line", w.inflate_line), ("deflate_line", w.deflate_line)):
+            here = f"box.channel.{w.channel}.{key}"
+            if (w.gpiochip, line) in seen:
+                raise ConfigError(
+                    f"{here} = {line} on {w.gpiochip} is already used by {seen[(w.gpiochip, line)]}"
+                )
+            seen[(w.gpiochip, line)] = here
+    supply = t.get("supply")
+    rate = _get(t, "sample_rate_hz", "box", float, 1000.0)
+    return BoxSettings(
+        channels=wiring,
+        supply=None
+        if supply is None
+        else _wiring(_table(t, "supply", "box"), "box.supply", 0, False),
+        sample_rate_hz=_range("box.sample_rate_hz", rate, 1.0, 10000.0, " Hz"),
+        iio_root=_get(t, "iio_root", "box", str, "/sys/bus/iio/devices"),
+    )
+
+
+def is_loopback_endpoint(endpoint: str) -> bool:
+    """True for a zenoh endpoint ``proto/127.x.y.z:port`` or ``proto/[::1]:port``."""
+    try:
+        _, addr = endpoint.split("/", 1)
+        host = addr.split("#", 1)[0].rsplit(":", 1)[0].strip("[]")
+        if host == "localhost":
+            return True
+        return ipaddress.ip_address(host).is_loopback
+    except ValueError:
+        return False
+
+
+_LINK_KEYS = {
+    "listen",
+    "connect",
+    "key_prefix",
+    "allow_remote",
+    "user",
+    "password_file",
+    "tls_certificate",
+    "tls_private_key",
+    "tls_root_ca",
+    "watchdog_s",
+    "watchdog_action",
+}
+
+
+def check_endpoint(endpoint: str, name: str) -> str:
+    """Return ``endpoint`` when it looks like ``tcp/HOST:PORT`` (or tls/), else ConfigError."""
+    proto, _, rest = endpoint.partition("/")
+    if proto not in ("tcp", "tls") or ":" not in rest:
+        raise ConfigError(f"{name} endpoint must look like tcp/127.0.0.1:7447, got {endpoint!r}")
+    port = rest.split("#", 1)[0].rsplit(":", 1)[1]
+    if not port.isdigit() or not 0 < int(port) < 65536:
+        raise ConfigError(f"{name} endpoint {endpoint!r}: port must be 1..65535")
+    return endpoint
+
+
+def _link(raw: dict[str, Any]) -> LinkSettings:
+    t = _table(raw, "link")
+    _unknown(t, _LINK_KEYS, "link")
+    listen = tuple(_get(t, "listen", "link", list, ["tcp/127.0.0.1:7447"]))
+    connect = tuple(_get(t, "connect", "link", list, []))
+    for e in listen:
+        check_endpoint(e, "link.listen")
+    for e in connect:
+        check_endpoint(e, "link.connect")
+    action = _get(t, "watchdog_action", "link", str, "hold")
+    if action not in WATCHDOG_ACTIONS:
+        raise ConfigError(f"link.watchdog_action must be one of hold, vent; got {action!r}")
+    prefix = _get(t, "key_prefix", "link", str, "softpad/box")
+    if not prefix or any(c in prefix for c in "*$?#") or prefix.startswith("/"):
+        raise ConfigError(
+            f"link.key_prefix must be a plain zenoh key like softpad/box, got {prefix!r}"
+        )
+    link = LinkSettings(
+        listen=listen,
+        connect=connect,
+        key_prefix=prefix,
+        allow_remote=_get(t, "allow_remote", "link", bool, False),
+        user=_get(t, "user", "link", str, None),
+        password_file=_get(t, "password_file", "link", str, None),
+        tls_certificate=_get(t, "tls_certificate", "link", str, None),
+        tls_private_key=_get(t, "tls_private_key", "link", str, None),
+        tls_root_ca=_get(t, "tls_root_ca", "link", str, None),
+        watchdog_s=_range(
+            "link.watchdog_s", _get(t, "watchdog_s", "link", float, 0.5), 0.01, 60.0, " s"
+        ),
+        watchdog_action=action,
+    )
+    check_remote_policy(link)
+    return link
+
+
+def check_remote_policy(link: LinkSettings) -> None:
+    """Refuse a non-loopback endpoint unless ``link.allow_remote`` and auth are both set."""
+    for e in (*link.listen, *link.connect):
+        if is_loopback_endpoint(e):
+            continue
+        if not link.allow_remote:
+            raise ConfigError(
+                f"link.listen/connect endpoint {e!r} is not on 127.0.0.1; set "
+                "link.allow_remote = true (and authentication) to use it"
+            )
+        if not link.has_auth:
+            raise ConfigError(
+                f"endpoint {e!r} is beyond loopback but no authentication is configured: set "
+                "link.user + link.password_file, or link.tls_certificate + link.tls_private_key"
+            )
+
+
+def _pad(raw: dict[str, Any]) -> PadSettings:
+    t = _table(raw, "pad")
+    _unknown(t, {"rows", "cols", "pitch_mm", "pose"}, "pad")
+    pose = _table(t, "pose", "pad")
+    _unknown(pose, {"x_mm", "y_mm", "z_mm", "yaw_deg"}, "pad.pose")
+    rows = _get(t, "rows", "pad", int, 2)
+    cols = _get(t, "cols", "pad", int, 3)
+    for k, v in (("rows", rows), ("cols", cols)):
+        _range(f"pad.{k}", v, 1, 16)
+    pitch = _range("pad.pitch_mm", _get(t, "pitch_mm", "pad", float, 45.0), 5.0, 500.0, " mm")
+    return PadSettings(
+        rows=rows,
+        cols=cols,
+        pitch_m=pitch / 1e3,
+        x_m=_get(pose, "x_mm", "pad.pose", float, 0.0) / 1e3,
+        y_m=_get(pose, "y_mm", "pad.pose", float, 0.0) / 1e3,
+        z_m=_get(pose, "z_mm", "pad.pose", float, 0.0) / 1e3,
+        yaw_rad=math.radians(_get(pose, "yaw_deg", "pad.pose", float, 0.0)),
+    )
+
+
+def _thresholds(raw: dict[str, Any]) -> Thresholds:
+    t = _table(raw, "thresholds")
+    keys = {"p0_kpa", "t_adj_kpa", "t_o_kpa", "t_g_kpa", "window", "max_pressure_kpa"}
+    _unknown(t, keys, "thresholds")
+
+    def kpa(key: str, default_pa: float, lo: float, hi: float) -> float:
+        v = _get(t, key, "thresholds", float, default_pa / 1e3)
+        return _range(f"thresholds.{key}", v, lo, hi, " kPa") * 1e3
+
+    th = Thresholds(
+        p0_pa=kpa("p0_kpa", DEFAULT_P0_PA, *(v / 1e3 for v in thesis.P0_RANGE_PA)),
+        adjust_tolerance_pa=kpa("t_adj_kpa", DEFAULT_ADJUST_TOLERANCE_PA, 0.001, 1.0),
+        object_threshold_pa=kpa("t_o_kpa", DEFAULT_OBJECT_THRESHOLD_PA, 0.001, 5.0),
+        contact_threshold_pa=kpa("t_g_kpa", DEFAULT_CONTACT_THRESHOLD_PA, 0.001, 5.0),
+        filter_window=int(
+            _range("thresholds.window", _get(t, "window", "thresholds", int, 10), 1, 1000)
+        ),
+        max_pressure_pa=kpa(
+            "max_pressure_kpa", DEFAULT_MAX_PRESSURE_PA, 0.2, thesis.MAX_PRESSURE_PA / 1e3
+        ),
+    )
+    if th.p0_pa + th.adjust_tolerance_pa >= th.max_pressure_pa:
+        raise ConfigError(
+            f"thresholds.p0_kpa + t_adj_kpa ({(th.p0_pa + th.adjust_tolerance_pa) / 1e3:g} kPa) "
+            f"must stay below max_pressure_kpa ({th.max_pressure_pa / 1e3:g} kPa)"
+        )
+    return th
+
+
+def parse_installation(raw: dict[str, Any], source: str = "<dict>") -> Installation:
+    """Validate a parsed TOML document into :class:`Installation` (ConfigError names the key)."""
+    _unknown(raw, {"box", "link", "pad", "thresholds", "gripper"}, "")
+    gripper = _table(raw, "gripper")
+    _unknown(gripper, {"mounting"}, "gripper")
+    mounting = _get(gripper, "mounting", "gripper", str, None)
+    if mounting is not None and mounting not in thesis.GRIPPER_MOUNTINGS_M:
+        raise ConfigError(
+            f"gripper.mounting must be one of {', '.join(thesis.GRIPPER_MOUNTINGS_M)}; got {mounting!r}"
+        )
+    return Installation(
+        box=_box(raw),
+        link=_link(raw),
+        pad=_pad(raw),
+        thresholds=_thresholds(raw),
+        gripper_mounting=mounting,
+        source=source,
+    )
+
+
+def load_installation(path: str | Path) -> Installation:
+    """Read and validate an installation file (TOML).
+
+    Raises
+    ------
+    ConfigError
+        Unreadable file, TOML syntax error, unknown key or wrong value (named in the message).
+    """
+    p = Path(path)
+    try:
+        raw = tomllib.loads(p.read_text(encoding="utf-8"))
+    except OSError as exc:
+        raise ConfigError(f"cannot read installation file {str(p)!r}: {exc.strerror}") from None
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        raise ConfigError(f"installation file {str(p)!r} is not valid TOML: {exc}") from None
+    return parse_installation(raw, str(p))
+
+
+def describe(inst: Installation) -> list[str]:
+    """Resolved settings as ``key = value unit`` lines (for ``softpad config check``)."""
+    th, pad, link, box = inst.thresholds, inst.pad, inst.link, inst.box
+    out = [f"# {inst.source}"]
+    out.append(f"box.sample_rate_hz = {box.sample_rate_hz:g} Hz")
+    out.append(f"box.iio_root = {box.iio_root}")
+    for w in (*box.channels, *([box.supply] if box.supply else [])):
+        name = "box.supply" if w.channel == 0 else f"box.channel.{w.channel}"
+        valves = (
+            ""
+            if w.channel == 0
+            else f"{w.gpiochip} inflate line {w.inflate_line}, deflate line {w.deflate_line}; "
+        )
+        out.append(
+            f"{name}: {valves}iio:device{w.iio_device}/in_voltage{w.iio_channel}_raw; "
+            f"p = {w.offset_pa:g} Pa + {w.gain:g} x {w.pa_per_count:g} Pa/count x raw"
+        )
+    out.append(f"link.listen = {', '.join(link.listen) or '-'}")
+    out.append(f"link.connect = {', '.join(link.connect) or '-'}")
+    out.append(f"link.key_prefix = {link.key_prefix}")
+    auth = "user/password" if link.user else ("TLS" if link.tls_certificate else "none")
+    out.append(f"link.auth = {auth}; allow_remote = {str(link.allow_remote).lower()}")
+    out.append(f"link.watchdog = {link.watchdog_s:g} s, then {link.watchdog_action}")
+    out.append(f"pad = {pad.rows} x {pad.cols} modules, pitch {pad.pitch_m * 1e3:g} mm")
+    out.append(
+        f"pad.pose = ({pad.x_m * 1e3:g}, {pad.y_m * 1e3:g}, {pad.z_m * 1e3:g}) mm, "
+        f"yaw {math.degrees(pad.yaw_rad):g} deg"
+    )
+    out.append(
+        f"thresholds: p0 {th.p0_pa / 1e3:g} kPa, t_adj {th.adjust_tolerance_pa / 1e3:g} kPa, "
+        f"t_o {th.object_threshold_pa / 1e3:g} kPa, t_g {th.contact_threshold_pa / 1e3:g} kPa, "
+        f"window {th.filter_window} samples, max {th.max_pressure_pa / 1e3:g} kPa"
+    )
+    mounting = inst.gripper_mounting or "each object's catalogue mounting (Section 6.3)"
+    out.append(f"gripper.mounting = {mounting} (max/min width, cm)")
+    return out

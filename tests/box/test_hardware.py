@@ -1,0 +1,123 @@
+"""The hardware box on a fake sysfs IIO tree and in-memory GPIO lines (gpio-sim where present)."""
+
+from __future__ import annotations
+
+import glob
+import os
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from softpad.box import FakeValveLines, HardwareBox, IIOReader, ValveCommand, check_conformance
+from softpad.config import parse_installation
+
+
+def _fake_iio(root: Path, counts: list[int]) -> None:
+    dev = root / "iio:device0"
+    dev.mkdir(parents=True)
+    for k, c in enumerate(counts):
+        (dev / f"in_voltage{k}_raw").write_text(f"{c}\n")
+    (dev / "in_voltage_scale").write_text("0.439453125\n")
+
+
+def _settings(root: Path, n: int = 3, supply: bool = True):
+    chans = [
+        {
+            "gpiochip": "/dev/gpiochip9",
+            "inflate_line": 2 * k,
+            "deflate_line": 2 * k + 1,
+            "iio_device": 0,
+            "iio_channel": k,
+            "offset_pa": -100.0,
+            "gain": 2.0,
+            "pa_per_count": 0.5,
+        }
+        for k in range(n)
+    ]
+    box: dict = {"channel": chans, "iio_root": str(root), "sample_rate_hz": 1000.0}
+    if supply:
+        box["supply"] = {"iio_device": 0, "iio_channel": n, "pa_per_count": 10.0}
+    return parse_installation({"box": box}).box
+
+
+def _lines(settings) -> FakeValveLines:
+    return FakeValveLines(
+        (w.gpiochip, o) for w in settings.channels for o in (w.inflate_line, w.deflate_line)
+    )
+
+
+def test_iio_reader_reads_counts_and_scale(tmp_path: Path) -> None:
+    _fake_iio(tmp_path, [10, 20, 4095])
+    r = IIOReader(tmp_path, [(0, 0), (0, 1), (0, 2)])
+    np.testing.assert_array_equal(r.read_raw(), [10, 20, 4095])
+    (tmp_path / "iio:device0" / "in_voltage1_raw").write_text("33\n")
+    assert r.read_raw()[1] == 33  # re-read from the open file each time
+    (tmp_path / "iio:device0" / "in_voltage2_raw").write_text("garbage\n")
+    assert np.isnan(r.read_raw()[2])
+    assert r.scale(0) == pytest.approx(0.439453125e-3)
+    r.close()
+
+
+def test_calibration_and_valve_lines(tmp_path: Path) -> None:
+    _fake_iio(tmp_path, [1100, 1200, 1300, 50])
+    s = _settings(tmp_path)
+    lines = _lines(s)
+    box = HardwareBox(s, lines=lines)
+    f = box.read()
+    # p = offset + gain * pa_per_count * raw = -100 + 1.0 * raw
+    np.testing.assert_allclose(f.pressures_pa, [1000, 1100, 1200])
+    assert f.supply_pa == pytest.approx(500)
+    box.set_valve(2, ValveCommand.INFLATE)
+    assert lines.get("/dev/gpiochip9", 2) and not lines.get("/dev/gpiochip9", 3)
+    box.set_valve(2, ValveCommand.DEFLATE)
+    assert not lines.get("/dev/gpiochip9", 2) and lines.get("/dev/gpiochip9", 3)
+    # never both valves of a channel open in any single step
+    for step in lines.history:
+        for ch in range(3):
+            assert not (
+                step.get(("/dev/gpiochip9", 2 * ch)) and step.get(("/dev/gpiochip9", 2 * ch + 1))
+            )
+    box.close()
+    assert lines.released and not any(lines.values.values())
+
+
+def test_hardware_box_passes_conformance_and_stamps_monotonic_frames(tmp_path: Path) -> None:
+    _fake_iio(tmp_path, [1100, 1200, 1300, 50])
+    s = _settings(tmp_path)
+    box = HardwareBox(s, lines=_lines(s))
+    stamps = [box.read().t_s for _ in range(5)]
+    assert np.all(np.diff(stamps) > 0)
+    check_conformance(HardwareBox(s, lines=_lines(s)), frames=10)
+    box.close()
+
+
+def test_missing_sensor_file_is_a_named_fault(tmp_path: Path) -> None:
+    from softpad.errors import HardwareFault
+
+    _fake_iio(tmp_path, [1, 2])
+    with pytest.raises(HardwareFault, match="in_voltage2_raw"):
+        HardwareBox(_settings(tmp_path, 3, supply=False), lines=FakeValveLines([]))
+
+
+@pytest.mark.skipif(
+    not glob.glob("/sys/kernel/config/gpio-sim") or os.geteuid() != 0,
+    reason="gpio-sim (configfs) not available or not root",
+)
+def test_gpiod_lines_on_gpio_sim() -> None:  # pragma: no cover - needs the kernel module
+    from softpad.box import GpiodValveLines
+
+    base = Path("/sys/kernel/config/gpio-sim/softpad-test")
+    (base / "bank0").mkdir(parents=True)
+    (base / "bank0" / "num_lines").write_text("4")
+    (base / "live").write_text("1")
+    try:
+        chip = "/dev/" + (base / "bank0" / "chip_name").read_text().strip()
+        lines = GpiodValveLines([(chip, 0), (chip, 1)])
+        lines.set({(chip, 0): True})
+        assert lines.get(chip, 0)
+        lines.release()
+    finally:
+        (base / "live").write_text("0")
+        (base / "bank0").rmdir()
+        base.rmdir()
