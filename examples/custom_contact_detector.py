@@ -60,7 +60,7 @@ def main() -> dict[str, float | str | None]:
     params = ExecutionParams(hold_s=1.0)
     runs = {}
     for name, detector in (("thesis", None), ("peak-rise", PeakRiseDetector())):
-        run = run_simulated(["banana"], "sim://?seed=3", params, contact_detector=detector)
+        run = run_simulated(["object-5"], "sim://?seed=3", params, contact_detector=detector)
         delay = run.contact_delay_s()
         runs[name] = run
         print(

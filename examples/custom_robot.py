@@ -51,15 +51,15 @@ class LoggingRobot:
 def main() -> dict[str, object]:
     box = SimBox(seed=2)
     world = box.world
-    banana = get_object("banana")
-    world.gripper = SimGripper.mounting(banana.gripper)  # the thesis's mounting for it
+    obj = get_object("object-5")
+    world.gripper = SimGripper.mounting(obj.gripper)  # the thesis's mounting for it
     robot = LoggingRobot(SimulatedRobot(world))
     execution = GraspExecution(
         box,
         robot,
         world.layout,
         ExecutionParams(hold_s=1.0),
-        place_objects=lambda: world.place_object(banana),
+        place_objects=lambda: world.place_object(obj),
     )
     with box:
         result = execution.run()

@@ -1,7 +1,7 @@
 """A 4 x 4 pad planned and grasped through the same execution.
 
 The layout, the simulated world and the box take the grid; the planner generalises the
-thesis's rules to R x C pads (docs/planner.md). The banana lies across modules 7, 8 and 10.
+thesis's rules to R x C pads (docs/planner.md). Object 5 lies across modules 6, 7 and 8.
 
 Run: .venv/bin/python examples/pad_4x4.py
 """
@@ -19,18 +19,18 @@ from softpad.sim import AnalyticWorld, Placement, SimGripper, get_object
 
 def main() -> dict[str, object]:
     layout = PadLayout(rows=4, cols=4)
-    banana = get_object("banana")
-    world = AnalyticWorld(layout=layout, gripper=SimGripper.mounting(banana.gripper))
+    obj = get_object("object-5")
+    world = AnalyticWorld(layout=layout, gripper=SimGripper.mounting(obj.gripper))
     box = SimBox(world, channels=16, seed=5)
     # the catalogue places it on the 2 x 3 pad; shift it by one module up and right
-    p = banana.placement
+    p = obj.placement
     where = Placement(p.x_m + layout.pitch_m, p.y_m + layout.pitch_m, p.yaw_rad)
     execution = GraspExecution(
         box,
         SimulatedRobot(world),
         layout,
         ExecutionParams(hold_s=1.0),
-        place_objects=lambda: world.place_object(banana, where),
+        place_objects=lambda: world.place_object(obj, where),
     )
     with box:
         result = execution.run()

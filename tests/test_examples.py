@@ -22,7 +22,7 @@ def test_plan_from_increments_example(capsys: pytest.CaptureFixture[str]) -> Non
 
 
 def test_custom_contact_detector_example() -> None:
-    """A detector written in the example, plugged into the same execution, holds the banana
+    """A detector written in the example, plugged into the same execution, holds object 5
     and detects sooner than the thesis's running average."""
     result = runpy.run_path(str(EXAMPLES / "custom_contact_detector.py"))["main"]()
     assert result["outcome"] == "held"
@@ -41,11 +41,15 @@ def test_custom_robot_example() -> None:
 
 
 def test_pad_4x4_example() -> None:
-    """The banana moved one module up and right on a 4 x 4 pad: the 2 x 3 plan, shifted."""
+    """Object 5 moved one module up and right on a 4 x 4 pad: the 2 x 3 plan, shifted by one
+    module in x and y (the 2 x 3 pad's plan of the same object, computed here)."""
+    from softpad.harness import run_simulated
+
     result = runpy.run_path(str(EXAMPLES / "pad_4x4.py"))["main"]()
-    assert result["modules"] == (7, 8, 10)
-    assert result["cog"] == pytest.approx((2.0, 2.0), abs=0.01)
-    assert result["theta"] == pytest.approx(-math.pi / 4)
+    small = run_simulated(["object-5"], "sim://?seed=5").result.plans[0]
+    assert small.modules == (1, 2, 3) and result["modules"] == (6, 7, 8)
+    assert result["cog"] == pytest.approx((small.cog[0] + 1, small.cog[1] + 1), abs=0.02)
+    assert result["theta"] == pytest.approx(small.theta) == pytest.approx(math.pi / 2)
     assert result["outcome"] == "held"
 
 

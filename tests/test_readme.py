@@ -15,9 +15,10 @@ ROOT = Path(__file__).resolve().parents[1]
 
 #: Long commands and the quick variant the test runs instead (same options, smaller job).
 QUICK = {
-    "run --objects banana --png run.png": "run --objects banana --png run.png --hold-s 1",
+    "run --objects object-5 --png run.png": "run --objects object-5 --png run.png --hold-s 1",
     "run --objects charger --json": "run --objects charger --json --hold-s 1",
-    "run --objects banana --record run.mcap": "run --objects banana --record run.mcap --hold-s 1",
+    "run --objects object-5 --record run.mcap": "run --objects object-5 --record run.mcap "
+    "--hold-s 1",
     "box monitor --foxglove": "box monitor --foxglove --port 0 --count 20",
     "box monitor": "box monitor --count 20",
     "trials --objects banana,toy --trials 2": "trials --objects banana --trials 1 --workers 1 "
@@ -26,6 +27,10 @@ QUICK = {
     "fem design --models neo-hookean --png design.png": "fem design --models neo-hookean "
     "--png design.png --mesh coarse --values-mm 1.5,2",
     "fem chamber": "fem chamber --mesh coarse --masses-g 12.6",
+    "fem response --out response.npz": "fem response --out response.npz --mesh coarse "
+    "--pressures-kpa 1.1 --no-convergence --no-progress",
+    "pad map --force-n 0.1236 --footprint-mm 42,31 --png map.png": "pad map --force-n 0.1236 "
+    "--footprint-mm 42,31 --png map.png --step-mm 10",
     "bench": "bench --only planning --quick",
     "design --example thesis-set --quick": "design --example blocks --quick --grid 2x3 "
     "--hold-s 0.5 --no-cache --workers 1 --no-progress",
@@ -39,11 +44,11 @@ QUICK = {
 SKIP = {
     "demo --out report": "the main job (55 MuJoCo trials, minutes); `make demo` runs it",
     "box serve --sim": "serves until Ctrl-C on the fixed port 7447; tests/box/test_daemon.py serves",
-    "run --box zenoh://127.0.0.1:7447 --objects banana": "needs the daemon above; "
+    "run --box zenoh://127.0.0.1:7447 --objects object-5": "needs the daemon above; "
     "tests/harness/test_remote.py runs the loop through a served box",
-    "ros node --box sim:// --place banana": "needs a roscore; tests/ros runs it against one",
+    "ros node --box sim:// --place object-5": "needs a roscore; tests/ros runs it against one",
     "sim arm-node --port 5757": "needs a roscore; tests/ros runs it against one",
-    "run --robot ros1:// --box zenoh://127.0.0.1:5757 --objects banana": "needs a roscore and "
+    "run --robot ros1:// --box zenoh://127.0.0.1:5757 --objects object-5": "needs a roscore and "
     "the arm node; tests/ros runs it",
 }
 
@@ -76,7 +81,7 @@ def test_readme_command_runs(command: str, tmp_path: Path, monkeypatch, capsys) 
         shutil.copy(ROOT / "examples" / name, tmp_path / "examples" / name)
     monkeypatch.chdir(tmp_path)
     if "run.mcap" in command and "--record" not in command:  # a recording made by the README
-        assert main(["run", "--objects", "banana", "--record", "run.mcap", "--hold-s", "1"]) == 0
+        assert main(["run", "--objects", "object-5", "--record", "run.mcap", "--hold-s", "1"]) == 0
     argv = shlex.split(QUICK.get(command, command))
     words = [w for w in argv if w not in (">",)]
     redirect = None

@@ -17,6 +17,22 @@ PROTOTYPE_ROWS = 2
 PROTOTYPE_COLS = 3
 #: Channels of the Pneumaticbox (Section 6.1.1: 8 channels).
 BOX_CHANNELS = 8
+#: Side of one module's air chamber, m (Section 6.1.1: "a 45x45 mm piece of acetate" defines
+#: the channel of each square).
+CHAMBER_SIDE_M = 0.045
+#: Bonded width between neighbouring chambers, m: the module pitch less the chamber side. The
+#: seed gives a 45 mm chamber (Section 6.1.1) and 45 mm modules (Section 6.1.2, the grid of
+#: Fig. 6.4a), so within its figures the chambers meet at their clamped edges (0 mm); the
+#: thickness of the mould's grid walls (Fig. 6.2a) is not given.
+SEAM_WIDTH_M = MODULE_PITCH_M - CHAMBER_SIDE_M
+#: Air left under a flat (uninflated) layer, in the acetate channel and the tube inlet, m^3.
+#: Not in the seed; 0.2 mL (a 45 x 45 mm sheet leaves a gap of about 0.1 mm). Shared by the
+#: FEM's chamber and the simulator.
+CHAMBER_GAP_VOLUME_M3 = 0.2e-6
+#: Dead volume of one channel's tubing, m^3. The seed names the tube (Section 6.1.1: SPX-60 FB
+#: Versilon silicone tubing) but not its bore or length; 1 m of 2 mm bore (3.14 mL). Shared by
+#: the FEM's sealed chamber and the simulator's pneumatics.
+TUBING_VOLUME_M3 = math.pi * 1.0e-3**2 * 1.0
 
 # --- Inflation (Section 6.2.1.1) -------------------------------------------------------------
 #: p0, the initial inflating pressure of every module, Pa (1.1 kPa: a module about 9 mm high).
@@ -57,12 +73,14 @@ GRIPPER_MOUNTINGS_M: dict[str, tuple[float, float]] = {
     "6/2": (0.06, 0.02),
     "4/0": (0.04, 0.0),
 }
-#: Fingertip size across the closing direction, m. The seed gives no number ("very small
-#: tips"); 16 mm is the width of the Rethink Electric Parallel Gripper's standard fingertip.
+#: Fingertip size across the closing direction, m. The seed gives no number, only that the tips
+#: were "very small for the chosen gripper" (Section 6.3). 16 mm is the Rethink Robotics
+#: electric parallel gripper's basic hard tip (the Sawyer's standard tip): collision box
+#: 16 x 6.5 x 37 mm in RethinkRobotics/intera_common,
+#: intera_tools_description/urdf/electric_gripper/fingers/basic_hard_tip.xacro.
 FINGERTIP_WIDTH_M = 0.016
-#: Fingertip size along the closing direction, m. Not in the seed; small enough (8 mm) that a
-#: tip can lie on a non-sensitive line between modules, as Section 6.3 reports.
-FINGERTIP_THICKNESS_M = 0.008
+#: Fingertip size along the closing direction, m: 6.5 mm, the same basic hard tip (source above).
+FINGERTIP_THICKNESS_M = 0.0065
 
 #: Closing speed of each jaw, m/s. Not in the seed; chosen equal to the approach speed so that
 #: the jaws meet an object as gently as the fingers meet the pad.
@@ -81,6 +99,8 @@ __all__ = [
     "ADJUST_TOLERANCE_PA",
     "APPROACH_SPEED_M_S",
     "BOX_CHANNELS",
+    "CHAMBER_GAP_VOLUME_M3",
+    "CHAMBER_SIDE_M",
     "CONTACT_THRESHOLD_PA",
     "EXPERIMENT_2_SUCCESSES",
     "FILTER_WINDOW",
@@ -99,6 +119,8 @@ __all__ = [
     "PROTOTYPE_ROWS",
     "REFERENCE_READS",
     "SAFETY_SHIFT",
+    "SEAM_WIDTH_M",
     "THETA_RANGE_RAD",
     "TRIALS_PER_OBJECT",
+    "TUBING_VOLUME_M3",
 ]

@@ -192,7 +192,7 @@ def test_cli_read_json_and_stats(capsys: pytest.CaptureFixture[str]) -> None:
         assert stats["frames"] >= 20 and stats["target_rate_hz"] == 100.0
 
 
-def test_served_simulator_holds_the_banana_while_two_monitors_watch(
+def test_served_simulator_holds_object_5_while_two_monitors_watch(
     capsys: pytest.CaptureFixture[str],
 ) -> None:
     """The issue's end-to-end case: daemon and monitors in their own processes, as deployed."""
@@ -221,7 +221,7 @@ def test_served_simulator_holds_the_banana_while_two_monitors_watch(
         assert "serving" in serve.stdout.readline()  # type: ignore[union-attr]
         read = [*cli, "box", "read", "--box", url, "--count", "500", "--json"]
         monitors = [subprocess.Popen(read, stdout=subprocess.PIPE, text=True) for _ in range(2)]
-        argv = ["run", "--box", url, "--object", "banana", "--json", "--hold-s", "0.5"]
+        argv = ["run", "--box", url, "--object", "object-5", "--json", "--hold-s", "0.5"]
         assert main(argv) == 0
         assert json.loads(capsys.readouterr().out)["outcome"] == "held"
         for m in monitors:

@@ -48,7 +48,7 @@ def test_exit_code_of_each_exception_class() -> None:
 
 
 def test_held_grasp_exits_0_with_json(capsys) -> None:
-    code, data, _ = _json(capsys, "run", "--objects", "banana", "--hold-s", "1", "--json")
+    code, data, _ = _json(capsys, "run", "--objects", "object-5", "--hold-s", "1", "--json")
     assert code == 0 and data["outcome"] == "held" and "error" not in data
 
 
@@ -161,7 +161,7 @@ def test_an_existing_file_is_refused_without_force(capsys, monkeypatch, tmp_path
     argv = [
         "run",
         "--objects",
-        "banana",
+        "object-5",
         "--hold-s",
         "0",
         "--record",

@@ -46,8 +46,10 @@ def stubbed() -> Iterator[Path]:
     import softpad.design
     import softpad.fem
     import softpad.harness
+    import softpad.sim._probe
 
     mp = pytest.MonkeyPatch()
+    mp.setattr(softpad.sim._probe, "sealed_rise_map", _started)
     mp.setattr(softpad.harness, "run_simulated", _started)
     mp.setattr(softpad.cli._trials, "run_with_progress", _started)
     mp.setattr(softpad.cli._demo, "_reference_plans", _started)
@@ -67,6 +69,9 @@ def stubbed() -> Iterator[Path]:
         "module_characteristic",
     ):
         mp.setattr(softpad.fem, name, _started)
+    import softpad.fem._response
+
+    mp.setattr(softpad.fem._response, "module_response", _started)
     with tempfile.TemporaryDirectory() as folder:
         mp.chdir(folder)
         (Path(folder) / "m.csv").write_text("pressure_kpa,height_mm\n0,0\n1,8\n2,11\n")
@@ -179,6 +184,23 @@ OPTIONS = (
         (["fem", "characteristic"], "--loads-n"),
         (["fem", "characteristic"], "--pressures-kpa"),
         (["fem", "characteristic"], "--gap-volume-ml"),
+        (["fem", "response"], "--out"),
+        (["fem", "response"], "--pressures-kpa"),
+    ]
+    + [
+        (["pad", "probe", "--force-n", "0.2", "--footprint-mm", "10,10"], "--at"),
+        (["pad", "probe", "--at", "1,1", "--footprint-mm", "10,10"], "--force-n"),
+        (["pad", "probe", "--at", "1,1", "--force-n", "0.2"], "--footprint-mm"),
+        (["pad", "probe", "--at", "1,1", "--force-n", "0.2", "--footprint-mm", "10,10"], "--box"),
+    ]
+    + [
+        (["pad", "map", "--footprint-mm", "10,10", "--png", "m.png"], "--force-n"),
+        (["pad", "map", "--force-n", "1", "--png", "m.png"], "--footprint-mm"),
+        (["pad", "map", "--force-n", "1", "--footprint-mm", "10,10"], "--png"),
+        (
+            ["pad", "map", "--force-n", "1", "--footprint-mm", "10,10", "--png", "m.png"],
+            "--step-mm",
+        ),
     ]
 )
 

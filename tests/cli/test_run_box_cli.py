@@ -34,19 +34,21 @@ def test_run_json_has_the_documented_keys(capsys, tmp_path) -> None:
         assert key in d
     assert d["outcome"] == "held" and d["contact_detected"] is True
     assert set(d["objects"][0]) == {"modules", "pcom", "cog", "theta", "rule", "cog_m"}
-    np.testing.assert_allclose(d["objects"][0]["cog"], [0.5, 1.2], atol=0.03)
+    # Table 6.1 plans (0.5, 1.2); the simulator predicts it within 0.1 module units
+    # (tests/sim/test_table_6_1.py: COG_TOLERANCE)
+    np.testing.assert_allclose(d["objects"][0]["cog"], [0.5, 1.2], atol=0.1)
     assert log.stat().st_size > 0
 
 
 def test_run_prints_a_timeline_and_plots(capsys, tmp_path) -> None:
     png = tmp_path / "trace.png"
-    assert main(["run", "--objects", "banana", "--hold-s", "1", "--png", str(png)]) == 0
+    assert main(["run", "--objects", "object-5", "--hold-s", "1", "--png", str(png)]) == 0
     out = capsys.readouterr().out
     for text in (
         "adjusted",
         "reference saved",
-        "object detected on module(s) 2, 3, 4",
-        "plan: modules 2,3,4",
+        "object detected on module(s) 1, 2, 3",
+        "plan: modules 1,2,3",
         "contact detected",
         "outcome: held",
     ):

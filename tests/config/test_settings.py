@@ -117,9 +117,10 @@ def test_run_takes_thresholds_from_the_installation_file(
 
     site = tmp_path / "site.toml"
     site.write_text("[thresholds]\nt_g_kpa = 2.9\n")
-    assert main(["run", "--objects", "banana", "--config", str(site), "--json"]) == 1  # not held
+    assert main(["run", "--objects", "object-5", "--config", str(site), "--json"]) == 1  # not held
     assert json.loads(capsys.readouterr().out)["outcome"] == "contact_not_detected"
     assert (
-        main(["run", "--objects", "banana", "--config", str(SITE), "--json", "--hold-s", "1"]) == 0
+        main(["run", "--objects", "object-5", "--config", str(SITE), "--json", "--hold-s", "1"])
+        == 0
     )
     assert json.loads(capsys.readouterr().out)["outcome"] == "held"

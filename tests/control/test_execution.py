@@ -15,14 +15,18 @@ from softpad.sim import AnalyticWorld, SimGripper, get_object
 FAST = ExecutionParams(hold_s=1.0)
 
 
-def test_banana_full_loop() -> None:
+def test_full_loop_on_object_5() -> None:
+    """Object 5 (a Duplo plate along the top row, a brick stack one stud left of its middle):
+    seen on the top row, planned on the row's axis left of its middle (towards the heavier
+    part, short of the stack at x = 1.14) with the jaws across the row, and held."""
     log = RunLog()
-    r = run_simulated(["banana"], "sim://?seed=11", FAST, log)
+    r = run_simulated(["object-5"], "sim://?seed=11", FAST, log)
     d = r.to_dict()
     assert d["outcome"] == "held" and d["contact_detected"] is True
-    assert [o["modules"] for o in d["objects"]] == [[2, 3, 4]]
-    np.testing.assert_allclose(d["objects"][0]["cog"], [1.0, 1.0], atol=1e-9)
-    np.testing.assert_allclose(d["objects"][0]["theta"], -np.pi / 4, atol=1e-9)
+    assert [o["modules"] for o in d["objects"]] == [[1, 2, 3]]
+    x, y = d["objects"][0]["cog"]
+    assert 1.14 < x < 1.5 and y == 1.5
+    np.testing.assert_allclose(d["objects"][0]["theta"], np.pi / 2, atol=1e-9)
     # delay from first touch to detection, and the travel it implies at 0.05 m/s
     assert 0.0 < d["contact_delay_s"] < 0.3
     np.testing.assert_allclose(d["finger_travel_m"], 0.05 * d["contact_delay_s"], atol=0.51e-3)

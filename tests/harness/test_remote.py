@@ -72,12 +72,12 @@ def test_bad_remote_requests_are_input_errors(call, match: str) -> None:
         assert daemon.controller == box.client_id
 
 
-def test_loop_over_zenoh_holds_the_banana_with_the_local_plan_and_closes_valves() -> None:
+def test_loop_over_zenoh_holds_object_5_with_the_local_plan_and_closes_valves() -> None:
     params = ExecutionParams(hold_s=0.5)
     log = RunLog()
     with served(lockstep_frames=2) as (daemon, url):
-        result = run_simulated(["banana"], url, params, recorder=log)
-        local = run_simulated(["banana"], "sim://?seed=4", params)
+        result = run_simulated(["object-5"], url, params, recorder=log)
+        local = run_simulated(["object-5"], "sim://?seed=4", params)
         assert result.outcome == local.outcome == "held"
         assert [g.plan.modules for g in result.result.grasps] == [
             g.plan.modules for g in local.result.grasps

@@ -17,7 +17,7 @@ pytest.importorskip("mcap_ros2")
 @pytest.fixture(scope="module")
 def recording(tmp_path_factory) -> Path:
     path = tmp_path_factory.mktemp("rec") / "run.mcap"
-    argv = ["run", "--object", "banana", "--hold-s", "1", "--record", str(path), "--box"]
+    argv = ["run", "--object", "object-5", "--hold-s", "1", "--record", str(path), "--box"]
     assert main([*argv, "sim://?seed=2"]) == 0
     return path
 
@@ -50,21 +50,27 @@ def test_rosbags_reads_every_stream(recording: Path) -> None:
             reader.deserialize(raw, c.msgtype)
             for c, _, raw in reader.messages([by_topic["/softpad/events"]])
         ]
-    # module 2 carries the banana: inflated to p0 = 1.1 kPa (within t_adj = 30 Pa) and loaded above it
+    # module 2 carries object 5: inflated to p0 = 1.1 kPa (within t_adj = 30 Pa), loaded above it
     p = np.array([m.fluid_pressure for m in m2])
     assert m2[0].header.frame_id == "softpad_module_2"
     assert abs(np.median(p[len(p) // 2 :]) - 1100.0) < 400.0 and p.max() > 1100.0 + 50.0
-    # the banana's thesis grasp: COG (1, 1) module units = (45, 45) mm, theta = -pi/4
+    # the grasp topic carries the plan event's COG in metres and theta as the yaw: object 5 on
+    # the top row's axis (y = 1.5 module units = 67.5 mm), jaws across the row (pi/2)
+    kinds0 = [e.kind for e in events]
+    planned = json.loads(events[kinds0.index("plan")].data_json)["objects"][0]
     pose = plans[0].poses[0]
-    np.testing.assert_allclose([pose.position.x, pose.position.y], [0.045, 0.045], atol=0.5e-3)
+    np.testing.assert_allclose(
+        [pose.position.x, pose.position.y], np.array(planned["cog"]) * 0.045, atol=0.5e-3
+    )
+    np.testing.assert_allclose(pose.position.y, 0.0675, atol=0.5e-3)
     yaw = 2 * np.arctan2(pose.orientation.z, pose.orientation.w)
-    np.testing.assert_allclose(yaw, -np.pi / 4, atol=1e-9)
+    np.testing.assert_allclose(yaw, np.pi / 2, atol=1e-9)
     assert any("inflate" in v.commands for v in valves) and valves[-1].commands == ["closed"] * 8
     kinds = [e.kind for e in events]
     for kind in ("phase", "adjusted", "reference", "object_seen", "plan", "contact", "outcome"):
         assert kind in kinds
     contact = json.loads(events[kinds.index("contact")].data_json)
-    assert set(contact["modules"]) <= {1, 2, 4, 5}
+    assert set(contact["modules"]) <= {4, 5, 6}  # the jaw on the pad comes down on the bottom row
 
 
 def test_mcap_reader_sees_ros2_profile_metadata_and_two_clocks(recording: Path) -> None:
@@ -76,7 +82,8 @@ def test_mcap_reader_sees_ros2_profile_metadata_and_two_clocks(recording: Path) 
         assert reader.get_header().profile == "ros2"
         meta = {m.name: dict(m.metadata) for m in reader.iter_metadata()}["softpad"]
         assert (
-            json.loads(meta["objects"]) == ["banana"] and json.loads(meta["box"]) == "sim://?seed=2"
+            json.loads(meta["objects"]) == ["object-5"]
+            and json.loads(meta["box"]) == "sim://?seed=2"
         )
         for key in ("software_version", "wall_clock_start", "params"):
             assert key in meta

@@ -125,15 +125,10 @@ def _floats(text: str, key: str) -> list[float]:
     return [float(v) for v in re.findall(rf"^\s*{key}: (\S+)$", text, re.M)]
 
 
-def _plan_json(*args: str) -> dict:  # type: ignore[type-arg]
-    r = subprocess.run(
-        [SOFTPAD, "plan", *args, "--json"], capture_output=True, text=True, check=True
-    )
-    return json.loads(r.stdout)
-
-
 def test_node_publishes_pressures_diagnostics_and_the_plan(procs: _Procs) -> None:
-    node, log = procs.start("node", SOFTPAD, "ros", "node", "--box", "sim://", "--place", "banana")
+    node, log = procs.start(
+        "node", SOFTPAD, "ros", "node", "--box", "sim://", "--place", "object-5"
+    )
 
     def grasps() -> str:
         assert node.poll() is None, log.read_text()
@@ -144,10 +139,10 @@ def test_node_publishes_pressures_diagnostics_and_the_plan(procs: _Procs) -> Non
     assert 'frame_id: "softpad"' in text
     x, y, z = _floats(text, "x")[0], _floats(text, "y")[0], _floats(text, "z")
     yaw = 2.0 * math.atan2(z[1], _floats(text, "w")[0])
-    # the banana on modules 2, 3, 4 (thesis increments): COG (1, 1), theta -pi/4
-    plan = _plan_json("--delta", "0,0.124,0.078,0.109,0,0")["objects"][0]
-    assert (x, y) == pytest.approx(plan["cog_m"], abs=1e-9)
-    assert yaw == pytest.approx(plan["theta"], abs=1e-9)
+    # object 5 along the top row: on the row's axis (y = 1.5 module units), left of its middle
+    # (towards its heavier part), the jaws across the row
+    assert y == pytest.approx(0.0675, abs=1e-9) and 0.045 < x < 0.0675
+    assert yaw == pytest.approx(math.pi / 2, abs=1e-9)
 
     hz = procs.run(
         "timeout", "-s", "INT", "8", "rostopic", "hz", "-w", "100", "/softpad/module_1/pressure"
@@ -167,8 +162,8 @@ def test_node_publishes_pressures_diagnostics_and_the_plan(procs: _Procs) -> Non
     assert 1000.0 < _floats(pressure, "fluid_pressure")[0] < 1300.0  # p0 = 1.1 kPa, Pa
     r = procs.run("rosservice", "call", "/softpad/plan")
     assert "success: True" in r.stdout, r.stdout + r.stderr
-    assert "n3-diagonal-corner" in r.stdout
-    assert "data: False" in _echo(procs, "/softpad/contact")  # nothing touches the banana
+    assert "n3-row" in r.stdout
+    assert "data: False" in _echo(procs, "/softpad/contact")  # nothing touches the pad
     tf = _echo(procs, "/tf_static")
     assert 'child_frame_id: "softpad"' in tf and 'child_frame_id: "softpad_module_6"' in tf
 
@@ -183,22 +178,22 @@ def _arm(procs: _Procs, *extra: str) -> tuple[subprocess.Popen[bytes], Path, str
     return arm, log, url
 
 
-def test_run_with_the_arm_in_ros_holds_the_banana_with_the_simulated_plan(procs: _Procs) -> None:
+def test_run_with_the_arm_in_ros_holds_object_5_with_the_simulated_plan(procs: _Procs) -> None:
     _, _, url = _arm(procs)
-    args = ("run", "--objects", "banana", "--hold-s", "1", "--json")
+    args = ("run", "--objects", "object-5", "--hold-s", "1", "--json")
     r = procs.run(SOFTPAD, *args, "--robot", "ros1://", "--box", url, timeout_s=90)
     assert r.returncode == 0, r.stderr
     ros = json.loads(r.stdout)
     sim = json.loads(procs.run(SOFTPAD, *args, timeout_s=90).stdout)
     assert ros["outcome"] == "held"
     # The arm node's daemon samples on the wall clock, so valve commands land a frame or two
-    # apart from the in-process run: the same plan, its PCOM within 0.05 module units.
+    # apart from the in-process run: the same plan, its PCOM and COG (object 5's COG is its
+    # PCOM on the row's axis) within 0.05 module units.
     assert len(ros["objects"]) == len(sim["objects"]) == 1
     (a,), (b,) = ros["objects"], sim["objects"]
-    assert (a["modules"], a["cog"], a["theta"], a["rule"]) == (
-        b["modules"], b["cog"], b["theta"], b["rule"]
-    )  # fmt: skip
-    assert abs(a["pcom"][0] - b["pcom"][0]) < 0.05 and abs(a["pcom"][1] - b["pcom"][1]) < 0.05
+    assert (a["modules"], a["theta"], a["rule"]) == (b["modules"], b["theta"], b["rule"])
+    for key in ("pcom", "cog"):
+        assert abs(a[key][0] - b[key][0]) < 0.05 and abs(a[key][1] - b[key][1]) < 0.05
     assert ros["grasps"][0]["contact_modules"]
 
 

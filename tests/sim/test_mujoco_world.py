@@ -41,16 +41,24 @@ def test_is_a_world() -> None:
 
 
 @pytest.mark.parametrize("module", [1, 2, 3, 4, 5, 6], ids=lambda k: f"module{k}")
-def test_resting_brick_loads_only_its_module_with_its_weight(module: int) -> None:
+def test_resting_brick_loads_only_its_module_weighted_by_the_response(module: int) -> None:
     world = MujocoWorld(objects=(brick(),))
     x, y = PadLayout().to_metres(PadLayout().center(module))
     world.place_object(brick(), Placement(x, y))
     settle(world)
-    loads = world.module_loads_n()
+    forces, loads = world.module_forces_n(), world.module_loads_n()
     expected = np.zeros(6)
     expected[module - 1] = 0.0126 * GRAVITY_M_S2
     # static equilibrium: the contact forces carry the weight (1 % for solver residuals)
-    np.testing.assert_allclose(loads, expected, rtol=0.01, atol=1e-4)
+    np.testing.assert_allclose(forces, expected, rtol=0.01, atol=1e-4)
+    # the brick rests on the dome's apex: each newton there squeezes the chamber as much as
+    # s(0) / s_ref newtons on the characteristic's 30 mm patch (FEM response, within 10 mm)
+    r, p = world.response.response, world.operating_pressure_pa
+    top = r.influence([(0.0, 0.0)], p)[0] / r.reference_influence(p)
+    edge = r.influence([(0.010, 0.0)], p)[0] / r.reference_influence(p)
+    ratio = loads[module - 1] / forces[module - 1]
+    assert edge <= ratio <= top + 1e-9
+    np.testing.assert_allclose(np.delete(loads, module - 1), 0.0, atol=1e-6)
 
 
 def test_heavier_part_loads_its_module_more() -> None:
@@ -67,7 +75,7 @@ def test_heavier_part_loads_its_module_more() -> None:
     # heavy half over module 1 (x = 0.5 units): yaw pi turns the bar around
     world.place_object(bar, Placement(PITCH, 1.5 * PITCH, np.pi))
     settle(world, 1.5)
-    loads = world.module_loads_n()
+    loads = world.module_forces_n()
     total = (light + heavy) * GRAVITY_M_S2
     np.testing.assert_allclose(loads.sum(), total, rtol=0.01)
     np.testing.assert_allclose(loads[2:], 0.0, atol=1e-6)
@@ -93,50 +101,31 @@ def descend_fingers(world: MujocoWorld, x_m: float, y_m: float, width_m: float) 
     return peak
 
 
-@pytest.mark.parametrize(
-    ("x_units", "on_module"),
-    [(1.0, True), (2.0, True), (1.3, True), (1.5, False)],
-    ids=["tips-on-modules-4-5", "tips-on-modules-5-6", "tips-off-centre", "tips-on-lines"],
-)
-def test_fingertip_on_line_loads_no_module(x_units: float, on_module: bool) -> None:
-    """Tip centres 45 mm apart (x +- 22.5 mm): both on module tops, or, with the gripper
-    centred at x = 1.5 units, both on the lines at x = 1 and x = 2 units."""
-    gripper = MujocoGripper(mounting="10/4")
-    world = MujocoWorld(gripper=gripper)
-    # inner faces at +-22.5 mm from the centre; tip centres at +-(22.5 + 2.5) mm
-    width = PITCH - gripper.tip_thickness_m
-    peak = descend_fingers(world, x_units * PITCH, 0.5 * PITCH, width)
-    # t_g = 90 Pa is 0.13 N on a module at the box's 700 Pa/N
-    if on_module:
-        # the sole spring (80 N/m) is compressed by several mm: well above t_g
-        assert peak > 0.2
-    else:
-        # the 4 mm tips slip between the domes onto the 5 mm lines
-        assert peak < 0.05
-        assert min(world.gripper_contacts().sole_on_lines_n) > 0.0
+def test_fingertips_on_the_seams_are_barely_sensed() -> None:
+    """The gripper's tips (GripperSpec, 6.5 x 16 mm) 45 mm apart: centred on modules 4 and 5 (x = 0.75 and
+    1.75 units) against centred on the seams at x = 1 and 2 units, where they press the
+    clamped edges of the domes: the FEM response there is a small fraction of the centre's."""
+    peaks = []
+    for x_units in (1.25, 1.5):
+        gripper = MujocoGripper(mounting="10/4")
+        world = MujocoWorld(gripper=gripper)
+        width = PITCH - gripper.tip_thickness_m  # tip centres 45 mm apart
+        peaks.append(descend_fingers(world, x_units * PITCH, 0.5 * PITCH, width))
+    # t_g = 90 Pa is about 0.13 N of equivalent load at the box's 670 Pa/N
+    assert peaks[0] > 0.2
+    assert peaks[1] < 0.15 * peaks[0]
 
 
-@pytest.mark.parametrize(
-    ("tip_width_m", "on_module"), [(0.016, True), (0.010, False)], ids=["tip-16mm", "tip-10mm"]
-)
-def test_fingertip_across_line_is_sensed_when_it_reaches_the_domes(
-    tip_width_m: float, on_module: bool
-) -> None:
-    """Tips centred on the line between rows (y = 1 unit, modules 2 and 5), 12 mm either side
-    of column 2's centre (like object 1's thesis grasp, whose tip crosses that line): a 16 mm
-    tip reaches 5.5 mm past the line's edges onto the flanks of both domes and is sensed; a
-    10 mm tip reaches 2.5 mm, which 12 mm from the column's centre is still outside the
-    domes' round 40 mm footprints, and rests on the line."""
-    world = MujocoWorld(gripper=MujocoGripper(mounting="10/2", tip_width_m=tip_width_m))
-    peak = descend_fingers(world, 1.5 * PITCH, 1.0 * PITCH, 0.020)
-    contacts = world.gripper_contacts()
-    if on_module:
-        assert peak > 0.2  # t_g = 90 Pa is 0.13 N on a module
-        assert contacts.sole_on_modules == ((2, 5), (2, 5))
-    else:
-        assert peak < 0.05
-        assert contacts.sole_on_modules == ((), ())
-        assert min(contacts.sole_on_lines_n) > 0.0
+def test_fingertip_across_the_row_seam_touches_both_domes_and_is_weakly_sensed() -> None:
+    """Tips (16 mm wide) centred on the seam between rows (y = 1 unit, modules 2 and 5), like
+    object 1's thesis grasp: both domes' flanks carry them, near their clamped edges."""
+    world = MujocoWorld(gripper=MujocoGripper(mounting="10/2"))
+    across = descend_fingers(world, 1.5 * PITCH, 1.0 * PITCH, 0.020)
+    assert world.gripper_contacts().sole_on_modules == ((2, 5), (2, 5))
+    inside = descend_fingers(
+        MujocoWorld(gripper=MujocoGripper(mounting="10/2")), 1.5 * PITCH, 1.5 * PITCH, 0.020
+    )
+    assert 0.0 < across < 0.5 * inside
 
 
 @pytest.mark.parametrize(("asked", "got"), [(1.0, 0.06), (0.0, 0.02)], ids=["open", "close"])

@@ -2,7 +2,9 @@
 
 Targets (issue "Beat the thesis's loop"): the best detector's median delay at most one third of
 the thesis detector's at the same sample rate, with zero false alarms over 10 simulated hours
-of an idle pad with sensor noise and drift.
+of an idle pad with sensor noise and drift and the slow disturbances of a real pad on (room
+temperature swing, membrane creep, a small leak, the sensors' thermal zero shift:
+``sim://?disturbances=1``, docs/box-and-simulator.md).
 """
 
 from __future__ import annotations
@@ -10,6 +12,29 @@ from __future__ import annotations
 import statistics
 
 from softpad.benchmarks._common import BenchResult
+
+#: The idle pad of the false-alarm count: inflated to p0, sensor noise and disturbances on.
+IDLE_BOX = "sim://?rate_hz=100&inflated_kpa=1.1&disturbances=1&seed={seed}"
+
+
+def idle_false_alarms_per_hour(detector: str, hours: float, seed: int = 7) -> float:
+    """False contact alarms per hour of an idle pad at 100 Hz with noise, drift and the slow
+    disturbances on; the detector is re-armed with the same reference after every alarm."""
+    import numpy as np
+
+    from softpad.box import open_box
+    from softpad.sensing import make_contact_detector
+
+    det = make_contact_detector(detector)
+    alarms = 0
+    with open_box(IDLE_BOX.format(seed=seed)) as box:
+        ref = np.mean([f.pressures_pa[:6] for f in box.read_many(10)], axis=0)
+        det.reset(ref)
+        for _ in range(round(hours * 3600 * box.sample_rate_hz)):
+            if det.update(box.read().pressures_pa[:6]):
+                alarms += 1
+                det.reset(ref)
+    return alarms / hours
 
 
 def _delays(detector: str, rate_hz: int, names: list[str], seeds: tuple[int, ...]) -> list[float]:
@@ -34,7 +59,6 @@ def _delays(detector: str, rate_hz: int, names: list[str], seeds: tuple[int, ...
 
 def run(quick: bool) -> list[BenchResult]:
     from softpad.sim import object_names
-    from softpad.trials._compare import idle_false_alarms_per_hour
 
     names = list(object_names())[:3] if quick else list(object_names())
     seeds = (1,) if quick else (1, 2, 3)
@@ -58,12 +82,14 @@ def run(quick: bool) -> list[BenchResult]:
         alarms = idle_false_alarms_per_hour(detector, hours)
         out.append(
             BenchResult(
-                f"false contact alarms, {detector} detector, idle pad with noise and drift",
+                f"false contact alarms, {detector} detector, idle pad with noise, drift and "
+                "disturbances",
                 alarms,
                 "per hour",
                 target="0 per hour",
                 met=alarms == 0,
-                detail=f"{hours:g} h simulated at 100 Hz (seed 7), re-armed after each alarm",
+                detail=f"{hours:g} h simulated at 100 Hz (seed 7, sim://?disturbances=1), "
+                "re-armed after each alarm",
             )
         )
     return out

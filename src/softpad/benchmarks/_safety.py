@@ -1,6 +1,6 @@
 """Randomised fault campaigns: the whole loop with random faults, the true pressure watched.
 
-Each run places the banana on the simulated box (analytic world), injects one or two faults of
+Each run places object 5 on the simulated box (analytic world), injects one or two faults of
 random kind, channel and time (0..28 s: every phase of the loop), runs the loop and then leaves
 the box alone for 30 s of box time. The simulator's true chamber pressure is read at every
 frame, during the run and after; the campaign reports the peak, whether every run ended in a
@@ -95,7 +95,7 @@ def run_one(seed: int, rate_hz: float = 50.0) -> CampaignRun:
     box = open_box(f"sim://?seed={seed}&rate_hz={rate_hz:g}&faults={','.join(specs)}")
     watch = _TrueWatch(box)
     try:
-        res = run_simulated(["banana"], box, ExecutionParams(hold_s=15.0), watch)
+        res = run_simulated(["object-5"], box, ExecutionParams(hold_s=15.0), watch)
         run.outcome = res.outcome
     except HardwareFault as exc:
         run.outcome = "fault"
@@ -153,7 +153,7 @@ def run(quick: bool) -> list[BenchResult]:
             "kPa",
             target=f"<= {limit / 1e3:g} kPa",
             met=s["peak_true_pa"] <= limit,
-            detail=f"{s['runs']} runs, {s['faults']} faults (seeds 1000..{999 + n}), 50 Hz, banana",
+            detail=f"{s['runs']} runs, {s['faults']} faults (seeds 1000..{999 + n}), 50 Hz, object 5",
         ),
         BenchResult(
             "fault campaign: runs ended by a detected fault",

@@ -1,8 +1,8 @@
 """Simulated box and closed loop: simulator speed, contact-detection delay, false alarms.
 
 * speed of the simulated box with 8 channels at 1 kHz, as a real-time factor (simulated
-  seconds per wall second; target >= 200x, issue 15): idle with an object resting (the hot path), every
-  valve open (gas physics every step), and the whole loop on the banana;
+  seconds per wall second; target >= 200x, issue 15): idle with an object resting (the hot
+  path), every valve open (gas physics every step), and the whole loop on object 5;
 * contact detection with the thesis detector (running average of 10 samples above
   t_g) at the thesis approach speed: time from the first fingertip touch
   to detection and the finger travel in between, medians over the Table 6.1 objects;
@@ -67,13 +67,15 @@ def _speed(quick: bool) -> list[BenchResult]:
     hold = 1.0 if quick else thesis.HOLD_S
     for rate in (1000, 100):
         t0 = time.perf_counter()
-        r = run_simulated(["banana"], f"sim://?rate_hz={rate}&seed=1", ExecutionParams(hold_s=hold))
+        r = run_simulated(
+            ["object-5"], f"sim://?rate_hz={rate}&seed=1", ExecutionParams(hold_s=hold)
+        )
         wall = time.perf_counter() - t0
         sim_total = r.result.phases[-1][1]
         f = sim_total / wall
         out.append(
             BenchResult(
-                f"closed loop on the banana, 8 channels at {rate} Hz",
+                f"closed loop on object 5, 8 channels at {rate} Hz",
                 f,
                 "x real time",
                 detail="informative (the >= 200x target is the simulator's, above); one run: "

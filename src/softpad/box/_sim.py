@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from softpad import thesis
 from softpad.box._base import Box, ConnectionLost, PressureFrame, ValveCommand
 from softpad.errors import InputError
 from softpad.layout import PadLayout, parse_layout
@@ -24,6 +25,7 @@ from softpad.sim._characteristic import (
     ModuleCharacteristic,
     default_characteristic,
 )
+from softpad.sim._disturbances import DisturbanceParams, Disturbances
 from softpad.sim._pneumatics import ChamberBank, PneumaticParams
 from softpad.sim._sensor import SensorBank, SensorParams
 
@@ -132,6 +134,9 @@ class SimBox(Box):
         Start with every module at this gauge pressure (0: deflated).
     realtime
         Pace :meth:`read` to the wall clock.
+    disturbances
+        Slow temperature swing, membrane creep, small leaks and the sensors' thermal zero
+        shift (:class:`~softpad.sim.DisturbanceParams`; None: off).
     """
 
     def __init__(
@@ -145,9 +150,12 @@ class SimBox(Box):
         sensor: SensorParams | None = None,
         initial_pressure_pa: float = 0.0,
         realtime: bool = False,
+        disturbances: DisturbanceParams | None = None,
     ) -> None:
         super().__init__()
         self.world: World = world if world is not None else AnalyticWorld()
+        # worlds that weight loads by the FEM response evaluate it at the chambers' pressure
+        self._operate = getattr(self.world, "set_operating_pressure", lambda p: None)
         n_mod = self.world.layout.n_modules
         if not isinstance(channels, int) or not n_mod <= channels <= 64:
             raise InputError(
@@ -175,10 +183,12 @@ class SimBox(Box):
                 raise InputError(
                     f"initial pressure must be within 0..5 kPa, got {initial_pressure_pa / 1e3:g} kPa"
                 )
+            self._operate(float(initial_pressure_pa))
             self.chambers.set_state(
                 np.full(n_mod, float(initial_pressure_pa)), self.world.module_loads_n()
             )
         self.sensors = SensorBank(channels, self._dt, self.sensor_params, rng)
+        self._setup_disturbances(disturbances, rng)
         self._n_mod = n_mod
         self._valve_count = 0
         self._cmd_inf = np.zeros(n_mod, dtype=bool)
@@ -200,6 +210,32 @@ class SimBox(Box):
         self._disconnected = False
         self.realtime = bool(realtime)
         self._wall0: float | None = None
+
+    def _setup_disturbances(
+        self, params: DisturbanceParams | None, rng: np.random.Generator
+    ) -> None:
+        """The slow disturbances (None: off) and the leak area that loses their rate at p0."""
+        self.disturbances = None if params is None else Disturbances(params, self._channels, rng)
+        self._sensor_shift: NDArray[np.float64] | None = None
+        self._dist_leak_m2 = 0.0
+        if self.disturbances is not None:
+            ch, p0 = self.chambers, np.array([thesis.P0_PA])
+            char = self.characteristic
+            v = float(char.volume_m3(p0, np.zeros(1))[0]) + self.pneumatics.tubing_volume_m3
+            dv = float(char.volume_slope_m3_pa(p0, np.zeros(1))[0])
+            dn_dp = v + (self.pneumatics.atmosphere_pa + thesis.P0_PA) * dv
+            self._dist_leak_m2 = self.disturbances.leak_area_m2(
+                dn_dp, ch.orifice_gain, self.pneumatics.laminar_pa
+            )
+
+    def _disturb(self, t: float) -> None:
+        """Apply the slow disturbances up to ``t`` (every ``update_s``)."""
+        dist = self.disturbances
+        assert dist is not None
+        ratio, elapsed = dist.advance(t)
+        p = dist.params
+        self.chambers.disturb(ratio, elapsed, self._dist_leak_m2, p.creep_fraction, p.creep_time_s)
+        self._sensor_shift = dist.sensor_shift_pa()
 
     # --- Box API --------------------------------------------------------------------
     @property
@@ -244,6 +280,10 @@ class SimBox(Box):
         if not same_load:
             self._loads_key = key
         supply_true = self._supply_true
+        dist = self.disturbances
+        disturbed = dist is not None and t >= dist.next_s
+        if disturbed:
+            self._disturb(t)
         held = False
         if not same_load:
             changed = True
@@ -264,11 +304,14 @@ class SimBox(Box):
                 same_load=same_load,
                 valve_key=self._valve_count,
             )
+        if disturbed:
+            changed = True
         sensors = self.sensors
         if not changed:
             values, supply = sensors.sample(chambers.pressure_pa, supply_true, False)
         elif chambers.solved:  # heights follow the exact solves (every <= 20 ms)
             self._heights = chambers.heights_m()
+            self._operate(float(np.median(chambers.pressure_pa[: self._n_mod])))
             values, supply = sensors.sample(chambers.pressure_pa, supply_true, True)
         else:  # a linear stretch between solves: readings precomputed along the ramp
             hit = sensors.next_on_ramp(chambers.solve_count, supply_true)
@@ -277,6 +320,8 @@ class SimBox(Box):
                     chambers.pressure_pa, chambers.rate_dt_pa, chambers.solve_count, supply_true
                 )
             values, supply = hit
+        if self._sensor_shift is not None:
+            values = values + self._sensor_shift
         if self._bad_sensor:
             values = values.copy()
             values[self._dropout] = self.sensor_params.range_min_pa
@@ -371,6 +416,8 @@ _SIM_OPTIONS = {
     "inflated_kpa": "start with every module at this pressure (0: deflated)",
     "supply_kpa": "regulated supply pressure (10)",
     "noise": "0 for an ideal noise-free sensor (1)",
+    "disturbances": "1 for slow temperature swing, membrane creep, small leaks and sensors' "
+    "thermal zero shift (0)",
     "characteristic": "analytic, or default (the FEM table when packaged)",
     "gripper": "gripper mounting 10/4, 6/2 or 4/0 (10/4)",
     "object": "name of a catalogue object placed on the pad at start",
@@ -427,6 +474,9 @@ def open_sim_url(location: str, options: dict[str, str]) -> SimBox:
     noise = options.get("noise", "1")
     if noise not in ("0", "1"):
         raise InputError(f"sim:// option noise={noise!r} must be 0 or 1")
+    disturb = options.get("disturbances", "0")
+    if disturb not in ("0", "1"):
+        raise InputError(f"sim:// option disturbances={disturb!r} must be 0 or 1")
     realtime = options.get("realtime", "0")
     if realtime not in ("0", "1"):
         raise InputError(f"sim:// option realtime={realtime!r} must be 0 or 1")
@@ -441,6 +491,7 @@ def open_sim_url(location: str, options: dict[str, str]) -> SimBox:
         sensor=SensorParams() if noise == "1" else SensorParams.ideal(),
         initial_pressure_pa=_num(options, "inflated_kpa", 0.0) * 1e3,
         realtime=realtime == "1",
+        disturbances=DisturbanceParams() if disturb == "1" else None,
     )
     for text in filter(None, (s.strip() for s in options.get("faults", "").split(","))):
         box.inject_fault(Fault.parse(text))

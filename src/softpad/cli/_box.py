@@ -21,7 +21,7 @@ _SERVE_EPILOG = """examples:
   softpad box serve --sim --box 'sim://?rate_hz=1000' --listen tcp/127.0.0.1:7450
   softpad box serve --hardware /etc/softpad/site.toml       the real box (GPIO + IIO)
   then: softpad box monitor --box zenoh://127.0.0.1:7447
-        softpad run --box zenoh://127.0.0.1:7447 --objects banana     (with --sim)
+        softpad run --box zenoh://127.0.0.1:7447 --objects object-5   (with --sim)
 
 Zenoh with multicast scouting off, listening only on the endpoints given (127.0.0.1 by
 default). Any number of monitors; one controlling client at a time. When the controller's

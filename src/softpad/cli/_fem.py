@@ -202,8 +202,9 @@ def register(sub: Any) -> None:
     c.add_argument(
         "--dead-volume-ml",
         type=finite_float("--dead-volume-ml", lo=0.0, unit="mL"),
-        default=3.1416,
-        help="tubing and sensor dead volume in mL (default 3.14: 1 m of 2 mm tubing)",
+        default=round((thesis.TUBING_VOLUME_M3 + thesis.CHAMBER_GAP_VOLUME_M3) * 1e6, 4),
+        help="dead volume in mL: tubing (1 m of 2 mm bore) plus the 0.2 mL gap under the flat "
+        "layer, as in the simulator (default %(default)g)",
     )
     c.add_argument(
         "--threshold-kpa",
@@ -248,9 +249,9 @@ def register(sub: Any) -> None:
         help="output file (default ./characteristic.npz); developers regenerate the shipped "
         "table with --out src/softpad/data/module_characteristic.npz --force",
     )
-    t.add_argument("--loads-n", help="loads in N starting at 0 (default 0..3 N, 15 values)")
+    t.add_argument("--loads-n", help="loads in N starting at 0 (default 0..6 N, 18 values)")
     t.add_argument(
-        "--pressures-kpa", help="pressures in kPa starting at 0 (default 0..3 every 0.1)"
+        "--pressures-kpa", help="pressures in kPa starting at 0 (default 0..5 every 0.1)"
     )
     t.add_argument(
         "--gap-volume-ml",
@@ -259,6 +260,28 @@ def register(sub: Any) -> None:
         help="residual air under the flat layer added to every volume, mL (default 0.2)",
     )
     t.set_defaults(handler=_characteristic)
+
+    r = fem_sub.add_parser(
+        "response",
+        help="chamber response to a load at every point of the module, 0.5..2.8 kPa (.npz)",
+    )
+    _add_common(r)
+    r.add_argument(
+        "--out",
+        metavar="FILE.npz",
+        default="module_response.npz",
+        help="output file (default ./module_response.npz); developers regenerate the shipped "
+        "table with --out src/softpad/data/module_response.npz --force",
+    )
+    r.add_argument(
+        "--pressures-kpa", help="increasing pressures in kPa (default 0.5..2.8, 9 values)"
+    )
+    r.add_argument(
+        "--no-convergence",
+        action="store_true",
+        help="skip the mesh-convergence check (a refined mesh at 1.1 kPa, about 10 s)",
+    )
+    r.set_defaults(handler=_response)
 
 
 def _usage(p: argparse.ArgumentParser) -> int:
@@ -695,3 +718,46 @@ def _characteristic_csv(result: Any, path: str) -> None:
         for j, f in enumerate(result.load_n):
             rows.append([p * 1e-3, f, result.volume_m3[i, j] * 1e6, result.height_m[i, j] * 1e3])
     write_csv(path, ["pressure_kpa", "load_n", "volume_ml", "height_mm"], rows)
+
+
+def _response(args: argparse.Namespace) -> int:
+    from softpad.fem._response import (
+        DEFAULT_RESPONSE_PRESSURES_PA,
+        module_response,
+        response_convergence,
+    )
+
+    _check_outputs(args)
+    pressures = (
+        _numbers(args.pressures_kpa, "--pressures-kpa", 1e3, positive=True)
+        if args.pressures_kpa
+        else DEFAULT_RESPONSE_PRESSURES_PA
+    )
+    geometry, mesh, material = _geometry(args), _mesh(args), _material(args)
+    with _progress(args, "response") as progress:
+        result = module_response(material, pressures, geometry, mesh, progress)
+    if not args.no_convergence:
+        result.meta["convergence"] = response_convergence(material, mesh=mesh, geometry=geometry)
+    with atomic_path(args.out) as tmp:
+        result.to_npz(tmp)
+    summary = {
+        "path": str(args.out),
+        "pressure_kpa": [p * 1e-3 for p in result.pressure_pa],
+        "reference_s_ml_n": [s * 1e6 for s in result.reference_influence_m3_n],
+        "compliance_ml_kpa": [c * 1e9 for c in result.compliance_m3_pa],
+        "meta": result.meta,
+    }
+    if args.json:
+        emit(summary)
+        return 0
+    conv = result.meta.get("convergence")
+    print(
+        f"wrote {args.out}: {len(result.pressure_pa)} pressures x "
+        f"{len(result.axis_m)}^2 nodes ({result.meta['model']}, {result.meta['mesh']})"
+    )
+    if conv:
+        print(
+            f"mesh convergence at {conv['pressure_pa'] / 1e3:g} kPa: largest difference "
+            f"{100 * conv['largest_difference']:.2f} % against {conv['reference_mesh']}"
+        )
+    return 0

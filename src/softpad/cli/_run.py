@@ -15,11 +15,11 @@ from softpad.cli._record import add_record_option, open_recorder, run_metadata
 from softpad.errors import EXIT_FAILED, EXIT_HARDWARE, EXIT_OK, HardwareFault, InputError
 
 _EPILOG = """examples:
-  softpad run --objects banana
+  softpad run --objects object-5
   softpad run --objects object-4 --png run.png --record run.mcap
   softpad run --objects object-1,object-4       two objects, grasped one after the other
   softpad run --box 'sim://?seed=3&rate_hz=200' --objects charger --json
-  softpad run --objects banana --p0-kpa 1.5 --contact-threshold-kpa 0.12 --window 5
+  softpad run --objects object-5 --p0-kpa 1.5 --contact-threshold-kpa 0.12 --window 5
 
 objects: object-1 .. object-6, banana, toy, limes, cylinder, charger (seed, Table 6.1)
 exit code: 0 every grasp held, 1 a grasp not held, 2 bad input, 3 hardware or link fault
@@ -50,7 +50,7 @@ def register(sub: Any) -> None:
     p.add_argument(
         "--objects",
         metavar="NAME,...",
-        help="thesis objects to place, comma-separated (default banana)",
+        help="thesis objects to place, comma-separated (default object-5)",
     )
     p.add_argument("--object", action="append", help=argparse.SUPPRESS)  # old spelling
     p.add_argument(
@@ -143,7 +143,7 @@ def _object_names(args: argparse.Namespace) -> list[str]:
     names: list[str] = name_list(args.objects, "--objects") if args.objects else []
     for text in args.object or []:
         names += name_list(text, "--object")
-    return names or ["banana"]
+    return names or ["object-5"]
 
 
 def run(args: argparse.Namespace) -> int:

@@ -36,6 +36,7 @@ _COMMAND_MODULES = (
     "_compare",
     "_fem",
     "_design",
+    "_pad",
     "_demo",
     "_replay",
     "_log",

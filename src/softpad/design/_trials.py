@@ -8,6 +8,7 @@ depend on where they ran; every (seed, object, trial) is one task on the client 
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Callable, Sequence
 from typing import Any
@@ -85,13 +86,19 @@ def run_experiment_on_dask(
             if on_trial is not None:
                 on_trial(res)
     wall = time.perf_counter() - t0
+    noise = {
+        "position_sigma_mm": round(config.position_sigma_m * 1e3, 6),
+        "yaw_sigma_deg": round(math.degrees(config.yaw_sigma_rad), 6),
+    }
     return [
         ExperimentResult(
             trials=tuple(results[(s, spec.name, k)] for spec in specs for k in range(trials)),
             seed=s,
             masses_g={spec.name: spec.mass_kg * 1e3 for spec in specs},
-            wall_time_s=wall,
+            wall_time_s=wall / len(seeds),  # the seeds ran together: each its share
             workers=n_workers,
+            seeds=(s,),
+            placement_noise=noise,
         )
         for s in seeds
     ]

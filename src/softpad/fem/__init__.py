@@ -5,7 +5,8 @@ as a nearly incompressible hyperelastic block with fixed lateral faces and a fol
 pressure on its lower face; a quarter model uses both symmetry planes. On top of the model:
 material presets of thesis Table 7.1, inflation / design / stiffness / sensitive-area /
 sealed-chamber studies, parameter fitting to measured (pressure, height) pairs, and the
-module characteristic (volume and height against pressure and load) used by ``softpad.sim``.
+module characteristic (volume and height against pressure and load) and the module response
+(chamber squeeze per newton at every point of the top face) used by ``softpad.sim``.
 
 FElupe, tensortrax, scipy and matplotlib are imported lazily inside the functions.
 """
@@ -51,6 +52,12 @@ from softpad.fem._model import (
     ProgressCallback,
     SolverOptions,
 )
+from softpad.fem._response import (
+    DEFAULT_RESPONSE_PRESSURES_PA,
+    module_response,
+    response_convergence,
+)
+from softpad.fem._response_table import ModuleResponse
 from softpad.fem._studies import (
     DesignResult,
     InflationResult,
@@ -69,6 +76,7 @@ __all__ = [
     "CHARACTERISTIC_PATH",
     "DEFAULT_DEAD_VOLUME_M3",
     "DEFAULT_MESH",
+    "DEFAULT_RESPONSE_PRESSURES_PA",
     "DEFAULT_THICKNESS_M",
     "DEFAULT_WIDTH_M",
     "MATERIAL_PRESETS",
@@ -85,6 +93,7 @@ __all__ = [
     "ModuleCharacteristic",
     "ModuleGeometry",
     "ModuleModel",
+    "ModuleResponse",
     "ModuleState",
     "ProgressCallback",
     "SensitivityResult",
@@ -97,8 +106,10 @@ __all__ = [
     "inflation_sweep",
     "load_characteristic",
     "module_characteristic",
+    "module_response",
     "plate_center_deflection_m",
     "read_measurements",
+    "response_convergence",
     "sealed_chamber_study",
     "sensitive_area_study",
     "stiffness_study",

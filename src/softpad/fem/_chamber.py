@@ -31,8 +31,10 @@ from softpad.fem._results import as_list, label_axes, new_axes, write_csv
 
 #: Standard atmosphere, Pa.
 ATMOSPHERIC_PRESSURE_PA = 101_325.0
-#: Default dead volume: 1 m of tubing with 2 mm inner diameter, m^3 (about 3.1 mL).
-DEFAULT_DEAD_VOLUME_M3 = float(np.pi * 1.0e-3**2 * 1.0)
+#: Default dead volume, m^3 (3.34 mL): the channel's tubing plus the residual gap under a flat
+#: layer (:data:`softpad.thesis.TUBING_VOLUME_M3` + :data:`~softpad.thesis.CHAMBER_GAP_VOLUME_M3`),
+#: the same air the simulator's pneumatics count (the finite-element volume has no gap).
+DEFAULT_DEAD_VOLUME_M3 = thesis.TUBING_VOLUME_M3 + thesis.CHAMBER_GAP_VOLUME_M3
 #: Standard gravity, m/s^2.
 GRAVITY_M_PER_S2 = 9.80665
 #: Footprint of the thesis's Lego Duplo brick (42 x 31 mm, 12.6 g).

@@ -42,18 +42,21 @@ CHARACTERISTIC_PATH = Path(str(resources.files("softpad") / "data" / "module_cha
 #: Version of the file layout.
 CHARACTERISTIC_VERSION = 1
 
-#: Default pressure grid of the shipped table, Pa (0..3 kPa every 100 Pa).
-DEFAULT_PRESSURES_PA = np.linspace(0.0, thesis.MAX_PRESSURE_PA, 31)
-#: Default load grid of the shipped table, N (fine near zero for light objects).
+#: Default pressure grid of the shipped table, Pa (0..5 kPa every 100 Pa: a sealed module
+#: pressed by a gripper goes well above the 3 kPa inflation limit; the unloaded neo-Hookean
+#: layer has no equilibrium beyond about 5.2 kPa, the top of its inflation curve).
+DEFAULT_PRESSURES_PA = np.linspace(0.0, 5000.0, 51)
+#: Default load grid of the shipped table, N (fine near zero for light objects, up to 6 N for
+#: a gripper pressing on an object).
 DEFAULT_LOADS_N = np.array(
-    [0.0, 0.02, 0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5, 0.75, 1.0, 1.5, 2.0, 2.5, 3.0]
+    [0.0, 0.02, 0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5, 0.75, 1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0]
 )
 #: Default load patch: a centred 30 mm square (a fingertip or the part of an object's
 #: weight resting on one module).
 DEFAULT_LOAD_PATCH = LoadPatch.square(0.030)
-#: Residual air under a flat layer (acetate channel, tube inlet), m^3; the simulator's analytic
-#: characteristic uses the same 0.2 mL.
-DEFAULT_GAP_VOLUME_M3 = 0.2e-6
+#: Residual air under a flat layer (acetate channel, tube inlet), m^3
+#: (:data:`softpad.thesis.CHAMBER_GAP_VOLUME_M3`, shared with the simulator).
+DEFAULT_GAP_VOLUME_M3 = thesis.CHAMBER_GAP_VOLUME_M3
 
 
 @dataclass(frozen=True)

@@ -93,7 +93,7 @@ def inflation_study(
     seeds: Sequence[int] = (1, 2, 3),
     detector: str = "cusum",
     rate_hz: float = 1000.0,
-    obj: str = "banana",
+    obj: str = "object-5",
 ) -> list[InflationPoint]:
     """Every (p0, speed) point of the grid (p0 within the seed's usable 0.5 to 2.8 kPa)."""
     for p in pressures_pa:

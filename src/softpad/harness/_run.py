@@ -21,10 +21,10 @@ _REMOTE_WORLD = (
 
 
 def resolve_objects(names: Sequence[str] | None) -> list[ObjectSpec]:
-    """Catalogue objects by name (``banana`` when None); InputError lists the known names."""
+    """Catalogue objects by name (``object-5`` when None); InputError lists the known names."""
     if names is not None and len(names) == 0:
         raise InputError("no object given: name at least one catalogue object")
-    names = list(names) if names else ["banana"]
+    names = list(names) if names else ["object-5"]
     specs = [get_object(n) for n in names]
     if len(set(names)) != len(names):
         raise InputError(f"each object can be placed once, got {names}")
@@ -94,7 +94,7 @@ def run_simulated(
     objects
         Catalogue names (``object-1`` .. ``object-6``, ``banana``, ``toy``, ``limes``,
         ``cylinder``, ``charger``); several objects lying on separate modules are planned and
-        grasped one after the other. ``banana`` when None.
+        grasped one after the other. ``object-5`` when None.
     box
         A :class:`~softpad.box.SimBox` or a ``sim://`` URL; or a ``zenoh://`` box whose daemon
         offers the simulator's world and robot (``softpad box serve --sim``).

@@ -24,14 +24,21 @@ class GripperSpec:
     ----------
     max_width_m, min_width_m
         Largest and smallest distance between the fingertips' inner faces, metres
-        (thesis: 10/4, 6/2 or 4/0 cm).
+        (seed, Section 6.3: the three mountings 10/4, 6/2 or 4/0 cm).
     finger_length_m
-        Finger length, metres (9.5 cm in the thesis).
+        Finger length, metres (seed, Section 6.3: 9.5 cm).
     tip_width_m
-        Size of a fingertip across the closing direction, metres.
+        Size of a fingertip across the closing direction, metres: 16 mm, the Sawyer electric
+        gripper's basic hard tip (:data:`softpad.thesis.FINGERTIP_WIDTH_M` names the source; the
+        seed only says the tips were "very small for the chosen gripper").
     tip_thickness_m
-        Size of a fingertip along the closing direction, metres. The thesis notes the tips were
-        very small, which let a tip land entirely on a non-sensitive line between modules.
+        Size of a fingertip along the closing direction, metres: 6.5 mm, the same tip.
+
+    Notes
+    -----
+    One set of figures for the planner, the analytic world (``softpad.sim.SimGripper``) and the
+    MuJoCo world (``softpad.sim.MujocoGripper.from_spec``); they come from the seed and the
+    gripper's published description and are never changed to make a trial pass.
     """
 
     max_width_m: float = 0.06
@@ -59,6 +66,17 @@ class GripperSpec:
                 f"gripper config must be one of {sorted(GRIPPER_CONFIGS_M)}, got {name!r}"
             )
         mx, mn = GRIPPER_CONFIGS_M[name]
+        return cls(max_width_m=mx, min_width_m=mn)
+
+    @classmethod
+    def from_mounting(cls, mounting: str) -> GripperSpec:
+        """One of the thesis's mountings by its widths in cm: ``"10/4"``, ``"6/2"``, ``"4/0"``."""
+        if mounting not in thesis.GRIPPER_MOUNTINGS_M:
+            raise InputError(
+                f"gripper mounting must be one of {', '.join(thesis.GRIPPER_MOUNTINGS_M)}, "
+                f"got {mounting!r}"
+            )
+        mx, mn = thesis.GRIPPER_MOUNTINGS_M[mounting]
         return cls(max_width_m=mx, min_width_m=mn)
 
     def fingertip_centres(

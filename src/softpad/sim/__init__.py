@@ -2,7 +2,8 @@
 
 The simulated box (``sim://``) is the default back-end of :mod:`softpad.box`; it steps the
 gas physics of every channel and a :class:`World` (:class:`AnalyticWorld`, or
-:class:`MujocoWorld` for rigid-body contact physics, docs/trials.md) once per sample period. Objects of the thesis (Table 6.1) are data in
+:class:`MujocoWorld` for rigid-body contact physics, docs/trials.md) once per sample period.
+What a module senses of a load is the FEM module response (:class:`PadResponse`). Objects of the thesis (Table 6.1) are data in
 ``softpad/data/objects.json``.
 """
 
@@ -15,9 +16,9 @@ from softpad.sim._characteristic import (
     packaged_table_path,
     sealed_sensitivity_pa_n,
 )
+from softpad.sim._disturbances import DisturbanceParams, Disturbances
 from softpad.sim._footprint import (
     DEFAULT_LINE_WIDTH_M,
-    DEFAULT_TIP_SENSITIVE_SIDE_M,
     GRAVITY_M_S2,
     ObjectFootprint,
     PadSurface,
@@ -37,27 +38,36 @@ from softpad.sim._objects import (
     object_names,
 )
 from softpad.sim._pneumatics import ChamberBank, PneumaticParams
+from softpad.sim._response import (
+    ModuleResponse,
+    PadResponse,
+    default_response,
+    packaged_response_path,
+)
 from softpad.sim._sensor import SensorBank, SensorParams
 from softpad.sim._world import GripperState, World
 
 __all__ = [
     "CATALOGUE_SCHEMA",
     "DEFAULT_LINE_WIDTH_M",
-    "DEFAULT_TIP_SENSITIVE_SIDE_M",
     "GRAVITY_M_S2",
     "GRIPPER_MOUNTINGS",
     "AnalyticCharacteristic",
     "AnalyticWorld",
     "ChamberBank",
+    "DisturbanceParams",
+    "Disturbances",
     "GripperContacts",
     "GripperState",
     "ModuleCharacteristic",
+    "ModuleResponse",
     "MujocoGripper",
     "MujocoWorld",
     "ObjectFootprint",
     "ObjectPose",
     "ObjectSpec",
     "PadPhysics",
+    "PadResponse",
     "PadSurface",
     "PartSpec",
     "Placement",
@@ -69,11 +79,13 @@ __all__ = [
     "World",
     "catalogue_to_json",
     "default_characteristic",
+    "default_response",
     "fingertip_overlap",
     "get_object",
     "load_catalogue",
     "object_footprint",
     "object_names",
+    "packaged_response_path",
     "packaged_table_path",
     "sealed_sensitivity_pa_n",
 ]

@@ -3,9 +3,10 @@
 Implements :class:`~softpad.sim.World` without a physics engine (see ``_footprint.py`` for the
 load model). The gripper is a kinematic parallel jaw (seed, Section 6.3: 9.5 cm fingers,
 opening ranges 10/4, 6/2 and 4/0 cm) whose two rectangular fingertips load the modules under
-them once they touch the pad: the force of a fingertip is ``k_tip * penetration``, shared by
-the modules in proportion to the fingertip area over their sensitive squares. A fingertip that
-lies only on a non-sensitive line loads no module (the thesis's failure mode, Section 6.3).
+them once they touch the pad: the force of a fingertip is ``k_tip * penetration``. What a
+module senses of any force (objects, fingertips, a probe) is its *equivalent load*, weighted by
+the FEM response at the point (:class:`~softpad.sim.PadResponse`): a fingertip near the clamped
+edge between two chambers squeezes either little (the thesis's failure mode, Section 6.3).
 """
 
 from __future__ import annotations
@@ -20,7 +21,6 @@ from softpad import thesis
 from softpad.errors import InputError
 from softpad.layout import GripperSpec, PadLayout
 from softpad.sim._footprint import (
-    DEFAULT_TIP_SENSITIVE_SIDE_M,
     GRAVITY_M_S2,
     ObjectFootprint,
     PadSurface,
@@ -30,6 +30,7 @@ from softpad.sim._footprint import (
     to_pad_frame,
 )
 from softpad.sim._objects import ObjectSpec, Placement
+from softpad.sim._response import ModuleResponse, PadResponse, operating_pressure, rect_points
 from softpad.sim._world import GripperState
 
 #: Opening ranges of the thesis's gripper mountings, (max, min) width in metres (Section 6.3).
@@ -125,8 +126,13 @@ class _Placed:
     placement: Placement
     footprint: ObjectFootprint
     outline_m: NDArray[np.float64]  # pad-frame sample points of every part (stacked ones too)
-    loads_n: NDArray[np.float64]
+    loads_n: NDArray[np.float64]  # equivalent loads of the object's weight on each module, N
     lifted: bool = False
+
+    @property
+    def load_fraction(self) -> NDArray[np.float64]:
+        """Equivalent load per newton pushing on the object, per module."""
+        return self.loads_n / (self.spec.mass_kg * GRAVITY_M_S2)
 
 
 @dataclass
@@ -145,27 +151,26 @@ class AnalyticWorld:
         Pad geometry (2 x 3, 45 mm by default).
     gripper
         Gripper geometry; mounting 10/4 by default.
-    line_width_m
-        Width of the non-sensitive lines between modules, metres (3 mm).
     start_height_m
         Initial height of the fingertips above the pad base, metres.
-    tip_sensitive_side_m
-        Side of the central square of a module where a fingertip is fully sensed, metres
-        (the thesis's l at 1.1 kPa, about 26.5 mm); towards the lines the sensed share of a
-        fingertip's force falls linearly to zero. None: sensed uniformly up to the lines.
+    response
+        FEM module response (the packaged one by default); its chamber side fixes the seams.
     """
 
     def __init__(
         self,
         layout: PadLayout | None = None,
         gripper: SimGripper | None = None,
-        line_width_m: float = 3e-3,
         start_height_m: float = 0.15,
-        tip_sensitive_side_m: float | None = DEFAULT_TIP_SENSITIVE_SIDE_M,
+        response: ModuleResponse | None = None,
     ) -> None:
-        self.tip_sensitive_side_m = tip_sensitive_side_m
         self._layout = layout or PadLayout()
-        self.surface = PadSurface(self._layout, line_width_m)
+        self.response = PadResponse(self._layout, response)
+        self.surface = PadSurface(self._layout, self.response.seam_width_m)
+        #: Chamber pressure at which the response is evaluated, Pa (see set_operating_pressure).
+        self.operating_pressure_pa = operating_pressure(thesis.P0_PA, self.response.response)
+        self._probe: tuple[tuple[float, float], tuple[float, float], float, float] | None = None
+        self._probe_loads = np.zeros(self._layout.n_modules)
         self._gripper = gripper or SimGripper()
         w, h = self.surface.size_m
         self._state = GripperState(w / 2, h / 2, start_height_m, 0.0, self._gripper.max_width_m)
@@ -234,9 +239,61 @@ class AnalyticWorld:
         placement = placement or spec.placement
         fp = object_footprint(spec, self.surface, placement)
         pts = [to_pad_frame(part_outline(p, 2e-3), placement) for p in spec.parts]
-        loads = fp.weight_fraction * spec.mass_kg * GRAVITY_M_S2
-        self._objects.append(_Placed(spec, placement, fp, np.vstack(pts), loads))
+        placed = _Placed(spec, placement, fp, np.vstack(pts), self._equivalent(fp))
+        self._objects.append(placed)
         self._update_object_loads()
+
+    def _equivalent(self, fp: ObjectFootprint) -> NDArray[np.float64]:
+        """Equivalent loads of a footprint's contact forces at the operating pressure, N."""
+        forces = fp.pressure_pa * fp.area_m2
+        return self.response.equivalent_loads(fp.points_m, forces, self.operating_pressure_pa)
+
+    def set_operating_pressure(self, pressure_pa: float) -> None:
+        """Evaluate the response at the chambers' pressure (rounded to 50 Pa, clamped to the
+        response's range); the simulated box calls this as the pressures change."""
+        p = operating_pressure(pressure_pa, self.response.response)
+        if p == self.operating_pressure_pa:
+            return
+        self.operating_pressure_pa = p
+        for o in self._objects:
+            o.loads_n = self._equivalent(o.footprint)
+        self._overlap_cache.clear()
+        self._update_probe()
+        self._update_object_loads()
+
+    def press(
+        self,
+        center_m: tuple[float, float],
+        size_m: tuple[float, float],
+        force_n: float,
+        yaw_rad: float = 0.0,
+    ) -> None:
+        """Press a rigid flat block on the pad: ``force_n`` spread uniformly over a rectangle
+        (``size_m`` = sides along its x and y, rotated by ``yaw_rad``) centred at ``center_m``
+        (pad frame); replaces the previous block. ``force_n = 0`` lifts it."""
+        for name, v in (
+            ("force", force_n),
+            ("yaw", yaw_rad),
+            *zip(("x", "y"), center_m, strict=True),
+        ):
+            if not math.isfinite(v):
+                raise InputError(f"probe {name} must be finite, got {v!r}")
+        if force_n < 0:
+            raise InputError(f"probe force must be >= 0 N, got {force_n:g} N")
+        if min(size_m) <= 0 or not all(math.isfinite(v) for v in size_m):
+            raise InputError(f"probe footprint sides must be > 0 m, got {size_m}")
+        self._probe = (center_m, size_m, force_n, yaw_rad) if force_n > 0 else None
+        self._update_probe()
+        self._update_object_loads()
+
+    def _update_probe(self) -> None:
+        self._probe_loads = np.zeros(self._layout.n_modules)
+        if self._probe is not None:
+            c, size, f, yaw = self._probe
+            pts = rect_points(c, size, yaw)
+            self._probe_loads = self.response.equivalent_loads(
+                pts, f / len(pts), self.operating_pressure_pa
+            )
 
     def remove_objects(self) -> None:
         self._objects.clear()
@@ -265,12 +322,13 @@ class AnalyticWorld:
         return tuple(o.spec for o in self._objects)
 
     def object_loads_n(self) -> NDArray[np.float64]:
-        """Loads of the objects alone (no fingertips), per module, newtons."""
+        """Equivalent loads of the objects (and of a probe block) without the fingertips, per
+        module, newtons."""
         return self._object_loads.copy()
 
     def _update_object_loads(self) -> None:
         self._objects_version += 1  # objects placed, lifted or removed: tip caches are stale
-        self._object_loads = np.zeros(self._layout.n_modules)
+        self._object_loads = self._probe_loads.copy()
         for o in self._objects:
             if not o.lifted:
                 self._object_loads += o.loads_n
@@ -412,7 +470,8 @@ class AnalyticWorld:
                 st.yaw_rad,
                 (g.tip_thickness_m, g.tip_width_m),
                 self.surface,
-                sensitive_side_m=self.tip_sensitive_side_m,
+                response=self.response,
+                pressure_pa=self.operating_pressure_pa,
             )
             if len(self._overlap_cache) > 256:
                 self._overlap_cache.clear()
@@ -461,7 +520,7 @@ class AnalyticWorld:
             force = g.tip_stiffness_n_m * pen
             # what the tip landed on carries its force while it slides (closing jaws)
             if tip.on_object is not None and not tip.on_object.lifted:
-                loads += force * tip.on_object.footprint.weight_fraction
+                loads += force * tip.on_object.load_fraction
             elif tip.on_object is None:
                 loads += force * frac
         self._tip_loads = loads

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from dataclasses import dataclass, field
 from functools import cached_property
 from importlib import resources
@@ -31,8 +32,10 @@ from numpy.typing import ArrayLike, NDArray
 from softpad import thesis
 from softpad.errors import InputError
 
-#: Name of the packaged FEM table (written by the FEM issue).
+#: Name of the packaged FEM table (written by ``softpad fem characteristic``).
 PACKAGED_TABLE = "module_characteristic.npz"
+#: Side of the FEM table's default load patch (a centred square), m.
+DEFAULT_LOAD_PATCH_M = 0.030
 
 
 @runtime_checkable
@@ -65,19 +68,20 @@ class AnalyticCharacteristic:
         h(p, F)   = h_ref V(p, F) / V_ref.
 
     ``a`` and ``n`` are fitted so that ``V(p_ref) = V_ref`` and ``dV/dp(p_ref) = compliance``.
-    Defaults: the FEM's scale (about 8 mL of air at 1.1 kPa, growing 3.8 mL/kPa),
-    the thesis's height of 9 mm at 1.1 kPa (Section 6.3), and an effective area chosen so that
-    a sealed module rises ``load_sensitivity_pa_n`` per newton (see docs/box-and-simulator.md
-    for why 0.85 kPa/N rather than the FEM's 0.53 kPa/N).
+    Defaults, all from the project's FEM at 1.1 kPa (``softpad fem response``, neo-Hookean,
+    docs/fem.md) except the height: 7.73 mL of air under the layer plus the 0.2 mL gap,
+    3.71 mL/kPa, and ``A_eff = (dV/dp) / (-dV/dF)`` = 1.466e-3 m^2 for a load on the
+    characteristic's central 30 x 30 mm patch (``-dV/dF`` = 2.53 mL/N); the thesis's height of
+    9 mm at 1.1 kPa (Section 6.3).
 
     Parameters
     ----------
     reference_pressure_pa
         p_ref, pascals (1.1 kPa, the thesis's inflating pressure).
     reference_volume_m3
-        V_ref, air volume at p_ref without load, m^3 (8 mL).
+        V_ref, air volume at p_ref without load, gap included, m^3 (7.93 mL).
     compliance_m3_pa
-        dV/dp at p_ref, m^3/Pa (3.8 mL/kPa).
+        dV/dp at p_ref, m^3/Pa (3.71 mL/kPa).
     reference_height_m
         h_ref, top height at p_ref without load, m (9 mm).
     gap_volume_m3
@@ -89,12 +93,12 @@ class AnalyticCharacteristic:
     """
 
     reference_pressure_pa: float = thesis.P0_PA
-    reference_volume_m3: float = 8.0e-6
-    compliance_m3_pa: float = 3.8e-9
+    reference_volume_m3: float = 7.73e-6 + thesis.CHAMBER_GAP_VOLUME_M3
+    compliance_m3_pa: float = 3.71e-9
     reference_height_m: float = 9.0e-3
-    gap_volume_m3: float = 0.2e-6
+    gap_volume_m3: float = thesis.CHAMBER_GAP_VOLUME_M3
     knee_pa: float = 50.0
-    effective_area_m2: float = 1.147e-3
+    effective_area_m2: float = 1.466e-3
 
     def __post_init__(self) -> None:
         for n in (
@@ -183,9 +187,13 @@ class AnalyticCharacteristic:
 class TabulatedCharacteristic:
     """Bilinear interpolation of a table V(p, F), h(p, F).
 
-    Outside the table the load is clamped to its range and a pressure below the first row is
+    A negative load is clamped to the first column and a pressure below the first row is
     clamped; above the last row the table is extrapolated linearly along p with the slope of
-    its last interval. A membrane keeps growing with pressure, and a sealed chamber squeezed
+    its last interval. A load beyond the last column acts like a pressure on the layer: its
+    excess ``F - F_max`` is taken off the pressure as ``(F - F_max) / A``, ``A`` the area of
+    the table's load patch (``meta["load_patch"]``, 30 x 30 mm by default): at the table's
+    largest loads the layer under the patch is pressed flat, so further load on it is carried
+    by the gas over the patch (loads of a few newtons no longer saturate at the table's edge). A membrane keeps growing with pressure, and a sealed chamber squeezed
     by a load beyond the table's range (a gripper pressing hard) must still find its pressure:
     with a clamped (flat) table the gas law would have no volume left to give and the
     pressure would run away to the sensor's full scale.
@@ -286,10 +294,30 @@ class TabulatedCharacteristic:
         inside = (x >= grid[0]) & ((x <= grid[-1]) | extrapolate_above)
         return i, t, np.where(inside, 1.0 / width, 0.0)
 
+    @property
+    def excess_load_area_m2(self) -> float:
+        """``A``: area of the table's load patch, m^2 (from ``meta["load_patch"]``, e.g.
+        ``"centred rectangle 30 x 30 mm ..."``; 30 x 30 mm when the meta does not say)."""
+        m = re.search(r"(\d+(?:\.\d+)?) x (\d+(?:\.\d+)?) mm", str(self.meta.get("load_patch", "")))
+        if m is None:
+            return DEFAULT_LOAD_PATCH_M**2
+        return float(m.group(1)) * float(m.group(2)) * 1e-6
+
+    def _shift(
+        self, p: NDArray[np.float64], f: NDArray[np.float64]
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """(p, F) with a load beyond the last column turned into a pressure reduction."""
+        fmax = self.load_n[-1]
+        if f.size == 0 or f.max() <= fmax:
+            return p, f
+        excess = np.maximum(f - fmax, 0.0)
+        return p - excess / self.excess_load_area_m2, np.minimum(f, fmax)
+
     def _interp(
         self, table: NDArray[np.float64], p: ArrayLike, f: ArrayLike
     ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         pa, fa = np.broadcast_arrays(np.asarray(p, float), np.asarray(f, float))
+        pa, fa = self._shift(pa, fa)
         i, t, dti = self._locate(self.pressure_pa, pa, extrapolate_above=True)
         if self.load_n.size == 1:
             j, u = np.zeros(pa.shape, dtype=np.intp), np.zeros(pa.shape)
@@ -330,6 +358,7 @@ class TabulatedCharacteristic:
         self, which: str, p: NDArray[np.float64], f: NDArray[np.float64]
     ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Interpolate the cached load columns of a table along the pressure (1-D inputs)."""
+        p, f = self._shift(p, f)
         cache = self._cache
         key = (which, f.tobytes())
         entry = cache.get(which)
@@ -379,21 +408,27 @@ def default_characteristic() -> ModuleCharacteristic:
 def sealed_sensitivity_pa_n(
     characteristic: ModuleCharacteristic,
     pressure_pa: float = thesis.P0_PA,
-    tubing_volume_m3: float = 2.0e-6,
+    tubing_volume_m3: float = thesis.TUBING_VOLUME_M3,
     atmosphere_pa: float = 101325.0,
     load_n: float = 0.0,
 ) -> float:
     """Pressure rise per newton of load of a sealed module, Pa/N (isothermal ideal gas).
 
     From ``d[(p_atm + p)(V(p, F) + V_t)] = 0``:
-    ``dp/dF = -(p_atm + p) dV/dF / ((p_atm + p) dV/dp + V + V_t)``, with dV/dF by central
-    differences (0.01 N).
+    ``dp/dF = -(p_atm + p) dV/dF / ((p_atm + p) dV/dp + V + V_t)``, with dV/dF by differences
+    over 0.01 N on either side of ``load_n``, one-sided where the load cannot go below zero (a
+    table clamps negative loads to its first column, which halved a central difference at 0 N).
     """
     dF = 0.01
-    p, f = np.array([pressure_pa]), np.array([load_n])
+    lo, hi = max(load_n - dF, 0.0), load_n + dF
+    p = np.array([pressure_pa])
     dv_df = float(
-        (characteristic.volume_m3(p, f + dF) - characteristic.volume_m3(p, f - dF))[0] / (2 * dF)
+        (characteristic.volume_m3(p, np.array([hi])) - characteristic.volume_m3(p, np.array([lo])))[
+            0
+        ]
+        / (hi - lo)
     )
+    f = np.array([load_n])
     dv_dp = float(characteristic.volume_slope_m3_pa(p, f)[0])
     v = float(characteristic.volume_m3(p, f)[0])
     pabs = atmosphere_pa + pressure_pa

@@ -3,9 +3,10 @@
 Model (documented in docs/box-and-simulator.md):
 
 * The pad surface is a grid of square modules of side ``pitch_m``; between modules (and along
-  the pad's border) runs a non-sensitive line of width ``line_width_m`` (the silicone walls of
-  the mould grid, seed Section 6.1.1). The sensitive square of a module is the module square
-  shrunk by half a line on every side.
+  the pad's border) runs a non-sensitive line of width ``line_width_m``, the bonded seam between
+  chambers (0 by default: the seed's 45 mm chambers at a 45 mm pitch). The square of a module is
+  the module square shrunk by half a line on every side. How much a load on it squeezes the
+  chamber is the FEM response (``_response.py``), applied by the worlds.
 * A rigid object rests on the pad, which acts as a uniform elastic (Winkler) foundation under
   the object's contact footprint (the union of the projections of the parts that touch the
   resting plane). The contact pressure of a rigid body on a Winkler bed is linear in x and y,
@@ -14,8 +15,7 @@ Model (documented in docs/box-and-simulator.md):
   points are dropped (a few active-set iterations). Heavier parts thus load their modules more.
 * Only the modules' sensitive squares support the object: between inflated modules the
   non-sensitive lines are valleys about a module height deep, which an object bridging them
-  does not touch. The load on a module is the integral of q over the footprint on its square.
-  (A fingertip, being small, does reach down into a valley: see ``fingertip_overlap``.)
+  does not touch. The force on a module is the integral of q over the footprint on its square.
 """
 
 from __future__ import annotations
@@ -26,14 +26,17 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
+from softpad import thesis
 from softpad.errors import InputError
 from softpad.layout import PadLayout
 from softpad.sim._objects import ObjectSpec, PartSpec, Placement
+from softpad.sim._response import PadResponse
 
 #: Standard gravity, m/s^2.
 GRAVITY_M_S2 = 9.80665
-#: Width of the non-sensitive line between modules, metres (the mould grid's wall; our choice).
-DEFAULT_LINE_WIDTH_M = 3e-3
+#: Width of the non-sensitive line between modules, metres: the bonded seam between chambers
+#: (:data:`softpad.thesis.SEAM_WIDTH_M`, 0 mm within the seed's figures).
+DEFAULT_LINE_WIDTH_M = thesis.SEAM_WIDTH_M
 #: Sampling step of footprints, metres.
 DEFAULT_SAMPLE_STEP_M = 0.5e-3
 #: Fraction of a lying cylinder's diameter that rests on the soft pad (the pad wraps it).
@@ -51,8 +54,8 @@ class PadSurface:
     layout
         Pad geometry (module pitch, rows, columns).
     line_width_m
-        Width of the non-sensitive line between neighbouring modules, metres (3 mm by
-        default; half of it also runs along the pad's outer border).
+        Width of the non-sensitive line between neighbouring modules, metres (the seam,
+        :data:`DEFAULT_LINE_WIDTH_M`; half of it also runs along the pad's outer border).
     """
 
     layout: PadLayout = field(default_factory=PadLayout)
@@ -343,49 +346,21 @@ def _winkler_pressures(
     return q
 
 
-#: Side of the central square of a module where a small indenter is fully sensed, metres:
-#: the thesis's sensitive side l at 1.1 kPa, interpolated between about 20 mm at 0.5 kPa and
-#: 45 mm at 2.8 kPa (seed, Section 6.1.2).
-DEFAULT_TIP_SENSITIVE_SIDE_M = 0.020 + 0.025 * (1.1 - 0.5) / (2.8 - 0.5)
-
-
-def tip_sensitivity(
-    points_m: NDArray[np.float64], surface: PadSurface, sensitive_side_m: float
-) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
-    """Module under each point and how well a small indenter there is sensed, in [0, 1].
-
-    A fingertip pushing near a module's clamped border displaces little air, in its middle a
-    lot: the weight is 1 inside the central ``sensitive_side_m`` square, 0 on the line, and
-    rises linearly in between, separately along x and y (the product of the two).
-    """
-    pitch, half_line = surface.layout.pitch_m, 0.5 * surface.line_width_m
-    ramp = max(0.5 * (pitch - sensitive_side_m) - half_line, 1e-9)
-    col = np.floor(points_m[:, 0] / pitch).astype(np.int64)
-    rb = np.floor(points_m[:, 1] / pitch).astype(np.int64)
-    ok = (col >= 0) & (col < surface.layout.cols) & (rb >= 0) & (rb < surface.layout.rows)
-
-    def weight(x: NDArray[np.float64], k: NDArray[np.int64]) -> NDArray[np.float64]:
-        d = np.minimum(x - k * pitch, (k + 1) * pitch - x)  # distance to the module's border
-        return np.clip((d - half_line) / ramp, 0.0, 1.0)
-
-    w = np.where(ok, weight(points_m[:, 0], col) * weight(points_m[:, 1], rb), 0.0)
-    idx = np.where(ok, (surface.layout.rows - 1 - rb) * surface.layout.cols + col, -1)
-    return idx, w
-
-
 def fingertip_overlap(
     center_m: tuple[float, float],
     yaw_rad: float,
     tip_size_m: tuple[float, float],
     surface: PadSurface,
     step_m: float = 0.5e-3,
-    sensitive_side_m: float | None = None,
+    response: PadResponse | None = None,
+    pressure_pa: float = thesis.P0_PA,
 ) -> NDArray[np.float64]:
     """Share of a rectangular fingertip's force that each module senses.
 
-    With ``sensitive_side_m`` None: the fraction of the tip's area over each module's
-    sensitive square (lines excluded). Otherwise each area element is weighted by
-    :func:`tip_sensitivity` (graded towards the module borders).
+    With ``response`` None: the fraction of the tip's area over each module's square (seams
+    excluded). Otherwise the tip's *equivalent load* per newton on each module: the mean over
+    the tip of the FEM response ``s(x) / s_ref`` (:class:`~softpad.sim.PadResponse`) at
+    ``pressure_pa``: large near a module's centre, small near its clamped edge.
 
     Parameters
     ----------
@@ -401,14 +376,14 @@ def fingertip_overlap(
     Returns
     -------
     ndarray, shape (n_modules,)
-        Area fractions (sum <= 1; the rest lies on lines or off the pad).
+        Per-newton shares of the tip's force (area fractions without a response).
     """
     local = _rect_points(tip_size_m[0], tip_size_m[1], step_m)
     pts = to_pad_frame(local, Placement(center_m[0], center_m[1], yaw_rad))
-    if sensitive_side_m is None:
+    if response is None:
         idx, cover = surface.module_coverage(pts, step_m)
     else:
-        idx, cover = tip_sensitivity(pts, surface, sensitive_side_m)
+        idx, cover = response.weights(pts, pressure_pa)
     on = idx >= 0
     frac = np.bincount(idx[on], weights=cover[on], minlength=surface.layout.n_modules)
     return frac / len(local)

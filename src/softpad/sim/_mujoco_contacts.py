@@ -1,7 +1,8 @@
 """What the MuJoCo world senses from its contacts: module loads, gripper contacts, first touch.
 
 :class:`ContactSensing` reads MuJoCo's contact list of a :class:`~softpad.sim._mujoco_scene.
-MujocoScene`: the normal force on every module top (what the box's modules measure), where the
+MujocoScene`: the normal force on every module top weighted by the FEM response where it acts
+(what the box's modules measure), where the
 gripper touches the pad and the objects, whether an object is carried, and the ground truth of
 a descent (the first touch of a tip on a module or of a finger on an object).
 """
@@ -13,7 +14,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from softpad import thesis
 from softpad.sim._mujoco_scene import MujocoScene
+from softpad.sim._response import PadResponse
 
 #: A contact normal with a vertical component above this is "from above" (cosine).
 _FROM_ABOVE = 0.7
@@ -54,11 +57,18 @@ class ContactSensing:
         Number of modules on the pad.
     open_width_m
         Jaw setpoint counted as "open" for :attr:`tip_hit_object`, metres.
+    response
+        The FEM response on the pad: each contact's normal force counts as its equivalent
+        load ``f s(x) / s_ref`` at the contact point (None: the bare force).
 
     Attributes
     ----------
     loads
-        Normal contact force on every module top at the last MuJoCo step, N.
+        Equivalent load on every module at the last MuJoCo step, N.
+    forces
+        Plain normal contact force on every module top at the last step, N.
+    pressure_pa
+        Chamber pressure at which the response is evaluated, Pa.
     first_touch_s
         Simulated time of the first touch of a sole on a module top or of a finger on an object
         from above since the last :meth:`reset_touch`, seconds, or None.
@@ -68,12 +78,18 @@ class ContactSensing:
         Name of the object a finger came down on from above with the jaws open, or None.
     """
 
-    def __init__(self, n_modules: int, open_width_m: float) -> None:
+    def __init__(
+        self, n_modules: int, open_width_m: float, response: PadResponse | None = None
+    ) -> None:
         import mujoco
 
+        self.response = response
+        self.pressure_pa = thesis.P0_PA
+        self._centres = response.module_centers_m() if response is not None else None
         self._mj = mujoco
         self._force = np.zeros(6)
         self.loads = np.zeros(n_modules)
+        self.forces = np.zeros(n_modules)
         self.first_touch_s: float | None = None
         self.first_touch_z_m: float | None = None
         self.tip_hit_object: str | None = None
@@ -92,7 +108,9 @@ class ContactSensing:
         ``tip_z_m`` is the tips' height and ``width_m`` the jaw setpoint at that time.
         """
         d, m = s.data, s.model
-        loads = np.zeros(len(self.loads))
+        ks: list[int] = []
+        forces: list[float] = []
+        points: list[NDArray[np.float64]] = []
         gm = s.geom_module
         soles, fingers = s.sole, s.finger
         watch = self.first_touch_s is None or self.tip_hit_object is None
@@ -104,7 +122,9 @@ class ContactSensing:
                 # the normal force indents the membrane and compresses the chamber; friction
                 # shears it along its surface and hardly changes the volume
                 self._mj.mj_contactForce(m, d, i, self._force)
-                loads[k] += abs(self._force[0])
+                ks.append(int(k))
+                forces.append(abs(self._force[0]))
+                points.append(c.pos[:2].copy())
             if not watch:
                 continue
             if g1 in soles or g2 in soles:
@@ -118,7 +138,23 @@ class ContactSensing:
                         self._touched(time_s, tip_z_m)
                     if self.tip_hit_object is None and width_m >= self.open_width_m:
                         self.tip_hit_object = s.body_object[b]
-        self.loads = loads
+        self.loads = self._equivalent(ks, forces, points)
+
+    def _equivalent(
+        self, ks: list[int], forces: list[float], points: list[NDArray[np.float64]]
+    ) -> NDArray[np.float64]:
+        """Equivalent load per module of normal forces on module tops at contact points."""
+        n = len(self.loads)
+        if not ks:
+            self.forces = np.zeros(n)
+            return np.zeros(n)
+        k, f = np.array(ks), np.array(forces)
+        self.forces = np.bincount(k, weights=f, minlength=n).astype(float)
+        if self.response is not None and self._centres is not None:
+            r = self.response.response
+            local = (np.array(points) - self._centres[k]) / self.response.scale
+            f = f * r.influence(local, self.pressure_pa) / r.reference_influence(self.pressure_pa)
+        return np.bincount(k, weights=f, minlength=n).astype(float)
 
     def _touched(self, time_s: float, tip_z_m: float) -> None:
         self.first_touch_s = time_s

@@ -8,10 +8,11 @@ the right, y up the columns, z up), SI units.
 What is modelled (seed, Sections 6.1-6.3)
 -----------------------------------------
 * **Pad.** A rigid base; on it one *module top* per module: a thin box whose side is the
-  module's sensitive area at the inflating pressure, carried by a body on a vertical slide joint
-  whose spring holds it at the inflated height. Between the tops, and around the pad, the base
-  shows as rigid, lower *lines* (the bonded grid walls of the mould, Fig. 6.2): a fingertip that
-  lands there loads no module, which is the failure mode of Section 6.3.
+  module's chamber, carried by a body on a vertical slide joint whose spring holds it at the
+  inflated height. Around the pad (and between the tops where a seam is set) the base shows as
+  a rigid, lower rim. How much a contact squeezes a chamber is the FEM response at the contact
+  point (small near the clamped edges: a fingertip between two modules is barely sensed, the
+  failure mode of Section 6.3).
 * **Compliance.** Two stiffnesses, because a sealed pneumatic module is stiff for a load spread
   over its whole top (the gas carries it) and soft for a small indenter (the membrane bends
   locally): the slide joint of a top has the *distributed* stiffness, the sole of each fingertip
@@ -39,7 +40,7 @@ from typing import Any, Protocol
 
 from softpad import thesis
 from softpad.errors import InputError, check_finite
-from softpad.layout import PadLayout
+from softpad.layout import GripperSpec, PadLayout
 
 # Collision bits.
 _PAD, _OBJ, _FINGER, _SOLE = 1, 2, 4, 8
@@ -60,15 +61,12 @@ class PadPhysics:
         about 9 mm, Section 6.3). The box replaces it with its own characteristic at run time
         (see :meth:`MujocoWorld.step`).
     sensitive_side_m
-        Side of the square base of a module's dome, the area that transmits load to the
-        chamber, metres. 40 mm leaves 5 mm non-sensitive lines between the 45 mm modules (the
-        bonded grid walls of the mould, Fig. 6.2). A 4 mm fingertip centred on a line slips
-        between the domes to the line and loads no module; 1 mm off centre it presses a
-        dome's rim and is detected (measured, docs/trials.md):
-        rare misses, as in the thesis (2 of 55 trials). The thesis's sensitive-area figure (a cap whose base grows from
-        about 20 mm at 0.5 kPa to 45 mm at 2.8 kPa, Section 6.1.2) would make the lines far
-        wider at 1.1 kPa; with them most of the thesis's own grasps (e.g. object 1 with the
-        6 cm mounting) would land both fingertips off the modules, against its 94.5 % success.
+        Side of the square base of a module's dome, metres: the chamber under it
+        (:data:`softpad.thesis.CHAMBER_SIDE_M`, the 45 mm acetate of Section 6.1.1), so
+        neighbouring domes meet at the seam (:data:`softpad.thesis.SEAM_WIDTH_M`). What a
+        contact on a dome squeezes is not set here: the world weights each contact force by
+        the FEM module response at its point (:class:`~softpad.sim.PadResponse`), which falls
+        to zero at the clamped edge.
     line_height_m
         Height of the non-sensitive lines and rim (the bonded silicone over the grid walls),
         metres: one 1.5 mm layer over the base.
@@ -77,9 +75,10 @@ class PadPhysics:
     distributed_stiffness_n_m
         Vertical stiffness of a module top's slide joint under a load spread over it, N/m:
         400 N/m, soft enough that an object sinks about 1 mm and rests on all the modules it
-        spans. The gas's own stiffness (the FEM's dV/dp = 3.8 mL/kPa over about 10 mL of gas:
-        about 0.7 mm per newton, 1.4 kN/m) reaches MuJoCo through the box's module heights
-        (see :meth:`MujocoWorld.step`), not through this spring.
+        spans. The sealed chamber's own stiffness (with the FEM characteristic at 1.1 kPa a
+        newton on the central 30 x 30 mm patch lowers the top centre by 0.88 mm: about
+        1.1 kN/m) reaches MuJoCo through the box's module heights (see
+        :meth:`MujocoWorld.step`), not through this spring.
     distributed_damping_n_s_m
         Damping of that joint, N s/m: 20 N s/m, about twice the critical
         2 sqrt(k (m + armature)) = 9.3 N s/m, so a load put on a module does not overshoot.
@@ -107,7 +106,7 @@ class PadPhysics:
     """
 
     free_height_m: float = 8.3e-3
-    sensitive_side_m: float = 40e-3
+    sensitive_side_m: float = thesis.CHAMBER_SIDE_M
     line_height_m: float = 1.5e-3
     rim_m: float = 15e-3
     distributed_stiffness_n_m: float = 400.0
@@ -186,23 +185,13 @@ class MujocoGripper:
         minimum opening in cm.
     finger_length_m
         From the palm to the lower face of the tips, metres (9.5 cm).
-    tip_thickness_m
-        Tip size along the closing direction, metres. The thesis's tips are "very small", small
-        enough to touch only a line between modules (its failure for object 5 and the charger,
-        Section 6.3); 4 mm, 1 mm less than our lines, so a tip can lie entirely on a line and
-        go unsensed. (The planner's drawing gripper, :class:`softpad.layout.GripperSpec`, and
-        the analytic world use 8 mm, which could never fit on a 5 mm line.)
-    tip_width_m
-        Tip size across the closing direction, metres; 16 mm, the width of
-        :class:`softpad.layout.GripperSpec` and of the analytic world's tips. Across a line
-        (e.g. object 1's thesis grasp (2.5, 1, 0), whose only tip on the pad lies over the line
-        between modules 2 and 5) a 16 mm tip reaches 5.5 mm past the line's edges on both
-        sides and touches a dome's flank unless it is far from the dome's centre; a 10 mm
-        tip reaches 2.5 mm, touches nothing and senses object 1's grasp in 2 of
-        15 trials (seeds 0-2; 16 mm: see docs/trials.md). Lying along a line (the tips of a
-        grasp along x centred on a column line) it stays unsensed at any width. The grip does
-        not depend on it: a 50 g brick squeezed by 10 or 16 mm tips rises 51 mm with the hand
-        within 0.02 mm (``tests/sim/test_mujoco_world.py``).
+    tip_thickness_m, tip_width_m
+        Tip size along and across the closing direction, metres: the planner's
+        :class:`softpad.layout.GripperSpec` (6.5 x 16 mm, the Sawyer gripper's basic hard tip;
+        sources in :mod:`softpad.thesis`), one set of figures for the planner, the analytic
+        world and this model (:meth:`from_spec`, :attr:`geometry`). Never changed to make a
+        trial pass: whether a tip over the seam between modules is sensed follows from
+        the pad's FEM response (:mod:`softpad.sim._response`), not from the tip size.
     grip_force_n
         Force limit of each jaw's servo, newtons (squeeze force once closed on an object).
     servo_stiffness_n_m
@@ -215,7 +204,7 @@ class MujocoGripper:
 
     mounting: str = "10/4"
     finger_length_m: float = thesis.FINGER_LENGTH_M
-    tip_thickness_m: float = 4e-3  # the MuJoCo sole: thinner than GripperSpec's, docs/trials.md
+    tip_thickness_m: float = thesis.FINGERTIP_THICKNESS_M
     tip_width_m: float = thesis.FINGERTIP_WIDTH_M
     grip_force_n: float = 20.0
     servo_stiffness_n_m: float = 4000.0
@@ -235,6 +224,30 @@ class MujocoGripper:
                 "friction",
                 "sole_stroke_m",
             ),
+        )
+
+    @classmethod
+    def from_spec(cls, spec: GripperSpec, **physics: Any) -> MujocoGripper:
+        """The MuJoCo gripper of a :class:`softpad.layout.GripperSpec`: its mounting (max/min
+        width), finger length and tips; ``physics`` sets the contact fields (grip force...)."""
+        mounting = f"{spec.max_width_m * 100:g}/{spec.min_width_m * 100:g}"
+        return cls(
+            mounting=mounting,
+            finger_length_m=spec.finger_length_m,
+            tip_thickness_m=spec.tip_thickness_m,
+            tip_width_m=spec.tip_width_m,
+            **physics,
+        )
+
+    @property
+    def geometry(self) -> GripperSpec:
+        """The geometry alone, as the planner's :class:`softpad.layout.GripperSpec`."""
+        return GripperSpec(
+            self.max_width_m,
+            self.min_width_m,
+            self.finger_length_m,
+            self.tip_width_m,
+            self.tip_thickness_m,
         )
 
     @property

@@ -23,6 +23,7 @@ from softpad.sim._mujoco_arm import ARM_ACCELERATION_M_S2, KinematicArm
 from softpad.sim._mujoco_contacts import ContactSensing, GripperContacts
 from softpad.sim._mujoco_model import MujocoGripper, ObjectModel, PadPhysics, parking_position
 from softpad.sim._mujoco_scene import MujocoScene
+from softpad.sim._response import ModuleResponse, PadResponse, operating_pressure
 from softpad.sim._world import GripperState
 
 __all__ = ["ARM_ACCELERATION_M_S2", "GripperContacts", "MujocoWorld", "ObjectPose"]
@@ -92,6 +93,7 @@ class MujocoWorld:
         pad: PadPhysics | None = None,
         gripper: MujocoGripper | None = None,
         timestep_s: float = 2e-3,
+        response: ModuleResponse | None = None,
     ) -> None:
         import mujoco
 
@@ -115,7 +117,9 @@ class MujocoWorld:
         # gripper high above the pad centre, fully open
         hand = np.array([cx, cy, 0.15 + self.gripper.finger_length_m, 0.0])
         self._arm = KinematicArm(hand, open_w)
-        self._sensing = ContactSensing(n, open_w)
+        self.response = PadResponse(self._layout, response)
+        self._sensing = ContactSensing(n, open_w, self.response)
+        self._probe_loads = np.zeros(n)
         self._scene: MujocoScene | None = None
         self._build(tuple(objects))
 
@@ -244,9 +248,44 @@ class MujocoWorld:
         self._time_s += dt
 
     def module_loads_n(self) -> NDArray[np.float64]:
-        """Normal contact force on each module top, N (>= 0), module order 1..N (vertical for
-        an object resting on the domes; friction, which shears the membrane, is left out)."""
-        return self._sensing.loads.copy()
+        """Equivalent load on each module, N (>= 0), module order 1..N: every contact's normal
+        force on a module top weighted by the FEM response at its point (friction, which
+        shears the membrane, is left out), plus a probe block (:meth:`press`)."""
+        return self._sensing.loads + self._probe_loads
+
+    def module_forces_n(self) -> NDArray[np.float64]:
+        """Plain normal contact force on each module top, N (diagnostics: what the response
+        weights into :meth:`module_loads_n`)."""
+        return self._sensing.forces.copy()
+
+    @property
+    def operating_pressure_pa(self) -> float:
+        """Chamber pressure at which the response is evaluated, Pa."""
+        return self._sensing.pressure_pa
+
+    def set_operating_pressure(self, pressure_pa: float) -> None:
+        """Evaluate the response at the chambers' pressure (rounded to 50 Pa, clamped to its
+        range); the simulated box calls this as the pressures change."""
+        self._sensing.pressure_pa = operating_pressure(pressure_pa, self.response.response)
+
+    def press(
+        self,
+        center_m: tuple[float, float],
+        size_m: tuple[float, float],
+        force_n: float,
+        yaw_rad: float = 0.0,
+    ) -> None:
+        """Press a rigid flat block on the chambers: ``force_n`` spread uniformly over a
+        rectangle centred at ``center_m`` (pad frame); replaces the previous block, 0 lifts
+        it. The block is a load on the chambers only (it does not collide with objects)."""
+        if not (math.isfinite(force_n) and force_n >= 0):
+            raise InputError(f"probe force must be a finite number >= 0 N, got {force_n!r}")
+        if force_n == 0:
+            self._probe_loads = np.zeros(self._layout.n_modules)
+            return
+        self._probe_loads = self.response.rect_equivalent_loads(
+            center_m, size_m, force_n, self.operating_pressure_pa, yaw_rad
+        )
 
     def command_gripper(self, target: GripperState, speed_m_s: float) -> None:
         """Move the hand towards ``target`` in a straight line at ``speed_m_s``; the jaw

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from softpad import thesis
 from softpad.errors import InputError
 from softpad.sim._characteristic import ModuleCharacteristic
 
@@ -39,8 +40,9 @@ class PneumaticParams:
     air_density_kg_m3
         Air density at atmospheric pressure and room temperature, kg/m^3.
     tubing_volume_m3
-        Dead volume of the tube and valve manifold of one channel, m^3 (about 1 m of 1.6 mm
-        bore silicone tube: 2 mL).
+        Dead volume of the tube and valve manifold of one channel, m^3
+        (:data:`softpad.thesis.TUBING_VOLUME_M3`, 3.14 mL, the figure the FEM's sealed chamber
+        uses too).
     supply_pa
         Regulated supply gauge pressure, pascals (our choice: 10 kPa).
     inflate_orifice_m2
@@ -56,7 +58,7 @@ class PneumaticParams:
 
     atmosphere_pa: float = 101325.0
     air_density_kg_m3: float = 1.204
-    tubing_volume_m3: float = 2.0e-6
+    tubing_volume_m3: float = thesis.TUBING_VOLUME_M3
     supply_pa: float = 10.0e3
     inflate_orifice_m2: float = 1.6e-8
     deflate_orifice_m2: float = 3.0e-8
@@ -126,6 +128,8 @@ class ChamberBank:
         self._amount = self.params.atmosphere_pa * (v0 + self.params.tubing_volume_m3)
         self._leak_m2 = np.zeros(m)
         self._leaking = False
+        self._creep = np.zeros(m)  # creep volume of each membrane (Disturbances), m^3
+        self._flat_m3 = v0  # volume under the flat, unloaded layer, m^3
         #: Longest time between exact pressure solves while nothing changes, seconds.
         self.resolve_s = 20e-3
         self._flow: NDArray[np.float64] | None = None
@@ -144,6 +148,12 @@ class ChamberBank:
         self._key: tuple[object, float] | None = None
         rho = self.params.air_density_kg_m3
         self._k = self.params.gas_constant_rt * math.sqrt(2 * rho)
+
+    @property
+    def orifice_gain(self) -> float:
+        """``R T sqrt(2 rho)``: an orifice ``Cd A`` passes ``gain Cd A dp / sqrt(|dp| + p_lam)``
+        of amount per second."""
+        return self._k
 
     @property
     def leak_m2(self) -> NDArray[np.float64]:
@@ -307,8 +317,52 @@ class ChamberBank:
     ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         if self._vol_slope is not None:
             v, dv = self._vol_slope(p, f)
-            return v, dv
-        return self.characteristic.volume_m3(p, f), self.characteristic.volume_slope_m3_pa(p, f)
+        else:
+            v = self.characteristic.volume_m3(p, f)
+            dv = self.characteristic.volume_slope_m3_pa(p, f)
+        return v + self._creep, dv
+
+    @property
+    def creep_m3(self) -> NDArray[np.float64]:
+        """Creep volume of every module's membrane, m^3 (read-only copy)."""
+        return self._creep.copy()
+
+    def disturb(
+        self,
+        temperature_ratio: float,
+        elapsed_s: float,
+        leak_area_m2: float,
+        creep_fraction: float,
+        creep_time_s: float,
+    ) -> None:
+        """Apply ``elapsed_s`` of slow disturbances and solve the pressures again.
+
+        Parameters
+        ----------
+        temperature_ratio
+            T_new / T_old of the air: the state ``n R T`` scales with it.
+        elapsed_s
+            Time since the last call, seconds.
+        leak_area_m2
+            ``Cd A`` of every module's small leak to the atmosphere, m^2.
+        creep_fraction, creep_time_s
+            The creep volume relaxes towards ``creep_fraction`` of the stretched volume
+            ``V(p, F) - V(0, 0)`` with this time constant.
+        """
+        self._sync()
+        m = self.n_modules
+        p = self._pressure[:m].copy()
+        if leak_area_m2 > 0:
+            leak = self._orifice(leak_area_m2, p) * elapsed_s
+            self._amount = np.maximum(self._amount - leak, 1e-12)
+        self._amount = self._amount * temperature_ratio
+        stretched = self.characteristic.volume_m3(p, self.loads_n) - self._flat_m3
+        target = creep_fraction * np.maximum(stretched, 0.0)
+        self._creep = target + (self._creep - target) * math.exp(-elapsed_s / creep_time_s)
+        self._pressure[:m] = self._solve(p)
+        self._key, self._flow, self._held = None, None, 0.0
+        self.solved = True
+        self.solve_count += 1
 
     def heights_m(self) -> NDArray[np.float64]:
         """Top height of every module, metres."""

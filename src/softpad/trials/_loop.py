@@ -2,10 +2,15 @@
 
 ``softpad.control.GraspExecution`` runs the loop of Section 6.2 (adjust -> reference -> wait
 for the object -> plan -> approach -> descend -> contact at t_g -> close -> lift ->
-hold 15 s -> release). This module only sets it up for a trial (the world, the object's placement,
-the jaw opening) and reads the failure's cause from the world through the loop's recorder hook:
-which surfaces the fingertips touched, whether a jaw came down on the object, whether the object
-was between the jaws when they closed.
+hold 15 s -> release). This module only sets it up for a trial (the world, the object's placement)
+and reads the failure's cause from the world through the loop's recorder hook: which surfaces
+the fingertips touched, whether a jaw came down on the object, whether the object was between
+the jaws when they closed.
+
+No ground truth reaches the loop: it sees the box's pressures, its plan and the robot's own
+state. The jaws open to the mounting's full width (the only opening a real system knows
+without a model of the object); the object's true geometry (``truth``) and the world's contacts
+are read only to score the trial.
 """
 
 from __future__ import annotations
@@ -13,14 +18,15 @@ from __future__ import annotations
 import contextlib
 from typing import Any
 
-import numpy as np
-
 from softpad.trials._config import TrialConfig
 from softpad.trials._geometry import distance_to_object_m, half_extent_along_m
 from softpad.trials._records import TrialResult
 
 #: A finger pressing the object harder than this counts as touching it, newtons.
 _TOUCH_N = 0.2
+#: A planned COG farther than this from the object's top-view footprint lies outside it, mm
+#: (the thesis's cylinder failure had it about 10 mm outside).
+_OUTSIDE_MM = 0.5
 
 
 class _Placed:
@@ -80,23 +86,19 @@ class _TrialWatcher:
             seen["outcome"] = data.get("outcome")
 
     def _approach(self, data: dict[str, Any]) -> None:
+        """Score only: where the plan puts the COG relative to the true object."""
         t, pitch = self.t, self.t.world.layout.pitch_m
         self.seen["plan"] = (tuple(data["modules"]), tuple(data["cog"]), float(data["theta"]))
         cog = (data["cog"][0] * pitch, data["cog"][1] * pitch)
-        theta = float(data["theta"])
-        g = t.gripper
-        # open to pass the object where the fingers come down (their width), plus the
-        # clearance; fully when nothing of the object lies there
-        half = half_extent_along_m(t.spec, t.placed, cog, theta, band_m=g.tip_width_m / 2)
-        wanted = g.max_width_m if half is None else 2 * (half + t.config.clearance_m)
-        if t.opening_m is not None:
-            wanted = t.opening_m
-        t.robot.max_opening_m = float(np.clip(wanted, g.min_width_m, g.max_width_m))
-        self.seen["cog_outside_mm"] = 1e3 * distance_to_object_m(cog, t.spec, t.placed)
+        self.seen["cog_outside_mm"] = 1e3 * distance_to_object_m(cog, t.truth, t.placed)
 
 
 class _Trial:
-    """The simulated lab of one trial: MuJoCo world, simulated box and robot."""
+    """The simulated lab of one trial: MuJoCo world, simulated box and robot.
+
+    ``spec`` is the object placed in the world; ``truth`` the geometry the lab scores with
+    (``spec`` unless a test swaps it: the loop's commands must not change).
+    """
 
     def __init__(
         self,
@@ -106,17 +108,22 @@ class _Trial:
         config: TrialConfig,
         opening_m: float | None,
         mounting: str | None,
+        truth: Any | None = None,
+        gripper: Any | None = None,
     ) -> None:
         from softpad.box import SafetyLimits, SimBox
         from softpad.harness import SimulatedRobot
-        from softpad.sim._mujoco_model import MujocoGripper
+        from softpad.layout import GripperSpec
+        from softpad.sim._mujoco_model import MujocoGripper, parse_mounting
         from softpad.sim._mujoco_world import MujocoWorld
         from softpad.sim._sensor import SensorParams
 
         self.spec, self.config, self.opening_m = spec, config, opening_m
+        self.truth = spec if truth is None else truth
         self.placement = placement
         self.placed = _Placed(*placement)
-        self.gripper = MujocoGripper(mounting=mounting or spec.gripper)
+        self.geometry = gripper or GripperSpec(*parse_mounting(mounting or spec.gripper))
+        self.gripper = MujocoGripper.from_spec(self.geometry)
         self.world = MujocoWorld(gripper=self.gripper)
         self.box = SimBox(
             self.world,
@@ -132,18 +139,17 @@ class _Trial:
         self.box.safety_limits = SafetyLimits(
             max_pressure_pa=max_pa, release_pa=min(2500.0, max_pa - 500.0)
         )
-        self.robot = SimulatedRobot(self.world, max_opening_m=self.gripper.max_width_m)
+        # the jaws open to the mounting's width (the loop commands "fully open"); an explicit
+        # opening_m is an experimenter's choice that provokes a failure on purpose
+        self.robot = SimulatedRobot(
+            self.world, max_opening_m=self.gripper.max_width_m if opening_m is None else opening_m
+        )
 
     def planner(self) -> Any:
         """The configured planner, told the trial gripper's geometry (a published spec)."""
-        from softpad.layout import GripperSpec
         from softpad.planning import make_planner
 
-        g = self.gripper
-        spec = GripperSpec(
-            g.max_width_m, g.min_width_m, g.finger_length_m, g.tip_width_m, g.tip_thickness_m
-        )
-        return make_planner(self.config.planner, spec, self.config.execution.planner)
+        return make_planner(self.config.planner, self.geometry, self.config.execution.planner)
 
     def place(self) -> None:
         from softpad.sim import Placement
@@ -159,18 +165,22 @@ def execute_trial(
     plan_override: Any | None = None,
     opening_m: float | None = None,
     mounting: str | None = None,
+    truth: Any | None = None,
+    recorder: Any | None = None,
+    gripper: Any | None = None,
 ) -> tuple[TrialResult, Any | None]:
     """Run one trial; see :func:`softpad.trials.run_trial`. Returns the result and the run's
-    :class:`softpad.record.RunLog` when ``config.record_trace``."""
+    :class:`softpad.record.RunLog` when ``config.record_trace``; ``recorder`` also hears every
+    frame and event of the loop."""
     from softpad.control import ExecutionError, GraspExecution
     from softpad.errors import HardwareFault
     from softpad.record import RunLog, Tee
     from softpad.sensing import make_contact_detector
 
-    t = _Trial(spec, placement, seed, config, opening_m, mounting)
+    t = _Trial(spec, placement, seed, config, opening_m, mounting, truth, gripper)
     log = RunLog({"object": spec.name, "seed": seed}) if config.record_trace else None
     mcap = _trial_recorder(t, seed)
-    watcher = _TrialWatcher(t, Tee(log, mcap) if mcap is not None else log)
+    watcher = _TrialWatcher(t, Tee(log, mcap, recorder))
     execution = GraspExecution(
         t.box,
         t.robot,
@@ -263,7 +273,7 @@ def _scored(base: dict[str, Any], seen: dict[str, Any], t: _Trial, sim_time: flo
     )
     if outcome == "held":
         return TrialResult(**base, success=True, cause=None, detail="held", **common)
-    cause, why = _cause(outcome, seen, t.spec, t.placed, t.gripper)
+    cause, why = _cause(outcome, seen, t.truth, t.placed, t.gripper)
     return TrialResult(**base, success=False, cause=cause, detail=why, **common)
 
 
@@ -276,6 +286,10 @@ def _cause(
             "contact_not_detected",
             "descended to the pad base without the pad sensing the fingers",
         )
+    outside = seen.get("cog_outside_mm")
+    if outside is not None and outside > _OUTSIDE_MM:
+        hit = "" if seen.get("tip_hit") is None else f"; a jaw came down on {seen['tip_hit']}"
+        return "cog_outside_object", f"the planned COG lay {outside:.1f} mm outside the object{hit}"
     if seen.get("tip_hit") is not None:
         return "jaws_hit_object", f"a jaw came down on {seen['tip_hit']}"
     if not seen.get("between", False):

@@ -5,6 +5,7 @@ from __future__ import annotations
 import csv
 import io
 import math
+import statistics
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -27,14 +28,29 @@ THESIS_TABLE_6_1: dict[str, tuple[float, tuple[float, float, float], int]] = {
 #: Overall success rate of the thesis's Experiment 2 (52 of 55 trials).
 THESIS_OVERALL_SUCCESS = 0.945
 
-#: Why a trial failed. The first four are the causes the issue names (the thesis reports the
-#: first and the third); ``object_too_narrow``: the object was between the jaws but thinner
+#: The thesis's three failures (Section 6.3), by object and cause: object 5 and the charger
+#: "due to a missing contact detection, because the gripper touched the non-sensitive line
+#: between modules"; the cylinder because "the resulting COG was ... around 1 cm outside of
+#: the object".
+THESIS_FAILURES: dict[str, dict[str, int]] = {
+    "object-5": {"contact_not_detected": 1},
+    "charger": {"contact_not_detected": 1},
+    "cylinder": {"cog_outside_object": 1},
+}
+
+#: Why a trial failed, decided in this order from the physics and the true object:
+#: ``contact_not_detected`` (the fingers reached the pad base unsensed: tips on a seam or off
+#: the pad; the thesis's failure for object 5 and the charger); ``cog_outside_object`` (the
+#: grasp failed and its planned COG lay outside the object's footprint: the thesis's cylinder
+#: failure); ``jaws_hit_object`` (a jaw came down on the object); ``object_outside_jaws``;
+#: ``slipped_during_hold``; ``object_too_narrow``: the object was between the jaws but thinner
 #: than the mounting's minimum width; ``object_not_detected``: the planner found nothing;
 #: ``box_fault``: the loop stopped on a box fault (a module read above the 3 kPa limit, which
 #: the simulated box's module model reaches when a fingertip pushes a module with more than
 #: about 1.5 N).
 FAILURE_CAUSES = (
     "contact_not_detected",
+    "cog_outside_object",
     "jaws_hit_object",
     "object_outside_jaws",
     "slipped_during_hold",
@@ -149,7 +165,7 @@ class TrialResult:
 
 @dataclass(frozen=True)
 class ObjectSummary:
-    """Trials of one object.
+    """Trials of one object, next to the thesis's Table 6.1 entry.
 
     Attributes
     ----------
@@ -165,6 +181,11 @@ class ObjectSummary:
         Count of each failure cause that occurred.
     representative
         The plan of the first trial with one: (x_COG, y_COG, theta), module units and radians.
+    planned
+        The predicted grasp over all trials: the trials' most frequent theta and the median
+        x_COG and y_COG of the trials that planned it, or None when no trial planned.
+    theta_share
+        Fraction of the planned trials whose theta is that most frequent one.
     """
 
     name: str
@@ -173,15 +194,83 @@ class ObjectSummary:
     successes: int
     failures: dict[str, int]
     representative: tuple[float, float, float] | None
+    planned: tuple[float, float, float] | None = None
+    theta_share: float | None = None
+
+    @property
+    def success_interval(self) -> tuple[float, float]:
+        """95 % Wilson score interval of the success rate."""
+        from softpad.trials._compare import wilson_interval
+
+        return wilson_interval(self.successes, self.trials)
+
+    def grasp_difference(self) -> dict[str, float] | None:
+        """Predicted minus thesis grasp: ``dx``, ``dy``, ``distance`` (module units) and
+        ``theta_rad`` (wrapped to (-pi/2, pi/2], a parallel-jaw grasp being the same under pi);
+        None without a plan or a thesis entry."""
+        thesis = THESIS_TABLE_6_1.get(self.name)
+        if thesis is None or self.planned is None:
+            return None
+        (x, y, th), (tx, ty, tth) = self.planned, thesis[1]
+        dth = (th - tth + math.pi / 2) % math.pi - math.pi / 2
+        if dth <= -math.pi / 2 + 1e-12:
+            dth += math.pi
+        return {
+            "dx": round(x - tx, 4),
+            "dy": round(y - ty, 4),
+            "distance": round(math.hypot(x - tx, y - ty), 4),
+            "theta_rad": round(dth, 4),
+        }
 
     def to_dict(self) -> dict[str, Any]:
-        """The per-object entry of ``softpad trials --json``."""
+        """The per-object entry of ``softpad trials --json``: the prediction and the thesis's."""
+        thesis = THESIS_TABLE_6_1.get(self.name)
+        planned = None
+        if self.planned is not None:
+            planned = {
+                "cog": [round(self.planned[0], 4), round(self.planned[1], 4)],
+                "theta": round(self.planned[2], 6),
+                "theta_share": None if self.theta_share is None else round(self.theta_share, 4),
+            }
         return {
             "name": self.name,
             "trials": self.trials,
             "successes": self.successes,
+            "success": round(self.successes / self.trials, 4) if self.trials else None,
+            "success_interval": list(self.success_interval),
             "failures": dict(self.failures),
+            "planned_grasp": planned,
+            "thesis": None
+            if thesis is None
+            else {
+                "trials": 5,
+                "successes": thesis[2],
+                "failures": dict(THESIS_FAILURES.get(self.name, {})),
+                "grasp": {"cog": list(thesis[1][:2]), "theta": round(thesis[1][2], 6)},
+            },
+            "grasp_difference": self.grasp_difference(),
         }
+
+
+def _predicted_grasp(
+    ts: list[TrialResult],
+) -> tuple[tuple[float, float, float] | None, float | None]:
+    """Most frequent theta of the trials' plans, the median COG of the plans with that theta,
+    and that theta's share of the plans."""
+    plans = [(t.cog, t.theta) for t in ts if t.cog is not None and t.theta is not None]
+    if not plans:
+        return None, None
+    counts: dict[float, int] = {}
+    for _, th in plans:
+        key = round(th, 6)
+        counts[key] = counts.get(key, 0) + 1
+    theta = max(counts, key=lambda k: counts[k])
+    # the COG of the trials that planned that direction (a plan that flips between two
+    # directions has two COGs; their median would lie between them, on neither)
+    xs = [c[0] for c, th in plans if round(th, 6) == theta]
+    ys = [c[1] for c, th in plans if round(th, 6) == theta]
+    planned = (statistics.median(xs), statistics.median(ys), theta)
+    return planned, counts[theta] / len(plans)
 
 
 @dataclass(frozen=True)
@@ -200,6 +289,8 @@ class ExperimentResult:
         Wall-clock time of the whole experiment, seconds.
     workers
         Worker processes used.
+    seeds
+        Experiment seeds pooled into this result (:meth:`pooled`); ``(seed,)`` by default.
     """
 
     trials: tuple[TrialResult, ...]
@@ -207,6 +298,23 @@ class ExperimentResult:
     masses_g: dict[str, float] = field(default_factory=dict)
     wall_time_s: float = 0.0
     workers: int = 1
+    seeds: tuple[int, ...] = ()
+    placement_noise: dict[str, float] = field(default_factory=dict)
+
+    @classmethod
+    def pooled(cls, experiments: list[ExperimentResult]) -> ExperimentResult:
+        """The trials of several experiments (e.g. seeds 0-9) as one result."""
+        if not experiments:
+            raise ValueError("nothing to pool")
+        return cls(
+            trials=tuple(t for e in experiments for t in e.trials),
+            seed=experiments[0].seed,
+            masses_g={k: v for e in experiments for k, v in e.masses_g.items()},
+            wall_time_s=sum(e.wall_time_s for e in experiments),
+            workers=max(e.workers for e in experiments),
+            seeds=tuple(s for e in experiments for s in (e.seeds or (e.seed,))),
+            placement_noise=dict(experiments[0].placement_noise),
+        )
 
     @property
     def object_names(self) -> tuple[str, ...]:
@@ -233,6 +341,7 @@ class ExperimentResult:
                 ),
                 None,
             )
+            planned, share = _predicted_grasp(ts)
             out.append(
                 ObjectSummary(
                     name=name,
@@ -241,6 +350,8 @@ class ExperimentResult:
                     successes=sum(t.success for t in ts),
                     failures=failures,
                     representative=rep,
+                    planned=planned,
+                    theta_share=share,
                 )
             )
         return out
@@ -258,90 +369,108 @@ class ExperimentResult:
                 out[t.cause] = out.get(t.cause, 0) + 1
         return out
 
+    def overall(self) -> dict[str, Any]:
+        """Trials, successes, their 95 % Wilson interval and failures by cause, all objects."""
+        from softpad.trials._compare import wilson_interval
+
+        n, k = len(self.trials), sum(t.success for t in self.trials)
+        return {
+            "trials": n,
+            "successes": k,
+            "success": round(k / n, 4) if n else None,
+            "success_interval": list(wilson_interval(k, n)),
+            "failures": self.failures_by_cause(),
+        }
+
+    def thesis_overall(self) -> dict[str, Any]:
+        """The thesis's figures for the objects of this run (5 trials each, Table 6.1), its
+        failures by cause, and which of those causes this run reproduced."""
+        names = [n for n in self.object_names if n in THESIS_TABLE_6_1]
+        causes: dict[str, int] = {}
+        for n in names:
+            for c, v in THESIS_FAILURES.get(n, {}).items():
+                causes[c] = causes.get(c, 0) + v
+        mine = self.failures_by_cause()
+        return {
+            "trials": 5 * len(names),
+            "successes": sum(THESIS_TABLE_6_1[n][2] for n in names),
+            "failures": causes,
+            "causes_reproduced": sorted(c for c in causes if mine.get(c, 0) > 0),
+            "causes_not_seen": sorted(c for c in causes if mine.get(c, 0) == 0),
+        }
+
     def to_dict(self) -> dict[str, Any]:
-        """The JSON of ``softpad trials --json`` (per-object counts, then every trial)."""
+        """The JSON of ``softpad trials --json``: per object the trials, successes, their 95 %
+        Wilson interval, failures by cause and the predicted grasp next to the thesis's; the
+        same overall; then every trial."""
         return {
             "objects": [s.to_dict() for s in self.summaries()],
+            "overall": self.overall(),
+            "thesis": self.thesis_overall(),
             "overall_success": round(self.overall_success, 6),
             "thesis_overall_success": THESIS_OVERALL_SUCCESS,
             "failures": self.failures_by_cause(),
             "seed": self.seed,
+            "seeds": list(self.seeds or (self.seed,)),
+            "placement_noise": dict(self.placement_noise),
             "wall_time_s": round(self.wall_time_s, 3),
             "workers": self.workers,
             "trials": [t.to_dict() for t in self.trials],
         }
 
     def table_rows(self) -> list[dict[str, str]]:
-        """Rows of the Table 6.1-like table, as text."""
+        """Rows of the Table 6.1-like table, as text: the prediction next to the thesis."""
         rows = []
         for s in self.summaries():
             thesis = THESIS_TABLE_6_1.get(s.name)
-            plan = "-" if s.representative is None else _fmt_plan(s.representative)
+            diff = s.grasp_difference()
+            lo, hi = s.success_interval
             rows.append(
                 {
                     "object": s.name,
                     "weight_g": f"{s.mass_g:.1f}",
-                    "planned_grasp": plan,
+                    "planned_grasp": "-" if s.planned is None else _fmt_plan(s.planned),
                     "thesis_grasp": "-" if thesis is None else _fmt_plan(thesis[1]),
+                    "difference": "-"
+                    if diff is None
+                    else f"{diff['distance']:.2f}, {math.degrees(diff['theta_rad']):+.0f} deg",
                     "success": f"{s.successes}/{s.trials}",
+                    "interval": f"{100 * lo:.0f}-{100 * hi:.0f} %",
                     "thesis_success": "-" if thesis is None else f"{thesis[2]}/5",
-                    "failures": ", ".join(f"{k} x{v}" for k, v in sorted(s.failures.items()))
-                    or "-",
+                    "failures": _fmt_causes(s.failures),
+                    "thesis_failures": _fmt_causes(THESIS_FAILURES.get(s.name, {})),
                 }
             )
         return rows
 
+    def _summary_line(self) -> str:
+        o, t = self.overall(), self.thesis_overall()
+        lo, hi = o["success_interval"]
+        seeds = self.seeds or (self.seed,)
+        return (
+            f"Overall success: {o['successes']}/{o['trials']} = {100 * self.overall_success:.1f} % "
+            f"(95 % interval {100 * lo:.1f}-{100 * hi:.1f} %; {len(seeds)} seed(s)); thesis: "
+            f"{t['successes']}/{t['trials']}. Failures by cause: "
+            f"{_fmt_causes(o['failures'])}; thesis: {_fmt_causes(t['failures'])}; thesis causes "
+            f"reproduced: {', '.join(t['causes_reproduced']) or 'none'}."
+        )
+
     def to_markdown(self) -> str:
         """The table in Markdown, with the overall rate next to the thesis's."""
-        head = (
-            "| object | weight (g) | planned grasp (x_COG, y_COG, theta) | thesis grasp "
-            "| success | thesis | failures |\n|---|---:|---|---|---:|---:|---|\n"
-        )
-        body = "".join(
-            f"| {r['object']} | {r['weight_g']} | {r['planned_grasp']} | {r['thesis_grasp']} "
-            f"| {r['success']} | {r['thesis_success']} | {r['failures']} |\n"
-            for r in self.table_rows()
-        )
-        n = len(self.trials)
-        k = sum(t.success for t in self.trials)
-        causes = ", ".join(f"{c}: {v}" for c, v in sorted(self.failures_by_cause().items()))
-        return (
-            head + body + f"\nOverall success: {k}/{n} = {100 * self.overall_success:.1f} % "
-            f"(thesis: 52/55 = {100 * THESIS_OVERALL_SUCCESS:.1f} %). "
-            f"Failures by cause: {causes or 'none'}.\n"
-        )
+        cols = list(_HEADS)
+        head = "| " + " | ".join(_HEADS[c] for c in cols) + " |\n"
+        head += "|" + "|".join("---:" if c in ("weight_g", "success") else "---" for c in cols)
+        body = "".join("| " + " | ".join(r[c] for c in cols) + " |\n" for r in self.table_rows())
+        return head + "|\n" + body + "\n" + self._summary_line() + "\n"
 
     def to_text(self) -> str:
         """The table as aligned plain text (the CLI's output)."""
         rows = self.table_rows()
-        cols = [
-            "object",
-            "weight_g",
-            "planned_grasp",
-            "thesis_grasp",
-            "success",
-            "thesis_success",
-            "failures",
-        ]
-        heads = [
-            "object",
-            "weight (g)",
-            "planned grasp",
-            "thesis grasp",
-            "success",
-            "thesis",
-            "failures",
-        ]
-        widths = [max(len(h), *(len(r[c]) for r in rows)) for c, h in zip(cols, heads, strict=True)]
-        lines = ["  ".join(h.ljust(w) for h, w in zip(heads, widths, strict=True))]
+        cols = list(_HEADS)
+        widths = [max(len(_HEADS[c]), *(len(r[c]) for r in rows)) for c in cols]
+        lines = ["  ".join(_HEADS[c].ljust(w) for c, w in zip(cols, widths, strict=True))]
         lines += ["  ".join(r[c].ljust(w) for c, w in zip(cols, widths, strict=True)) for r in rows]
-        n = len(self.trials)
-        k = sum(t.success for t in self.trials)
-        causes = ", ".join(f"{c} x{v}" for c, v in sorted(self.failures_by_cause().items()))
-        lines.append(
-            f"overall success: {k}/{n} = {100 * self.overall_success:.1f} % "
-            f"(thesis 94.5 %); failures: {causes or 'none'}"
-        )
+        lines.append(self._summary_line())
         return "\n".join(lines)
 
     def to_csv(self) -> str:
@@ -352,6 +481,25 @@ class ExperimentResult:
         writer.writeheader()
         writer.writerows(rows)
         return buf.getvalue()
+
+
+#: Column titles of the Table 6.1-like table.
+_HEADS: dict[str, str] = {
+    "object": "object",
+    "weight_g": "weight (g)",
+    "planned_grasp": "predicted grasp",
+    "thesis_grasp": "thesis grasp",
+    "difference": "difference",
+    "success": "success",
+    "interval": "95 % interval",
+    "thesis_success": "thesis",
+    "failures": "failures",
+    "thesis_failures": "thesis failures",
+}
+
+
+def _fmt_causes(causes: dict[str, int]) -> str:
+    return ", ".join(f"{k} x{v}" for k, v in sorted(causes.items())) or "-"
 
 
 def _fmt_plan(plan: tuple[float, float, float]) -> str:

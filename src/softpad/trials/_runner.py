@@ -14,6 +14,7 @@ number of workers.
 
 from __future__ import annotations
 
+import math
 import os
 import time
 import zlib
@@ -66,6 +67,9 @@ def run_trial(
     plan_override: Any | None = None,
     opening_m: float | None = None,
     mounting: str | None = None,
+    truth: Any | None = None,
+    recorder: Any | None = None,
+    gripper: Any | None = None,
 ) -> tuple[TrialResult, Any | None]:
     """Run one grasp trial of ``spec`` in a fresh MuJoCo world.
 
@@ -85,9 +89,20 @@ def run_trial(
         A :class:`~softpad.planning.GraspPlan` to execute instead of the planner's (to provoke
         a failure on purpose, e.g. a COG outside the object).
     opening_m
-        Jaw opening for the approach instead of the one fitted to the object, metres.
+        Jaw opening for the approach instead of the mounting's full width, metres (an
+        experimenter's choice, to provoke a failure on purpose).
     mounting
         Gripper mounting (``"10/4"``, ``"6/2"``, ``"4/0"``) instead of the catalogue's.
+    truth
+        The object geometry the trial is scored with (``spec`` by default; the world always
+        holds ``spec``). Nothing the loop does may depend on it: a test swaps it.
+    recorder
+        A :class:`softpad.control.Recorder` that also hears every frame and event of the loop
+        (the robot's commands are ``robot`` events).
+    gripper
+        A :class:`softpad.layout.GripperSpec` (mounting widths and tips) instead of the
+        mounting's with the Sawyer's tips: a design study, e.g. the thicker tips the thesis
+        recommends.
 
     Returns
     -------
@@ -100,7 +115,16 @@ def run_trial(
         placement = perturbed_placement(spec, seed, config)
     t0 = time.perf_counter()
     result, trace = execute_trial(
-        spec, placement, seed, config, plan_override, opening_m=opening_m, mounting=mounting
+        spec,
+        placement,
+        seed,
+        config,
+        plan_override,
+        opening_m=opening_m,
+        mounting=mounting,
+        truth=truth,
+        recorder=recorder,
+        gripper=gripper,
     )
     result = replace(result, trial=trial, wall_time_s=time.perf_counter() - t0)
     return result, trace
@@ -174,6 +198,11 @@ def run_experiment(
         masses_g={s.name: s.mass_kg * 1e3 for s in specs},
         wall_time_s=time.perf_counter() - t0,
         workers=workers,
+        seeds=(seed,),
+        placement_noise={
+            "position_sigma_mm": round(config.position_sigma_m * 1e3, 6),
+            "yaw_sigma_deg": round(math.degrees(config.yaw_sigma_rad), 6),
+        },
     )
     return exp, trace
 

@@ -1,0 +1,259 @@
+"""``softpad pad probe|map``: press a rigid flat block on the simulated pad, read the response."""
+
+from __future__ import annotations
+
+import argparse
+import math
+from typing import Any
+
+from softpad import thesis
+from softpad.cli._args import add_json_force, finite_float, number_list
+from softpad.cli._output import emit, say
+from softpad.cli._paths import atomic_path, check_output
+from softpad.errors import InputError
+
+#: The default box of both commands: the simulated pad at p0 with an ideal sensor.
+DEFAULT_BOX = f"sim://?inflated_kpa={thesis.P0_PA / 1e3:g}&noise=0"
+
+_PROBE_EPILOG = f"""examples:
+  softpad pad probe --at 1.5,1.5 --force-n 0.2 --footprint-mm 10,10      module 2's centre
+  softpad pad probe --at 1.5,1.5 --force-n 0.1236 --footprint-mm 42,31   a 12.6 g Duplo brick
+  softpad pad probe --at 2,1.5 --force-n 0.2 --footprint-mm 10,10 --json on the seam of 2 and 3
+  softpad pad probe --at 1.5,0.5 --force-n 1 --footprint-mm 8,16 --box 'sim://?inflated_kpa=2&noise=0'
+
+--at is in module units as in 'softpad plan' (x along the columns, y up the rows; module 1's
+centre is 0.5,1.5 on the 2x3 pad). The block's force is spread uniformly over its footprint
+(sides along x and y); what each chamber feels of it is the FEM module response
+(softpad/data/module_response.npz, 'softpad fem response'). Default box: {DEFAULT_BOX}
+(the pad's physics with an ideal sensor; drop noise=0 to see the sensor too).
+"""
+
+_MAP_EPILOG = """examples:
+  softpad pad map --force-n 0.1236 --footprint-mm 42,31 --png brick.png
+  softpad pad map --force-n 1 --footprint-mm 8,16 --png tip.png --step-mm 1.5
+
+Each pixel is a block centred there: the colour is the largest module rise (kPa), with the
+module outlines, and contours at the object threshold t_o (50 Pa) and the contact threshold
+t_g (90 Pa).
+"""
+
+
+def register(sub: Any) -> None:
+    p = sub.add_parser(
+        "pad",
+        help="press a block on the simulated pad: module pressure rises (FEM response)",
+        description="Probe the simulated pad with a rigid flat block.",
+    )
+    psub = p.add_subparsers(dest="pad_command", metavar="ACTION")
+    p.add_argument("--json", action="store_true", help=argparse.SUPPRESS)
+    p.set_defaults(handler=lambda args: _usage(p))
+    pr = psub.add_parser(
+        "probe",
+        help="pressure rise of every module under a block pressed at one point",
+        description="Press a rigid flat block on the simulated pad and print every module's "
+        "pressure rise (kPa, mean of 10 reads after minus before).",
+        epilog=_PROBE_EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    pr.add_argument("--at", required=True, metavar="X,Y", help="block centre, module units")
+    _block_options(pr)
+    add_json_force(pr, force=False)
+    pr.set_defaults(handler=_probe)
+    mp = psub.add_parser(
+        "map",
+        help="heat map of the largest module rise for a block anywhere on the pad",
+        description="Draw the pad's response to a block centred at every point (PNG).",
+        epilog=_MAP_EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    _block_options(mp)
+    mp.add_argument("--png", required=True, metavar="FILE.png", help="output picture")
+    mp.add_argument(
+        "--step-mm",
+        type=finite_float("--step-mm", lo=0.5, hi=20.0, unit="mm"),
+        default=2.5,
+        help="grid step of the block centres in mm (default 2.5)",
+    )
+    add_json_force(mp)
+    mp.set_defaults(handler=_map)
+
+
+def _block_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument(
+        "--force-n",
+        required=True,
+        type=finite_float("--force-n", lo=1e-6, hi=50.0, unit="N"),
+        help="force on the block in N (0..50)",
+    )
+    p.add_argument(
+        "--footprint-mm",
+        required=True,
+        metavar="W,L",
+        help="block sides along x and y in mm (each 0..200)",
+    )
+    p.add_argument(
+        "--box", default=DEFAULT_BOX, help=f"a simulated box URL (default {DEFAULT_BOX})"
+    )
+
+
+def _usage(p: argparse.ArgumentParser) -> int:
+    import sys
+
+    from softpad.cli.main import UsageError
+
+    p.print_help(sys.stderr)
+    raise UsageError("an ACTION is required (see softpad pad --help)")
+
+
+def _pair(text: str, flag: str, lo: float, hi: float, unit: str) -> tuple[float, float]:
+    """Two numbers ``A,B`` each within [lo, hi] (the flag, value and limits named on error)."""
+    values = number_list(text, flag)
+    if len(values) != 2:
+        raise InputError(f"{flag} needs two comma-separated numbers, got {text!r}")
+    for v in values:
+        if not lo <= v <= hi:
+            raise InputError(f"{flag}: {v:g} {unit} is outside {lo:g}..{hi:g} {unit}")
+    return values[0], values[1]
+
+
+def _footprint(args: argparse.Namespace) -> tuple[float, float]:
+    w, length = _pair(args.footprint_mm, "--footprint-mm", 0.0, 200.0, "mm")
+    if w <= 0 or length <= 0:
+        raise InputError(f"--footprint-mm sides must be > 0 mm, got {args.footprint_mm!r}")
+    return w * 1e-3, length * 1e-3
+
+
+def _open_sim(url: str) -> Any:
+    from softpad.box import open_box
+
+    if not str(url).startswith("sim://"):
+        raise InputError(f"--box must be a simulated box (sim://...) to press its pad, got {url!r}")
+    return open_box(url)
+
+
+def _probe(args: argparse.Namespace) -> int:
+    from softpad.sim._probe import probe_box
+
+    size = _footprint(args)
+    with _open_sim(args.box) as box:
+        lay = box.world.layout
+        x, y = _pair(args.at, "--at", 0.0, float(max(lay.cols, lay.rows)), "module units")
+        if x > lay.cols or y > lay.rows:
+            raise InputError(
+                f"--at {x:g},{y:g} is off the {lay.rows}x{lay.cols} pad (x 0..{lay.cols}, "
+                f"y 0..{lay.rows} module units)"
+            )
+        at_m = (x * lay.pitch_m, y * lay.pitch_m)
+        result = probe_box(box, at_m, size, args.force_n)
+    out = {
+        "command": "pad probe",
+        "box": args.box,
+        "at": [x, y],
+        "at_m": list(at_m),
+        "force_n": args.force_n,
+        "footprint_mm": [size[0] * 1e3, size[1] * 1e3],
+        "reference_kpa": [round(v / 1e3, 6) for v in result.reference_pa],
+        "delta_kpa": [round(v / 1e3, 6) for v in result.delta_pa],
+        "fem_delta_kpa": [round(v / 1e3, 6) for v in result.fem_delta_pa],
+    }
+    if args.json:
+        emit(out)
+        return 0
+    say(
+        f"block {size[0] * 1e3:g} x {size[1] * 1e3:g} mm, {args.force_n:g} N at ({x:g}, {y:g}) "
+        f"module units on {args.box}"
+    )
+    say("module  delta_kPa  FEM_kPa")
+    for k, (d, f) in enumerate(zip(result.delta_pa, result.fem_delta_pa, strict=True), 1):
+        say(f"{k:6d}  {d / 1e3:9.4f}  {f / 1e3:7.4f}")
+    return 0
+
+
+def _map(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from softpad.sim._probe import sealed_rise_map
+
+    size = _footprint(args)
+    png = check_output(args.png, "--png", force=args.force, suffix=".png")
+    assert png is not None  # --png is required
+    with _open_sim(args.box) as box:
+        world, step = box.world, args.step_mm * 1e-3
+        lay = world.layout
+        xs = np.arange(0.5 * step, lay.cols * lay.pitch_m, step)
+        ys = np.arange(0.5 * step, lay.rows * lay.pitch_m, step)
+        p0 = float(np.median(box.true_pressures_pa[: lay.n_modules]))
+        if p0 < thesis.P0_RANGE_PA[0] - 1.0:
+            raise InputError(
+                f"the box's modules are at {p0 / 1e3:g} kPa; inflate them first "
+                f"(e.g. sim://?inflated_kpa=1.1), p0 range {thesis.P0_RANGE_PA[0] / 1e3:g}.."
+                f"{thesis.P0_RANGE_PA[1] / 1e3:g} kPa"
+            )
+        rise = sealed_rise_map(
+            world.response, box.characteristic, p0, args.force_n, size, xs, ys, box.pneumatics
+        )
+    top = rise.max(axis=2)
+    with atomic_path(png) as tmp:
+        _draw_map(tmp, xs, ys, top, lay, size, args.force_n, p0)
+    out = {
+        "command": "pad map",
+        "box": args.box,
+        "png": str(png),
+        "force_n": args.force_n,
+        "footprint_mm": [size[0] * 1e3, size[1] * 1e3],
+        "pressure_kpa": p0 / 1e3,
+        "largest_kpa": float(top.max()) / 1e3,
+        "smallest_kpa": float(top.min()) / 1e3,
+        "share_above_object_threshold": float((top >= thesis.OBJECT_THRESHOLD_PA).mean()),
+    }
+    if args.json:
+        emit(out)
+        return 0
+    say(
+        f"wrote {png}: largest module rise {out['largest_kpa']:.4f} kPa, "
+        f"{100 * out['share_above_object_threshold']:.0f} % of block centres above t_o"
+    )
+    return 0
+
+
+def _draw_map(
+    path: Any,
+    xs: Any,
+    ys: Any,
+    top: Any,
+    lay: Any,
+    size: tuple[float, float],
+    force: float,
+    p0: float,
+) -> None:
+    """The heat map (kPa) with module outlines and threshold contours, saved as PNG."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.patches import Rectangle
+
+    fig, ax = plt.subplots(figsize=(1.6 + 2.2 * lay.cols, 0.8 + 2.2 * lay.rows))
+    units = 1.0 / lay.pitch_m
+    ext = (0.0, lay.cols, 0.0, lay.rows)
+    im = ax.imshow(top / 1e3, origin="lower", extent=ext, cmap="viridis", aspect="equal")
+    fig.colorbar(im, ax=ax, label="largest module rise (kPa)")
+    levels = [thesis.OBJECT_THRESHOLD_PA / 1e3, thesis.CONTACT_THRESHOLD_PA / 1e3]
+    if top.max() / 1e3 > levels[0]:
+        cs = ax.contour(xs * units, ys * units, top / 1e3, levels=levels, colors=["w", "r"])
+        ax.clabel(cs, fmt=lambda v: f"{v * 1e3:.0f} Pa")
+    for k in range(lay.n_modules):
+        r, c = divmod(k, lay.cols)
+        ax.add_patch(Rectangle((c, lay.rows - 1 - r), 1, 1, fill=False, ec="k", lw=1.2))
+        ax.text(c + 0.05, lay.rows - 1 - r + 0.05, str(k + 1), color="w", fontsize=9)
+    ax.set_xlabel("x (module units)")
+    ax.set_ylabel("y (module units)")
+    ax.set_title(
+        f"{force:g} N on {size[0] * 1e3:g} x {size[1] * 1e3:g} mm, p0 = {p0 / 1e3:.2f} kPa",
+        fontsize=10,
+    )
+    fig.tight_layout()
+    fig.savefig(path, format="png", dpi=110)
+    plt.close(fig)
+    if not math.isfinite(float(top.max())):  # pragma: no cover - guarded by the physics
+        raise InputError("the map has no finite values")
