@@ -39,15 +39,27 @@ def _fem(d: PadDesign) -> dict:
     )
 
 
-def test_thesis_pad_holds_the_banana_and_detects_contact(response: dict) -> None:
-    rows = run_design_trials(
-        THESIS_DESIGN, response, _set("banana", "charger"), 0, TrialOptions(hold_s=1.0)
-    )
-    assert [r["object"] for r in rows] == ["banana", "charger"]
-    for r in rows:
-        assert r["success"] and r["outcome"] == "held"
-        # the thesis detector: running average of 10 samples at 100 Hz, 0.05 m/s approach
-        assert 0.0 < r["contact_delay_s"] < 0.3
+def test_thesis_pad_holds_most_of_the_thesis_set_and_detects_contact(response: dict) -> None:
+    """Thesis's pad, thesis's set, seeds 0 and 1 (22 trials): the thesis held 94.5 %; the
+    analytic world with placement noise holds 7-9 of 11 per seed, so at least 13 of 22 here;
+    every detected contact within 0.3 s of the first touch, the median near the 10-sample
+    running average's delay at 100 Hz and 0.05 m/s (50-120 ms)."""
+    from softpad.design import example_object_set
+
+    rows = []
+    for seed in (0, 1):
+        rows += run_design_trials(
+            THESIS_DESIGN,
+            response,
+            example_object_set("thesis-set"),
+            seed,
+            TrialOptions(hold_s=1.0),
+        )
+    assert len(rows) == 22
+    assert sum(r["success"] for r in rows) >= 13
+    delays = sorted(r["contact_delay_s"] for r in rows if r["contact_delay_s"] is not None)
+    assert len(delays) >= 18 and all(0.0 < d < 0.3 for d in delays)
+    assert 0.05 <= delays[len(delays) // 2] <= 0.12
 
 
 def test_same_seed_same_trials_other_seed_other_noise(response: dict) -> None:
