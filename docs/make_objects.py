@@ -148,22 +148,27 @@ def seg(name, p0, p1, r):  # noqa: D103
 YCB_BANANA_SPINE = [(-0.070, -0.045), (-0.045, -0.020), (-0.010, 0.003), (0.040, 0.006),
                     (0.080, -0.003), (0.112, -0.020)]
 YCB_BANANA_RADII = [0.008, 0.016, 0.019, 0.019, 0.014]
-# Laid with its chord (end to end) on the line through the centres of modules 4 and 3, centred
-# between them, bulging towards module 2 (seed: "it lays on modules 2, 3, and 4"); its ends
-# reach past the pad's edges, as a 192 mm banana on a 135 x 90 mm pad must.
+# Laid with its chord (end to end) parallel to the line through the centres of modules 4 and 3,
+# its centre of mass on the pad's centre between them (1.5, 1) module units, bulging towards
+# module 2: so it lies on modules 2, 3 and 4 as the seed says ("it lays on modules 2, 3, and 4");
+# its ends reach past the pad's edges, as a 192 mm banana on a 135 x 90 mm pad must. (Its chord's
+# midpoint on that centre instead puts the 38 mm thick middle on modules 1-3: not the seed's.)
 (_x0, _y0), (_x1, _y1) = YCB_BANANA_SPINE[0], YCB_BANANA_SPINE[-1]
 CHORD = math.atan2(1.0, 2.0) - math.atan2(_y1 - _y0, _x1 - _x0)
-_mx, _my = (_x0 + _x1) / 2, (_y0 + _y1) / 2  # chord midpoint, banana frame
-BANANA_AT = (1.5 * U - (math.cos(CHORD) * _mx - math.sin(CHORD) * _my),
-             1.0 * U - (math.sin(CHORD) * _mx + math.cos(CHORD) * _my))
 banana_parts = [seg(f"stretch {k + 1}", YCB_BANANA_SPINE[k], YCB_BANANA_SPINE[k + 1], r)
                 for k, r in enumerate(YCB_BANANA_RADII)]
-obj("banana", 0.0598, by_volume(banana_parts, 0.0598),
+banana_parts = by_volume(banana_parts, 0.0598)
+_mx = sum(p["mass_kg"] * p["pos_m"][0] for p in banana_parts) / 0.0598  # centre of mass,
+_my = sum(p["mass_kg"] * p["pos_m"][1] for p in banana_parts) / 0.0598  # banana frame
+BANANA_AT = (1.5 * U - (math.cos(CHORD) * _mx - math.sin(CHORD) * _my),
+             1.0 * U - (math.sin(CHORD) * _mx + math.cos(CHORD) * _my))
+obj("banana", 0.0598, banana_parts,
     BANANA_AT[0], BANANA_AT[1], CHORD, [2, 3, 4], [1.0, 1.0], -pi / 4, "6/2",
     "The YCB banana (011: 192 mm long, 38 mm thick, spine from YCB's scanned model) as five "
-    "lying cylinders along its curve, one density, 59.8 g (Table 6.1; YCB lists 66 g); end to "
-    "end along the line through the centres of modules 4 and 3, bulging towards module 2, its "
-    "ends past the pad's edges.")
+    "lying cylinders along its curve, one density, 59.8 g (Table 6.1; YCB lists 66 g); its "
+    "chord parallel to the line through the centres of modules 4 and 3, its centre of mass on "
+    "the pad's centre, bulging towards module 2 (on modules 2, 3, 4 as in the seed), its ends "
+    "past the pad's edges.")
 obj("toy", 0.1316, by_volume([
         box("body", 0.036, 0.036, 0.04, 1.5 * U, 0.5 * U, 0),
         box("left arm", 0.055, 0.022, 0.03, 1.5 * U - 0.032, 0.5 * U + 0.032, 0, 3 * pi / 4),

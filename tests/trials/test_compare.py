@@ -23,7 +23,7 @@ def test_wilson_interval_matches_the_closed_form(k: int, n: int, low: float, hig
 
 
 def test_compare_json_has_every_pair_and_object(capsys: pytest.CaptureFixture[str]) -> None:
-    argv = ["compare", "--seeds", "0", "--objects", "banana", "--trials", "1"]
+    argv = ["compare", "--seeds", "0", "--objects", "object-5", "--trials", "1"]
     argv += ["--idle-hours", "0.01", "--json", "--no-progress", "--workers", "1"]
     assert main(argv) == 0
     d = json.loads(capsys.readouterr().out)
@@ -34,7 +34,7 @@ def test_compare_json_has_every_pair_and_object(capsys: pytest.CaptureFixture[st
         assert c["trials"] == 1 and c["successes"] in (0, 1)
         lo, hi = c["success_interval"]
         assert 0.0 <= lo <= c["success"] <= hi <= 1.0
-        assert [o["name"] for o in c["objects"]] == ["banana"]
+        assert [o["name"] for o in c["objects"]] == ["object-5"]
         assert c["false_alarms_per_hour"] >= 0 and c["delay_s_median"] is not None
 
 
