@@ -51,3 +51,19 @@ def test_pad_4x4_example() -> None:
     assert result["cog"] == pytest.approx((small.cog[0] + 1, small.cog[1] + 1), abs=0.02)
     assert result["theta"] == pytest.approx(small.theta) == pytest.approx(math.pi / 2)
     assert result["outcome"] == "held"
+
+
+@pytest.mark.fem
+def test_design_sweep_example(capsys: pytest.CaptureFixture[str]) -> None:
+    """Four designs ranked on the blocks set; the thesis's pad is the baseline; a 35 mm module
+    feels lighter masses than the 45 mm one (FEM)."""
+    result = runpy.run_path(str(EXAMPLES / "design_sweep.py"))["main"]()
+    designs = {d["name"]: d for d in result["designs"]}
+    assert len(designs) == 4 and sum(d["baseline"] for d in designs.values()) == 1
+    thesis = next(d for d in designs.values() if d["baseline"])
+    assert (
+        designs["3x3-35mm-t1.5-neo-hookean-p1.1"]["min_detectable_mass_g"]
+        < thesis["min_detectable_mass_g"]
+    )
+    assert all(d["trials"] == 3 for d in designs.values())
+    assert "thesis 2x3 45 mm *" in capsys.readouterr().out

@@ -32,6 +32,11 @@ QUICK = {
     "pad map --force-n 0.1236 --footprint-mm 42,31 --png map.png": "pad map --force-n 0.1236 "
     "--footprint-mm 42,31 --png map.png --step-mm 10",
     "bench": "bench --only planning --quick",
+    "design --example thesis-set --quick": "design --example blocks --quick --grid 2x3 "
+    "--hold-s 0.5 --no-cache --workers 1 --no-progress",
+    "design --example thesis-set --quick --json --png pareto.png --csv designs.csv": "design "
+    "--example blocks --quick --grid 2x3 --json --png pareto.png --csv designs.csv --hold-s 0.5 "
+    "--no-cache --workers 1 --no-progress",
     "compare --seeds 0-19 --json": "compare --seeds 0 --json --objects banana --trials 1 "
     "--workers 1 --idle-hours 0.01 --no-progress",
 }

@@ -29,6 +29,18 @@ ALLOWED: dict[str, set[str]] = {
     "trials": {"box", "control", "harness", "layout", "planning", "record", "sensing", "sim"},
     # the ROS adapters translate; the simulated arm node uses the harness and the catalogue
     "ros": {"box", "control", "harness", "layout", "planning", "sensing", "sim"},
+    # design sweeps evaluate pads with the FEM and simulated trials
+    "design": {
+        "box",
+        "control",
+        "fem",
+        "harness",
+        "layout",
+        "planning",
+        "sensing",
+        "sim",
+        "trials",
+    },
 }
 
 

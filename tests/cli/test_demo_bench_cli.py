@@ -41,7 +41,7 @@ def test_bench_planning_reports_medians_against_the_target(
     assert code == 0
     rows = json.loads(out)["results"]
     assert {r["suite"] for r in rows} == {"planning"}
-    assert all(r["unit"] == "us" and r["value"] > 0 and r["target"] == "<= 50 us" for r in rows)
+    assert all(r["unit"] == "us" and r["value"] > 0 and r["target"] == "<= 20 us" for r in rows)
 
 
 def test_bench_unknown_suite_is_a_one_line_error(cli) -> None:

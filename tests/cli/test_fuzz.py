@@ -43,6 +43,7 @@ def stubbed() -> Iterator[Path]:
     import softpad.cli._demo
     import softpad.cli._trials
     import softpad.control
+    import softpad.design
     import softpad.fem
     import softpad.harness
     import softpad.sim._probe
@@ -55,6 +56,7 @@ def stubbed() -> Iterator[Path]:
     mp.setattr(softpad.cli._bench, "importlib", types.SimpleNamespace(import_module=_started))
     mp.setattr(softpad.control, "inflate_and_adjust", _started)
     mp.setattr(softpad.box, "BoxDaemon", _started)
+    mp.setattr(softpad.design, "design_sweep", _started)
     for name in (
         "ModuleModel",
         "inflation_sweep",
@@ -116,6 +118,28 @@ OPTIONS = (
     ]
     + [(["trials"], o) for o in ("--objects", "--trials", "--seeds", "--workers", "--hold-s")]
     + [(["demo"], o) for o in ("--out", "--trials", "--seeds", "--workers")]
+    + [
+        (["design", "--quick"], o)
+        for o in (
+            "--example",
+            "--objects",
+            "--grid",
+            "--pitch-mm",
+            "--thickness-mm",
+            "--material",
+            "--p0-kpa",
+            "--trials",
+            "--seeds",
+            "--hold-s",
+            "--planner",
+            "--detector",
+            "--scheduler",
+            "--workers",
+            "--cache",
+            "--csv",
+            "--png",
+        )
+    ]
     + [
         (["bench"], "--only"),
         (["completion"], "--shell-positional"),

@@ -1,8 +1,8 @@
 """Simulated box and closed loop: simulator speed, contact-detection delay, false alarms.
 
 * speed of the simulated box with 8 channels at 1 kHz, as a real-time factor (simulated
-  seconds per wall second; target >= 100x): idle with an object resting (the hot path), every
-  valve open (gas physics every step), and the whole loop on object 5;
+  seconds per wall second; target >= 200x, issue 15): idle with an object resting (the hot
+  path), every valve open (gas physics every step), and the whole loop on object 5;
 * contact detection with the thesis detector (running average of 10 samples above
   t_g) at the thesis approach speed: time from the first fingertip touch
   to detection and the finger travel in between, medians over the Table 6.1 objects;
@@ -17,7 +17,7 @@ import time
 from softpad import thesis
 from softpad.benchmarks._common import BenchResult
 
-TARGET_REALTIME = 100.0
+TARGET_REALTIME = 200.0
 
 
 def _realtime_factor(url: str, sim_s: float, valves: str | None = None) -> float:
@@ -56,7 +56,7 @@ def _speed(quick: bool) -> list[BenchResult]:
                 f"sim box speed, 8 channels at 1 kHz, {label}",
                 f,
                 "x real time",
-                target=">= 100x",
+                target=">= 200x",
                 met=f >= TARGET_REALTIME,
                 detail=f"median of {repeats} runs of {sim_s:g} s simulated",
             )
@@ -78,7 +78,7 @@ def _speed(quick: bool) -> list[BenchResult]:
                 f"closed loop on object 5, 8 channels at {rate} Hz",
                 f,
                 "x real time",
-                detail="informative (the >= 100x target is the simulator's, above); one run: "
+                detail="informative (the >= 200x target is the simulator's, above); one run: "
                 f"{sim_total:.1f} s simulated (inflate, plan, grasp, {hold:g} s hold) "
                 f"in {wall:.2f} s, controller included",
             )

@@ -108,27 +108,53 @@ class SafetyGuard:
     limits: SafetyLimits = field(default_factory=SafetyLimits)
     tripped: NDArray[np.bool_] = field(init=False)
     trips: list[tuple[float, int, str]] = field(init=False, default_factory=list)
-    _history: list[NDArray[np.float64]] = field(init=False, default_factory=list)
+    _history: list[list[float]] = field(init=False, default_factory=list)
     _times: list[float] = field(init=False, default_factory=list)
+    _lows: list[float] = field(init=False, default_factory=list)
+    _any_tripped: bool = field(init=False, default=False)
 
     def __post_init__(self) -> None:
         self.tripped = np.zeros(self.channels, dtype=bool)
 
     def check(self, t_s: float, pressures_pa: NDArray[np.float64]) -> list[int]:
         """Update with one frame; return the 1-based channels newly tripped (to vent now)."""
-        if self._times and t_s == self._times[-1]:
+        times = self._times
+        if times and t_s == times[-1]:
             return []  # the same frame seen again (a wrapper sharing this guard)
         lim = self.limits
         p = np.asarray(pressures_pa, dtype=float)[: self.channels]
-        self._history.append(p)
-        self._times.append(t_s)
-        if len(self._history) > lim.rise_window:
-            del self._history[0], self._times[0]
+        values = p.tolist()
+        low, high = min(values), max(values)
+        history, lows = self._history, self._lows
+        history.append(values)
+        lows.append(low)
+        times.append(t_s)
+        if len(history) > lim.rise_window:
+            del history[0], lows[0], times[0]
+        # The hot path (every frame of every box): nothing tripped, every reading finite and
+        # within the sensor's range, and even the highest reading plus a bound on the largest
+        # rise of the window, (highest now - lowest then) / (frames - 1), below the trip level:
+        # nothing can trip. Plain floats: on 8 values several times faster than NumPy calls.
+        # Otherwise the exact per-channel test decides.
+        if (
+            not self._any_tripped
+            and math.isfinite(sum(values))
+            and low > lim.sensor_min_pa
+            and high < lim.sensor_max_pa
+        ):
+            n = len(history)
+            rise = (high - lows[0]) / (n - 1) if n >= 2 and times[-1] > times[0] else 0.0
+            if high + max(rise, 0.0) <= lim.trip_pa:
+                return []
+        return self._check_arrays(t_s, p, lim)
+
+    def _check_arrays(self, t_s: float, p: NDArray[np.float64], lim: SafetyLimits) -> list[int]:
+        """The full per-channel test: trips, releases, invalid readings."""
         invalid = ~np.isfinite(p) | (p <= lim.sensor_min_pa) | (p >= lim.sensor_max_pa)
         rise = np.zeros_like(p)
         if len(self._history) >= 2 and self._times[-1] > self._times[0]:
             span = self._times[-1] - self._times[0]
-            slope = (p - self._history[0]) / span
+            slope = (p - np.asarray(self._history[0])) / span
             period = span / (len(self._history) - 1)
             rise = np.nan_to_num(np.maximum(slope, 0.0) * period)
         with np.errstate(invalid="ignore"):
@@ -138,6 +164,7 @@ class SafetyGuard:
         self.tripped &= ~release
         new = (over | invalid) & ~self.tripped
         self.tripped |= new
+        self._any_tripped = bool(self.tripped.any())
         for k in np.flatnonzero(new):
             cause = (
                 f"reading {p[k] / 1e3:.3f} kPa is not valid"

@@ -45,6 +45,12 @@ def register(sub: Any) -> None:
     )
     add_trial_options(p)
     p.add_argument(
+        "--scheduler",
+        metavar="tcp://127.0.0.1:PORT|local",
+        help="run every seed's trials as Dask tasks: on this running scheduler (loopback), or "
+        "'local' for a Dask cluster of --workers processes on 127.0.0.1",
+    )
+    p.add_argument(
         "--hold-s", type=float, default=thesis.HOLD_S, help="hold time in s (default %(default)g)"
     )
     add_record_option(p, per_trial=True)
@@ -146,6 +152,8 @@ def run(args: argparse.Namespace) -> int:
 
     done: list[Any] = []
     args.partial = {"seeds": seeds, "completed_seeds": [e.seed for e in done]}
+    if getattr(args, "scheduler", None) is not None:
+        return _run_on_dask(args, specs, seeds)
     for seed in seeds:
         exp, _ = run_with_progress(
             specs,
@@ -164,6 +172,45 @@ def run(args: argparse.Namespace) -> int:
     say(pooled.to_text(), args.json)
     say(
         f"({len(pooled.trials)} trials in {pooled.wall_time_s:.1f} s on {pooled.workers} workers)",
+        args.json,
+    )
+    if args.json:
+        emit(pooled.to_dict())
+    return 0
+
+
+def _run_on_dask(args: argparse.Namespace, specs: list[Any], seeds: list[int]) -> int:
+    """``--scheduler``: every seed's trials as Dask tasks (softpad.design's client), pooled."""
+    from softpad.design import check_scheduler_address, run_experiment_on_dask
+    from softpad.trials import ExperimentResult, TrialConfig, trial_execution_params
+
+    if args.record:
+        raise InputError("--record is not available with --scheduler (trials run on Dask workers)")
+    address = None if args.scheduler == "local" else check_scheduler_address(args.scheduler)
+    total = len(specs) * args.trials * len(seeds)
+    bar = progress_bar(total, not args.no_progress and sys.stderr.isatty())
+    try:
+        exps = run_experiment_on_dask(
+            specs,
+            args.trials,
+            seeds,
+            TrialConfig(trial_execution_params(hold_s=args.hold_s)),
+            scheduler=address,
+            workers=args.workers,
+            on_trial=(lambda r: bar.update(1)) if bar is not None else None,
+        )
+    finally:
+        if bar is not None:
+            bar.close()
+    args.partial["completed_seeds"] = [e.seed for e in exps]
+    if len(seeds) > 1:
+        for exp in exps:
+            say(f"seed {exp.seed}: {exp.overall()['successes']}/{len(exp.trials)} held", args.json)
+    pooled = ExperimentResult.pooled(exps)
+    say(pooled.to_text(), args.json)
+    say(
+        f"({len(pooled.trials)} trials in {pooled.wall_time_s:.1f} s on {pooled.workers} Dask "
+        "workers)",
         args.json,
     )
     if args.json:

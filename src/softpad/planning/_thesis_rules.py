@@ -10,7 +10,8 @@ the PCOM). The interpretation chosen for each ambiguous case is documented in
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from functools import lru_cache
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import NDArray
@@ -30,9 +31,9 @@ from softpad.planning._records import GraspPlan
 Point = tuple[float, float]
 
 
-@dataclass(frozen=True)
-class _Grasp:
-    """What a rule returns before it becomes a GraspPlan."""
+class _Grasp(NamedTuple):
+    """What a rule returns before it becomes a GraspPlan (a named tuple: built several times
+    per plan, it costs a third of a frozen dataclass)."""
 
     cog: Point
     theta: float
@@ -49,9 +50,9 @@ class _Object:
         self.modules = modules
         self.layout = layout
         self.pcom = compute_pcom(delta, modules, layout)
-        self._cells = {m: self._cell(m) for m in modules}
-        self._centres = {m: layout.center(m) for m in modules}
-        self._bboxes: dict[tuple[int, ...], tuple[int, int, int, int]] = {}
+        cells, centres = _tables(layout)
+        self._cells = {m: cells[m - 1] for m in modules}
+        self._centres = {m: centres[m - 1] for m in modules}
 
     def c(self, m: int) -> Point:
         return self._centres[m]
@@ -87,17 +88,71 @@ class _Object:
         return abs(ca - cb) + abs(ra - rb) == 1
 
     def bbox(self, mods: tuple[int, ...]) -> tuple[int, int, int, int]:
-        box = self._bboxes.get(mods)
-        if box is None:
-            cells = [self._cells[m] for m in mods]
-            cols = [c for c, _ in cells]
-            rows = [r for _, r in cells]
-            box = self._bboxes[mods] = (min(cols), max(cols), min(rows), max(rows))
-        return box
+        """(first column, last column, first row, last row) of the modules, rows from the
+        bottom."""
+        return _bbox(self.layout, mods)
 
     def is_rectangle(self, mods: tuple[int, ...]) -> bool:
-        c0, c1, r0, r1 = self.bbox(mods)
+        c0, c1, r0, r1 = _bbox(self.layout, mods)
         return (c1 - c0 + 1) * (r1 - r0 + 1) == len(mods)
+
+
+# The shape analysis of a set of modules depends on the layout and the set only, not on the
+# increments: computed once per (layout, modules) and reused by every later plan (profiling:
+# most of a plan's time went into these loops over adjacency).
+
+
+@lru_cache(maxsize=64)
+def _tables(layout: PadLayout) -> tuple[tuple[tuple[int, int], ...], tuple[Point, ...]]:
+    """Cells (column, row from the bottom) and centres of every module of ``layout``."""
+    cells = tuple((c, layout.rows - 1 - r) for r, c in (layout.row_col(m) for m in layout.modules))
+    return cells, tuple(layout.center(m) for m in layout.modules)
+
+
+@lru_cache(maxsize=16384)
+def _bbox(layout: PadLayout, mods: tuple[int, ...]) -> tuple[int, int, int, int]:
+    cells = _tables(layout)[0]
+    cols = [cells[m - 1][0] for m in mods]
+    rows = [cells[m - 1][1] for m in mods]
+    return min(cols), max(cols), min(rows), max(rows)
+
+
+@lru_cache(maxsize=16384)
+def _three_shape(layout: PadLayout, mods: tuple[int, ...]) -> tuple[str, int]:
+    """The kind of a 3-module object that is not a row (``corner``, ``line`` or ``linked``)
+    and its corner module (0 for a diagonal line)."""
+    obj = _Object.__new__(_Object)
+    obj.layout = layout
+    cells = _tables(layout)[0]
+    obj._cells = {m: cells[m - 1] for m in mods}
+    c0, c1, r0, r1 = _bbox(layout, mods)
+    if c1 - c0 == 1 and r1 - r0 == 1:
+        # Three modules of a 2 x 2 block: an L ("corner-shaped", Fig. 6.4d-(2)(3)).
+        (k,) = [m for m in mods if all(obj.edge_adjacent(m, o) for o in mods if o != m)]
+        return "corner", k
+    centres = _tables(layout)[1]
+    a, b, c = (centres[m - 1] for m in mods)
+    if abs((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])) < 1e-12:
+        return "line", 0
+    (k,) = [m for m in mods if all(obj.adjacent(m, o) for o in mods if o != m)]
+    return "linked", k
+
+
+@lru_cache(maxsize=16384)
+def _reduce_candidates(layout: PadLayout, mods: tuple[int, ...]) -> tuple[int, ...]:
+    """Extremity modules whose removal leaves the object connected (all extremities if none)."""
+    obj = _Object.__new__(_Object)
+    obj.layout = layout
+    cells = _tables(layout)[0]
+    obj._cells = {m: cells[m - 1] for m in mods}
+    c0, c1, r0, r1 = _bbox(layout, mods)
+    ends: set[int] = set()
+    if c1 - c0 >= r1 - r0:
+        ends |= {m for m in mods if obj.cell(m)[0] in (c0, c1)}
+    if r1 - r0 >= c1 - c0:
+        ends |= {m for m in mods if obj.cell(m)[1] in (r0, r1)}
+    ordered = sorted(ends)
+    return tuple(m for m in ordered if obj.connected([o for o in mods if o != m])) or tuple(ordered)
 
 
 def plan_with_rules(
@@ -164,18 +219,14 @@ def _rectangle(obj: _Object, mods: tuple[int, ...], theta0: float) -> _Grasp:
 
 def _three(obj: _Object, mods: tuple[int, ...], c_s: float) -> _Grasp:
     """N = 3 that is not a straight row: corner-shaped, diagonal-linked, or a diagonal line."""
-    corner = [m for m in mods if all(obj.adjacent(m, o) for o in mods if o != m)]
-    c0, c1, r0, r1 = obj.bbox(mods)
-    if c1 - c0 == 1 and r1 - r0 == 1:
-        # Three modules of a 2 x 2 block: an L ("corner-shaped", Fig. 6.4d-(2)(3)).
-        (k,) = [m for m in mods if all(obj.edge_adjacent(m, o) for o in mods if o != m)]
+    kind, k = _three_shape(obj.layout, mods)
+    if kind == "corner":
         return _corner_shaped(obj, mods, k, c_s)
-    a, b, c = (obj.c(m) for m in mods)
-    if abs((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])) < 1e-12:
+    if kind == "line":
         # Three modules on one diagonal (only on pads larger than 2 x 3).
+        a, c = obj.c(mods[0]), obj.c(mods[2])
         q, _ = project_on_line(obj.pcom, a, c)
         return _Grasp(q, theta_perpendicular(c[0] - a[0], c[1] - a[1]), "n3-diagonal-line", mods)
-    (k,) = corner
     return _diagonal_linked(obj, mods, k, c_s)
 
 
@@ -281,14 +332,8 @@ def _reduce(obj: _Object, mods: tuple[int, ...], c_s: float, theta0: float) -> _
     The PCOM keeps the weights of every module (it is the best estimate of the centre of
     mass); the dropped module only changes the shape the rules see.
     """
-    c0, c1, r0, r1 = obj.bbox(mods)
-    ends: set[int] = set()
-    if c1 - c0 >= r1 - r0:
-        ends |= {m for m in mods if obj.cell(m)[0] in (c0, c1)}
-    if r1 - r0 >= c1 - c0:
-        ends |= {m for m in mods if obj.cell(m)[1] in (r0, r1)}
     p = obj.pcom
-    candidates = [m for m in ends if obj.connected([o for o in mods if o != m])] or list(ends)
+    candidates = _reduce_candidates(obj.layout, mods)
 
     def far(m: int) -> float:
         c = obj.c(m)

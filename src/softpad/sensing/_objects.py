@@ -41,6 +41,11 @@ def check_increments(delta_pa: ArrayLike, layout: PadLayout) -> np.ndarray:
             f"a {layout.name} pad needs {layout.n_modules} increments (modules 1..{layout.n_modules}), "
             f"got {d.size}"
         )
+    top = float(np.abs(d).max()) if d.size else 0.0
+    # the usual case in one reduction: the largest magnitude is finite (so is every value),
+    # within the full scale and not a lone sub-pascal vector
+    if top <= SENSOR_FULL_SCALE_PA and not 0.0 < top < SMALLEST_PLAUSIBLE_INCREMENT_PA:
+        return d
     bad = ~np.isfinite(d)
     if bad.any():
         i = int(np.argmax(bad))
@@ -52,7 +57,6 @@ def check_increments(delta_pa: ArrayLike, layout: PadLayout) -> np.ndarray:
             f"increment of module {i + 1} is {d[i]:g} Pa ({d[i] / 1e3:g} kPa), beyond the sensor's "
             f"{SENSOR_FULL_SCALE_PA / 1e3:g} kPa full scale: were pascals given as kPa?"
         )
-    top = float(np.max(np.abs(d))) if d.size else 0.0
     if 0.0 < top < SMALLEST_PLAUSIBLE_INCREMENT_PA:
         raise InputError(
             f"every increment is below {SMALLEST_PLAUSIBLE_INCREMENT_PA:g} Pa (largest {top:g} Pa), "

@@ -1,0 +1,257 @@
+"""``softpad design``: rank pad designs for an object set (FEM response + simulated trials, Dask)."""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+from pathlib import Path
+from typing import Any
+
+from softpad import thesis
+from softpad.cli._args import add_json_force, int_ranges, name_list
+from softpad.cli._output import emit, say
+from softpad.errors import InputError
+
+_EPILOG = """examples:
+  softpad design --example thesis-set --quick                  8 designs around the thesis's pad
+  softpad design --example thesis-set --quick --json
+  softpad design --objects my-set.toml --grid 2x3,3x4 --pitch-mm 35,45 --thickness-mm 1:2:0.5
+  softpad design --example thesis-set --p0-kpa 0.6,1.1,2 --material neo-hookean,yeoh --png pareto.png
+  softpad design --example thesis-set --quick --scheduler tcp://127.0.0.1:8786
+
+Every design: the module's finite-element response at p0 (height, sealed-chamber rise per newton,
+minimum detectable mass at t_o = 0.05 kPa), then the object set's grasp trials on the simulated
+box over the analytic world with that response. The thesis's pad (2x3, 45 mm, 1.5 mm
+neo-Hookean, 1.1 kPa) is always the baseline row. Tasks run on Dask: a local cluster on
+127.0.0.1 by default, or the scheduler given; finished tasks are cached (--cache), so a
+sweep that was interrupted resumes.
+"""
+
+
+def register(sub: Any) -> None:
+    from softpad.design import EXAMPLE_SETS
+
+    p = sub.add_parser(
+        "design",
+        help="rank SoftPad designs for an object set (FEM + simulated trials, on Dask)",
+        description="Sweep pad designs (grid, pitch, layer thickness, material, p0) for an "
+        "object set and rank them by grasp success, minimum detectable mass, detection delay "
+        "and module count.",
+        epilog=_EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    src = p.add_mutually_exclusive_group()
+    src.add_argument(
+        "--example", metavar="NAME", help="packaged object set: " + ", ".join(EXAMPLE_SETS)
+    )
+    src.add_argument("--objects", metavar="FILE.toml", help="object set file (docs/design.md)")
+    p.add_argument(
+        "--gripper", choices=("10/4", "6/2", "4/0"), help="one mounting for every object"
+    )
+    p.add_argument("--grid", metavar="RxC,...", help="grids, e.g. 2x3,3x4")
+    p.add_argument(
+        "--pitch-mm", metavar="V,...", help="module pitches in mm (list or start:stop:step)"
+    )
+    p.add_argument("--thickness-mm", metavar="V,...", help="layer thicknesses in mm")
+    p.add_argument("--material", metavar="NAME,...", help="material presets (softpad fem --help)")
+    p.add_argument("--p0-kpa", metavar="V,...", help="inflating pressures in kPa")
+    p.add_argument(
+        "--quick",
+        action="store_true",
+        help="the 8 quick designs unless variables are given, 1 trial, 2 s hold, coarser FEM mesh",
+    )
+    p.add_argument(
+        "--trials", type=int, default=None, help="trials per object and seed (default 5; --quick 1)"
+    )
+    p.add_argument(
+        "--seeds", default="0", metavar="SEEDS", help="experiment seeds: 0, 0-2 (default 0)"
+    )
+    p.add_argument(
+        "--hold-s",
+        type=float,
+        default=None,
+        help=f"hold time in s (default {thesis.HOLD_S:g}; --quick 2)",
+    )
+    p.add_argument("--planner", default="thesis", help="planner: thesis, gripper-aware")
+    p.add_argument("--detector", default="thesis", help="contact detector: thesis, cusum")
+    p.add_argument(
+        "--scheduler", metavar="tcp://127.0.0.1:PORT", help="a running Dask scheduler on loopback"
+    )
+    p.add_argument(
+        "--workers", type=int, default=None, help="local cluster worker processes (default: CPUs)"
+    )
+    p.add_argument("--cache", metavar="DIR", help="result cache (default ~/.cache/softpad/design)")
+    p.add_argument("--no-cache", action="store_true", help="compute everything, keep nothing")
+    p.add_argument("--csv", metavar="FILE.csv", help="write the ranked table as CSV")
+    p.add_argument("--parquet", metavar="FILE.parquet", help="write the ranked table as Parquet")
+    p.add_argument("--png", metavar="FILE.png", help="write the Pareto plot")
+    p.add_argument("--report", metavar="FILE.md", help="write the short Markdown report")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
+    add_json_force(p)
+    p.set_defaults(handler=run)
+
+
+def _designs(args: argparse.Namespace) -> list[Any]:
+    """The designs the options span (the quick set when none is given with --quick)."""
+    from softpad import design as d
+
+    given = [args.grid, args.pitch_mm, args.thickness_mm, args.material, args.p0_kpa]
+    if args.quick and not any(v is not None for v in given):
+        return list(d.QUICK_DESIGNS)
+    base = d.THESIS_DESIGN
+    space = d.DesignSpace(
+        grids=d.parse_grids(args.grid) if args.grid else ((base.rows, base.cols),),
+        pitches_m=d.parse_values(args.pitch_mm, "--pitch-mm", 1e-3, d.LIMITS["pitch_m"])
+        if args.pitch_mm
+        else (base.pitch_m,),
+        thicknesses_m=d.parse_values(
+            args.thickness_mm, "--thickness-mm", 1e-3, d.LIMITS["thickness_m"]
+        )
+        if args.thickness_mm
+        else (base.thickness_m,),
+        materials=tuple(name_list(args.material, "--material"))
+        if args.material
+        else (base.material,),
+        p0s_pa=d.parse_values(args.p0_kpa, "--p0-kpa", 1e3, d.LIMITS["p0_pa"])
+        if args.p0_kpa
+        else (base.p0_pa,),
+    )
+    if space.size > 500:
+        raise InputError(f"the options span {space.size} designs; at most 500 per sweep")
+    return space.designs()
+
+
+def _outputs(args: argparse.Namespace) -> dict[str, Any]:
+    """Output files, checked before any work."""
+    from softpad.cli._paths import check_output
+
+    return {
+        "csv": check_output(args.csv, "--csv", force=args.force, suffix=".csv"),
+        "parquet": check_output(args.parquet, "--parquet", force=args.force, suffix=".parquet"),
+        "png": check_output(args.png, "--png", force=args.force, suffix=".png"),
+        "report": check_output(args.report, "--report", force=args.force, suffix=".md"),
+    }
+
+
+def _object_set(args: argparse.Namespace) -> Any:
+    from softpad.design import example_object_set, load_object_set
+
+    if args.objects:
+        s = load_object_set(args.objects)
+    else:
+        s = example_object_set("thesis-set" if args.example is None else args.example)
+    return s.with_gripper(args.gripper)
+
+
+def run(args: argparse.Namespace) -> int:
+    from softpad.design import (
+        ResultCache,
+        TrialOptions,
+        check_scheduler_address,
+        design_sweep,
+    )
+
+    object_set = _object_set(args)
+    designs = _designs(args)
+    seeds = int_ranges(args.seeds, "--seeds", lo=0, hi=2**32 - 1)
+    if len(seeds) > 100:
+        raise InputError(f"--seeds names {len(seeds)} seeds; at most 100")
+    trials = args.trials if args.trials is not None else (1 if args.quick else 5)
+    if not 1 <= trials <= 100:
+        raise InputError(f"--trials must be from 1 to 100, got {trials}")
+    hold_s = args.hold_s if args.hold_s is not None else (2.0 if args.quick else thesis.HOLD_S)
+    if not (math.isfinite(hold_s) and 0 <= hold_s <= 60):
+        raise InputError(f"--hold-s must be from 0 to 60 s, got {hold_s!r}")
+    options = TrialOptions(trials, args.planner, args.detector, hold_s)
+    if args.scheduler is not None:
+        check_scheduler_address(args.scheduler)
+    if args.workers is not None and not 1 <= args.workers <= 256:
+        raise InputError(f"--workers must be from 1 to 256, got {args.workers}")
+    outputs = _outputs(args)
+    cache = ResultCache(None if args.no_cache else _cache_dir(args.cache))
+    bar = _bar(not args.no_progress and sys.stderr.isatty())
+    try:
+        result = design_sweep(
+            designs,
+            object_set,
+            options,
+            seeds,
+            quick=args.quick,
+            scheduler=args.scheduler,
+            workers=args.workers,
+            cache=cache,
+            progress=bar,
+        )
+    finally:
+        if bar is not None:
+            bar.close()
+    _write(result, outputs)
+    say(result.to_text(), args.json)
+    say(
+        f"({result.meta['computed']} tasks computed, {result.meta['cached']} cached, "
+        f"{result.meta['wall_time_s']:.1f} s)",
+        args.json,
+    )
+    if args.json:
+        emit(result.to_dict())
+    return 0
+
+
+def _cache_dir(text: str | None) -> Path:
+    """The cache folder (created now, so that an unusable one fails before any work)."""
+    from softpad.design import default_cache_dir
+
+    path = default_cache_dir() if text is None else Path(text)
+    if text is not None and not text.strip():
+        raise InputError("--cache needs a folder name, got an empty value")
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InputError(f"--cache {str(path)!r} cannot be used: {exc.strerror or exc}") from None
+    return path
+
+
+def _write(result: Any, outputs: dict[str, Any]) -> None:
+    from softpad.cli._paths import write_text_atomic
+
+    if outputs["csv"] is not None:
+        result.to_csv(outputs["csv"])
+    if outputs["parquet"] is not None:
+        result.to_parquet(outputs["parquet"])
+    if outputs["png"] is not None:
+        import matplotlib.pyplot as plt
+
+        plt.close(result.plot(outputs["png"]))
+    if outputs["report"] is not None:
+        write_text_atomic(outputs["report"], result.report())
+
+
+class _Bar:
+    """A tqdm bar fed by the sweep's ``progress(done, total, what)`` hook."""
+
+    def __init__(self) -> None:
+        self.bar: Any = None
+
+    def __call__(self, done: int, total: int, what: str) -> None:
+        from tqdm import tqdm
+
+        if self.bar is None:
+            self.bar = tqdm(
+                total=total,
+                desc="design tasks",
+                unit="task",
+                file=sys.stderr,
+                dynamic_ncols=True,
+                initial=done - 1,
+            )
+        self.bar.set_postfix_str(what[:40])
+        self.bar.update(1)
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.close()
+
+
+def _bar(enabled: bool) -> _Bar | None:
+    return _Bar() if enabled else None

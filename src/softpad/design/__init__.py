@@ -1,0 +1,80 @@
+"""Design a SoftPad for an object set: sweep the pad's variables on FEM plus simulated trials.
+
+A :class:`PadDesign` is a grid R x C at a module pitch, a layer thickness, a material preset
+and an inflating pressure p0; :class:`DesignSpace` spans ranges of them. For every design
+:func:`design_sweep` computes the module's finite-element response at p0 (height, sealed-chamber
+sensitivity and its map, minimum detectable mass at t_o; :func:`fem_response`) and runs the
+object set's grasp trials on the simulated box with that response (:func:`run_design_trials`),
+as tasks on a Dask ``distributed`` cluster (a local one on 127.0.0.1 by default), each result
+cached on disk by a hash of its inputs and the code version. The ranked :class:`SweepResult`
+writes a table (text, CSV, Parquet), a Pareto plot and a short report; the thesis's pad
+(:data:`THESIS_DESIGN`) is always the baseline row.
+
+Dask, pyarrow, FElupe and matplotlib are imported lazily inside the functions.
+"""
+
+from softpad.design._cache import ResultCache, code_version, default_cache_dir
+from softpad.design._dask import available_cpus, check_scheduler_address, dask_client, has_dask
+from softpad.design._evaluate import TrialOptions, run_design_trials
+from softpad.design._objects import (
+    EXAMPLE_SETS,
+    OBJECT_SET_SCHEMA,
+    ObjectSet,
+    SetObject,
+    example_object_set,
+    load_object_set,
+    object_set_from_dict,
+)
+from softpad.design._response import FemResponse, fem_response
+from softpad.design._results import COLUMNS, DesignRow, SweepResult, design_row, rank_rows
+from softpad.design._space import (
+    LIMITS,
+    QUICK_DESIGNS,
+    THESIS_DESIGN,
+    DesignSpace,
+    PadDesign,
+    parse_grids,
+    parse_values,
+    stable_hash,
+)
+from softpad.design._sweep import FEM_CELLS, SweepRaw, design_sweep, run_sweep
+from softpad.design._trials import run_experiment_on_dask
+
+__all__ = [
+    "COLUMNS",
+    "EXAMPLE_SETS",
+    "FEM_CELLS",
+    "LIMITS",
+    "OBJECT_SET_SCHEMA",
+    "QUICK_DESIGNS",
+    "THESIS_DESIGN",
+    "DesignRow",
+    "DesignSpace",
+    "FemResponse",
+    "ObjectSet",
+    "PadDesign",
+    "ResultCache",
+    "SetObject",
+    "SweepRaw",
+    "SweepResult",
+    "TrialOptions",
+    "available_cpus",
+    "check_scheduler_address",
+    "code_version",
+    "dask_client",
+    "default_cache_dir",
+    "design_row",
+    "design_sweep",
+    "example_object_set",
+    "fem_response",
+    "has_dask",
+    "load_object_set",
+    "object_set_from_dict",
+    "parse_grids",
+    "parse_values",
+    "rank_rows",
+    "run_design_trials",
+    "run_experiment_on_dask",
+    "run_sweep",
+    "stable_hash",
+]

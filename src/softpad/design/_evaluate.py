@@ -1,0 +1,202 @@
+"""Simulated grasp trials of an object set on one pad design.
+
+Each trial is the whole closed loop of Section 6.2 (``softpad.control.GraspExecution``: adjust
+to p0, save the reference, wait for the object, plan, approach, descend until contact at t_g,
+close, lift, hold) on the simulated box (chamber gas, valves, sensor noise) over the *analytic*
+world (:class:`softpad.sim.AnalyticWorld`): it takes any R x C grid and pitch and runs a trial in
+about 0.1 s, where the MuJoCo world of ``softpad trials`` is set up for the thesis's 2 x 3 pad
+and 45 mm domes (``softpad.trials`` builds it with the default layout and pad physics) and
+takes about a second per trial. The box's module characteristic is the design's finite-element
+response (:meth:`FemResponse.characteristic`).
+
+Trial ``k`` of an object uses :func:`softpad.trials.trial_seed` (experiment seed, object name,
+k) for its placement noise and sensor noise, the same on every design: the designs are compared
+on common random numbers.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+from typing import Any
+
+from softpad import thesis
+from softpad.errors import InputError
+
+
+@dataclass(frozen=True)
+class TrialOptions:
+    """How the trials of a sweep are run.
+
+    Parameters
+    ----------
+    trials
+        Trials per object and seed.
+    planner
+        Planner name (:data:`softpad.planning.PLANNERS`).
+    detector
+        Contact detector name (:data:`softpad.sensing.CONTACT_DETECTORS`).
+    hold_s
+        Hold time after the lift, seconds (thesis: 15 s).
+    position_sigma_m, yaw_sigma_rad
+        Placement noise (normal), metres and radians (as ``softpad trials``: 3 mm, 3 degrees).
+    sample_rate_hz
+        Box sample rate, hertz.
+    noise
+        Sensor noise on.
+    """
+
+    trials: int = 1
+    planner: str = "thesis"
+    detector: str = "thesis"
+    hold_s: float = thesis.HOLD_S
+    position_sigma_m: float = 3e-3
+    yaw_sigma_rad: float = math.radians(3.0)
+    sample_rate_hz: float = 100.0
+    noise: bool = True
+
+    def __post_init__(self) -> None:
+        from softpad.planning import PLANNERS
+        from softpad.sensing import CONTACT_DETECTORS
+
+        if (
+            isinstance(self.trials, bool)
+            or not isinstance(self.trials, int)
+            or not 1 <= self.trials <= 100
+        ):
+            raise InputError(
+                f"trials per object must be an integer from 1 to 100, got {self.trials!r}"
+            )
+        if self.planner not in PLANNERS:
+            raise InputError(f"unknown planner {self.planner!r}; use one of {', '.join(PLANNERS)}")
+        if self.detector not in CONTACT_DETECTORS:
+            raise InputError(
+                f"unknown detector {self.detector!r}; use one of {', '.join(CONTACT_DETECTORS)}"
+            )
+        if not (math.isfinite(self.hold_s) and 0 <= self.hold_s <= 60):
+            raise InputError(f"hold time must be within 0..60 s, got {self.hold_s!r} s")
+
+    def to_dict(self) -> dict[str, Any]:
+        """The options (SI), part of every cache key."""
+        return asdict(self)
+
+
+def run_design_trials(
+    design: Any, response: Any, object_set: Any, seed: int, options: TrialOptions
+) -> list[dict[str, Any]]:
+    """Every trial of ``object_set`` on ``design`` for one experiment seed.
+
+    Parameters
+    ----------
+    design
+        A :class:`~softpad.design.PadDesign`.
+    response
+        Its :class:`~softpad.design.FemResponse` (or the response's dict).
+    object_set
+        An :class:`~softpad.design.ObjectSet`.
+    seed
+        Experiment seed.
+    options
+        How to run the trials.
+
+    Returns
+    -------
+    One dict per trial: ``object``, ``trial``, ``seed``, ``success``, ``outcome``,
+    ``contact_delay_s`` (None when no contact was detected), ``sim_time_s``.
+    """
+    from softpad.design._response import FemResponse
+
+    if isinstance(response, dict):
+        response = FemResponse.from_dict(response)
+    characteristic = response.characteristic()
+    out = []
+    for obj in object_set.objects:
+        for k in range(options.trials):
+            out.append(_one_trial(design, characteristic, object_set, obj, seed, k, options))
+    return out
+
+
+def _one_trial(
+    design: Any,
+    characteristic: Any,
+    object_set: Any,
+    obj: Any,
+    seed: int,
+    k: int,
+    options: TrialOptions,
+) -> dict[str, Any]:
+    """One trial of one object (see :func:`run_design_trials`)."""
+    from softpad.box import SafetyLimits, SimBox
+    from softpad.control import ExecutionError, GraspExecution, InflationParams
+    from softpad.errors import HardwareFault
+    from softpad.harness import SimulatedRobot
+    from softpad.layout import PadLayout
+    from softpad.planning import make_planner
+    from softpad.sensing import make_contact_detector
+    from softpad.sim import AnalyticWorld, Placement, SensorParams, SimGripper
+    from softpad.trials import TrialConfig, perturbed_placement, trial_execution_params, trial_seed
+
+    layout = PadLayout(design.rows, design.cols, design.pitch_m)
+    world = AnalyticWorld(layout, SimGripper.mounting(object_set.mounting(obj)))
+    spec = obj.placed_on((design.cols * design.pitch_m, design.rows * design.pitch_m))
+    s = trial_seed(seed, obj.name, k)
+    noise = TrialConfig(
+        position_sigma_m=options.position_sigma_m, yaw_sigma_rad=options.yaw_sigma_rad
+    )
+    placement = Placement(*perturbed_placement(spec, s, noise))
+    params = trial_execution_params(
+        inflation=InflationParams(target_pa=design.p0_pa, max_pressure_pa=9.5e3),
+        hold_s=options.hold_s,
+    )
+    box = SimBox(
+        world,
+        channels=max(8, layout.n_modules),
+        sample_rate_hz=options.sample_rate_hz,
+        seed=s % (2**31),
+        characteristic=characteristic,
+        sensor=SensorParams() if options.noise else SensorParams.ideal(),
+        initial_pressure_pa=0.9 * design.p0_pa,
+    )
+    box.safety_limits = SafetyLimits(max_pressure_pa=9.5e3, release_pa=2.5e3)
+    robot = SimulatedRobot(world)
+    loop = GraspExecution(
+        box,
+        robot,
+        layout,
+        params,
+        planner=make_planner(options.planner, world.gripper.geometry, params.planner),
+        contact_detector=make_contact_detector(options.detector),
+        place_objects=lambda: world.place_object(spec, placement),
+    )
+    record: dict[str, Any] = {"object": obj.name, "trial": k, "seed": seed}
+    with box:
+        try:
+            result = loop.run()
+        except ExecutionError:
+            return {
+                **record,
+                "success": False,
+                "outcome": "object_not_detected",
+                "contact_delay_s": None,
+                "sim_time_s": box.time_s,
+            }
+        except HardwareFault:
+            return {
+                **record,
+                "success": False,
+                "outcome": "box_fault",
+                "contact_delay_s": None,
+                "sim_time_s": box.time_s,
+            }
+    delay = None
+    if result.grasps and robot.touches:
+        g, t = result.grasps[0], robot.touches[0]
+        if g.detected_at_s is not None and t.first_touch_s is not None:
+            delay = float(g.detected_at_s - t.first_touch_s)
+    return {
+        **record,
+        "success": result.outcome == "held",
+        "outcome": result.outcome,
+        "contact_delay_s": delay,
+        "sim_time_s": box.time_s,
+    }

@@ -1,0 +1,272 @@
+"""Object sets for design sweeps: what the pad must grasp, read from TOML.
+
+Schema ``softpad-object-set/1`` (units in the key names, converted to SI on reading):
+
+.. code-block:: toml
+
+    schema = "softpad-object-set/1"
+    name = "my-set"
+    gripper = "10/4"            # optional: one mounting for every object
+
+    [[object]]
+    name = "banana"
+    catalogue = "banana"        # shape and mass from the packaged catalogue (Table 6.1)
+    placement = "as-thesis"     # default for catalogue objects
+
+    [[object]]
+    name = "brick"
+    mass_g = 12.6
+    shape = "box"               # "box": size_mm = [lx, ly, lz]
+    size_mm = [42, 31, 23]      # "cylinder": diameter_mm, length_mm (lying along x)
+    placement = { dx_mm = 0, dy_mm = 0, yaw_deg = 0 }   # centre's offset from the pad's centre
+    gripper = "6/2"
+
+Placements: ``"as-thesis"`` keeps the catalogue's placement relative to the pad's centre (on
+the thesis's 2 x 3 pad it is the catalogue's own), ``"centre"`` puts the object's footprint
+centre on the pad's centre, a table offsets it from there. Meshes are not read (the
+simulated worlds take primitive parts).
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass, field, replace
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+from softpad import thesis
+from softpad.errors import InputError
+
+#: Schema tag of an object-set file.
+OBJECT_SET_SCHEMA = "softpad-object-set/1"
+#: Object sets shipped with the package (``--example NAME``).
+EXAMPLE_SETS = ("thesis-set", "blocks")
+_MOUNTINGS = ("10/4", "6/2", "4/0")
+_THESIS_PAD_M = (
+    thesis.PROTOTYPE_COLS * thesis.MODULE_PITCH_M,
+    thesis.PROTOTYPE_ROWS * thesis.MODULE_PITCH_M,
+)
+
+
+@dataclass(frozen=True)
+class SetObject:
+    """One object of a set: its catalogue-style spec and how it is placed on any pad.
+
+    Parameters
+    ----------
+    spec
+        The object (:class:`softpad.sim.ObjectSpec`); its placement is the one on the thesis's
+        pad (``as-thesis``) or ignored.
+    placement
+        ``"as-thesis"``, ``"centre"`` or ``"offset"``.
+    offset
+        (dx_m, dy_m, yaw_rad) of the footprint centre from the pad centre (``offset``).
+    """
+
+    spec: Any
+    placement: str = "as-thesis"
+    offset: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+    @property
+    def name(self) -> str:
+        """The object's name."""
+        return str(self.spec.name)
+
+    def placed_on(self, pad_size_m: tuple[float, float]) -> Any:
+        """The spec with its placement for a pad of ``pad_size_m`` (width, height), metres."""
+        from softpad.sim import Placement
+
+        w, h = pad_size_m
+        p = self.spec.placement
+        if self.placement == "as-thesis":
+            dx, dy = (w - _THESIS_PAD_M[0]) / 2, (h - _THESIS_PAD_M[1]) / 2
+            return replace(self.spec, placement=Placement(p.x_m + dx, p.y_m + dy, p.yaw_rad))
+        yaw = self.offset[2] if self.placement == "offset" else p.yaw_rad
+        cx, cy = footprint_centre_m(self.spec.parts, yaw)
+        x = w / 2 + self.offset[0] - cx
+        y = h / 2 + self.offset[1] - cy
+        return replace(self.spec, placement=Placement(x, y, yaw))
+
+
+def footprint_centre_m(parts: Any, yaw_rad: float) -> tuple[float, float]:
+    """Centre of the parts' bounding box in the pad plane for an object turned by
+    ``yaw_rad``, relative to the object's origin, metres (part extents from their
+    circumscribed radius in the plane)."""
+    c, s = math.cos(yaw_rad), math.sin(yaw_rad)
+    xs, ys = [], []
+    for part in parts:
+        x, y = part.pos_m[0], part.pos_m[1]
+        xs.append(c * x - s * y)
+        ys.append(s * x + c * y)
+    return (min(xs) + max(xs)) / 2, (min(ys) + max(ys)) / 2
+
+
+@dataclass(frozen=True)
+class ObjectSet:
+    """A named set of objects to grasp.
+
+    Parameters
+    ----------
+    name
+        Name of the set.
+    objects
+        The objects.
+    gripper
+        One gripper mounting for every object (``"10/4"``, ``"6/2"``, ``"4/0"``), or None for
+        each object's own.
+    source
+        Where the set was read from.
+    """
+
+    name: str
+    objects: tuple[SetObject, ...]
+    gripper: str | None = None
+    source: str = ""
+    _names: tuple[str, ...] = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        names = tuple(o.name for o in self.objects)
+        if not names:
+            raise InputError(f"object set {self.name!r} has no objects")
+        if len(set(names)) != len(names):
+            raise InputError(f"object set {self.name!r}: object names must be unique, got {names}")
+        if self.gripper is not None and self.gripper not in _MOUNTINGS:
+            raise InputError(
+                f"gripper must be one of {', '.join(_MOUNTINGS)}, got {self.gripper!r}"
+            )
+        object.__setattr__(self, "_names", names)
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        """The objects' names, in order."""
+        return self._names
+
+    def mounting(self, obj: SetObject) -> str:
+        """The gripper mounting used for ``obj``."""
+        return self.gripper or str(obj.spec.gripper)
+
+    def with_gripper(self, gripper: str | None) -> ObjectSet:
+        """The set with one mounting for every object (None: unchanged)."""
+        return self if gripper is None else replace(self, gripper=gripper)
+
+    def fingerprint(self) -> dict[str, Any]:
+        """What identifies the set in a cache key: every spec and placement rule."""
+        return {
+            "gripper": self.gripper,
+            "objects": [
+                {
+                    "spec": o.spec.to_dict() if hasattr(o.spec, "to_dict") else repr(o.spec),
+                    "placement": o.placement,
+                    "offset": list(o.offset),
+                }
+                for o in self.objects
+            ],
+        }
+
+
+def load_object_set(path: str | Path) -> ObjectSet:
+    """Read an object set from a TOML file (schema above); InputError names what is wrong."""
+    p = Path(path)
+    try:
+        data = tomllib.loads(p.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise InputError(f"object set file {str(p)!r} not found") from None
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        raise InputError(f"object set file {str(p)!r} is not valid TOML: {exc}") from None
+    return object_set_from_dict(data, source=str(p))
+
+
+def example_object_set(name: str) -> ObjectSet:
+    """A packaged object set by name (:data:`EXAMPLE_SETS`)."""
+    if name not in EXAMPLE_SETS:
+        raise InputError(
+            f"unknown example object set {name!r}; use one of {', '.join(EXAMPLE_SETS)}"
+        )
+    res = resources.files("softpad").joinpath("data", "object_sets", f"{name}.toml")
+    data = tomllib.loads(res.read_text(encoding="utf-8"))
+    return object_set_from_dict(data, source=f"example:{name}")
+
+
+def object_set_from_dict(data: dict[str, Any], source: str = "") -> ObjectSet:
+    """An :class:`ObjectSet` from parsed TOML."""
+    if data.get("schema") != OBJECT_SET_SCHEMA:
+        raise InputError(
+            f"object set {source!r}: schema must be {OBJECT_SET_SCHEMA!r}, got {data.get('schema')!r}"
+        )
+    entries = data.get("object")
+    if not isinstance(entries, list) or not entries:
+        raise InputError(f"object set {source!r}: needs at least one [[object]] table")
+    objects = tuple(_set_object(e, i) for i, e in enumerate(entries))
+    return ObjectSet(str(data.get("name", Path(source).stem)), objects, data.get("gripper"), source)
+
+
+def _set_object(entry: Any, index: int) -> SetObject:
+    """One ``[[object]]`` table."""
+    if not isinstance(entry, dict) or not isinstance(entry.get("name"), str):
+        raise InputError(f"object {index + 1}: needs a name")
+    name = entry["name"]
+    gripper = entry.get("gripper")
+    if gripper is not None and gripper not in _MOUNTINGS:
+        raise InputError(
+            f"object {name!r}: gripper must be one of {', '.join(_MOUNTINGS)}, got {gripper!r}"
+        )
+    if "catalogue" in entry:
+        from softpad.sim import get_object
+
+        spec = replace(get_object(str(entry["catalogue"])), name=name)
+        default_placement: Any = "as-thesis"
+    else:
+        spec = _primitive_spec(name, entry)
+        default_placement = "centre"
+    if gripper is not None:
+        spec = replace(spec, gripper=gripper)
+    placement = entry.get("placement", default_placement)
+    if isinstance(placement, dict):
+        offset = (
+            _number(placement, "dx_mm", name, 0.0) * 1e-3,
+            _number(placement, "dy_mm", name, 0.0) * 1e-3,
+            math.radians(_number(placement, "yaw_deg", name, 0.0)),
+        )
+        return SetObject(spec, "offset", offset)
+    if placement not in ("as-thesis", "centre"):
+        raise InputError(
+            f"object {name!r}: placement must be 'as-thesis', 'centre' or a table "
+            f"{{dx_mm, dy_mm, yaw_deg}}, got {placement!r}"
+        )
+    return SetObject(spec, str(placement))
+
+
+def _number(d: dict[str, Any], key: str, name: str, default: float | None = None) -> float:
+    v = d.get(key, default)
+    if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
+        raise InputError(f"object {name!r}: {key} must be a finite number, got {v!r}")
+    return float(v)
+
+
+def _primitive_spec(name: str, entry: dict[str, Any]) -> Any:
+    """An object of one primitive part from mass and dimensions."""
+    from softpad.sim import ObjectSpec, PartSpec, Placement
+
+    mass = _number(entry, "mass_g", name) * 1e-3
+    if not 0 < mass <= 2.0:
+        raise InputError(f"object {name!r}: mass_g must be within 0..2000 g, got {mass * 1e3:g}")
+    shape = entry.get("shape", "box")
+    if shape == "box":
+        size = entry.get("size_mm")
+        if not isinstance(size, list) or len(size) != 3:
+            raise InputError(f"object {name!r}: a box needs size_mm = [lx, ly, lz]")
+        lx, ly, lz = (_number({"v": v}, "v", name) * 1e-3 for v in size)
+        part = PartSpec("box", mass, (0.0, 0.0, lz / 2), size_m=(lx, ly, lz), name=name)
+    elif shape == "cylinder":
+        r = _number(entry, "diameter_mm", name) * 0.5e-3
+        length = _number(entry, "length_mm", name) * 1e-3
+        part = PartSpec(
+            "cylinder", mass, (0.0, 0.0, r), radius_m=r, length_m=length, axis="x", name=name
+        )
+    else:
+        raise InputError(f"object {name!r}: shape must be 'box' or 'cylinder', got {shape!r}")
+    return ObjectSpec(
+        name, mass, (part,), Placement(0.0, 0.0), gripper=entry.get("gripper", "10/4")
+    )

@@ -1,0 +1,297 @@
+"""A design sweep: the FEM response and the trials of every design, on Dask, cached.
+
+Tasks: one finite-element response per distinct module (width, thickness, material, p0;
+designs that differ only in the grid share it), then one trial batch per design and seed (the
+whole object set), which depends on its module's response. They run on a Dask ``distributed``
+client (:func:`~softpad.design.dask_client`); each finished task is stored in the
+:class:`~softpad.design.ResultCache` as it arrives, so an interrupted sweep resumes.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from softpad.design._cache import ResultCache
+from softpad.design._evaluate import TrialOptions, run_design_trials
+from softpad.design._objects import ObjectSet
+from softpad.design._response import fem_response
+from softpad.design._space import THESIS_DESIGN, PadDesign
+from softpad.errors import InputError
+
+#: Cells along the quarter's side of the finite-element mesh: full and quick sweeps.
+FEM_CELLS = {False: 12, True: 8}
+
+#: ``progress(done, total, what)``: called as each task finishes.
+Progress = Callable[[int, int, str], None]
+
+
+@dataclass(frozen=True)
+class SweepTask:
+    """One task of a sweep: its kind (``fem``/``trials``), cache key and inputs."""
+
+    kind: str
+    key: str
+    design: PadDesign
+    seed: int | None = None
+
+
+def _fem_task(design: PadDesign, cells: int) -> dict[str, Any]:
+    """The FEM response of ``design``'s module as a dict (a Dask task)."""
+    v = design.fem_variables()
+    return fem_response(v["width_m"], v["thickness_m"], v["material"], v["p0_pa"], cells).to_dict()
+
+
+def _trials_task(
+    design: PadDesign,
+    response: dict[str, Any],
+    object_set: ObjectSet,
+    seed: int,
+    options: TrialOptions,
+) -> list[dict[str, Any]]:
+    """The trials of one design and seed (a Dask task)."""
+    return run_design_trials(design, response, object_set, seed, options)
+
+
+@dataclass(frozen=True)
+class SweepRaw:
+    """What a sweep computed: responses by FEM key, trial records by (design name, seed).
+
+    Attributes
+    ----------
+    designs
+        The designs, baseline first.
+    responses
+        FEM response dict of each design, by design name.
+    trials
+        Trial records of each design, by design name (every seed).
+    computed, cached
+        Tasks run now and tasks read from the cache.
+    wall_time_s
+        Wall time of the sweep, seconds.
+    workers
+        Dask workers used (0: nothing needed computing).
+    """
+
+    designs: tuple[PadDesign, ...]
+    responses: dict[str, dict[str, Any]]
+    trials: dict[str, list[dict[str, Any]]]
+    computed: int
+    cached: int
+    wall_time_s: float
+    workers: int
+
+
+def run_sweep(
+    designs: Sequence[PadDesign],
+    object_set: ObjectSet,
+    options: TrialOptions | None = None,
+    seeds: Sequence[int] = (0,),
+    quick: bool = False,
+    scheduler: str | None = None,
+    workers: int | None = None,
+    cache: ResultCache | None = None,
+    progress: Progress | None = None,
+) -> SweepRaw:
+    """Evaluate ``designs`` (the thesis's pad is added first when missing) on ``object_set``.
+
+    Parameters
+    ----------
+    designs
+        Designs to evaluate (unique names).
+    object_set
+        The objects to grasp.
+    options
+        How trials run.
+    seeds
+        Experiment seeds (each gives every object ``options.trials`` trials).
+    quick
+        Coarser finite-element mesh (:data:`FEM_CELLS`).
+    scheduler
+        ``tcp://127.0.0.1:PORT`` of a running Dask scheduler; None starts a local cluster.
+    workers
+        Worker processes of the local cluster (default: the CPUs).
+    cache
+        Where finished tasks are kept (None: nothing kept).
+    progress
+        Called as each task finishes.
+    """
+    t0 = time.perf_counter()
+    options = options or TrialOptions()
+    cache = cache or ResultCache(None)
+    designs = _with_baseline(designs)
+    if not seeds or len(set(seeds)) != len(seeds):
+        raise InputError(f"seeds must be distinct and at least one, got {list(seeds)}")
+    fem_keys = {
+        d.name: cache.key("fem", {**d.fem_variables(), "cells": FEM_CELLS[quick]}) for d in designs
+    }
+    common = {"objects": object_set.fingerprint(), "options": options.to_dict()}
+    tasks: list[SweepTask] = []
+    for d in designs:
+        tasks.append(SweepTask("fem", fem_keys[d.name], d))
+        for s in seeds:
+            payload = {**common, "design": d.variables(), "seed": int(s), "fem": fem_keys[d.name]}
+            tasks.append(SweepTask("trials", cache.key("trials", payload), d, int(s)))
+    done: dict[str, Any] = {}
+    for t in tasks:
+        hit = cache.get(t.kind, t.key)
+        if hit is not None:
+            done[t.key] = hit
+    missing = [t for t in tasks if t.key not in done]
+    missing = list({t.key: t for t in missing}.values())  # FEM shared by designs: once
+    n_cached = len({t.key for t in tasks}) - len(missing)
+    used = 0
+    if missing:
+        used = _compute(
+            missing, done, object_set, options, quick, scheduler, workers, cache, progress, n_cached
+        )
+    responses = {d.name: done[fem_keys[d.name]] for d in designs}
+    trials = {
+        d.name: [
+            r for t in tasks if t.kind == "trials" and t.design.name == d.name for r in done[t.key]
+        ]
+        for d in designs
+    }
+    return SweepRaw(
+        tuple(designs), responses, trials, len(missing), n_cached, time.perf_counter() - t0, used
+    )
+
+
+def _with_baseline(designs: Sequence[PadDesign]) -> list[PadDesign]:
+    """The thesis's design first (added when missing), then the others; names unique."""
+    out = list(designs)
+    if not any(d.is_thesis for d in out):
+        out.insert(0, THESIS_DESIGN)
+    else:
+        out.sort(key=lambda d: not d.is_thesis)
+    names = [d.name for d in out]
+    if len(set(names)) != len(names):
+        raise InputError(f"design names must be unique, got {names}")
+    return out
+
+
+def _compute(
+    missing: list[SweepTask],
+    done: dict[str, Any],
+    object_set: ObjectSet,
+    options: TrialOptions,
+    quick: bool,
+    scheduler: str | None,
+    workers: int | None,
+    cache: ResultCache,
+    progress: Progress | None,
+    n_cached: int,
+) -> int:
+    """Run the missing tasks on Dask (FEM first, trials depending on it); store each result
+    as it arrives. Returns the number of workers."""
+    from softpad.design._dask import dask_client, has_dask
+
+    total = len(missing) + n_cached
+    if scheduler is None and not has_dask():
+        _compute_here(missing, done, object_set, options, quick, cache, progress, n_cached)
+        return 1
+    with dask_client(scheduler, workers) as client:
+        from distributed import as_completed
+
+        n_workers = len(client.scheduler_info().get("workers", {})) or 1
+        fem_futures: dict[str, Any] = {}
+        futures: dict[Any, SweepTask] = {}
+        for t in missing:
+            if t.kind == "fem":
+                fut = client.submit(
+                    _fem_task, t.design, FEM_CELLS[quick], key=f"fem-{t.key}", pure=False
+                )
+                fem_futures[t.key] = fut
+                futures[fut] = t
+        ordered = {t.key: t for t in missing}
+        for t in ordered.values():
+            if t.kind != "trials":
+                continue
+            fkey = cache.key("fem", {**t.design.fem_variables(), "cells": FEM_CELLS[quick]})
+            response = fem_futures.get(fkey, done.get(fkey))
+            fut = client.submit(
+                _trials_task,
+                t.design,
+                response,
+                object_set,
+                t.seed,
+                options,
+                key=f"trials-{t.key}",
+                pure=False,
+            )
+            futures[fut] = t
+        count = n_cached
+        for fut in as_completed(list(futures)):
+            t = futures[fut]
+            result = fut.result()
+            done[t.key] = result
+            cache.put(t.kind, t.key, result)
+            count += 1
+            if progress is not None:
+                progress(
+                    count,
+                    total,
+                    f"{t.kind} {t.design.name}" + ("" if t.seed is None else f" seed {t.seed}"),
+                )
+    return n_workers
+
+
+def _compute_here(
+    missing: list[SweepTask],
+    done: dict[str, Any],
+    object_set: ObjectSet,
+    options: TrialOptions,
+    quick: bool,
+    cache: ResultCache,
+    progress: Progress | None,
+    n_cached: int,
+) -> None:
+    """The missing tasks in this process, FEM first (Dask not installed)."""
+    count, total = n_cached, len(missing) + n_cached
+    for t in sorted(missing, key=lambda t: t.kind != "fem"):
+        if t.kind == "fem":
+            result: Any = _fem_task(t.design, FEM_CELLS[quick])
+        else:
+            fkey = cache.key("fem", {**t.design.fem_variables(), "cells": FEM_CELLS[quick]})
+            result = _trials_task(t.design, done[fkey], object_set, t.seed or 0, options)
+        done[t.key] = result
+        cache.put(t.kind, t.key, result)
+        count += 1
+        if progress is not None:
+            progress(count, total, f"{t.kind} {t.design.name}")
+
+
+def design_sweep(
+    designs: Sequence[PadDesign],
+    object_set: ObjectSet,
+    options: TrialOptions | None = None,
+    seeds: Sequence[int] = (0,),
+    **kwargs: Any,
+) -> Any:
+    """Run :func:`run_sweep` and rank the designs: a :class:`~softpad.design.SweepResult`.
+
+    ``kwargs`` go to :func:`run_sweep` (``quick``, ``scheduler``, ``workers``, ``cache``,
+    ``progress``).
+    """
+    from softpad.design._results import SweepResult, design_row, rank_rows
+
+    options = options or TrialOptions()
+    raw = run_sweep(designs, object_set, options, seeds, **kwargs)
+    rows = [design_row(d, raw.responses[d.name], raw.trials[d.name]) for d in raw.designs]
+    meta = {
+        "seeds": list(seeds),
+        "objects": len(object_set.objects),
+        "trials_per_object": options.trials,
+        "planner": options.planner,
+        "detector": options.detector,
+        "hold_s": options.hold_s,
+        "world": "analytic",
+        "fem_cells_in_plane": FEM_CELLS[bool(kwargs.get("quick", False))],
+        "computed": raw.computed,
+        "cached": raw.cached,
+        "wall_time_s": round(raw.wall_time_s, 3),
+        "workers": raw.workers,
+    }
+    return SweepResult(tuple(rank_rows(rows)), object_set.name, meta, raw.trials)

@@ -1,0 +1,76 @@
+"""Ranking, Pareto front and the outputs of a sweep (synthetic rows: no simulation)."""
+
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+
+import pytest
+
+from softpad.design import COLUMNS, THESIS_DESIGN, DesignRow, PadDesign, SweepResult, rank_rows
+
+
+def _row(design: PadDesign, ok: int, n: int, mass_g: float) -> DesignRow:
+    return DesignRow(
+        design=design,
+        response={
+            "height_mm": 8.0,
+            "rise_kpa_per_n": 0.5,
+            "min_detectable_mass_g": mass_g,
+            "sensitive_fraction": 0.5,
+        },
+        successes=ok,
+        trials=n,
+        success_interval=(0.0, 1.0),
+        detection_delay_ms=70.0,
+        failures={"missed": n - ok} if ok < n else {},
+    )
+
+
+@pytest.fixture
+def result() -> SweepResult:
+    rows = [
+        _row(THESIS_DESIGN, 8, 10, 9.0),
+        _row(PadDesign(3, 4, 0.034), 9, 10, 5.0),  # better in success and mass, dearer
+        _row(PadDesign(2, 3, 0.045, p0_pa=2000.0), 8, 10, 10.0),  # dominated by the thesis's
+        _row(PadDesign(4, 6, 0.023), 2, 10, 2.0),  # worst success, lightest: on the front
+    ]
+    return SweepResult(tuple(rank_rows(rows)), "synthetic", {"seeds": [0]})
+
+
+def test_ranking_and_pareto_flags(result: SweepResult) -> None:
+    names = [r.design.name for r in result.rows]
+    assert names[0] == "3x4-34mm-t1.5-neo-hookean-p1.1"
+    assert [r.rank for r in result.rows] == [1, 2, 3, 4]
+    front = {r.design.name: r.pareto for r in result.rows}
+    assert front == {
+        "3x4-34mm-t1.5-neo-hookean-p1.1": True,
+        "thesis 2x3 45 mm": True,  # fewer modules than the 3x4
+        "2x3-45mm-t1.5-neo-hookean-p2": False,
+        "4x6-23mm-t1.5-neo-hookean-p1.1": True,
+    }
+    assert result.baseline.design.is_thesis and result.baseline.rank == 2
+
+
+def test_json_csv_parquet_png_report(result: SweepResult, tmp_path: Path) -> None:
+    d = result.to_dict()
+    assert {
+        "name",
+        "baseline",
+        "rows",
+        "cols",
+        "pitch_mm",
+        "success",
+        "success_interval",
+        "min_detectable_mass_g",
+        "detection_delay_ms",
+    } <= set(d["designs"][0])
+    with result.to_csv(tmp_path / "t.csv").open() as f:
+        rows = list(csv.DictReader(f))
+    assert list(rows[0]) == list(COLUMNS) and rows[1]["baseline"] == "True"
+    pq = pytest.importorskip("pyarrow.parquet")
+    table = pq.read_table(result.to_parquet(tmp_path / "t.parquet"))
+    assert table.num_rows == 4 and table.column("success").to_pylist()[0] == pytest.approx(0.9)
+    result.plot(tmp_path / "p.png")
+    assert (tmp_path / "p.png").stat().st_size > 1000
+    assert "ranks 2" in result.report()
