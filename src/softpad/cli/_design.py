@@ -9,7 +9,7 @@ from pathlib import Path
 from typing import Any
 
 from softpad import thesis
-from softpad.cli._args import add_json_force, int_ranges, name_list
+from softpad.cli._args import add_command, int_ranges, name_list
 from softpad.cli._output import emit, say
 from softpad.errors import InputError
 
@@ -28,18 +28,21 @@ neo-Hookean, 1.1 kPa) is always the baseline row. Tasks run on Dask: a local clu
 sweep that was interrupted resumes.
 """
 
+_DESCRIPTION = """\
+Sweep pad designs (grid, pitch, layer thickness, material, p0) for an object set and rank
+them by grasp success, minimum detectable mass, detection delay and module count."""
+
 
 def register(sub: Any) -> None:
     from softpad.design import EXAMPLE_SETS
 
-    p = sub.add_parser(
+    p = add_command(
+        sub,
         "design",
-        help="rank SoftPad designs for an object set (FEM + simulated trials, on Dask)",
-        description="Sweep pad designs (grid, pitch, layer thickness, material, p0) for an "
-        "object set and rank them by grasp success, minimum detectable mass, detection delay "
-        "and module count.",
-        epilog=_EPILOG,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
+        "rank SoftPad designs for an object set (FEM + simulated trials, on Dask)",
+        _DESCRIPTION,
+        _EPILOG,
+        force=True,
     )
     src = p.add_mutually_exclusive_group()
     src.add_argument(
@@ -88,7 +91,6 @@ def register(sub: Any) -> None:
     p.add_argument("--png", metavar="FILE.png", help="write the Pareto plot")
     p.add_argument("--report", metavar="FILE.md", help="write the short Markdown report")
     p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
-    add_json_force(p)
     p.set_defaults(handler=run)
 
 
