@@ -40,16 +40,10 @@ def _design(*args: str, cache: Path) -> dict:
     return json.loads(out.stdout)
 
 
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
-
-
 @pytest.fixture
-def scheduler_address() -> Iterator[str]:
+def scheduler_address(free_port) -> Iterator[str]:
     """``dask scheduler`` and one ``dask worker`` (2 processes) on 127.0.0.1, stopped after."""
-    port = _free_port()
+    port = free_port()
     address = f"tcp://127.0.0.1:{port}"
     loopback = ["--dashboard-address", "127.0.0.1:0"]
     procs = [
