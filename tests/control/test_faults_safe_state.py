@@ -131,3 +131,21 @@ def test_run_fault_detected_reported_and_safe(capsys, spec, channel, cause) -> N
     else:
         assert s["verified"], s
         assert max(s["pressures_pa"]) <= MAX
+
+
+def test_a_rise_under_the_robot_s_load_is_not_a_stuck_valve_but_over_pressure_still_is() -> None:
+    """While the robot presses (descend, close, lift) a sealed module rises because of the load:
+    300 Pa/s for 5 s raises no "rising" fault; the same rise past the maximum still trips."""
+    mon = FaultMonitor(6)
+    mon.set_reference(np.full(6, 1100.0))
+    mon.loads_expected = True
+    faults = []
+    for i in range(1, 1000):
+        t = i * 0.01
+        p = [1100.0] * 6
+        p[4] += 300.0 * max(0.0, t - 1.0)  # 1.1 kPa + 300 Pa/s: 2.95 kPa at t = 7.2 s
+        f = mon.update(_frame(t, p), CLOSED)
+        if f is not None:
+            faults.append((t, f.cause))
+            break
+    assert faults and faults[0][1] == "over_pressure" and faults[0][0] > 6.0

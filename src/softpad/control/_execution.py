@@ -296,6 +296,10 @@ class _RecordingRobot:
         return self.inner.holding()
 
 
+#: Phases in which the robot presses the pad or an object on it (see FaultMonitor.loads_expected).
+_LOADING_PHASES = ("descend", "close", "lift")
+
+
 class GraspExecution:
     """The closed loop of the seed's Section 6.2.2, assembled from parts.
 
@@ -373,6 +377,7 @@ class GraspExecution:
     # --- plumbing -------------------------------------------------------------------
     def _enter(self, phase: str, **data: Any) -> None:
         self.phase = phase
+        self.safety.monitor.loads_expected = phase in _LOADING_PHASES
         self._phases.append((phase, self._last_t))
         self.recorder.event(self._last_t, "phase", phase=phase, **data)
 

@@ -150,6 +150,10 @@ class FaultMonitor:
         self._rising = np.zeros(self.n, dtype=np.int64)
         # sealed (for a whole filter length) at the start of the current window and ever since
         self._sealed_window = np.zeros(self.n, dtype=bool)
+        #: True while the robot presses the pad or an object on it (descend, close, lift): a
+        #: sealed module then rises because of the load, so "rising" is not judged (the range
+        #: and over-pressure checks still are).
+        self.loads_expected = False
 
     def set_reference(self, reference_pa: Sequence[float] | NDArray[np.float64]) -> None:
         """Pressures the sealed modules must not fall below (the saved reference), pascals."""
@@ -216,7 +220,7 @@ class FaultMonitor:
                 )
                 return _fault(t, k, "falling", what, "leak or deflation valve stuck open?")
         self._sealed_window &= sealed
-        if self._window_start is None or not sealed.any():
+        if self._window_start is None or not sealed.any() or self.loads_expected:
             self._window_start = (t, mean.copy())
             self._sealed_window = sealed.copy()
             self._rising[:] = 0
