@@ -152,14 +152,16 @@ class SafetyGuard:
         """The full per-channel test: trips, releases, invalid readings."""
         invalid = ~np.isfinite(p) | (p <= lim.sensor_min_pa) | (p >= lim.sensor_max_pa)
         rise = np.zeros_like(p)
-        if len(self._history) >= 2 and self._times[-1] > self._times[0]:
-            span = self._times[-1] - self._times[0]
-            slope = (p - np.asarray(self._history[0])) / span
-            period = span / (len(self._history) - 1)
-            rise = np.nan_to_num(np.maximum(slope, 0.0) * period)
         with np.errstate(invalid="ignore"):
-            over = np.nan_to_num(p + rise, nan=0.0) > lim.trip_pa
-            below = np.nan_to_num(p, nan=np.inf) < lim.release_pa
+            if len(self._history) >= 2 and self._times[-1] > self._times[0]:
+                span = self._times[-1] - self._times[0]
+                slope = (p - np.asarray(self._history[0])) / span
+                period = span / (len(self._history) - 1)
+                rise = np.maximum(slope, 0.0) * period
+                rise[~np.isfinite(rise)] = 0.0  # a NaN reading is judged invalid, not rising
+            # comparisons with NaN are False: a NaN reading is neither over nor below
+            over = p + rise > lim.trip_pa
+            below = p < lim.release_pa
         release = self.tripped & below & ~invalid
         self.tripped &= ~release
         new = (over | invalid) & ~self.tripped
