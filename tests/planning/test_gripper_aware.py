@@ -86,3 +86,18 @@ def test_planner_names() -> None:
     assert isinstance(make_planner("gripper-aware", GRIPPER), GripperAwarePlanner)
     with pytest.raises(InputError, match="unknown planner 'magic'"):
         make_planner("magic")
+
+
+def test_a_wide_object_whose_tip_is_sensed_keeps_the_thesis_grasp() -> None:
+    """A charger-like load on modules 1, 2, 4, 5, 6 (the simulated charger's increments, Pa):
+    an outline wider than the 6 cm jaws whichever way they turn, a sensed fingertip: the thesis's
+    grasp is kept. A shift along the closing direction would put a jaw on a body that may fill
+    the opening (the 55 mm charger lost half its grasps that way in `softpad compare`)."""
+    delta = (305.0, 294.0, 3.0, 298.0, 297.0, 255.0)
+    objects = detect_objects(delta, LAYOUT)
+    planner = GripperAwarePlanner(GRIPPER)
+    (thesis,) = ThesisPlanner().plan(delta, objects, LAYOUT)
+    (aware,) = planner.plan(delta, objects, LAYOUT)
+    assert planner.tip_share(thesis.cog, thesis.theta, LAYOUT) >= planner.good_share
+    assert planner._too_wide(thesis, thesis.theta, LAYOUT)
+    assert aware == thesis

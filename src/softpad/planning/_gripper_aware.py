@@ -133,8 +133,9 @@ class GripperAwarePlanner:
         """The plan itself when a fingertip is sensed and the jaws span the object, else the
         best-scoring candidate (the plan itself when none is better)."""
         fits = not self._too_wide(plan, plan.theta, layout)
-        if fits and self.tip_share(plan.cog, plan.theta, layout) >= self.good_share:
-            return plan
+        sensed = self.tip_share(plan.cog, plan.theta, layout) >= self.good_share
+        if sensed and (fits or not self._fitting_turns(plan, layout)):
+            return plan  # good as it is, or too wide whichever way it turns: nothing to gain
         best, best_score = plan, self._score(plan, layout, plan.cog, plan.theta)
         for cog, theta in self._candidates(plan, layout):
             score = self._score(plan, layout, cog, theta)
@@ -149,6 +150,14 @@ class GripperAwarePlanner:
         extent = object_extent_m(plan.modules, theta, layout)
         return extent > self.gripper.max_width_m
 
+    def _fitting_turns(self, plan: GraspPlan, layout: PadLayout) -> list[float]:
+        """Turns of the closing direction (within the limit) in which the outline fits."""
+        return [
+            float(t)
+            for t in np.linspace(-self.max_turn_rad, self.max_turn_rad, 5)
+            if t != 0.0 and not self._too_wide(plan, plan.theta + t, layout)
+        ]
+
     def _candidates(
         self, plan: GraspPlan, layout: PadLayout
     ) -> list[tuple[tuple[float, float], float]]:
@@ -156,18 +165,15 @@ class GripperAwarePlanner:
         shifts = np.linspace(-self.max_shift, self.max_shift, 7)
         # the thesis's direction follows the object's shape: turn only to a direction in which
         # the object's outline fits between the jaws
-        turns = [0.0]
-        if self._too_wide(plan, plan.theta, layout):
-            turns += [
-                float(t)
-                for t in np.linspace(-self.max_turn_rad, self.max_turn_rad, 5)
-                if t != 0.0 and not self._too_wide(plan, plan.theta + t, layout)
-            ]
+        wide = self._too_wide(plan, plan.theta, layout)
+        turns = [0.0] + (self._fitting_turns(plan, layout) if wide else [])
+        # an object that may fill the opening leaves no room to shift along the closing direction
+        along = [0.0] if wide else shifts
         for turn in turns:
             theta = _wrap(plan.theta + turn)
             d = np.array([math.cos(theta), math.sin(theta)])
             n = np.array([-d[1], d[0]])
-            for a in shifts:
+            for a in along:
                 for b in shifts:
                     # along the closing direction the object's width is unknown: small steps only
                     c = np.asarray(plan.cog) + a / 3 * d + b * n
