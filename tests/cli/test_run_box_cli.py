@@ -115,3 +115,40 @@ def test_failed_run_still_saves_its_recording(capsys, tmp_path) -> None:
     run = load_recording(path)
     assert run.complete and run.t_s[-1] >= 6.49 and run.events_of("fault")
     assert run.outcome == "fault"
+
+
+@pytest.mark.parametrize(
+    ("detector", "outcome"), [("thesis", "contact_not_detected"), ("cusum", "held")]
+)
+def test_run_detector_by_name(cli, detector: str, outcome: str) -> None:
+    """Object 1, seed 2, 100 Hz: a fingertip lands where the thesis's 10-sample average stays
+    under t_g; the calibrated CUSUM (chosen with --detector) sees the touch."""
+    code, out, _ = cli(
+        "run", "--objects", "object-1", "--hold-s", "0", "--box", "sim://?seed=2",
+        "--detector", detector, "--json",
+    )  # fmt: skip
+    assert code == (0 if outcome == "held" else 1)  # a grasp not held exits 1
+    d = json.loads(out)
+    assert d["outcome"] == outcome
+    assert (d["contact_delay_s"] is not None) == (detector == "cusum")
+
+
+def test_run_planner_by_name_moves_the_seam_grasp(cli) -> None:
+    """Object 1's thesis grasp puts a fingertip on the 3|6 seam (docs/beat-the-thesis.md); the
+    gripper-aware planner (--planner) moves it, and says so in the plan's rule."""
+    runs = {}
+    for planner in ("thesis", "gripper-aware"):
+        code, out, _ = cli(
+            "run", "--objects", "object-1", "--hold-s", "0", "--box", "sim://?seed=3",
+            "--planner", planner, "--json",
+        )  # fmt: skip
+        assert code == 0
+        runs[planner] = json.loads(out)["objects"][0]
+    assert "+gripper" not in runs["thesis"]["rule"]
+    assert runs["gripper-aware"]["rule"].endswith("+gripper")
+    assert runs["gripper-aware"]["cog"] != runs["thesis"]["cog"]
+
+
+def test_unknown_part_names_are_refused(cli) -> None:
+    code, _, err = cli("run", "--planner", "magic")
+    assert code == 2 and "invalid choice: 'magic'" in err

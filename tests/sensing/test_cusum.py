@@ -56,6 +56,16 @@ def test_pairs_detect_two_small_rises_that_no_module_sees_alone() -> None:
     assert det.triggered_modules == (2, 5)
 
 
+def test_a_pair_names_only_the_modules_that_rise() -> None:
+    """A fingertip on module 3 alone: its pairs with every other module fire with it, but
+    only module 3 rises on its own, so only it is named."""
+    frames = np.zeros((40, 6))
+    frames[5:, 2] = 40.0
+    det = CusumContactDetector(CusumLimit(12.0, 55.3), CusumLimit(16.0, 40.0))
+    assert _first_alarm(det, frames) == 5 + 1  # the pairs: 2 x (40 - 16) = 48 > 40 Pa
+    assert det.triggered_modules == (3,)
+
+
 def test_the_baseline_follows_a_slow_rise_that_page_cusum_accumulates() -> None:
     """A pad warming by 20 Pa/s (0.2 Pa a sample at 100 Hz) for 60 s: with the reference held
     the increment passes the 12 Pa allowance after 60 samples and the statistic runs away;

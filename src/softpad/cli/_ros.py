@@ -104,7 +104,12 @@ def run_arm_node(args: argparse.Namespace) -> int:
 
 
 def run_with_robot_url(
-    args: argparse.Namespace, names: list[str], box: Any, recorder: Any, params: Any
+    args: argparse.Namespace,
+    names: list[str],
+    box: Any,
+    recorder: Any,
+    params: Any,
+    **parts: Any,
 ) -> Any:
     """``softpad run --robot URL``: the loop with a robot reached by URL (``ros1://``)."""
     from softpad.harness import SimulatedRun, TouchTruth
@@ -113,7 +118,7 @@ def run_with_robot_url(
 
     robot = open_robot(args.robot)
     try:
-        result = run_with_robot(names, box, robot, params, recorder, gripper=args.gripper)
+        result = run_with_robot(names, box, robot, params, recorder, gripper=args.gripper, **parts)
     finally:
         robot.close()
     # no ground truth of the touches through ROS: the report leaves them empty

@@ -77,6 +77,7 @@ def register(sub: Any) -> None:
         unit="s",
     )
     add_thesis_params(p)
+    add_part_options(p)
     p.add_argument(
         "--config",
         metavar="FILE.toml",
@@ -93,6 +94,43 @@ def register(sub: Any) -> None:
         help="serve the run live to Foxglove on ws://127.0.0.1:PORT (0: a free port)",
     )
     p.set_defaults(handler=run)
+
+
+def add_part_options(p: argparse.ArgumentParser) -> None:
+    """``--planner`` and ``--detector``: the loop's parts by name (docs/beat-the-thesis.md)."""
+    from softpad.planning import PLANNERS
+    from softpad.sensing import CONTACT_DETECTORS
+
+    p.add_argument(
+        "--planner",
+        choices=PLANNERS,
+        default="thesis",
+        help="grasp planner: the thesis's rules, or gripper-aware (fingertips on sensed area, "
+        "opening spanning the object) (default %(default)s)",
+    )
+    p.add_argument(
+        "--detector",
+        choices=CONTACT_DETECTORS,
+        default="thesis",
+        help="contact detector: the thesis's running average above t_g, or cusum (calibrated "
+        "for the box's sample rate) (default %(default)s)",
+    )
+
+
+def loop_parts(args: argparse.Namespace, box: Any, params: Any, mounting: str) -> dict[str, Any]:
+    """The planner and contact detector named by ``--planner`` and ``--detector``; the thesis's
+    are left to the execution (built from the loop parameters)."""
+    from softpad.layout import GripperSpec
+    from softpad.planning import make_planner
+    from softpad.sensing import make_contact_detector
+
+    parts: dict[str, Any] = {}
+    if args.planner != "thesis":
+        spec = GripperSpec.from_mounting(mounting)
+        parts["planner"] = make_planner(args.planner, spec, params.planner)
+    if args.detector != "thesis":
+        parts["contact_detector"] = make_contact_detector(args.detector, box.sample_rate_hz)
+    return parts
 
 
 def add_thesis_params(p: argparse.ArgumentParser) -> None:
@@ -180,12 +218,13 @@ def run(args: argparse.Namespace) -> int:
         live = _live(args.foxglove, box, args.json)
         try:
             tee = Tee(log, recorder, live)
+            parts = loop_parts(args, box, params, gripper or resolve_objects(names)[0].gripper)
             if args.robot == "sim://":
-                result = run_simulated(names, box, params, tee, gripper=gripper)
+                result = run_simulated(names, box, params, tee, gripper=gripper, **parts)
             else:
                 from softpad.cli._ros import run_with_robot_url
 
-                result = run_with_robot_url(args, names, box, tee, params)
+                result = run_with_robot_url(args, names, box, tee, params, **parts)
         except HardwareFault as exc:
             return _report_fault(args, log, names, exc)
         except SoftPadError as exc:

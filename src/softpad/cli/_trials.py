@@ -10,6 +10,7 @@ from softpad import thesis
 from softpad.cli._args import Renamed, add_command, add_integer, int_ranges, name_list
 from softpad.cli._output import emit, say
 from softpad.cli._record import add_record_option, check_trial_recordings
+from softpad.cli._run import add_part_options
 from softpad.errors import InputError
 
 _EPILOG = """examples:
@@ -44,6 +45,7 @@ def register(sub: Any) -> None:
         _EPILOG,
     )
     add_trial_options(p)
+    add_part_options(p)
     p.add_argument(
         "--scheduler",
         metavar="tcp://127.0.0.1:PORT|local",
@@ -134,8 +136,6 @@ def run_with_progress(
 def run(args: argparse.Namespace) -> int:
     import math
 
-    from softpad.trials import TrialConfig, trial_execution_params
-
     specs = select_objects(args.objects)
     check_counts(args.trials, args.workers)
     seeds = int_ranges(args.seeds, "--seeds", lo=0, hi=2**32 - 1)
@@ -161,7 +161,7 @@ def run(args: argparse.Namespace) -> int:
             not args.no_progress and sys.stderr.isatty(),
             seed=seed,
             workers=args.workers,
-            config=TrialConfig(trial_execution_params(hold_s=args.hold_s)),
+            config=_config(args),
             record=args.record,
         )
         done.append(exp)
@@ -179,10 +179,18 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+def _config(args: argparse.Namespace) -> Any:
+    """The trials' configuration: hold time, planner and contact detector from the options."""
+    from softpad.trials import TrialConfig, trial_execution_params
+
+    execution = trial_execution_params(hold_s=args.hold_s)
+    return TrialConfig(execution, planner=args.planner, detector=args.detector)
+
+
 def _run_on_dask(args: argparse.Namespace, specs: list[Any], seeds: list[int]) -> int:
     """``--scheduler``: every seed's trials as Dask tasks (softpad.design's client), pooled."""
     from softpad.design import check_scheduler_address, run_experiment_on_dask
-    from softpad.trials import ExperimentResult, TrialConfig, trial_execution_params
+    from softpad.trials import ExperimentResult
 
     if args.record:
         raise InputError("--record is not available with --scheduler (trials run on Dask workers)")
@@ -194,7 +202,7 @@ def _run_on_dask(args: argparse.Namespace, specs: list[Any], seeds: list[int]) -
             specs,
             args.trials,
             seeds,
-            TrialConfig(trial_execution_params(hold_s=args.hold_s)),
+            _config(args),
             scheduler=address,
             workers=args.workers,
             on_trial=(lambda r: bar.update(1)) if bar is not None else None,

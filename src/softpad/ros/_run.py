@@ -16,8 +16,10 @@ def run_with_robot(
     params: Any = None,
     recorder: Any = None,
     gripper: str | None = None,
+    **parts: Any,
 ) -> Any:
-    """Run :class:`softpad.control.GraspExecution` once on ``box`` with ``robot``.
+    """Run :class:`softpad.control.GraspExecution` once on ``box`` with ``robot``; ``parts``
+    (``planner``, ``object_detector``, ``contact_detector``) replace the thesis's.
 
     When the box is a simulator served over ``zenoh://`` (``softpad sim arm-node`` or
     ``softpad box serve --sim``), the gripper mounting is set up and the catalogue
@@ -53,7 +55,9 @@ def run_with_robot(
             def place() -> None:
                 served.request("ext/sim.place", objects=names)
 
-        loop = GraspExecution(b, robot, layout, params, recorder=recorder, place_objects=place)
+        loop = GraspExecution(
+            b, robot, layout, params, recorder=recorder, place_objects=place, **parts
+        )
         try:
             return loop.run()
         except HardwareFault as exc:

@@ -173,9 +173,20 @@ class CusumContactDetector(LatchingContactDetector):
         hit = self._g > self.single.threshold_pa
         if self.pair is not None:
             self._gp = np.maximum(0.0, self._gp + e[self._i] + e[self._j] - self.pair.drift_pa)
-            both = self._gp > self.pair.threshold_pa
-            hit[self._i[both]] = hit[self._j[both]] = True
+            hit |= self._pair_modules(self._gp > self.pair.threshold_pa)
         return hit
+
+    def _pair_modules(self, fired: NDArray[np.bool_]) -> NDArray[np.bool_]:
+        """Modules named by the pairs that fired: those of them rising on their own (their
+        statistic above zero), else the two of the strongest pair."""
+        named = np.zeros(self._g.size, dtype=bool)
+        if fired.any():
+            named[self._i[fired]] = named[self._j[fired]] = True
+            named &= self._g > 0.0
+            if not named.any():
+                k = int(np.argmax(self._gp))
+                named[self._i[k]] = named[self._j[k]] = True
+        return named
 
 
 def _checked(limit: CusumLimit, what: str) -> CusumLimit:
