@@ -164,7 +164,7 @@ def add_thesis_params(p: argparse.ArgumentParser) -> None:
     add_number(
         g,
         "--approach-speed-mps",
-        "descent speed towards the pad, m/s, 0.001..0.25 (default 0.05)",
+        "descent speed towards the pad, m/s, 0.001..0.25 (default %(default)g)",
         thesis.APPROACH_SPEED_M_S,
         lo=0.001,
         hi=0.25,

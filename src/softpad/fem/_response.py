@@ -31,7 +31,7 @@ DEFAULT_RESPONSE_PRESSURES_PA = (
     500.0,
     700.0,
     900.0,
-    1100.0,
+    thesis.P0_PA,
     1400.0,
     1700.0,
     2000.0,

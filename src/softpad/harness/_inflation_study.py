@@ -14,6 +14,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from softpad import thesis
 from softpad.box import SimBox
 from softpad.control import ExecutionParams, InflationParams
 from softpad.errors import InputError
@@ -92,7 +93,7 @@ def inflation_point(
 
 
 def inflation_study(
-    pressures_pa: Sequence[float] = (600.0, 1100.0, 1700.0, 2300.0),
+    pressures_pa: Sequence[float] = (600.0, thesis.P0_PA, 1700.0, 2300.0),
     speeds_m_s: Sequence[float] = (0.02, 0.05, 0.1),
     seeds: Sequence[int] = (1, 2, 3),
     detector: str = "cusum",

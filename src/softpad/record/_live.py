@@ -20,6 +20,7 @@ import time
 from collections.abc import Callable
 from typing import Any
 
+from softpad import thesis
 from softpad.box import PressureFrame
 from softpad.record._closing import ClosedOnExit
 from softpad.record._mcap import jsonable
@@ -172,7 +173,7 @@ class FoxgloveLive(ClosedOnExit):
         for m in self.layout.modules:
             p = float(frame.pressures_pa[m - 1]) if m <= frame.channels else 0.0
             p = p if math.isfinite(p) else 0.0
-            height = 0.002 + 0.01 * max(p, 0.0) / 1100.0  # about 9 mm at p0 (thesis)
+            height = 0.002 + 0.01 * max(p, 0.0) / thesis.P0_PA  # about 9 mm at p0 (thesis)
             x, y = self.layout.center(m)
             level = min(max(p / 1500.0, 0.0), 1.0)
             cubes.append(
