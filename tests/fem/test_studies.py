@@ -76,7 +76,7 @@ def test_inflation_result_outputs(tmp_path) -> None:
     ids=["thicker-deforms-less", "wider-deforms-more"],
 )
 def test_design_trends(parameter: str, values: list[float], sign: int) -> None:
-    result = design_sweep(parameter, values, materials=("neo-hookean",), mesh=COARSE)
+    result = design_sweep(parameter, values, setups=[ModuleSetup("neo-hookean", mesh=COARSE)])
     assert sign * (result.height_m[0, 1] - result.height_m[0, 0]) > 0.1e-3
 
 

@@ -457,23 +457,22 @@ def _sweep(args: argparse.Namespace) -> int:
 
 
 def _design(args: argparse.Namespace) -> int:
-    from softpad.fem import design_sweep
+    from softpad.fem import ModuleSetup, design_sweep
 
     _check_outputs(args)
     defaults = {"thickness": "1,1.5,2,2.5,3", "width": "35,40,45,50,55"}
     values = _numbers(
         args.values_mm or defaults[args.parameter], "--values-mm", 1e-3, positive=True
     )
+    geometry, mesh = _geometry(args), _mesh(args)
     result = _run_study(
         args,
         f"design {args.parameter}",
         design_sweep,
         args.parameter,
         values,
-        materials=_models(args.models),
+        setups=[ModuleSetup(m, geometry, mesh) for m in _models(args.models)],
         pressure_pa=args.pressure_kpa * 1e3,
-        geometry=_geometry(args),
-        mesh=_mesh(args),
     )
     if _written_or_emitted(args, result):
         return 0

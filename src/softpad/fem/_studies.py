@@ -8,7 +8,7 @@ an optional ``progress(done, total)`` callback.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -17,7 +17,7 @@ import numpy as np
 from softpad import thesis
 from softpad.errors import InputError, check_finite
 from softpad.fem._geometry import LoadPatch, MeshOptions, ModuleGeometry
-from softpad.fem._materials import MaterialModel, get_material
+from softpad.fem._materials import get_material
 from softpad.fem._model import ModuleModel, ModuleSetup, ProgressCallback
 from softpad.fem._results import StudyResult, as_list, label_axes, new_axes, write_csv
 
@@ -206,10 +206,8 @@ class DesignResult:
 def design_sweep(
     parameter: str,
     values_m: Sequence[float] | np.ndarray,
-    materials: Sequence[str | MaterialModel] = ("neo-hookean", "yeoh"),
+    setups: Sequence[ModuleSetup] | None = None,
     pressure_pa: float = 1000.0,
-    geometry: ModuleGeometry | None = None,
-    mesh: MeshOptions | None = None,
     progress: ProgressCallback | None = None,
 ) -> DesignResult:
     """Centre height at ``pressure_pa`` against layer thickness or module width (Fig. 7.3).
@@ -219,15 +217,12 @@ def design_sweep(
     parameter
         ``"thickness"`` or ``"width"``.
     values_m
-        Values of the parameter, m (the other dimension is taken from ``geometry``).
-    materials
-        Models to compare (thesis: neo-Hookean and Yeoh).
+        Values of the parameter, m (the other dimension is taken from each setup's geometry).
+    setups
+        Modules to compare, one row each (default, as the thesis: neo-Hookean and Yeoh on the
+        45 x 45 x 1.5 mm geometry).
     pressure_pa
         Inflating pressure, Pa (thesis: 1 kPa).
-    geometry
-        Base geometry (default 45 x 45 x 1.5 mm).
-    mesh
-        Discretisation.
     progress
         Optional ``progress(done, total)`` callback.
     """
@@ -236,19 +231,20 @@ def design_sweep(
     values = np.asarray([check_finite(parameter, v) for v in np.ravel(values_m)], dtype=float)
     if values.size == 0:
         raise InputError(f"no {parameter} values given")
-    base = geometry or ModuleGeometry()
     p = float(_pressures([pressure_pa])[0])
-    mats = [get_material(m) for m in materials]
+    setups = (ModuleSetup("neo-hookean"), ModuleSetup("yeoh")) if setups is None else setups
+    mats = [get_material(s.material) for s in setups]
     heights = np.zeros((len(mats), len(values)))
     total, done = len(mats) * len(values), 0
-    for i, mat in enumerate(mats):
+    for i, (setup, mat) in enumerate(zip(setups, mats, strict=True)):
+        base = setup.geometry or ModuleGeometry()
         for j, v in enumerate(values):
             geo = (
                 ModuleGeometry(base.width_m, v)
                 if parameter == "thickness"
                 else ModuleGeometry(v, base.thickness_m)
             )
-            model = ModuleModel(mat, geometry=geo, mesh=mesh, contact=False)
+            model = replace(setup, material=mat, geometry=geo).model(contact=False)
             heights[i, j] = model.solve(p, 0.0).height_m
             done += 1
             _tick(progress, done, total)
