@@ -168,18 +168,10 @@ class MujocoWorld:
         an object since the last :meth:`reset_touch`, seconds, or None."""
         return self._sensing.first_touch_s
 
-    @first_touch_s.setter
-    def first_touch_s(self, value: float | None) -> None:
-        self._sensing.first_touch_s = value
-
     @property
     def first_touch_z_m(self) -> float | None:
         """Height of the fingertips' lower faces at the first touch, metres, or None."""
         return self._sensing.first_touch_z_m
-
-    @first_touch_z_m.setter
-    def first_touch_z_m(self, value: float | None) -> None:
-        self._sensing.first_touch_z_m = value
 
     @property
     def tip_hit_object(self) -> str | None:

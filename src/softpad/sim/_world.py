@@ -105,11 +105,16 @@ class World(Protocol):
         """True when an object is between the closed jaws and is carried by the gripper."""
         ...
 
-    #: Ground truth of the current descent: box time of the first fingertip touch, s
-    #: (None before it); scores a trial, never seen by the controller.
-    first_touch_s: float | None
-    #: Ground truth: fingertip height at the first touch, m (None before it).
-    first_touch_z_m: float | None
+    @property
+    def first_touch_s(self) -> float | None:
+        """Ground truth of the current descent: box time of the first fingertip touch, s
+        (None before it); scores a trial, never seen by the controller."""
+        ...
+
+    @property
+    def first_touch_z_m(self) -> float | None:
+        """Ground truth: fingertip height at the first touch, m (None before it)."""
+        ...
 
     def reset_touch(self) -> None:
         """Forget the first-touch record (the simulated robot calls it before a descent)."""
