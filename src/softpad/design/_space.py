@@ -17,6 +17,7 @@ from typing import Any
 
 from softpad import thesis
 from softpad.errors import InputError
+from softpad.layout import PadLayout
 
 #: Ranges a design variable may take (inclusive), in SI: what the FEM model and the
 #: simulator describe sensibly.
@@ -92,9 +93,14 @@ class PadDesign:
         )
 
     @property
+    def layout(self) -> PadLayout:
+        """The pad's grid of modules."""
+        return PadLayout(self.rows, self.cols, self.pitch_m)
+
+    @property
     def n_modules(self) -> int:
         """Number of modules (and box channels): the cost proxy."""
-        return self.rows * self.cols
+        return self.layout.n_modules
 
     @property
     def is_thesis(self) -> bool:
