@@ -23,8 +23,8 @@ from softpad.sim._mujoco_arm import ARM_ACCELERATION_M_S2, KinematicArm
 from softpad.sim._mujoco_contacts import ContactSensing, GripperContacts
 from softpad.sim._mujoco_model import MujocoGripper, ObjectModel, PadPhysics, parking_position
 from softpad.sim._mujoco_scene import MujocoScene
-from softpad.sim._response import ModuleResponse, PadResponse, operating_pressure
-from softpad.sim._world import GripperState
+from softpad.sim._response import ModuleResponse, operating_pressure
+from softpad.sim._world import GripperState, PadWorld
 
 __all__ = ["ARM_ACCELERATION_M_S2", "GripperContacts", "MujocoWorld", "ObjectPose"]
 
@@ -67,13 +67,13 @@ class ObjectPose:
     tilt_rad: float
 
 
-class MujocoWorld:
+class MujocoWorld(PadWorld):
     """Pad, gripper and objects simulated by MuJoCo; implements :class:`~softpad.sim.World`.
 
     Parameters
     ----------
-    layout
-        Pad geometry (2 x 3, 45 mm by default).
+    layout, response
+        As in :class:`~softpad.sim._world.PadWorld`.
     objects
         Objects that can be placed on the pad (each starts parked far away).
     pad
@@ -98,7 +98,7 @@ class MujocoWorld:
         import mujoco
 
         self._mj = mujoco
-        self._layout = layout or PadLayout()
+        super().__init__(layout, response)
         self.pad = pad or PadPhysics()
         self.gripper = gripper or MujocoGripper()
         self._timestep_s = timestep_s
@@ -107,7 +107,6 @@ class MujocoWorld:
             raise InputError(f"object names must be unique, got {names}")
         n = self._layout.n_modules
         self._pending_s = 0.0
-        self._time_s = 0.0
         self._heights = np.full(n, self.pad.free_height_m)
         self._heights_given = False
         self._lowering: dict[str, float] = {}
@@ -117,9 +116,7 @@ class MujocoWorld:
         # gripper high above the pad centre, fully open
         hand = np.array([cx, cy, 0.15 + self.gripper.finger_length_m, 0.0])
         self._arm = KinematicArm(hand, open_w)
-        self.response = PadResponse(self._layout, response)
         self._sensing = ContactSensing(n, open_w, self.response)
-        self._probe_loads = np.zeros(n)
         self._scene: MujocoScene | None = None
         self._build(tuple(objects))
 
@@ -183,16 +180,6 @@ class MujocoWorld:
         self._sensing.reset_touch(self._arm.width_setpoint)
 
     # --- World protocol -------------------------------------------------------------------
-    @property
-    def layout(self) -> PadLayout:
-        """Geometry of the pad."""
-        return self._layout
-
-    @property
-    def time_s(self) -> float:
-        """Simulated time, seconds."""
-        return self._time_s
-
     @property
     def timestep_s(self) -> float:
         """MuJoCo's step, seconds."""
@@ -260,24 +247,10 @@ class MujocoWorld:
         range); the simulated box calls this as the pressures change."""
         self._sensing.pressure_pa = operating_pressure(pressure_pa, self.response.response)
 
-    def press(
-        self,
-        center_m: tuple[float, float],
-        size_m: tuple[float, float],
-        force_n: float,
-        yaw_rad: float = 0.0,
-    ) -> None:
-        """Press a rigid flat block on the chambers: ``force_n`` spread uniformly over a
-        rectangle centred at ``center_m`` (pad frame); replaces the previous block, 0 lifts
-        it. The block is a load on the chambers only (it does not collide with objects)."""
-        if not (math.isfinite(force_n) and force_n >= 0):
-            raise InputError(f"probe force must be a finite number >= 0 N, got {force_n!r}")
-        if force_n == 0:
-            self._probe_loads = np.zeros(self._layout.n_modules)
-            return
-        self._probe_loads = self.response.rect_equivalent_loads(
-            center_m, size_m, force_n, self.operating_pressure_pa, yaw_rad
-        )
+    def _update_probe(self) -> None:
+        """The probe block's loads at the current operating pressure (the block loads the
+        chambers only: it does not collide with objects)."""
+        self._probe_loads = self._probe_loads_at(self.operating_pressure_pa)
 
     def command_gripper(self, target: GripperState, speed_m_s: float) -> None:
         """Move the hand towards ``target`` in a straight line at ``speed_m_s``; the jaw
