@@ -139,21 +139,6 @@ class MujocoWorld(PadWorld):
         return self._scene
 
     @property
-    def model(self) -> Any:
-        """The MuJoCo model (``mujoco.MjModel``)."""
-        return self.scene.model
-
-    @property
-    def data(self) -> Any:
-        """The MuJoCo data (``mujoco.MjData``)."""
-        return self.scene.data
-
-    @property
-    def xml(self) -> str:
-        """The MJCF the model was compiled from."""
-        return self.scene.xml
-
-    @property
     def objects(self) -> dict[str, ObjectModel]:
         """The objects in the model, by name."""
         return self.scene.objects
@@ -183,7 +168,7 @@ class MujocoWorld(PadWorld):
     @property
     def timestep_s(self) -> float:
         """MuJoCo's step, seconds."""
-        return float(self.model.opt.timestep)
+        return float(self.scene.model.opt.timestep)
 
     def step(self, dt_s: float, module_heights_m: ArrayLike | None = None) -> None:
         """Advance by ``dt_s`` seconds; MuJoCo steps once per elapsed ``timestep_s``.
@@ -371,8 +356,8 @@ class MujocoWorld(PadWorld):
         if name not in self.objects:
             raise InputError(f"unknown object {name!r}")
         b = self.scene.obj_body[name]
-        pos = self.data.xpos[b]
-        rot = self.data.xmat[b].reshape(3, 3)
+        pos = self.scene.data.xpos[b]
+        rot = self.scene.data.xmat[b].reshape(3, 3)
         return ObjectPose(
             x_m=float(pos[0]),
             y_m=float(pos[1]),
@@ -384,11 +369,11 @@ class MujocoWorld(PadWorld):
     def object_speed_m_s(self, name: str) -> float:
         """Linear speed of an object, m/s (to tell when it has settled)."""
         da = self.scene.obj_dof[name]
-        return float(np.linalg.norm(self.data.qvel[da : da + 3]))
+        return float(np.linalg.norm(self.scene.data.qvel[da : da + 3]))
 
     def module_top_heights_m(self) -> NDArray[np.float64]:
         """Current height of every module top in MuJoCo, metres."""
-        return np.asarray(self.data.qpos[self.scene.module_qpos], dtype=float).copy()
+        return np.asarray(self.scene.data.qpos[self.scene.module_qpos], dtype=float).copy()
 
     # --- diagnostics ----------------------------------------------------------------------
     def gripper_contacts(self) -> GripperContacts:
@@ -403,14 +388,14 @@ class MujocoWorld(PadWorld):
     def save_xml(self, path: str) -> None:
         """Write the generated MJCF to ``path`` (to look at it in MuJoCo's viewer)."""
         with open(path, "w", encoding="utf-8") as fh:
-            fh.write(self.xml)
+            fh.write(self.scene.xml)
 
     def info(self) -> dict[str, Any]:
         """Model size and settings, for reports."""
         return {
             "timestep_s": self.timestep_s,
-            "nbody": int(self.model.nbody),
-            "ngeom": int(self.model.ngeom),
+            "nbody": int(self.scene.model.nbody),
+            "ngeom": int(self.scene.model.ngeom),
             "integrator": "implicitfast",
             "cone": "elliptic",
         }
