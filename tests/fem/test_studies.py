@@ -156,7 +156,7 @@ def test_minimum_detectable_mass_is_grams(chamber) -> None:
 
 def test_tiny_characteristic_table_and_round_trip(tmp_path) -> None:
     table = module_characteristic(
-        pressures_pa=[0.0, 1000.0], loads_n=[0.0, 0.3], mesh=MeshOptions(4, 1)
+        ModuleSetup(mesh=MeshOptions(4, 1)), pressures_pa=[0.0, 1000.0], loads_n=[0.0, 0.3]
     )
     assert table.volume_m3.shape == (2, 2) and table.height_m.shape == (2, 2)
     gap = table.meta["gap_volume_m3"]

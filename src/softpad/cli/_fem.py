@@ -651,6 +651,8 @@ def _fit(args: argparse.Namespace) -> int:
         height,
         _material(args),
         free=free,
+        geometry=_geometry(args),
+        mesh=_mesh(args),
         max_evaluations=args.max_evals,
     )
     if _written_or_emitted(args, result):
@@ -674,6 +676,8 @@ def _compare(args: argparse.Namespace) -> int:
         pressure,
         height,
         _models(args.models),
+        geometry=_geometry(args),
+        mesh=_mesh(args),
     )
     if _written_or_emitted(args, result):
         return 0
@@ -693,7 +697,7 @@ def _characteristic(args: argparse.Namespace) -> int:
         args,
         "characteristic",
         module_characteristic,
-        _material(args),
+        _setup(args),
         pressures_pa=pressures,
         loads_n=loads,
         gap_volume_m3=args.gap_volume_ml * 1e-6,
