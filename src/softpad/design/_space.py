@@ -53,7 +53,7 @@ class PadDesign:
     rows: int = thesis.PROTOTYPE_ROWS
     cols: int = thesis.PROTOTYPE_COLS
     pitch_m: float = thesis.MODULE_PITCH_M
-    thickness_m: float = 0.0015
+    thickness_m: float = thesis.LAYER_THICKNESS_M
     material: str = "neo-hookean"
     p0_pa: float = thesis.P0_PA
     name: str = ""
@@ -161,7 +161,7 @@ class DesignSpace:
 
     grids: tuple[tuple[int, int], ...] = ((2, 3),)
     pitches_m: tuple[float, ...] = (thesis.MODULE_PITCH_M,)
-    thicknesses_m: tuple[float, ...] = (0.0015,)
+    thicknesses_m: tuple[float, ...] = (thesis.LAYER_THICKNESS_M,)
     materials: tuple[str, ...] = ("neo-hookean",)
     p0s_pa: tuple[float, ...] = (thesis.P0_PA,)
 
