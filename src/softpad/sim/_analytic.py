@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from softpad import thesis
-from softpad.errors import InputError
+from softpad.errors import InputError, check_fields
 from softpad.layout import GripperSpec, PadLayout
 from softpad.sim._footprint import (
     GRAVITY_M_S2,
@@ -89,10 +89,11 @@ class SimGripper:
                 f"gripper width range must satisfy 0 <= min < max <= 500 mm, got "
                 f"{self.min_width_m * 1e3:g}..{self.max_width_m * 1e3:g} mm"
             )
-        for n in ("finger_length_m", "tip_thickness_m", "tip_width_m", "tip_stiffness_n_m"):
-            v = getattr(self, n)
-            if not (math.isfinite(v) and v > 0):
-                raise InputError(f"gripper {n} must be a positive number, got {v!r}")
+        check_fields(
+            self,
+            "gripper",
+            positive=("finger_length_m", "tip_thickness_m", "tip_width_m", "tip_stiffness_n_m"),
+        )
 
     @classmethod
     def mounting(cls, name: str, **kwargs: float) -> SimGripper:
