@@ -164,7 +164,9 @@ def _one_trial(
         layout,
         params,
         planner=make_planner(options.planner, world.gripper.geometry, params.planner),
-        contact_detector=make_contact_detector(options.detector),
+        contact_detector=make_contact_detector(
+            options.detector, box.sample_rate_hz, layout.n_modules
+        ),
         place_objects=lambda: world.place_object(spec, placement),
     )
     record: dict[str, Any] = {"object": obj.name, "trial": k, "seed": seed}

@@ -74,7 +74,11 @@ def inflation_point(
         probe = _ForceProbe(box)
         with box:
             run = run_simulated(
-                [obj], box, params, probe, contact_detector=make_contact_detector(detector)
+                [obj],
+                box,
+                params,
+                probe,
+                contact_detector=make_contact_detector(detector, box.sample_rate_hz),
             )
         held += run.outcome == "held"
         for v, out in ((run.contact_delay_s(), delays), (run.finger_travel_m(), travels)):

@@ -38,13 +38,11 @@ class ContactDetector(Protocol):
 class LatchingContactDetector:
     """Base of the contact detectors that latch on a per-module statistic of the rise.
 
-    Every frame's rise over the reference (Pa per module) goes to :meth:`_statistic`; the
-    first frame where any module's statistic exceeds ``threshold_pa`` names the triggered
-    modules, and :meth:`update` returns True from then on until :meth:`reset`. Subclasses set
-    ``threshold_pa`` and implement :meth:`_statistic` and :meth:`_restart`.
+    Every frame's rise over the reference (Pa per module) goes to :meth:`_exceeds`; the
+    first frame where any module's statistic exceeds its threshold names the triggered
+    modules, and :meth:`update` returns True from then on until :meth:`reset`. Subclasses
+    implement :meth:`_exceeds` and :meth:`_restart`.
     """
-
-    threshold_pa: float
 
     def __init__(self) -> None:
         self.reference_pa: NDArray[np.float64] | None = None
@@ -65,7 +63,7 @@ class LatchingContactDetector:
         if self.reference_pa is None:
             raise RuntimeError(f"{type(self).__name__}.update called before reset")
         rise = np.asarray(pressures_pa, dtype=float) - self.reference_pa
-        hits = np.flatnonzero(self._statistic(rise) > self.threshold_pa)
+        hits = np.flatnonzero(self._exceeds(rise))
         self._triggered = tuple(int(k) + 1 for k in hits)
         return bool(self._triggered)
 
@@ -73,8 +71,8 @@ class LatchingContactDetector:
         """Clear the statistic's state for a pad of ``modules`` modules."""
         raise NotImplementedError
 
-    def _statistic(self, rise_pa: NDArray[np.float64]) -> NDArray[np.float64]:
-        """The statistic of every module after this frame's rise, pascals."""
+    def _exceeds(self, rise_pa: NDArray[np.float64]) -> NDArray[np.bool_]:
+        """Whether each module's statistic exceeds its threshold after this frame's rise."""
         raise NotImplementedError
 
 
@@ -113,18 +111,22 @@ class ThesisContactDetector(LatchingContactDetector):
         for _ in range(self._filter.length):  # primed with zero increments (the reference)
             self._filter.update(np.zeros(modules))
 
-    def _statistic(self, rise_pa: NDArray[np.float64]) -> NDArray[np.float64]:
+    def _exceeds(self, rise_pa: NDArray[np.float64]) -> NDArray[np.bool_]:
         filtered: NDArray[np.float64] = self._filter.update(rise_pa)
-        return filtered
+        return filtered > self.threshold_pa
 
 
 def count_alarms(
-    detector: ContactDetector, reference_pa: ArrayLike, frames: Iterable[ArrayLike]
+    detector: ContactDetector,
+    reference_pa: ArrayLike,
+    frames: Iterable[ArrayLike],
+    rearm_only: bool = False,
 ) -> int:
     """Contact alarms of ``detector`` over ``frames`` (Pa per module) on which nothing touches
-    the pad: every one is false. The detector starts from ``reference_pa`` and is re-armed
-    with it after every alarm."""
-    detector.reset(reference_pa)
+    the pad: every one is false. The detector starts from ``reference_pa`` (goes on from its
+    state with ``rearm_only``) and is re-armed with it after every alarm."""
+    if not rearm_only:
+        detector.reset(reference_pa)
     alarms = 0
     for pressures_pa in frames:
         if detector.update(pressures_pa):

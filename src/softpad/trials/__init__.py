@@ -5,7 +5,13 @@ A sub-package of its own because a trial drives every layer below it (the MuJoCo
 ``softpad.control``) and so sits above them.
 """
 
-from softpad.trials._compare import DEFAULT_PAIRS, compare, wilson_interval
+from softpad.trials._compare import (
+    DEFAULT_PAIRS,
+    IDLE_BOX,
+    compare,
+    idle_false_alarms_per_hour,
+    wilson_interval,
+)
 from softpad.trials._config import TrialConfig, trial_execution_params
 from softpad.trials._records import (
     FAILURE_CAUSES,
@@ -26,6 +32,7 @@ from softpad.trials._runner import (
 __all__ = [
     "DEFAULT_PAIRS",
     "FAILURE_CAUSES",
+    "IDLE_BOX",
     "THESIS_OVERALL_SUCCESS",
     "THESIS_TABLE_6_1",
     "ExperimentResult",
@@ -33,6 +40,7 @@ __all__ = [
     "TrialConfig",
     "TrialResult",
     "compare",
+    "idle_false_alarms_per_hour",
     "perturbed_placement",
     "run_experiment",
     "run_trial",

@@ -197,7 +197,9 @@ def execute_trial(
         t.world.layout,
         config.execution,
         planner=_FixedPlanner(o.plan) if o.plan is not None else t.planner(),
-        contact_detector=make_contact_detector(config.detector),
+        contact_detector=make_contact_detector(
+            config.detector, t.box.sample_rate_hz, t.world.layout.n_modules
+        ),
         recorder=watcher,
         place_objects=t.place,
     )
