@@ -20,6 +20,8 @@ BOX_CHANNELS = 8
 #: Side of one module's air chamber, m (Section 6.1.1: "a 45x45 mm piece of acetate" defines
 #: the channel of each square).
 CHAMBER_SIDE_M = 0.045
+#: Thickness of the upper silicone layer, m (Section 6.1: 1.5 mm of EcoFlex 00-30).
+LAYER_THICKNESS_M = 0.0015
 #: Bonded width between neighbouring chambers, m: the module pitch less the chamber side. The
 #: seed gives a 45 mm chamber (Section 6.1.1) and 45 mm modules (Section 6.1.2, the grid of
 #: Fig. 6.4a), so within its figures the chambers meet at their clamped edges (0 mm); the
@@ -110,6 +112,7 @@ __all__ = [
     "GRIPPER_MOUNTINGS_M",
     "HOLD_S",
     "JAW_SPEED_M_S",
+    "LAYER_THICKNESS_M",
     "MAX_PRESSURE_PA",
     "MODULE_PITCH_M",
     "OBJECT_THRESHOLD_PA",

@@ -69,6 +69,7 @@ def stubbed() -> Iterator[Path]:
         "module_characteristic",
     ):
         mp.setattr(softpad.fem, name, _started)
+    mp.setattr(softpad.fem.ModuleSetup, "model", _started)
     import softpad.fem._response
 
     mp.setattr(softpad.fem._response, "module_response", _started)

@@ -31,7 +31,9 @@ def test_small_load_slope_matches_the_sealed_equilibrium_solve(
     from softpad.fem import LoadPatch, sealed_chamber_study
 
     study = sealed_chamber_study(
-        "neo-hookean", 1100.0, masses_kg=(0.006,), footprint=LoadPatch("rectangle", 0.042, 0.031)
+        initial_pressure_pa=1100.0,
+        masses_kg=(0.006,),
+        footprint=LoadPatch("rectangle", 0.042, 0.031),
     )
     solved_rise_pa = float(study.delta_pressure_pa[0])
     linear_rise_pa = thesis_response.rise_pa_n * 0.006 * GRAVITY_M_S2

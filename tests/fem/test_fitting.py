@@ -8,6 +8,7 @@ import pytest
 from softpad.errors import InputError
 from softpad.fem import (
     MeshOptions,
+    ModuleSetup,
     compare_models,
     fit_material,
     get_material,
@@ -20,7 +21,9 @@ PRESSURES = np.array([500.0, 1000.0, 2000.0, 3000.0])
 
 
 def synthetic(material) -> np.ndarray:
-    return inflation_sweep(material, np.concatenate([[0.0], PRESSURES]), mesh=MESH).height_m[1:]
+    return inflation_sweep(
+        ModuleSetup(material, mesh=MESH), np.concatenate([[0.0], PRESSURES])
+    ).height_m[1:]
 
 
 def test_fit_recovers_neo_hookean_shear_modulus() -> None:

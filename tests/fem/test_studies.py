@@ -14,6 +14,7 @@ from softpad.fem import (
     MODEL_NAMES,
     MeshOptions,
     ModuleCharacteristic,
+    ModuleSetup,
     design_sweep,
     inflation_sweep,
     load_characteristic,
@@ -30,7 +31,7 @@ COARSE = MeshOptions(6, 1)
 def heights_at_1kpa() -> dict[str, float]:
     out = {}
     for name in MODEL_NAMES:
-        result = inflation_sweep(name, [0.0, 500.0, 1000.0], mesh=COARSE)
+        result = inflation_sweep(ModuleSetup(name, mesh=COARSE), [0.0, 500.0, 1000.0])
         out[name] = result.height_at(1000.0)
     return out
 
@@ -55,9 +56,8 @@ def test_mooney_rivlin_and_varga_follow_neo_hookean(
 def test_inflation_result_outputs(tmp_path) -> None:
     calls: list[tuple[int, int]] = []
     result = inflation_sweep(
-        "neo-hookean",
+        ModuleSetup("neo-hookean", mesh=MeshOptions(3, 1)),
         [0.0, 400.0, 800.0],
-        mesh=MeshOptions(3, 1),
         progress=lambda done, total: calls.append((done, total)),
     )
     assert calls == [(1, 3), (2, 3), (3, 3)]
@@ -76,14 +76,17 @@ def test_inflation_result_outputs(tmp_path) -> None:
     ids=["thicker-deforms-less", "wider-deforms-more"],
 )
 def test_design_trends(parameter: str, values: list[float], sign: int) -> None:
-    result = design_sweep(parameter, values, materials=("neo-hookean",), mesh=COARSE)
+    result = design_sweep(parameter, values, setups=[ModuleSetup("neo-hookean", mesh=COARSE)])
     assert sign * (result.height_m[0, 1] - result.height_m[0, 0]) > 0.1e-3
 
 
 @pytest.fixture(scope="module")
 def stiffness():
     return stiffness_study(
-        "neo-hookean", [500.0, 1400.0, 2800.0], forces_n=(0.2, 0.8), radius_m=0.01, mesh=COARSE
+        ModuleSetup("neo-hookean", mesh=COARSE),
+        [500.0, 1400.0, 2800.0],
+        forces_n=(0.2, 0.8),
+        radius_m=0.01,
     )
 
 
@@ -108,8 +111,9 @@ def test_stiffness_decreases_with_force_at_high_pressure(stiffness) -> None:
 
 def test_sensitive_area_definition() -> None:
     """Half-maximum area of dw/dp on the top face: plausible size, shrinking with the fraction."""
-    half = sensitive_area_study("neo-hookean", [1000.0], fraction=0.5, mesh=COARSE)
-    most = sensitive_area_study("neo-hookean", [1000.0], fraction=0.9, mesh=COARSE)
+    setup = ModuleSetup("neo-hookean", mesh=COARSE)
+    half = sensitive_area_study(setup, [1000.0], fraction=0.5)
+    most = sensitive_area_study(setup, [1000.0], fraction=0.9)
     assert 0.015 < half.side_m[0] < 0.045
     assert most.area_m2[0] < half.area_m2[0]
     assert half.centre_response_m3_per_n[0] > 0
@@ -117,7 +121,9 @@ def test_sensitive_area_definition() -> None:
 
 @pytest.fixture(scope="module")
 def chamber():
-    return sealed_chamber_study("neo-hookean", 1100.0, masses_kg=(0.006, 0.0126, 0.05), mesh=COARSE)
+    return sealed_chamber_study(
+        ModuleSetup("neo-hookean", mesh=COARSE), 1100.0, masses_kg=(0.006, 0.0126, 0.05)
+    )
 
 
 def test_sealed_chamber_satisfies_the_isothermal_gas_law(chamber) -> None:
@@ -150,7 +156,7 @@ def test_minimum_detectable_mass_is_grams(chamber) -> None:
 
 def test_tiny_characteristic_table_and_round_trip(tmp_path) -> None:
     table = module_characteristic(
-        pressures_pa=[0.0, 1000.0], loads_n=[0.0, 0.3], mesh=MeshOptions(4, 1)
+        ModuleSetup(mesh=MeshOptions(4, 1)), pressures_pa=[0.0, 1000.0], loads_n=[0.0, 0.3]
     )
     assert table.volume_m3.shape == (2, 2) and table.height_m.shape == (2, 2)
     gap = table.meta["gap_volume_m3"]
@@ -208,6 +214,8 @@ def test_shipped_characteristic_file() -> None:
 @pytest.mark.parametrize("name", MODEL_NAMES, ids=MODEL_NAMES)
 def test_every_preset_converges_from_0_to_3_kpa(name: str) -> None:
     """Issue 5: with the thesis's forms every model inflates monotonically to 3 kPa."""
-    result = inflation_sweep(name, [0.0, 1000.0, 2000.0, 3000.0], mesh=MeshOptions(4, 1))
+    result = inflation_sweep(
+        ModuleSetup(name, mesh=MeshOptions(4, 1)), [0.0, 1000.0, 2000.0, 3000.0]
+    )
     assert np.all(np.diff(result.height_m) > 0)
     assert np.all(np.diff(result.volume_m3) > 0)

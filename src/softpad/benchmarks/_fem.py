@@ -42,12 +42,11 @@ REFERENCE_HEIGHT_M = np.array(
 
 
 def _sweep(mesh: object) -> tuple[float, np.ndarray]:
-    from softpad.fem import ModuleModel, inflation_sweep
+    from softpad.fem import ModuleSetup, inflation_sweep
 
     pressures = np.linspace(0.0, thesis.MAX_PRESSURE_PA, 13)
     t0 = time.perf_counter()
-    model = ModuleModel("neo-hookean", mesh=mesh, contact=False)  # type: ignore[arg-type]
-    result = inflation_sweep(pressures_pa=pressures, model=model)
+    result = inflation_sweep(ModuleSetup("neo-hookean", mesh=mesh), pressures)  # type: ignore[arg-type]
     return time.perf_counter() - t0, result.height_m[1:]
 
 

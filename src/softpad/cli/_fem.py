@@ -403,13 +403,19 @@ def _outputs(args: argparse.Namespace, result: Any) -> None:
         _save_figure(result.plot(), args.png)
 
 
+def _setup(args: argparse.Namespace) -> Any:
+    """The command's module: ``--model`` with its ``--param`` overrides, geometry and mesh."""
+    from softpad.fem import ModuleSetup
+
+    return ModuleSetup(_material(args), _geometry(args), _mesh(args))
+
+
 def _run_study(
     args: argparse.Namespace, label: str, study: Callable[..., Any], *a: Any, **kw: Any
 ) -> Any:
-    """``study(*a, **kw)`` (a :mod:`softpad.fem` study) on the command's geometry and mesh,
-    with a progress bar named ``label``."""
+    """``study(*a, **kw)`` (a :mod:`softpad.fem` study) with a progress bar named ``label``."""
     with _progress(args, label) as progress:
-        return study(*a, geometry=_geometry(args), mesh=_mesh(args), progress=progress, **kw)
+        return study(*a, progress=progress, **kw)
 
 
 def _written_or_emitted(args: argparse.Namespace, result: Any) -> bool:
@@ -425,7 +431,7 @@ def _written_or_emitted(args: argparse.Namespace, result: Any) -> bool:
 def _sweep(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from softpad.fem import ModuleModel, inflation_sweep
+    from softpad.fem import inflation_sweep
 
     _check_outputs(args)
     if args.points < 2:
@@ -433,9 +439,9 @@ def _sweep(args: argparse.Namespace) -> int:
     if args.max_pressure_kpa <= 0:
         raise InputError(f"--max-pressure-kpa must be > 0 kPa, got {args.max_pressure_kpa:g}")
     pressures = np.linspace(0.0, args.max_pressure_kpa * 1e3, args.points)
-    model = ModuleModel(_material(args), geometry=_geometry(args), mesh=_mesh(args), contact=False)
+    model = _setup(args).model(contact=False)
     with _progress(args, f"sweep {args.model}") as progress:
-        result = inflation_sweep(pressures_pa=pressures, model=model, progress=progress)
+        result = inflation_sweep(model, pressures, progress)
     _outputs(args, result)
     if args.vtu:
         with atomic_path(args.vtu) as tmp:
@@ -451,20 +457,21 @@ def _sweep(args: argparse.Namespace) -> int:
 
 
 def _design(args: argparse.Namespace) -> int:
-    from softpad.fem import design_sweep
+    from softpad.fem import ModuleSetup, design_sweep
 
     _check_outputs(args)
     defaults = {"thickness": "1,1.5,2,2.5,3", "width": "35,40,45,50,55"}
     values = _numbers(
         args.values_mm or defaults[args.parameter], "--values-mm", 1e-3, positive=True
     )
+    geometry, mesh = _geometry(args), _mesh(args)
     result = _run_study(
         args,
         f"design {args.parameter}",
         design_sweep,
         args.parameter,
         values,
-        materials=_models(args.models),
+        setups=[ModuleSetup(m, geometry, mesh) for m in _models(args.models)],
         pressure_pa=args.pressure_kpa * 1e3,
     )
     if _written_or_emitted(args, result):
@@ -491,7 +498,7 @@ def _stiffness(args: argparse.Namespace) -> int:
         args,
         "stiffness",
         stiffness_study,
-        _material(args),
+        _setup(args),
         pressures,
         forces,
         args.radius_mm * 1e-3,
@@ -519,7 +526,7 @@ def _sensitivity(args: argparse.Namespace) -> int:
         args,
         "sensitivity",
         sensitive_area_study,
-        _material(args),
+        _setup(args),
         pressures,
         fraction=args.fraction,
         probe_mass_kg=args.probe_g * 1e-3,
@@ -592,7 +599,7 @@ def _chamber(args: argparse.Namespace) -> int:
         args,
         "chamber",
         sealed_chamber_study,
-        _material(args),
+        _setup(args),
         args.pressure_kpa * 1e3,
         masses,
         footprint=_footprint(args.footprint_mm, args.width_mm),
@@ -644,6 +651,8 @@ def _fit(args: argparse.Namespace) -> int:
         height,
         _material(args),
         free=free,
+        geometry=_geometry(args),
+        mesh=_mesh(args),
         max_evaluations=args.max_evals,
     )
     if _written_or_emitted(args, result):
@@ -667,6 +676,8 @@ def _compare(args: argparse.Namespace) -> int:
         pressure,
         height,
         _models(args.models),
+        geometry=_geometry(args),
+        mesh=_mesh(args),
     )
     if _written_or_emitted(args, result):
         return 0
@@ -686,7 +697,7 @@ def _characteristic(args: argparse.Namespace) -> int:
         args,
         "characteristic",
         module_characteristic,
-        _material(args),
+        _setup(args),
         pressures_pa=pressures,
         loads_n=loads,
         gap_volume_m3=args.gap_volume_ml * 1e-6,
@@ -732,11 +743,11 @@ def _response(args: argparse.Namespace) -> int:
         if args.pressures_kpa
         else DEFAULT_RESPONSE_PRESSURES_PA
     )
-    geometry, mesh, material = _geometry(args), _mesh(args), _material(args)
+    setup = _setup(args)
     with _progress(args, "response") as progress:
-        result = module_response(material, pressures, geometry, mesh, progress)
+        result = module_response(setup, pressures, progress)
     if not args.no_convergence:
-        result.meta["convergence"] = response_convergence(material, mesh=mesh, geometry=geometry)
+        result.meta["convergence"] = response_convergence(setup)
     with atomic_path(args.out) as tmp:
         result.to_npz(tmp)
     summary = {

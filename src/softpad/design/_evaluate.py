@@ -130,13 +130,12 @@ def _one_trial(
     from softpad.control import ExecutionError, GraspExecution, InflationParams
     from softpad.errors import HardwareFault
     from softpad.harness import SimulatedRobot
-    from softpad.layout import PadLayout
     from softpad.planning import make_planner
     from softpad.sensing import make_contact_detector
     from softpad.sim import AnalyticWorld, Placement, SensorParams, SimGripper
     from softpad.trials import TrialConfig, perturbed_placement, trial_execution_params, trial_seed
 
-    layout = PadLayout(design.rows, design.cols, design.pitch_m)
+    layout = design.layout
     world = AnalyticWorld(layout, SimGripper.mounting(object_set.mounting(obj)))
     spec = obj.placed_on((design.cols * design.pitch_m, design.rows * design.pitch_m))
     s = trial_seed(seed, obj.name, k)

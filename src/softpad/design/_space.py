@@ -17,6 +17,7 @@ from typing import Any
 
 from softpad import thesis
 from softpad.errors import InputError
+from softpad.layout import PadLayout
 
 #: Ranges a design variable may take (inclusive), in SI: what the FEM model and the
 #: simulator describe sensibly.
@@ -52,7 +53,7 @@ class PadDesign:
     rows: int = thesis.PROTOTYPE_ROWS
     cols: int = thesis.PROTOTYPE_COLS
     pitch_m: float = thesis.MODULE_PITCH_M
-    thickness_m: float = 0.0015
+    thickness_m: float = thesis.LAYER_THICKNESS_M
     material: str = "neo-hookean"
     p0_pa: float = thesis.P0_PA
     name: str = ""
@@ -92,9 +93,14 @@ class PadDesign:
         )
 
     @property
+    def layout(self) -> PadLayout:
+        """The pad's grid of modules."""
+        return PadLayout(self.rows, self.cols, self.pitch_m)
+
+    @property
     def n_modules(self) -> int:
         """Number of modules (and box channels): the cost proxy."""
-        return self.rows * self.cols
+        return self.layout.n_modules
 
     @property
     def is_thesis(self) -> bool:
@@ -155,7 +161,7 @@ class DesignSpace:
 
     grids: tuple[tuple[int, int], ...] = ((2, 3),)
     pitches_m: tuple[float, ...] = (thesis.MODULE_PITCH_M,)
-    thicknesses_m: tuple[float, ...] = (0.0015,)
+    thicknesses_m: tuple[float, ...] = (thesis.LAYER_THICKNESS_M,)
     materials: tuple[str, ...] = ("neo-hookean",)
     p0s_pa: tuple[float, ...] = (thesis.P0_PA,)
 

@@ -38,6 +38,26 @@ class SweepTask:
     seed: int | None = None
 
 
+@dataclass(frozen=True)
+class _SweepJob:
+    """What every task of one sweep shares: objects, trial options, mesh, cache, progress."""
+
+    object_set: ObjectSet
+    options: TrialOptions
+    quick: bool
+    cache: ResultCache
+    progress: Progress | None
+
+    def fem_key(self, design: PadDesign) -> str:
+        """Cache key of the finite-element response of ``design``'s module."""
+        return self.cache.key("fem", {**design.fem_variables(), "cells": FEM_CELLS[self.quick]})
+
+    def keep(self, done: dict[str, Any], task: SweepTask, result: Any) -> None:
+        """Store ``result`` of ``task`` in ``done`` and in the cache."""
+        done[task.key] = result
+        self.cache.put(task.kind, task.key, result)
+
+
 def _fem_task(design: PadDesign, cells: int) -> dict[str, Any]:
     """The FEM response of ``design``'s module as a dict (a Dask task)."""
     v = design.fem_variables()
@@ -124,9 +144,8 @@ def run_sweep(
     designs = _with_baseline(designs)
     if not seeds or len(set(seeds)) != len(seeds):
         raise InputError(f"seeds must be distinct and at least one, got {list(seeds)}")
-    fem_keys = {
-        d.name: cache.key("fem", {**d.fem_variables(), "cells": FEM_CELLS[quick]}) for d in designs
-    }
+    job = _SweepJob(object_set, options, quick, cache, progress)
+    fem_keys = {d.name: job.fem_key(d) for d in designs}
     common = {"objects": object_set.fingerprint(), "options": options.to_dict()}
     tasks: list[SweepTask] = []
     for d in designs:
@@ -144,9 +163,7 @@ def run_sweep(
     n_cached = len({t.key for t in tasks}) - len(missing)
     used = 0
     if missing:
-        used = _compute(
-            missing, done, object_set, options, quick, scheduler, workers, cache, progress, n_cached
-        )
+        used = _compute(job, missing, done, scheduler, workers, n_cached)
     responses = {d.name: done[fem_keys[d.name]] for d in designs}
     trials = {
         d.name: [
@@ -173,15 +190,11 @@ def _with_baseline(designs: Sequence[PadDesign]) -> list[PadDesign]:
 
 
 def _compute(
+    job: _SweepJob,
     missing: list[SweepTask],
     done: dict[str, Any],
-    object_set: ObjectSet,
-    options: TrialOptions,
-    quick: bool,
     scheduler: str | None,
     workers: int | None,
-    cache: ResultCache,
-    progress: Progress | None,
     n_cached: int,
 ) -> int:
     """Run the missing tasks on Dask (FEM first, trials depending on it); store each result
@@ -190,7 +203,7 @@ def _compute(
 
     total = len(missing) + n_cached
     if scheduler is None and not has_dask():
-        _compute_here(missing, done, object_set, options, quick, cache, progress, n_cached)
+        _compute_here(job, missing, done, n_cached)
         return 1
     with dask_client(scheduler, workers) as client:
         from distributed import as_completed
@@ -201,7 +214,7 @@ def _compute(
         for t in missing:
             if t.kind == "fem":
                 fut = client.submit(
-                    _fem_task, t.design, FEM_CELLS[quick], key=f"fem-{t.key}", pure=False
+                    _fem_task, t.design, FEM_CELLS[job.quick], key=f"fem-{t.key}", pure=False
                 )
                 fem_futures[t.key] = fut
                 futures[fut] = t
@@ -209,15 +222,15 @@ def _compute(
         for t in ordered.values():
             if t.kind != "trials":
                 continue
-            fkey = cache.key("fem", {**t.design.fem_variables(), "cells": FEM_CELLS[quick]})
+            fkey = job.fem_key(t.design)
             response = fem_futures.get(fkey, done.get(fkey))
             fut = client.submit(
                 _trials_task,
                 t.design,
                 response,
-                object_set,
+                job.object_set,
                 t.seed,
-                options,
+                job.options,
                 key=f"trials-{t.key}",
                 pure=False,
             )
@@ -225,12 +238,10 @@ def _compute(
         count = n_cached
         for fut in as_completed(list(futures)):
             t = futures[fut]
-            result = fut.result()
-            done[t.key] = result
-            cache.put(t.kind, t.key, result)
+            job.keep(done, t, fut.result())
             count += 1
-            if progress is not None:
-                progress(
+            if job.progress is not None:
+                job.progress(
                     count,
                     total,
                     f"{t.kind} {t.design.name}" + ("" if t.seed is None else f" seed {t.seed}"),
@@ -239,28 +250,20 @@ def _compute(
 
 
 def _compute_here(
-    missing: list[SweepTask],
-    done: dict[str, Any],
-    object_set: ObjectSet,
-    options: TrialOptions,
-    quick: bool,
-    cache: ResultCache,
-    progress: Progress | None,
-    n_cached: int,
+    job: _SweepJob, missing: list[SweepTask], done: dict[str, Any], n_cached: int
 ) -> None:
     """The missing tasks in this process, FEM first (Dask not installed)."""
     count, total = n_cached, len(missing) + n_cached
     for t in sorted(missing, key=lambda t: t.kind != "fem"):
         if t.kind == "fem":
-            result: Any = _fem_task(t.design, FEM_CELLS[quick])
+            result: Any = _fem_task(t.design, FEM_CELLS[job.quick])
         else:
-            fkey = cache.key("fem", {**t.design.fem_variables(), "cells": FEM_CELLS[quick]})
-            result = _trials_task(t.design, done[fkey], object_set, t.seed or 0, options)
-        done[t.key] = result
-        cache.put(t.kind, t.key, result)
+            response = done[job.fem_key(t.design)]
+            result = _trials_task(t.design, response, job.object_set, t.seed or 0, job.options)
+        job.keep(done, t, result)
         count += 1
-        if progress is not None:
-            progress(count, total, f"{t.kind} {t.design.name}")
+        if job.progress is not None:
+            job.progress(count, total, f"{t.kind} {t.design.name}")
 
 
 def design_sweep(

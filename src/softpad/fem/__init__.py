@@ -48,6 +48,7 @@ from softpad.fem._materials import (
 from softpad.fem._model import (
     ConvergenceError,
     ModuleModel,
+    ModuleSetup,
     ModuleState,
     ProgressCallback,
     SolverOptions,
@@ -94,6 +95,7 @@ __all__ = [
     "ModuleGeometry",
     "ModuleModel",
     "ModuleResponse",
+    "ModuleSetup",
     "ModuleState",
     "ProgressCallback",
     "SensitivityResult",

@@ -24,10 +24,9 @@ from numpy.typing import NDArray
 
 from softpad import thesis
 from softpad.errors import InputError, check_finite
-from softpad.fem._geometry import LoadPatch, MeshOptions, ModuleGeometry
-from softpad.fem._materials import MaterialModel
-from softpad.fem._model import ModuleModel, ProgressCallback
-from softpad.fem._results import as_list, label_axes, new_axes, write_csv
+from softpad.fem._geometry import LoadPatch
+from softpad.fem._model import ModuleModel, ModuleSetup, ProgressCallback
+from softpad.fem._results import StudyResult, as_list, label_axes, new_axes, write_csv
 
 #: Standard atmosphere, Pa.
 ATMOSPHERIC_PRESSURE_PA = 101_325.0
@@ -42,13 +41,11 @@ BRICK_FOOTPRINT = LoadPatch("rectangle", 0.042, 0.031)
 
 
 @dataclass(frozen=True)
-class ChamberResult:
+class ChamberResult(StudyResult):
     """Pressure rise of a sealed module under masses placed on a footprint.
 
     Attributes
     ----------
-    model
-        Material preset name.
     initial_pressure_pa
         Pressure at which the valves closed, Pa.
     initial_volume_m3
@@ -71,7 +68,6 @@ class ChamberResult:
         ``dV/dp`` of the unloaded module, m^3/Pa.
     """
 
-    model: str
     initial_pressure_pa: float
     initial_volume_m3: float
     dead_volume_m3: float
@@ -169,22 +165,20 @@ def sealed_rise_per_force(
 
 
 def sealed_chamber_study(
-    material: str | MaterialModel = "neo-hookean",
+    setup: ModuleSetup | None = None,
     initial_pressure_pa: float = thesis.P0_PA,
     masses_kg: Sequence[float] = (0.006, 0.0126, 0.05, 0.1),
     footprint: LoadPatch = BRICK_FOOTPRINT,
     dead_volume_m3: float = DEFAULT_DEAD_VOLUME_M3,
     atmospheric_pa: float = ATMOSPHERIC_PRESSURE_PA,
-    geometry: ModuleGeometry | None = None,
-    mesh: MeshOptions | None = None,
     progress: ProgressCallback | None = None,
 ) -> ChamberResult:
     """Pressure rise of a sealed module when masses rest on a footprint of its top.
 
     Parameters
     ----------
-    material
-        Preset name or :class:`MaterialModel`.
+    setup
+        The module (default :class:`~softpad.fem.ModuleSetup`).
     initial_pressure_pa
         Pressure when the valves close, Pa (thesis: 1.1 kPa).
     masses_kg
@@ -195,7 +189,7 @@ def sealed_chamber_study(
         Dead volume of the tubing and sensor, m^3 (default 1 m of 2 mm tubing).
     atmospheric_pa
         Ambient absolute pressure, Pa.
-    geometry, mesh, progress
+    progress
         As in :func:`~softpad.fem.inflation_sweep`.
 
     Notes
@@ -206,7 +200,7 @@ def sealed_chamber_study(
     p0, vd, pa, masses = _checked_inputs(
         initial_pressure_pa, dead_volume_m3, atmospheric_pa, masses_kg
     )
-    model = ModuleModel(material, geometry=geometry, mesh=mesh, load_patch=footprint, contact=True)
+    model = (setup or ModuleSetup()).model(load_patch=footprint, contact=True)
     v0 = model.solve(p0, 0.0).volume_m3
     rise_per_n, compliance = sealed_rise_per_force(model, vd, pa)
     gas_amount = (pa + p0) * (v0 + vd)

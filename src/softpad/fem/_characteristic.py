@@ -31,9 +31,8 @@ import numpy as np
 
 from softpad import thesis
 from softpad.errors import InputError, check_finite
-from softpad.fem._geometry import LoadPatch, MeshOptions, ModuleGeometry
-from softpad.fem._materials import MaterialModel
-from softpad.fem._model import ModuleModel, ProgressCallback
+from softpad.fem._geometry import LoadPatch
+from softpad.fem._model import ModuleModel, ModuleSetup, ProgressCallback
 from softpad.fem._results import label_axes, new_axes
 
 #: Path of the characteristic shipped with the package.
@@ -54,9 +53,6 @@ DEFAULT_LOADS_N = np.array(
 #: Default load patch: a centred 30 mm square (a fingertip or the part of an object's
 #: weight resting on one module).
 DEFAULT_LOAD_PATCH = LoadPatch.square(0.030)
-#: Residual air under a flat layer (acetate channel, tube inlet), m^3
-#: (:data:`softpad.thesis.CHAMBER_GAP_VOLUME_M3`, shared with the simulator).
-DEFAULT_GAP_VOLUME_M3 = thesis.CHAMBER_GAP_VOLUME_M3
 
 
 @dataclass(frozen=True)
@@ -197,14 +193,12 @@ def _bilinear(xs: np.ndarray, ys: np.ndarray, table: np.ndarray, x: float, y: fl
 
 
 def module_characteristic(
-    material: str | MaterialModel = "neo-hookean",
+    setup: ModuleSetup | None = None,
     pressures_pa: Sequence[float] | np.ndarray | None = None,
     loads_n: Sequence[float] | np.ndarray | None = None,
     load_patch: LoadPatch = DEFAULT_LOAD_PATCH,
-    geometry: ModuleGeometry | None = None,
-    mesh: MeshOptions | None = None,
     progress: ProgressCallback | None = None,
-    gap_volume_m3: float = DEFAULT_GAP_VOLUME_M3,
+    gap_volume_m3: float = thesis.CHAMBER_GAP_VOLUME_M3,
 ) -> ModuleCharacteristic:
     """Tabulate chamber volume and centre height against pressure and load.
 
@@ -214,21 +208,21 @@ def module_characteristic(
 
     Parameters
     ----------
-    material
-        Preset name or :class:`MaterialModel` (default neo-Hookean, mu = 42 kPa).
+    setup
+        The module (default :class:`ModuleSetup`: neo-Hookean, mu = 42 kPa).
     pressures_pa
         Increasing pressures starting at 0, Pa (default 0..3 kPa every 100 Pa).
     loads_n
         Increasing loads starting at 0, N (default 0..3 N, 15 values).
     load_patch
         Region of the top face carrying the load (default centred 30 mm square).
-    geometry, mesh
-        Module geometry and discretisation.
     progress
         Optional ``progress(done, total)`` callback (one tick per table entry).
     gap_volume_m3
-        Residual air under the flat layer added to every volume, m^3 (default 0.2 mL); the
-        finite-element volume is zero at rest, which a sealed-gas model cannot use.
+        Residual air under the flat layer added to every volume, m^3 (default 0.2 mL,
+        :data:`softpad.thesis.CHAMBER_GAP_VOLUME_M3`, shared with the simulator: acetate
+        channel, tube inlet); the finite-element volume is zero at rest, which a sealed-gas
+        model cannot use.
     """
     p = np.asarray(DEFAULT_PRESSURES_PA if pressures_pa is None else pressures_pa, dtype=float)
     f = np.asarray(DEFAULT_LOADS_N if loads_n is None else loads_n, dtype=float)
@@ -236,7 +230,7 @@ def module_characteristic(
     gap = check_finite("gap_volume_m3", gap_volume_m3)
     if gap < 0:
         raise InputError(f"gap volume must be >= 0 m^3, got {gap!r}")
-    model = ModuleModel(material, geometry=geometry, mesh=mesh, load_patch=load_patch, contact=True)
+    model = (setup or ModuleSetup()).model(load_patch=load_patch, contact=True)
     volume = np.zeros((p.size, f.size))
     height = np.zeros((p.size, f.size))
     total, done = p.size * f.size, 0

@@ -19,7 +19,7 @@ import numpy as np
 from softpad.errors import InputError, SoftPadError
 from softpad.fem._geometry import MeshOptions, ModuleGeometry
 from softpad.fem._materials import MODEL_NAMES, MaterialModel, get_material
-from softpad.fem._model import ProgressCallback
+from softpad.fem._model import ModuleSetup, ProgressCallback
 from softpad.fem._results import as_list, label_axes, new_axes, write_csv
 from softpad.fem._studies import InflationResult, inflation_sweep
 
@@ -85,7 +85,7 @@ def _simulate(
     mesh: MeshOptions | None,
 ) -> InflationResult:
     grid = np.unique(np.concatenate([[0.0], pressure_pa]))
-    return inflation_sweep(material, grid, geometry=geometry, mesh=mesh)
+    return inflation_sweep(ModuleSetup(material, geometry, mesh), grid)
 
 
 def _rmse(result: InflationResult, pressure_pa: np.ndarray, height_m: np.ndarray) -> float:

@@ -12,7 +12,7 @@ from softpad.errors import InputError, check_finite
 #: Module width of the prototype, m (thesis Section 6.1: 45 x 45 mm air channel).
 DEFAULT_WIDTH_M = thesis.MODULE_PITCH_M
 #: Upper-layer thickness of the prototype, m (thesis Section 6.1: 1.5 mm).
-DEFAULT_THICKNESS_M = 0.0015
+DEFAULT_THICKNESS_M = thesis.LAYER_THICKNESS_M
 
 
 @dataclass(frozen=True)

@@ -669,6 +669,31 @@ class ModuleModel:
         mesh.write(path)
 
 
+@dataclass(frozen=True)
+class ModuleSetup:
+    """The module a study solves: its material, geometry and discretisation.
+
+    Parameters
+    ----------
+    material
+        Preset name or :class:`~softpad.fem.MaterialModel`.
+    geometry
+        Module geometry (None: 45 x 45 x 1.5 mm).
+    mesh
+        Discretisation (None: :data:`DEFAULT_MESH`).
+    """
+
+    material: str | MaterialModel = "neo-hookean"
+    geometry: ModuleGeometry | None = None
+    mesh: MeshOptions | None = None
+
+    def model(self, load_patch: LoadPatch | None = None, contact: bool = True) -> ModuleModel:
+        """A fresh :class:`ModuleModel` of this module (``load_patch`` and ``contact`` as there)."""
+        return ModuleModel(
+            self.material, self.geometry, self.mesh, load_patch=load_patch, contact=contact
+        )
+
+
 def _path(
     p0: float, p1: float, f0: float, f1: float, cube: bool
 ) -> Callable[[float], tuple[float, float]]:

@@ -15,15 +15,15 @@ on the default mesh against a refined one.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
 
 from softpad import thesis
 from softpad.errors import InputError, check_finite
-from softpad.fem._geometry import LoadPatch, MeshOptions, ModuleGeometry
-from softpad.fem._materials import MaterialModel
-from softpad.fem._model import ModuleModel, ProgressCallback
+from softpad.fem._geometry import LoadPatch, MeshOptions
+from softpad.fem._model import ModuleModel, ModuleSetup, ProgressCallback
 from softpad.fem._response_table import RESPONSE_VERSION, ModuleResponse
 
 #: Pressures of the shipped response, Pa: the usable range of p0 (Section 6.2.1.1).
@@ -66,22 +66,20 @@ def _top_grid(model: ModuleModel, values: np.ndarray) -> tuple[np.ndarray, np.nd
 
 
 def module_response(
-    material: str | MaterialModel = "neo-hookean",
+    setup: ModuleSetup | None = None,
     pressures_pa: Sequence[float] = DEFAULT_RESPONSE_PRESSURES_PA,
-    geometry: ModuleGeometry | None = None,
-    mesh: MeshOptions | None = None,
     progress: ProgressCallback | None = None,
 ) -> ModuleResponse:
     """Tabulate the module's response to vertical loads over a range of pressures.
 
     Parameters
     ----------
-    material
-        Preset name or :class:`MaterialModel`.
+    setup
+        The module (default :class:`~softpad.fem.ModuleSetup`; the mesh must be hex8).
     pressures_pa
         Increasing chamber pressures, Pa (default: the usable range 0.5..2.8 kPa).
-    geometry, mesh, progress
-        As in :func:`~softpad.fem.inflation_sweep` (the mesh must be hex8).
+    progress
+        As in :func:`~softpad.fem.inflation_sweep`.
 
     Returns
     -------
@@ -95,7 +93,7 @@ def module_response(
         raise InputError(
             f"response pressure {p[-1] / 1e3:g} kPa exceeds {thesis.MAX_PRESSURE_PA / 1e3:g} kPa"
         )
-    model = ModuleModel(material, geometry=geometry, mesh=mesh, load_patch=REFERENCE_PATCH)
+    model = (setup or ModuleSetup()).model(load_patch=REFERENCE_PATCH)
     rows, volumes, compliances, refs = [], [], [], []
     axis = np.zeros(0)
     for k, pk in enumerate(p):
@@ -137,13 +135,12 @@ def _mesh_text(mesh: MeshOptions) -> str:
 
 
 def response_convergence(
-    material: str | MaterialModel = "neo-hookean",
+    setup: ModuleSetup | None = None,
     pressure_pa: float = thesis.P0_PA,
-    mesh: MeshOptions | None = None,
     reference_mesh: MeshOptions | None = None,
-    geometry: ModuleGeometry | None = None,
 ) -> dict[str, Any]:
-    """Mean responses of :data:`CONVERGENCE_PROBES` on ``mesh`` and on a finer mesh.
+    """Mean responses of :data:`CONVERGENCE_PROBES` on the mesh of ``setup`` and on a finer
+    mesh (``reference_mesh``, default: twice as fine).
 
     Returns
     -------
@@ -153,10 +150,11 @@ def response_convergence(
     """
     from softpad.fem._geometry import DEFAULT_MESH
 
-    mesh = mesh or DEFAULT_MESH
+    setup = setup or ModuleSetup()
+    mesh = setup.mesh or DEFAULT_MESH
     reference_mesh = reference_mesh or mesh.refined(2)
-    coarse = module_response(material, [pressure_pa], geometry, mesh)
-    fine = module_response(material, [pressure_pa], geometry, reference_mesh)
+    coarse = module_response(replace(setup, mesh=mesh), [pressure_pa])
+    fine = module_response(replace(setup, mesh=reference_mesh), [pressure_pa])
     probes: dict[str, Any] = {}
     for name, (centre, size) in CONVERGENCE_PROBES.items():
         a = coarse.mean_influence(centre, size, pressure_pa)

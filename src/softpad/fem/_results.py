@@ -1,13 +1,28 @@
-"""Shared helpers of the study result objects (CSV writing, lazy matplotlib)."""
+"""Shared parts of the study result objects (the material field, CSV writing, lazy matplotlib)."""
 
 from __future__ import annotations
 
 import csv
 from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import numpy as np
+
+
+@dataclass(frozen=True)
+class StudyResult:
+    """Base of the results of one module's studies, each with ``.to_dict()``, ``.to_csv(path)``
+    and ``.plot(ax=None)``.
+
+    Attributes
+    ----------
+    model
+        Material preset name.
+    """
+
+    model: str
 
 
 def write_csv(path: str | Path, header: Sequence[str], rows: Sequence[Sequence[Any]]) -> Path:

@@ -8,7 +8,7 @@ an optional ``progress(done, total)`` callback.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -17,9 +17,9 @@ import numpy as np
 from softpad import thesis
 from softpad.errors import InputError, check_finite
 from softpad.fem._geometry import LoadPatch, MeshOptions, ModuleGeometry
-from softpad.fem._materials import MaterialModel, get_material
-from softpad.fem._model import ModuleModel, ProgressCallback
-from softpad.fem._results import as_list, label_axes, new_axes, write_csv
+from softpad.fem._materials import get_material
+from softpad.fem._model import ModuleModel, ModuleSetup, ProgressCallback
+from softpad.fem._results import StudyResult, as_list, label_axes, new_axes, write_csv
 
 #: Highest pressure the studies accept, Pa (thesis Fig. 7.2 spans 0..3 kPa).
 MAX_PRESSURE_PA = 10_000.0
@@ -46,13 +46,11 @@ def _tick(progress: ProgressCallback | None, done: int, total: int) -> None:
 
 # ---------------------------------------------------------------------------- inflation
 @dataclass(frozen=True)
-class InflationResult:
+class InflationResult(StudyResult):
     """Height of the top-face centre against pressure (thesis Fig. 7.2b).
 
     Attributes
     ----------
-    model
-        Material preset name.
     geometry
         Module geometry.
     pressure_pa
@@ -65,7 +63,6 @@ class InflationResult:
         Discretisation used.
     """
 
-    model: str
     geometry: ModuleGeometry
     pressure_pa: np.ndarray
     height_m: np.ndarray
@@ -117,29 +114,21 @@ class InflationResult:
 
 
 def inflation_sweep(
-    material: str | MaterialModel = "neo-hookean",
+    setup: ModuleSetup | ModuleModel | None = None,
     pressures_pa: Sequence[float] | np.ndarray | None = None,
-    geometry: ModuleGeometry | None = None,
-    mesh: MeshOptions | None = None,
     progress: ProgressCallback | None = None,
-    model: ModuleModel | None = None,
 ) -> InflationResult:
     """Inflate a free module step by step and record its centre height (thesis Fig. 7.2b).
 
     Parameters
     ----------
-    material
-        Preset name or :class:`MaterialModel`.
+    setup
+        The module (default :class:`ModuleSetup`: neo-Hookean, 45 x 45 x 1.5 mm), or a fresh
+        :class:`ModuleModel` without base contact to use instead of building one.
     pressures_pa
         Increasing pressures, Pa (default 0, 0.25, ..., 3 kPa: 13 values).
-    geometry
-        Module geometry (default 45 x 45 x 1.5 mm).
-    mesh
-        Discretisation (default :data:`~softpad.fem.DEFAULT_MESH`).
     progress
         Optional ``progress(done, total)`` callback.
-    model
-        A fresh :class:`ModuleModel` to use instead of building one.
 
     Raises
     ------
@@ -149,7 +138,7 @@ def inflation_sweep(
     p = _pressures(
         np.linspace(0.0, thesis.MAX_PRESSURE_PA, 13) if pressures_pa is None else pressures_pa
     )
-    m = model or ModuleModel(material, geometry=geometry, mesh=mesh, contact=False)
+    m = setup if isinstance(setup, ModuleModel) else (setup or ModuleSetup()).model(contact=False)
     heights, volumes = [], []
     for i, pi in enumerate(p):
         state = m.solve(float(pi), 0.0)
@@ -217,10 +206,8 @@ class DesignResult:
 def design_sweep(
     parameter: str,
     values_m: Sequence[float] | np.ndarray,
-    materials: Sequence[str | MaterialModel] = ("neo-hookean", "yeoh"),
+    setups: Sequence[ModuleSetup] | None = None,
     pressure_pa: float = 1000.0,
-    geometry: ModuleGeometry | None = None,
-    mesh: MeshOptions | None = None,
     progress: ProgressCallback | None = None,
 ) -> DesignResult:
     """Centre height at ``pressure_pa`` against layer thickness or module width (Fig. 7.3).
@@ -230,15 +217,12 @@ def design_sweep(
     parameter
         ``"thickness"`` or ``"width"``.
     values_m
-        Values of the parameter, m (the other dimension is taken from ``geometry``).
-    materials
-        Models to compare (thesis: neo-Hookean and Yeoh).
+        Values of the parameter, m (the other dimension is taken from each setup's geometry).
+    setups
+        Modules to compare, one row each (default, as the thesis: neo-Hookean and Yeoh on the
+        45 x 45 x 1.5 mm geometry).
     pressure_pa
         Inflating pressure, Pa (thesis: 1 kPa).
-    geometry
-        Base geometry (default 45 x 45 x 1.5 mm).
-    mesh
-        Discretisation.
     progress
         Optional ``progress(done, total)`` callback.
     """
@@ -247,19 +231,20 @@ def design_sweep(
     values = np.asarray([check_finite(parameter, v) for v in np.ravel(values_m)], dtype=float)
     if values.size == 0:
         raise InputError(f"no {parameter} values given")
-    base = geometry or ModuleGeometry()
     p = float(_pressures([pressure_pa])[0])
-    mats = [get_material(m) for m in materials]
+    setups = (ModuleSetup("neo-hookean"), ModuleSetup("yeoh")) if setups is None else setups
+    mats = [get_material(s.material) for s in setups]
     heights = np.zeros((len(mats), len(values)))
     total, done = len(mats) * len(values), 0
-    for i, mat in enumerate(mats):
+    for i, (setup, mat) in enumerate(zip(setups, mats, strict=True)):
+        base = setup.geometry or ModuleGeometry()
         for j, v in enumerate(values):
             geo = (
                 ModuleGeometry(base.width_m, v)
                 if parameter == "thickness"
                 else ModuleGeometry(v, base.thickness_m)
             )
-            model = ModuleModel(mat, geometry=geo, mesh=mesh, contact=False)
+            model = replace(setup, material=mat, geometry=geo).model(contact=False)
             heights[i, j] = model.solve(p, 0.0).height_m
             done += 1
             _tick(progress, done, total)
@@ -268,13 +253,11 @@ def design_sweep(
 
 # ---------------------------------------------------------------------------- stiffness
 @dataclass(frozen=True)
-class StiffnessResult:
+class StiffnessResult(StudyResult):
     """Equivalent stiffness ``k = F / (h_free - h_load)`` (thesis Section 6.1.2, Fig. 6.3c).
 
     Attributes
     ----------
-    model
-        Material preset name.
     pressure_pa
         Inflating pressures, Pa.
     force_n
@@ -289,7 +272,6 @@ class StiffnessResult:
         Area of the layer touching the base under each load, m^2, shape (P, F).
     """
 
-    model: str
     pressure_pa: np.ndarray
     force_n: np.ndarray
     radius_m: float
@@ -365,12 +347,10 @@ class StiffnessResult:
 
 
 def stiffness_study(
-    material: str | MaterialModel = "neo-hookean",
+    setup: ModuleSetup | None = None,
     pressures_pa: Sequence[float] | np.ndarray | None = None,
     forces_n: Sequence[float] = (0.2, 0.5, 0.8),
     radius_m: float = 0.010,
-    geometry: ModuleGeometry | None = None,
-    mesh: MeshOptions | None = None,
     progress: ProgressCallback | None = None,
 ) -> StiffnessResult:
     """Equivalent stiffness of an inflated module under a central load (thesis Fig. 6.3c).
@@ -381,16 +361,14 @@ def stiffness_study(
 
     Parameters
     ----------
-    material
-        Preset name or :class:`MaterialModel`.
+    setup
+        The module (default :class:`ModuleSetup`).
     pressures_pa
         Increasing inflating pressures, Pa (default 0.5..2.8 kPa, 6 values).
     forces_n
         Increasing loads, N (thesis: 0.2, 0.5, 0.8 N).
     radius_m
         Radius of the loaded disc, m (thesis: 10 mm).
-    geometry, mesh
-        Module geometry and discretisation.
     progress
         Optional ``progress(done, total)`` callback.
     """
@@ -401,9 +379,7 @@ def stiffness_study(
     r = check_finite("radius_m", radius_m)
     if r <= 0:
         raise InputError(f"load radius must be > 0 m, got {r!r} m")
-    model = ModuleModel(
-        material, geometry=geometry, mesh=mesh, load_patch=LoadPatch.disc(r), contact=True
-    )
+    model = (setup or ModuleSetup()).model(load_patch=LoadPatch.disc(r), contact=True)
     free = np.zeros(len(p))
     loaded = np.zeros((len(p), len(forces)))
     contact = np.zeros((len(p), len(forces)))
@@ -426,7 +402,7 @@ def stiffness_study(
 
 # ---------------------------------------------------------------------------- sensitive area
 @dataclass(frozen=True)
-class SensitivityResult:
+class SensitivityResult(StudyResult):
     """Sensitive area of a module against pressure (thesis Section 6.1.2).
 
     Definition: by reciprocity, a small vertical force ``dF`` at a top-face point ``x``
@@ -437,8 +413,6 @@ class SensitivityResult:
 
     Attributes
     ----------
-    model
-        Material preset name.
     pressure_pa
         Pressures, Pa.
     fraction
@@ -456,7 +430,6 @@ class SensitivityResult:
         Area of the top face where the probe is detected, m^2.
     """
 
-    model: str
     pressure_pa: np.ndarray
     fraction: float
     area_m2: np.ndarray
@@ -522,11 +495,9 @@ class SensitivityResult:
 
 
 def sensitive_area_study(
-    material: str | MaterialModel = "neo-hookean",
+    setup: ModuleSetup | None = None,
     pressures_pa: Sequence[float] | np.ndarray | None = None,
     fraction: float = 0.5,
-    geometry: ModuleGeometry | None = None,
-    mesh: MeshOptions | None = None,
     progress: ProgressCallback | None = None,
     probe_mass_kg: float = 0.0126,
     threshold_pa: float = thesis.OBJECT_THRESHOLD_PA,
@@ -536,13 +507,13 @@ def sensitive_area_study(
 
     Parameters
     ----------
-    material
-        Preset name or :class:`MaterialModel`.
+    setup
+        The module (default :class:`ModuleSetup`).
     pressures_pa
         Increasing pressures > 0, Pa (default 0.5..2.8 kPa, 6 values).
     fraction
         Response threshold relative to the centre, in (0, 1).
-    geometry, mesh, progress
+    progress
         As in :func:`inflation_sweep`.
     probe_mass_kg
         Probe mass of the absolute definition, kg (default 12.6 g, the thesis's brick).
@@ -556,7 +527,7 @@ def sensitive_area_study(
     p, probe, thr, vd, frac = _sensitivity_inputs(
         pressures_pa, probe_mass_kg, threshold_pa, dead_volume_m3, fraction
     )
-    model = ModuleModel(material, geometry=geometry, mesh=mesh, contact=False)
+    model = (setup or ModuleSetup()).model(contact=False)
     areas, centre, detectable = [], [], []
     for i, pi in enumerate(p):
         area, c, reach = _sensitive_area_at(

@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from softpad import thesis
-from softpad.errors import InputError
+from softpad.errors import InputError, check_fields
 from softpad.layout import GripperSpec, PadLayout
 from softpad.sim._footprint import (
     GRAVITY_M_S2,
@@ -30,8 +30,8 @@ from softpad.sim._footprint import (
     to_pad_frame,
 )
 from softpad.sim._objects import ObjectSpec, Placement
-from softpad.sim._response import ModuleResponse, PadResponse, operating_pressure, rect_points
-from softpad.sim._world import GripperState
+from softpad.sim._response import ModuleResponse, operating_pressure
+from softpad.sim._world import GripperState, PadWorld
 
 #: Opening ranges of the thesis's gripper mountings, (max, min) width in metres (Section 6.3).
 GRIPPER_MOUNTINGS = thesis.GRIPPER_MOUNTINGS_M
@@ -89,10 +89,11 @@ class SimGripper:
                 f"gripper width range must satisfy 0 <= min < max <= 500 mm, got "
                 f"{self.min_width_m * 1e3:g}..{self.max_width_m * 1e3:g} mm"
             )
-        for n in ("finger_length_m", "tip_thickness_m", "tip_width_m", "tip_stiffness_n_m"):
-            v = getattr(self, n)
-            if not (math.isfinite(v) and v > 0):
-                raise InputError(f"gripper {n} must be a positive number, got {v!r}")
+        check_fields(
+            self,
+            "gripper",
+            positive=("finger_length_m", "tip_thickness_m", "tip_width_m", "tip_stiffness_n_m"),
+        )
 
     @classmethod
     def mounting(cls, name: str, **kwargs: float) -> SimGripper:
@@ -142,7 +143,7 @@ class _Tip:
     on_object: _Placed | None = None  # the object the tip landed on (None: the pad)
 
 
-class AnalyticWorld:
+class AnalyticWorld(PadWorld):
     """World of rigid objects on a Winkler pad and a kinematic parallel-jaw gripper.
 
     Parameters
@@ -154,7 +155,7 @@ class AnalyticWorld:
     start_height_m
         Initial height of the fingertips above the pad base, metres.
     response
-        FEM module response (the packaged one by default); its chamber side fixes the seams.
+        As in :class:`~softpad.sim._world.PadWorld`.
     """
 
     def __init__(
@@ -164,19 +165,15 @@ class AnalyticWorld:
         start_height_m: float = 0.15,
         response: ModuleResponse | None = None,
     ) -> None:
-        self._layout = layout or PadLayout()
-        self.response = PadResponse(self._layout, response)
+        super().__init__(layout, response)
         self.surface = PadSurface(self._layout, self.response.seam_width_m)
         #: Chamber pressure at which the response is evaluated, Pa (see set_operating_pressure).
         self.operating_pressure_pa = operating_pressure(thesis.P0_PA, self.response.response)
-        self._probe: tuple[tuple[float, float], tuple[float, float], float, float] | None = None
-        self._probe_loads = np.zeros(self._layout.n_modules)
         self._gripper = gripper or SimGripper()
         w, h = self.surface.size_m
         self._state = GripperState(w / 2, h / 2, start_height_m, 0.0, self._gripper.max_width_m)
         self._target = self._state
         self._speed = 0.0
-        self._time = 0.0
         self._objects: list[_Placed] = []
         self._tips = [_Tip(), _Tip()]
         self._tip_loads = np.zeros(self._layout.n_modules)
@@ -211,14 +208,6 @@ class AnalyticWorld:
         self._target = self._state
 
     # --- World protocol -------------------------------------------------------------------
-    @property
-    def layout(self) -> PadLayout:
-        return self._layout
-
-    @property
-    def time_s(self) -> float:
-        return self._time
-
     def module_loads_n(self) -> NDArray[np.float64]:
         return self._loads
 
@@ -259,41 +248,12 @@ class AnalyticWorld:
             o.loads_n = self._equivalent(o.footprint)
         self._overlap_cache.clear()
         self._update_probe()
-        self._update_object_loads()
-
-    def press(
-        self,
-        center_m: tuple[float, float],
-        size_m: tuple[float, float],
-        force_n: float,
-        yaw_rad: float = 0.0,
-    ) -> None:
-        """Press a rigid flat block on the pad: ``force_n`` spread uniformly over a rectangle
-        (``size_m`` = sides along its x and y, rotated by ``yaw_rad``) centred at ``center_m``
-        (pad frame); replaces the previous block. ``force_n = 0`` lifts it."""
-        for name, v in (
-            ("force", force_n),
-            ("yaw", yaw_rad),
-            *zip(("x", "y"), center_m, strict=True),
-        ):
-            if not math.isfinite(v):
-                raise InputError(f"probe {name} must be finite, got {v!r}")
-        if force_n < 0:
-            raise InputError(f"probe force must be >= 0 N, got {force_n:g} N")
-        if min(size_m) <= 0 or not all(math.isfinite(v) for v in size_m):
-            raise InputError(f"probe footprint sides must be > 0 m, got {size_m}")
-        self._probe = (center_m, size_m, force_n, yaw_rad) if force_n > 0 else None
-        self._update_probe()
-        self._update_object_loads()
 
     def _update_probe(self) -> None:
-        self._probe_loads = np.zeros(self._layout.n_modules)
-        if self._probe is not None:
-            c, size, f, yaw = self._probe
-            pts = rect_points(c, size, yaw)
-            self._probe_loads = self.response.equivalent_loads(
-                pts, f / len(pts), self.operating_pressure_pa
-            )
+        """The probe block's loads at the operating pressure, and the modules' loads with it
+        (again at each change of the operating pressure)."""
+        self._probe_loads = self._probe_loads_at(self.operating_pressure_pa)
+        self._update_object_loads()
 
     def remove_objects(self) -> None:
         self._objects.clear()
@@ -301,7 +261,7 @@ class AnalyticWorld:
         self._update_object_loads()
 
     def step(self, dt_s: float, module_heights_m: NDArray[np.float64]) -> None:
-        self._time += dt_s
+        self._time_s += dt_s
         self._heights = module_heights_m
         moved = self._move(dt_s)
         if moved or (self._tips[0].touch_z_m is not None or self._tips[1].touch_z_m is not None):
@@ -509,7 +469,7 @@ class AnalyticWorld:
                     tip.touch_z_m = surface_z
                     tip.on_object = obj
                     if self.first_touch_s is None:
-                        self.first_touch_s = self._time
+                        self.first_touch_s = self._time_s
                         self.first_touch_z_m = st.z_m
                         self.tip_hit_object = obj.spec.name if obj is not None else None
                 continue

@@ -30,7 +30,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from softpad import thesis
-from softpad.errors import InputError
+from softpad.errors import InputError, check_fields
 
 
 @dataclass(frozen=True)
@@ -65,19 +65,17 @@ class DisturbanceParams:
     update_s: float = 1.0
 
     def __post_init__(self) -> None:
-        for name in (
-            "temperature_amplitude_k",
-            "creep_fraction",
-            "leak_pa_per_min",
-            "sensor_tempco_pa_k",
-        ):
-            v = getattr(self, name)
-            if not (math.isfinite(v) and v >= 0):
-                raise InputError(f"disturbance {name} must be a finite number >= 0, got {v!r}")
-        for name in ("temperature_period_s", "creep_time_s", "update_s"):
-            v = getattr(self, name)
-            if not (math.isfinite(v) and v > 0):
-                raise InputError(f"disturbance {name} must be > 0, got {v!r}")
+        check_fields(
+            self,
+            "disturbance",
+            positive=("temperature_period_s", "creep_time_s", "update_s"),
+            non_negative=(
+                "temperature_amplitude_k",
+                "creep_fraction",
+                "leak_pa_per_min",
+                "sensor_tempco_pa_k",
+            ),
+        )
         if self.creep_fraction >= 0.5:
             raise InputError(f"creep fraction must be below 0.5, got {self.creep_fraction!r}")
 

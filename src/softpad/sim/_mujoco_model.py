@@ -39,7 +39,7 @@ from dataclasses import dataclass
 from typing import Any, Protocol
 
 from softpad import thesis
-from softpad.errors import InputError, check_finite
+from softpad.errors import InputError, check_fields
 from softpad.layout import GripperSpec, PadLayout
 from softpad.sim._objects import PartSpec
 
@@ -119,9 +119,10 @@ class PadPhysics:
     friction: float = 1.0
 
     def __post_init__(self) -> None:
-        _check_positive(
+        check_fields(
             self,
-            (
+            "pad",
+            positive=(
                 "free_height_m",
                 "sensitive_side_m",
                 "line_height_m",
@@ -145,14 +146,6 @@ class PadPhysics:
 
 #: The three mountings of the thesis's gripper: (maximum, minimum) width, metres (Section 6.3).
 GRIPPER_MOUNTINGS = thesis.GRIPPER_MOUNTINGS_M
-
-
-def _check_positive(record: object, names: tuple[str, ...]) -> None:
-    """Raise :class:`InputError` unless every field ``names`` of ``record`` is finite and > 0."""
-    for name in names:
-        v = check_finite(name, getattr(record, name))
-        if v <= 0:
-            raise InputError(f"{name} must be > 0, got {v!r}")
 
 
 def parse_mounting(text: str) -> tuple[float, float]:
@@ -214,9 +207,10 @@ class MujocoGripper:
 
     def __post_init__(self) -> None:
         parse_mounting(self.mounting)
-        _check_positive(
+        check_fields(
             self,
-            (
+            "gripper",
+            positive=(
                 "finger_length_m",
                 "tip_thickness_m",
                 "tip_width_m",

@@ -23,8 +23,8 @@ from softpad.sim._mujoco_arm import ARM_ACCELERATION_M_S2, KinematicArm
 from softpad.sim._mujoco_contacts import ContactSensing, GripperContacts
 from softpad.sim._mujoco_model import MujocoGripper, ObjectModel, PadPhysics, parking_position
 from softpad.sim._mujoco_scene import MujocoScene
-from softpad.sim._response import ModuleResponse, PadResponse, operating_pressure
-from softpad.sim._world import GripperState
+from softpad.sim._response import ModuleResponse, operating_pressure
+from softpad.sim._world import GripperState, PadWorld
 
 __all__ = ["ARM_ACCELERATION_M_S2", "GripperContacts", "MujocoWorld", "ObjectPose"]
 
@@ -67,13 +67,13 @@ class ObjectPose:
     tilt_rad: float
 
 
-class MujocoWorld:
+class MujocoWorld(PadWorld):
     """Pad, gripper and objects simulated by MuJoCo; implements :class:`~softpad.sim.World`.
 
     Parameters
     ----------
-    layout
-        Pad geometry (2 x 3, 45 mm by default).
+    layout, response
+        As in :class:`~softpad.sim._world.PadWorld`.
     objects
         Objects that can be placed on the pad (each starts parked far away).
     pad
@@ -98,7 +98,7 @@ class MujocoWorld:
         import mujoco
 
         self._mj = mujoco
-        self._layout = layout or PadLayout()
+        super().__init__(layout, response)
         self.pad = pad or PadPhysics()
         self.gripper = gripper or MujocoGripper()
         self._timestep_s = timestep_s
@@ -107,7 +107,6 @@ class MujocoWorld:
             raise InputError(f"object names must be unique, got {names}")
         n = self._layout.n_modules
         self._pending_s = 0.0
-        self._time_s = 0.0
         self._heights = np.full(n, self.pad.free_height_m)
         self._heights_given = False
         self._lowering: dict[str, float] = {}
@@ -117,9 +116,7 @@ class MujocoWorld:
         # gripper high above the pad centre, fully open
         hand = np.array([cx, cy, 0.15 + self.gripper.finger_length_m, 0.0])
         self._arm = KinematicArm(hand, open_w)
-        self.response = PadResponse(self._layout, response)
         self._sensing = ContactSensing(n, open_w, self.response)
-        self._probe_loads = np.zeros(n)
         self._scene: MujocoScene | None = None
         self._build(tuple(objects))
 
@@ -142,21 +139,6 @@ class MujocoWorld:
         return self._scene
 
     @property
-    def model(self) -> Any:
-        """The MuJoCo model (``mujoco.MjModel``)."""
-        return self.scene.model
-
-    @property
-    def data(self) -> Any:
-        """The MuJoCo data (``mujoco.MjData``)."""
-        return self.scene.data
-
-    @property
-    def xml(self) -> str:
-        """The MJCF the model was compiled from."""
-        return self.scene.xml
-
-    @property
     def objects(self) -> dict[str, ObjectModel]:
         """The objects in the model, by name."""
         return self.scene.objects
@@ -168,18 +150,10 @@ class MujocoWorld:
         an object since the last :meth:`reset_touch`, seconds, or None."""
         return self._sensing.first_touch_s
 
-    @first_touch_s.setter
-    def first_touch_s(self, value: float | None) -> None:
-        self._sensing.first_touch_s = value
-
     @property
     def first_touch_z_m(self) -> float | None:
         """Height of the fingertips' lower faces at the first touch, metres, or None."""
         return self._sensing.first_touch_z_m
-
-    @first_touch_z_m.setter
-    def first_touch_z_m(self, value: float | None) -> None:
-        self._sensing.first_touch_z_m = value
 
     @property
     def tip_hit_object(self) -> str | None:
@@ -192,19 +166,9 @@ class MujocoWorld:
 
     # --- World protocol -------------------------------------------------------------------
     @property
-    def layout(self) -> PadLayout:
-        """Geometry of the pad."""
-        return self._layout
-
-    @property
-    def time_s(self) -> float:
-        """Simulated time, seconds."""
-        return self._time_s
-
-    @property
     def timestep_s(self) -> float:
         """MuJoCo's step, seconds."""
-        return float(self.model.opt.timestep)
+        return float(self.scene.model.opt.timestep)
 
     def step(self, dt_s: float, module_heights_m: ArrayLike | None = None) -> None:
         """Advance by ``dt_s`` seconds; MuJoCo steps once per elapsed ``timestep_s``.
@@ -268,24 +232,10 @@ class MujocoWorld:
         range); the simulated box calls this as the pressures change."""
         self._sensing.pressure_pa = operating_pressure(pressure_pa, self.response.response)
 
-    def press(
-        self,
-        center_m: tuple[float, float],
-        size_m: tuple[float, float],
-        force_n: float,
-        yaw_rad: float = 0.0,
-    ) -> None:
-        """Press a rigid flat block on the chambers: ``force_n`` spread uniformly over a
-        rectangle centred at ``center_m`` (pad frame); replaces the previous block, 0 lifts
-        it. The block is a load on the chambers only (it does not collide with objects)."""
-        if not (math.isfinite(force_n) and force_n >= 0):
-            raise InputError(f"probe force must be a finite number >= 0 N, got {force_n!r}")
-        if force_n == 0:
-            self._probe_loads = np.zeros(self._layout.n_modules)
-            return
-        self._probe_loads = self.response.rect_equivalent_loads(
-            center_m, size_m, force_n, self.operating_pressure_pa, yaw_rad
-        )
+    def _update_probe(self) -> None:
+        """The probe block's loads at the current operating pressure (the block loads the
+        chambers only: it does not collide with objects)."""
+        self._probe_loads = self._probe_loads_at(self.operating_pressure_pa)
 
     def command_gripper(self, target: GripperState, speed_m_s: float) -> None:
         """Move the hand towards ``target`` in a straight line at ``speed_m_s``; the jaw
@@ -406,8 +356,8 @@ class MujocoWorld:
         if name not in self.objects:
             raise InputError(f"unknown object {name!r}")
         b = self.scene.obj_body[name]
-        pos = self.data.xpos[b]
-        rot = self.data.xmat[b].reshape(3, 3)
+        pos = self.scene.data.xpos[b]
+        rot = self.scene.data.xmat[b].reshape(3, 3)
         return ObjectPose(
             x_m=float(pos[0]),
             y_m=float(pos[1]),
@@ -419,11 +369,11 @@ class MujocoWorld:
     def object_speed_m_s(self, name: str) -> float:
         """Linear speed of an object, m/s (to tell when it has settled)."""
         da = self.scene.obj_dof[name]
-        return float(np.linalg.norm(self.data.qvel[da : da + 3]))
+        return float(np.linalg.norm(self.scene.data.qvel[da : da + 3]))
 
     def module_top_heights_m(self) -> NDArray[np.float64]:
         """Current height of every module top in MuJoCo, metres."""
-        return np.asarray(self.data.qpos[self.scene.module_qpos], dtype=float).copy()
+        return np.asarray(self.scene.data.qpos[self.scene.module_qpos], dtype=float).copy()
 
     # --- diagnostics ----------------------------------------------------------------------
     def gripper_contacts(self) -> GripperContacts:
@@ -438,14 +388,14 @@ class MujocoWorld:
     def save_xml(self, path: str) -> None:
         """Write the generated MJCF to ``path`` (to look at it in MuJoCo's viewer)."""
         with open(path, "w", encoding="utf-8") as fh:
-            fh.write(self.xml)
+            fh.write(self.scene.xml)
 
     def info(self) -> dict[str, Any]:
         """Model size and settings, for reports."""
         return {
             "timestep_s": self.timestep_s,
-            "nbody": int(self.model.nbody),
-            "ngeom": int(self.model.ngeom),
+            "nbody": int(self.scene.model.nbody),
+            "ngeom": int(self.scene.model.ngeom),
             "integrator": "implicitfast",
             "cone": "elliptic",
         }

@@ -25,7 +25,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from softpad import thesis
-from softpad.errors import InputError
+from softpad.errors import InputError, check_fields
 from softpad.sim._characteristic import ModuleCharacteristic
 
 
@@ -65,17 +65,18 @@ class PneumaticParams:
     laminar_pa: float = 10.0
 
     def __post_init__(self) -> None:
-        for n in (
-            "atmosphere_pa",
-            "air_density_kg_m3",
-            "tubing_volume_m3",
-            "inflate_orifice_m2",
-            "deflate_orifice_m2",
-            "laminar_pa",
-        ):
-            v = getattr(self, n)
-            if not (math.isfinite(v) and v > 0):
-                raise InputError(f"pneumatic {n} must be a positive number, got {v!r}")
+        check_fields(
+            self,
+            "pneumatic",
+            positive=(
+                "atmosphere_pa",
+                "air_density_kg_m3",
+                "tubing_volume_m3",
+                "inflate_orifice_m2",
+                "deflate_orifice_m2",
+                "laminar_pa",
+            ),
+        )
         if not (math.isfinite(self.supply_pa) and 0 <= self.supply_pa <= 500e3):
             raise InputError(
                 f"supply pressure must be within 0..500 kPa, got {self.supply_pa / 1e3:g} kPa"

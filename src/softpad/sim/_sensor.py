@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from softpad.errors import InputError
+from softpad.errors import InputError, check_fields
 
 
 @dataclass(frozen=True)
@@ -59,18 +59,18 @@ class SensorParams:
     supply_noise_std_pa: float = 20.0
 
     def __post_init__(self) -> None:
-        for n in (
-            "noise_std_pa",
-            "drift_std_pa",
-            "quantization_pa",
-            "offset_std_pa",
-            "supply_noise_std_pa",
-        ):
-            v = getattr(self, n)
-            if not (math.isfinite(v) and v >= 0):
-                raise InputError(f"sensor {n} must be a finite number >= 0, got {v!r}")
-        if not (math.isfinite(self.drift_time_s) and self.drift_time_s > 0):
-            raise InputError(f"sensor drift_time_s must be > 0, got {self.drift_time_s!r}")
+        check_fields(
+            self,
+            "sensor",
+            positive=("drift_time_s",),
+            non_negative=(
+                "noise_std_pa",
+                "drift_std_pa",
+                "quantization_pa",
+                "offset_std_pa",
+                "supply_noise_std_pa",
+            ),
+        )
         if not self.range_min_pa < self.range_max_pa:
             raise InputError("sensor range_min_pa must be below range_max_pa")
 

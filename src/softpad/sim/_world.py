@@ -21,14 +21,17 @@ from the pad's rigid base surface upward, so an inflated module's top sits at ``
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Protocol, runtime_checkable
 
 import numpy as np
 from numpy.typing import NDArray
 
+from softpad.errors import InputError
 from softpad.layout import PadLayout
 from softpad.sim._objects import ObjectSpec, Placement
+from softpad.sim._response import ModuleResponse, PadResponse
 
 
 @dataclass(frozen=True)
@@ -105,11 +108,16 @@ class World(Protocol):
         """True when an object is between the closed jaws and is carried by the gripper."""
         ...
 
-    #: Ground truth of the current descent: box time of the first fingertip touch, s
-    #: (None before it); scores a trial, never seen by the controller.
-    first_touch_s: float | None
-    #: Ground truth: fingertip height at the first touch, m (None before it).
-    first_touch_z_m: float | None
+    @property
+    def first_touch_s(self) -> float | None:
+        """Ground truth of the current descent: box time of the first fingertip touch, s
+        (None before it); scores a trial, never seen by the controller."""
+        ...
+
+    @property
+    def first_touch_z_m(self) -> float | None:
+        """Ground truth: fingertip height at the first touch, m (None before it)."""
+        ...
 
     def reset_touch(self) -> None:
         """Forget the first-touch record (the simulated robot calls it before a descent)."""
@@ -122,3 +130,69 @@ class World(Protocol):
     def remove_objects(self) -> None:
         """Take every object off the pad and out of the gripper."""
         ...
+
+
+class PadWorld:
+    """What the analytic and the MuJoCo world share: the pad, its FEM response, the simulated
+    clock and a probe block pressed on the chambers (:meth:`press`).
+
+    Parameters
+    ----------
+    layout
+        Pad geometry (2 x 3, 45 mm by default).
+    response
+        FEM module response (the packaged one by default); its chamber side fixes the seams.
+    """
+
+    def __init__(self, layout: PadLayout | None, response: ModuleResponse | None) -> None:
+        self._layout = layout or PadLayout()
+        self.response = PadResponse(self._layout, response)
+        self._time_s = 0.0
+        self._probe: tuple[tuple[float, float], tuple[float, float], float, float] | None = None
+        self._probe_loads = np.zeros(self._layout.n_modules)
+
+    @property
+    def layout(self) -> PadLayout:
+        """Geometry of the pad."""
+        return self._layout
+
+    @property
+    def time_s(self) -> float:
+        """Simulated time, seconds."""
+        return self._time_s
+
+    def press(
+        self,
+        center_m: tuple[float, float],
+        size_m: tuple[float, float],
+        force_n: float,
+        yaw_rad: float = 0.0,
+    ) -> None:
+        """Press a rigid flat block on the pad: ``force_n`` spread uniformly over a rectangle
+        (``size_m`` = sides along its x and y, rotated by ``yaw_rad``) centred at ``center_m``
+        (pad frame); replaces the previous block. ``force_n = 0`` lifts it."""
+        for name, v in (
+            ("force", force_n),
+            ("yaw", yaw_rad),
+            *zip(("x", "y"), center_m, strict=True),
+        ):
+            if not math.isfinite(v):
+                raise InputError(f"probe {name} must be finite, got {v!r}")
+        if force_n < 0:
+            raise InputError(f"probe force must be >= 0 N, got {force_n:g} N")
+        if min(size_m) <= 0 or not all(math.isfinite(v) for v in size_m):
+            raise InputError(f"probe footprint sides must be > 0 m, got {size_m}")
+        self._probe = (center_m, size_m, force_n, yaw_rad) if force_n > 0 else None
+        self._update_probe()
+
+    def _update_probe(self) -> None:
+        """Put the loads of the probe block on the modules (each world at its operating
+        pressure, with :meth:`_probe_loads_at`)."""
+        raise NotImplementedError
+
+    def _probe_loads_at(self, pressure_pa: float) -> NDArray[np.float64]:
+        """Equivalent loads of the probe block on every module at ``pressure_pa``, N."""
+        if self._probe is None:
+            return np.zeros(self._layout.n_modules)
+        center, size, force, yaw = self._probe
+        return self.response.rect_equivalent_loads(center, size, force, pressure_pa, yaw)
