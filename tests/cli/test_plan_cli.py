@@ -161,3 +161,13 @@ def test_argparse_range_errors_exit_2_without_traceback() -> None:
     assert proc.returncode == 2
     assert "--threshold-kpa must be >= 0.001 kPa, got -1 kPa" in proc.stderr
     assert "Traceback" not in proc.stderr
+
+
+@pytest.mark.parametrize("text", ["0\r0", '0,"1\r', "a,b\r\n1,2\r3"], ids=["cr", "quote", "mixed"])
+def test_frame_files_with_carriage_returns_get_one_line_errors(cli, tmp_path, text: str) -> None:
+    """A lone carriage return ends a line as a newline does; a broken quote is bad CSV; either
+    way exit 2 with the file named (found by tests/cli/test_fuzz.py)."""
+    path = tmp_path / "frame.csv"
+    path.write_bytes(text.encode())
+    code, _, err = cli("plan", "--frame", str(path))
+    assert code == 2 and "frame" in err and err.count("\n") == 1

@@ -109,7 +109,12 @@ def _read_frame(path: str) -> tuple[list[float], list[float] | None]:
         raise InputError(
             f"frame file {path!r} needs key delta_kpa, or pressures_kpa and reference_kpa"
         )
-    rows = [r for r in csv.reader(io.StringIO(stripped)) if any(c.strip() for c in r)]
+    try:  # newline="" semantics: a lone \r ends a line as \n does
+        rows = [
+            r for r in csv.reader(io.StringIO(stripped, newline=None)) if any(c.strip() for c in r)
+        ]
+    except csv.Error as exc:
+        raise InputError(f"frame file {path!r} is not valid CSV: {exc}") from None
     if not rows:
         raise InputError(f"frame file {path!r} has no values (CSV or JSON expected)")
     header = [c.strip().lower() for c in rows[0]]

@@ -26,7 +26,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.signal import lfilter
 
 from softpad.errors import InputError
 from softpad.sensing._contact import ContactDetector, LatchingContactDetector
@@ -222,6 +221,8 @@ def cusum_statistics(
     x = np.asarray(increments_pa, dtype=float)
     if x.ndim != 2 or x.shape[0] == 0 or not np.isfinite(x).all():
         raise InputError(f"increments must be finite, shape (frames, modules), got {x.shape}")
+    from scipy.signal import lfilter  # here: planning and sensing load without SciPy
+
     st = state or _IdleState(x.shape[1])
     a = 1.0 / baseline_samples if baseline_samples else 0.0
     b, _ = lfilter([a], [1.0, a - 1.0], x, axis=0, zi=(1.0 - a) * st.baseline[None, :])
