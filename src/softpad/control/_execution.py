@@ -22,7 +22,15 @@ from softpad.control._inflation import (
 )
 from softpad.control._robot import Robot, RobotState, ToolPose
 from softpad.control._safety import DetectedFault, RunSafety, SafeStateResult
-from softpad.errors import HardwareFault, InputError, SoftPadError, check_fields
+from softpad.errors import (
+    CheckedFields,
+    Count,
+    HardwareFault,
+    InputError,
+    NonNegative,
+    Positive,
+    SoftPadError,
+)
 from softpad.layout import PadLayout
 from softpad.planning import GraspPlan, Planner, PlannerParams, ThesisPlanner
 from softpad.sensing import (
@@ -66,7 +74,7 @@ class _NullRecorder:
 
 
 @dataclass(frozen=True)
-class ExecutionParams:
+class ExecutionParams(CheckedFields, what="execution"):
     """Parameters of the closed loop (thesis values where it gives them, Sections 6.2-6.3).
 
     Parameters
@@ -108,38 +116,20 @@ class ExecutionParams:
 
     inflation: InflationParams = field(default_factory=InflationParams)
     planner: PlannerParams = field(default_factory=PlannerParams)
-    contact_threshold_pa: float = thesis.CONTACT_THRESHOLD_PA
-    filter_length: int = thesis.FILTER_WINDOW
-    approach_speed_m_s: float = thesis.APPROACH_SPEED_M_S
-    travel_speed_m_s: float = 0.25
-    gripper_speed_m_s: float = thesis.JAW_SPEED_M_S
-    approach_height_m: float = 0.12
-    min_height_m: float = 0.001
-    lift_m: float = 0.08
-    hold_s: float = thesis.HOLD_S
-    object_wait_s: float = 30.0
-    object_settle_s: float = 1.0
-    planning_reads: int = thesis.REFERENCE_READS
-    pre_descent_reads: int = thesis.REFERENCE_READS
-    motion_timeout_s: float = 20.0
-
-    def __post_init__(self) -> None:
-        check_fields(
-            self,
-            "execution",
-            positive=(
-                "contact_threshold_pa",
-                "approach_speed_m_s",
-                "travel_speed_m_s",
-                "gripper_speed_m_s",
-                "approach_height_m",
-                "lift_m",
-                "object_wait_s",
-                "motion_timeout_s",
-            ),
-            non_negative=("hold_s", "object_settle_s", "min_height_m"),
-            counts=("filter_length", "planning_reads", "pre_descent_reads"),
-        )
+    contact_threshold_pa: Positive = thesis.CONTACT_THRESHOLD_PA
+    filter_length: Count = thesis.FILTER_WINDOW
+    approach_speed_m_s: Positive = thesis.APPROACH_SPEED_M_S
+    travel_speed_m_s: Positive = 0.25
+    gripper_speed_m_s: Positive = thesis.JAW_SPEED_M_S
+    approach_height_m: Positive = 0.12
+    min_height_m: NonNegative = 0.001
+    lift_m: Positive = 0.08
+    hold_s: NonNegative = thesis.HOLD_S
+    object_wait_s: Positive = 30.0
+    object_settle_s: NonNegative = 1.0
+    planning_reads: Count = thesis.REFERENCE_READS
+    pre_descent_reads: Count = thesis.REFERENCE_READS
+    motion_timeout_s: Positive = 20.0
 
 
 @dataclass(frozen=True)

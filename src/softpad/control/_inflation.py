@@ -19,7 +19,7 @@ from numpy.typing import NDArray
 
 from softpad import thesis
 from softpad.box import Box, PressureFrame, ValveCommand
-from softpad.errors import HardwareFault, InputError, check_fields
+from softpad.errors import CheckedFields, HardwareFault, InputError, Positive
 
 if TYPE_CHECKING:
     from softpad.control._safety import SafeStateResult
@@ -38,7 +38,7 @@ FrameHook = Callable[[PressureFrame], None]
 
 
 @dataclass(frozen=True)
-class InflationParams:
+class InflationParams(CheckedFields, what="inflation"):
     """Parameters of the initial inflation and adjustment (Section 6.2.1.1).
 
     Parameters
@@ -65,14 +65,14 @@ class InflationParams:
         rise), so that the true pressure never exceeds the maximum before the valves react.
     """
 
-    target_pa: float = DEFAULT_TARGET_PA
-    tolerance_pa: float = DEFAULT_TOLERANCE_PA
-    max_pressure_pa: float = DEFAULT_MAX_PRESSURE_PA
-    timeout_s: float = 30.0
-    settle_s: float = 0.5
+    target_pa: Positive = DEFAULT_TARGET_PA
+    tolerance_pa: Positive = DEFAULT_TOLERANCE_PA
+    max_pressure_pa: Positive = DEFAULT_MAX_PRESSURE_PA
+    timeout_s: Positive = 30.0
+    settle_s: Positive = 0.5
     reference_reads: int = thesis.REFERENCE_READS
     filter_length: int = thesis.FILTER_WINDOW
-    max_drift_pa_s: float = 25.0
+    max_drift_pa_s: Positive = 25.0
     trip_margin_pa: float = 50.0
 
     @property
@@ -81,18 +81,7 @@ class InflationParams:
         return self.max_pressure_pa - self.trip_margin_pa
 
     def __post_init__(self) -> None:
-        check_fields(
-            self,
-            "inflation",
-            positive=(
-                "target_pa",
-                "tolerance_pa",
-                "max_pressure_pa",
-                "timeout_s",
-                "settle_s",
-                "max_drift_pa_s",
-            ),
-        )
+        super().__post_init__()
         if not (
             math.isfinite(self.trip_margin_pa) and 0 <= self.trip_margin_pa < self.max_pressure_pa
         ):

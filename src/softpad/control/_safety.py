@@ -23,7 +23,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from softpad.box import RATED_MAX_PRESSURE_PA, Box, ConnectionLost, PressureFrame, ValveCommand
-from softpad.errors import HardwareFault, check_fields
+from softpad.errors import CheckedFields, Count, HardwareFault, NonNegative, Positive
 
 
 @dataclass(frozen=True)
@@ -68,7 +68,7 @@ class MonitoredFault(HardwareFault):
 
 
 @dataclass(frozen=True)
-class FaultThresholds:
+class FaultThresholds(CheckedFields, what="fault threshold"):
     """Thresholds of the :class:`FaultMonitor` (sources in docs/box-and-simulator.md).
 
     Parameters
@@ -100,25 +100,16 @@ class FaultThresholds:
         Running-average length of the monitored readings, samples.
     """
 
-    max_pressure_pa: float = RATED_MAX_PRESSURE_PA
-    trip_margin_pa: float = 50.0
+    max_pressure_pa: Positive = RATED_MAX_PRESSURE_PA
+    trip_margin_pa: NonNegative = 50.0
     floor_pa: float = -500.0
-    sensor_max_pa: float = 10.0e3
-    supply_min_pa: float = 5.0e3
-    fall_pa: float = 60.0
-    rise_pa_s: float = 50.0
-    window_s: float = 0.5
-    rise_windows: int = 3
-    filter_length: int = 10
-
-    def __post_init__(self) -> None:
-        check_fields(
-            self,
-            "fault threshold",
-            positive=("max_pressure_pa", "fall_pa", "rise_pa_s", "window_s", "sensor_max_pa"),
-            non_negative=("trip_margin_pa", "supply_min_pa"),
-            counts=("rise_windows", "filter_length"),
-        )
+    sensor_max_pa: Positive = 10.0e3
+    supply_min_pa: NonNegative = 5.0e3
+    fall_pa: Positive = 60.0
+    rise_pa_s: Positive = 50.0
+    window_s: Positive = 0.5
+    rise_windows: Count = 3
+    filter_length: Count = 10
 
 
 class FaultMonitor:

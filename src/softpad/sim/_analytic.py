@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from softpad import thesis
-from softpad.errors import InputError, check_fields
+from softpad.errors import CheckedFields, InputError, Positive
 from softpad.layout import GripperSpec, PadLayout
 from softpad.sim._footprint import (
     GRAVITY_M_S2,
@@ -48,7 +48,7 @@ _GEOMETRY_FIELDS = (
 
 
 @dataclass(frozen=True)
-class SimGripper:
+class SimGripper(CheckedFields, what="gripper"):
     """Parallel-jaw gripper of the analytic world: geometry plus contact physics (Section 6.3).
 
     The geometry matches :class:`softpad.layout.GripperSpec` (see :attr:`geometry` and
@@ -76,10 +76,10 @@ class SimGripper:
 
     max_width_m: float = 0.10
     min_width_m: float = 0.04
-    finger_length_m: float = thesis.FINGER_LENGTH_M
-    tip_thickness_m: float = thesis.FINGERTIP_THICKNESS_M
-    tip_width_m: float = thesis.FINGERTIP_WIDTH_M
-    tip_stiffness_n_m: float = 125.0
+    finger_length_m: Positive = thesis.FINGER_LENGTH_M
+    tip_thickness_m: Positive = thesis.FINGERTIP_THICKNESS_M
+    tip_width_m: Positive = thesis.FINGERTIP_WIDTH_M
+    tip_stiffness_n_m: Positive = 125.0
     grip_force_n: float = 20.0
     friction: float = 0.5
 
@@ -89,11 +89,7 @@ class SimGripper:
                 f"gripper width range must satisfy 0 <= min < max <= 500 mm, got "
                 f"{self.min_width_m * 1e3:g}..{self.max_width_m * 1e3:g} mm"
             )
-        check_fields(
-            self,
-            "gripper",
-            positive=("finger_length_m", "tip_thickness_m", "tip_width_m", "tip_stiffness_n_m"),
-        )
+        super().__post_init__()
 
     @classmethod
     def mounting(cls, name: str, **kwargs: float) -> SimGripper:

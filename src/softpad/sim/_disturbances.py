@@ -30,11 +30,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from softpad import thesis
-from softpad.errors import InputError, check_fields
+from softpad.errors import CheckedFields, InputError, NonNegative, Positive
 
 
 @dataclass(frozen=True)
-class DisturbanceParams:
+class DisturbanceParams(CheckedFields, what="disturbance"):
     """Figures of the slow disturbances (sources in docs/box-and-simulator.md).
 
     Parameters
@@ -56,26 +56,16 @@ class DisturbanceParams:
         Simulated time between two updates, s (1 s).
     """
 
-    temperature_amplitude_k: float = 0.5
-    temperature_period_s: float = 1200.0
-    creep_fraction: float = 0.01
-    creep_time_s: float = 600.0
-    leak_pa_per_min: float = 1.0
-    sensor_tempco_pa_k: float = 2.0
-    update_s: float = 1.0
+    temperature_amplitude_k: NonNegative = 0.5
+    temperature_period_s: Positive = 1200.0
+    creep_fraction: NonNegative = 0.01
+    creep_time_s: Positive = 600.0
+    leak_pa_per_min: NonNegative = 1.0
+    sensor_tempco_pa_k: NonNegative = 2.0
+    update_s: Positive = 1.0
 
     def __post_init__(self) -> None:
-        check_fields(
-            self,
-            "disturbance",
-            positive=("temperature_period_s", "creep_time_s", "update_s"),
-            non_negative=(
-                "temperature_amplitude_k",
-                "creep_fraction",
-                "leak_pa_per_min",
-                "sensor_tempco_pa_k",
-            ),
-        )
+        super().__post_init__()
         if self.creep_fraction >= 0.5:
             raise InputError(f"creep fraction must be below 0.5, got {self.creep_fraction!r}")
 

@@ -39,7 +39,7 @@ from dataclasses import dataclass
 from typing import Any, Protocol
 
 from softpad import thesis
-from softpad.errors import InputError, check_fields
+from softpad.errors import CheckedFields, InputError, Positive
 from softpad.layout import GripperSpec, PadLayout
 from softpad.sim._objects import PartSpec
 
@@ -51,7 +51,7 @@ GRAVITY_M_S2 = 9.81
 
 
 @dataclass(frozen=True)
-class PadPhysics:
+class PadPhysics(CheckedFields, what="pad"):
     """Physical parameters of the pad in the rigid-body world.
 
     Parameters
@@ -106,32 +106,20 @@ class PadPhysics:
         Sliding friction coefficient of the silicone against objects (EcoFlex is grippy), -.
     """
 
-    free_height_m: float = 8.3e-3
-    sensitive_side_m: float = thesis.CHAMBER_SIDE_M
-    line_height_m: float = 1.5e-3
+    free_height_m: Positive = 8.3e-3
+    sensitive_side_m: Positive = thesis.CHAMBER_SIDE_M
+    line_height_m: Positive = 1.5e-3
     rim_m: float = 15e-3
-    distributed_stiffness_n_m: float = 400.0
+    distributed_stiffness_n_m: Positive = 400.0
     distributed_damping_n_s_m: float = 20.0
-    top_mass_kg: float = 4.5e-3
+    top_mass_kg: Positive = 4.5e-3
     top_armature_kg: float = 0.05
     dome_height_m: float = 4e-3
-    local_stiffness_n_m: float = 80.0
-    friction: float = 1.0
+    local_stiffness_n_m: Positive = 80.0
+    friction: Positive = 1.0
 
     def __post_init__(self) -> None:
-        check_fields(
-            self,
-            "pad",
-            positive=(
-                "free_height_m",
-                "sensitive_side_m",
-                "line_height_m",
-                "distributed_stiffness_n_m",
-                "top_mass_kg",
-                "local_stiffness_n_m",
-                "friction",
-            ),
-        )
+        super().__post_init__()
         if self.line_height_m >= self.free_height_m:
             raise InputError(
                 f"line height ({self.line_height_m * 1e3:g} mm) must be below the module "
@@ -169,7 +157,7 @@ def parse_mounting(text: str) -> tuple[float, float]:
 
 
 @dataclass(frozen=True)
-class MujocoGripper:
+class MujocoGripper(CheckedFields, what="gripper"):
     """Parallel-jaw gripper (Sawyer electric gripper of Section 6.3).
 
     Parameters
@@ -197,29 +185,17 @@ class MujocoGripper:
     """
 
     mounting: str = "10/4"
-    finger_length_m: float = thesis.FINGER_LENGTH_M
-    tip_thickness_m: float = thesis.FINGERTIP_THICKNESS_M
-    tip_width_m: float = thesis.FINGERTIP_WIDTH_M
-    grip_force_n: float = 20.0
-    servo_stiffness_n_m: float = 4000.0
-    friction: float = 0.8
-    sole_stroke_m: float = 25e-3
+    finger_length_m: Positive = thesis.FINGER_LENGTH_M
+    tip_thickness_m: Positive = thesis.FINGERTIP_THICKNESS_M
+    tip_width_m: Positive = thesis.FINGERTIP_WIDTH_M
+    grip_force_n: Positive = 20.0
+    servo_stiffness_n_m: Positive = 4000.0
+    friction: Positive = 0.8
+    sole_stroke_m: Positive = 25e-3
 
     def __post_init__(self) -> None:
         parse_mounting(self.mounting)
-        check_fields(
-            self,
-            "gripper",
-            positive=(
-                "finger_length_m",
-                "tip_thickness_m",
-                "tip_width_m",
-                "grip_force_n",
-                "servo_stiffness_n_m",
-                "friction",
-                "sole_stroke_m",
-            ),
-        )
+        super().__post_init__()
 
     @classmethod
     def from_spec(cls, spec: GripperSpec, **physics: Any) -> MujocoGripper:

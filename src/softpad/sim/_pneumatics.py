@@ -25,12 +25,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from softpad import thesis
-from softpad.errors import InputError, check_fields
+from softpad.errors import CheckedFields, InputError, Positive
 from softpad.sim._characteristic import ModuleCharacteristic
 
 
 @dataclass(frozen=True)
-class PneumaticParams:
+class PneumaticParams(CheckedFields, what="pneumatic"):
     """Parameters of the pneumatic channels.
 
     Parameters
@@ -56,27 +56,16 @@ class PneumaticParams:
         Pressure difference below which orifice flow turns linear, pascals.
     """
 
-    atmosphere_pa: float = 101325.0
-    air_density_kg_m3: float = 1.204
-    tubing_volume_m3: float = thesis.TUBING_VOLUME_M3
+    atmosphere_pa: Positive = 101325.0
+    air_density_kg_m3: Positive = 1.204
+    tubing_volume_m3: Positive = thesis.TUBING_VOLUME_M3
     supply_pa: float = 10.0e3
-    inflate_orifice_m2: float = 1.6e-8
-    deflate_orifice_m2: float = 3.0e-8
-    laminar_pa: float = 10.0
+    inflate_orifice_m2: Positive = 1.6e-8
+    deflate_orifice_m2: Positive = 3.0e-8
+    laminar_pa: Positive = 10.0
 
     def __post_init__(self) -> None:
-        check_fields(
-            self,
-            "pneumatic",
-            positive=(
-                "atmosphere_pa",
-                "air_density_kg_m3",
-                "tubing_volume_m3",
-                "inflate_orifice_m2",
-                "deflate_orifice_m2",
-                "laminar_pa",
-            ),
-        )
+        super().__post_init__()
         if not (math.isfinite(self.supply_pa) and 0 <= self.supply_pa <= 500e3):
             raise InputError(
                 f"supply pressure must be within 0..500 kPa, got {self.supply_pa / 1e3:g} kPa"
