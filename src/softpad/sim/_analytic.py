@@ -53,34 +53,25 @@ class SimGripper(CheckedFields, what="gripper"):
 
     The geometry matches :class:`softpad.layout.GripperSpec` (see :attr:`geometry` and
     :meth:`from_spec`); the extra fields say how hard the tips press into the pad and grip.
-
-    Parameters
-    ----------
-    max_width_m, min_width_m
-        Opening range of the jaws, metres (mountings 10/4, 6/2, 4/0 cm).
-    finger_length_m
-        Length of the fingers below the palm, metres (9.5 cm).
-    tip_thickness_m
-        Fingertip size along the closing direction, metres (our choice: 8 mm; the thesis
-        calls the tips "very small").
-    tip_width_m
-        Fingertip size across the closing direction, metres (our choice: 16 mm).
-    tip_stiffness_n_m
-        Vertical stiffness of the pad under a fingertip, N/m: force per metre of penetration
-        (our estimate from the module compliance, docs/box-and-simulator.md).
-    grip_force_n
-        Squeezing force of each jaw, newtons.
-    friction
-        Friction coefficient between fingertips and objects.
     """
 
+    #: Opening range of the jaws, metres (mountings 10/4, 6/2, 4/0 cm).
     max_width_m: float = 0.10
+    #: Opening range of the jaws, metres (mountings 10/4, 6/2, 4/0 cm).
     min_width_m: float = 0.04
+    #: Length of the fingers below the palm, metres (9.5 cm).
     finger_length_m: Positive = thesis.FINGER_LENGTH_M
+    #: Fingertip size along the closing direction, metres (our choice: 8 mm; the thesis
+    #: calls the tips "very small").
     tip_thickness_m: Positive = thesis.FINGERTIP_THICKNESS_M
+    #: Fingertip size across the closing direction, metres (our choice: 16 mm).
     tip_width_m: Positive = thesis.FINGERTIP_WIDTH_M
+    #: Vertical stiffness of the pad under a fingertip, N/m: force per metre of penetration
+    #: (our estimate from the module compliance, docs/box-and-simulator.md).
     tip_stiffness_n_m: Positive = 125.0
+    #: Squeezing force of each jaw, newtons.
     grip_force_n: float = 20.0
+    #: Friction coefficient between fingertips and objects.
     friction: float = 0.5
 
     def __post_init__(self) -> None:

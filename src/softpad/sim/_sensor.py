@@ -29,33 +29,23 @@ from softpad.errors import CheckedFields, InputError, NonNegative, Positive
 
 @dataclass(frozen=True)
 class SensorParams(CheckedFields, what="sensor"):
-    """Parameters of the channel pressure sensors and of the supply sensor.
+    """Parameters of the channel pressure sensors and of the supply sensor."""
 
-    Parameters
-    ----------
-    noise_std_pa
-        Standard deviation of the white noise of one sample, pascals.
-    drift_std_pa
-        Stationary standard deviation of the slow drift, pascals.
-    drift_time_s
-        Correlation time of the drift, seconds.
-    quantization_pa
-        Resolution of the converter, pascals (0: none).
-    offset_std_pa
-        Standard deviation of the per-channel zero offset, pascals.
-    range_min_pa, range_max_pa
-        Readings saturate at these values, pascals.
-    supply_noise_std_pa
-        White noise of the supply-pressure sensor, pascals.
-    """
-
+    #: Standard deviation of the white noise of one sample, pascals.
     noise_std_pa: NonNegative = 8.0
+    #: Stationary standard deviation of the slow drift, pascals.
     drift_std_pa: NonNegative = 3.0
+    #: Correlation time of the drift, seconds.
     drift_time_s: Positive = 2.0
+    #: Resolution of the converter, pascals (0: none).
     quantization_pa: NonNegative = 10e3 / 4096
+    #: Standard deviation of the per-channel zero offset, pascals.
     offset_std_pa: NonNegative = 20.0
+    #: Readings saturate at these values, pascals.
     range_min_pa: float = -2.0e3
+    #: Readings saturate at these values, pascals.
     range_max_pa: float = 10.0e3
+    #: White noise of the supply-pressure sensor, pascals.
     supply_noise_std_pa: NonNegative = 20.0
 
     def __post_init__(self) -> None:
