@@ -147,9 +147,10 @@ class CheckedFields:
     _what: ClassVar[str] = ""
     _limits: ClassVar[dict[str, tuple[str, ...]] | None] = None
 
-    def __init_subclass__(cls, what: str = "", **kwargs: Any) -> None:
+    def __init_subclass__(cls, what: str | None = None, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
-        cls._what = what
+        if what is not None:
+            cls._what = what
         cls._limits = None
 
     def __post_init__(self) -> None:
