@@ -17,8 +17,9 @@ code  meaning
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Iterable
-from typing import Any
+from typing import Annotated, Any, ClassVar
 
 EXIT_OK = 0
 """Success."""
@@ -122,6 +123,47 @@ def check_fields(
             v = getattr(owner, n)
             if not ok(v):
                 raise InputError(f"{what} {n} must be {rule}, got {v!r}")
+
+
+#: A field of a :class:`CheckedFields` record that must be a finite number > 0.
+Positive = Annotated[float, "positive"]
+#: A field of a :class:`CheckedFields` record that must be a finite number >= 0.
+NonNegative = Annotated[float, "non_negative"]
+#: A field of a :class:`CheckedFields` record that must be an integer >= 1.
+Count = Annotated[int, "counts"]
+
+_LIMIT_NAMES = {"Positive": "positive", "NonNegative": "non_negative", "Count": "counts"}
+
+
+class CheckedFields:
+    """Base of a frozen parameters dataclass whose field annotations state the fields' limits.
+
+    A field annotated :data:`Positive`, :data:`NonNegative` or :data:`Count` is checked by
+    :func:`check_fields` after ``__init__``, errors naming the ``what`` given in the class
+    statement (``class ExecutionParams(CheckedFields, what="execution")``). A subclass with
+    further checks defines ``__post_init__`` and calls ``super().__post_init__()`` in it.
+    """
+
+    _what: ClassVar[str] = ""
+    _limits: ClassVar[dict[str, tuple[str, ...]] | None] = None
+
+    def __init_subclass__(cls, what: str | None = None, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        if what is not None:
+            cls._what = what
+        cls._limits = None
+
+    def __post_init__(self) -> None:
+        cls = type(self)
+        if cls._limits is None:
+            limits: dict[str, list[str]] = {"positive": [], "non_negative": [], "counts": []}
+            for f in dataclasses.fields(self):  # type: ignore[arg-type]
+                t = f.type if isinstance(f.type, str) else getattr(f.type, "__metadata__", ("",))[0]
+                rule = _LIMIT_NAMES.get(str(t), str(t))
+                if rule in limits:
+                    limits[rule].append(f.name)
+            cls._limits = {rule: tuple(names) for rule, names in limits.items()}
+        check_fields(self, cls._what, **cls._limits)
 
 
 def parse_json(text: str, what: str) -> Any:

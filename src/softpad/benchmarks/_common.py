@@ -10,29 +10,19 @@ from dataclasses import dataclass
 
 @dataclass(frozen=True)
 class BenchResult:
-    """One measured figure.
+    """One measured figure."""
 
-    Attributes
-    ----------
-    name
-        What was measured.
-    value
-        The figure (median where timed).
-    unit
-        Its unit.
-    target
-        The target, as text (e.g. ``"<= 50 us"``), or empty.
-    met
-        Whether the target is met (None when there is no target).
-    detail
-        How it was measured (repeats, sizes, machine-relevant facts).
-    """
-
+    #: What was measured.
     name: str
+    #: The figure (median where timed).
     value: float
+    #: Its unit.
     unit: str
+    #: The target, as text (e.g. ``"<= 50 us"``), or empty.
     target: str = ""
+    #: Whether the target is met (None when there is no target).
     met: bool | None = None
+    #: How it was measured (repeats, sizes, machine-relevant facts).
     detail: str = ""
 
     def line(self) -> str:

@@ -22,7 +22,15 @@ from softpad.control._inflation import (
 )
 from softpad.control._robot import Robot, RobotState, ToolPose
 from softpad.control._safety import DetectedFault, RunSafety, SafeStateResult
-from softpad.errors import HardwareFault, InputError, SoftPadError, check_fields
+from softpad.errors import (
+    CheckedFields,
+    Count,
+    HardwareFault,
+    InputError,
+    NonNegative,
+    Positive,
+    SoftPadError,
+)
 from softpad.layout import PadLayout
 from softpad.planning import GraspPlan, Planner, PlannerParams, ThesisPlanner
 from softpad.sensing import (
@@ -66,108 +74,60 @@ class _NullRecorder:
 
 
 @dataclass(frozen=True)
-class ExecutionParams:
-    """Parameters of the closed loop (thesis values where it gives them, Sections 6.2-6.3).
+class ExecutionParams(CheckedFields, what="execution"):
+    """Parameters of the closed loop (thesis values where it gives them, Sections 6.2-6.3)."""
 
-    Parameters
-    ----------
-    inflation
-        Inflation/adjustment parameters (p0, t_adj, maximum pressure).
-    planner
-        Parameters of the default planner and object detector (t_o, c_s).
-    contact_threshold_pa
-        t_g of the default contact detector, pascals.
-    filter_length
-        Running-average length of the default contact detector and of the object watch, samples.
-    approach_speed_m_s
-        Descent speed towards the pad, m/s.
-    travel_speed_m_s
-        Speed of the other arm motions, m/s.
-    gripper_speed_m_s
-        Speed of each jaw when closing/opening, m/s.
-    approach_height_m
-        Height of the fingertips above the pad base when moving over the COG, m.
-    min_height_m
-        Lowest fingertip height of a descent (the rigid base), m; reaching it without a
-        detected contact is the outcome ``contact_not_detected``.
-    lift_m
-        Lift after closing, m.
-    hold_s
-        Hold time, seconds.
-    object_wait_s
-        Time to wait for an object after the reference, seconds.
-    object_settle_s
-        Wait between the first sight of an object and the planning reads, seconds.
-    planning_reads
-        Reads averaged for planning (like the reference).
-    pre_descent_reads
-        Reads averaged into the contact detector's reference, samples.
-    motion_timeout_s
-        Longest allowed arm or jaw motion, seconds.
-    """
-
+    #: Inflation/adjustment parameters (p0, t_adj, maximum pressure).
     inflation: InflationParams = field(default_factory=InflationParams)
+    #: Parameters of the default planner and object detector (t_o, c_s).
     planner: PlannerParams = field(default_factory=PlannerParams)
-    contact_threshold_pa: float = thesis.CONTACT_THRESHOLD_PA
-    filter_length: int = thesis.FILTER_WINDOW
-    approach_speed_m_s: float = thesis.APPROACH_SPEED_M_S
-    travel_speed_m_s: float = 0.25
-    gripper_speed_m_s: float = thesis.JAW_SPEED_M_S
-    approach_height_m: float = 0.12
-    min_height_m: float = 0.001
-    lift_m: float = 0.08
-    hold_s: float = thesis.HOLD_S
-    object_wait_s: float = 30.0
-    object_settle_s: float = 1.0
-    planning_reads: int = thesis.REFERENCE_READS
-    pre_descent_reads: int = thesis.REFERENCE_READS
-    motion_timeout_s: float = 20.0
-
-    def __post_init__(self) -> None:
-        check_fields(
-            self,
-            "execution",
-            positive=(
-                "contact_threshold_pa",
-                "approach_speed_m_s",
-                "travel_speed_m_s",
-                "gripper_speed_m_s",
-                "approach_height_m",
-                "lift_m",
-                "object_wait_s",
-                "motion_timeout_s",
-            ),
-            non_negative=("hold_s", "object_settle_s", "min_height_m"),
-            counts=("filter_length", "planning_reads", "pre_descent_reads"),
-        )
+    #: t_g of the default contact detector, pascals.
+    contact_threshold_pa: Positive = thesis.CONTACT_THRESHOLD_PA
+    #: Running-average length of the default contact detector and of the object watch, samples.
+    filter_length: Count = thesis.FILTER_WINDOW
+    #: Descent speed towards the pad, m/s.
+    approach_speed_m_s: Positive = thesis.APPROACH_SPEED_M_S
+    #: Speed of the other arm motions, m/s.
+    travel_speed_m_s: Positive = 0.25
+    #: Speed of each jaw when closing/opening, m/s.
+    gripper_speed_m_s: Positive = thesis.JAW_SPEED_M_S
+    #: Height of the fingertips above the pad base when moving over the COG, m.
+    approach_height_m: Positive = 0.12
+    #: Lowest fingertip height of a descent (the rigid base), m; reaching it without a
+    #: detected contact is the outcome ``contact_not_detected``.
+    min_height_m: NonNegative = 0.001
+    #: Lift after closing, m.
+    lift_m: Positive = 0.08
+    #: Hold time, seconds.
+    hold_s: NonNegative = thesis.HOLD_S
+    #: Time to wait for an object after the reference, seconds.
+    object_wait_s: Positive = 30.0
+    #: Wait between the first sight of an object and the planning reads, seconds.
+    object_settle_s: NonNegative = 1.0
+    #: Reads averaged for planning (like the reference).
+    planning_reads: Count = thesis.REFERENCE_READS
+    #: Reads averaged into the contact detector's reference, samples.
+    pre_descent_reads: Count = thesis.REFERENCE_READS
+    #: Longest allowed arm or jaw motion, seconds.
+    motion_timeout_s: Positive = 20.0
 
 
 @dataclass(frozen=True)
 class GraspRecord:
-    """What happened to one planned object, as the controller saw it.
+    """What happened to one planned object, as the controller saw it."""
 
-    Attributes
-    ----------
-    plan
-        The grasp plan that was executed.
-    outcome
-        ``held``, ``dropped`` (held after lifting, lost during the hold), ``missed`` (nothing
-        between the closed jaws) or ``contact_not_detected``.
-    contact_detected
-        Whether the contact detector sensed the fingers.
-    contact_modules
-        Modules that triggered the contact detector.
-    detected_at_s
-        Box time of the detection, seconds (None when not detected).
-    stop_z_m
-        Fingertip height where the descent stopped (robot's own state), metres.
-    """
-
+    #: The grasp plan that was executed.
     plan: GraspPlan
+    #: ``held``, ``dropped`` (held after lifting, lost during the hold), ``missed`` (nothing
+    #: between the closed jaws) or ``contact_not_detected``.
     outcome: str
+    #: Whether the contact detector sensed the fingers.
     contact_detected: bool
+    #: Modules that triggered the contact detector.
     contact_modules: tuple[int, ...] = ()
+    #: Box time of the detection, seconds (None when not detected).
     detected_at_s: float | None = None
+    #: Fingertip height where the descent stopped (robot's own state), metres.
     stop_z_m: float | None = None
 
     def to_dict(self, layout: PadLayout) -> dict[str, Any]:
@@ -184,37 +144,26 @@ class GraspRecord:
 
 @dataclass(frozen=True)
 class ExecutionResult:
-    """Timeline and outcome of one run of the loop.
+    """Timeline and outcome of one run of the loop."""
 
-    Attributes
-    ----------
-    layout
-        Pad geometry.
-    adjustment
-        Inflation/adjustment result (reference pressures).
-    increments_pa
-        Increments dP_i used for planning, pascals.
-    plans
-        Plans of the detected objects, in grasp order.
-    grasps
-        One record per executed plan.
-    phases
-        (phase name, start time s) in order.
-    faults
-        Faults detected (empty on a run that ended normally; a faulted run raises, with its
-        faults and safe state attached to the exception).
-    safe_state
-        Result of the verified safe state when one was reached, else None.
-    """
-
+    #: Pad geometry.
     layout: PadLayout
+    #: Inflation/adjustment result (reference pressures).
     adjustment: AdjustmentResult
+    #: Box time when the object watch first saw an object, seconds.
     object_seen_at_s: float
+    #: Increments dP_i used for planning, pascals.
     increments_pa: NDArray[np.float64]
+    #: Plans of the detected objects, in grasp order.
     plans: tuple[GraspPlan, ...]
+    #: One record per executed plan.
     grasps: tuple[GraspRecord, ...]
+    #: (phase name, start time s) in order.
     phases: tuple[tuple[str, float], ...]
+    #: Faults detected (empty on a run that ended normally; a faulted run raises, with its
+    #: faults and safe state attached to the exception).
     faults: tuple[DetectedFault, ...] = ()
+    #: Result of the verified safe state when one was reached, else None.
     safe_state: SafeStateResult | None = None
 
     @property

@@ -19,7 +19,7 @@ from numpy.typing import NDArray
 
 from softpad import thesis
 from softpad.box import Box, PressureFrame, ValveCommand
-from softpad.errors import HardwareFault, InputError, check_fields
+from softpad.errors import CheckedFields, HardwareFault, InputError, Positive
 
 if TYPE_CHECKING:
     from softpad.control._safety import SafeStateResult
@@ -38,41 +38,28 @@ FrameHook = Callable[[PressureFrame], None]
 
 
 @dataclass(frozen=True)
-class InflationParams:
-    """Parameters of the initial inflation and adjustment (Section 6.2.1.1).
+class InflationParams(CheckedFields, what="inflation"):
+    """Parameters of the initial inflation and adjustment (Section 6.2.1.1)."""
 
-    Parameters
-    ----------
-    target_pa
-        p0: pressure every module is brought to, pascals.
-    tolerance_pa
-        t_adj: allowed deviation from p0, pascals.
-    max_pressure_pa
-        Safety limit; a channel above it is vented and the run fails, pascals (3.0 kPa).
-    timeout_s
-        Time allowed to reach p0 on every channel, seconds.
-    settle_s
-        Time every channel must stay within t_adj with its valves closed, seconds.
-    reference_reads
-        Reads averaged into the reference (10 in the thesis).
-    filter_length
-        Running-average length used by the controller, samples.
-    max_drift_pa_s
-        A sealed channel losing pressure faster than this during the settle time leaks, Pa/s.
-    trip_margin_pa
-        The safety trip acts on a reading this far below ``max_pressure_pa``, pascals (50 Pa:
-        about six standard deviations of the sensor noise plus a few samples of the fastest
-        rise), so that the true pressure never exceeds the maximum before the valves react.
-    """
-
-    target_pa: float = DEFAULT_TARGET_PA
-    tolerance_pa: float = DEFAULT_TOLERANCE_PA
-    max_pressure_pa: float = DEFAULT_MAX_PRESSURE_PA
-    timeout_s: float = 30.0
-    settle_s: float = 0.5
+    #: p0: pressure every module is brought to, pascals.
+    target_pa: Positive = DEFAULT_TARGET_PA
+    #: t_adj: allowed deviation from p0, pascals.
+    tolerance_pa: Positive = DEFAULT_TOLERANCE_PA
+    #: Safety limit; a channel above it is vented and the run fails, pascals (3.0 kPa).
+    max_pressure_pa: Positive = DEFAULT_MAX_PRESSURE_PA
+    #: Time allowed to reach p0 on every channel, seconds.
+    timeout_s: Positive = 30.0
+    #: Time every channel must stay within t_adj with its valves closed, seconds.
+    settle_s: Positive = 0.5
+    #: Reads averaged into the reference (10 in the thesis).
     reference_reads: int = thesis.REFERENCE_READS
+    #: Running-average length used by the controller, samples.
     filter_length: int = thesis.FILTER_WINDOW
-    max_drift_pa_s: float = 25.0
+    #: A sealed channel losing pressure faster than this during the settle time leaks, Pa/s.
+    max_drift_pa_s: Positive = 25.0
+    #: The safety trip acts on a reading this far below ``max_pressure_pa``, pascals (50 Pa:
+    #: about six standard deviations of the sensor noise plus a few samples of the fastest
+    #: rise), so that the true pressure never exceeds the maximum before the valves react.
     trip_margin_pa: float = 50.0
 
     @property
@@ -81,18 +68,7 @@ class InflationParams:
         return self.max_pressure_pa - self.trip_margin_pa
 
     def __post_init__(self) -> None:
-        check_fields(
-            self,
-            "inflation",
-            positive=(
-                "target_pa",
-                "tolerance_pa",
-                "max_pressure_pa",
-                "timeout_s",
-                "settle_s",
-                "max_drift_pa_s",
-            ),
-        )
+        super().__post_init__()
         if not (
             math.isfinite(self.trip_margin_pa) and 0 <= self.trip_margin_pa < self.max_pressure_pa
         ):
@@ -125,20 +101,13 @@ class InflationParams:
 
 @dataclass(frozen=True)
 class AdjustmentResult:
-    """Outcome of :func:`inflate_and_adjust`.
+    """Outcome of :func:`inflate_and_adjust`."""
 
-    Attributes
-    ----------
-    reference_pa
-        Saved reference pressure of every module (mean of the reference reads), pascals.
-    adjusted_at_s
-        Box time when every module was within tolerance, seconds.
-    reference_at_s
-        Box time when the reference was saved, seconds.
-    """
-
+    #: Saved reference pressure of every module (mean of the reference reads), pascals.
     reference_pa: NDArray[np.float64]
+    #: Box time when every module was within tolerance, seconds.
     adjusted_at_s: float
+    #: Box time when the reference was saved, seconds.
     reference_at_s: float
 
     def to_dict(self) -> dict[str, object]:

@@ -17,21 +17,15 @@ from softpad.errors import InputError
 
 @dataclass(frozen=True)
 class ToolPose:
-    """Target of the gripper, pad frame.
+    """Target of the gripper, pad frame."""
 
-    Parameters
-    ----------
-    x_m, y_m
-        Centre between the fingertips, metres.
-    z_m
-        Height of the fingertips' lower faces above the pad base, metres.
-    yaw_rad
-        Direction in which the jaws close (theta), radians.
-    """
-
+    #: Centre between the fingertips, metres.
     x_m: float
+    #: Centre between the fingertips, metres.
     y_m: float
+    #: Height of the fingertips' lower faces above the pad base, metres.
     z_m: float
+    #: Direction in which the jaws close (theta), radians.
     yaw_rad: float
 
     def __post_init__(self) -> None:

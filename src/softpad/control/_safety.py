@@ -23,30 +23,22 @@ import numpy as np
 from numpy.typing import NDArray
 
 from softpad.box import RATED_MAX_PRESSURE_PA, Box, ConnectionLost, PressureFrame, ValveCommand
-from softpad.errors import HardwareFault, check_fields
+from softpad.errors import CheckedFields, Count, HardwareFault, NonNegative, Positive
 
 
 @dataclass(frozen=True)
 class DetectedFault:
-    """A fault seen by the :class:`FaultMonitor`.
+    """A fault seen by the :class:`FaultMonitor`."""
 
-    Attributes
-    ----------
-    t_s
-        Box time of the frame that showed it, seconds.
-    channel
-        1-based channel, or None for a box-wide fault (supply).
-    cause
-        Short machine-readable cause: ``sensor_nan``, ``sensor_dropout``, ``sensor_range``,
-        ``over_pressure``, ``supply_loss``, ``falling`` (leak or stuck-open deflation valve),
-        ``rising`` (stuck-open inflation valve), ``no_response`` (a valve that does not act).
-    message
-        One line for people.
-    """
-
+    #: Box time of the frame that showed it, seconds.
     t_s: float
+    #: 1-based channel, or None for a box-wide fault (supply).
     channel: int | None
+    #: Short machine-readable cause: ``sensor_nan``, ``sensor_dropout``, ``sensor_range``,
+    #: ``over_pressure``, ``supply_loss``, ``falling`` (leak or stuck-open deflation valve),
+    #: ``rising`` (stuck-open inflation valve), ``no_response`` (a valve that does not act).
     cause: str
+    #: One line for people.
     message: str
 
     def to_dict(self) -> dict[str, object]:
@@ -68,57 +60,34 @@ class MonitoredFault(HardwareFault):
 
 
 @dataclass(frozen=True)
-class FaultThresholds:
-    """Thresholds of the :class:`FaultMonitor` (sources in docs/box-and-simulator.md).
+class FaultThresholds(CheckedFields, what="fault threshold"):
+    """Thresholds of the :class:`FaultMonitor` (sources in docs/box-and-simulator.md)."""
 
-    Parameters
-    ----------
-    max_pressure_pa
-        Hard maximum, pascals; a filtered reading above ``max - trip_margin_pa`` is a fault.
-    trip_margin_pa
-        Pascals below the maximum at which the monitor trips (50 Pa).
-    floor_pa
-        A reading below this is a sensor dropout (a module cannot be under vacuum), pascals.
-    sensor_max_pa
-        A reading at or above the sensor's full scale is out of range, pascals.
-    supply_min_pa
-        A filtered supply reading below this is a supply loss, pascals (half the 10 kPa supply).
-    fall_pa
-        A sealed channel whose filtered reading drops this far below its reference is falling
-        (leak, stuck-open deflation valve), pascals: 60 Pa is 5 sigma of the filtered noise
-        plus drift (8 Pa / sqrt(10) and 3 Pa rms: 4 Pa; difference of two: 5.6 Pa) with room for
-        the adjustment tolerance (30 Pa).
-    rise_pa_s
-        A sealed channel rising faster than this over each of ``rise_windows`` consecutive
-        windows of ``window_s`` is rising without a command, Pa/s (50 Pa/s: 5 sigma of the
-        slope of a 10-sample mean over 0.5 s; a load step settles within one window).
-    window_s
-        Length of one rise window, seconds.
-    rise_windows
-        Consecutive rising windows needed.
-    filter_length
-        Running-average length of the monitored readings, samples.
-    """
-
-    max_pressure_pa: float = RATED_MAX_PRESSURE_PA
-    trip_margin_pa: float = 50.0
+    #: Hard maximum, pascals; a filtered reading above ``max - trip_margin_pa`` is a fault.
+    max_pressure_pa: Positive = RATED_MAX_PRESSURE_PA
+    #: Pascals below the maximum at which the monitor trips (50 Pa).
+    trip_margin_pa: NonNegative = 50.0
+    #: A reading below this is a sensor dropout (a module cannot be under vacuum), pascals.
     floor_pa: float = -500.0
-    sensor_max_pa: float = 10.0e3
-    supply_min_pa: float = 5.0e3
-    fall_pa: float = 60.0
-    rise_pa_s: float = 50.0
-    window_s: float = 0.5
-    rise_windows: int = 3
-    filter_length: int = 10
-
-    def __post_init__(self) -> None:
-        check_fields(
-            self,
-            "fault threshold",
-            positive=("max_pressure_pa", "fall_pa", "rise_pa_s", "window_s", "sensor_max_pa"),
-            non_negative=("trip_margin_pa", "supply_min_pa"),
-            counts=("rise_windows", "filter_length"),
-        )
+    #: A reading at or above the sensor's full scale is out of range, pascals.
+    sensor_max_pa: Positive = 10.0e3
+    #: A filtered supply reading below this is a supply loss, pascals (half the 10 kPa supply).
+    supply_min_pa: NonNegative = 5.0e3
+    #: A sealed channel whose filtered reading drops this far below its reference is falling
+    #: (leak, stuck-open deflation valve), pascals: 60 Pa is 5 sigma of the filtered noise
+    #: plus drift (8 Pa / sqrt(10) and 3 Pa rms: 4 Pa; difference of two: 5.6 Pa) with room for
+    #: the adjustment tolerance (30 Pa).
+    fall_pa: Positive = 60.0
+    #: A sealed channel rising faster than this over each of ``rise_windows`` consecutive
+    #: windows of ``window_s`` is rising without a command, Pa/s (50 Pa/s: 5 sigma of the
+    #: slope of a 10-sample mean over 0.5 s; a load step settles within one window).
+    rise_pa_s: Positive = 50.0
+    #: Length of one rise window, seconds.
+    window_s: Positive = 0.5
+    #: Consecutive rising windows needed.
+    rise_windows: Count = 3
+    #: Running-average length of the monitored readings, samples.
+    filter_length: Count = 10
 
 
 class FaultMonitor:
@@ -256,31 +225,21 @@ _FLOOR_PA = FaultThresholds().floor_pa
 
 @dataclass(frozen=True)
 class SafeStateResult:
-    """Outcome of :func:`reach_safe_state`.
+    """Outcome of :func:`reach_safe_state`."""
 
-    Attributes
-    ----------
-    verified
-        True when every channel read valid, at or below the maximum and not rising for the
-        quiet time, with every inflation valve commanded closed.
-    pressures_pa
-        Last filtered pressure of every module, pascals (NaN where the sensor gave none).
-    channel_unsafe
-        The channel that could not be made safe (None when verified, or when the box could
-        not be reached: see ``reason``).
-    tried
-        What was done, in order (one line each).
-    t_s
-        Box time when the watch ended, seconds.
-    reason
-        Why it is not verified ("" when verified).
-    """
-
+    #: True when every channel read valid, at or below the maximum and not rising for the
+    #: quiet time, with every inflation valve commanded closed.
     verified: bool
+    #: Last filtered pressure of every module, pascals (NaN where the sensor gave none).
     pressures_pa: NDArray[np.float64]
+    #: The channel that could not be made safe (None when verified, or when the box could
+    #: not be reached: see ``reason``).
     channel_unsafe: int | None
+    #: What was done, in order (one line each).
     tried: tuple[str, ...]
+    #: Box time when the watch ended, seconds.
     t_s: float
+    #: Why it is not verified ("" when verified).
     reason: str = ""
 
     def to_dict(self) -> dict[str, object]:

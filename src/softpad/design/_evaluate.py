@@ -26,33 +26,23 @@ from softpad.errors import InputError
 
 @dataclass(frozen=True)
 class TrialOptions:
-    """How the trials of a sweep are run.
+    """How the trials of a sweep are run."""
 
-    Parameters
-    ----------
-    trials
-        Trials per object and seed.
-    planner
-        Planner name (:data:`softpad.planning.PLANNERS`).
-    detector
-        Contact detector name (:data:`softpad.sensing.CONTACT_DETECTORS`).
-    hold_s
-        Hold time after the lift, seconds (thesis: 15 s).
-    position_sigma_m, yaw_sigma_rad
-        Placement noise (normal), metres and radians (as ``softpad trials``: 3 mm, 3 degrees).
-    sample_rate_hz
-        Box sample rate, hertz.
-    noise
-        Sensor noise on.
-    """
-
+    #: Trials per object and seed.
     trials: int = 1
+    #: Planner name (:data:`softpad.planning.PLANNERS`).
     planner: str = "thesis"
+    #: Contact detector name (:data:`softpad.sensing.CONTACT_DETECTORS`).
     detector: str = "thesis"
+    #: Hold time after the lift, seconds (thesis: 15 s).
     hold_s: float = thesis.HOLD_S
+    #: Placement noise (normal), metres and radians (as ``softpad trials``: 3 mm, 3 degrees).
     position_sigma_m: float = 3e-3
+    #: Placement noise (normal), metres and radians (as ``softpad trials``: 3 mm, 3 degrees).
     yaw_sigma_rad: float = math.radians(3.0)
+    #: Box sample rate, hertz.
     sample_rate_hz: float = 100.0
+    #: Sensor noise on.
     noise: bool = True
 
     def __post_init__(self) -> None:

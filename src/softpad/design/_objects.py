@@ -52,21 +52,14 @@ _THESIS_PAD_M = (
 
 @dataclass(frozen=True)
 class SetObject:
-    """One object of a set: its catalogue-style spec and how it is placed on any pad.
+    """One object of a set: its catalogue-style spec and how it is placed on any pad."""
 
-    Parameters
-    ----------
-    spec
-        The object (:class:`softpad.sim.ObjectSpec`); its placement is the one on the thesis's
-        pad (``as-thesis``) or ignored.
-    placement
-        ``"as-thesis"``, ``"centre"`` or ``"offset"``.
-    offset
-        (dx_m, dy_m, yaw_rad) of the footprint centre from the pad centre (``offset``).
-    """
-
+    #: The object (:class:`softpad.sim.ObjectSpec`); its placement is the one on the thesis's
+    #: pad (``as-thesis``) or ignored.
     spec: Any
+    #: ``"as-thesis"``, ``"centre"`` or ``"offset"``.
     placement: str = "as-thesis"
+    #: (dx_m, dy_m, yaw_rad) of the footprint centre from the pad centre (``offset``).
     offset: tuple[float, float, float] = (0.0, 0.0, 0.0)
 
     @property
@@ -105,24 +98,16 @@ def footprint_centre_m(parts: Any, yaw_rad: float) -> tuple[float, float]:
 
 @dataclass(frozen=True)
 class ObjectSet:
-    """A named set of objects to grasp.
+    """A named set of objects to grasp."""
 
-    Parameters
-    ----------
-    name
-        Name of the set.
-    objects
-        The objects.
-    gripper
-        One gripper mounting for every object (``"10/4"``, ``"6/2"``, ``"4/0"``), or None for
-        each object's own.
-    source
-        Where the set was read from.
-    """
-
+    #: Name of the set.
     name: str
+    #: The objects.
     objects: tuple[SetObject, ...]
+    #: One gripper mounting for every object (``"10/4"``, ``"6/2"``, ``"4/0"``), or None for
+    #: each object's own.
     gripper: str | None = None
+    #: Where the set was read from.
     source: str = ""
     _names: tuple[str, ...] = field(init=False, repr=False, compare=False)
 

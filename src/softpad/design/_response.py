@@ -35,47 +35,38 @@ GAP_VOLUME_M3 = 0.2e-6
 
 @dataclass(frozen=True)
 class FemResponse:
-    """Response of one module design at its inflating pressure.
+    """Response of one module design at its inflating pressure."""
 
-    Attributes
-    ----------
-    width_m, thickness_m, material, p0_pa
-        The module (the FEM variables of :class:`~softpad.design.PadDesign`).
-    height_m
-        Centre height of the free module at p0, m.
-    volume_m3
-        Air volume under the layer at p0, m^3 (finite-element volume, no gap).
-    compliance_m3_pa
-        ``dV/dp`` at p0, m^3/Pa.
-    volume_per_force_m3_n
-        ``-dV/dF`` for a load spread on the footprint, m^3/N.
-    rise_pa_n
-        Sealed-chamber pressure rise per newton on the footprint, Pa/N.
-    min_detectable_mass_kg
-        Smallest mass on the footprint whose rise reaches t_o, kg.
-    sensitive_fraction
-        Share of the module's area where a point load raises the pressure at least half as
-        much as at the centre (the rest: the "non-sensitive" border of Section 6.1.2).
-    map_xy_m, map_rise_pa_n
-        The sensitivity map: top-face points of the quarter (x, y from the module centre, m)
-        and the sealed rise per newton of a point load there, Pa/N.
-    solve_time_s
-        Wall time of the finite-element work, s.
-    """
-
+    #: The module (the FEM variables of :class:`~softpad.design.PadDesign`).
     width_m: float
+    #: The module (the FEM variables of :class:`~softpad.design.PadDesign`).
     thickness_m: float
+    #: The module (the FEM variables of :class:`~softpad.design.PadDesign`).
     material: str
+    #: The module (the FEM variables of :class:`~softpad.design.PadDesign`).
     p0_pa: float
+    #: Centre height of the free module at p0, m.
     height_m: float
+    #: Air volume under the layer at p0, m^3 (finite-element volume, no gap).
     volume_m3: float
+    #: ``dV/dp`` at p0, m^3/Pa.
     compliance_m3_pa: float
+    #: ``-dV/dF`` for a load spread on the footprint, m^3/N.
     volume_per_force_m3_n: float
+    #: Sealed-chamber pressure rise per newton on the footprint, Pa/N.
     rise_pa_n: float
+    #: Smallest mass on the footprint whose rise reaches t_o, kg.
     min_detectable_mass_kg: float
+    #: Share of the module's area where a point load raises the pressure at least half as
+    #: much as at the centre (the rest: the "non-sensitive" border of Section 6.1.2).
     sensitive_fraction: float
+    #: The sensitivity map's points: top-face points of the quarter (x, y from the module
+    #: centre), metres.
     map_xy_m: tuple[tuple[float, float], ...]
+    #: The sensitivity map's values: the sealed rise per newton of a point load at each point
+    #: of ``map_xy_m``, Pa/N.
     map_rise_pa_n: tuple[float, ...]
+    #: Wall time of the finite-element work, s.
     solve_time_s: float = 0.0
 
     def characteristic(self) -> Any:

@@ -40,37 +40,26 @@ COLUMNS = (
 
 @dataclass(frozen=True)
 class DesignRow:
-    """One design's figures.
+    """One design's figures."""
 
-    Attributes
-    ----------
-    design
-        The design.
-    response
-        Its finite-element summary (:meth:`FemResponse.summary`).
-    successes, trials
-        Held grasps and trials over the object set and seeds.
-    success_interval
-        95 % Wilson interval of the success rate.
-    detection_delay_ms
-        Median time from the first fingertip touch to the detection, ms (None: never detected).
-    failures
-        Failed trials by outcome.
-    pareto
-        On the Pareto front of (success up, minimum detectable mass down, modules down).
-    rank
-        1 = best: success rate, then its interval's lower end, minimum detectable mass,
-        module count, detection delay.
-    """
-
+    #: The design.
     design: PadDesign
+    #: Its finite-element summary (:meth:`FemResponse.summary`).
     response: dict[str, Any]
+    #: Held grasps and trials over the object set and seeds.
     successes: int
+    #: Held grasps and trials over the object set and seeds.
     trials: int
+    #: 95 % Wilson interval of the success rate.
     success_interval: tuple[float, float]
+    #: Median time from the first fingertip touch to the detection, ms (None: never detected).
     detection_delay_ms: float | None
+    #: Failed trials by outcome.
     failures: dict[str, int] = field(default_factory=dict)
+    #: On the Pareto front of (success up, minimum detectable mass down, modules down).
     pareto: bool = False
+    #: 1 = best: success rate, then its interval's lower end, minimum detectable mass,
+    #: module count, detection delay.
     rank: int = 0
 
     @property
@@ -165,23 +154,15 @@ def rank_rows(rows: list[DesignRow]) -> list[DesignRow]:
 
 @dataclass(frozen=True)
 class SweepResult:
-    """A ranked design sweep.
+    """A ranked design sweep."""
 
-    Attributes
-    ----------
-    rows
-        Ranked designs, best first.
-    object_set
-        Name of the object set.
-    meta
-        How it was run (seeds, options, workers, wall time, tasks computed and cached).
-    trials
-        Every trial record by design name.
-    """
-
+    #: Ranked designs, best first.
     rows: tuple[DesignRow, ...]
+    #: Name of the object set.
     object_set: str
+    #: How it was run (seeds, options, workers, wall time, tasks computed and cached).
     meta: dict[str, Any]
+    #: Every trial record by design name.
     trials: dict[str, list[dict[str, Any]]] = field(default_factory=dict)
 
     @property

@@ -32,30 +32,21 @@ LIMITS: dict[str, tuple[float, float]] = {
 
 @dataclass(frozen=True)
 class PadDesign:
-    """One SoftPad design.
+    """One SoftPad design."""
 
-    Parameters
-    ----------
-    rows, cols
-        Module grid R x C (thesis: 2 x 3).
-    pitch_m
-        Module pitch = side of a module's air channel, metres (thesis: 45 mm).
-    thickness_m
-        Thickness of the upper silicone layer, metres (thesis: 1.5 mm).
-    material
-        Material preset of :data:`softpad.fem.MATERIAL_PRESETS` (thesis fit: neo-Hookean).
-    p0_pa
-        Initial inflating pressure p0, pascals (thesis: 1.1 kPa; usable 0.5 to 2.8 kPa).
-    name
-        Label; derived from the variables when empty.
-    """
-
+    #: Module grid R x C (thesis: 2 x 3).
     rows: int = thesis.PROTOTYPE_ROWS
+    #: Module grid R x C (thesis: 2 x 3).
     cols: int = thesis.PROTOTYPE_COLS
+    #: Module pitch = side of a module's air channel, metres (thesis: 45 mm).
     pitch_m: float = thesis.MODULE_PITCH_M
+    #: Thickness of the upper silicone layer, metres (thesis: 1.5 mm).
     thickness_m: float = thesis.LAYER_THICKNESS_M
+    #: Material preset of :data:`softpad.fem.MATERIAL_PRESETS` (thesis fit: neo-Hookean).
     material: str = "neo-hookean"
+    #: Initial inflating pressure p0, pascals (thesis: 1.1 kPa; usable 0.5 to 2.8 kPa).
     p0_pa: float = thesis.P0_PA
+    #: Label; derived from the variables when empty.
     name: str = ""
 
     def __post_init__(self) -> None:
@@ -149,20 +140,17 @@ def stable_hash(payload: Any) -> str:
 
 @dataclass(frozen=True)
 class DesignSpace:
-    """Values of each design variable; the designs are their Cartesian product.
+    """Values of each design variable; the designs are their Cartesian product."""
 
-    Parameters
-    ----------
-    grids
-        (rows, cols) pairs.
-    pitches_m, thicknesses_m, materials, p0s_pa
-        Values of the other variables (SI).
-    """
-
+    #: (rows, cols) pairs.
     grids: tuple[tuple[int, int], ...] = ((2, 3),)
+    #: Values of the other variables (SI).
     pitches_m: tuple[float, ...] = (thesis.MODULE_PITCH_M,)
+    #: Values of the other variables (SI).
     thicknesses_m: tuple[float, ...] = (thesis.LAYER_THICKNESS_M,)
+    #: Values of the other variables (SI).
     materials: tuple[str, ...] = ("neo-hookean",)
+    #: Values of the other variables (SI).
     p0s_pa: tuple[float, ...] = (thesis.P0_PA,)
 
     def designs(self, with_baseline: bool = True) -> list[PadDesign]:

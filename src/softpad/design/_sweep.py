@@ -77,30 +77,21 @@ def _trials_task(
 
 @dataclass(frozen=True)
 class SweepRaw:
-    """What a sweep computed: responses by FEM key, trial records by (design name, seed).
+    """What a sweep computed: responses by FEM key, trial records by (design name, seed)."""
 
-    Attributes
-    ----------
-    designs
-        The designs, baseline first.
-    responses
-        FEM response dict of each design, by design name.
-    trials
-        Trial records of each design, by design name (every seed).
-    computed, cached
-        Tasks run now and tasks read from the cache.
-    wall_time_s
-        Wall time of the sweep, seconds.
-    workers
-        Dask workers used (0: nothing needed computing).
-    """
-
+    #: The designs, baseline first.
     designs: tuple[PadDesign, ...]
+    #: FEM response dict of each design, by design name.
     responses: dict[str, dict[str, Any]]
+    #: Trial records of each design, by design name (every seed).
     trials: dict[str, list[dict[str, Any]]]
+    #: Tasks run now and tasks read from the cache.
     computed: int
+    #: Tasks run now and tasks read from the cache.
     cached: int
+    #: Wall time of the sweep, seconds.
     wall_time_s: float
+    #: Dask workers used (0: nothing needed computing).
     workers: int
 
 

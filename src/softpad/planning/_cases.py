@@ -14,32 +14,21 @@ from dataclasses import dataclass
 
 @dataclass(frozen=True)
 class PlanCase:
-    """One reference pattern on the 2 x 3 pad.
+    """One reference pattern on the 2 x 3 pad."""
 
-    Attributes
-    ----------
-    name
-        Case name (Table 6.1 object, figure panel or rule).
-    delta_pa
-        Increments of modules 1..6, pascals.
-    cog
-        Expected centre of grasp, module units.
-    theta
-        Expected direction of grasp, radians.
-    rule
-        Expected rule name (empty when not pinned).
-    source
-        Where the expected plan comes from.
-    weight_g
-        Object weight from Table 6.1 / Fig. 6.7, grams (0 when not given).
-    """
-
+    #: Case name (Table 6.1 object, figure panel or rule).
     name: str
+    #: Increments of modules 1..6, pascals.
     delta_pa: tuple[float, ...]
+    #: Expected centre of grasp, module units.
     cog: tuple[float, float]
+    #: Expected direction of grasp, radians.
     theta: float
+    #: Expected rule name (empty when not pinned).
     rule: str = ""
+    #: Where the expected plan comes from.
     source: str = ""
+    #: Object weight from Table 6.1 / Fig. 6.7, grams (0 when not given).
     weight_g: float = 0.0
 
 

@@ -15,20 +15,13 @@ DEFAULT_SAFETY_SHIFT = thesis.SAFETY_SHIFT
 
 @dataclass(frozen=True)
 class PlannerParams:
-    """Parameters of the grasp planner.
+    """Parameters of the grasp planner."""
 
-    Parameters
-    ----------
-    object_threshold_pa
-        t_o: a module is touched when dP > t_o, pascals (:data:`softpad.thesis.OBJECT_THRESHOLD_PA`).
-    safety_shift
-        c_s: shift away from the corner of corner-shaped objects, module units, 0.2 in the thesis.
-    default_theta
-        Direction used when the shape gives none (N = 1, 2x2 square), radians.
-    """
-
+    #: t_o: a module is touched when dP > t_o, pascals (:data:`softpad.thesis.OBJECT_THRESHOLD_PA`).
     object_threshold_pa: float = DEFAULT_OBJECT_THRESHOLD_PA
+    #: c_s: shift away from the corner of corner-shaped objects, module units, 0.2 in the thesis.
     safety_shift: float = DEFAULT_SAFETY_SHIFT
+    #: Direction used when the shape gives none (N = 1, 2x2 square), radians.
     default_theta: float = 0.0
 
     def __post_init__(self) -> None:

@@ -10,33 +10,22 @@ from softpad.layout import PadLayout
 
 @dataclass(frozen=True)
 class GraspPlan:
-    """A planned top grasp for one object.
+    """A planned top grasp for one object."""
 
-    Attributes
-    ----------
-    modules
-        1-based numbers of the modules the object touches (dP > t_o).
-    pcom
-        Pressure-based centre of mass (x, y), module units (Eq. 6.1).
-    cog
-        Centre of grasp (x, y), module units.
-    theta
-        Direction of grasp (the direction the jaws close), radians, in (-pi/2, pi/2].
-    rule
-        Name of the planning rule that produced the plan (see docs/planner.md).
-    reduced_modules
-        Modules the rule kept after dropping some (equal to ``modules`` when none was dropped).
-    tie_break
-        True when the plan hinged on an exact tie (PCOM exactly on a bisector, two axes at the
-        same distance, two modules equally far) that a documented convention decided.
-    """
-
+    #: 1-based numbers of the modules the object touches (dP > t_o).
     modules: tuple[int, ...]
+    #: Pressure-based centre of mass (x, y), module units (Eq. 6.1).
     pcom: tuple[float, float]
+    #: Centre of grasp (x, y), module units.
     cog: tuple[float, float]
+    #: Direction of grasp (the direction the jaws close), radians, in (-pi/2, pi/2].
     theta: float
+    #: Name of the planning rule that produced the plan (see docs/planner.md).
     rule: str
+    #: Modules the rule kept after dropping some (equal to ``modules`` when none was dropped).
     reduced_modules: tuple[int, ...]
+    #: True when the plan hinged on an exact tie (PCOM exactly on a bisector, two axes at the
+    #: same distance, two modules equally far) that a documented convention decided.
     tie_break: bool = False
 
     def cog_m(self, layout: PadLayout) -> tuple[float, float]:

@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from softpad import thesis
-from softpad.errors import InputError, check_fields
+from softpad.errors import CheckedFields, InputError, Positive
 from softpad.layout import GripperSpec, PadLayout
 from softpad.sim._footprint import (
     GRAVITY_M_S2,
@@ -48,39 +48,30 @@ _GEOMETRY_FIELDS = (
 
 
 @dataclass(frozen=True)
-class SimGripper:
+class SimGripper(CheckedFields, what="gripper"):
     """Parallel-jaw gripper of the analytic world: geometry plus contact physics (Section 6.3).
 
     The geometry matches :class:`softpad.layout.GripperSpec` (see :attr:`geometry` and
     :meth:`from_spec`); the extra fields say how hard the tips press into the pad and grip.
-
-    Parameters
-    ----------
-    max_width_m, min_width_m
-        Opening range of the jaws, metres (mountings 10/4, 6/2, 4/0 cm).
-    finger_length_m
-        Length of the fingers below the palm, metres (9.5 cm).
-    tip_thickness_m
-        Fingertip size along the closing direction, metres (our choice: 8 mm; the thesis
-        calls the tips "very small").
-    tip_width_m
-        Fingertip size across the closing direction, metres (our choice: 16 mm).
-    tip_stiffness_n_m
-        Vertical stiffness of the pad under a fingertip, N/m: force per metre of penetration
-        (our estimate from the module compliance, docs/box-and-simulator.md).
-    grip_force_n
-        Squeezing force of each jaw, newtons.
-    friction
-        Friction coefficient between fingertips and objects.
     """
 
+    #: Opening range of the jaws, metres (mountings 10/4, 6/2, 4/0 cm).
     max_width_m: float = 0.10
+    #: Opening range of the jaws, metres (mountings 10/4, 6/2, 4/0 cm).
     min_width_m: float = 0.04
-    finger_length_m: float = thesis.FINGER_LENGTH_M
-    tip_thickness_m: float = thesis.FINGERTIP_THICKNESS_M
-    tip_width_m: float = thesis.FINGERTIP_WIDTH_M
-    tip_stiffness_n_m: float = 125.0
+    #: Length of the fingers below the palm, metres (9.5 cm).
+    finger_length_m: Positive = thesis.FINGER_LENGTH_M
+    #: Fingertip size along the closing direction, metres (our choice: 8 mm; the thesis
+    #: calls the tips "very small").
+    tip_thickness_m: Positive = thesis.FINGERTIP_THICKNESS_M
+    #: Fingertip size across the closing direction, metres (our choice: 16 mm).
+    tip_width_m: Positive = thesis.FINGERTIP_WIDTH_M
+    #: Vertical stiffness of the pad under a fingertip, N/m: force per metre of penetration
+    #: (our estimate from the module compliance, docs/box-and-simulator.md).
+    tip_stiffness_n_m: Positive = 125.0
+    #: Squeezing force of each jaw, newtons.
     grip_force_n: float = 20.0
+    #: Friction coefficient between fingertips and objects.
     friction: float = 0.5
 
     def __post_init__(self) -> None:
@@ -89,11 +80,7 @@ class SimGripper:
                 f"gripper width range must satisfy 0 <= min < max <= 500 mm, got "
                 f"{self.min_width_m * 1e3:g}..{self.max_width_m * 1e3:g} mm"
             )
-        check_fields(
-            self,
-            "gripper",
-            positive=("finger_length_m", "tip_thickness_m", "tip_width_m", "tip_stiffness_n_m"),
-        )
+        super().__post_init__()
 
     @classmethod
     def mounting(cls, name: str, **kwargs: float) -> SimGripper:

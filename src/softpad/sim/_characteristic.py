@@ -73,31 +73,21 @@ class AnalyticCharacteristic:
     3.71 mL/kPa, and ``A_eff = (dV/dp) / (-dV/dF)`` = 1.466e-3 m^2 for a load on the
     characteristic's central 30 x 30 mm patch (``-dV/dF`` = 2.53 mL/N); the thesis's height of
     9 mm at 1.1 kPa (Section 6.3).
-
-    Parameters
-    ----------
-    reference_pressure_pa
-        p_ref, pascals (1.1 kPa, the thesis's inflating pressure).
-    reference_volume_m3
-        V_ref, air volume at p_ref without load, gap included, m^3 (7.93 mL).
-    compliance_m3_pa
-        dV/dp at p_ref, m^3/Pa (3.71 mL/kPa).
-    reference_height_m
-        h_ref, top height at p_ref without load, m (9 mm).
-    gap_volume_m3
-        V_gap, air left under a flat layer (the acetate sheet's gap), m^3 (0.2 mL).
-    knee_pa
-        x0, pressure scale where the slack membrane stiffens, pascals (50 Pa).
-    effective_area_m2
-        A_eff, area on which a load acts like a pressure, m^2.
     """
 
+    #: p_ref, pascals (1.1 kPa, the thesis's inflating pressure).
     reference_pressure_pa: float = thesis.P0_PA
+    #: V_ref, air volume at p_ref without load, gap included, m^3 (7.93 mL).
     reference_volume_m3: float = 7.73e-6 + thesis.CHAMBER_GAP_VOLUME_M3
+    #: dV/dp at p_ref, m^3/Pa (3.71 mL/kPa).
     compliance_m3_pa: float = 3.71e-9
+    #: h_ref, top height at p_ref without load, m (9 mm).
     reference_height_m: float = 9.0e-3
+    #: V_gap, air left under a flat layer (the acetate sheet's gap), m^3 (0.2 mL).
     gap_volume_m3: float = thesis.CHAMBER_GAP_VOLUME_M3
+    #: x0, pressure scale where the slack membrane stiffens, pascals (50 Pa).
     knee_pa: float = 50.0
+    #: A_eff, area on which a load acts like a pressure, m^2.
     effective_area_m2: float = 1.466e-3
 
     def __post_init__(self) -> None:
@@ -197,25 +187,17 @@ class TabulatedCharacteristic:
     by a load beyond the table's range (a gripper pressing hard) must still find its pressure:
     with a clamped (flat) table the gas law would have no volume left to give and the
     pressure would run away to the sensor's full scale.
-
-    Parameters
-    ----------
-    pressure_pa
-        Strictly increasing gauge pressures, shape (P,), pascals.
-    load_n
-        Strictly increasing loads, shape (L,), newtons.
-    volume_m3
-        Air volume under the layer (tubing excluded), shape (P, L), m^3.
-    height_m
-        Top-centre height, shape (P, L), metres.
-    meta
-        Provenance (model, material, mesh...), free JSON-ready dict.
     """
 
+    #: Strictly increasing gauge pressures, shape (P,), pascals.
     pressure_pa: NDArray[np.float64]
+    #: Strictly increasing loads, shape (L,), newtons.
     load_n: NDArray[np.float64]
+    #: Air volume under the layer (tubing excluded), shape (P, L), m^3.
     volume_m3_table: NDArray[np.float64]
+    #: Top-centre height, shape (P, L), metres.
     height_m_table: NDArray[np.float64]
+    #: Provenance (model, material, mesh...), free JSON-ready dict.
     meta: dict[str, Any] = field(default_factory=dict)
     _cache: dict[str, Any] = field(default_factory=dict, init=False, repr=False, compare=False)
 

@@ -30,52 +30,31 @@ import numpy as np
 from numpy.typing import NDArray
 
 from softpad import thesis
-from softpad.errors import InputError, check_fields
+from softpad.errors import CheckedFields, InputError, NonNegative, Positive
 
 
 @dataclass(frozen=True)
-class DisturbanceParams:
-    """Figures of the slow disturbances (sources in docs/box-and-simulator.md).
+class DisturbanceParams(CheckedFields, what="disturbance"):
+    """Figures of the slow disturbances (sources in docs/box-and-simulator.md)."""
 
-    Parameters
-    ----------
-    temperature_amplitude_k
-        Amplitude of the room temperature swing, K (0.5 K: a thermostat's +-0.5 K band).
-    temperature_period_s
-        Period of the swing, s (20 min).
-    creep_fraction
-        Extra volume the membrane creeps to, as a fraction of its stretched volume (1 %).
-    creep_time_s
-        Time constant of the creep, s (10 min).
-    leak_pa_per_min
-        Pressure loss of a sealed module at p0 through its leak, Pa/min (1 Pa/min).
-    sensor_tempco_pa_k
-        Largest thermal zero shift of a sensor, Pa/K (2 Pa/K: a total error band of 1 % of a
-        10 kPa span over 0..50 degC).
-    update_s
-        Simulated time between two updates, s (1 s).
-    """
-
-    temperature_amplitude_k: float = 0.5
-    temperature_period_s: float = 1200.0
-    creep_fraction: float = 0.01
-    creep_time_s: float = 600.0
-    leak_pa_per_min: float = 1.0
-    sensor_tempco_pa_k: float = 2.0
-    update_s: float = 1.0
+    #: Amplitude of the room temperature swing, K (0.5 K: a thermostat's +-0.5 K band).
+    temperature_amplitude_k: NonNegative = 0.5
+    #: Period of the swing, s (20 min).
+    temperature_period_s: Positive = 1200.0
+    #: Extra volume the membrane creeps to, as a fraction of its stretched volume (1 %).
+    creep_fraction: NonNegative = 0.01
+    #: Time constant of the creep, s (10 min).
+    creep_time_s: Positive = 600.0
+    #: Pressure loss of a sealed module at p0 through its leak, Pa/min (1 Pa/min).
+    leak_pa_per_min: NonNegative = 1.0
+    #: Largest thermal zero shift of a sensor, Pa/K (2 Pa/K: a total error band of 1 % of a
+    #: 10 kPa span over 0..50 degC).
+    sensor_tempco_pa_k: NonNegative = 2.0
+    #: Simulated time between two updates, s (1 s).
+    update_s: Positive = 1.0
 
     def __post_init__(self) -> None:
-        check_fields(
-            self,
-            "disturbance",
-            positive=("temperature_period_s", "creep_time_s", "update_s"),
-            non_negative=(
-                "temperature_amplitude_k",
-                "creep_fraction",
-                "leak_pa_per_min",
-                "sensor_tempco_pa_k",
-            ),
-        )
+        super().__post_init__()
         if self.creep_fraction >= 0.5:
             raise InputError(f"creep fraction must be below 0.5, got {self.creep_fraction!r}")
 

@@ -47,18 +47,12 @@ SPHERE_CONTACT_FRACTION = 0.5
 
 @dataclass(frozen=True)
 class PadSurface:
-    """Where the pad is sensitive.
+    """Where the pad is sensitive."""
 
-    Parameters
-    ----------
-    layout
-        Pad geometry (module pitch, rows, columns).
-    line_width_m
-        Width of the non-sensitive line between neighbouring modules, metres (the seam,
-        :data:`DEFAULT_LINE_WIDTH_M`; half of it also runs along the pad's outer border).
-    """
-
+    #: Pad geometry (module pitch, rows, columns).
     layout: PadLayout = field(default_factory=PadLayout)
+    #: Width of the non-sensitive line between neighbouring modules, metres (the seam,
+    #: :data:`DEFAULT_LINE_WIDTH_M`; half of it also runs along the pad's outer border).
     line_width_m: float = DEFAULT_LINE_WIDTH_M
 
     def __post_init__(self) -> None:
@@ -233,27 +227,18 @@ def to_pad_frame(points_obj: NDArray[np.float64], placement: Placement) -> NDArr
 
 @dataclass(frozen=True)
 class ObjectFootprint:
-    """An object's contact footprint on the pad and the modules its weight loads.
+    """An object's contact footprint on the pad and the modules its weight loads."""
 
-    Attributes
-    ----------
-    points_m
-        Pad-frame contact points that carry load, (n, 2), metres.
-    pressure_pa
-        Contact pressure q at each point, pascals (>= 0).
-    area_m2
-        Area each point represents, square metres.
-    module_index
-        0-based module of each point, -1 on a line.
-    weight_fraction
-        Fraction of the object's weight each module senses, shape (n_modules,); the rest is
-        carried by the lines.
-    """
-
+    #: Pad-frame contact points that carry load, (n, 2), metres.
     points_m: NDArray[np.float64]
+    #: Contact pressure q at each point, pascals (>= 0).
     pressure_pa: NDArray[np.float64]
+    #: Area each point represents, square metres.
     area_m2: NDArray[np.float64]
+    #: 0-based module of each point, -1 on a line.
     module_index: NDArray[np.int64]
+    #: Fraction of the object's weight each module senses, shape (n_modules,); the rest is
+    #: carried by the lines.
     weight_fraction: NDArray[np.float64]
 
 

@@ -24,27 +24,18 @@ _FROM_ABOVE = 0.7
 
 @dataclass(frozen=True)
 class GripperContacts:
-    """Where the gripper touches things at one instant (diagnostics of a trial).
+    """Where the gripper touches things at one instant (diagnostics of a trial)."""
 
-    Attributes
-    ----------
-    sole_on_modules
-        Per finger (right, left): module numbers the tip's sole presses, empty when none.
-    sole_on_lines_n
-        Per finger: vertical force of the sole on non-sensitive surfaces (lines, rim, table), N.
-    finger_on_object_n
-        Per finger: total contact force between the finger and any object, N.
-    finger_on_object_from_above
-        Per finger: True when the finger touches an object with a mostly vertical contact normal
-        (the jaw came down on the object instead of beside it).
-    palm_on_object_n
-        Contact force between the palm and any object, N.
-    """
-
+    #: Per finger (right, left): module numbers the tip's sole presses, empty when none.
     sole_on_modules: tuple[tuple[int, ...], tuple[int, ...]]
+    #: Per finger: vertical force of the sole on non-sensitive surfaces (lines, rim, table), N.
     sole_on_lines_n: tuple[float, float]
+    #: Per finger: total contact force between the finger and any object, N.
     finger_on_object_n: tuple[float, float]
+    #: Per finger: True when the finger touches an object with a mostly vertical contact normal
+    #: (the jaw came down on the object instead of beside it).
     finger_on_object_from_above: tuple[bool, bool]
+    #: Contact force between the palm and any object, N.
     palm_on_object_n: float
 
 

@@ -39,7 +39,7 @@ from dataclasses import dataclass
 from typing import Any, Protocol
 
 from softpad import thesis
-from softpad.errors import InputError, check_fields
+from softpad.errors import CheckedFields, InputError, Positive
 from softpad.layout import GripperSpec, PadLayout
 from softpad.sim._objects import PartSpec
 
@@ -51,87 +51,60 @@ GRAVITY_M_S2 = 9.81
 
 
 @dataclass(frozen=True)
-class PadPhysics:
-    """Physical parameters of the pad in the rigid-body world.
+class PadPhysics(CheckedFields, what="pad"):
+    """Physical parameters of the pad in the rigid-body world."""
 
-    Parameters
-    ----------
-    free_height_m
-        Height of an unloaded module top above the base at the inflating pressure, metres
-        (8.3 mm at p0 = 1.1 kPa from the FEM of the 45 x 45 x 1.5 mm layer; the thesis measures
-        about 9 mm, Section 6.3). The box replaces it with its own characteristic at run time
-        (see :meth:`MujocoWorld.step`).
-    sensitive_side_m
-        Side of the square base of a module's dome, metres: the chamber under it
-        (:data:`softpad.thesis.CHAMBER_SIDE_M`, the 45 mm acetate of Section 6.1.1), so
-        neighbouring domes meet at the seam (:data:`softpad.thesis.SEAM_WIDTH_M`). What a
-        contact on a dome squeezes is not set here: the world weights each contact force by
-        the FEM module response at its point (:class:`~softpad.sim.PadResponse`), which falls
-        to zero at the clamped edge.
-    line_height_m
-        Height of the non-sensitive lines and rim (the bonded silicone over the grid walls),
-        metres: one 1.5 mm layer over the base.
-    rim_m
-        Width of the non-sensitive silicone frame around the modules, metres.
-    distributed_stiffness_n_m
-        Vertical stiffness of a module top's slide joint under a load spread over it, N/m:
-        400 N/m, soft enough that an object sinks about 1 mm and rests on all the modules it
-        spans. The sealed chamber's own stiffness (with the FEM characteristic at 1.1 kPa a
-        newton on the central 30 x 30 mm patch lowers the top centre by 0.88 mm: about
-        1.1 kN/m) reaches MuJoCo through the box's module heights (see
-        :meth:`MujocoWorld.step`), not through this spring.
-    distributed_damping_n_s_m
-        Damping of that joint, N s/m: 20 N s/m, about twice the critical
-        2 sqrt(k (m + armature)) = 9.3 N s/m, so a load put on a module does not overshoot.
-    top_mass_kg
-        Moving mass of a module top, kg: the 1.5 mm EcoFlex layer over 45 x 45 mm at
-        1070 kg/m^3 (3.3 g) plus the carried air and a margin, 4.5 g.
-    top_armature_kg
-        Extra inertia of the top's slide joint (MuJoCo ``armature``), kg. Joint springs are
-        integrated explicitly; with the light top alone, a heavy object on it makes the
-        2 ms step unstable (a 300 g block bounces). 50 g brings sqrt(k/m) * dt to
-        0.33 and only slows the top's free response (period 37 ms).
-    dome_height_m
-        Height of the dome of a module top above its rim, metres. An inflated module is a
-        spherical cap (Section 6.1.2), so the top is a half-ellipsoid of semi-axes
-        (side/2, side/2, dome height): an object rests on the apexes, near the module centres
-        where the PCOM of Eq. 6.1 puts each module's share, and a fingertip that lands near
-        a line slides off a flank into the gap. 4 mm (about half the 8.3 mm height).
-    local_stiffness_n_m
-        Stiffness of the membrane under a small indenter (a fingertip), N/m. The thesis's FEM
-        (Fig. 6.3c) computes an equivalent stiffness k = F / (h_free - h_load) for a load on a
-        1 cm disc; a 0.5 N load at 1 kPa flattens most of the 8-9 mm dome, i.e. k of order
-        50-100 N/m; we take 80 N/m.
-    friction
-        Sliding friction coefficient of the silicone against objects (EcoFlex is grippy), -.
-    """
-
-    free_height_m: float = 8.3e-3
-    sensitive_side_m: float = thesis.CHAMBER_SIDE_M
-    line_height_m: float = 1.5e-3
+    #: Height of an unloaded module top above the base at the inflating pressure, metres
+    #: (8.3 mm at p0 = 1.1 kPa from the FEM of the 45 x 45 x 1.5 mm layer; the thesis measures
+    #: about 9 mm, Section 6.3). The box replaces it with its own characteristic at run time
+    #: (see :meth:`MujocoWorld.step`).
+    free_height_m: Positive = 8.3e-3
+    #: Side of the square base of a module's dome, metres: the chamber under it
+    #: (:data:`softpad.thesis.CHAMBER_SIDE_M`, the 45 mm acetate of Section 6.1.1), so
+    #: neighbouring domes meet at the seam (:data:`softpad.thesis.SEAM_WIDTH_M`). What a
+    #: contact on a dome squeezes is not set here: the world weights each contact force by
+    #: the FEM module response at its point (:class:`~softpad.sim.PadResponse`), which falls
+    #: to zero at the clamped edge.
+    sensitive_side_m: Positive = thesis.CHAMBER_SIDE_M
+    #: Height of the non-sensitive lines and rim (the bonded silicone over the grid walls),
+    #: metres: one 1.5 mm layer over the base.
+    line_height_m: Positive = 1.5e-3
+    #: Width of the non-sensitive silicone frame around the modules, metres.
     rim_m: float = 15e-3
-    distributed_stiffness_n_m: float = 400.0
+    #: Vertical stiffness of a module top's slide joint under a load spread over it, N/m:
+    #: 400 N/m, soft enough that an object sinks about 1 mm and rests on all the modules it
+    #: spans. The sealed chamber's own stiffness (with the FEM characteristic at 1.1 kPa a
+    #: newton on the central 30 x 30 mm patch lowers the top centre by 0.88 mm: about
+    #: 1.1 kN/m) reaches MuJoCo through the box's module heights (see
+    #: :meth:`MujocoWorld.step`), not through this spring.
+    distributed_stiffness_n_m: Positive = 400.0
+    #: Damping of that joint, N s/m: 20 N s/m, about twice the critical
+    #: 2 sqrt(k (m + armature)) = 9.3 N s/m, so a load put on a module does not overshoot.
     distributed_damping_n_s_m: float = 20.0
-    top_mass_kg: float = 4.5e-3
+    #: Moving mass of a module top, kg: the 1.5 mm EcoFlex layer over 45 x 45 mm at
+    #: 1070 kg/m^3 (3.3 g) plus the carried air and a margin, 4.5 g.
+    top_mass_kg: Positive = 4.5e-3
+    #: Extra inertia of the top's slide joint (MuJoCo ``armature``), kg. Joint springs are
+    #: integrated explicitly; with the light top alone, a heavy object on it makes the
+    #: 2 ms step unstable (a 300 g block bounces). 50 g brings sqrt(k/m) * dt to
+    #: 0.33 and only slows the top's free response (period 37 ms).
     top_armature_kg: float = 0.05
+    #: Height of the dome of a module top above its rim, metres. An inflated module is a
+    #: spherical cap (Section 6.1.2), so the top is a half-ellipsoid of semi-axes
+    #: (side/2, side/2, dome height): an object rests on the apexes, near the module centres
+    #: where the PCOM of Eq. 6.1 puts each module's share, and a fingertip that lands near
+    #: a line slides off a flank into the gap. 4 mm (about half the 8.3 mm height).
     dome_height_m: float = 4e-3
-    local_stiffness_n_m: float = 80.0
-    friction: float = 1.0
+    #: Stiffness of the membrane under a small indenter (a fingertip), N/m. The thesis's FEM
+    #: (Fig. 6.3c) computes an equivalent stiffness k = F / (h_free - h_load) for a load on a
+    #: 1 cm disc; a 0.5 N load at 1 kPa flattens most of the 8-9 mm dome, i.e. k of order
+    #: 50-100 N/m; we take 80 N/m.
+    local_stiffness_n_m: Positive = 80.0
+    #: Sliding friction coefficient of the silicone against objects (EcoFlex is grippy), -.
+    friction: Positive = 1.0
 
     def __post_init__(self) -> None:
-        check_fields(
-            self,
-            "pad",
-            positive=(
-                "free_height_m",
-                "sensitive_side_m",
-                "line_height_m",
-                "distributed_stiffness_n_m",
-                "top_mass_kg",
-                "local_stiffness_n_m",
-                "friction",
-            ),
-        )
+        super().__post_init__()
         if self.line_height_m >= self.free_height_m:
             raise InputError(
                 f"line height ({self.line_height_m * 1e3:g} mm) must be below the module "
@@ -169,57 +142,35 @@ def parse_mounting(text: str) -> tuple[float, float]:
 
 
 @dataclass(frozen=True)
-class MujocoGripper:
-    """Parallel-jaw gripper (Sawyer electric gripper of Section 6.3).
+class MujocoGripper(CheckedFields, what="gripper"):
+    """Parallel-jaw gripper (Sawyer electric gripper of Section 6.3)."""
 
-    Parameters
-    ----------
-    mounting
-        ``"10/4"``, ``"6/2"`` or ``"4/0"`` (Section 6.3), or any ``"MAX/MIN"``: maximum /
-        minimum opening in cm.
-    finger_length_m
-        From the palm to the lower face of the tips, metres (9.5 cm).
-    tip_thickness_m, tip_width_m
-        Tip size along and across the closing direction, metres: the planner's
-        :class:`softpad.layout.GripperSpec` (6.5 x 16 mm, the Sawyer gripper's basic hard tip;
-        sources in :mod:`softpad.thesis`), one set of figures for the planner, the analytic
-        world and this model (:meth:`from_spec`, :attr:`geometry`). Never changed to make a
-        trial pass: whether a tip over the seam between modules is sensed follows from
-        the pad's FEM response (:mod:`softpad.sim._response`), not from the tip size.
-    grip_force_n
-        Force limit of each jaw's servo, newtons (squeeze force once closed on an object).
-    servo_stiffness_n_m
-        Gain of the jaw position servo, N/m.
-    friction
-        Friction of the finger pads on objects, -.
-    sole_stroke_m
-        Travel of the tip's compliant sole before it bottoms out on the finger, metres.
-    """
-
+    #: ``"10/4"``, ``"6/2"`` or ``"4/0"`` (Section 6.3), or any ``"MAX/MIN"``: maximum /
+    #: minimum opening in cm.
     mounting: str = "10/4"
-    finger_length_m: float = thesis.FINGER_LENGTH_M
-    tip_thickness_m: float = thesis.FINGERTIP_THICKNESS_M
-    tip_width_m: float = thesis.FINGERTIP_WIDTH_M
-    grip_force_n: float = 20.0
-    servo_stiffness_n_m: float = 4000.0
-    friction: float = 0.8
-    sole_stroke_m: float = 25e-3
+    #: From the palm to the lower face of the tips, metres (9.5 cm).
+    finger_length_m: Positive = thesis.FINGER_LENGTH_M
+    #: Tip size along and across the closing direction, metres: the planner's
+    #: :class:`softpad.layout.GripperSpec` (6.5 x 16 mm, the Sawyer gripper's basic hard tip;
+    #: sources in :mod:`softpad.thesis`), one set of figures for the planner, the analytic
+    #: world and this model (:meth:`from_spec`, :attr:`geometry`). Never changed to make a
+    #: trial pass: whether a tip over the seam between modules is sensed follows from
+    #: the pad's FEM response (:mod:`softpad.sim._response`), not from the tip size.
+    tip_thickness_m: Positive = thesis.FINGERTIP_THICKNESS_M
+    #: Tip size across the closing direction, metres (16 mm; see ``tip_thickness_m``).
+    tip_width_m: Positive = thesis.FINGERTIP_WIDTH_M
+    #: Force limit of each jaw's servo, newtons (squeeze force once closed on an object).
+    grip_force_n: Positive = 20.0
+    #: Gain of the jaw position servo, N/m.
+    servo_stiffness_n_m: Positive = 4000.0
+    #: Friction of the finger pads on objects, -.
+    friction: Positive = 0.8
+    #: Travel of the tip's compliant sole before it bottoms out on the finger, metres.
+    sole_stroke_m: Positive = 25e-3
 
     def __post_init__(self) -> None:
         parse_mounting(self.mounting)
-        check_fields(
-            self,
-            "gripper",
-            positive=(
-                "finger_length_m",
-                "tip_thickness_m",
-                "tip_width_m",
-                "grip_force_n",
-                "servo_stiffness_n_m",
-                "friction",
-                "sole_stroke_m",
-            ),
-        )
+        super().__post_init__()
 
     @classmethod
     def from_spec(cls, spec: GripperSpec, **physics: Any) -> MujocoGripper:
@@ -325,25 +276,17 @@ def part_geom_xml(
 
 @dataclass(frozen=True)
 class ObjectModel:
-    """An object for the rigid-body world: a name and its parts (:class:`PartLike`).
+    """An object for the rigid-body world: a name and its parts (:class:`PartLike`)."""
 
-    Parameters
-    ----------
-    name
-        Unique name.
-    parts
-        Rigid primitives in the object frame.
-    friction
-        Sliding friction of the object's surface, -.
-    loose
-        Parts loosely tied together (the catalogue's ``loose_parts``, e.g. limes in a net):
-        each part after the first is a body of its own held to the first by a soft weld (a
-        net: about 3 mm of sag under a lime's weight), so a jaw can push it aside.
-    """
-
+    #: Unique name.
     name: str
+    #: Rigid primitives in the object frame.
     parts: tuple[PartLike, ...]
+    #: Sliding friction of the object's surface, -.
     friction: float = 0.8
+    #: Parts loosely tied together (the catalogue's ``loose_parts``, e.g. limes in a net):
+    #: each part after the first is a body of its own held to the first by a soft weld (a
+    #: net: about 3 mm of sag under a lime's weight), so a jaw can push it aside.
     loose: bool = False
 
     def __post_init__(self) -> None:

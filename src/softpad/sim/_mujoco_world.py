@@ -48,22 +48,17 @@ _LOWER_S = 1.0
 
 @dataclass(frozen=True)
 class ObjectPose:
-    """Pose of an object's frame in the pad frame.
+    """Pose of an object's frame in the pad frame."""
 
-    Attributes
-    ----------
-    x_m, y_m, z_m
-        Position of the object frame's origin, metres.
-    yaw_rad
-        Rotation about z, radians.
-    tilt_rad
-        Angle between the object's z axis and the vertical, radians.
-    """
-
+    #: Position of the object frame's origin, metres.
     x_m: float
+    #: Position of the object frame's origin, metres.
     y_m: float
+    #: Position of the object frame's origin, metres.
     z_m: float
+    #: Rotation about z, radians.
     yaw_rad: float
+    #: Angle between the object's z axis and the vertical, radians.
     tilt_rad: float
 
 

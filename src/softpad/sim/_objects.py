@@ -52,39 +52,26 @@ _AXES = ("x", "y", "z")
 
 @dataclass(frozen=True)
 class PartSpec:
-    """One rigid primitive of an object, in the object frame.
+    """One rigid primitive of an object, in the object frame."""
 
-    Parameters
-    ----------
-    shape
-        ``"box"``, ``"cylinder"`` or ``"sphere"``.
-    mass_kg
-        Mass of the part, kilograms.
-    pos_m
-        Centre of the part in the object frame (x, y, z), metres; z measured up from the plane
-        the object rests on.
-    yaw_rad
-        Rotation of the part about the object's z axis, radians.
-    size_m
-        Box only: full edge lengths (lx, ly, lz), metres.
-    radius_m
-        Cylinder and sphere: radius, metres.
-    length_m
-        Cylinder only: length along its axis, metres.
-    axis
-        Cylinder only: axis in the part frame, ``"x"``, ``"y"`` or ``"z"``.
-    name
-        Free label.
-    """
-
+    #: ``"box"``, ``"cylinder"`` or ``"sphere"``.
     shape: str
+    #: Mass of the part, kilograms.
     mass_kg: float
+    #: Centre of the part in the object frame (x, y, z), metres; z measured up from the plane
+    #: the object rests on.
     pos_m: tuple[float, float, float]
+    #: Rotation of the part about the object's z axis, radians.
     yaw_rad: float = 0.0
+    #: Box only: full edge lengths (lx, ly, lz), metres.
     size_m: tuple[float, float, float] | None = None
+    #: Cylinder and sphere: radius, metres.
     radius_m: float | None = None
+    #: Cylinder only: length along its axis, metres.
     length_m: float | None = None
+    #: Cylinder only: axis in the part frame, ``"x"``, ``"y"`` or ``"z"``.
     axis: str = "z"
+    #: Free label.
     name: str = ""
 
     def __post_init__(self) -> None:
@@ -146,18 +133,13 @@ class PartSpec:
 
 @dataclass(frozen=True)
 class Placement:
-    """Pose of an object frame on the pad (pad frame, DESIGN.md).
+    """Pose of an object frame on the pad (pad frame, DESIGN.md)."""
 
-    Parameters
-    ----------
-    x_m, y_m
-        Position of the object frame's origin, metres from the pad's bottom-left corner.
-    yaw_rad
-        Rotation about the pad's z axis, radians.
-    """
-
+    #: Position of the object frame's origin, metres from the pad's bottom-left corner.
     x_m: float
+    #: Position of the object frame's origin, metres from the pad's bottom-left corner.
     y_m: float
+    #: Rotation about the pad's z axis, radians.
     yaw_rad: float = 0.0
 
     def __post_init__(self) -> None:
@@ -168,37 +150,27 @@ class Placement:
 
 @dataclass(frozen=True)
 class ObjectSpec:
-    """An object of the catalogue.
+    """An object of the catalogue."""
 
-    Parameters
-    ----------
-    name
-        Unique name (``object-1`` .. ``object-6``, ``banana``, ...).
-    mass_kg
-        Total mass, kilograms (Table 6.1); equals the sum of the parts' masses.
-    parts
-        Rigid primitives in the object frame.
-    placement
-        Where the object is put on the pad.
-    expected_modules
-        Modules the thesis reports the object lying on (1-based).
-    gripper
-        Gripper mounting of Section 6.3, ``"10/4"``, ``"6/2"`` or ``"4/0"`` (max/min width, cm).
-    table_cog, table_theta
-        Planned grasp of Table 6.1 (module units, radians), or None.
-    description
-        Free text: what the object is and why its parts are as they are.
-    """
-
+    #: Unique name (``object-1`` .. ``object-6``, ``banana``, ...).
     name: str
+    #: Total mass, kilograms (Table 6.1); equals the sum of the parts' masses.
     mass_kg: float
+    #: Rigid primitives in the object frame.
     parts: tuple[PartSpec, ...]
+    #: Where the object is put on the pad.
     placement: Placement
+    #: Modules the thesis reports the object lying on (1-based).
     expected_modules: tuple[int, ...] = ()
+    #: Gripper mounting of Section 6.3, ``"10/4"``, ``"6/2"`` or ``"4/0"`` (max/min width, cm).
     gripper: str = "10/4"
+    #: Planned grasp of Table 6.1 (module units, radians), or None.
     table_cog: tuple[float, float] | None = None
+    #: Planned grasp of Table 6.1 (module units, radians), or None.
     table_theta: float | None = None
+    #: Free text: what the object is and why its parts are as they are.
     description: str = ""
+    #: Keys of the catalogue entry that are none of the fields above, kept as read.
     extra: dict[str, Any] = field(default_factory=dict, compare=False)
 
     def __post_init__(self) -> None:

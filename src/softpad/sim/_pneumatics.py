@@ -25,58 +25,36 @@ import numpy as np
 from numpy.typing import NDArray
 
 from softpad import thesis
-from softpad.errors import InputError, check_fields
+from softpad.errors import CheckedFields, InputError, Positive
 from softpad.sim._characteristic import ModuleCharacteristic
 
 
 @dataclass(frozen=True)
-class PneumaticParams:
-    """Parameters of the pneumatic channels.
+class PneumaticParams(CheckedFields, what="pneumatic"):
+    """Parameters of the pneumatic channels."""
 
-    Parameters
-    ----------
-    atmosphere_pa
-        Absolute atmospheric pressure, pascals.
-    air_density_kg_m3
-        Air density at atmospheric pressure and room temperature, kg/m^3.
-    tubing_volume_m3
-        Dead volume of the tube and valve manifold of one channel, m^3
-        (:data:`softpad.thesis.TUBING_VOLUME_M3`, 3.14 mL, the figure the FEM's sealed chamber
-        uses too).
-    supply_pa
-        Regulated supply gauge pressure, pascals (our choice: 10 kPa).
-    inflate_orifice_m2
-        Effective area Cd A of the inflation path, m^2 (about 2 mL/s from 10 kPa into a module
-        at 1 kPa: inflation to 1.1 kPa takes a few seconds, like Fig. 6.8).
-    deflate_orifice_m2
-        Effective area Cd A of the deflation path to atmosphere, m^2. Sized so that venting
-        beats a stuck-open inflation valve: with both open a module settles at
-        ``supply / (1 + (A_def / A_inf)^2)`` = 2.2 kPa, below the 3 kPa maximum.
-    laminar_pa
-        Pressure difference below which orifice flow turns linear, pascals.
-    """
-
-    atmosphere_pa: float = 101325.0
-    air_density_kg_m3: float = 1.204
-    tubing_volume_m3: float = thesis.TUBING_VOLUME_M3
+    #: Absolute atmospheric pressure, pascals.
+    atmosphere_pa: Positive = 101325.0
+    #: Air density at atmospheric pressure and room temperature, kg/m^3.
+    air_density_kg_m3: Positive = 1.204
+    #: Dead volume of the tube and valve manifold of one channel, m^3
+    #: (:data:`softpad.thesis.TUBING_VOLUME_M3`, 3.14 mL, the figure the FEM's sealed chamber
+    #: uses too).
+    tubing_volume_m3: Positive = thesis.TUBING_VOLUME_M3
+    #: Regulated supply gauge pressure, pascals (our choice: 10 kPa).
     supply_pa: float = 10.0e3
-    inflate_orifice_m2: float = 1.6e-8
-    deflate_orifice_m2: float = 3.0e-8
-    laminar_pa: float = 10.0
+    #: Effective area Cd A of the inflation path, m^2 (about 2 mL/s from 10 kPa into a module
+    #: at 1 kPa: inflation to 1.1 kPa takes a few seconds, like Fig. 6.8).
+    inflate_orifice_m2: Positive = 1.6e-8
+    #: Effective area Cd A of the deflation path to atmosphere, m^2. Sized so that venting
+    #: beats a stuck-open inflation valve: with both open a module settles at
+    #: ``supply / (1 + (A_def / A_inf)^2)`` = 2.2 kPa, below the 3 kPa maximum.
+    deflate_orifice_m2: Positive = 3.0e-8
+    #: Pressure difference below which orifice flow turns linear, pascals.
+    laminar_pa: Positive = 10.0
 
     def __post_init__(self) -> None:
-        check_fields(
-            self,
-            "pneumatic",
-            positive=(
-                "atmosphere_pa",
-                "air_density_kg_m3",
-                "tubing_volume_m3",
-                "inflate_orifice_m2",
-                "deflate_orifice_m2",
-                "laminar_pa",
-            ),
-        )
+        super().__post_init__()
         if not (math.isfinite(self.supply_pa) and 0 <= self.supply_pa <= 500e3):
             raise InputError(
                 f"supply pressure must be within 0..500 kPa, got {self.supply_pa / 1e3:g} kPa"

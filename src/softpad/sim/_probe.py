@@ -29,20 +29,13 @@ MAP_FOOTPRINT_STEP_M = 1e-3
 
 @dataclass(frozen=True)
 class ProbeResult:
-    """Pressure rise of every module under a probe block.
+    """Pressure rise of every module under a probe block."""
 
-    Attributes
-    ----------
-    reference_pa
-        Mean reading of every module before the block, Pa.
-    delta_pa
-        Mean reading with the block minus the reference, Pa (module order).
-    fem_delta_pa
-        The FEM's small-load prediction of the same rise (linear, no sensor), Pa.
-    """
-
+    #: Mean reading of every module before the block, Pa.
     reference_pa: NDArray[np.float64]
+    #: Mean reading with the block minus the reference, Pa (module order).
     delta_pa: NDArray[np.float64]
+    #: The FEM's small-load prediction of the same rise (linear, no sensor), Pa.
     fem_delta_pa: NDArray[np.float64]
 
 

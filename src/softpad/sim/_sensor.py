@@ -24,53 +24,32 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from softpad.errors import InputError, check_fields
+from softpad.errors import CheckedFields, InputError, NonNegative, Positive
 
 
 @dataclass(frozen=True)
-class SensorParams:
-    """Parameters of the channel pressure sensors and of the supply sensor.
+class SensorParams(CheckedFields, what="sensor"):
+    """Parameters of the channel pressure sensors and of the supply sensor."""
 
-    Parameters
-    ----------
-    noise_std_pa
-        Standard deviation of the white noise of one sample, pascals.
-    drift_std_pa
-        Stationary standard deviation of the slow drift, pascals.
-    drift_time_s
-        Correlation time of the drift, seconds.
-    quantization_pa
-        Resolution of the converter, pascals (0: none).
-    offset_std_pa
-        Standard deviation of the per-channel zero offset, pascals.
-    range_min_pa, range_max_pa
-        Readings saturate at these values, pascals.
-    supply_noise_std_pa
-        White noise of the supply-pressure sensor, pascals.
-    """
-
-    noise_std_pa: float = 8.0
-    drift_std_pa: float = 3.0
-    drift_time_s: float = 2.0
-    quantization_pa: float = 10e3 / 4096
-    offset_std_pa: float = 20.0
+    #: Standard deviation of the white noise of one sample, pascals.
+    noise_std_pa: NonNegative = 8.0
+    #: Stationary standard deviation of the slow drift, pascals.
+    drift_std_pa: NonNegative = 3.0
+    #: Correlation time of the drift, seconds.
+    drift_time_s: Positive = 2.0
+    #: Resolution of the converter, pascals (0: none).
+    quantization_pa: NonNegative = 10e3 / 4096
+    #: Standard deviation of the per-channel zero offset, pascals.
+    offset_std_pa: NonNegative = 20.0
+    #: Readings saturate at these values, pascals.
     range_min_pa: float = -2.0e3
+    #: Readings saturate at these values, pascals.
     range_max_pa: float = 10.0e3
-    supply_noise_std_pa: float = 20.0
+    #: White noise of the supply-pressure sensor, pascals.
+    supply_noise_std_pa: NonNegative = 20.0
 
     def __post_init__(self) -> None:
-        check_fields(
-            self,
-            "sensor",
-            positive=("drift_time_s",),
-            non_negative=(
-                "noise_std_pa",
-                "drift_std_pa",
-                "quantization_pa",
-                "offset_std_pa",
-                "supply_noise_std_pa",
-            ),
-        )
+        super().__post_init__()
         if not self.range_min_pa < self.range_max_pa:
             raise InputError("sensor range_min_pa must be below range_max_pa")
 

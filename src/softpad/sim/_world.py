@@ -36,24 +36,17 @@ from softpad.sim._response import ModuleResponse, PadResponse
 
 @dataclass(frozen=True)
 class GripperState:
-    """Kinematic state of the parallel-jaw gripper, pad frame.
+    """Kinematic state of the parallel-jaw gripper, pad frame."""
 
-    Parameters
-    ----------
-    x_m, y_m
-        Position of the gripper's centre (between the fingertips), metres.
-    z_m
-        Height of the fingertips' lower faces above the pad base, metres.
-    yaw_rad
-        Direction in which the jaws close, from the pad x axis (theta of the planner), radians.
-    width_m
-        Distance between the inner faces of the fingertips, metres.
-    """
-
+    #: Position of the gripper's centre (between the fingertips), metres.
     x_m: float
+    #: Position of the gripper's centre (between the fingertips), metres.
     y_m: float
+    #: Height of the fingertips' lower faces above the pad base, metres.
     z_m: float
+    #: Direction in which the jaws close, from the pad x axis (theta of the planner), radians.
     yaw_rad: float
+    #: Distance between the inner faces of the fingertips, metres.
     width_m: float
 
 

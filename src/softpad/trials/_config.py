@@ -14,48 +14,35 @@ from softpad.errors import InputError
 class TrialConfig:
     """Parameters of a trial: the loop's :class:`~softpad.control.ExecutionParams` and what
     the simulated lab adds (placement noise, box settings).
-
-    Parameters
-    ----------
-    execution
-        The loop's parameters (:func:`trial_execution_params` by default: the thesis's, with the
-        trial's travel motions and a fault limit near the sensor's full scale).
-    position_sigma_m
-        Standard deviation of the random shift of the object's placement in x and y, metres:
-        3 mm. The seed says the objects were placed by hand, "randomly ... similarly to
-        Fig. 6.10" (Section 6.3), and gives no spread; 3 mm is about what placing an object by
-        eye on a marked spot achieves, a tenth of a Duplo brick's width. With 3 mm and 3 deg,
-        95 % of placements lie within 7 mm and 6 deg of the nominal one.
-    yaw_sigma_rad
-        Standard deviation of the random rotation of the placement, radians (3 degrees: an
-        object laid along a module edge by eye).
-    inflated_start
-        Start with the modules already near p0 (as between trials of a session) instead of
-        deflated; the adjustment to p0 within t_adj and the reference capture always run.
-    sample_rate_hz
-        Box sample rate, hertz.
-    noise
-        Sensor noise on (the box's defaults, like Fig. 6.8) or off.
-    record_trace
-        Keep every frame and event in a :class:`softpad.record.RunLog`.
-    record_path
-        Record the trial as MCAP into this file (:class:`softpad.record.McapRecorder`;
-        overwritten: the caller checks it first, see :func:`softpad.trials.trial_recording_path`).
-    planner
-        Planner by name (:data:`softpad.planning.PLANNERS`), given the trial's gripper.
-    detector
-        Contact detector by name (:data:`softpad.sensing.CONTACT_DETECTORS`).
     """
 
+    #: The loop's parameters (:func:`trial_execution_params` by default: the thesis's, with the
+    #: trial's travel motions and a fault limit near the sensor's full scale).
     execution: ExecutionParams = field(default_factory=lambda: trial_execution_params())
+    #: Standard deviation of the random shift of the object's placement in x and y, metres:
+    #: 3 mm. The seed says the objects were placed by hand, "randomly ... similarly to
+    #: Fig. 6.10" (Section 6.3), and gives no spread; 3 mm is about what placing an object by
+    #: eye on a marked spot achieves, a tenth of a Duplo brick's width. With 3 mm and 3 deg,
+    #: 95 % of placements lie within 7 mm and 6 deg of the nominal one.
     position_sigma_m: float = 3e-3
+    #: Standard deviation of the random rotation of the placement, radians (3 degrees: an
+    #: object laid along a module edge by eye).
     yaw_sigma_rad: float = math.radians(3.0)
+    #: Start with the modules already near p0 (as between trials of a session) instead of
+    #: deflated; the adjustment to p0 within t_adj and the reference capture always run.
     inflated_start: bool = True
+    #: Box sample rate, hertz.
     sample_rate_hz: float = 100.0
+    #: Sensor noise on (the box's defaults, like Fig. 6.8) or off.
     noise: bool = True
+    #: Keep every frame and event in a :class:`softpad.record.RunLog`.
     record_trace: bool = False
+    #: Record the trial as MCAP into this file (:class:`softpad.record.McapRecorder`;
+    #: overwritten: the caller checks it first, see :func:`softpad.trials.trial_recording_path`).
     record_path: str | None = None
+    #: Planner by name (:data:`softpad.planning.PLANNERS`), given the trial's gripper.
     planner: str = "thesis"
+    #: Contact detector by name (:data:`softpad.sensing.CONTACT_DETECTORS`).
     detector: str = "thesis"
 
     def __post_init__(self) -> None:

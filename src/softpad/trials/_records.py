@@ -62,69 +62,46 @@ FAILURE_CAUSES = (
 
 @dataclass(frozen=True)
 class TrialResult:
-    """Outcome of one grasp trial.
+    """Outcome of one grasp trial."""
 
-    Attributes
-    ----------
-    object
-        Catalogue name.
-    trial
-        0-based trial number of this object.
-    seed
-        Seed of this trial's random placement (derived from the experiment seed).
-    placement
-        Where the object was put: (x_m, y_m, yaw_rad), pad frame.
-    mounting
-        Gripper mounting (``"10/4"``, ``"6/2"``, ``"4/0"``).
-    success
-        The object was held at the end of the 15 s hold.
-    cause
-        One of :data:`FAILURE_CAUSES` for a failure, None for a success.
-    modules
-        Modules the planner saw the object on.
-    increments_pa
-        Pressure increment of every module after the object settled (mean of 10 reads minus
-        the reference), pascals.
-    cog
-        Planned centre of grasp, module units, or None.
-    theta
-        Planned direction of grasp, radians, or None.
-    opening_m
-        Jaw opening during the approach, metres.
-    contact_detected
-        The pad sensed the fingers (filtered increment above t_g) during the descent.
-    contact_delay_s
-        From the first touch of a fingertip to the detection, seconds (None if either missing).
-    finger_travel_mm
-        Descent of the fingers between first touch and stop, millimetres (None if no touch).
-    cog_outside_object_mm
-        Distance of the planned COG from the object's footprint, millimetres (0 on it).
-    sim_time_s
-        Simulated duration of the trial, seconds.
-    wall_time_s
-        Wall-clock duration, seconds.
-    detail
-        Free text: what happened.
-    """
-
+    #: Catalogue name.
     object: str
+    #: 0-based trial number of this object.
     trial: int
+    #: Seed of this trial's random placement (derived from the experiment seed).
     seed: int
+    #: Where the object was put: (x_m, y_m, yaw_rad), pad frame.
     placement: tuple[float, float, float]
+    #: Gripper mounting (``"10/4"``, ``"6/2"``, ``"4/0"``).
     mounting: str
+    #: The object was held at the end of the 15 s hold.
     success: bool
+    #: One of :data:`FAILURE_CAUSES` for a failure, None for a success.
     cause: str | None
+    #: Modules the planner saw the object on.
     modules: tuple[int, ...] = ()
+    #: Pressure increment of every module after the object settled (mean of 10 reads minus
+    #: the reference), pascals.
     increments_pa: tuple[float, ...] = ()
+    #: Planned centre of grasp, module units, or None.
     cog: tuple[float, float] | None = None
+    #: Planned direction of grasp, radians, or None.
     theta: float | None = None
+    #: Jaw opening during the approach, metres.
     opening_m: float = 0.0
+    #: The pad sensed the fingers (filtered increment above t_g) during the descent.
     contact_detected: bool = False
+    #: From the first touch of a fingertip to the detection, seconds (None if either missing).
     contact_delay_s: float | None = None
+    #: Descent of the fingers between first touch and stop, millimetres (None if no touch).
     finger_travel_mm: float | None = None
+    #: Distance of the planned COG from the object's footprint, millimetres (0 on it).
     cog_outside_object_mm: float | None = None
+    #: Simulated duration of the trial, seconds.
     sim_time_s: float = 0.0
+    #: Wall-clock duration, seconds.
     wall_time_s: float = 0.0
+    #: Free text: what happened.
     detail: str = ""
 
     def __post_init__(self) -> None:
@@ -165,36 +142,24 @@ class TrialResult:
 
 @dataclass(frozen=True)
 class ObjectSummary:
-    """Trials of one object, next to the thesis's Table 6.1 entry.
+    """Trials of one object, next to the thesis's Table 6.1 entry."""
 
-    Attributes
-    ----------
-    name
-        Catalogue name.
-    mass_g
-        Mass, grams.
-    trials
-        Number of trials.
-    successes
-        Number of successful trials.
-    failures
-        Count of each failure cause that occurred.
-    representative
-        The plan of the first trial with one: (x_COG, y_COG, theta), module units and radians.
-    planned
-        The predicted grasp over all trials: the trials' most frequent theta and the median
-        x_COG and y_COG of the trials that planned it, or None when no trial planned.
-    theta_share
-        Fraction of the planned trials whose theta is that most frequent one.
-    """
-
+    #: Catalogue name.
     name: str
+    #: Mass, grams.
     mass_g: float
+    #: Number of trials.
     trials: int
+    #: Number of successful trials.
     successes: int
+    #: Count of each failure cause that occurred.
     failures: dict[str, int]
+    #: The plan of the first trial with one: (x_COG, y_COG, theta), module units and radians.
     representative: tuple[float, float, float] | None
+    #: The predicted grasp over all trials: the trials' most frequent theta and the median
+    #: x_COG and y_COG of the trials that planned it, or None when no trial planned.
     planned: tuple[float, float, float] | None = None
+    #: Fraction of the planned trials whose theta is that most frequent one.
     theta_share: float | None = None
 
     @property
@@ -275,30 +240,22 @@ def _predicted_grasp(
 
 @dataclass(frozen=True)
 class ExperimentResult:
-    """All trials of an experiment (Experiment 2 of Section 6.3 by default).
+    """All trials of an experiment (Experiment 2 of Section 6.3 by default)."""
 
-    Attributes
-    ----------
-    trials
-        Every trial, ordered by object (catalogue order) and trial number.
-    seed
-        Experiment seed.
-    masses_g
-        Mass of each object, grams.
-    wall_time_s
-        Wall-clock time of the whole experiment, seconds.
-    workers
-        Worker processes used.
-    seeds
-        Experiment seeds pooled into this result (:meth:`pooled`); ``(seed,)`` by default.
-    """
-
+    #: Every trial, ordered by object (catalogue order) and trial number.
     trials: tuple[TrialResult, ...]
+    #: Experiment seed.
     seed: int
+    #: Mass of each object, grams.
     masses_g: dict[str, float] = field(default_factory=dict)
+    #: Wall-clock time of the whole experiment, seconds.
     wall_time_s: float = 0.0
+    #: Worker processes used.
     workers: int = 1
+    #: Experiment seeds pooled into this result (:meth:`pooled`); ``(seed,)`` by default.
     seeds: tuple[int, ...] = ()
+    #: Placement noise of the trials: ``position_sigma_mm`` (millimetres) and ``yaw_sigma_deg``
+    #: (degrees).
     placement_noise: dict[str, float] = field(default_factory=dict)
 
     @classmethod
