@@ -21,9 +21,9 @@ _EPILOG = """examples:
   softpad design --example thesis-set --quick --scheduler tcp://127.0.0.1:8786
 
 Every design: the module's finite-element response at p0 (height, sealed-chamber rise per newton,
-minimum detectable mass at t_o = 0.05 kPa), then the object set's grasp trials on the simulated
+minimum detectable mass at the object threshold t_o), then the object set's grasp trials on the simulated
 box over the analytic world with that response. The thesis's pad (2x3, 45 mm, 1.5 mm
-neo-Hookean, 1.1 kPa) is always the baseline row. Tasks run on Dask: a local cluster on
+neo-Hookean, the thesis's p0) is always the baseline row. Tasks run on Dask: a local cluster on
 127.0.0.1 by default, or the scheduler given; finished tasks are cached (--cache), so a
 sweep that was interrupted resumes.
 """

@@ -83,7 +83,8 @@ def check_threshold(threshold_pa: float, name: str = "threshold", positive: bool
     if 0.0 < t < SMALLEST_PLAUSIBLE_INCREMENT_PA:
         raise InputError(
             f"{name} is {t:g} Pa, under the sensor's resolution: were kPa given as pascals? "
-            "(thresholds are in Pa, e.g. 50 for the thesis's 0.05 kPa)"
+            f"(thresholds are in Pa, e.g. {thesis.OBJECT_THRESHOLD_PA:g} for the thesis's t_o of "
+            f"{thesis.OBJECT_THRESHOLD_PA / 1e3:g} kPa)"
         )
     return t
 
