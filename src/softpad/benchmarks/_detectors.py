@@ -5,7 +5,8 @@ the thesis detector's at the same sample rate, with zero false alarms over 10 si
 of an idle pad with sensor noise and drift and the slow disturbances of a real pad on (room
 temperature swing, membrane creep, a small leak, the sensors' thermal zero shift:
 ``sim://?disturbances=1``, docs/box-and-simulator.md). The CUSUM's thresholds are re-calibrated
-here on 10 idle hours of seed 7 (``CUSUM_CALIBRATIONS``); the false alarms are counted on seed 8.
+here on 10 idle hours of seed 7 (the shipped ``CUSUM_CALIBRATIONS`` also cover a loaded pad);
+the false alarms are counted on seed 8.
 """
 
 from __future__ import annotations
@@ -53,15 +54,13 @@ def _calibration(rate_hz: int, hours: float) -> BenchResult:
     cal = calibrate_cusum(idle - idle[:10].mean(axis=0), rate_hz)
     shipped = next(c for c in CUSUM_CALIBRATIONS if c.sample_rate_hz == rate_hz)
     return BenchResult(
-        f"CUSUM thresholds at {rate_hz} Hz, one false alarm per 1000 idle hours",
+        f"CUSUM threshold at {rate_hz} Hz from an idle pad, one false alarm per 1000 h",
         cal.single.threshold_pa,
         "Pa",
-        target=f"shipped {shipped.single.threshold_pa:g} / {shipped.pair.threshold_pa:g} Pa",
-        met=cal.single.threshold_pa <= shipped.single.threshold_pa + 0.1
-        and cal.pair.threshold_pa <= shipped.pair.threshold_pa + 0.1,
-        detail=f"single {cal.single.threshold_pa:.1f} Pa (tail {cal.single.tail_pa:.2f}), pair "
-        f"{cal.pair.threshold_pa:.1f} Pa (tail {cal.pair.tail_pa:.2f}); {hours:g} h idle at "
-        f"{rate_hz} Hz, seed 7, disturbances on",
+        target=f"<= shipped {shipped.single.threshold_pa:g} Pa (idle and loaded pad)",
+        met=cal.single.threshold_pa <= shipped.single.threshold_pa + 0.1,
+        detail=f"allowance {cal.single.drift_pa:g} Pa, tail {cal.single.tail_pa:.2f} Pa; "
+        f"{hours:g} h idle at {rate_hz} Hz, seed 7, disturbances on",
     )
 
 
