@@ -10,6 +10,7 @@ import pytest
 from softpad.errors import InputError
 from softpad.sensing import (
     CUSUM_CALIBRATIONS,
+    CusumCalibration,
     CusumContactDetector,
     CusumLimit,
     ThesisContactDetector,
@@ -146,11 +147,14 @@ def test_thresholds_follow_the_sample_rate_and_the_pad_size() -> None:
         c100.single.threshold_pa + c100.single.tail_pa * math.log(5.0)
     )
     assert cusum_for_rate(50.0).single == c100.single  # never lowered for a slower box
-    big = cusum_for_rate(100.0, modules=16)  # 120 pairs instead of 15
-    assert big.pair is not None
-    assert big.pair.threshold_pa == pytest.approx(
-        c100.pair.threshold_pa + c100.pair.tail_pa * math.log(120 / 15)
+    big = cusum_for_rate(100.0, modules=16)
+    assert big.single.threshold_pa == pytest.approx(
+        c100.single.threshold_pa + c100.single.tail_pa * math.log(16 / 6)
     )
+    with_pairs = CusumCalibration(100.0, 6, c100.single, CusumLimit(40.0, 80.0, 5.0), 1e3, 10.0)
+    _, pair = with_pairs.limits_for(100.0, 16)  # 120 pairs instead of 15
+    assert pair is not None
+    assert pair.threshold_pa == pytest.approx(80.0 + 5.0 * math.log(120 / 15))
 
 
 def test_bad_names_and_values_are_refused() -> None:
