@@ -5,8 +5,9 @@ written with ``mcap`` and ``mcap-ros2-support``, so ``ros2 bag info``, Foxglove,
 ``rosbags`` open it without SoftPad. Every message carries two clocks: the header stamp is the
 box's time (:attr:`PressureFrame.t_s`), the MCAP ``log_time`` is the wall clock (UNIX ns).
 
-Crash safety: the writer closes its chunk and flushes the file whenever :data:`FLUSH_PERIOD_S`
-of wall time has passed since the last flush, so a ``kill -9`` loses at most that much;
+Crash safety: the writer closes its chunk and flushes the file with the first message written
+after :data:`FLUSH_PERIOD_S` of wall time since the last flush, so a ``kill -9`` loses at most
+that much plus one interval between messages (a frame period);
 :func:`softpad.record.recover` (run by ``softpad log``) rewrites such a file with an index.
 """
 
