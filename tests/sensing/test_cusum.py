@@ -135,6 +135,10 @@ def test_short_idle_recordings_are_refused() -> None:
         calibrate_cusum(np.zeros((100, 6)), 100.0)
     with pytest.raises(InputError, match="hours per false alarm"):
         calibrate_cusum(np.zeros((100, 6)), 100.0, hours_per_alarm=0.0)
+    with pytest.raises(InputError, match=r"sample rate must be a number of Hz > 0, got 0\.0"):
+        calibrate_cusum(np.zeros((100, 6)), 0.0)
+    with pytest.raises(InputError, match=r"shape \(frames, modules\), got \(100,\)"):
+        calibrate_cusum(np.zeros(100), 100.0)
 
 
 def test_thresholds_follow_the_sample_rate_and_the_pad_size() -> None:

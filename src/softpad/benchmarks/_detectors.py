@@ -43,15 +43,16 @@ def _calibration(rate_hz: int, hours: float) -> BenchResult:
     import numpy as np
 
     from softpad.box import open_box
-    from softpad.sensing import CUSUM_CALIBRATIONS, calibrate_cusum
+    from softpad.sensing import CUSUM_CALIBRATIONS, calibrate_cusum, capture_reference
     from softpad.trials import IDLE_BOX
 
     with open_box(IDLE_BOX.format(rate=rate_hz, seed=7)) as box:
+        reference = capture_reference([f.pressures_pa[:6] for f in box.read_many(10)])
         frames = round(hours * 3600 * rate_hz)
         idle = np.empty((frames, 6), dtype=np.float32)
         for k in range(frames):
             idle[k] = box.read().pressures_pa[:6]
-    cal = calibrate_cusum(idle - idle[:10].mean(axis=0), rate_hz)
+    cal = calibrate_cusum(idle - reference.astype(np.float32), rate_hz)
     shipped = next(c for c in CUSUM_CALIBRATIONS if c.sample_rate_hz == rate_hz)
     return BenchResult(
         f"CUSUM threshold at {rate_hz} Hz from an idle pad, one false alarm per 1000 h",

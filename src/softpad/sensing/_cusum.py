@@ -315,7 +315,11 @@ def calibrate_cusum(
     """
     if not (math.isfinite(hours_per_alarm) and hours_per_alarm > 0):
         raise InputError(f"hours per false alarm must be > 0, got {hours_per_alarm!r}")
+    if not (math.isfinite(sample_rate_hz) and sample_rate_hz > 0):
+        raise InputError(f"sample rate must be a number of Hz > 0, got {sample_rate_hz!r}")
     x = np.asarray(idle_increments_pa)
+    if x.ndim != 2 or x.shape[0] == 0:
+        raise InputError(f"idle increments must have shape (frames, modules), got {x.shape}")
     hours = x.shape[0] / sample_rate_hz / 3600.0
     samples = max(1.0, baseline_time_s * sample_rate_hz)
     state, peaks, pair_peaks = _IdleState(x.shape[1]), [], []
