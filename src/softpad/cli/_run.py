@@ -112,8 +112,9 @@ def add_part_options(p: argparse.ArgumentParser) -> None:
         "--detector",
         choices=CONTACT_DETECTORS,
         default="thesis",
-        help="contact detector: the thesis's running average above t_g, or cusum (calibrated "
-        "for the box's sample rate) (default %(default)s)",
+        help="contact detector: the thesis's running average above t_g, cusum (calibrated "
+        "for the box's sample rate) or adaptive (a CUSUM whose allowance follows each "
+        "module's own motion: objects rocking on the pad) (default %(default)s)",
     )
 
 

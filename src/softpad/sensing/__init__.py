@@ -5,6 +5,13 @@ Thesis symbols (values in :mod:`softpad.thesis`): t_o (object threshold), t_g (c
 running average of 10 samples, reference = mean of 10 reads (seed, Sections 6.2.1.1 and 6.3).
 """
 
+from softpad.sensing._adaptive import (
+    ADAPTIVE_CALIBRATIONS,
+    AdaptiveCusumDetector,
+    AdaptiveParams,
+    adaptive_for_rate,
+    calibrate_adaptive,
+)
 from softpad.sensing._contact import (
     ContactDetector,
     LatchingContactDetector,
@@ -35,11 +42,14 @@ from softpad.sensing._objects import (
 )
 
 __all__ = [
+    "ADAPTIVE_CALIBRATIONS",
     "CONTACT_DETECTORS",
     "CUSUM_CALIBRATIONS",
     "DEFAULT_BASELINE_TIME_S",
     "DEFAULT_CONTACT_THRESHOLD_PA",
     "DEFAULT_OBJECT_THRESHOLD_PA",
+    "AdaptiveCusumDetector",
+    "AdaptiveParams",
     "ContactDetector",
     "CusumCalibration",
     "CusumContactDetector",
@@ -49,6 +59,8 @@ __all__ = [
     "RunningAverage",
     "ThesisContactDetector",
     "ThesisObjectDetector",
+    "adaptive_for_rate",
+    "calibrate_adaptive",
     "calibrate_cusum",
     "capture_reference",
     "count_alarms",

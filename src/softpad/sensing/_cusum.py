@@ -335,21 +335,26 @@ def calibrate_cusum(
 
 
 #: Contact detectors by name (``--detector``).
-CONTACT_DETECTORS = ("thesis", "cusum")
+CONTACT_DETECTORS = ("thesis", "cusum", "adaptive")
 
 
 def make_contact_detector(
     name: str, sample_rate_hz: float = 100.0, modules: int = 6
 ) -> ContactDetector:
     """A contact detector by name for a pad of ``modules`` modules on a box sampling at
-    ``sample_rate_hz``: ``thesis`` (10-sample average above t_g) or ``cusum`` (calibrated
-    for the rate and size)."""
+    ``sample_rate_hz``: ``thesis`` (10-sample average above t_g), ``cusum`` (calibrated
+    for the rate and size) or ``adaptive`` (the CUSUM whose allowance follows each module's
+    own motion, :class:`softpad.sensing.AdaptiveCusumDetector`)."""
     from softpad.sensing._contact import ThesisContactDetector
 
     if name == "thesis":
         return ThesisContactDetector()
     if name == "cusum":
         return cusum_for_rate(sample_rate_hz, modules)
+    if name == "adaptive":
+        from softpad.sensing._adaptive import adaptive_for_rate
+
+        return adaptive_for_rate(sample_rate_hz, modules)
     raise InputError(
         f"unknown contact detector {name!r}; use one of {', '.join(CONTACT_DETECTORS)}"
     )

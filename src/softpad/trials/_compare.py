@@ -17,7 +17,7 @@ from softpad.trials._records import TrialResult
 from softpad.trials._runner import run_experiment
 
 #: The pairs ``softpad compare`` runs by default: the thesis's and the best found here.
-DEFAULT_PAIRS = (("thesis", "thesis"), ("gripper-aware", "cusum"))
+DEFAULT_PAIRS = (("thesis", "thesis"), ("gripper-aware", "adaptive"))
 
 
 def wilson_interval(successes: int, trials: int) -> tuple[float, float]:
