@@ -118,11 +118,12 @@ def test_failed_run_still_saves_its_recording(capsys, tmp_path) -> None:
 
 
 @pytest.mark.parametrize(
-    ("detector", "outcome"), [("thesis", "contact_not_detected"), ("cusum", "held")]
+    ("detector", "outcome"),
+    [("thesis", "contact_not_detected"), ("cusum", "held"), ("adaptive", "held")],
 )
 def test_run_detector_by_name(cli, detector: str, outcome: str) -> None:
     """Object 1, seed 2, 100 Hz: a fingertip lands where the thesis's 10-sample average stays
-    under t_g; the calibrated CUSUM (chosen with --detector) sees the touch."""
+    under t_g; the calibrated CUSUMs (chosen with --detector) see the touch."""
     code, out, _ = cli(
         "run", "--objects", "object-1", "--hold-s", "0", "--box", "sim://?seed=2",
         "--detector", detector, "--json",
@@ -130,7 +131,7 @@ def test_run_detector_by_name(cli, detector: str, outcome: str) -> None:
     assert code == (0 if outcome == "held" else 1)  # a grasp not held exits 1
     d = json.loads(out)
     assert d["outcome"] == outcome
-    assert (d["contact_delay_s"] is not None) == (detector == "cusum")
+    assert (d["contact_delay_s"] is not None) == (detector != "thesis")
 
 
 def test_run_planner_by_name_moves_the_seam_grasp(cli) -> None:

@@ -29,7 +29,7 @@ def test_compare_json_has_every_pair_and_object(capsys: pytest.CaptureFixture[st
     d = json.loads(capsys.readouterr().out)
     assert d["schema_version"] >= 2 and d["seeds"] == [0]
     pairs = [(c["planner"], c["detector"]) for c in d["combinations"]]
-    assert pairs == [("thesis", "thesis"), ("gripper-aware", "cusum")]
+    assert pairs == [("thesis", "thesis"), ("gripper-aware", "adaptive")]
     for c in d["combinations"]:
         assert c["trials"] == 1 and c["successes"] in (0, 1)
         lo, hi = c["success_interval"]
