@@ -39,7 +39,7 @@ def register(sub: Any) -> None:
         "--pair",
         action="append",
         metavar="PLANNER:DETECTOR",
-        help="a pair to run (repeatable; default thesis:thesis and gripper-aware:cusum)",
+        help="a pair to run (repeatable; default thesis:thesis and gripper-aware:adaptive)",
     )
     p.add_argument("--idle-hours", type=float, default=1.0, help="idle time for false alarms")
     p.add_argument("--png", metavar="FILE.png", help="draw success and delay per pair")
