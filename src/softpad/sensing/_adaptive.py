@@ -32,7 +32,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from softpad.errors import CheckedFields, InputError, NonNegative, Positive
 from softpad.sensing._contact import LatchingContactDetector
-from softpad.sensing._cusum import CusumLimit, excursion_peaks, fit_limit
+from softpad.sensing._cusum import CusumLimit, _checked, excursion_peaks, fit_limit
 
 
 @dataclass(frozen=True)
@@ -76,10 +76,7 @@ class AdaptiveCusumDetector(LatchingContactDetector):
         super().__init__()
         if not (math.isfinite(sample_rate_hz) and sample_rate_hz > 0):
             raise InputError(f"sample rate must be a number of Hz > 0, got {sample_rate_hz!r}")
-        for name, v in (("drift", limit.drift_pa), ("threshold", limit.threshold_pa)):
-            if not (math.isfinite(v) and v > 0):
-                raise InputError(f"adaptive CUSUM {name} must be a number of Pa > 0, got {v!r}")
-        self.limit, self.params = limit, params or AdaptiveParams()
+        self.limit, self.params = _checked(limit, "adaptive "), params or AdaptiveParams()
         p, f = self.params, sample_rate_hz
         self._gain = 1.0 / max(1.0, p.baseline_time_s * f)
         self._smooth = max(1, round(p.smoothing_s * f))
