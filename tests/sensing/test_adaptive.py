@@ -100,7 +100,7 @@ def test_the_envelope_is_read_late_so_a_rise_cannot_raise_its_own_allowance() ->
     """A 200 Pa step at frame 40 on a quiet module: for the lag (5 frames at 100 Hz) the
     envelope stays at the starting one (held while the 35-frame window fills, then fading
     in 0.25 s); the frame after, it takes the step's size."""
-    det = AdaptiveCusumDetector(CusumLimit(15.0, 1e6), 100.0, AdaptiveParams())
+    det = AdaptiveCusumDetector(CusumLimit(15.0, 9e3), 100.0, AdaptiveParams())  # never fires
     det.reset(np.zeros(6))
     decay = math.exp(-1.0 / 25.0)
     for _ in range(40):
