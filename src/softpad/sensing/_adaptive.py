@@ -82,6 +82,7 @@ class AdaptiveCusumDetector(LatchingContactDetector):
         self._smooth = max(1, round(p.smoothing_s * f))
         self._lag = max(1, round(p.envelope_lag_s * f))
         self._hold = max(1, round(p.envelope_hold_s * f))
+        self._window = np.arange(self._hold)  # offsets of the hold window from the oldest |s|
         self._decay = math.exp(-1.0 / max(1.0, p.envelope_time_s * f))
         self._restart(0)
 
@@ -113,7 +114,7 @@ class AdaptiveCusumDetector(LatchingContactDetector):
         s = self._sum / self._smooth
         self._past[self._k % n] = np.abs(s)
         self._k += 1
-        window = (self._k + np.arange(self._hold)) % n  # the hold window, lag frames back
+        window = (self._k + self._window) % n  # the hold window, lag frames back
         if self._k > n:  # the window has seen the module: the starting envelope fades
             self._start *= self._decay
         self._env = np.maximum(self._start, self._past[window].max(axis=0))
