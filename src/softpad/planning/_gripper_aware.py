@@ -9,9 +9,17 @@ the thesis's direction), and takes the best by the score
     score = sensed response of the better-placed fingertip - shift_cost * shift / max_shift
             - turn_cost * |turn| / max_turn
 
+            + load_cost * dP of the module under the centre / the object's largest dP
+
 among those whose centre stays on the object's modules, with a penalty of 1 when the object's
 extent estimated from the pad (its modules' outline, projected on the closing direction) is
-wider than the jaws open.
+wider than the jaws open. The load term sends a shift towards where the object's weight lies
+(a V-shaped toy's body, not its light arms across the seam).
+
+Objects are outlined at the pad's noise floor before planning
+(:func:`softpad.sensing.outline_objects`): a module next to an object whose increment is above
+the outline threshold (25 Pa) but under t_o joins it, so a banana whose middle stays under t_o
+is one object, not two ends planned apart.
 """
 
 from __future__ import annotations
@@ -28,6 +36,8 @@ from softpad.layout import GripperSpec, PadLayout
 from softpad.planning._params import PlannerParams
 from softpad.planning._plan import ThesisPlanner
 from softpad.planning._records import GraspPlan
+from softpad.sensing import DEFAULT_OUTLINE_THRESHOLD_PA, outline_objects
+from softpad.sensing._objects import check_increments
 
 #: Width of the bonded, non-sensitive seam between two chambers, m. A pad specification
 #: (measured on the pad; the simulated MuJoCo pad has 5 mm), not a thesis number.
@@ -101,6 +111,10 @@ class GripperAwarePlanner:
         Largest turn of the closing direction tried, radians.
     good_share
         Sensed share of the better fingertip from which a grasp is kept as it is.
+    outline_threshold_pa
+        Increment from which a module next to an object counts in its outline, pascals.
+    load_cost
+        Weight of the load under the centre of grasp in the score.
     """
 
     def __init__(
@@ -111,17 +125,23 @@ class GripperAwarePlanner:
         max_shift: float = 0.3,
         max_turn_rad: float = math.radians(30.0),
         good_share: float = 0.5,
+        outline_threshold_pa: float = DEFAULT_OUTLINE_THRESHOLD_PA,
+        load_cost: float = 0.1,
     ) -> None:
         self.gripper = gripper or GripperSpec()
         self.thesis = ThesisPlanner(params)
         self.seam_width_m = seam_width_m
         self.max_shift, self.max_turn_rad, self.good_share = max_shift, max_turn_rad, good_share
+        self.outline_threshold_pa, self.load_cost = outline_threshold_pa, load_cost
+        self._load = np.zeros(0)
 
     def plan(
         self, increments_pa: ArrayLike, objects: list[tuple[int, ...]], layout: PadLayout
     ) -> list[GraspPlan]:
-        plans = self.thesis.plan(increments_pa, objects, layout)
-        return [self.improve(p, layout) for p in plans]
+        d = check_increments(increments_pa, layout)
+        outlined = outline_objects(d, objects, layout, self.outline_threshold_pa)
+        plans = self.thesis.plan(d, outlined, layout)
+        return [self.improve(p, layout, d) for p in plans]
 
     def tip_share(self, cog: tuple[float, float], theta: float, layout: PadLayout) -> float:
         """Sensed share of the better-placed fingertip for a grasp at ``cog`` (module units)."""
@@ -129,9 +149,15 @@ class GripperAwarePlanner:
         tips = self.gripper.fingertip_centres((float(xy[0]), float(xy[1])), theta)
         return max(sensed_share(t, theta, self.gripper, layout, self.seam_width_m) for t in tips)
 
-    def improve(self, plan: GraspPlan, layout: PadLayout) -> GraspPlan:
+    def improve(
+        self, plan: GraspPlan, layout: PadLayout, increments_pa: ArrayLike | None = None
+    ) -> GraspPlan:
         """The plan itself when a fingertip is sensed and the jaws span the object, else the
-        best-scoring candidate (the plan itself when none is better)."""
+        best-scoring candidate (the plan itself when none is better). Without increments the
+        score has no load term."""
+        self._load = (
+            np.zeros(0) if increments_pa is None else check_increments(increments_pa, layout)
+        )
         fits = not self._too_wide(plan, plan.theta, layout)
         sensed = self.tip_share(plan.cog, plan.theta, layout) >= self.good_share
         if sensed and (fits or not self._fitting_turns(plan, layout)):
@@ -190,7 +216,16 @@ class GripperAwarePlanner:
         too_wide = self._too_wide(plan, theta, layout)
         shift = math.dist(cog, plan.cog) / self.max_shift
         turn = abs(_wrap(theta - plan.theta)) / max(self.max_turn_rad, 1e-9)
-        return self.tip_share(cog, theta, layout) - 0.2 * shift - 0.1 * turn - 1.0 * too_wide
+        score = self.tip_share(cog, theta, layout) - 0.2 * shift - 0.1 * turn - 1.0 * too_wide
+        return score + self.load_cost * self._load_share(plan, layout, cog)
+
+    def _load_share(self, plan: GraspPlan, layout: PadLayout, cog: tuple[float, float]) -> float:
+        """dP of the module under ``cog`` over the object's largest (0 without increments)."""
+        if self._load.size == 0:
+            return 0.0
+        top = max(float(self._load[m - 1]) for m in plan.modules)
+        module = layout.module_containing(*cog)
+        return 0.0 if module is None or top <= 0 else max(float(self._load[module - 1]), 0.0) / top
 
 
 def _wrap(theta: float) -> float:

@@ -36,9 +36,11 @@ from softpad.sensing._filters import RunningAverage, capture_reference, incremen
 from softpad.sensing._objects import (
     DEFAULT_CONTACT_THRESHOLD_PA,
     DEFAULT_OBJECT_THRESHOLD_PA,
+    DEFAULT_OUTLINE_THRESHOLD_PA,
     ObjectDetector,
     ThesisObjectDetector,
     detect_objects,
+    outline_objects,
 )
 
 __all__ = [
@@ -48,6 +50,7 @@ __all__ = [
     "DEFAULT_BASELINE_TIME_S",
     "DEFAULT_CONTACT_THRESHOLD_PA",
     "DEFAULT_OBJECT_THRESHOLD_PA",
+    "DEFAULT_OUTLINE_THRESHOLD_PA",
     "AdaptiveCusumDetector",
     "AdaptiveParams",
     "ContactDetector",
@@ -71,4 +74,5 @@ __all__ = [
     "fit_limit",
     "increments",
     "make_contact_detector",
+    "outline_objects",
 ]

@@ -111,6 +111,44 @@ def detect_objects(
     return layout.connected_groups(touched)
 
 
+#: Threshold on dP of a module counted in an object's outline, pascals. The increment is the
+#: mean of 10 reads minus the 10-read reference: the simulated sensor's 8 Pa rms white noise
+#: per sample (docs/box-and-simulator.md) gives 8 x sqrt(1/10 + 1/10) = 3.6 Pa rms, and its
+#: slow drift (3 Pa rms, 2 s correlation) up to 4.2 Pa between reference and plan: 5.5 Pa rms
+#: together. 25 Pa is 4.5 of those, so an unloaded neighbour joins an outline about once in
+#: 10^5 plans; a real sensor's noise sets this value on an installation.
+DEFAULT_OUTLINE_THRESHOLD_PA = 25.0
+
+
+def outline_objects(
+    delta_pa: ArrayLike,
+    objects: list[tuple[int, ...]],
+    layout: PadLayout,
+    threshold_pa: float = DEFAULT_OUTLINE_THRESHOLD_PA,
+) -> list[tuple[int, ...]]:
+    """The objects found at t_o, outlined at the noise floor.
+
+    A module next to an object's (8-neighbour) whose increment is above ``threshold_pa``
+    carries part of that object too light to pass t_o (the ends of a banana, a can's light
+    side); it joins the object, and two objects such a module touches both become one (a
+    banana on modules 2, 3 and 4 whose middle on module 2 stays under t_o). Modules not next
+    to an object found at t_o are not added: the threshold outlines objects, it finds none.
+
+    Returns
+    -------
+    list of tuple of int
+        One sorted tuple of 1-based modules per object, ordered by their first module.
+    """
+    d = check_increments(delta_pa, layout)
+    t = check_threshold(threshold_pa, "outline threshold")
+    found = {m for obj in objects for m in obj}
+    for m in found:
+        layout.check_module(m)
+    near = {n for m in found for n in layout.neighbours(m)}
+    extra = {n for n in near - found if d[n - 1] > t}
+    return layout.connected_groups(sorted(found | extra))
+
+
 @runtime_checkable
 class ObjectDetector(Protocol):
     """Finds the objects lying on the pad from (filtered) pressure increments."""
