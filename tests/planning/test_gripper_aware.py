@@ -101,3 +101,39 @@ def test_a_wide_object_whose_tip_is_sensed_keeps_the_thesis_grasp() -> None:
     assert planner.tip_share(thesis.cog, thesis.theta, LAYOUT) >= planner.good_share
     assert planner._too_wide(thesis, thesis.theta, LAYOUT)
     assert aware == thesis
+
+
+#: Plan increments of simulated trials (MuJoCo, experiment seeds 100-103, not among the
+#: compared seeds 0-19), pascals.
+TOY_PA = (402.34, 78.37, 310.3, -0.49, 312.74, -0.73)  # hands on 1 and 3, body on 5
+BANANA_PA = (-1.0, 33.0, 176.0, 212.0, 2.0, 1.0)  # middle on module 2 under t_o
+
+
+def test_a_banana_split_at_t_o_is_planned_as_one_object() -> None:
+    """t_o sees the banana's two ends as two objects and the thesis plans two grasps, one on
+    each end; outlined at the noise floor it is one object on modules 2, 3, 4, planned by the
+    thesis's own rule for that shape (the seed's banana: (1, 1, -pi/4))."""
+    objects = detect_objects(BANANA_PA, LAYOUT)
+    thesis = ThesisPlanner().plan(BANANA_PA, objects, LAYOUT)
+    assert [p.modules for p in thesis] == [(3,), (4,)]
+    (aware,) = GripperAwarePlanner(GRIPPER).plan(BANANA_PA, objects, LAYOUT)
+    (whole,) = ThesisPlanner().plan(BANANA_PA, [(2, 3, 4)], LAYOUT)
+    assert aware.modules == (2, 3, 4)
+    assert aware.cog == pytest.approx(whole.cog) and aware.theta == pytest.approx(whole.theta)
+    assert aware.cog == pytest.approx((1.0, 1.0)) and aware.theta == pytest.approx(-math.pi / 4)
+
+
+def test_a_shift_off_the_seam_goes_towards_the_load() -> None:
+    """The toy's thesis grasp (1.5, ~1.0, 0) puts both fingertips on the row seam. Both
+    shifts across it reach sensed area; the load term picks the side of the toy's body
+    (module 5, 313 Pa), not the gap between its arms over module 2 (78 Pa), where the
+    unweighted score went (and the trial lost the toy: its COG lay outside the object)."""
+    objects = detect_objects(TOY_PA, LAYOUT)
+    (thesis,) = ThesisPlanner().plan(TOY_PA, objects, LAYOUT)
+    assert abs(thesis.cog[1] - 1.0) < 0.1 and thesis.theta == 0.0
+    (aware,) = GripperAwarePlanner(GRIPPER).plan(TOY_PA, objects, LAYOUT)
+    (blind,) = GripperAwarePlanner(GRIPPER, load_cost=0.0).plan(TOY_PA, objects, LAYOUT)
+    assert LAYOUT.module_containing(*aware.cog) == 5
+    assert LAYOUT.module_containing(*blind.cog) == 2
+    planner = GripperAwarePlanner(GRIPPER)
+    assert planner.tip_share(aware.cog, aware.theta, LAYOUT) >= planner.good_share

@@ -10,7 +10,7 @@ from softpad.cli._args import add_command, int_ranges
 from softpad.errors import InputError
 
 _EPILOG = """examples:
-  softpad compare --seeds 0-19 --json            the thesis pair against gripper-aware + cusum
+  softpad compare --seeds 0-19 --json            the thesis pair against gripper-aware + adaptive
   softpad compare --seeds 0-2 --objects object-1,cylinder --pair thesis:cusum
   softpad compare --seeds 0 --trials 1 --idle-hours 0.1 --png compare.png
 """
