@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import contextlib
+import io
 import json
+from pathlib import Path
 
 import pytest
 
@@ -22,11 +25,19 @@ def test_wilson_interval_matches_the_closed_form(k: int, n: int, low: float, hig
     assert wilson_interval(k, n) == pytest.approx((low, high), abs=2e-4)
 
 
-def test_compare_json_has_every_pair_and_object(capsys: pytest.CaptureFixture[str]) -> None:
+@pytest.fixture(scope="module")
+def compared() -> dict:
+    """One small comparison (object 5, one trial, seed 0) by the command, both default pairs."""
     argv = ["compare", "--seeds", "0", "--objects", "object-5", "--trials", "1"]
     argv += ["--idle-hours", "0.01", "--json", "--no-progress", "--workers", "1"]
-    assert main(argv) == 0
-    d = json.loads(capsys.readouterr().out)
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        assert main(argv) == 0
+    return json.loads(out.getvalue())
+
+
+def test_compare_json_has_every_pair_and_object(compared: dict) -> None:
+    d = compared
     assert d["schema_version"] >= 2 and d["seeds"] == [0]
     pairs = [(c["planner"], c["detector"]) for c in d["combinations"]]
     assert pairs == [("thesis", "thesis"), ("gripper-aware", "adaptive")]
@@ -36,6 +47,55 @@ def test_compare_json_has_every_pair_and_object(capsys: pytest.CaptureFixture[st
         assert 0.0 <= lo <= c["success"] <= hi <= 1.0
         assert [o["name"] for o in c["objects"]] == ["object-5"]
         assert c["false_alarms_per_hour"] >= 0 and c["delay_s_median"] is not None
+
+
+def _halves(d: dict, tmp_path: Path) -> tuple[str, str]:
+    """The comparison's two pairs as two files, as if run apart."""
+    paths = []
+    for k, combo in enumerate(d["combinations"]):
+        path = tmp_path / f"pair{k}.json"
+        path.write_text(json.dumps({**d, "combinations": [combo]}))
+        paths.append(str(path))
+    return paths[0], paths[1]
+
+
+def test_merged_comparisons_are_the_comparison(
+    compared: dict, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Two pairs run apart and merged give back the document run together; the figure is drawn."""
+    a, b = _halves(compared, tmp_path)
+    png = tmp_path / "both.png"
+    assert main(["compare", "--merge", a, "--merge", b, "--json", "--png", str(png)]) == 0
+    assert json.loads(capsys.readouterr().out) == compared
+    assert png.stat().st_size > 1000
+    assert main(["compare", "--merge", b]) == 0  # a table of one pair
+    assert "| gripper-aware | adaptive |" in capsys.readouterr().out
+
+
+def test_bad_merges_are_named(
+    compared: dict, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    a, b = _halves(compared, tmp_path)
+    other = tmp_path / "seeds.json"
+    other.write_text(json.dumps({**json.loads(Path(b).read_text()), "seeds": [1]}))
+    broken = tmp_path / "broken.json"
+    broken.write_text('{"schema_version": 2, "seeds": [0], "combinations": [')
+    old = tmp_path / "old.json"
+    old.write_text(json.dumps({**compared, "schema_version": 1}))
+    cases = [
+        ([a, a], "the pair thesis:thesis is given twice"),
+        ([a, str(other)], "seeds 1..1 (1) differ from the first's 0..0 (1)"),
+        ([str(broken)], "is not valid JSON"),
+        ([str(old)], "not a softpad comparison of schema 2 (schema_version 1)"),
+        ([str(tmp_path / "none.json")], "cannot read comparison"),
+    ]
+    for files, message in cases:
+        argv = ["compare"] + [x for f in files for x in ("--merge", f)]
+        assert main(argv) == 2, files
+        err = capsys.readouterr().err
+        assert message in err and "Traceback" not in err
+    assert main(["compare", "--merge", a, "--pair", "thesis:cusum"]) == 2
+    assert "--merge runs no pair" in capsys.readouterr().err
 
 
 @pytest.mark.parametrize(

@@ -13,6 +13,7 @@ _EPILOG = """examples:
   softpad compare --seeds 0-19 --json            the thesis pair against gripper-aware + adaptive
   softpad compare --seeds 0-2 --objects object-1,cylinder --pair thesis:cusum
   softpad compare --seeds 0 --trials 1 --idle-hours 0.1 --png compare.png
+  softpad compare --merge a.json --merge b.json --png both.png   pairs run apart, one table
 """
 
 
@@ -43,6 +44,13 @@ def register(sub: Any) -> None:
     )
     p.add_argument("--idle-hours", type=float, default=1.0, help="idle time for false alarms")
     p.add_argument("--png", metavar="FILE.png", help="draw success and delay per pair")
+    p.add_argument(
+        "--merge",
+        action="append",
+        metavar="FILE.json",
+        help="run nothing: print (and draw) the pairs of saved 'compare --json' outputs of the "
+        "same seeds and objects as one comparison (repeatable)",
+    )
     p.set_defaults(handler=run)
 
 
@@ -71,6 +79,8 @@ def run(args: argparse.Namespace) -> int:
     from softpad.cli._trials import check_counts, select_objects
     from softpad.trials import compare
 
+    if args.merge:
+        return _show(_merged(args), args)
     seeds, pairs = int_ranges(args.seeds, "--seeds", lo=0, hi=2**32 - 1), parse_pairs(args.pair)
     specs = select_objects(args.objects)
     check_counts(args.trials, args.workers)
@@ -90,6 +100,32 @@ def run(args: argparse.Namespace) -> int:
     finally:
         if bar is not None:
             bar.close()
+    return _show(d, args)
+
+
+def _merged(args: argparse.Namespace) -> dict[str, Any]:
+    """The comparisons of the ``--merge`` files as one."""
+    from pathlib import Path
+
+    from softpad.errors import parse_json
+    from softpad.trials import merge_comparisons
+
+    if args.pair:
+        raise InputError("--merge runs no pair: leave out --pair (each file names its own)")
+    docs = []
+    for path in args.merge:
+        try:
+            text = Path(path).read_bytes().decode("utf-8")
+        except OSError as exc:
+            raise InputError(f"cannot read comparison {path!r}: {exc.strerror}") from None
+        except UnicodeDecodeError:
+            raise InputError(f"comparison {path!r} is not text (JSON expected)") from None
+        docs.append((repr(path), parse_json(text, f"comparison {path!r}")))
+    return merge_comparisons(docs)
+
+
+def _show(d: dict[str, Any], args: argparse.Namespace) -> int:
+    """Draw, then print the comparison as JSON or as a table."""
     if args.png:
         _plot(d, args.png)
     if args.json:

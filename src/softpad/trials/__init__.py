@@ -10,6 +10,7 @@ from softpad.trials._compare import (
     IDLE_BOX,
     compare,
     idle_false_alarms_per_hour,
+    merge_comparisons,
     wilson_interval,
 )
 from softpad.trials._config import TrialConfig, trial_execution_params
@@ -41,6 +42,7 @@ __all__ = [
     "TrialResult",
     "compare",
     "idle_false_alarms_per_hour",
+    "merge_comparisons",
     "perturbed_placement",
     "run_experiment",
     "run_trial",

@@ -125,3 +125,61 @@ def compare(
             }
         )
     return {"schema_version": softpad.SCHEMA_VERSION, "seeds": list(seeds), "combinations": combos}
+
+
+def merge_comparisons(documents: Sequence[tuple[str, Any]]) -> dict[str, Any]:
+    """One comparison from several ``softpad compare --json`` documents of the same seeds and
+    objects (pairs run separately, on other days or machines), in the order given.
+
+    ``documents`` holds (name, parsed JSON) pairs; the name (a file name) is quoted in errors.
+    A document of another schema, other seeds or objects, or a pair already present is refused.
+    """
+    if not documents:
+        raise InputError("nothing to merge: give at least one comparison")
+    seeds: list[int] | None = None
+    objects: list[str] | None = None
+    combos: list[dict[str, Any]] = []
+    for name, doc in documents:
+        doc_seeds, doc_combos = _comparison_parts(name, doc)
+        for c in doc_combos:
+            names = [o["name"] for o in c["objects"]]
+            objects = names if objects is None else objects
+            if names != objects:
+                raise InputError(f"{name}: objects {names} differ from the first's {objects}")
+            if any((c["planner"], c["detector"]) == (o["planner"], o["detector"]) for o in combos):
+                raise InputError(f"{name}: the pair {c['planner']}:{c['detector']} is given twice")
+        seeds = doc_seeds if seeds is None else seeds
+        if doc_seeds != seeds:
+            raise InputError(
+                f"{name}: seeds {_span(doc_seeds)} differ from the first's {_span(seeds)}"
+            )
+        combos += doc_combos
+    return {"schema_version": softpad.SCHEMA_VERSION, "seeds": seeds, "combinations": combos}
+
+
+def _comparison_parts(name: str, doc: Any) -> tuple[list[int], list[dict[str, Any]]]:
+    """The seeds and combinations of one comparison document, checked."""
+    if not isinstance(doc, dict) or doc.get("schema_version") != softpad.SCHEMA_VERSION:
+        version = doc.get("schema_version") if isinstance(doc, dict) else None
+        raise InputError(
+            f"{name}: not a softpad comparison of schema {softpad.SCHEMA_VERSION} "
+            f"(schema_version {version!r})"
+        )
+    seeds, combos = doc.get("seeds"), doc.get("combinations")
+    if not isinstance(seeds, list) or not all(isinstance(s, int) for s in seeds) or not seeds:
+        raise InputError(f"{name}: 'seeds' must be a non-empty list of integers")
+    keys = ("planner", "detector", "trials", "successes", "success", "objects")
+    if not isinstance(combos, list) or not combos:
+        raise InputError(f"{name}: 'combinations' must be a non-empty list")
+    for c in combos:
+        if not isinstance(c, dict) or any(k not in c for k in keys):
+            raise InputError(f"{name}: every combination needs {', '.join(keys)}")
+        if not isinstance(c["objects"], list) or not all(
+            isinstance(o, dict) and "name" in o and "success" in o for o in c["objects"]
+        ):
+            raise InputError(f"{name}: every object of a combination needs name and success")
+    return seeds, combos
+
+
+def _span(seeds: list[int]) -> str:
+    return f"{seeds[0]}..{seeds[-1]} ({len(seeds)})"
