@@ -21,7 +21,8 @@ class Planner(Protocol):
     def plan(
         self, increments_pa: ArrayLike, objects: list[tuple[int, ...]], layout: PadLayout
     ) -> list[GraspPlan]:
-        """One plan per object (``objects``: sorted 1-based modules each), in grasp order."""
+        """One plan per object (``objects``: sorted 1-based modules each), in grasp order; a
+        planner that reads the increments may join objects it finds to be one (fewer plans)."""
         ...
 
 
