@@ -48,6 +48,8 @@ SKIP = {
     "tests/harness/test_remote.py runs the loop through a served box",
     "ros node --box sim:// --place object-5": "needs a roscore; tests/ros runs it against one",
     "sim arm-node --port 5757": "needs a roscore; tests/ros runs it against one",
+    "compare --merge a.json --merge b.json --png both.png": "needs two saved comparisons; "
+    "tests/trials/test_compare.py merges two it writes",
     "run --robot ros1:// --box zenoh://127.0.0.1:5757 --objects object-5": "needs a roscore and "
     "the arm node; tests/ros runs it",
 }

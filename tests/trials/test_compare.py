@@ -98,6 +98,26 @@ def test_bad_merges_are_named(
     assert "--merge runs no pair" in capsys.readouterr().err
 
 
+def test_a_bad_figure_path_is_refused_before_any_trial(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Hours of trials are not run to fail at the end on the figure's path."""
+    import softpad.trials
+
+    def never(*args: object, **kwargs: object) -> None:
+        raise AssertionError("the trials started before --png was checked")
+
+    monkeypatch.setattr(softpad.trials, "compare", never)
+    argv = ["compare", "--seeds", "0", "--objects", "object-5", "--trials", "1"]
+    assert main([*argv, "--png", str(tmp_path / "none" / "x.png")]) == 2
+    assert "does not exist" in capsys.readouterr().err
+    (tmp_path / "x.png").write_bytes(b"old")
+    assert main([*argv, "--png", str(tmp_path / "x.png")]) == 2
+    assert "exists; add --force" in capsys.readouterr().err
+    assert main([*argv, "--png", str(tmp_path / "x.txt")]) == 2
+    assert "must name a .png file" in capsys.readouterr().err
+
+
 @pytest.mark.parametrize(
     ("argv", "message"),
     [

@@ -44,6 +44,7 @@ def register(sub: Any) -> None:
     )
     p.add_argument("--idle-hours", type=float, default=1.0, help="idle time for false alarms")
     p.add_argument("--png", metavar="FILE.png", help="draw success and delay per pair")
+    p.add_argument("--force", action="store_true", help="overwrite an existing --png file")
     p.add_argument(
         "--merge",
         action="append",
@@ -76,9 +77,11 @@ def parse_pairs(pairs: list[str] | None) -> list[tuple[str, str]]:
 def run(args: argparse.Namespace) -> int:
     import math
 
+    from softpad.cli._paths import check_output
     from softpad.cli._trials import check_counts, select_objects
     from softpad.trials import compare
 
+    check_output(args.png, "--png", force=args.force, suffix=".png")  # before hours of trials
     if args.merge:
         return _show(_merged(args), args)
     seeds, pairs = int_ranges(args.seeds, "--seeds", lo=0, hi=2**32 - 1), parse_pairs(args.pair)
