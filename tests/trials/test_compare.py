@@ -82,7 +82,15 @@ def test_bad_merges_are_named(
     broken.write_text('{"schema_version": 2, "seeds": [0], "combinations": [')
     old = tmp_path / "old.json"
     old.write_text(json.dumps({**compared, "schema_version": 1}))
+    partial = tmp_path / "partial.json"
+    combo = {k: v for k, v in compared["combinations"][0].items() if k != "success_interval"}
+    partial.write_text(json.dumps({**compared, "combinations": [combo]}))
     cases = [
+        (
+            [str(partial)],
+            "every combination needs planner, detector, trials, successes, success, "
+            "success_interval",
+        ),
         ([a, a], "the pair thesis:thesis is given twice"),
         ([a, str(other)], "seeds 1..1 (1) differ from the first's 0..0 (1)"),
         ([str(broken)], "is not valid JSON"),

@@ -8,7 +8,6 @@ the thesis's direction), and takes the best by the score
 
     score = sensed response of the better-placed fingertip - shift_cost * shift / max_shift
             - turn_cost * |turn| / max_turn
-
             + load_cost * dP of the module under the centre / the object's largest dP
 
 among those whose centre stays on the object's modules, with a penalty of 1 when the object's
@@ -28,7 +27,7 @@ import math
 from dataclasses import replace
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from softpad import thesis
 from softpad.errors import InputError
@@ -133,7 +132,6 @@ class GripperAwarePlanner:
         self.seam_width_m = seam_width_m
         self.max_shift, self.max_turn_rad, self.good_share = max_shift, max_turn_rad, good_share
         self.outline_threshold_pa, self.load_cost = outline_threshold_pa, load_cost
-        self._load = np.zeros(0)
 
     def plan(
         self, increments_pa: ArrayLike, objects: list[tuple[int, ...]], layout: PadLayout
@@ -155,16 +153,14 @@ class GripperAwarePlanner:
         """The plan itself when a fingertip is sensed and the jaws span the object, else the
         best-scoring candidate (the plan itself when none is better). Without increments the
         score has no load term."""
-        self._load = (
-            np.zeros(0) if increments_pa is None else check_increments(increments_pa, layout)
-        )
+        load = None if increments_pa is None else _load_shares(plan, layout, increments_pa)
         fits = not self._too_wide(plan, plan.theta, layout)
         sensed = self.tip_share(plan.cog, plan.theta, layout) >= self.good_share
         if sensed and (fits or not self._fitting_turns(plan, layout)):
             return plan  # good as it is, or too wide whichever way it turns: nothing to gain
-        best, best_score = plan, self._score(plan, layout, plan.cog, plan.theta)
+        best, best_score = plan, self._score(plan, layout, plan.cog, plan.theta, load)
         for cog, theta in self._candidates(plan, layout):
-            score = self._score(plan, layout, cog, theta)
+            score = self._score(plan, layout, cog, theta, load)
             if score > best_score + 1e-9:
                 best, best_score = (
                     replace(plan, cog=cog, theta=theta, rule=plan.rule + "+gripper"),
@@ -207,9 +203,17 @@ class GripperAwarePlanner:
         return out
 
     def _score(
-        self, plan: GraspPlan, layout: PadLayout, cog: tuple[float, float], theta: float
+        self,
+        plan: GraspPlan,
+        layout: PadLayout,
+        cog: tuple[float, float],
+        theta: float,
+        load: NDArray[np.float64] | None = None,
     ) -> float:
-        if layout.module_containing(*cog) not in plan.modules:
+        """The score of a grasp at ``cog``, ``theta``; ``load`` (from :func:`_load_shares`)
+        adds the load term, None leaves it out."""
+        module = layout.module_containing(*cog)
+        if module not in plan.modules:
             return -math.inf
         # the modules' outline overestimates the object: an outline wider than the jaws is a
         # penalty (a narrower direction is preferred), not a veto
@@ -217,15 +221,17 @@ class GripperAwarePlanner:
         shift = math.dist(cog, plan.cog) / self.max_shift
         turn = abs(_wrap(theta - plan.theta)) / max(self.max_turn_rad, 1e-9)
         score = self.tip_share(cog, theta, layout) - 0.2 * shift - 0.1 * turn - 1.0 * too_wide
-        return score + self.load_cost * self._load_share(plan, layout, cog)
+        return score if load is None else score + self.load_cost * float(load[module - 1])
 
-    def _load_share(self, plan: GraspPlan, layout: PadLayout, cog: tuple[float, float]) -> float:
-        """dP of the module under ``cog`` over the object's largest (0 without increments)."""
-        if self._load.size == 0:
-            return 0.0
-        top = max(float(self._load[m - 1]) for m in plan.modules)
-        module = layout.module_containing(*cog)
-        return 0.0 if module is None or top <= 0 else max(float(self._load[module - 1]), 0.0) / top
+
+def _load_shares(
+    plan: GraspPlan, layout: PadLayout, increments_pa: ArrayLike
+) -> NDArray[np.float64]:
+    """dP of every module over the largest dP of the plan's modules, clipped at 0 (all 0 when
+    none of them is loaded)."""
+    d = np.clip(check_increments(increments_pa, layout), 0.0, None)
+    top = max(float(d[m - 1]) for m in plan.modules)
+    return d / top if top > 0 else np.zeros_like(d)
 
 
 def _wrap(theta: float) -> float:

@@ -142,9 +142,7 @@ def outline_objects(
     d = check_increments(delta_pa, layout)
     t = check_threshold(threshold_pa, "outline threshold")
     found = {m for obj in objects for m in obj}
-    for m in found:
-        layout.check_module(m)
-    near = {n for m in found for n in layout.neighbours(m)}
+    near = {n for m in found for n in layout.neighbours(m)}  # checks every module number
     extra = {n for n in near - found if d[n - 1] > t}
     return layout.connected_groups(sorted(found | extra))
 

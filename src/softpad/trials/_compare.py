@@ -168,7 +168,21 @@ def _comparison_parts(name: str, doc: Any) -> tuple[list[int], list[dict[str, An
     seeds, combos = doc.get("seeds"), doc.get("combinations")
     if not isinstance(seeds, list) or not all(isinstance(s, int) for s in seeds) or not seeds:
         raise InputError(f"{name}: 'seeds' must be a non-empty list of integers")
-    keys = ("planner", "detector", "trials", "successes", "success", "objects")
+    # every key the table and the figure read
+    keys = (
+        "planner",
+        "detector",
+        "trials",
+        "successes",
+        "success",
+        "success_interval",
+        "delay_s_median",
+        "delay_s_p95",
+        "finger_travel_m_median",
+        "false_alarms_per_hour",
+        "failures",
+        "objects",
+    )
     if not isinstance(combos, list) or not combos:
         raise InputError(f"{name}: 'combinations' must be a non-empty list")
     for c in combos:
