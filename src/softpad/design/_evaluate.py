@@ -121,7 +121,7 @@ def _one_trial(
     from softpad.errors import HardwareFault
     from softpad.harness import SimulatedRobot
     from softpad.planning import make_planner
-    from softpad.sensing import make_contact_detector
+    from softpad.sensing import make_contact_detector, sensing_floor_pa
     from softpad.sim import AnalyticWorld, Placement, SensorParams, SimGripper
     from softpad.trials import TrialConfig, perturbed_placement, trial_execution_params, trial_seed
 
@@ -148,15 +148,16 @@ def _one_trial(
     )
     box.safety_limits = SafetyLimits(max_pressure_pa=9.5e3, release_pa=2.5e3)
     robot = SimulatedRobot(world)
+    detector = make_contact_detector(options.detector, box.sample_rate_hz, layout.n_modules)
     loop = GraspExecution(
         box,
         robot,
         layout,
         params,
-        planner=make_planner(options.planner, world.gripper.geometry, params.planner),
-        contact_detector=make_contact_detector(
-            options.detector, box.sample_rate_hz, layout.n_modules
+        planner=make_planner(
+            options.planner, world.gripper.geometry, params.planner, sensing_floor_pa(detector)
         ),
+        contact_detector=detector,
         place_objects=lambda: world.place_object(spec, placement),
     )
     record: dict[str, Any] = {"object": obj.name, "trial": k, "seed": seed}

@@ -2,7 +2,7 @@
 
 The thesis's two seam failures came from a fingertip landing on the non-sensitive seam between
 modules (Section 6.3). :class:`GripperAwarePlanner` starts from the thesis's plan and keeps it
-whenever a fingertip lies on sensitive area; otherwise it tries grasps shifted along and across
+whenever a fingertip is sensed by the contact detector in use; otherwise it tries grasps shifted along and across
 the closing direction (turned too, when the object's outline is wider than the jaws open along
 the thesis's direction), and takes the best by the score
 
@@ -14,6 +14,14 @@ among those whose centre stays on the object's modules, with a penalty of 1 when
 extent estimated from the pad (its modules' outline, projected on the closing direction) is
 wider than the jaws open. The load term sends a shift towards where the object's weight lies
 (a V-shaped toy's body, not its light arms across the seam).
+
+"Sensed" depends on the detector. The response map (:func:`sensed_share`) says what share of a
+centred fingertip's rise a fingertip raises where it lands; the thesis's detector (t_g = 90 Pa)
+needs half of it (``good_share``), i.e. a centred fingertip raises about 2 t_g within the travel
+the loop allows. A detector that fires on a smaller sustained rise (its ``floor_pa``: a CUSUM's
+allowance) needs proportionally less, so a fingertip on a seam (share 0.14 to 0.31) is shifted
+for the thesis's detector and left where the thesis put it for the adaptive CUSUM (15 Pa at
+100 Hz: share 0.083).
 
 Objects are outlined at the pad's noise floor before planning
 (:func:`softpad.sensing.outline_objects`): a module next to an object whose increment is above
@@ -36,7 +44,7 @@ from softpad.planning._params import PlannerParams
 from softpad.planning._plan import ThesisPlanner
 from softpad.planning._records import GraspPlan
 from softpad.sensing import DEFAULT_OUTLINE_THRESHOLD_PA, outline_objects
-from softpad.sensing._objects import check_increments
+from softpad.sensing._objects import check_increments, check_threshold
 
 #: Width of the bonded, non-sensitive seam between two chambers, m. A pad specification
 #: (measured on the pad; the simulated MuJoCo pad has 5 mm), not a thesis number.
@@ -114,6 +122,10 @@ class GripperAwarePlanner:
         Increment from which a module next to an object counts in its outline, pascals.
     load_cost
         Weight of the load under the centre of grasp in the score.
+    sensing_floor_pa
+        The smallest sustained rise of one module the contact detector fires on, pascals
+        (the detector's ``floor_pa``; default the thesis's t_g). ``good_share`` is scaled by
+        it over t_g.
     """
 
     def __init__(
@@ -126,12 +138,19 @@ class GripperAwarePlanner:
         good_share: float = 0.5,
         outline_threshold_pa: float = DEFAULT_OUTLINE_THRESHOLD_PA,
         load_cost: float = 0.1,
+        sensing_floor_pa: float = thesis.CONTACT_THRESHOLD_PA,
     ) -> None:
         self.gripper = gripper or GripperSpec()
         self.thesis = ThesisPlanner(params)
         self.seam_width_m = seam_width_m
         self.max_shift, self.max_turn_rad, self.good_share = max_shift, max_turn_rad, good_share
         self.outline_threshold_pa, self.load_cost = outline_threshold_pa, load_cost
+        self.sensing_floor_pa = check_threshold(sensing_floor_pa, "sensing floor", positive=True)
+
+    @property
+    def needed_share(self) -> float:
+        """Sensed share from which a fingertip counts as sensed by the detector in use."""
+        return self.good_share * self.sensing_floor_pa / thesis.CONTACT_THRESHOLD_PA
 
     def plan(
         self, increments_pa: ArrayLike, objects: list[tuple[int, ...]], layout: PadLayout
@@ -155,7 +174,7 @@ class GripperAwarePlanner:
         score has no load term."""
         load = None if increments_pa is None else _load_shares(plan, layout, increments_pa)
         fits = not self._too_wide(plan, plan.theta, layout)
-        sensed = self.tip_share(plan.cog, plan.theta, layout) >= self.good_share
+        sensed = self.tip_share(plan.cog, plan.theta, layout) >= self.needed_share
         if sensed and (fits or not self._fitting_turns(plan, layout)):
             return plan  # good as it is, or too wide whichever way it turns: nothing to gain
         best, best_score = plan, self._score(plan, layout, plan.cog, plan.theta, load)
@@ -249,11 +268,17 @@ PLANNERS = ("thesis", "gripper-aware")
 
 
 def make_planner(
-    name: str, gripper: GripperSpec | None = None, params: PlannerParams | None = None
+    name: str,
+    gripper: GripperSpec | None = None,
+    params: PlannerParams | None = None,
+    sensing_floor_pa: float | None = None,
 ) -> ThesisPlanner | GripperAwarePlanner:
-    """A planner by name: ``thesis`` or ``gripper-aware`` (which needs the gripper's geometry)."""
+    """A planner by name: ``thesis`` or ``gripper-aware`` (which needs the gripper's geometry
+    and, to know which fingertips are sensed, the contact detector's ``floor_pa``; None: the
+    thesis's t_g)."""
     if name == "thesis":
         return ThesisPlanner(params)
     if name == "gripper-aware":
-        return GripperAwarePlanner(gripper, params)
+        floor = thesis.CONTACT_THRESHOLD_PA if sensing_floor_pa is None else sensing_floor_pa
+        return GripperAwarePlanner(gripper, params, sensing_floor_pa=floor)
     raise InputError(f"unknown planner {name!r}; use one of {', '.join(PLANNERS)}")

@@ -17,6 +17,7 @@ from softpad.sensing._contact import (
     LatchingContactDetector,
     ThesisContactDetector,
     count_alarms,
+    sensing_floor_pa,
 )
 from softpad.sensing._cusum import (
     CONTACT_DETECTORS,
@@ -75,4 +76,5 @@ __all__ = [
     "increments",
     "make_contact_detector",
     "outline_objects",
+    "sensing_floor_pa",
 ]

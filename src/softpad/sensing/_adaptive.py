@@ -92,6 +92,11 @@ class AdaptiveCusumDetector(LatchingContactDetector):
         return self._g.copy()
 
     @property
+    def floor_pa(self) -> float:
+        """The fixed allowance (a module that is not moving on its own has no envelope)."""
+        return self.limit.drift_pa
+
+    @property
     def envelope_pa(self) -> NDArray[np.float64]:
         """Current per-module envelope (the allowance above the fixed one), pascals."""
         return self._env.copy()

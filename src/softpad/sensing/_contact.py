@@ -52,6 +52,12 @@ class LatchingContactDetector:
     def triggered_modules(self) -> tuple[int, ...]:
         return self._triggered
 
+    @property
+    def floor_pa(self) -> float:
+        """The smallest sustained rise of one module that fires the detector, pascals (what
+        a planner needs a fingertip to raise; :class:`softpad.planning.GripperAwarePlanner`)."""
+        raise NotImplementedError
+
     def reset(self, reference_pa: ArrayLike) -> None:
         self.reference_pa = np.asarray(reference_pa, dtype=float).copy()
         self._triggered = ()
@@ -106,6 +112,11 @@ class ThesisContactDetector(LatchingContactDetector):
         if reference_pa is not None:
             self.reset(reference_pa)
 
+    @property
+    def floor_pa(self) -> float:
+        """t_g: a sustained rise above it fires once the running average has filled."""
+        return self.threshold_pa
+
     def _restart(self, modules: int) -> None:
         self._filter.reset()
         for _ in range(self._filter.length):  # primed with zero increments (the reference)
@@ -114,6 +125,14 @@ class ThesisContactDetector(LatchingContactDetector):
     def _exceeds(self, rise_pa: NDArray[np.float64]) -> NDArray[np.bool_]:
         filtered: NDArray[np.float64] = self._filter.update(rise_pa)
         return filtered > self.threshold_pa
+
+
+def sensing_floor_pa(detector: ContactDetector) -> float | None:
+    """The detector's ``floor_pa`` (smallest sustained rise of a module it fires on, Pa); None
+    for a detector that does not state one (a planner then assumes the thesis's t_g)."""
+    if isinstance(detector, LatchingContactDetector):
+        return detector.floor_pa
+    return None
 
 
 def count_alarms(

@@ -171,6 +171,12 @@ class CusumContactDetector(LatchingContactDetector):
         """Current per-module CUSUM statistic, pascals."""
         return self._g.copy()
 
+    @property
+    def floor_pa(self) -> float:
+        """The allowance: a module's, or half a pair's (two modules rising together)."""
+        pair = math.inf if self.pair is None else self.pair.drift_pa / 2
+        return min(self.single.drift_pa, pair)
+
     def _restart(self, modules: int) -> None:
         self._g = np.zeros(modules)
         self._baseline = np.zeros(modules)  # rises are taken over the reference

@@ -146,11 +146,18 @@ class _Trial:
             self.world, max_opening_m=self.gripper.max_width_m if opening_m is None else opening_m
         )
 
-    def planner(self) -> Any:
-        """The configured planner, told the trial gripper's geometry (a published spec)."""
+    def planner(self, detector: Any) -> Any:
+        """The configured planner, told the trial gripper's geometry (a published spec) and
+        the contact detector's floor."""
         from softpad.planning import make_planner
+        from softpad.sensing import sensing_floor_pa
 
-        return make_planner(self.config.planner, self.geometry, self.config.execution.planner)
+        return make_planner(
+            self.config.planner,
+            self.geometry,
+            self.config.execution.planner,
+            sensing_floor_pa(detector),
+        )
 
     def place(self) -> None:
         from softpad.sim import Placement
@@ -191,15 +198,16 @@ def execute_trial(
     log = RunLog({"object": spec.name, "seed": seed}) if config.record_trace else None
     mcap = _trial_recorder(t, seed)
     watcher = _TrialWatcher(t, Tee(log, mcap, o.recorder))
+    detector = make_contact_detector(
+        config.detector, t.box.sample_rate_hz, t.world.layout.n_modules
+    )
     execution = GraspExecution(
         t.box,
         t.robot,
         t.world.layout,
         config.execution,
-        planner=_FixedPlanner(o.plan) if o.plan is not None else t.planner(),
-        contact_detector=make_contact_detector(
-            config.detector, t.box.sample_rate_hz, t.world.layout.n_modules
-        ),
+        planner=_FixedPlanner(o.plan) if o.plan is not None else t.planner(detector),
+        contact_detector=detector,
         recorder=watcher,
         place_objects=t.place,
     )
