@@ -123,14 +123,14 @@ def loop_parts(args: argparse.Namespace, box: Any, params: Any, mounting: str) -
     are left to the execution (built from the loop parameters)."""
     from softpad.layout import GripperSpec
     from softpad.planning import make_planner
-    from softpad.sensing import make_contact_detector, sensing_floor_pa
+    from softpad.sensing import make_contact_detector, sensing_ratio
 
     parts: dict[str, Any] = {}
     detector = make_contact_detector(args.detector, box.sample_rate_hz)
     if args.planner != "thesis":
         spec = GripperSpec.from_mounting(mounting)
-        floor = sensing_floor_pa(detector)
-        parts["planner"] = make_planner(args.planner, spec, params.planner, floor)
+        ratio = sensing_ratio(detector, box.sample_rate_hz)
+        parts["planner"] = make_planner(args.planner, spec, params.planner, ratio)
     if args.detector != "thesis":
         parts["contact_detector"] = detector
     return parts

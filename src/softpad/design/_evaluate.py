@@ -121,7 +121,7 @@ def _one_trial(
     from softpad.errors import HardwareFault
     from softpad.harness import SimulatedRobot
     from softpad.planning import make_planner
-    from softpad.sensing import make_contact_detector, sensing_floor_pa
+    from softpad.sensing import make_contact_detector, sensing_ratio
     from softpad.sim import AnalyticWorld, Placement, SensorParams, SimGripper
     from softpad.trials import TrialConfig, perturbed_placement, trial_execution_params, trial_seed
 
@@ -155,7 +155,10 @@ def _one_trial(
         layout,
         params,
         planner=make_planner(
-            options.planner, world.gripper.geometry, params.planner, sensing_floor_pa(detector)
+            options.planner,
+            world.gripper.geometry,
+            params.planner,
+            sensing_ratio(detector, box.sample_rate_hz),
         ),
         contact_detector=detector,
         place_objects=lambda: world.place_object(spec, placement),

@@ -16,12 +16,11 @@ wider than the jaws open. The load term sends a shift towards where the object's
 (a V-shaped toy's body, not its light arms across the seam).
 
 "Sensed" depends on the detector. The response map (:func:`sensed_share`) says what share of a
-centred fingertip's rise a fingertip raises where it lands; the thesis's detector (t_g = 90 Pa)
-needs half of it (``good_share``), i.e. a centred fingertip raises about 2 t_g within the travel
-the loop allows. A detector that fires on a smaller sustained rise (its ``floor_pa``: a CUSUM's
-allowance) needs proportionally less, so a fingertip on a seam (share 0.14 to 0.31) is shifted
-for the thesis's detector and left where the thesis put it for the adaptive CUSUM (15 Pa at
-100 Hz: share 0.083).
+centred fingertip's rise a fingertip raises where it lands; with the thesis's detector a grasp
+is kept from a share of ``good_share`` (0.5). A detector that catches smaller rises needs
+proportionally less: ``good_share`` is scaled by the detector's sensing ratio, its step floor
+over the thesis detector's at the same sample rate and sensor noise
+(:func:`softpad.sensing.sensing_ratio`; 0.44 for the adaptive CUSUM at 100 Hz, 0.19 at 1 kHz).
 
 Objects are outlined at the pad's noise floor before planning
 (:func:`softpad.sensing.outline_objects`): a module next to an object whose increment is above
@@ -44,7 +43,7 @@ from softpad.planning._params import PlannerParams
 from softpad.planning._plan import ThesisPlanner
 from softpad.planning._records import GraspPlan
 from softpad.sensing import DEFAULT_OUTLINE_THRESHOLD_PA, outline_objects
-from softpad.sensing._objects import check_increments, check_threshold
+from softpad.sensing._objects import check_increments
 
 #: Width of the bonded, non-sensitive seam between two chambers, m. A pad specification
 #: (measured on the pad; the simulated MuJoCo pad has 5 mm), not a thesis number.
@@ -122,10 +121,10 @@ class GripperAwarePlanner:
         Increment from which a module next to an object counts in its outline, pascals.
     load_cost
         Weight of the load under the centre of grasp in the score.
-    sensing_floor_pa
-        The smallest sustained rise of one module the contact detector fires on, pascals
-        (the detector's ``floor_pa``; default the thesis's t_g). ``good_share`` is scaled by
-        it over t_g.
+    sensing_ratio
+        The contact detector's step floor over the thesis detector's
+        (:func:`softpad.sensing.sensing_ratio`; 1 for the thesis's): ``good_share`` is scaled
+        by it.
     """
 
     def __init__(
@@ -138,19 +137,21 @@ class GripperAwarePlanner:
         good_share: float = 0.5,
         outline_threshold_pa: float = DEFAULT_OUTLINE_THRESHOLD_PA,
         load_cost: float = 0.1,
-        sensing_floor_pa: float = thesis.CONTACT_THRESHOLD_PA,
+        sensing_ratio: float = 1.0,
     ) -> None:
         self.gripper = gripper or GripperSpec()
         self.thesis = ThesisPlanner(params)
         self.seam_width_m = seam_width_m
         self.max_shift, self.max_turn_rad, self.good_share = max_shift, max_turn_rad, good_share
         self.outline_threshold_pa, self.load_cost = outline_threshold_pa, load_cost
-        self.sensing_floor_pa = check_threshold(sensing_floor_pa, "sensing floor", positive=True)
+        if not (math.isfinite(sensing_ratio) and sensing_ratio > 0):
+            raise InputError(f"sensing ratio must be a number > 0, got {sensing_ratio!r}")
+        self.sensing_ratio = float(sensing_ratio)
 
     @property
     def needed_share(self) -> float:
         """Sensed share from which a fingertip counts as sensed by the detector in use."""
-        return self.good_share * self.sensing_floor_pa / thesis.CONTACT_THRESHOLD_PA
+        return self.good_share * self.sensing_ratio
 
     def plan(
         self, increments_pa: ArrayLike, objects: list[tuple[int, ...]], layout: PadLayout
@@ -271,14 +272,14 @@ def make_planner(
     name: str,
     gripper: GripperSpec | None = None,
     params: PlannerParams | None = None,
-    sensing_floor_pa: float | None = None,
+    sensing_ratio: float | None = None,
 ) -> ThesisPlanner | GripperAwarePlanner:
     """A planner by name: ``thesis`` or ``gripper-aware`` (which needs the gripper's geometry
-    and, to know which fingertips are sensed, the contact detector's ``floor_pa``; None: the
-    thesis's t_g)."""
+    and, to know which fingertips are sensed, the contact detector's sensing ratio,
+    :func:`softpad.sensing.sensing_ratio`; None: the thesis detector's, 1)."""
     if name == "thesis":
         return ThesisPlanner(params)
     if name == "gripper-aware":
-        floor = thesis.CONTACT_THRESHOLD_PA if sensing_floor_pa is None else sensing_floor_pa
-        return GripperAwarePlanner(gripper, params, sensing_floor_pa=floor)
+        ratio = 1.0 if sensing_ratio is None else sensing_ratio
+        return GripperAwarePlanner(gripper, params, sensing_ratio=ratio)
     raise InputError(f"unknown planner {name!r}; use one of {', '.join(PLANNERS)}")

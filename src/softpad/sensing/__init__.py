@@ -17,7 +17,6 @@ from softpad.sensing._contact import (
     LatchingContactDetector,
     ThesisContactDetector,
     count_alarms,
-    sensing_floor_pa,
 )
 from softpad.sensing._cusum import (
     CONTACT_DETECTORS,
@@ -34,6 +33,7 @@ from softpad.sensing._cusum import (
     make_contact_detector,
 )
 from softpad.sensing._filters import RunningAverage, capture_reference, increments
+from softpad.sensing._floor import sensing_ratio, step_floor_pa
 from softpad.sensing._objects import (
     DEFAULT_CONTACT_THRESHOLD_PA,
     DEFAULT_OBJECT_THRESHOLD_PA,
@@ -76,5 +76,6 @@ __all__ = [
     "increments",
     "make_contact_detector",
     "outline_objects",
-    "sensing_floor_pa",
+    "sensing_ratio",
+    "step_floor_pa",
 ]

@@ -78,6 +78,7 @@ class AdaptiveCusumDetector(LatchingContactDetector):
             raise InputError(f"sample rate must be a number of Hz > 0, got {sample_rate_hz!r}")
         self.limit, self.params = _checked(limit, "adaptive "), params or AdaptiveParams()
         p, f = self.params, sample_rate_hz
+        self._rate = f
         self._gain = 1.0 / max(1.0, p.baseline_time_s * f)
         self._smooth = max(1, round(p.smoothing_s * f))
         self._lag = max(1, round(p.envelope_lag_s * f))
@@ -92,9 +93,8 @@ class AdaptiveCusumDetector(LatchingContactDetector):
         return self._g.copy()
 
     @property
-    def floor_pa(self) -> float:
-        """The fixed allowance (a module that is not moving on its own has no envelope)."""
-        return self.limit.drift_pa
+    def floor_key(self) -> tuple[object, ...]:
+        return ("adaptive", self.limit, self.params, self._rate)
 
     @property
     def envelope_pa(self) -> NDArray[np.float64]:

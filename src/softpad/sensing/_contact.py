@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Iterable
 from typing import Protocol, runtime_checkable
 
@@ -53,10 +54,14 @@ class LatchingContactDetector:
         return self._triggered
 
     @property
-    def floor_pa(self) -> float:
-        """The smallest sustained rise of one module that fires the detector, pascals (what
-        a planner needs a fingertip to raise; :class:`softpad.planning.GripperAwarePlanner`)."""
+    def floor_key(self) -> tuple[object, ...]:
+        """A hashable description of the detector's settings (the step floor's cache key)."""
         raise NotImplementedError
+
+    def floor_probe(self) -> LatchingContactDetector:
+        """A copy whose modules decide independently (:func:`softpad.sensing.step_floor_pa`
+        feeds it many modules at once)."""
+        return copy.deepcopy(self)
 
     def reset(self, reference_pa: ArrayLike) -> None:
         self.reference_pa = np.asarray(reference_pa, dtype=float).copy()
@@ -113,9 +118,8 @@ class ThesisContactDetector(LatchingContactDetector):
             self.reset(reference_pa)
 
     @property
-    def floor_pa(self) -> float:
-        """t_g: a sustained rise above it fires once the running average has filled."""
-        return self.threshold_pa
+    def floor_key(self) -> tuple[object, ...]:
+        return ("thesis", self.threshold_pa, self._filter.length)
 
     def _restart(self, modules: int) -> None:
         self._filter.reset()
@@ -125,14 +129,6 @@ class ThesisContactDetector(LatchingContactDetector):
     def _exceeds(self, rise_pa: NDArray[np.float64]) -> NDArray[np.bool_]:
         filtered: NDArray[np.float64] = self._filter.update(rise_pa)
         return filtered > self.threshold_pa
-
-
-def sensing_floor_pa(detector: ContactDetector) -> float | None:
-    """The detector's ``floor_pa`` (smallest sustained rise of a module it fires on, Pa); None
-    for a detector that does not state one (a planner then assumes the thesis's t_g)."""
-    if isinstance(detector, LatchingContactDetector):
-        return detector.floor_pa
-    return None
 
 
 def count_alarms(

@@ -172,10 +172,12 @@ class CusumContactDetector(LatchingContactDetector):
         return self._g.copy()
 
     @property
-    def floor_pa(self) -> float:
-        """The allowance: a module's, or half a pair's (two modules rising together)."""
-        pair = math.inf if self.pair is None else self.pair.drift_pa / 2
-        return min(self.single.drift_pa, pair)
+    def floor_key(self) -> tuple[object, ...]:
+        return ("cusum", self.single, self._gain)
+
+    def floor_probe(self) -> CusumContactDetector:
+        """The per-module statistics alone (a step of one module; the pairs couple modules)."""
+        return CusumContactDetector(self.single, None, 1.0 / self._gain if self._gain else 0.0)
 
     def _restart(self, modules: int) -> None:
         self._g = np.zeros(modules)

@@ -148,15 +148,15 @@ class _Trial:
 
     def planner(self, detector: Any) -> Any:
         """The configured planner, told the trial gripper's geometry (a published spec) and
-        the contact detector's floor."""
+        the contact detector's sensing ratio."""
         from softpad.planning import make_planner
-        from softpad.sensing import sensing_floor_pa
+        from softpad.sensing import sensing_ratio
 
         return make_planner(
             self.config.planner,
             self.geometry,
             self.config.execution.planner,
-            sensing_floor_pa(detector),
+            sensing_ratio(detector, self.box.sample_rate_hz),
         )
 
     def place(self) -> None:
