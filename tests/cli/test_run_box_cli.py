@@ -150,6 +150,21 @@ def test_run_planner_by_name_moves_the_seam_grasp(cli) -> None:
     assert runs["gripper-aware"]["cog"] != runs["thesis"]["cog"]
 
 
+def test_run_planner_keeps_the_seam_grasp_for_a_detector_that_senses_it(cli) -> None:
+    """With --detector adaptive the planner is told the detector's sensing ratio (0.44 at
+    100 Hz): a sole across the seam raises enough, and object 1's thesis grasp stays."""
+    runs = {}
+    for planner in ("thesis", "gripper-aware"):
+        code, out, _ = cli(
+            "run", "--objects", "object-1", "--hold-s", "0", "--box", "sim://?seed=3",
+            "--planner", planner, "--detector", "adaptive", "--json",
+        )  # fmt: skip
+        assert code == 0
+        runs[planner] = json.loads(out)["objects"][0]
+    assert runs["gripper-aware"]["rule"] == runs["thesis"]["rule"]
+    assert runs["gripper-aware"]["cog"] == runs["thesis"]["cog"]
+
+
 def test_unknown_part_names_are_refused(cli) -> None:
     code, _, err = cli("run", "--planner", "magic")
     assert code == 2 and "invalid choice: 'magic'" in err

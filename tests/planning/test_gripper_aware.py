@@ -16,7 +16,8 @@ from softpad.planning import (
     object_extent_m,
     sensed_share,
 )
-from softpad.sensing import detect_objects
+from softpad.planning._records import GraspPlan
+from softpad.sensing import detect_objects, make_contact_detector, sensing_ratio
 
 LAYOUT = PadLayout()
 GRIPPER = GripperSpec(max_width_m=0.06, min_width_m=0.02, tip_thickness_m=4e-3)
@@ -137,3 +138,43 @@ def test_a_shift_off_the_seam_goes_towards_the_load() -> None:
     assert LAYOUT.module_containing(*blind.cog) == 2
     planner = GripperAwarePlanner(GRIPPER)
     assert planner.tip_share(aware.cog, aware.theta, LAYOUT) >= planner.good_share
+
+
+def _adaptive_ratio() -> float:
+    ratio = sensing_ratio(make_contact_detector("adaptive", 100.0), 100.0)
+    assert ratio is not None
+    return ratio
+
+
+def test_a_detector_that_senses_the_seam_keeps_object_1s_grasp() -> None:
+    """Object 1's thesis grasp lays both 16 mm soles across the 3|6 row seam: 0.31 of a
+    centred fingertip's rise. The thesis detector needs 0.5 (moved, test above); the adaptive
+    CUSUM at 100 Hz catches steps 0.44 as small, so it needs 0.22: the thesis's grasp stays."""
+    case = next(c for c in TABLE_6_1 if c.name == "object-1")
+    objects = detect_objects(case.delta_pa, LAYOUT)
+    (thesis,) = ThesisPlanner().plan(case.delta_pa, objects, LAYOUT)
+    planner = GripperAwarePlanner(GRIPPER, sensing_ratio=_adaptive_ratio())
+    assert planner.needed_share == pytest.approx(0.5 * planner.sensing_ratio)
+    assert planner.needed_share < planner.tip_share(thesis.cog, thesis.theta, LAYOUT) < 0.5
+    (aware,) = planner.plan(case.delta_pa, objects, LAYOUT)
+    assert aware == thesis
+
+
+@pytest.mark.parametrize(("y", "moved"), [(0.0, True), (0.05, True), (0.1, False)])
+def test_a_fingertip_half_off_the_pad_is_moved_for_any_detector(y: float, moved: bool) -> None:
+    """A grasp on the pad's edge (closing along x at y): its soles hang off the pad (shares
+    0.15, 0.22, 0.33 of a centred one). Under the adaptive CUSUM's 0.22 the grasp moves onto
+    the module, from it it stays."""
+    planner = GripperAwarePlanner(GRIPPER, sensing_ratio=_adaptive_ratio())
+    plan = GraspPlan((5,), (1.5, y), (1.5, y), 0.0, "edge", (5,))
+    aware = planner.improve(plan, LAYOUT)
+    assert (aware != plan) is moved
+    after = planner.tip_share(aware.cog, aware.theta, LAYOUT)
+    assert after >= planner.needed_share
+    assert LAYOUT.module_containing(*aware.cog) == 5
+
+
+@pytest.mark.parametrize("ratio", [0.0, -0.5, math.nan, math.inf])
+def test_a_bad_sensing_ratio_is_named(ratio: float) -> None:
+    with pytest.raises(InputError, match="sensing ratio"):
+        GripperAwarePlanner(GRIPPER, sensing_ratio=ratio)
