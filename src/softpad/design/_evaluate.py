@@ -167,22 +167,10 @@ def _one_trial(
     with box:
         try:
             result = loop.run()
-        except ExecutionError:
-            return {
-                **record,
-                "success": False,
-                "outcome": "object_not_detected",
-                "contact_delay_s": None,
-                "sim_time_s": box.time_s,
-            }
-        except HardwareFault:
-            return {
-                **record,
-                "success": False,
-                "outcome": "box_fault",
-                "contact_delay_s": None,
-                "sim_time_s": box.time_s,
-            }
+        except (ExecutionError, HardwareFault) as exc:
+            outcome = "box_fault" if isinstance(exc, HardwareFault) else "object_not_detected"
+            return {**record, "success": False, "outcome": outcome, "contact_delay_s": None,
+                    "sim_time_s": box.time_s}  # fmt: skip
     delay = None
     if result.grasps and robot.touches:
         g, t = result.grasps[0], robot.touches[0]
