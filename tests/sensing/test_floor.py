@@ -12,6 +12,7 @@ from softpad.sensing import (
     AdaptiveCusumDetector,
     CusumContactDetector,
     CusumLimit,
+    LatchingContactDetector,
     ThesisContactDetector,
     make_contact_detector,
     sensing_ratio,
@@ -75,6 +76,16 @@ def test_a_detector_that_cannot_be_probed_has_no_ratio() -> None:
             return False
 
     assert sensing_ratio(Stub(), 100.0) is None  # type: ignore[arg-type]
+
+    class Unstated(LatchingContactDetector):
+        def _restart(self, modules: int) -> None: ...
+
+        def _exceeds(self, rise_pa: np.ndarray) -> np.ndarray:
+            return rise_pa > 50.0
+
+    assert sensing_ratio(Unstated(), 100.0) is None
+    with pytest.raises(InputError, match="Unstated states no floor_key"):
+        step_floor_pa(Unstated(), 100.0)
 
 
 def test_a_detector_that_never_fires_has_an_infinite_floor() -> None:

@@ -54,9 +54,10 @@ class LatchingContactDetector:
         return self._triggered
 
     @property
-    def floor_key(self) -> tuple[object, ...]:
-        """A hashable description of the detector's settings (the step floor's cache key)."""
-        raise NotImplementedError
+    def floor_key(self) -> tuple[object, ...] | None:
+        """A hashable description of the detector's settings (the step floor's cache key);
+        None: not stated, and the detector's step floor is not measured."""
+        return None
 
     def floor_probe(self) -> LatchingContactDetector:
         """A copy whose modules decide independently (:func:`softpad.sensing.step_floor_pa`

@@ -49,6 +49,8 @@ def step_floor_pa(
         raise InputError(f"sensor noise must be a number of Pa >= 0, got {noise_std_pa!r}")
     if not (math.isfinite(settle_s) and settle_s >= 0):
         raise InputError(f"settling time must be a number of s >= 0, got {settle_s!r}")
+    if detector.floor_key is None:
+        raise InputError(f"{type(detector).__name__} states no floor_key: its floor is unknown")
     key = (detector.floor_key, sample_rate_hz, noise_std_pa, settle_s, window_s)
     if key not in _FLOORS:
         probe = detector.floor_probe()
@@ -88,8 +90,9 @@ def sensing_ratio(
 ) -> float | None:
     """The detector's step floor over the thesis detector's at the same rate and noise (the
     share of a fingertip's rise it needs, the thesis's being 1); None for a detector whose
-    modules cannot be probed apart (not a :class:`LatchingContactDetector`)."""
-    if not isinstance(detector, LatchingContactDetector):
+    modules cannot be probed apart (not a :class:`LatchingContactDetector`, or one that
+    states no ``floor_key``)."""
+    if not isinstance(detector, LatchingContactDetector) or detector.floor_key is None:
         return None
     reference = step_floor_pa(ThesisContactDetector(), sample_rate_hz, noise_std_pa)
     return step_floor_pa(detector, sample_rate_hz, noise_std_pa) / reference
