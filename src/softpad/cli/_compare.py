@@ -179,17 +179,21 @@ def _plot(d: dict[str, Any], path: str) -> None:
 
     combos = d["combinations"]
     names = [o["name"] for o in combos[0]["objects"]]
-    fig, ax = plt.subplots(figsize=(9, 4))
+    fig, ax = plt.subplots(figsize=(11, 4))
     width = 0.8 / len(combos)
     for i, c in enumerate(combos):
         rates = [o["success"] for o in c["objects"]]
+        # the bars' whiskers: each object's 95 % Wilson interval
+        lo = [r - o["success_interval"][0] for r, o in zip(rates, c["objects"], strict=True)]
+        hi = [o["success_interval"][1] - r for r, o in zip(rates, c["objects"], strict=True)]
         xs = [k + i * width for k in range(len(names))]
-        ax.bar(xs, rates, width, label=f"{c['planner']} + {c['detector']}")
+        label = f"{c['planner']} + {c['detector']}: {_pct(c['success'])} overall"
+        ax.bar(xs, rates, width, yerr=[lo, hi], capsize=2, label=label)
     ax.set_xticks([k + 0.4 - width / 2 for k in range(len(names))], names, rotation=30)
-    ax.set_ylabel("success rate")
+    ax.set_ylabel("success rate (95 % interval)")
     ax.set_ylim(0, 1.05)
-    ax.legend(loc="lower left")
-    ax.set_title(f"Experiment 2 over {len(d['seeds'])} seeds")
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize="small")
+    ax.set_title(f"Experiment 2 over {len(d['seeds'])} seeds ({c['trials']} trials a pair)")
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
