@@ -76,6 +76,8 @@ def test_a_detector_that_cannot_be_probed_has_no_ratio() -> None:
             return False
 
     assert sensing_ratio(Stub(), 100.0) is None  # type: ignore[arg-type]
+    with pytest.raises(InputError, match="Stub is not a LatchingContactDetector"):
+        step_floor_pa(Stub(), 100.0)  # type: ignore[arg-type]
 
     class Unstated(LatchingContactDetector):
         def _restart(self, modules: int) -> None: ...

@@ -34,7 +34,7 @@ _REPEATS = 32
 
 
 def step_floor_pa(
-    detector: LatchingContactDetector,
+    detector: ContactDetector,
     sample_rate_hz: float,
     noise_std_pa: float = DEFAULT_FLOOR_NOISE_PA,
     settle_s: float = 1.5,
@@ -49,6 +49,11 @@ def step_floor_pa(
         raise InputError(f"sensor noise must be a number of Pa >= 0, got {noise_std_pa!r}")
     if not (math.isfinite(settle_s) and settle_s >= 0):
         raise InputError(f"settling time must be a number of s >= 0, got {settle_s!r}")
+    if not isinstance(detector, LatchingContactDetector):
+        raise InputError(
+            f"{type(detector).__name__} is not a LatchingContactDetector: its modules cannot "
+            "be probed apart, its floor is unknown"
+        )
     if detector.floor_key is None:
         raise InputError(f"{type(detector).__name__} states no floor_key: its floor is unknown")
     key = (detector.floor_key, sample_rate_hz, noise_std_pa, settle_s, window_s)
