@@ -319,3 +319,21 @@ def test_bad_experiment_is_rejected(kwargs: dict[str, int], message: str) -> Non
 
     with pytest.raises(InputError, match=message):
         run_experiment([get_object("banana")], **kwargs)
+
+
+@pytest.mark.slow
+def test_trial_planner_is_told_the_detector_it_works_with() -> None:
+    """Object 1's thesis grasp lays the soles across the 3|6 seam. In a trial the gripper-aware
+    planner moves it for the thesis's detector and keeps it for the adaptive CUSUM, which
+    senses them there (its sensing ratio, passed by the trial loop)."""
+    from dataclasses import replace
+
+    spec = get_object("object-1")
+    cogs = {}
+    for planner, detector in [("thesis", "adaptive"), ("gripper-aware", "adaptive"),
+                              ("gripper-aware", "thesis")]:  # fmt: skip
+        config = replace(FAST, planner=planner, detector=detector)
+        result, _ = run_trial(spec, seed=0, config=config, placement=_nominal(spec))
+        cogs[planner, detector] = result.cog
+    assert cogs["gripper-aware", "adaptive"] == cogs["thesis", "adaptive"]
+    assert cogs["gripper-aware", "thesis"] != cogs["thesis", "adaptive"]
