@@ -169,3 +169,26 @@ def test_interrupt_closes_the_valves() -> None:
         loop.run()
     assert set(box.valves) == {ValveCommand.CLOSED}
     assert "safe" in log.phases
+
+
+def test_a_held_object_is_put_down_before_the_jaws_open() -> None:
+    """After the hold the object goes back down by the lift height at the approach speed, then
+    the jaws open (a dropped object hits the pad: a full-scale reading and a disturbed valve
+    check after the outcome)."""
+    log = RunLog()
+    r = run_simulated(["object-5"], "sim://?seed=11", FAST, log)
+    assert r.to_dict()["outcome"] == "held"
+    events = [(t, k, d) for t, k, d in log.events if k in ("phase", "robot")]
+    phase_at = {d["phase"]: i for i, (_, k, d) in enumerate(events) if k == "phase"}
+    lift = next(d for _, k, d in events[phase_at["lift"] :] if k == "robot")
+    release = [
+        d for _, k, d in events[phase_at["release"] : phase_at["valve_check"]] if k == "robot"
+    ]
+    assert release[0]["command"] == "move_to"
+    assert release[0]["z_m"] == pytest.approx(lift["z_m"] - FAST.lift_m, abs=1e-9)
+    assert release[0]["speed_m_s"] == FAST.approach_speed_m_s
+    assert release[1] == {
+        "command": "set_gripper",
+        "width_m": 1.0,
+        "speed_m_s": FAST.travel_speed_m_s,
+    }

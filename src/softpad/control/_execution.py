@@ -516,6 +516,10 @@ class GraspExecution:
         outcome = "held" if held else ("dropped" if lifted else "missed")
         self.recorder.event(self._last_t, "outcome", outcome=outcome)
         self._enter("release")
+        if held:  # put it back where it was grasped, at the approach speed, before opening
+            s = self.robot.state()
+            down = replace(s.pose, z_m=s.z_m - p.lift_m)
+            self._move(down, p.approach_speed_m_s, "putting the object down")
         self._gripper(1.0, p.travel_speed_m_s, "opening the gripper")
         s = self.robot.state()
         self._move(replace(s.pose, z_m=p.approach_height_m), p.travel_speed_m_s, "moving up")
