@@ -18,6 +18,8 @@ from softpad.sensing import (
     sensing_ratio,
     step_floor_pa,
 )
+from softpad.sensing._floor import DEFAULT_FLOOR_NOISE_PA
+from softpad.sim import SensorParams
 
 
 def test_noise_free_thesis_floor_is_the_first_step_above_t_g() -> None:
@@ -108,3 +110,8 @@ def test_a_detector_that_never_fires_has_an_infinite_floor() -> None:
 def test_bad_settings_are_named(kwargs: dict, match: str) -> None:
     with pytest.raises(InputError, match=match):
         step_floor_pa(ThesisContactDetector(), **kwargs)
+
+
+def test_the_floors_noise_is_the_simulated_sensors() -> None:
+    """The probe's noise is the box sensor's (kept apart so that sensing need not import sim)."""
+    assert DEFAULT_FLOOR_NOISE_PA == SensorParams().noise_std_pa

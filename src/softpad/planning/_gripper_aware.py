@@ -2,9 +2,9 @@
 
 The thesis's two seam failures came from a fingertip landing on the non-sensitive seam between
 modules (Section 6.3). :class:`GripperAwarePlanner` starts from the thesis's plan and keeps it
-whenever a fingertip is sensed by the contact detector in use; otherwise it tries grasps shifted along and across
-the closing direction (turned too, when the object's outline is wider than the jaws open along
-the thesis's direction), and takes the best by the score
+whenever a fingertip is sensed by the contact detector in use; otherwise it tries grasps
+shifted along and across the closing direction (turned too, when the object's outline is wider
+than the jaws open along the thesis's direction), and takes the best by the score
 
     score = sensed response of the better-placed fingertip - shift_cost * shift / max_shift
             - turn_cost * |turn| / max_turn
