@@ -93,6 +93,12 @@ def test_guard_trips_on_fast_rise_before_the_level() -> None:
     assert guard.check(0.0, np.array([2500.0, 0.0])) == []
     # rising 400 Pa per frame: 2900 + 400 expected next frame is over the 2950 trip level
     assert guard.check(1.0, np.array([2900.0, 0.0])) == [1]
+    # the cause names the rise: the reading itself is under the level
+    assert guard.trips[-1][2] == (
+        "2.900 kPa rising 0.400 kPa a frame: the trip level 2.950 kPa within a frame"
+    )
+    assert guard.check(2.0, np.array([2900.0, 3000.0])) == [2]
+    assert guard.trips[-1][2] == "3.000 kPa over the trip level 2.950 kPa"
 
 
 @pytest.mark.parametrize(

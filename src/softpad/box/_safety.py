@@ -169,6 +169,9 @@ class SafetyGuard:
                     f"reading {v / 1e3:.3f} kPa is not valid"
                     if invalid
                     else f"{v / 1e3:.3f} kPa over the trip level {lim.trip_pa / 1e3:.3f} kPa"
+                    if v > lim.trip_pa
+                    else f"{v / 1e3:.3f} kPa rising {rise / 1e3:.3f} kPa a frame: the trip level "
+                    f"{lim.trip_pa / 1e3:.3f} kPa within a frame"
                 )
                 self.trips.append((t_s, k + 1, cause))
         self._any_tripped = bool(tripped.any())
