@@ -178,3 +178,19 @@ def test_a_fingertip_half_off_the_pad_is_moved_for_any_detector(y: float, moved:
 def test_a_bad_sensing_ratio_is_named(ratio: float) -> None:
     with pytest.raises(InputError, match="sensing ratio"):
         GripperAwarePlanner(GRIPPER, sensing_ratio=ratio)
+
+
+def test_planner_for_a_detector_measures_its_ratio_only_for_the_gripper_aware_planner() -> None:
+    from softpad.planning import planner_for
+    from softpad.sensing import ThesisContactDetector
+
+    class Unprobed(ThesisContactDetector):
+        @property
+        def floor_key(self) -> tuple[object, ...]:
+            raise AssertionError("the thesis planner needs no step floor")
+
+    assert isinstance(planner_for("thesis", GRIPPER, None, Unprobed(), 100.0), ThesisPlanner)
+    detector = make_contact_detector("adaptive", 100.0)
+    aware = planner_for("gripper-aware", GRIPPER, None, detector, 100.0)
+    assert isinstance(aware, GripperAwarePlanner)
+    assert aware.sensing_ratio == pytest.approx(_adaptive_ratio())

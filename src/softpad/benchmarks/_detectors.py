@@ -98,14 +98,13 @@ def _calibration(rate_hz: int, hours: float) -> BenchResult:
 def _sensing_ratio(detector: str, rate_hz: int) -> BenchResult:
     """The step floor over the thesis detector's (what the gripper-aware planner scales its
     sensed share by): no target, the figure the planner uses."""
-    from softpad.sensing import make_contact_detector, sensing_ratio, step_floor_pa
+    from softpad.sensing import make_contact_detector, step_floor_pa
 
-    det = make_contact_detector(detector, rate_hz)
-    floor = step_floor_pa(det, rate_hz)
+    floor = step_floor_pa(make_contact_detector(detector, rate_hz), rate_hz)
     thesis = step_floor_pa(make_contact_detector("thesis", rate_hz), rate_hz)
     return BenchResult(
         f"step floor at {rate_hz} Hz, {detector} / thesis (sensing ratio)",
-        float(sensing_ratio(det, rate_hz) or 0.0),
+        floor / thesis,
         "x",
         detail=f"{detector} {floor:g} Pa, thesis {thesis:g} Pa: smallest step caught within "
         "0.2 s by half of 32 idle modules, 8 Pa white noise (softpad.sensing.step_floor_pa)",

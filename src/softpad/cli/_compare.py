@@ -193,7 +193,8 @@ def _plot(d: dict[str, Any], path: str) -> None:
     ax.set_ylabel("success rate (95 % interval)")
     ax.set_ylim(0, 1.05)
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize="small")
-    ax.set_title(f"Experiment 2 over {len(d['seeds'])} seeds ({c['trials']} trials a pair)")
+    trials = combos[0]["trials"]
+    ax.set_title(f"Experiment 2 over {len(d['seeds'])} seeds ({trials} trials a pair)")
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)

@@ -122,15 +122,15 @@ def loop_parts(args: argparse.Namespace, box: Any, params: Any, mounting: str) -
     """The planner and contact detector named by ``--planner`` and ``--detector``; the thesis's
     are left to the execution (built from the loop parameters)."""
     from softpad.layout import GripperSpec
-    from softpad.planning import make_planner
-    from softpad.sensing import make_contact_detector, sensing_ratio
+    from softpad.planning import planner_for
+    from softpad.sensing import make_contact_detector
 
     parts: dict[str, Any] = {}
     detector = make_contact_detector(args.detector, box.sample_rate_hz)
     if args.planner != "thesis":
         spec = GripperSpec.from_mounting(mounting)
-        ratio = sensing_ratio(detector, box.sample_rate_hz)
-        parts["planner"] = make_planner(args.planner, spec, params.planner, ratio)
+        rate = box.sample_rate_hz
+        parts["planner"] = planner_for(args.planner, spec, params.planner, detector, rate)
     if args.detector != "thesis":
         parts["contact_detector"] = detector
     return parts

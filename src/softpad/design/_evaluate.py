@@ -120,8 +120,8 @@ def _one_trial(
     from softpad.control import ExecutionError, GraspExecution, InflationParams
     from softpad.errors import HardwareFault
     from softpad.harness import SimulatedRobot
-    from softpad.planning import make_planner
-    from softpad.sensing import make_contact_detector, sensing_ratio
+    from softpad.planning import planner_for
+    from softpad.sensing import make_contact_detector
     from softpad.sim import AnalyticWorld, Placement, SensorParams, SimGripper
     from softpad.trials import TrialConfig, perturbed_placement, trial_execution_params, trial_seed
 
@@ -154,11 +154,8 @@ def _one_trial(
         robot,
         layout,
         params,
-        planner=make_planner(
-            options.planner,
-            world.gripper.geometry,
-            params.planner,
-            sensing_ratio(detector, box.sample_rate_hz),
+        planner=planner_for(
+            options.planner, world.gripper.geometry, params.planner, detector, box.sample_rate_hz
         ),
         contact_detector=detector,
         place_objects=lambda: world.place_object(spec, placement),

@@ -12,6 +12,7 @@ from softpad.planning._gripper_aware import (
     GripperAwarePlanner,
     make_planner,
     object_extent_m,
+    planner_for,
     sensed_share,
 )
 from softpad.planning._params import DEFAULT_SAFETY_SHIFT, PlannerParams
@@ -39,6 +40,7 @@ __all__ = [
     "object_extent_m",
     "pcom",
     "plan_grasps",
+    "planner_for",
     "plot_plans",
     "sensed_share",
 ]

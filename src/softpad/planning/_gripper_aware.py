@@ -42,7 +42,12 @@ from softpad.layout import GripperSpec, PadLayout
 from softpad.planning._params import PlannerParams
 from softpad.planning._plan import ThesisPlanner
 from softpad.planning._records import GraspPlan
-from softpad.sensing import DEFAULT_OUTLINE_THRESHOLD_PA, outline_objects
+from softpad.sensing import (
+    DEFAULT_OUTLINE_THRESHOLD_PA,
+    ContactDetector,
+    outline_objects,
+    sensing_ratio,
+)
 from softpad.sensing._objects import check_increments
 
 #: Width of the bonded, non-sensitive seam between two chambers, m. A pad specification
@@ -283,3 +288,17 @@ def make_planner(
         ratio = 1.0 if sensing_ratio is None else sensing_ratio
         return GripperAwarePlanner(gripper, params, sensing_ratio=ratio)
     raise InputError(f"unknown planner {name!r}; use one of {', '.join(PLANNERS)}")
+
+
+def planner_for(
+    name: str,
+    gripper: GripperSpec | None,
+    params: PlannerParams | None,
+    detector: ContactDetector,
+    sample_rate_hz: float,
+) -> ThesisPlanner | GripperAwarePlanner:
+    """:func:`make_planner` for a loop that detects contact with ``detector`` at
+    ``sample_rate_hz``: the gripper-aware planner is told the detector's sensing ratio, which
+    is measured only for it (the probe of a 1 kHz detector takes seconds)."""
+    ratio = sensing_ratio(detector, sample_rate_hz) if name == "gripper-aware" else None
+    return make_planner(name, gripper, params, ratio)

@@ -31,6 +31,8 @@ DEFAULT_FLOOR_NOISE_PA = 8.0
 _AMPLITUDES_PA = np.arange(2.0, 302.0, 2.0)
 #: Repeats per amplitude (the floor's 50 % point has a binomial spread of 1/sqrt(4 x 32)).
 _REPEATS = 32
+#: Floors measured in this process, by settings.
+_FLOORS: dict[tuple[object, ...], float] = {}
 
 
 def step_floor_pa(
@@ -61,10 +63,6 @@ def step_floor_pa(
         probe = detector.floor_probe()
         _FLOORS[key] = _measure(probe, sample_rate_hz, noise_std_pa, settle_s, window_s)
     return _FLOORS[key]
-
-
-#: Floors measured in this process, by settings.
-_FLOORS: dict[tuple[object, ...], float] = {}
 
 
 def _measure(

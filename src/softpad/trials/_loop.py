@@ -149,14 +149,14 @@ class _Trial:
     def planner(self, detector: Any) -> Any:
         """The configured planner, told the trial gripper's geometry (a published spec) and
         the contact detector's sensing ratio."""
-        from softpad.planning import make_planner
-        from softpad.sensing import sensing_ratio
+        from softpad.planning import planner_for
 
-        return make_planner(
+        return planner_for(
             self.config.planner,
             self.geometry,
             self.config.execution.planner,
-            sensing_ratio(detector, self.box.sample_rate_hz),
+            detector,
+            self.box.sample_rate_hz,
         )
 
     def place(self) -> None:
