@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 
@@ -77,9 +79,21 @@ def test_fault_raises_naming_the_cause_and_leaves_the_box_safe(fault: Fault, mat
     assert len(frames) > 50  # everything read before the fault was handed to the logger
 
 
+def test_the_leak_check_sits_six_sigma_above_the_sensor_noise() -> None:
+    """The drift over the settle time is judged from two 10-sample means of the box sensor's
+    white noise: its standard deviation is sqrt(2) x 8 Pa / sqrt(10) / 0.5 s = 7.2 Pa/s. At
+    25 Pa/s (3.5 sigma, and time stamps add a little) one simulated adjustment in a hundred
+    named a sound channel as leaking; the threshold keeps 6 sigma."""
+    from softpad.sim import SensorParams
+
+    params = InflationParams()
+    sigma = math.sqrt(2) * SensorParams().noise_std_pa / math.sqrt(params.filter_length)
+    assert params.max_drift_pa_s >= 6 * sigma / params.settle_s
+
+
 def test_small_leak_after_adjustment_is_caught_by_the_drift_check() -> None:
     box = SimBox(seed=3, initial_pressure_pa=1100.0)
-    box.inject_fault(Fault("leak", 2, 0.0, 3e-9))
+    box.inject_fault(Fault("leak", 2, 0.0, 8e-9))
     with pytest.raises(HardwareFault, match="channel 2"):
         inflate_and_adjust(box, N)
     _assert_safe(box)

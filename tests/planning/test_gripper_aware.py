@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import pytest
 
@@ -12,6 +13,7 @@ from softpad.planning import (
     TABLE_6_1,
     GripperAwarePlanner,
     ThesisPlanner,
+    centred_on_load,
     make_planner,
     object_extent_m,
     sensed_share,
@@ -89,11 +91,12 @@ def test_planner_names() -> None:
         make_planner("magic")
 
 
-def test_a_wide_object_whose_tip_is_sensed_keeps_the_thesis_grasp() -> None:
+def test_a_wide_object_whose_tip_is_sensed_keeps_the_thesis_direction_centred_on_its_load() -> None:
     """A charger-like load on modules 1, 2, 4, 5, 6 (the simulated charger's increments, Pa):
-    an outline wider than the 6 cm jaws whichever way they turn, a sensed fingertip: the thesis's
-    grasp is kept. A shift along the closing direction would put a jaw on a body that may fill
-    the opening (the 55 mm charger lost half its grasps that way in `softpad compare`)."""
+    an outline wider than the 6 cm jaws whichever way they turn, a sensed fingertip: the
+    thesis's direction and its position along the brick are kept, no shift is tried (a jaw
+    would come down on a body that may fill the opening), and the centre moves across the row
+    seam to the middle of the load under the jaws' path (modules 2 and 5, closing along y)."""
     delta = (305.0, 294.0, 3.0, 298.0, 297.0, 255.0)
     objects = detect_objects(delta, LAYOUT)
     planner = GripperAwarePlanner(GRIPPER)
@@ -101,7 +104,37 @@ def test_a_wide_object_whose_tip_is_sensed_keeps_the_thesis_grasp() -> None:
     (aware,) = planner.plan(delta, objects, LAYOUT)
     assert planner.tip_share(thesis.cog, thesis.theta, LAYOUT) >= planner.good_share
     assert planner._too_wide(thesis, thesis.theta, LAYOUT)
-    assert aware == thesis
+    assert thesis.theta == pytest.approx(math.pi / 2) and thesis.cog[1] == pytest.approx(1.0)
+    y = (294.0 * 1.5 + 297.0 * 0.5) / (294.0 + 297.0)  # modules 2 (y 1.5) and 5 (y 0.5)
+    assert aware.theta == thesis.theta and aware.modules == thesis.modules
+    assert aware.cog == pytest.approx((thesis.cog[0], y), abs=1e-12)
+    assert aware.rule == thesis.rule + "+load-centred"
+
+
+@pytest.mark.parametrize(("top", "bottom"), [(420.0, 310.0), (250.0, 460.0)])
+def test_the_jaws_follow_a_wide_object_off_the_row_seam(top: float, bottom: float) -> None:
+    """The same brick pushed towards one row loads that row's module more: the centre of grasp
+    follows it (the thesis's rule keeps y on the seam, 2.1 mm median off the simulated
+    charger on development seeds, where its 60 mm jaws leave 2.5 mm a side)."""
+    delta = (400.0, top, 3.0, 300.0, bottom, 255.0)
+    objects = detect_objects(delta, LAYOUT)
+    (thesis,) = ThesisPlanner().plan(delta, objects, LAYOUT)
+    (aware,) = GripperAwarePlanner(GRIPPER).plan(delta, objects, LAYOUT)
+    assert thesis.cog[1] == pytest.approx(1.0)
+    x = thesis.cog[0]
+    assert LAYOUT.module_containing(x, 1.5) == 2  # the jaws' path crosses modules 2 and 5
+    assert aware.cog == pytest.approx((x, (top * 1.5 + bottom * 0.5) / (top + bottom)))
+    assert (aware.cog[1] > 1.0) is (top > bottom)
+
+
+def test_centring_needs_load_under_the_jaws_path() -> None:
+    """A plan whose path crosses none of its loaded modules is left as it is."""
+    plan = GraspPlan((1, 4), (0.5, 1.0), (0.5, 1.0), math.pi / 2, "n2-vertical", (1, 4))
+    assert centred_on_load(plan, LAYOUT, (0, 0, 0, 0, 0, 0)) == plan
+    moved = centred_on_load(plan, LAYOUT, (100, 0, 0, 300, 0, 0))
+    assert moved.cog == pytest.approx((0.5, (100 * 1.5 + 300 * 0.5) / 400))
+    across = replace(plan, theta=0.0)  # closing along x: the path y = 1 runs on the seam
+    assert centred_on_load(across, LAYOUT, (100, 0, 0, 300, 0, 0)) == across
 
 
 #: Plan increments of simulated trials (MuJoCo, experiment seeds 100-103, not among the

@@ -245,8 +245,10 @@ class _RecordingRobot:
         return self.inner.holding()
 
 
-#: Phases in which the robot presses the pad or an object on it (see FaultMonitor.loads_expected).
-_LOADING_PHASES = ("descend", "close", "lift")
+#: Phases in which the robot presses the pad or an object on it, or an object is being placed on
+#: it (what wait_object waits for: its modules rise while it settles), see
+#: FaultMonitor.loads_expected.
+_LOADING_PHASES = ("wait_object", "descend", "close", "lift")
 
 
 class GraspExecution:

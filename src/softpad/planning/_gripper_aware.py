@@ -180,6 +180,8 @@ class GripperAwarePlanner:
         score has no load term."""
         load = None if increments_pa is None else _load_shares(plan, layout, increments_pa)
         fits = not self._too_wide(plan, plan.theta, layout)
+        if not fits and increments_pa is not None:
+            plan = centred_on_load(plan, layout, increments_pa)
         sensed = self.tip_share(plan.cog, plan.theta, layout) >= self.needed_share
         if sensed and (fits or not self._fitting_turns(plan, layout)):
             return plan  # good as it is, or too wide whichever way it turns: nothing to gain
@@ -247,6 +249,30 @@ class GripperAwarePlanner:
         turn = abs(_wrap(theta - plan.theta)) / max(self.max_turn_rad, 1e-9)
         score = self.tip_share(cog, theta, layout) - 0.2 * shift - 0.1 * turn - 1.0 * too_wide
         return score if load is None else score + self.load_cost * float(load[module - 1])
+
+
+def centred_on_load(plan: GraspPlan, layout: PadLayout, increments_pa: ArrayLike) -> GraspPlan:
+    """The plan with its centre moved along the closing direction to the middle of the load
+    under the jaws' path: the increment-weighted mean position, along that direction, of the
+    plan's modules whose centres lie within half a pitch of the line the jaws close on.
+
+    The thesis's rules put the centre on module centres and seams; for an object that may fill
+    the opening (its outline is wider than the jaws) the load tells better where its middle
+    is. The plan itself when nothing under the path is loaded."""
+    d = np.clip(check_increments(increments_pa, layout), 0.0, None)
+    u = np.array([math.cos(plan.theta), math.sin(plan.theta)])
+    normal = np.array([-u[1], u[0]])
+    cog = np.asarray(plan.cog, dtype=float)
+    offsets = [np.asarray(layout.center(m)) - cog for m in plan.modules]
+    on_path = [(m, o) for m, o in zip(plan.modules, offsets, strict=True) if abs(o @ normal) < 0.5]
+    weight = sum(float(d[m - 1]) for m, _ in on_path)
+    if weight <= 0.0:
+        return plan
+    along = sum(float(d[m - 1]) * float(o @ u) for m, o in on_path) / weight
+    if abs(along) < 1e-9:
+        return plan
+    c = cog + along * u
+    return replace(plan, cog=(float(c[0]), float(c[1])), rule=plan.rule + "+load-centred")
 
 
 def _load_shares(
