@@ -129,6 +129,31 @@ def test_no_object_times_out() -> None:
         loop.run()
 
 
+def test_an_object_being_placed_is_a_load_the_monitor_expects() -> None:
+    """While the loop waits for an object, a sealed module rising is what it waits for: the
+    fault monitor does not call it a stuck inflation valve (a 122 g object settling into the
+    pad rose 258 Pa/s for 1.5 s in a simulated trial and was); before, it does."""
+    from softpad.control import ExecutionError
+
+    expected: dict[str, set[bool]] = {}
+
+    class Watch:
+        def frame(self, frame: object, phase: str) -> None:
+            expected.setdefault(phase, set()).add(loop.safety.monitor.loads_expected)
+
+        def event(self, t_s: float, kind: str, **data: object) -> None:
+            pass
+
+    world = AnalyticWorld()
+    box = SimBox(world, seed=1)
+    params = ExecutionParams(object_wait_s=1.0)
+    loop = GraspExecution(box, SimulatedRobot(world), world.layout, params, recorder=Watch())
+    with pytest.raises(ExecutionError, match="no object"):
+        loop.run()
+    assert expected["wait_object"] == {True}
+    assert expected["adjust"] == {False}
+
+
 def test_unknown_object_and_bad_params() -> None:
     with pytest.raises(InputError, match="unknown object 'teapot'"):
         run_simulated(["teapot"])

@@ -61,6 +61,32 @@ def test_resting_brick_loads_only_its_module_weighted_by_the_response(module: in
     np.testing.assert_allclose(np.delete(loads, module - 1), 0.0, atol=1e-6)
 
 
+def test_a_one_step_contact_peak_reaches_the_chamber_as_its_share_of_the_period() -> None:
+    """The loads a box sample sees are the mean over the MuJoCo steps of its period (five 2 ms
+    steps at 100 Hz): a contact force that one solver step puts on module 1 (40 N, as when
+    jaws close on an object) counts a fifth, not in full as the last step's force would."""
+    world = MujocoWorld(objects=(brick(),))
+    x, y = PadLayout().to_metres(PadLayout().center(2))
+    world.place_object(brick(), Placement(x, y))
+    settle(world)
+    seen: list[np.ndarray] = []
+    step = world._mj_step
+
+    def spiky(ts: float) -> None:
+        step(ts)
+        if len(seen) == 4:  # the period's last step
+            world._sensing.loads = world._sensing.loads + np.array([40.0, 0, 0, 0, 0, 0])
+        seen.append(world._sensing.loads.copy())
+
+    world._mj_step = spiky  # type: ignore[method-assign]
+    world.step(0.01)
+    assert len(seen) == 5
+    loads = world.module_loads_n()
+    np.testing.assert_allclose(loads, np.mean(seen, axis=0), rtol=1e-12)
+    assert 40.0 / 5 <= loads[0] < 40.0 / 5 + 0.01  # the brick rests on module 2, not 1
+    assert loads[1] == pytest.approx(0.0126 * GRAVITY_M_S2, rel=0.5)
+
+
 def test_heavier_part_loads_its_module_more() -> None:
     """A bar across modules 1 and 2 with a heavy insert over module 1 (like the cylinder)."""
     light, heavy = 0.010, 0.030
