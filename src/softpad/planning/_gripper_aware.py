@@ -15,6 +15,11 @@ extent estimated from the pad (its modules' outline, projected on the closing di
 wider than the jaws open. The load term sends a shift towards where the object's weight lies
 (a V-shaped toy's body, not its light arms across the seam).
 
+Where the outline is wider than the jaws open along the closing direction (the object may
+fill the opening), the centre first moves along that direction to the middle of the load under
+the jaws' path (:func:`centred_on_load`): the thesis's rules keep it on a row seam, which the
+55 mm charger between 60 mm jaws missed by more than the 2.5 mm a side in half its grasps.
+
 "Sensed" depends on the detector. The response map (:func:`sensed_share`) says what share of a
 centred fingertip's rise a fingertip raises where it lands; with the thesis's detector a grasp
 is kept from a share of ``good_share`` (0.5). A detector that catches smaller rises needs
