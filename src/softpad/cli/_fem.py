@@ -591,10 +591,14 @@ def _chamber(args: argparse.Namespace) -> int:
     if args.pressure_kpa <= 0:
         raise InputError(f"--pressure-kpa must be > 0 kPa, got {args.pressure_kpa:g}")
     threshold = args.threshold_kpa * 1e3
+    source = "--threshold-kpa"
     if args.noise_kpa is not None:
         threshold = args.n_sigma * args.noise_kpa * 1e3
+        source = "--n-sigma x --noise-kpa"
     if threshold <= 0:
-        raise InputError(f"detection threshold must be > 0 kPa, got {threshold * 1e-3:g}")
+        raise InputError(
+            f"detection threshold ({source}) must be > 0 kPa, got {threshold * 1e-3:g} kPa"
+        )
     result = _run_study(
         args,
         "chamber",
