@@ -119,9 +119,9 @@ class FaultMonitor:
         self._rising = np.zeros(self.n, dtype=np.int64)
         # sealed (for a whole filter length) at the start of the current window and ever since
         self._sealed_window = np.zeros(self.n, dtype=bool)
-        #: True while the robot presses the pad or an object on it (descend, close, lift): a
-        #: sealed module then rises because of the load, so "rising" is not judged (the range
-        #: and over-pressure checks still are).
+        #: True while an object is being placed on the pad or the robot presses the pad or an
+        #: object on it (wait_object, descend, close, lift): a sealed module then rises because
+        #: of the load, so "rising" is not judged (the range and over-pressure checks still are).
         self.loads_expected = False
 
     def set_reference(self, reference_pa: Sequence[float] | NDArray[np.float64]) -> None:

@@ -196,7 +196,7 @@ class MujocoWorld(PadWorld):
         # the hand moves continuously (the robot sees it move on every sample, whatever the
         # sample period); MuJoCo steps each time a whole time step has elapsed
         remaining = dt
-        total, steps = self._sensing.loads * 0.0, 0
+        total, steps = np.zeros(self._layout.n_modules), 0
         while self._pending_s + remaining >= ts * (1 - 1e-9):
             chunk = max(ts - self._pending_s, 0.0)
             self._arm.move(chunk)
@@ -227,8 +227,8 @@ class MujocoWorld(PadWorld):
         return self._loads + self._probe_loads
 
     def module_forces_n(self) -> NDArray[np.float64]:
-        """Plain normal contact force on each module top, N (diagnostics: what the response
-        weights into :meth:`module_loads_n`)."""
+        """Plain normal contact force on each module top after the last MuJoCo step, N
+        (diagnostics: what the response weights, step by step, into :meth:`module_loads_n`)."""
         return self._sensing.forces.copy()
 
     @property
