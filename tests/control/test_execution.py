@@ -9,6 +9,7 @@ from softpad.box import ConnectionLost, SimBox, ValveCommand, open_box
 from softpad.control import ExecutionParams, GraspExecution
 from softpad.errors import HardwareFault, InputError
 from softpad.harness import SimulatedRobot, run_simulated
+from softpad.planning import GraspPlan, RetryPlanner
 from softpad.record import RunLog
 from softpad.sim import AnalyticWorld, SimGripper, get_object
 
@@ -217,3 +218,43 @@ def test_a_held_object_is_put_down_before_the_jaws_open() -> None:
         "width_m": 1.0,
         "speed_m_s": FAST.travel_speed_m_s,
     }
+
+
+class _CountingRetryPlanner:
+    """A planner with a retry that counts its calls (a RetryPlanner)."""
+
+    def __init__(self) -> None:
+        self.calls = 0
+        self.turned = GraspPlan((1, 2, 4, 5), (1.0, 1.0), (1.0, 1.0), np.pi / 2, "turned", ())
+
+    def plan(self, increments_pa, objects, layout):  # type: ignore[no-untyped-def]
+        return []
+
+    def retry(self, plan, increments_pa, layout):  # type: ignore[no-untyped-def]
+        self.calls += 1
+        return self.turned
+
+
+def test_only_a_miss_after_landing_on_the_object_asks_the_planner_again() -> None:
+    """The loop retries when the jaws closed on nothing (``missed``) after the fingers were
+    sensed above ``landing_height_m`` (17 mm: on the object, not on the ~9 mm pad), while
+    attempts are left, and only with a planner that has a retry (not the thesis's)."""
+    world = AnalyticWorld()
+    planner = _CountingRetryPlanner()
+    first = GraspPlan((1, 2, 4, 5), (1.0, 1.0), (1.0, 1.0), 0.0, "square", ())
+    loop = GraspExecution(SimBox(world), SimulatedRobot(world), planner=planner)
+    assert isinstance(planner, RetryPlanner)
+    assert loop.params.landing_height_m == pytest.approx(0.017)
+    assert loop._retry(first, "missed", 0.049, 1) is planner.turned
+    assert loop._retry(first, "missed", 0.0075, 1) is None  # fingers on the pad
+    assert loop._retry(first, "held", 0.049, 1) is None
+    assert loop._retry(first, "dropped", 0.049, 1) is None
+    assert loop._retry(first, "missed", 0.049, 2) is None  # max_attempts (2) used
+    assert planner.calls == 1
+    thesis = GraspExecution(SimBox(world), SimulatedRobot(world))
+    assert thesis._retry(first, "missed", 0.049, 1) is None
+
+
+def test_a_bad_attempt_count_is_named() -> None:
+    with pytest.raises(InputError, match="max_attempts"):
+        ExecutionParams(max_attempts=0)

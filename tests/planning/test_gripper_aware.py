@@ -12,6 +12,7 @@ from softpad.layout import GripperSpec, PadLayout
 from softpad.planning import (
     TABLE_6_1,
     GripperAwarePlanner,
+    RetryPlanner,
     ThesisPlanner,
     centred_on_load,
     make_planner,
@@ -227,3 +228,54 @@ def test_planner_for_a_detector_measures_its_ratio_only_for_the_gripper_aware_pl
     aware = planner_for("gripper-aware", GRIPPER, None, detector, 100.0)
     assert isinstance(aware, GripperAwarePlanner)
     assert aware.sensing_ratio == pytest.approx(_adaptive_ratio())
+
+
+#: Plan increments of a simulated can trial (MuJoCo, development seed 100): its heavy end on
+#: modules 1 and 4, its light tinplate body barely loading column 3, pascals.
+CAN_PA = (138.0, 28.0, -1.0, 102.0, 60.0, 7.0)
+
+
+def test_a_missed_square_is_retried_a_quarter_turn_about_its_centre() -> None:
+    """The can seen as a square of modules 1, 2, 4, 5: planned at the square's centre closing
+    along x (the thesis's default direction); after a miss, closing along y about the same
+    centre (on the seam the can lies on)."""
+    planner = GripperAwarePlanner(GRIPPER, sensing_ratio=0.44)
+    (plan,) = planner.plan(CAN_PA, detect_objects(CAN_PA, LAYOUT), LAYOUT)
+    assert plan.modules == (1, 2, 4, 5) and plan.theta == pytest.approx(0.0)
+    turned = planner.retry(plan, CAN_PA, LAYOUT)
+    assert turned is not None
+    assert turned.theta == pytest.approx(math.pi / 2) and turned.cog == plan.cog
+    assert turned.modules == plan.modules and turned.rule == plan.rule + "+turned-after-miss"
+    # a second miss turns back: a plain quarter turn each time, wrapped to (-pi/2, pi/2]
+    again = planner.retry(turned, CAN_PA, LAYOUT)
+    assert again is not None and again.theta == pytest.approx(0.0)
+
+
+@pytest.mark.parametrize(
+    ("modules", "theta", "turned"),
+    [
+        ((1, 2, 3, 4), 0.0, math.pi / 2),  # an L along the top row: 90 mm across, 135 along
+        ((1, 2, 4, 5, 6), math.pi / 2, None),  # the charger's outline: turning it is wider
+        ((2, 3, 4), -math.pi / 4, None),  # the banana's diagonal: 95 mm, 159 mm turned
+    ],
+)
+def test_a_retry_turns_only_where_the_outline_is_no_wider(
+    modules: tuple[int, ...], theta: float, turned: float | None
+) -> None:
+    plan = GraspPlan(modules, (1.0, 1.0), (1.0, 1.0), theta, "given", modules)
+    got = GripperAwarePlanner(GRIPPER).retry(plan, (100.0,) * 6, LAYOUT)
+    before = object_extent_m(modules, theta, LAYOUT)
+    after = object_extent_m(modules, theta + math.pi / 2, LAYOUT)
+    assert (after <= before) is (turned is not None)
+    if turned is None:
+        assert got is None
+    else:
+        assert got is not None and got.theta == pytest.approx(turned)
+
+
+def test_only_the_gripper_aware_planner_retries() -> None:
+    assert isinstance(GripperAwarePlanner(GRIPPER), RetryPlanner)
+    assert not isinstance(ThesisPlanner(), RetryPlanner)
+    plan = GraspPlan((1, 4), (0.5, 1.0), (0.5, 1.0), 0.0, "n2-vertical", (1, 4))
+    with pytest.raises(InputError, match="6"):
+        GripperAwarePlanner(GRIPPER).retry(plan, (1.0, 2.0), LAYOUT)

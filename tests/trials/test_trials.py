@@ -337,3 +337,28 @@ def test_trial_planner_is_told_the_detector_it_works_with() -> None:
         cogs[planner, detector] = result.cog
     assert cogs["gripper-aware", "adaptive"] == cogs["thesis", "adaptive"]
     assert cogs["gripper-aware", "thesis"] != cogs["thesis", "adaptive"]
+
+
+@pytest.mark.slow
+def test_a_grasp_that_lands_on_the_can_and_misses_is_retried_turned() -> None:
+    """The can lying on the row seam loads a square of four modules (its light tinplate body
+    barely loads column 3): the gripper-aware plan closes along x, across its 125 mm, so the
+    jaws come down on the can (the fingers are sensed ~49 mm above the pad base, over the
+    17 mm landing height) and close on nothing. The loop sees only that (robot height, a fully
+    closed gripper), retries the planner's turned grasp, and holds the can. With one attempt
+    allowed, or with the thesis's planner (no retry), the same trial fails where it landed."""
+    spec = get_object("cylinder")
+    aware = dict(planner="gripper-aware", detector="adaptive")
+    cfg = TrialConfig(trial_execution_params(hold_s=1.0), **aware)
+    retried, _ = run_trial(spec, seed=3, config=cfg, placement=_nominal(spec))
+    assert retried.success, retried.detail
+    assert retried.attempts == 2
+    assert retried.theta is not None and math.isclose(retried.theta, math.pi / 2, abs_tol=1e-6)
+    for config in (
+        TrialConfig(trial_execution_params(hold_s=1.0, max_attempts=1), **aware),
+        TrialConfig(trial_execution_params(hold_s=1.0), planner="thesis", detector="adaptive"),
+    ):
+        once, _ = run_trial(spec, seed=3, config=config, placement=_nominal(spec))
+        assert not once.success and once.attempts == 1
+        assert once.cause == "jaws_hit_object", once.detail
+        assert once.theta is not None and abs(once.theta) < 1e-6

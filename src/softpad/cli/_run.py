@@ -373,6 +373,10 @@ _EVENT_TEXT: dict[str, Any] = {
     "no_contact": lambda d: [
         f"no contact detected down to {d['z_m'] * 1e3:.1f} mm: gripper not closed"
     ],
+    "retry": lambda d: [
+        f"the jaws closed on nothing after landing {d['z_m'] * 1e3:.1f} mm above the pad "
+        "base, on the object: trying the planner's next grasp"
+    ],
     "outcome": lambda d: [d["outcome"]],
 }
 _SHOWN_PHASES = ("approach", "descend", "close", "lift", "hold", "release")

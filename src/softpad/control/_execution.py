@@ -32,7 +32,7 @@ from softpad.errors import (
     SoftPadError,
 )
 from softpad.layout import PadLayout
-from softpad.planning import GraspPlan, Planner, PlannerParams, ThesisPlanner
+from softpad.planning import GraspPlan, Planner, PlannerParams, RetryPlanner, ThesisPlanner
 from softpad.sensing import (
     ContactDetector,
     ObjectDetector,
@@ -110,6 +110,17 @@ class ExecutionParams(CheckedFields, what="execution"):
     pre_descent_reads: Count = thesis.REFERENCE_READS
     #: Longest allowed arm or jaw motion, seconds.
     motion_timeout_s: Positive = 20.0
+    #: Fingertip height above the pad base over which a sensed contact is the jaws landing
+    #: on the object, not on the pad, metres: the module height at p0 (about 9 mm, thesis
+    #: Section 6.3; 8.3 mm from the project's FEM) plus 8 mm. Fingers sensed on the pad stop
+    #: 2.5 to 7.6 mm above the base in simulation; on the lowest catalogue object, a 19.2 mm
+    #: Duplo brick resting on the pad, above 25 mm.
+    landing_height_m: Positive = 0.017
+    #: Grasps tried per object: when the jaws landed on the object and closed on nothing
+    #: (the gripper closed fully), the loop tries the planner's next grasp
+    #: (:class:`~softpad.planning.RetryPlanner`), up to this many in all. A planner without
+    #: one (the thesis's) makes one attempt, as the thesis does.
+    max_attempts: Count = 2
 
 
 @dataclass(frozen=True)
@@ -129,6 +140,8 @@ class GraspRecord:
     detected_at_s: float | None = None
     #: Fingertip height where the descent stopped (robot's own state), metres.
     stop_z_m: float | None = None
+    #: Grasps tried (more than one after landings on the object); ``plan`` is the last.
+    attempts: int = 1
 
     def to_dict(self, layout: PadLayout) -> dict[str, Any]:
         """JSON-ready dict (SI units)."""
@@ -139,6 +152,7 @@ class GraspRecord:
             "contact_modules": list(self.contact_modules),
             "detected_at_s": None if self.detected_at_s is None else round(self.detected_at_s, 4),
             "stop_z_m": None if self.stop_z_m is None else round(self.stop_z_m, 6),
+            "attempts": self.attempts,
         }
 
 
@@ -258,7 +272,11 @@ class GraspExecution:
 
         adjust -> reference -> wait_object -> plan -> for each object:
             approach (over the COG) -> descend -> close -> lift -> hold -> release
-        -> done
+        -> valve_check -> done
+
+    When the jaws closed on nothing after the fingers were sensed above ``landing_height_m``
+    (they landed on the object), a planner with a retry (:class:`~softpad.planning.RetryPlanner`)
+    is asked for another grasp, tried from ``approach`` again (``max_attempts`` in all).
 
     The box is the clock: every step reads one frame, so in simulation the world and the
     robot advance exactly with the frames. The execution sees only what a real system sees:
@@ -321,6 +339,7 @@ class GraspExecution:
         self.phase = "idle"
         self._phases: list[tuple[str, float]] = []
         self._last_t = 0.0
+        self._delta = np.zeros(self.n)
         infl = p.inflation
         #: Fault monitor of every frame and the safe state of this run.
         self.safety = RunSafety(self.box, self.n, infl.max_pressure_pa, infl.trip_margin_pa)
@@ -409,6 +428,7 @@ class GraspExecution:
 
         self._enter("plan")
         delta = self._mean_reads(p.planning_reads) - adj.reference_pa
+        self._delta = delta
         objects = self.object_detector.objects(delta, self.layout)
         plans = tuple(self.planner.plan(delta, objects, self.layout))
         self.recorder.event(
@@ -459,18 +479,27 @@ class GraspExecution:
 
     def _grasp(self, plan: GraspPlan) -> GraspRecord:
         p = self.params
-        x, y = plan.cog_m(self.layout)
-        above = ToolPose(x, y, p.approach_height_m, plan.theta)
-        self._enter("approach", modules=list(plan.modules), cog=list(plan.cog), theta=plan.theta)
-        self._gripper(1.0, p.travel_speed_m_s, "opening the gripper")  # clamped to the mounting
-        self._move(above, p.travel_speed_m_s, "moving over the centre of grasp")
-        detected_at = self._descend()
-        stop_z = self.robot.state().z_m
-        if detected_at is None:
-            self._move(above, p.travel_speed_m_s, "retreating")
-            outcome = "contact_not_detected"
-        else:
+        attempt = 1
+        while True:
+            x, y = plan.cog_m(self.layout)
+            above = ToolPose(x, y, p.approach_height_m, plan.theta)
+            self._enter(
+                "approach", modules=list(plan.modules), cog=list(plan.cog), theta=plan.theta
+            )
+            self._gripper(1.0, p.travel_speed_m_s, "opening the gripper")  # clamped to the mounting
+            self._move(above, p.travel_speed_m_s, "moving over the centre of grasp")
+            detected_at = self._descend()
+            stop_z = self.robot.state().z_m
+            if detected_at is None:
+                self._move(above, p.travel_speed_m_s, "retreating")
+                outcome = "contact_not_detected"
+                break
             outcome = self._close_lift_hold()
+            retry = self._retry(plan, outcome, stop_z, attempt)
+            if retry is None:
+                break
+            self.recorder.event(self._last_t, "retry", z_m=stop_z, attempt=attempt)
+            plan, attempt = retry, attempt + 1
         return GraspRecord(
             plan,
             outcome,
@@ -478,7 +507,20 @@ class GraspExecution:
             self.contact_detector.triggered_modules if detected_at is not None else (),
             detected_at,
             stop_z,
+            attempt,
         )
+
+    def _retry(
+        self, plan: GraspPlan, outcome: str, stop_z: float, attempt: int
+    ) -> GraspPlan | None:
+        """The next grasp when the jaws, having landed on the object (contact sensed above
+        ``landing_height_m``), closed on nothing and attempts are left; else None."""
+        p = self.params
+        if outcome != "missed" or stop_z <= p.landing_height_m or attempt >= p.max_attempts:
+            return None
+        if not isinstance(self.planner, RetryPlanner):
+            return None
+        return self.planner.retry(plan, self._delta, self.layout)
 
     def _descend(self) -> float | None:
         """Lower the fingers until contact is sensed (box time) or the descent ends (None)."""
@@ -491,7 +533,8 @@ class GraspExecution:
             if self.contact_detector.update(self._read()):
                 self.robot.stop()
                 modules = list(self.contact_detector.triggered_modules)
-                self.recorder.event(self._last_t, "contact", modules=modules)
+                z = self.robot.state().z_m
+                self.recorder.event(self._last_t, "contact", modules=modules, z_m=z)
                 return self._last_t
             if not self.robot.is_moving():
                 self.recorder.event(self._last_t, "no_contact", z_m=self.robot.state().z_m)

@@ -51,16 +51,21 @@ class SimulatedRun:
         """Overall outcome of the execution."""
         return self.result.outcome
 
+    def _touch(self, grasp: int) -> TouchTruth:
+        """The ground-truth touch of a grasp's last descent (a grasp retried after landing on
+        its object descended more than once)."""
+        return self.touches[sum(g.attempts for g in self.result.grasps[: grasp + 1]) - 1]
+
     def contact_delay_s(self, grasp: int = 0) -> float | None:
         """Detection time minus first-touch time of a grasp, seconds (None when unknown)."""
-        g, t = self.result.grasps[grasp], self.touches[grasp]
+        g, t = self.result.grasps[grasp], self._touch(grasp)
         if g.detected_at_s is None or t.first_touch_s is None:
             return None
         return g.detected_at_s - t.first_touch_s
 
     def finger_travel_m(self, grasp: int = 0) -> float | None:
         """Downward travel of the fingertips from first touch to the stop, metres."""
-        g, t = self.result.grasps[grasp], self.touches[grasp]
+        g, t = self.result.grasps[grasp], self._touch(grasp)
         if g.detected_at_s is None or t.first_touch_z_m is None or g.stop_z_m is None:
             return None
         return t.first_touch_z_m - g.stop_z_m
@@ -70,7 +75,7 @@ class SimulatedRun:
         d = self.result.to_dict()
         for i, g in enumerate(d["grasps"]):
             delay, travel = self.contact_delay_s(i), self.finger_travel_m(i)
-            g["first_touch_s"] = self.touches[i].first_touch_s
+            g["first_touch_s"] = self._touch(i).first_touch_s
             g["contact_delay_s"] = None if delay is None else round(delay, 4)
             g["finger_travel_m"] = None if travel is None else round(travel, 6)
         first = d["grasps"][0] if d["grasps"] else {}

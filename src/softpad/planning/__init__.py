@@ -18,7 +18,7 @@ from softpad.planning._gripper_aware import (
 )
 from softpad.planning._params import DEFAULT_SAFETY_SHIFT, PlannerParams
 from softpad.planning._pcom import pcom
-from softpad.planning._plan import Planner, ThesisPlanner, plan_grasps
+from softpad.planning._plan import Planner, RetryPlanner, ThesisPlanner, plan_grasps
 from softpad.planning._records import GraspPlan
 from softpad.planning._render import ascii_pad, format_plans, plot_plans
 
@@ -34,6 +34,7 @@ __all__ = [
     "PlanCase",
     "Planner",
     "PlannerParams",
+    "RetryPlanner",
     "ThesisPlanner",
     "ascii_pad",
     "centred_on_load",

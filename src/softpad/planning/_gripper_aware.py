@@ -20,6 +20,12 @@ fill the opening), the centre first moves along that direction to the middle of 
 the jaws' path (:func:`centred_on_load`): the thesis's rules keep it on a row seam, which the
 55 mm charger between 60 mm jaws missed by more than the 2.5 mm a side in half its grasps.
 
+When the jaws land on the object and close on nothing (the loop sees the fingers sensed high
+above the pad and a fully closed gripper), :meth:`GripperAwarePlanner.retry` offers the grasp
+turned a quarter turn about the same centre, where the object's outline is no wider that way:
+a can lying along a row seam, whose light body leaves it looking like a square of four
+modules, is first grasped along its length.
+
 "Sensed" depends on the detector. The response map (:func:`sensed_share`) says what share of a
 centred fingertip's rise a fingertip raises where it lands; with the thesis's detector a grasp
 is kept from a share of ``good_share`` (0.5). A detector that catches smaller rises needs
@@ -199,6 +205,23 @@ class GripperAwarePlanner:
                     score,
                 )
         return best
+
+    def retry(
+        self, plan: GraspPlan, increments_pa: ArrayLike, layout: PadLayout
+    ) -> GraspPlan | None:
+        """After ``plan``'s jaws landed on the object and closed on nothing: the grasp turned
+        a quarter turn about the same centre, when the object's outline is no wider that way
+        (a can lying along a row seam, seen as a square of four modules or an L); None
+        otherwise (a 75 x 55 mm brick missed across its 55 mm would not fit across its 75).
+
+        The centre stays: across the can the thesis's square centre lies on the seam the can
+        lies on, and centring on the load instead would follow its rolled weight."""
+        check_increments(increments_pa, layout)
+        theta = _wrap(plan.theta + math.pi / 2)
+        turned_extent = object_extent_m(plan.modules, theta, layout)
+        if turned_extent > object_extent_m(plan.modules, plan.theta, layout) + 1e-9:
+            return None
+        return replace(plan, theta=theta, rule=plan.rule + "+turned-after-miss")
 
     def _too_wide(self, plan: GraspPlan, theta: float, layout: PadLayout) -> bool:
         extent = object_extent_m(plan.modules, theta, layout)

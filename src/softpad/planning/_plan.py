@@ -26,6 +26,20 @@ class Planner(Protocol):
         ...
 
 
+@runtime_checkable
+class RetryPlanner(Planner, Protocol):
+    """A planner that has another grasp to try when the jaws came down on the object (the
+    fingers sensed high above the pad: the object is wider than the jaws along the plan's
+    closing direction, or the centre is off)."""
+
+    def retry(
+        self, plan: GraspPlan, increments_pa: ArrayLike, layout: PadLayout
+    ) -> GraspPlan | None:
+        """The grasp to try after ``plan`` landed on its object (``increments_pa``: the
+        increments it was planned from), or None when there is none worth trying."""
+        ...
+
+
 class ThesisPlanner:
     """The thesis's rules (Section 6.2.1.3), generalised to R x C pads (docs/planner.md).
 

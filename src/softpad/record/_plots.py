@@ -29,7 +29,12 @@ PHASE_COLOURS = {
 }
 
 #: Events drawn as vertical lines.
-MARKED_EVENTS = {"contact": "tab:red", "no_contact": "tab:orange", "fault": "k"}
+MARKED_EVENTS = {
+    "contact": "tab:red",
+    "no_contact": "tab:orange",
+    "retry": "tab:purple",
+    "fault": "k",
+}
 
 
 def _modules(run: RecordedRun) -> int:

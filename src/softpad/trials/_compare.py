@@ -78,6 +78,7 @@ def summarise(trials: Sequence[TrialResult]) -> dict[str, Any]:
         "success": round(ok / len(trials), 4) if trials else None,
         "success_interval": list(wilson_interval(ok, len(trials))),
         "failures": dict(Counter(t.cause for t in trials if not t.success and t.cause)),
+        "retried": sum(t.attempts > 1 for t in trials),
         "delay_s_median": d50,
         "delay_s_p95": d95,
         "finger_travel_m_median": f50,

@@ -85,6 +85,8 @@ class _TrialWatcher:
                 seen["travel"] = 1e3 * (z - world.gripper_state().z_m)
         elif kind == "outcome":
             seen["outcome"] = data.get("outcome")
+        elif kind == "retry":
+            seen["attempts"] = seen.get("attempts", 1) + 1
 
     def _approach(self, data: dict[str, Any]) -> None:
         """Score only: where the plan puts the COG relative to the true object."""
@@ -270,6 +272,7 @@ def _planned(seen: dict[str, Any], t: _Trial) -> dict[str, Any]:
         opening_m=t.robot.max_opening_m,
         contact_detected=seen.get("detected", False),
         cog_outside_object_mm=seen.get("cog_outside_mm"),
+        attempts=seen.get("attempts", 1),
     )
 
 

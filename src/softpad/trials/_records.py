@@ -97,6 +97,9 @@ class TrialResult:
     finger_travel_mm: float | None = None
     #: Distance of the planned COG from the object's footprint, millimetres (0 on it).
     cog_outside_object_mm: float | None = None
+    #: Grasps tried: more than one when the loop retreated after its jaws landed on the
+    #: object and tried the planner's next grasp (``cog`` and ``theta`` are the last's).
+    attempts: int = 1
     #: Simulated duration of the trial, seconds.
     sim_time_s: float = 0.0
     #: Wall-clock duration, seconds.
@@ -134,6 +137,7 @@ class TrialResult:
             "cog_outside_object_mm": None
             if self.cog_outside_object_mm is None
             else round(self.cog_outside_object_mm, 3),
+            "attempts": self.attempts,
             "sim_time_s": round(self.sim_time_s, 3),
             "wall_time_s": round(self.wall_time_s, 3),
             "detail": self.detail,
