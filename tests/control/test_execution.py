@@ -230,7 +230,7 @@ class _CountingRetryPlanner:
     def plan(self, increments_pa, objects, layout):  # type: ignore[no-untyped-def]
         return []
 
-    def retry(self, plan, increments_pa, layout):  # type: ignore[no-untyped-def]
+    def retry(self, plan, increments_pa, layout, landing_rise_pa):  # type: ignore[no-untyped-def]
         self.calls += 1
         return self.turned
 

@@ -15,6 +15,7 @@ from softpad.planning import (
     RetryPlanner,
     ThesisPlanner,
     centred_on_load,
+    landing_side,
     make_planner,
     object_extent_m,
     sensed_share,
@@ -242,12 +243,12 @@ def test_a_missed_square_is_retried_a_quarter_turn_about_its_centre() -> None:
     planner = GripperAwarePlanner(GRIPPER, sensing_ratio=0.44)
     (plan,) = planner.plan(CAN_PA, detect_objects(CAN_PA, LAYOUT), LAYOUT)
     assert plan.modules == (1, 2, 4, 5) and plan.theta == pytest.approx(0.0)
-    turned = planner.retry(plan, CAN_PA, LAYOUT)
+    turned = planner.retry(plan, CAN_PA, LAYOUT, CAN_PA)
     assert turned is not None
     assert turned.theta == pytest.approx(math.pi / 2) and turned.cog == plan.cog
     assert turned.modules == plan.modules and turned.rule == plan.rule + "+turned-after-miss"
     # a second miss turns back: a plain quarter turn each time, wrapped to (-pi/2, pi/2]
-    again = planner.retry(turned, CAN_PA, LAYOUT)
+    again = planner.retry(turned, CAN_PA, LAYOUT, CAN_PA)
     assert again is not None and again.theta == pytest.approx(0.0)
 
 
@@ -262,8 +263,9 @@ def test_a_missed_square_is_retried_a_quarter_turn_about_its_centre() -> None:
 def test_a_retry_turns_only_where_the_outline_is_no_wider(
     modules: tuple[int, ...], theta: float, turned: float | None
 ) -> None:
+    """Where turning is wider and the landing pressed nothing, there is no retry."""
     plan = GraspPlan(modules, (1.0, 1.0), (1.0, 1.0), theta, "given", modules)
-    got = GripperAwarePlanner(GRIPPER).retry(plan, (100.0,) * 6, LAYOUT)
+    got = GripperAwarePlanner(GRIPPER).retry(plan, (100.0,) * 6, LAYOUT, (0.0,) * 6)
     before = object_extent_m(modules, theta, LAYOUT)
     after = object_extent_m(modules, theta + math.pi / 2, LAYOUT)
     assert (after <= before) is (turned is not None)
@@ -273,9 +275,30 @@ def test_a_retry_turns_only_where_the_outline_is_no_wider(
         assert got is not None and got.theta == pytest.approx(turned)
 
 
+@pytest.mark.parametrize(("top", "bottom", "side"), [(180.0, 20.0, 1), (15.0, 160.0, -1)])
+def test_a_brick_missed_across_its_width_is_retried_towards_the_pressed_side(
+    top: float, bottom: float, side: int
+) -> None:
+    """The charger's outline (1, 2, 4, 5, 6) closed along y: turning would close across its
+    75 mm, so after a miss the centre moves half a fingertip sole (6.5 mm thick: 3.25 mm)
+    along y towards the row the landing jaw pressed into the pad, direction kept."""
+    gripper = GripperSpec(max_width_m=0.06, min_width_m=0.02)
+    plan = GraspPlan((1, 2, 4, 5, 6), (1.2, 1.0), (1.2, 1.0), math.pi / 2, "n5", (1, 2, 4, 5, 6))
+    rise = (top, top, 0.0, bottom, bottom, bottom / 2)
+    assert landing_side(plan, LAYOUT, rise) == side
+    got = GripperAwarePlanner(gripper).retry(plan, (300.0,) * 6, LAYOUT, rise)
+    assert got is not None and got.theta == plan.theta
+    assert gripper.tip_thickness_m == pytest.approx(6.5e-3)
+    step = side * 3.25e-3 / LAYOUT.pitch_m
+    assert got.cog == pytest.approx((1.2, 1.0 + step), abs=1e-12)
+    assert got.rule == "n5+shifted-after-miss"
+    # a landing that pressed both rows alike says nothing of the side
+    assert landing_side(plan, LAYOUT, (100, 100, 0, 67, 67, 66)) == 0
+
+
 def test_only_the_gripper_aware_planner_retries() -> None:
     assert isinstance(GripperAwarePlanner(GRIPPER), RetryPlanner)
     assert not isinstance(ThesisPlanner(), RetryPlanner)
     plan = GraspPlan((1, 4), (0.5, 1.0), (0.5, 1.0), 0.0, "n2-vertical", (1, 4))
     with pytest.raises(InputError, match="6"):
-        GripperAwarePlanner(GRIPPER).retry(plan, (1.0, 2.0), LAYOUT)
+        GripperAwarePlanner(GRIPPER).retry(plan, (1.0, 2.0), LAYOUT, (0.0,) * 6)

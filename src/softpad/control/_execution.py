@@ -340,6 +340,7 @@ class GraspExecution:
         self._phases: list[tuple[str, float]] = []
         self._last_t = 0.0
         self._delta = np.zeros(self.n)
+        self._landing_rise = np.zeros(self.n)
         infl = p.inflation
         #: Fault monitor of every frame and the safe state of this run.
         self.safety = RunSafety(self.box, self.n, infl.max_pressure_pa, infl.trip_margin_pa)
@@ -520,18 +521,21 @@ class GraspExecution:
             return None
         if not isinstance(self.planner, RetryPlanner):
             return None
-        return self.planner.retry(plan, self._delta, self.layout)
+        return self.planner.retry(plan, self._delta, self.layout, self._landing_rise)
 
     def _descend(self) -> float | None:
         """Lower the fingers until contact is sensed (box time) or the descent ends (None)."""
         p = self.params
-        self.contact_detector.reset(self._mean_reads(p.pre_descent_reads))
+        reference = self._mean_reads(p.pre_descent_reads)
+        self.contact_detector.reset(reference)
         self._enter("descend")
         self.robot.descend(p.approach_speed_m_s, p.min_height_m)
         t0 = self._last_t
         while True:
-            if self.contact_detector.update(self._read()):
+            frame = self._read()
+            if self.contact_detector.update(frame):
                 self.robot.stop()
+                self._landing_rise = frame - reference
                 modules = list(self.contact_detector.triggered_modules)
                 z = self.robot.state().z_m
                 self.recorder.event(self._last_t, "contact", modules=modules, z_m=z)

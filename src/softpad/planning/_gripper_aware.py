@@ -65,6 +65,9 @@ from softpad.sensing._objects import check_increments
 #: (measured on the pad; the simulated MuJoCo pad has 5 mm), not a thesis number.
 DEFAULT_SEAM_WIDTH_M = 5e-3
 
+#: Lever of a landing's rise (module units) under which it counts as pressing both sides.
+LANDING_BALANCE = 0.05
+
 #: Offsets of the sample points on a fingertip, as fractions of its sides.
 _TIP_GRID = np.array([(a, b) for a in (-0.4, 0.0, 0.4) for b in (-0.4, -0.2, 0.0, 0.2, 0.4)])
 
@@ -207,21 +210,33 @@ class GripperAwarePlanner:
         return best
 
     def retry(
-        self, plan: GraspPlan, increments_pa: ArrayLike, layout: PadLayout
+        self,
+        plan: GraspPlan,
+        increments_pa: ArrayLike,
+        layout: PadLayout,
+        landing_rise_pa: ArrayLike,
     ) -> GraspPlan | None:
-        """After ``plan``'s jaws landed on the object and closed on nothing: the grasp turned
-        a quarter turn about the same centre, when the object's outline is no wider that way
-        (a can lying along a row seam, seen as a square of four modules or an L); None
-        otherwise (a 75 x 55 mm brick missed across its 55 mm would not fit across its 75).
+        """After ``plan``'s jaws landed on the object and closed on nothing.
 
-        The centre stays: across the can the thesis's square centre lies on the seam the can
-        lies on, and centring on the load instead would follow its rolled weight."""
+        Where the object's outline is no wider a quarter turn away (a can lying along a row
+        seam, seen as a square of four modules or an L), the grasp turned about the same
+        centre: across the can the thesis's square centre lies on the seam it lies on.
+        Otherwise (a 75 x 55 mm brick missed across its 55 mm would not fit across its 75),
+        one jaw came down on the object's edge: the centre moves half a fingertip sole's
+        thickness along the closing direction towards the side where the landing pressed the
+        object into the pad (:func:`landing_side`); None when the landing pressed both sides.
+        """
         check_increments(increments_pa, layout)
         theta = _wrap(plan.theta + math.pi / 2)
         turned_extent = object_extent_m(plan.modules, theta, layout)
-        if turned_extent > object_extent_m(plan.modules, plan.theta, layout) + 1e-9:
+        if turned_extent <= object_extent_m(plan.modules, plan.theta, layout) + 1e-9:
+            return replace(plan, theta=theta, rule=plan.rule + "+turned-after-miss")
+        side = landing_side(plan, layout, landing_rise_pa)
+        if side == 0:
             return None
-        return replace(plan, theta=theta, rule=plan.rule + "+turned-after-miss")
+        step = side * 0.5 * self.gripper.tip_thickness_m / layout.pitch_m
+        c = np.asarray(plan.cog) + step * np.array([math.cos(plan.theta), math.sin(plan.theta)])
+        return replace(plan, cog=(float(c[0]), float(c[1])), rule=plan.rule + "+shifted-after-miss")
 
     def _too_wide(self, plan: GraspPlan, theta: float, layout: PadLayout) -> bool:
         extent = object_extent_m(plan.modules, theta, layout)
@@ -301,6 +316,24 @@ def centred_on_load(plan: GraspPlan, layout: PadLayout, increments_pa: ArrayLike
         return plan
     c = cog + along * u
     return replace(plan, cog=(float(c[0]), float(c[1])), rule=plan.rule + "+load-centred")
+
+
+def landing_side(plan: GraspPlan, layout: PadLayout, landing_rise_pa: ArrayLike) -> int:
+    """Which side of the centre a landing jaw pressed the object into the pad: +1 along the
+    closing direction, -1 against it, 0 when the rise is balanced (its rise-weighted lever
+    over the plan's modules, module units, is within ``LANDING_BALANCE`` of the centre) or
+    absent."""
+    rise = np.clip(check_increments(landing_rise_pa, layout), 0.0, None)
+    u = np.array([math.cos(plan.theta), math.sin(plan.theta)])
+    cog = np.asarray(plan.cog, dtype=float)
+    weight = sum(float(rise[m - 1]) for m in plan.modules)
+    if weight <= 0.0:
+        return 0
+    lever = sum(
+        float(rise[m - 1]) * float((np.asarray(layout.center(m)) - cog) @ u) for m in plan.modules
+    )
+    lever /= weight
+    return 0 if abs(lever) < LANDING_BALANCE else (1 if lever > 0 else -1)
 
 
 def _load_shares(

@@ -33,10 +33,16 @@ class RetryPlanner(Planner, Protocol):
     closing direction, or the centre is off)."""
 
     def retry(
-        self, plan: GraspPlan, increments_pa: ArrayLike, layout: PadLayout
+        self,
+        plan: GraspPlan,
+        increments_pa: ArrayLike,
+        layout: PadLayout,
+        landing_rise_pa: ArrayLike,
     ) -> GraspPlan | None:
-        """The grasp to try after ``plan`` landed on its object (``increments_pa``: the
-        increments it was planned from), or None when there is none worth trying."""
+        """The grasp to try after ``plan`` landed on its object and missed, or None when
+        there is none worth trying. ``increments_pa``: the increments it was planned from;
+        ``landing_rise_pa``: each module's rise over the pre-descent reference in the frame
+        that sensed the fingers (where the landing jaw pressed the object into the pad)."""
         ...
 
 
