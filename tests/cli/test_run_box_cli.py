@@ -165,6 +165,23 @@ def test_run_planner_keeps_the_seam_grasp_for_a_detector_that_senses_it(cli) -> 
     assert runs["gripper-aware"]["cog"] == runs["thesis"]["cog"]
 
 
+def test_run_retries_a_grasp_that_landed_on_the_can(cli) -> None:
+    """The can seen as a square of four modules: the gripper-aware plan closes along its
+    length, the jaws land on it (stop ~50 mm above the pad base) and close on nothing; the
+    loop retries the turned grasp and holds it. ``--max-attempts 1`` keeps the one grasp."""
+    base = ["run", "--objects", "cylinder", "--hold-s", "0", "--box", "sim://?seed=1"]
+    base += ["--planner", "gripper-aware", "--detector", "adaptive", "--json"]
+    code, out, _ = cli(*base)
+    assert code == 0
+    (g,) = json.loads(out)["grasps"]
+    assert g["attempts"] == 2 and g["outcome"] == "held"
+    assert g["plan"]["rule"].endswith("+turned-after-miss") and g["stop_z_m"] < 0.017
+    code, out, _ = cli(*base, "--max-attempts", "1")
+    assert code == 1
+    (g,) = json.loads(out)["grasps"]
+    assert g["attempts"] == 1 and g["outcome"] == "missed" and g["stop_z_m"] > 0.017
+
+
 def test_unknown_part_names_are_refused(cli) -> None:
     code, _, err = cli("run", "--planner", "magic")
     assert code == 2 and "invalid choice: 'magic'" in err

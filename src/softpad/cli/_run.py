@@ -78,6 +78,25 @@ def register(sub: Any) -> None:
     )
     add_thesis_params(p)
     add_part_options(p)
+    add_integer(
+        p,
+        "--max-attempts",
+        "grasps tried per object, 1..5: after the jaws landed on the object and closed on "
+        "nothing, a planner with a retry (gripper-aware) tries another (default %(default)s)",
+        2,
+        1,
+        5,
+    )
+    add_number(
+        p,
+        "--landing-height-mm",
+        "fingertip height above the pad base over which a sensed contact is a landing on the "
+        "object, mm, 5..200 (default %(default)g: the ~9 mm module at p0 plus 8)",
+        17.0,
+        lo=5.0,
+        hi=200.0,
+        unit="mm",
+    )
     p.add_argument(
         "--config",
         metavar="FILE.toml",
@@ -187,6 +206,8 @@ def execution_params(args: argparse.Namespace) -> Any:
         filter_length=args.window,
         approach_speed_m_s=args.approach_speed_mps,
         hold_s=args.hold_s,
+        max_attempts=args.max_attempts,
+        landing_height_m=args.landing_height_mm * 1e-3,
     )
 
 
@@ -375,7 +396,8 @@ _EVENT_TEXT: dict[str, Any] = {
     ],
     "retry": lambda d: [
         f"the jaws closed on nothing after landing {d['z_m'] * 1e3:.1f} mm above the pad "
-        "base, on the object: trying the planner's next grasp"
+        f"base, on the object: trying COG ({d['cog'][0]:.2f}, {d['cog'][1]:.2f}) theta "
+        f"{d['theta']:+.3f} rad [{d['rule']}]"
     ],
     "outcome": lambda d: [d["outcome"]],
 }

@@ -499,7 +499,15 @@ class GraspExecution:
             retry = self._retry(plan, outcome, stop_z, attempt)
             if retry is None:
                 break
-            self.recorder.event(self._last_t, "retry", z_m=stop_z, attempt=attempt)
+            self.recorder.event(
+                self._last_t,
+                "retry",
+                z_m=stop_z,
+                attempt=attempt,
+                cog=list(retry.cog),
+                theta=retry.theta,
+                rule=retry.rule,
+            )
             plan, attempt = retry, attempt + 1
         return GraspRecord(
             plan,
