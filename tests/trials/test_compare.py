@@ -10,7 +10,8 @@ from pathlib import Path
 import pytest
 
 from softpad.cli.main import main
-from softpad.trials import wilson_interval
+from softpad.trials import TrialResult, wilson_interval
+from softpad.trials._compare import summarise
 
 pytestmark = pytest.mark.mujoco
 
@@ -23,6 +24,21 @@ pytestmark = pytest.mark.mujoco
 def test_wilson_interval_matches_the_closed_form(k: int, n: int, low: float, high: float) -> None:
     """Closed form (z = 1.96): (p + z^2/2n -+ z sqrt(p(1-p)/n + z^2/4n^2)) / (1 + z^2/n)."""
     assert wilson_interval(k, n) == pytest.approx((low, high), abs=2e-4)
+
+
+def test_the_summary_counts_retried_trials_and_scores_their_last_grasp() -> None:
+    """A trial retried after a miss counts once, with the outcome of its last grasp."""
+
+    def trial(k: int, attempts: int, success: bool) -> TrialResult:
+        cause = None if success else "jaws_hit_object"
+        return TrialResult(
+            "cylinder", k, k, (0.0, 0.0, 0.0), "6/2", success, cause, attempts=attempts
+        )
+
+    s = summarise([trial(0, 1, True), trial(1, 2, True), trial(2, 2, False), trial(3, 1, False)])
+    assert s["trials"] == 4 and s["successes"] == 2 and s["retried"] == 2
+    assert s["failures"] == {"jaws_hit_object": 2}
+    assert trial(1, 2, True).to_dict()["attempts"] == 2
 
 
 @pytest.fixture(scope="module")
@@ -47,6 +63,7 @@ def test_compare_json_has_every_pair_and_object(compared: dict) -> None:
         assert 0.0 <= lo <= c["success"] <= hi <= 1.0
         assert [o["name"] for o in c["objects"]] == ["object-5"]
         assert c["false_alarms_per_hour"] >= 0 and c["delay_s_median"] is not None
+        assert c["retried"] == 0  # object 5 is held at the first grasp
 
 
 def _halves(d: dict, tmp_path: Path) -> tuple[str, str]:
