@@ -41,6 +41,31 @@ def test_replay_notices_a_change_of_the_contact_threshold() -> None:
     assert c["now"] is None or c["now"]["t_s"] > c["recorded"]["t_s"]
 
 
+def test_replay_uses_the_recorded_planner_and_detector(tmp_path: Path, capsys) -> None:
+    """A run of the gripper-aware planner and the adaptive CUSUM that retried a grasp (the can,
+    first grasped along its length) replays with those parts: the same plan and the same
+    contact sample on both descents. Read as a thesis run it is not the same; an unknown part
+    name in the metadata is named."""
+    path = tmp_path / "can.mcap"
+    argv = ["run", "--objects", "cylinder", "--hold-s", "0", "--box", "sim://?seed=1"]
+    argv += ["--planner", "gripper-aware", "--detector", "adaptive", "--record", str(path)]
+    assert main(argv) == 0
+    capsys.readouterr()
+    run = load_recording(path)
+    assert (run.metadata["planner"], run.metadata["contact_detector"]) == (
+        "gripper-aware",
+        "adaptive",
+    )
+    d = compare_replay(run)
+    assert len(d["contacts"]) == 2 and d["same"], d
+    assert [e["attempt"] for _, e in run.events_of("retry")] == [1]
+    run.metadata["planner"] = run.metadata["contact_detector"] = "thesis"
+    assert not compare_replay(run)["same"]
+    run.metadata["planner"] = "magic"
+    with pytest.raises(InputError, match="unknown planner 'magic'"):
+        compare_replay(run)
+
+
 def test_replay_box_passes_conformance() -> None:
     check_conformance(open_box(f"replay://{DATA / 'banana.mcap'}"))
 

@@ -237,7 +237,10 @@ def run(args: argparse.Namespace) -> int:
     if args.config:
         params = _from_installation(args.config, params)
     with open_box(args.box) as box:
-        meta = run_metadata("run", box, args.box, names, params, gripper=gripper)
+        meta = run_metadata(
+            "run", box, args.box, names, params, gripper=gripper,
+            planner=args.planner, contact_detector=args.detector,
+        )  # fmt: skip
         recorder = open_recorder(str(record_path) if record_path else None, box, meta, args.force)
         live = _live(args.foxglove, box, args.json)
         try:

@@ -175,8 +175,34 @@ def _reference(run: RecordedRun, phases: list[tuple[str, float]], n: int, reads:
     return _frames_between(run, windows[0][0], ev[0][0])[-reads:, :n].mean(axis=0)
 
 
-def _replan(run: RecordedRun, phases: Any, reference: Any, layout: Any, params: Any) -> Any:
-    from softpad.planning import ThesisPlanner
+def _parts(run: RecordedRun, layout: Any, params: Any) -> tuple[Any, Any]:
+    """A factory of the recorded run's contact detector and its planner, by the names in its
+    metadata (``contact_detector``, ``planner``; the thesis's when absent: older recordings),
+    the planner told the recorded gripper mounting (``gripper`` or ``mounting``)."""
+    from softpad.layout import GripperSpec
+    from softpad.planning import ThesisPlanner, planner_for
+    from softpad.sensing import ThesisContactDetector, make_contact_detector
+
+    meta = run.metadata
+    detector_name = str(meta.get("contact_detector") or "thesis")
+    planner_name = str(meta.get("planner") or "thesis")
+    rate = run.sample_rate_hz
+
+    def detector() -> Any:
+        if detector_name == "thesis":
+            return ThesisContactDetector(params.contact_threshold_pa, params.filter_length)
+        return make_contact_detector(detector_name, rate, layout.n_modules)
+
+    if planner_name == "thesis":
+        return detector, ThesisPlanner(params.planner)
+    mounting = str(meta.get("gripper") or meta.get("mounting") or "6/2")
+    gripper = GripperSpec.from_mounting(mounting)
+    return detector, planner_for(planner_name, gripper, params.planner, detector(), rate)
+
+
+def _replan(
+    run: RecordedRun, phases: Any, reference: Any, layout: Any, params: Any, planner: Any
+) -> Any:
     from softpad.sensing import ThesisObjectDetector
 
     ev = run.events_of("plan")
@@ -188,18 +214,18 @@ def _replan(run: RecordedRun, phases: Any, reference: Any, layout: Any, params: 
     ]
     delta = frames.mean(axis=0) - reference
     objects = ThesisObjectDetector(params.planner.object_threshold_pa).objects(delta, layout)
-    plans = ThesisPlanner(params.planner).plan(delta, objects, layout)
+    plans = planner.plan(delta, objects, layout)
     return [pl.to_dict(layout) for pl in plans]
 
 
-def _redetect_contacts(run: RecordedRun, phases: Any, n: int, params: Any) -> list[dict[str, Any]]:
+def _redetect_contacts(
+    run: RecordedRun, phases: Any, n: int, params: Any, make_detector: Any
+) -> list[dict[str, Any]]:
     """Contact detection of today's code over every recorded descent, next to the recording's."""
-    from softpad.sensing import ThesisContactDetector
-
     out = []
     for t0, t1 in _phase_window(phases, "descend", float(run.t_s[-1])):
         before = run.pressures_pa[run.t_s <= t0 + 1e-9][-params.pre_descent_reads :, :n]
-        detector = ThesisContactDetector(params.contact_threshold_pa, params.filter_length)
+        detector = make_detector()
         detector.reset(before.mean(axis=0))
         now: dict[str, Any] | None = None
         for t, p in zip(run.t_s, run.pressures_pa, strict=True):
@@ -227,9 +253,11 @@ def compare_replay(recording: RecordedRun | str | Path) -> dict[str, Any]:
 
     The reference is the mean of the recorded reference reads; the plan comes from the mean of
     the frames read in the ``plan`` phase (:class:`softpad.sensing.ThesisObjectDetector` and
-    :class:`softpad.planning.ThesisPlanner`); contact is detected
-    (:class:`softpad.sensing.ThesisContactDetector`, the recorded t_g and filter length)
-    on every frame of each descent from the mean of the reads before it.
+    the recorded planner: :class:`softpad.planning.ThesisPlanner`, or the one named in the
+    metadata's ``planner`` for the recorded gripper); contact is detected (the detector named
+    in ``contact_detector``; the thesis's with the recorded t_g and filter length when none is)
+    on every frame of each descent, a retried grasp's too, from the mean of the reads before
+    it.
 
     Returns
     -------
@@ -245,10 +273,11 @@ def compare_replay(recording: RecordedRun | str | Path) -> dict[str, Any]:
     layout = parse_layout(str(run.metadata.get("layout", "2x3")))
     phases = _phase_starts(run)
     reference = _reference(run, phases, layout.n_modules, params.inflation.reference_reads)
-    now = _replan(run, phases, reference, layout, params)
+    make_detector, planner = _parts(run, layout, params)
+    now = _replan(run, phases, reference, layout, params, planner)
     recorded = run.plans()
     plan_same = now is not None and _same_plans(recorded, now)
-    contacts = _redetect_contacts(run, phases, layout.n_modules, params)
+    contacts = _redetect_contacts(run, phases, layout.n_modules, params, make_detector)
     return {
         "path": str(run.path),
         "reference_pa": None if reference is None else [float(v) for v in reference],
