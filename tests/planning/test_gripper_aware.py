@@ -14,6 +14,7 @@ from softpad.planning import (
     GripperAwarePlanner,
     RetryPlanner,
     ThesisPlanner,
+    across_pairs,
     centred_on_load,
     landing_side,
     make_planner,
@@ -302,3 +303,35 @@ def test_only_the_gripper_aware_planner_retries() -> None:
     plan = GraspPlan((1, 4), (0.5, 1.0), (0.5, 1.0), 0.0, "n2-vertical", (1, 4))
     with pytest.raises(InputError, match="6"):
         GripperAwarePlanner(GRIPPER).retry(plan, (1.0, 2.0), LAYOUT, (0.0,) * 6)
+
+
+#: A simulated banana resting on its ends (development seed 105): its middle arches over
+#: modules 2 and 5 and loads nothing, so t_o and the outline see two one-module objects.
+SPLIT_BANANA_PA = (-1.0, -4.0, 227.0, 239.0, -2.0, -2.0)
+
+
+def test_two_one_module_objects_are_grasped_across_the_line_joining_them() -> None:
+    """Each end is grasped at its module's centre (the thesis's N = 1 rule), closing across the
+    line from module 4 to module 3 (direction (2, 1)): theta = atan2(1, 2) - 90 degrees,
+    not the default 0, which closes along the banana and onto it."""
+    planner = GripperAwarePlanner(GRIPPER, sensing_ratio=0.44)
+    objects = detect_objects(SPLIT_BANANA_PA, LAYOUT)
+    assert objects == [(3,), (4,)]
+    thesis = ThesisPlanner().plan(SPLIT_BANANA_PA, objects, LAYOUT)
+    plans = planner.plan(SPLIT_BANANA_PA, objects, LAYOUT)
+    expected = math.atan2(1.0, 2.0) - math.pi / 2
+    for t, p in zip(thesis, plans, strict=True):
+        assert t.theta == 0.0 and p.cog == t.cog and p.modules == t.modules
+        assert p.theta == pytest.approx(expected, abs=1e-12)
+        assert p.rule == t.rule + "+across-pair"
+
+
+def test_only_one_module_objects_beside_others_are_turned() -> None:
+    """A lone one-module object keeps the default direction; an N = 2 object keeps its rule's
+    direction; a one-module object beside it closes across the line to its PCOM."""
+    lone = GraspPlan((4,), (0.5, 0.5), (0.5, 0.5), 0.0, "n1-module-centre", (4,))
+    pair = GraspPlan((3, 6), (2.5, 1.2), (2.5, 1.2), 0.0, "n2-vertical", (3, 6))
+    assert across_pairs([lone]) == [lone]
+    turned, kept = across_pairs([lone, pair])
+    assert kept == pair
+    assert turned.theta == pytest.approx(math.atan2(0.7, 2.0) - math.pi / 2)

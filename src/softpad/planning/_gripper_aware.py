@@ -33,6 +33,9 @@ proportionally less: ``good_share`` is scaled by the detector's sensing ratio, i
 over the thesis detector's at the same sample rate and sensor noise
 (:func:`softpad.sensing.sensing_ratio`; 0.44 for the adaptive CUSUM at 100 Hz, 0.19 at 1 kHz).
 
+Two objects seen on one module each are grasped across the line joining them
+(:func:`across_pairs`): a banana resting on its ends, its middle arching over the pad.
+
 Objects are outlined at the pad's noise floor before planning
 (:func:`softpad.sensing.outline_objects`): a module next to an object whose increment is above
 the outline threshold (25 Pa) but under t_o joins it, so a banana whose middle stays under t_o
@@ -50,6 +53,7 @@ from numpy.typing import ArrayLike, NDArray
 from softpad import thesis
 from softpad.errors import InputError
 from softpad.layout import GripperSpec, PadLayout
+from softpad.planning._geometry import theta_perpendicular
 from softpad.planning._params import PlannerParams
 from softpad.planning._plan import ThesisPlanner
 from softpad.planning._records import GraspPlan
@@ -178,7 +182,9 @@ class GripperAwarePlanner:
         d = check_increments(increments_pa, layout)
         outlined = outline_objects(d, objects, layout, self.outline_threshold_pa)
         plans = self.thesis.plan(d, outlined, layout)
-        return [self.improve(p, layout, d) for p in plans]
+        # turned last: a module's outline, 45 mm square, spans 60.4 mm across the banana's
+        # (2, 1) diagonal, and improve() would turn it 15 degrees back to fit the 6 cm jaws
+        return across_pairs([self.improve(p, layout, d) for p in plans])
 
     def tip_share(self, cog: tuple[float, float], theta: float, layout: PadLayout) -> float:
         """Sensed share of the better-placed fingertip for a grasp at ``cog`` (module units)."""
@@ -316,6 +322,25 @@ def centred_on_load(plan: GraspPlan, layout: PadLayout, increments_pa: ArrayLike
         return plan
     c = cog + along * u
     return replace(plan, cog=(float(c[0]), float(c[1])), rule=plan.rule + "+load-centred")
+
+
+def across_pairs(plans: list[GraspPlan]) -> list[GraspPlan]:
+    """Plans of single-module objects turned to close across the line to the nearest other
+    object's PCOM; the others as they are.
+
+    A long object resting on its two ends (the banana, whose middle arches over the pad and
+    loads nothing) is seen as two single-module objects, which the thesis grasps at their
+    module centres in the default direction: along the banana, onto it. It lies along the line
+    joining them; an object that fits on one module fits the jaws either way."""
+    out = list(plans)
+    for i, p in enumerate(plans):
+        others = [q for j, q in enumerate(plans) if j != i]
+        if len(p.modules) != 1 or not others:
+            continue
+        near = min(others, key=lambda q: math.dist(q.pcom, p.cog))
+        theta = theta_perpendicular(near.pcom[0] - p.cog[0], near.pcom[1] - p.cog[1])
+        out[i] = replace(p, theta=theta, rule=p.rule + "+across-pair")
+    return out
 
 
 def landing_side(plan: GraspPlan, layout: PadLayout, landing_rise_pa: ArrayLike) -> int:
