@@ -245,14 +245,14 @@ def test_only_a_miss_after_landing_on_the_object_asks_the_planner_again() -> Non
     loop = GraspExecution(SimBox(world), SimulatedRobot(world), planner=planner)
     assert isinstance(planner, RetryPlanner)
     assert loop.params.landing_height_m == pytest.approx(0.017)
-    assert loop._retry(first, "missed", 0.049, 1) is planner.turned
-    assert loop._retry(first, "missed", 0.0075, 1) is None  # fingers on the pad
-    assert loop._retry(first, "held", 0.049, 1) is None
-    assert loop._retry(first, "dropped", 0.049, 1) is None
-    assert loop._retry(first, "missed", 0.049, 2) is None  # max_attempts (2) used
+    assert loop._retry(first, np.zeros(6), "missed", 0.049, 1) is planner.turned
+    assert loop._retry(first, np.zeros(6), "missed", 0.0075, 1) is None  # fingers on the pad
+    assert loop._retry(first, np.zeros(6), "held", 0.049, 1) is None
+    assert loop._retry(first, np.zeros(6), "dropped", 0.049, 1) is None
+    assert loop._retry(first, np.zeros(6), "missed", 0.049, 2) is None  # max_attempts (2) used
     assert planner.calls == 1
     thesis = GraspExecution(SimBox(world), SimulatedRobot(world))
-    assert thesis._retry(first, "missed", 0.049, 1) is None
+    assert thesis._retry(first, np.zeros(6), "missed", 0.049, 1) is None
 
 
 def test_a_bad_attempt_count_is_named() -> None:

@@ -339,7 +339,6 @@ class GraspExecution:
         self.phase = "idle"
         self._phases: list[tuple[str, float]] = []
         self._last_t = 0.0
-        self._delta = np.zeros(self.n)
         self._landing_rise = np.zeros(self.n)
         infl = p.inflation
         #: Fault monitor of every frame and the safe state of this run.
@@ -429,7 +428,6 @@ class GraspExecution:
 
         self._enter("plan")
         delta = self._mean_reads(p.planning_reads) - adj.reference_pa
-        self._delta = delta
         objects = self.object_detector.objects(delta, self.layout)
         plans = tuple(self.planner.plan(delta, objects, self.layout))
         self.recorder.event(
@@ -440,7 +438,7 @@ class GraspExecution:
         )
         if not plans:
             raise ExecutionError("the object disappeared before planning: no module above t_o")
-        grasps = tuple(self._grasp(plan) for plan in plans)
+        grasps = tuple(self._grasp(plan, delta) for plan in plans)
         self._enter("valve_check")
         self.safety.check_valves(self._read)
         self._enter("done")
@@ -478,7 +476,9 @@ class GraspExecution:
             elif self._last_t - t0 > p.object_wait_s:
                 raise ExecutionError(f"no object placed on the pad within {p.object_wait_s:g} s")
 
-    def _grasp(self, plan: GraspPlan) -> GraspRecord:
+    def _grasp(self, plan: GraspPlan, delta: NDArray[np.float64]) -> GraspRecord:
+        """Grasp one object (``delta``: the increments it was planned from), retrying after
+        a miss on it while the planner has another grasp and attempts are left."""
         p = self.params
         attempt = 1
         while True:
@@ -496,7 +496,7 @@ class GraspExecution:
                 outcome = "contact_not_detected"
                 break
             outcome = self._close_lift_hold()
-            retry = self._retry(plan, outcome, stop_z, attempt)
+            retry = self._retry(plan, delta, outcome, stop_z, attempt)
             if retry is None:
                 break
             self.recorder.event(
@@ -520,7 +520,12 @@ class GraspExecution:
         )
 
     def _retry(
-        self, plan: GraspPlan, outcome: str, stop_z: float, attempt: int
+        self,
+        plan: GraspPlan,
+        delta: NDArray[np.float64],
+        outcome: str,
+        stop_z: float,
+        attempt: int,
     ) -> GraspPlan | None:
         """The next grasp when the jaws, having landed on the object (contact sensed above
         ``landing_height_m``), closed on nothing and attempts are left; else None."""
@@ -529,7 +534,7 @@ class GraspExecution:
             return None
         if not isinstance(self.planner, RetryPlanner):
             return None
-        return self.planner.retry(plan, self._delta, self.layout, self._landing_rise)
+        return self.planner.retry(plan, delta, self.layout, self._landing_rise)
 
     def _descend(self) -> float | None:
         """Lower the fingers until contact is sensed (box time) or the descent ends (None)."""

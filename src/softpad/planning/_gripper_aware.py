@@ -308,20 +308,33 @@ def centred_on_load(plan: GraspPlan, layout: PadLayout, increments_pa: ArrayLike
     The thesis's rules put the centre on module centres and seams; for an object that may fill
     the opening (its outline is wider than the jaws) the load tells better where its middle
     is. The plan itself when nothing under the path is loaded."""
-    d = np.clip(check_increments(increments_pa, layout), 0.0, None)
     u = np.array([math.cos(plan.theta), math.sin(plan.theta)])
     normal = np.array([-u[1], u[0]])
     cog = np.asarray(plan.cog, dtype=float)
-    offsets = [np.asarray(layout.center(m)) - cog for m in plan.modules]
-    on_path = [(m, o) for m, o in zip(plan.modules, offsets, strict=True) if abs(o @ normal) < 0.5]
-    weight = sum(float(d[m - 1]) for m, _ in on_path)
-    if weight <= 0.0:
-        return plan
-    along = sum(float(d[m - 1]) * float(o @ u) for m, o in on_path) / weight
-    if abs(along) < 1e-9:
+    on_path = [m for m in plan.modules if abs((np.asarray(layout.center(m)) - cog) @ normal) < 0.5]
+    along = _weighted_lever(plan, layout, increments_pa, on_path)
+    if along is None or abs(along) < 1e-9:
         return plan
     c = cog + along * u
     return replace(plan, cog=(float(c[0]), float(c[1])), rule=plan.rule + "+load-centred")
+
+
+def _weighted_lever(
+    plan: GraspPlan,
+    layout: PadLayout,
+    pressures_pa: ArrayLike,
+    modules: list[int] | tuple[int, ...],
+) -> float | None:
+    """Mean offset of ``modules``' centres from the plan's centre along its closing direction,
+    module units, weighted by their pressures clipped at 0; None when they weigh nothing."""
+    w = np.clip(check_increments(pressures_pa, layout), 0.0, None)
+    u = np.array([math.cos(plan.theta), math.sin(plan.theta)])
+    cog = np.asarray(plan.cog, dtype=float)
+    weight = sum(float(w[m - 1]) for m in modules)
+    if weight <= 0.0:
+        return None
+    lever = sum(float(w[m - 1]) * float((np.asarray(layout.center(m)) - cog) @ u) for m in modules)
+    return lever / weight
 
 
 def across_pairs(plans: list[GraspPlan]) -> list[GraspPlan]:
@@ -348,17 +361,10 @@ def landing_side(plan: GraspPlan, layout: PadLayout, landing_rise_pa: ArrayLike)
     closing direction, -1 against it, 0 when the rise is balanced (its rise-weighted lever
     over the plan's modules, module units, is within ``LANDING_BALANCE`` of the centre) or
     absent."""
-    rise = np.clip(check_increments(landing_rise_pa, layout), 0.0, None)
-    u = np.array([math.cos(plan.theta), math.sin(plan.theta)])
-    cog = np.asarray(plan.cog, dtype=float)
-    weight = sum(float(rise[m - 1]) for m in plan.modules)
-    if weight <= 0.0:
+    lever = _weighted_lever(plan, layout, landing_rise_pa, plan.modules)
+    if lever is None or abs(lever) < LANDING_BALANCE:
         return 0
-    lever = sum(
-        float(rise[m - 1]) * float((np.asarray(layout.center(m)) - cog) @ u) for m in plan.modules
-    )
-    lever /= weight
-    return 0 if abs(lever) < LANDING_BALANCE else (1 if lever > 0 else -1)
+    return 1 if lever > 0 else -1
 
 
 def _load_shares(

@@ -180,7 +180,7 @@ def _parts(run: RecordedRun, layout: Any, params: Any) -> tuple[Any, Any]:
     metadata (``contact_detector``, ``planner``; the thesis's when absent: older recordings),
     the planner told the recorded gripper mounting (``gripper`` or ``mounting``)."""
     from softpad.layout import GripperSpec
-    from softpad.planning import ThesisPlanner, planner_for
+    from softpad.planning import planner_for
     from softpad.sensing import ThesisContactDetector, make_contact_detector
 
     meta = run.metadata
@@ -193,8 +193,6 @@ def _parts(run: RecordedRun, layout: Any, params: Any) -> tuple[Any, Any]:
             return ThesisContactDetector(params.contact_threshold_pa, params.filter_length)
         return make_contact_detector(detector_name, rate, layout.n_modules)
 
-    if planner_name == "thesis":
-        return detector, ThesisPlanner(params.planner)
     mounting = str(meta.get("gripper") or meta.get("mounting") or "6/2")
     gripper = GripperSpec.from_mounting(mounting)
     return detector, planner_for(planner_name, gripper, params.planner, detector(), rate)
