@@ -84,8 +84,9 @@ FINGERTIP_WIDTH_M = 0.016
 #: Fingertip size along the closing direction, m: 6.5 mm, the same basic hard tip (source above).
 FINGERTIP_THICKNESS_M = 0.0065
 
-#: Closing speed of each jaw, m/s. Not in the seed; chosen equal to the approach speed so that
-#: the jaws meet an object as gently as the fingers meet the pad.
+#: Closing speed of the gripper's opening, m/s (each jaw moves at half of it). Not in the seed;
+#: chosen equal to the approach speed so that the jaws meet an object no harder than the
+#: fingers meet the pad.
 JAW_SPEED_M_S = APPROACH_SPEED_M_S
 
 # --- Experiment 2 (Section 6.3, Table 6.1) ---------------------------------------------------

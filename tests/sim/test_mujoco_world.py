@@ -230,3 +230,43 @@ def test_holding_a_lifted_brick(tip_width_m: float) -> None:
     assert world.holding()
     # rose with the hand (51 mm), no slip beyond 1 mm
     np.testing.assert_allclose(world.object_pose("brick").z_m - z0, 0.051, atol=1e-3)
+
+
+def test_closing_jaws_move_at_the_commanded_speed() -> None:
+    """Closing fully, the opening shrinks at the commanded 0.05 m/s (5 mm in 0.1 s, within
+    1 mm for the servo's lag), not at the force limit over the joint damping (0.5 m/s each
+    jaw, 100 mm/s of opening), which is how the jaws met objects before: a banana's end
+    struck at that speed was driven into the pad to the sensor's full scale."""
+    world = MujocoWorld(gripper=MujocoGripper(mounting="6/2"))
+    settle(world, 0.2)
+    w0 = world.gripper_state().width_m
+    world.command_gripper(GripperState(0.05, 0.05, 0.15, 0.0, 0.0), 0.05)
+    settle(world, 0.1)
+    np.testing.assert_allclose(w0 - world.gripper_state().width_m, 0.005, atol=1e-3)
+
+
+def test_jaws_stopped_on_an_object_settle_only_at_the_grip_force() -> None:
+    """Jaws blocked by a brick report "still moving" (jaws_settled False) while their force
+    grows with the setpoint (servo gain x speed = 100 N/s), and settled once each jaw presses
+    with at least 95 % of the 20 N grip force."""
+    world = MujocoWorld(gripper=MujocoGripper(mounting="6/2"))
+    x, y = 1.5 * PITCH, 1.5 * PITCH
+    world.place_object(brick(mass_kg=0.05), Placement(x, y))
+    settle(world, 1.0)
+    move_to(world, GripperState(x, y, 0.02, 0.0, 0.05), 0.2, 0.2)
+    move_to(world, GripperState(x, y, 0.009, 0.0, 0.05), 0.05, 0.2)
+    assert world.jaws_settled()  # not closing
+    world.command_gripper(GripperState(x, y, 0.009, 0.0, 0.0), 0.05)
+    blocked_unsettled = 0
+    for _ in range(1500):
+        before = world.gripper_state().width_m
+        world.step(1e-3)
+        if world.gripper_state().width_m == before and not world.jaws_settled():
+            blocked_unsettled += 1
+        if world.jaws_settled():
+            break
+    else:
+        raise AssertionError("the jaws never settled on the brick within 1.5 s")
+    assert blocked_unsettled > 20  # stalled on the brick for a while before the force was there
+    assert min(world.gripper_contacts().finger_on_object_n) > 0.9 * 20.0
+    np.testing.assert_allclose(world.gripper_state().width_m, 0.031, atol=0.5e-3)

@@ -126,6 +126,9 @@ class SimulatedRobot:
         if self._target is None or s == self._target:
             self._last = s
             return False
+        if not self.world.jaws_settled():  # stopped on an object, the grip still building up
+            self._last = s
+            return True
         moved = s != self._last
         self._last = s
         if self._fresh:  # a command was just given: allow one step before judging

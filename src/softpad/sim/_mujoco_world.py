@@ -35,6 +35,9 @@ _HEIGHT_FILTER_S = 0.5
 
 #: Resolution of the jaw-width reading, metres.
 _WIDTH_RESOLUTION_M = 1e-5
+#: Fraction of the grip force at which closing jaws count as settled on an object (the servo
+#: approaches its force limit asymptotically through the joint damping).
+_SETTLED_FORCE = 0.95
 
 #: Height above the highest module top at which a placed object appears, metres.
 _DROP_M = 0.0
@@ -260,7 +263,8 @@ class MujocoWorld(PadWorld):
             Goal pose and opening, pad frame, metres and radians; an opening beyond the
             mounting's range is clamped to it (0 closes fully, 1 m opens fully).
         speed_m_s
-            Linear speed of the hand and of each jaw's setpoint, m/s (> 0).
+            Linear speed of the hand and of the opening's setpoint (each jaw's at half), m/s
+            (> 0).
         """
         x, y, z, yaw, w = (
             check_finite(n, getattr(target, n)) for n in ("x_m", "y_m", "z_m", "yaw_rad", "width_m")
@@ -354,6 +358,15 @@ class MujocoWorld(PadWorld):
                 s.data.qpos[qa : qa + 7] = [px + ox, py + oy, pz + oz, 1, 0, 0, 0]
                 s.data.qvel[da : da + 6] = 0.0
         s.forward()
+
+    def jaws_settled(self) -> bool:
+        """False while the jaws close fully and their setpoint is still moving with neither
+        jaw's servo at the grip force yet (a blocked jaw's force is growing)."""
+        a = self._arm
+        if not a.closing or a.width_setpoint <= a.goal[4] + 1e-9:
+            return True
+        force = np.abs(self.scene.data.actuator_force)
+        return bool(np.min(force) >= _SETTLED_FORCE * self.gripper.grip_force_n)
 
     def holding(self) -> bool:
         """True when an object (any of its parts) touches both fingers and none of its parts

@@ -101,6 +101,12 @@ class World(Protocol):
         """True when an object is between the closed jaws and is carried by the gripper."""
         ...
 
+    def jaws_settled(self) -> bool:
+        """False while jaws stopped on an object are still building up their grip (the
+        gripper's own "motion in progress" status, as a Robotiq or Sawyer gripper reports
+        until its force is reached); True otherwise."""
+        ...
+
     @property
     def first_touch_s(self) -> float | None:
         """Ground truth of the current descent: box time of the first fingertip touch, s
@@ -143,6 +149,10 @@ class PadWorld:
         self._time_s = 0.0
         self._probe: tuple[tuple[float, float], tuple[float, float], float, float] | None = None
         self._probe_loads = np.zeros(self._layout.n_modules)
+
+    def jaws_settled(self) -> bool:
+        """True: a world whose jaws stop where they meet an object has no grip to build up."""
+        return True
 
     @property
     def layout(self) -> PadLayout:
