@@ -88,7 +88,7 @@ class KinematicArm:
         self.goal = np.array([x, y, z + g.finger_length_m, _unwrap(yaw, self.hand[3]), w])
         self.speed_m_s = speed_m_s
 
-    def servo_ctrl(self, gripper: MujocoGripper) -> float:
+    def servo_ctrl(self) -> float:
         """Setpoint of each jaw's servo, metres from the centre: half the opening setpoint.
 
         Closing fully is speed- and force-limited, like the Sawyer gripper closing on an
@@ -100,7 +100,6 @@ class KinematicArm:
         began, and the jaws hit objects at up to the force limit over the joint damping
         (0.5 m/s), ten times the commanded speed.
         """
-        del gripper  # the offset is in the goal (command)
         return self.width_setpoint / 2
 
     def move(self, dt: float) -> None:
@@ -135,8 +134,9 @@ class KinematicArm:
 
 
 def squeeze_offset_m(gripper: MujocoGripper) -> float:
-    """How far past the closed stops each jaw's setpoint goes when closing fully, metres: the
-    servo's deflection at the grip force, so a blocked jaw squeezes with the full force."""
+    """How far past the closed stops each jaw's setpoint goes when closing fully, metres:
+    twice the servo's deflection at the grip force, so a blocked jaw reaches the full force
+    with the setpoint half-way there."""
     return 2 * gripper.grip_force_n / gripper.servo_stiffness_n_m
 
 

@@ -127,7 +127,7 @@ class MujocoWorld(PadWorld):
         else:
             scene.carry_over(self._scene)
         scene.data.qpos[scene.hand_qpos] = self._arm.hand
-        scene.data.ctrl[:] = self._arm.servo_ctrl(self.gripper)
+        scene.data.ctrl[:] = self._arm.servo_ctrl()
         scene.forward()
         self._scene = scene
 
@@ -435,7 +435,7 @@ class MujocoWorld(PadWorld):
         hand = self._arm.hand
         d.qvel[s.hand_dof] = (hand - d.qpos[s.hand_qpos]) / ts
         d.qpos[s.hand_qpos] = hand
-        d.ctrl[:] = self._arm.servo_ctrl(self.gripper)
+        d.ctrl[:] = self._arm.servo_ctrl()
         self._mj.mj_step(m, d)
         # the hand moved as commanded whatever pushed on it (the robot is position-controlled)
         d.qpos[s.hand_qpos] = hand
