@@ -83,7 +83,7 @@ class KinematicArm:
             w = min(max(w, g.min_width_m), g.max_width_m)
             self.closing = w <= g.min_width_m + SAME_WIDTH_M
             if self.closing:  # the setpoint runs on past the stops by the squeeze (servo_ctrl)
-                w = g.min_width_m - 2 * squeeze_offset_m(g)
+                w = g.min_width_m - 2 * g.squeeze_offset_m
         x, y, z, yaw = pose
         self.goal = np.array([x, y, z + g.finger_length_m, _unwrap(yaw, self.hand[3]), w])
         self.speed_m_s = speed_m_s
@@ -93,7 +93,7 @@ class KinematicArm:
 
         Closing fully is speed- and force-limited, like the Sawyer gripper closing on an
         object: the setpoint moves at the commanded speed towards the closed stops and on past
-        them by :func:`squeeze_offset_m`, so a jaw meets an object at the commanded speed, and
+        them by ``MujocoGripper.squeeze_offset_m``, so a jaw meets an object at the commanded speed, and
         once blocked its force grows with the setpoint (servo gain times speed, 100 N/s at the
         thesis's 0.05 m/s) up to the grip force, which it then holds (an unblocked jaw stops
         at its joint limit). Before, the setpoint jumped ahead by the whole offset as closing
@@ -131,13 +131,6 @@ class KinematicArm:
         self.width_setpoint = (
             self.goal[4] if abs(dw) <= step else self.width_setpoint + math.copysign(step, dw)
         )
-
-
-def squeeze_offset_m(gripper: MujocoGripper) -> float:
-    """How far past the closed stops each jaw's setpoint goes when closing fully, metres:
-    twice the servo's deflection at the grip force, so a blocked jaw reaches the full force
-    with the setpoint half-way there."""
-    return 2 * gripper.grip_force_n / gripper.servo_stiffness_n_m
 
 
 def _unwrap(angle: float, reference: float) -> float:

@@ -207,6 +207,13 @@ class MujocoGripper(CheckedFields, what="gripper"):
         return parse_mounting(self.mounting)[1]
 
     @property
+    def squeeze_offset_m(self) -> float:
+        """How far past the closed stops each jaw's servo setpoint goes when closing fully,
+        metres: twice the servo's deflection at the grip force, so a blocked jaw reaches the
+        full force with the setpoint half-way there (the lower end of the servo's range)."""
+        return 2 * self.grip_force_n / self.servo_stiffness_n_m
+
+    @property
     def sole_thickness_m(self) -> float:
         """Height of the compliant sole at the bottom of each tip (a capsule across the tip
         whose diameter is the tip thickness), metres."""
@@ -506,9 +513,10 @@ def _actuators_xml(gripper: MujocoGripper) -> str:
     open_half = gripper.max_width_m / 2
     kp = gripper.servo_stiffness_n_m
     f_max = gripper.grip_force_n
+    closed = gripper.min_width_m / 2 - gripper.squeeze_offset_m
     return "".join(
         f'<position name="jaw_{side}" joint="jaw_{side}" kp="{kp:g}" '
         f'forcelimited="true" forcerange="{-f_max:g} {f_max:g}" '
-        f'ctrlrange="{gripper.min_width_m / 2 - 2 * f_max / kp:.9g} {open_half + 1e-3:.9g}"/>'
+        f'ctrlrange="{closed:.9g} {open_half + 1e-3:.9g}"/>'
         for side in ("right", "left")
     )

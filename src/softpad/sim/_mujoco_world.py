@@ -360,8 +360,8 @@ class MujocoWorld(PadWorld):
         s.forward()
 
     def jaws_settled(self) -> bool:
-        """False while the jaws close fully and their setpoint is still moving with neither
-        jaw's servo at the grip force yet (a blocked jaw's force is growing)."""
+        """False while the jaws close fully, their setpoint is still moving and either jaw's
+        servo is below 95 % of the grip force (a blocked jaw's force is still growing)."""
         a = self._arm
         if not a.closing or a.width_setpoint <= a.goal[4] + 1e-9:
             return True
