@@ -225,19 +225,22 @@ class _CountingRetryPlanner:
 
     def __init__(self) -> None:
         self.calls = 0
+        self.closed: list[bool] = []
         self.turned = GraspPlan((1, 2, 4, 5), (1.0, 1.0), (1.0, 1.0), np.pi / 2, "turned", ())
 
     def plan(self, increments_pa, objects, layout):  # type: ignore[no-untyped-def]
         return []
 
-    def retry(self, plan, increments_pa, layout, landing_rise_pa):  # type: ignore[no-untyped-def]
+    def retry(self, plan, increments_pa, layout, landing_rise_pa, closed=True):  # type: ignore[no-untyped-def]
         self.calls += 1
+        self.closed.append(closed)
         return self.turned
 
 
 def test_only_a_miss_after_landing_on_the_object_asks_the_planner_again() -> None:
-    """The loop retries when the jaws closed on nothing (``missed``) after the fingers were
-    sensed above ``landing_height_m`` (17 mm: on the object, not on the ~9 mm pad), while
+    """The loop asks for a retry when the fingers were sensed above ``landing_height_m``
+    (17 mm: on the object, not on the ~9 mm pad), at the landing (``landed``, the planner
+    told the jaws have not closed) and after the jaws closed on nothing (``missed``), while
     attempts are left, and only with a planner that has a retry (not the thesis's)."""
     world = AnalyticWorld()
     planner = _CountingRetryPlanner()
@@ -246,13 +249,24 @@ def test_only_a_miss_after_landing_on_the_object_asks_the_planner_again() -> Non
     assert isinstance(planner, RetryPlanner)
     assert loop.params.landing_height_m == pytest.approx(0.017)
     assert loop._retry(first, np.zeros(6), "missed", 0.049, 1) is planner.turned
+    assert loop._retry(first, np.zeros(6), "landed", 0.049, 1) is planner.turned  # not closed
+    assert planner.closed == [True, False]
     assert loop._retry(first, np.zeros(6), "missed", 0.0075, 1) is None  # fingers on the pad
+    assert loop._retry(first, np.zeros(6), "landed", 0.0075, 1) is None
     assert loop._retry(first, np.zeros(6), "held", 0.049, 1) is None
     assert loop._retry(first, np.zeros(6), "dropped", 0.049, 1) is None
     assert loop._retry(first, np.zeros(6), "missed", 0.049, 2) is None  # max_attempts (2) used
-    assert planner.calls == 1
+    assert loop._retry(first, np.zeros(6), "landed", 0.049, 2) is None
+    assert planner.calls == 2
     thesis = GraspExecution(SimBox(world), SimulatedRobot(world))
     assert thesis._retry(first, np.zeros(6), "missed", 0.049, 1) is None
+    assert thesis._retry(first, np.zeros(6), "landed", 0.049, 1) is None
+    # without retry_before_close the planner is asked only after closing on nothing
+    late = ExecutionParams(retry_before_close=False)
+    after = GraspExecution(SimBox(world), SimulatedRobot(world), params=late, planner=planner)
+    assert after._retry(first, np.zeros(6), "landed", 0.049, 1) is None
+    assert after._retry(first, np.zeros(6), "missed", 0.049, 1) is planner.turned
+    assert planner.calls == 3
 
 
 def test_a_bad_attempt_count_is_named() -> None:

@@ -19,6 +19,7 @@ from softpad.planning import (
     landing_side,
     make_planner,
     object_extent_m,
+    pressed_share,
     sensed_share,
 )
 from softpad.planning._records import GraspPlan
@@ -295,6 +296,41 @@ def test_a_brick_missed_across_its_width_is_retried_towards_the_pressed_side(
     assert got.rule == "n5+shifted-after-miss"
     # a landing that pressed both rows alike says nothing of the side
     assert landing_side(plan, LAYOUT, (100, 100, 0, 67, 67, 66)) == 0
+
+
+#: Landing rises of development trials (seeds 101 and 104, pascals): a jaw on the charger's
+#: brick edge (the top row pressed, the bottom row unloaded as the brick tips), and a jaw on
+#: the toy's right arm (module 3) with its body pressing module 5, on the jaws' centre line.
+CHARGER_LANDING_PA = (684.0, 683.0, 377.0, -93.0, -93.0, 3.0)
+TOY_LANDING_PA = (-5.0, 232.0, 648.0, 9.0, 314.0, 0.0)
+
+
+def test_pressed_share_is_the_rise_on_one_side_of_the_centre_line() -> None:
+    brick = GraspPlan((1, 2, 4, 5, 6), (1.33, 1.05), (1.33, 1.05), math.pi / 2, "n6", ())
+    assert pressed_share(brick, LAYOUT, CHARGER_LANDING_PA) == pytest.approx(1744 / 1747)
+    # along x about column 2: modules 2 and 5 lie on the line and count on neither side
+    toy = GraspPlan((1, 2, 3, 5), (1.5, 0.98), (1.5, 0.98), 0.0, "n4", ())
+    assert pressed_share(toy, LAYOUT, TOY_LANDING_PA) == pytest.approx(648 / 1203)
+    assert pressed_share(toy, LAYOUT, (0.0, -3.0, 0.0, 0.0, 0.0, 0.0)) == 0.0
+    half = (100.0, 0.0, 0.0, 0.0, 0.0, 100.0)  # module 1 (x 0.5) and module 6 (x 2.5)
+    assert pressed_share(toy, LAYOUT, half) == pytest.approx(0.5)
+
+
+def test_a_landing_is_retried_before_closing_only_when_one_sided() -> None:
+    """At the landing (``closed=False``) the planner offers its retry only when the rise lies
+    on one side of the jaws' centre line (a tipped brick); after a miss, whatever the rise."""
+    gripper = GripperSpec(max_width_m=0.06, min_width_m=0.02)
+    planner = GripperAwarePlanner(gripper)
+    brick = GraspPlan((1, 2, 4, 5, 6), (1.33, 1.05), (1.33, 1.05), math.pi / 2, "n6", ())
+    early = planner.retry(brick, (300.0,) * 6, LAYOUT, CHARGER_LANDING_PA, closed=False)
+    assert early == planner.retry(brick, (300.0,) * 6, LAYOUT, CHARGER_LANDING_PA)
+    assert early is not None and early.rule == "n6+shifted-after-miss"
+    assert early.cog[1] > brick.cog[1]  # towards the pressed top row
+    balanced = (300.0, 300.0, 0.0, 280.0, 290.0, 100.0)
+    assert planner.retry(brick, (300.0,) * 6, LAYOUT, balanced, closed=False) is None
+    toy = GraspPlan((1, 2, 3, 5), (1.5, 0.98), (1.5, 0.98), 0.0, "n4", (1, 2, 3, 5))
+    assert planner.retry(toy, (300.0,) * 6, LAYOUT, TOY_LANDING_PA, closed=False) is None
+    assert planner.retry(toy, (300.0,) * 6, LAYOUT, TOY_LANDING_PA) is not None
 
 
 def test_only_the_gripper_aware_planner_retries() -> None:

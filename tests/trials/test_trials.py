@@ -340,6 +340,26 @@ def test_trial_planner_is_told_the_detector_it_works_with() -> None:
 
 
 @pytest.mark.slow
+def test_a_landing_on_the_charger_is_retried_before_the_jaws_close() -> None:
+    """A development trial (seed 114, trial 4): the brick lies 5.9 mm below the row seam, the
+    load-centred plan is 3 mm off its middle, and a jaw lands on its edge (sensed 29 mm above
+    the pad base), pressing only the row under it. Retried at once, half a sole towards that
+    row, the brick is held on the second grasp. Closing there first (``retry_before_close``
+    off) shoves the brick 13 mm down the pad as the landed jaw slides off it, so the same
+    retry comes down on it again."""
+    spec = get_object("charger")
+    aware = dict(planner="gripper-aware", detector="adaptive")
+    seed = trial_seed(114, "charger", 4)
+    results = {}
+    for early in (True, False):
+        cfg = TrialConfig(trial_execution_params(hold_s=1.0, retry_before_close=early), **aware)
+        results[early], _ = run_trial(spec, 4, seed, cfg)
+    assert results[True].success and results[True].attempts == 2, results[True].detail
+    assert not results[False].success and results[False].attempts == 2
+    assert results[False].cause == "jaws_hit_object", results[False].detail
+
+
+@pytest.mark.slow
 def test_a_grasp_that_lands_on_the_can_and_misses_is_retried_turned() -> None:
     """The can lying on the row seam loads a square of four modules (its light tinplate body
     barely loads column 3): the gripper-aware plan closes along x, across its 125 mm, so the

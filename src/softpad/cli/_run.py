@@ -98,6 +98,14 @@ def register(sub: Any) -> None:
         unit="mm",
     )
     p.add_argument(
+        "--retry-before-close",
+        action=argparse.BooleanOptionalAction,
+        default=True,
+        help="at a landing on the object that pressed one side of the jaws alone (a jaw on "
+        "a brick's edge), try the planner's next grasp at once instead of closing, which "
+        "would push the object (default: on; docs/beat-the-thesis.md)",
+    )
+    p.add_argument(
         "--config",
         metavar="FILE.toml",
         help="installation file: thresholds (p0, t_adj, t_o, t_g, window, maximum), gripper and "
@@ -208,6 +216,7 @@ def execution_params(args: argparse.Namespace) -> Any:
         hold_s=args.hold_s,
         max_attempts=args.max_attempts,
         landing_height_m=args.landing_height_mm * 1e-3,
+        retry_before_close=args.retry_before_close,
     )
 
 

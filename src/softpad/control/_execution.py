@@ -121,6 +121,16 @@ class ExecutionParams(CheckedFields, what="execution"):
     #: (:class:`~softpad.planning.RetryPlanner`), up to this many in all. A planner without
     #: one (the thesis's) makes one attempt, as the thesis does.
     max_attempts: Count = 2
+    #: Ask the planner for its retry at a landing on the object, before closing; it offers
+    #: one only where the landing pressed one side of the jaws' centre line alone (a jaw on
+    #: a brick's edge, tipping it: closing there shoves the brick 10 to 15 mm across the pad
+    #: as the landed jaw slides off it, and the next grasp, planned where it lay, lands on it
+    #: again), not where it also pressed the line (a jaw on a toy's arm, its body on the
+    #: line: closing still holds it). Development seeds 100-115 (80 trials each,
+    #: gripper-aware planner, adaptive detector): charger 79 held against 65; toy, can and
+    #: banana trial for trial as without it. False: close after every landing, retry only
+    #: after closing on nothing (the loop before 2026-11-24).
+    retry_before_close: bool = True
 
 
 @dataclass(frozen=True)
@@ -276,7 +286,9 @@ class GraspExecution:
 
     When the jaws closed on nothing after the fingers were sensed above ``landing_height_m``
     (they landed on the object), a planner with a retry (:class:`~softpad.planning.RetryPlanner`)
-    is asked for another grasp, tried from ``approach`` again (``max_attempts`` in all).
+    is asked for another grasp, tried from ``approach`` again (``max_attempts`` in all); with
+    ``retry_before_close`` (default) it is asked at the landing first, and where it offers
+    one there the jaws do not close.
 
     The box is the clock: every step reads one frame, so in simulation the world and the
     robot advance exactly with the frames. The execution sees only what a real system sees:
@@ -495,8 +507,16 @@ class GraspExecution:
                 self._move(above, p.travel_speed_m_s, "retreating")
                 outcome = "contact_not_detected"
                 break
-            outcome = self._close_lift_hold()
-            retry = self._retry(plan, delta, outcome, stop_z, attempt)
+            retry = self._retry(plan, delta, "landed", stop_z, attempt)
+            if retry is None:
+                outcome = self._close_lift_hold()
+                retry = self._retry(plan, delta, outcome, stop_z, attempt)
+            else:  # a jaw is on the object: closing would push it; up, and land again
+                outcome = "landed"
+                s = self.robot.state()
+                self._move(
+                    replace(s.pose, z_m=p.approach_height_m), p.travel_speed_m_s, "moving up"
+                )
             if retry is None:
                 break
             self.recorder.event(
@@ -504,6 +524,7 @@ class GraspExecution:
                 "retry",
                 z_m=stop_z,
                 attempt=attempt,
+                closed=outcome != "landed",
                 cog=list(retry.cog),
                 theta=retry.theta,
                 rule=retry.rule,
@@ -527,14 +548,18 @@ class GraspExecution:
         stop_z: float,
         attempt: int,
     ) -> GraspPlan | None:
-        """The next grasp when the jaws, having landed on the object (contact sensed above
-        ``landing_height_m``), closed on nothing and attempts are left; else None."""
+        """The next grasp when the jaws landed on the object (contact sensed above
+        ``landing_height_m``) and attempts are left: after closing on nothing (``outcome``
+        ``missed``) or, with ``retry_before_close``, before closing (``landed``); None
+        otherwise."""
         p = self.params
-        if outcome != "missed" or stop_z <= p.landing_height_m or attempt >= p.max_attempts:
+        wanted = ("landed", "missed") if p.retry_before_close else ("missed",)
+        if outcome not in wanted or stop_z <= p.landing_height_m or attempt >= p.max_attempts:
             return None
         if not isinstance(self.planner, RetryPlanner):
             return None
-        return self.planner.retry(plan, delta, self.layout, self._landing_rise)
+        closed = outcome != "landed"
+        return self.planner.retry(plan, delta, self.layout, self._landing_rise, closed=closed)
 
     def _descend(self) -> float | None:
         """Lower the fingers until contact is sensed (box time) or the descent ends (None)."""

@@ -16,6 +16,7 @@ from softpad.planning._gripper_aware import (
     make_planner,
     object_extent_m,
     planner_for,
+    pressed_share,
     sensed_share,
 )
 from softpad.planning._params import DEFAULT_SAFETY_SHIFT, PlannerParams
@@ -49,5 +50,6 @@ __all__ = [
     "plan_grasps",
     "planner_for",
     "plot_plans",
+    "pressed_share",
     "sensed_share",
 ]

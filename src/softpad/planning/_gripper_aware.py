@@ -72,6 +72,17 @@ DEFAULT_SEAM_WIDTH_M = 5e-3
 #: Lever of a landing's rise (module units) under which it counts as pressing both sides.
 LANDING_BALANCE = 0.05
 
+#: Share of a landing's rise on one side of the jaws' centre line from which the landing
+#: counts as one-sided (:func:`pressed_share`). On development seeds 100-107 the chargers'
+#: landings put 0.97 to 1.0 of their rise on the pressed row (a jaw on the brick's edge tips
+#: it, its far side lifts), the toys' (a jaw on an arm, the body pressing on the line, held
+#: when the jaws closed) 0.31 to 0.72.
+ONE_SIDED_SHARE = 0.9
+
+#: Distance of a module's centre from the jaws' centre line, module units, under which it
+#: counts on neither side of it.
+ON_LINE = 0.25
+
 #: Offsets of the sample points on a fingertip, as fractions of its sides.
 _TIP_GRID = np.array([(a, b) for a in (-0.4, 0.0, 0.4) for b in (-0.4, -0.2, 0.0, 0.2, 0.4)])
 
@@ -221,8 +232,14 @@ class GripperAwarePlanner:
         increments_pa: ArrayLike,
         layout: PadLayout,
         landing_rise_pa: ArrayLike,
+        closed: bool = True,
     ) -> GraspPlan | None:
-        """After ``plan``'s jaws landed on the object and closed on nothing.
+        """After ``plan``'s jaws landed on the object and closed on nothing (``closed``), or
+        at the landing itself, before closing (not ``closed``): then only when the landing
+        pressed one side alone (:func:`pressed_share` at least ``ONE_SIDED_SHARE``), a jaw
+        on the edge of an object that tips about the jaws' centre line (a brick, which
+        closing would shove across the pad), not a jaw on a part beside what lies between
+        the jaws (a toy's arm, its body on the line: closing holds it).
 
         Where the object's outline is no wider a quarter turn away (a can lying along a row
         seam, seen as a square of four modules or an L), the grasp turned about the same
@@ -233,6 +250,8 @@ class GripperAwarePlanner:
         object into the pad (:func:`landing_side`); None when the landing pressed both sides.
         """
         check_increments(increments_pa, layout)
+        if not closed and pressed_share(plan, layout, landing_rise_pa) < ONE_SIDED_SHARE:
+            return None
         theta = _wrap(plan.theta + math.pi / 2)
         turned_extent = object_extent_m(plan.modules, theta, layout)
         if turned_extent <= object_extent_m(plan.modules, plan.theta, layout) + 1e-9:
@@ -365,6 +384,22 @@ def landing_side(plan: GraspPlan, layout: PadLayout, landing_rise_pa: ArrayLike)
     if lever is None or abs(lever) < LANDING_BALANCE:
         return 0
     return 1 if lever > 0 else -1
+
+
+def pressed_share(plan: GraspPlan, layout: PadLayout, landing_rise_pa: ArrayLike) -> float:
+    """Share of a landing's rise (clipped at 0, every module) on the more pressed side of the
+    jaws' centre line (the line through the centre across the closing direction); a module
+    whose centre lies within ``ON_LINE`` of the line counts on neither side. 0 when nothing
+    rose."""
+    w = np.clip(check_increments(landing_rise_pa, layout), 0.0, None)
+    total = float(w.sum())
+    if total <= 0.0:
+        return 0.0
+    u = np.array([math.cos(plan.theta), math.sin(plan.theta)])
+    centres = np.array([layout.center(k) for k in range(1, layout.n_modules + 1)])
+    along = (centres - np.asarray(plan.cog, dtype=float)) @ u
+    plus, minus = float(w[along > ON_LINE].sum()), float(w[along < -ON_LINE].sum())
+    return max(plus, minus) / total
 
 
 def _load_shares(

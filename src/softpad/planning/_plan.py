@@ -38,9 +38,11 @@ class RetryPlanner(Planner, Protocol):
         increments_pa: ArrayLike,
         layout: PadLayout,
         landing_rise_pa: ArrayLike,
+        closed: bool = True,
     ) -> GraspPlan | None:
-        """The grasp to try after ``plan`` landed on its object and missed, or None when
-        there is none worth trying. ``increments_pa``: the increments it was planned from;
+        """The grasp to try after ``plan`` landed on its object and missed (``closed``), or
+        at the landing before the jaws close (not ``closed``), or None when there is none
+        worth trying. ``increments_pa``: the increments it was planned from;
         ``landing_rise_pa``: each module's rise over the pre-descent reference in the frame
         that sensed the fingers (where the landing jaw pressed the object into the pad)."""
         ...
