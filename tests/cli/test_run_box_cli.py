@@ -185,3 +185,18 @@ def test_run_retries_a_grasp_that_landed_on_the_can(cli) -> None:
 def test_unknown_part_names_are_refused(cli) -> None:
     code, _, err = cli("run", "--planner", "magic")
     assert code == 2 and "invalid choice: 'magic'" in err
+
+
+def test_the_timeline_says_whether_a_retry_followed_a_close() -> None:
+    """A retry after the jaws closed on nothing and one at the landing (``closed`` False,
+    the jaws not closed) read differently; an event without ``closed`` (a run recorded
+    before it existed) reads as after a close."""
+    from softpad.cli._run import _retry_text
+
+    event = dict(z_m=0.0291, cog=[1.33, 1.12], theta=1.5708, rule="n6+shifted-after-miss")
+    after = _retry_text(event)
+    assert after.startswith("the jaws closed on nothing after the fingers landed 29.1 mm")
+    assert _retry_text({**event, "closed": True}) == after
+    early = _retry_text({**event, "closed": False})
+    assert "not closing" in early and "closed on nothing" not in early
+    assert early.endswith("trying COG (1.33, 1.12) theta +1.571 rad [n6+shifted-after-miss]")

@@ -406,14 +406,22 @@ _EVENT_TEXT: dict[str, Any] = {
     "no_contact": lambda d: [
         f"no contact detected down to {d['z_m'] * 1e3:.1f} mm: gripper not closed"
     ],
-    "retry": lambda d: [
-        f"the jaws closed on nothing after landing {d['z_m'] * 1e3:.1f} mm above the pad "
-        f"base, on the object: trying COG ({d['cog'][0]:.2f}, {d['cog'][1]:.2f}) theta "
-        f"{d['theta']:+.3f} rad [{d['rule']}]"
-    ],
+    "retry": lambda d: [_retry_text(d)],
     "outcome": lambda d: [d["outcome"]],
 }
 _SHOWN_PHASES = ("approach", "descend", "close", "lift", "hold", "release")
+
+
+def _retry_text(d: dict[str, Any]) -> str:
+    """The timeline's line for a ``retry`` event (``closed``: after the jaws closed)."""
+    landed = f"the fingers landed {d['z_m'] * 1e3:.1f} mm above the pad base"
+    why = (
+        f"the jaws closed on nothing after {landed}, on the object"
+        if d.get("closed", True)
+        else f"{landed}, on one side of the object: not closing"
+    )
+    grasp = f"COG ({d['cog'][0]:.2f}, {d['cog'][1]:.2f}) theta {d['theta']:+.3f} rad"
+    return f"{why}; trying {grasp} [{d['rule']}]"
 
 
 def _timeline(log: Any, result: Any) -> list[str]:

@@ -116,8 +116,9 @@ class ExecutionParams(CheckedFields, what="execution"):
     #: 2.5 to 7.6 mm above the base in simulation; on the lowest catalogue object, a 19.2 mm
     #: Duplo brick resting on the pad, above 25 mm.
     landing_height_m: Positive = 0.017
-    #: Grasps tried per object: when the jaws landed on the object and closed on nothing
-    #: (the gripper closed fully), the loop tries the planner's next grasp
+    #: Grasps tried per object: when the jaws landed on the object (and closed on nothing,
+    #: the gripper closed fully, or see ``retry_before_close``), the loop tries the planner's
+    #: next grasp
     #: (:class:`~softpad.planning.RetryPlanner`), up to this many in all. A planner without
     #: one (the thesis's) makes one attempt, as the thesis does.
     max_attempts: Count = 2

@@ -24,7 +24,11 @@ When the jaws land on the object and close on nothing (the loop sees the fingers
 above the pad and a fully closed gripper), :meth:`GripperAwarePlanner.retry` offers the grasp
 turned a quarter turn about the same centre, where the object's outline is no wider that way:
 a can lying along a row seam, whose light body leaves it looking like a square of four
-modules, is first grasped along its length.
+modules, is first grasped along its length. Otherwise the grasp moves half a sole towards
+the side the landing pressed. The loop also asks at the landing itself, before closing
+(``closed=False``); the planner answers there only when the landing pressed one side of the
+jaws' centre line alone (:func:`pressed_share`): a jaw on a brick's edge, which closing
+would shove across the pad.
 
 "Sensed" depends on the detector. The response map (:func:`sensed_share`) says what share of a
 centred fingertip's rise a fingertip raises where it lands; with the thesis's detector a grasp
