@@ -116,11 +116,10 @@ class ExecutionParams(CheckedFields, what="execution"):
     #: 2.5 to 7.6 mm above the base in simulation; on the lowest catalogue object, a 19.2 mm
     #: Duplo brick resting on the pad, above 25 mm.
     landing_height_m: Positive = 0.017
-    #: Grasps tried per object: when the jaws landed on the object (and closed on nothing,
-    #: the gripper closed fully, or see ``retry_before_close``), the loop tries the planner's
-    #: next grasp
-    #: (:class:`~softpad.planning.RetryPlanner`), up to this many in all. A planner without
-    #: one (the thesis's) makes one attempt, as the thesis does.
+    #: Grasps tried per object: when the jaws landed on the object and closed on nothing
+    #: (the gripper closed fully; or at the landing, see ``retry_before_close``), the loop
+    #: tries the planner's next grasp (:class:`~softpad.planning.RetryPlanner`), up to this
+    #: many in all. A planner without one (the thesis's) makes one attempt, as the thesis does.
     max_attempts: Count = 2
     #: Ask the planner for its retry at a landing on the object, before closing; it offers
     #: one only where the landing pressed one side of the jaws' centre line alone (a jaw on
@@ -514,10 +513,7 @@ class GraspExecution:
                 retry = self._retry(plan, delta, outcome, stop_z, attempt)
             else:  # a jaw is on the object: closing would push it; up, and land again
                 outcome = "landed"
-                s = self.robot.state()
-                self._move(
-                    replace(s.pose, z_m=p.approach_height_m), p.travel_speed_m_s, "moving up"
-                )
+                self._move_up()
             if retry is None:
                 break
             self.recorder.event(
@@ -609,6 +605,10 @@ class GraspExecution:
             down = replace(s.pose, z_m=s.z_m - p.lift_m)
             self._move(down, p.approach_speed_m_s, "putting the object down")
         self._gripper(1.0, p.travel_speed_m_s, "opening the gripper")
-        s = self.robot.state()
-        self._move(replace(s.pose, z_m=p.approach_height_m), p.travel_speed_m_s, "moving up")
+        self._move_up()
         return outcome
+
+    def _move_up(self) -> None:
+        """Straight up to the approach height, where the arm is."""
+        p, s = self.params, self.robot.state()
+        self._move(replace(s.pose, z_m=p.approach_height_m), p.travel_speed_m_s, "moving up")

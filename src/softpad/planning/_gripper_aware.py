@@ -400,8 +400,7 @@ def pressed_share(plan: GraspPlan, layout: PadLayout, landing_rise_pa: ArrayLike
     if total <= 0.0:
         return 0.0
     u = np.array([math.cos(plan.theta), math.sin(plan.theta)])
-    centres = np.array([layout.center(k) for k in range(1, layout.n_modules + 1)])
-    along = (centres - np.asarray(plan.cog, dtype=float)) @ u
+    along = (layout.centers - np.asarray(plan.cog, dtype=float)) @ u
     plus, minus = float(w[along > ON_LINE].sum()), float(w[along < -ON_LINE].sum())
     return max(plus, minus) / total
 
