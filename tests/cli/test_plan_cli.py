@@ -20,7 +20,7 @@ def test_json_has_exactly_the_documented_keys(cli) -> None:
     data = json.loads(out)
     assert list(data) == ["schema_version", "objects"]
     (obj,) = data["objects"]
-    assert list(obj) == ["modules", "pcom", "cog", "theta", "rule", "cog_m"]
+    assert list(obj) == ["modules", "pcom", "cog", "theta", "rule", "cog_m", "tentative"]
     assert obj["modules"] == [2, 3, 4]
     assert obj["cog"] == [1.0, 1.0]
     assert obj["theta"] == -math.pi / 4

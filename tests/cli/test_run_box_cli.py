@@ -33,7 +33,7 @@ def test_run_json_has_the_documented_keys(capsys, tmp_path) -> None:
     for key in ("objects", "contact_detected", "contact_delay_s", "finger_travel_m", "outcome"):
         assert key in d
     assert d["outcome"] == "held" and d["contact_detected"] is True
-    assert set(d["objects"][0]) == {"modules", "pcom", "cog", "theta", "rule", "cog_m"}
+    assert set(d["objects"][0]) == {"modules", "pcom", "cog", "theta", "rule", "cog_m", "tentative"}
     # Table 6.1 plans (0.5, 1.2); the simulator predicts it within 0.1 module units
     # (tests/sim/test_table_6_1.py: COG_TOLERANCE)
     np.testing.assert_allclose(d["objects"][0]["cog"], [0.5, 1.2], atol=0.1)
@@ -200,3 +200,16 @@ def test_the_timeline_says_whether_a_retry_followed_a_close() -> None:
     early = _retry_text({**event, "closed": False})
     assert "not closing" in early and "closed on nothing" not in early
     assert early.endswith("trying COG (1.33, 1.12) theta +1.571 rad [n6+shifted-after-miss]")
+
+
+def test_drop_carried_is_an_option_of_run() -> None:
+    """``--drop-carried`` (default) and ``--no-drop-carried`` reach the loop's parameters;
+    the timeline names the modules that went up with the held object."""
+    from softpad.cli._run import _EVENT_TEXT, execution_params
+    from softpad.cli.main import build_parser
+
+    p = build_parser()
+    assert execution_params(p.parse_args(["run"])).drop_carried is True
+    assert execution_params(p.parse_args(["run", "--no-drop-carried"])).drop_carried is False
+    (line,) = _EVENT_TEXT["carried"]({"modules": [4]})
+    assert line.startswith("module(s) 4 unloaded during the hold")

@@ -272,3 +272,82 @@ def test_only_a_miss_after_landing_on_the_object_asks_the_planner_again() -> Non
 def test_a_bad_attempt_count_is_named() -> None:
     with pytest.raises(InputError, match="max_attempts"):
         ExecutionParams(max_attempts=0)
+
+
+class _SplittingPlanner:
+    """The thesis's plans plus a second plan on the first object's last module, as if the
+    pad had shown that object as two (a RetryPlanner without retries)."""
+
+    def plan(self, increments_pa, objects, layout):  # type: ignore[no-untyped-def]
+        from softpad.planning import ThesisPlanner
+
+        plans = ThesisPlanner().plan(increments_pa, objects, layout)
+        k = plans[0].modules[-1]
+        centre = tuple(float(v) for v in layout.centers[k - 1])
+        ghost = GraspPlan((k,), centre, centre, 0.0, "ghost", (k,))
+        return [plans[0], ghost, *plans[1:]]
+
+    def retry(self, plan, increments_pa, layout, landing_rise_pa, closed=True):  # type: ignore[no-untyped-def]
+        return None
+
+
+def _split_run(objects: list[str], params: ExecutionParams, planner: object):  # type: ignore[no-untyped-def]
+    log = RunLog()
+    r = run_simulated(objects, "sim://?seed=5", params, log, gripper="6/2", planner=planner)
+    return r.result, log
+
+
+def test_an_object_that_went_up_with_a_held_one_is_not_grasped_again() -> None:
+    """Object 1 planned as two objects (its own plan and one on module 6): the first grasp
+    holds it, module 6 unloads during the hold, so the second plan is dropped (one grasp,
+    a ``carried`` event). The loop before (``drop_carried`` off) grasps both; a second real
+    object (object 4, on modules 1 and 4, grasped first) still loaded during the hold of
+    the first is grasped, its ghost too (module 4 loaded), object 1 after them."""
+    r, log = _split_run(["object-1"], FAST, _SplittingPlanner())
+    assert [p.modules for p in r.plans] == [(3, 6), (6,)]
+    assert [g.outcome for g in r.grasps] == ["held"]
+    assert r.grasps[0].carried_modules == (6,)
+    assert [d["modules"] for _, d in log.events_of("carried")] == [[6]]
+    assert r.to_dict()["grasps"][0]["carried_modules"] == [6]
+    r, log = _split_run(
+        ["object-1"], ExecutionParams(hold_s=1.0, drop_carried=False), _SplittingPlanner()
+    )
+    assert len(r.grasps) == 2 and r.grasps[0].carried_modules == ()
+    assert log.events_of("carried") == []
+    r, log = _split_run(["object-1", "object-4"], FAST, _SplittingPlanner())
+    assert [p.modules for p in r.plans] == [(1, 4), (4,), (3, 6)]
+    assert [g.plan.modules for g in r.grasps] == [(1, 4), (3, 6)]
+    assert [g.outcome for g in r.grasps] == ["held", "held"]
+
+
+def test_the_thesis_planner_grasps_every_planned_object() -> None:
+    """With the thesis's planner (no retry) every plan is grasped, as in the thesis."""
+
+    class Plain(_SplittingPlanner):
+        retry = None  # type: ignore[assignment]
+
+    r, _ = _split_run(["object-1"], FAST, Plain())
+    assert not isinstance(Plain(), RetryPlanner)
+    assert len(r.grasps) == 2
+
+
+def test_a_tentative_grasp_that_missed_does_not_count_in_the_outcome() -> None:
+    """A tentative grasp (two ends taken as one object) that missed, then both ends held: the
+    run held. A tentative grasp that held counts; a plain miss still fails the run."""
+    from softpad.control import GraspRecord
+    from softpad.control._execution import ExecutionResult
+
+    bridge = GraspPlan((3, 4), (1.5, 1.0), (1.5, 1.0), 0.0, "bridge-pair", (3, 4), tentative=True)
+    end = GraspPlan((3,), (2.5, 1.5), (2.5, 1.5), 0.0, "n1", (3,))
+
+    def run(*grasps: GraspRecord) -> str:
+        plans = tuple(g.plan for g in grasps)
+        return ExecutionResult(None, None, 0.0, np.zeros(6), plans, grasps, ()).outcome  # type: ignore[arg-type]
+
+    def rec(plan: GraspPlan, outcome: str) -> GraspRecord:
+        return GraspRecord(plan, outcome, True)
+
+    assert run(rec(bridge, "missed"), rec(end, "held"), rec(end, "held")) == "held"
+    assert run(rec(bridge, "held")) == "held"
+    assert run(rec(bridge, "missed"), rec(end, "held"), rec(end, "dropped")) == "dropped"
+    assert run(rec(end, "missed"), rec(end, "held")) == "missed"

@@ -15,6 +15,7 @@ from softpad.planning import (
     RetryPlanner,
     ThesisPlanner,
     across_pairs,
+    bridge_pairs,
     centred_on_load,
     landing_side,
     make_planner,
@@ -354,7 +355,8 @@ def test_two_one_module_objects_are_grasped_across_the_line_joining_them() -> No
     objects = detect_objects(SPLIT_BANANA_PA, LAYOUT)
     assert objects == [(3,), (4,)]
     thesis = ThesisPlanner().plan(SPLIT_BANANA_PA, objects, LAYOUT)
-    plans = planner.plan(SPLIT_BANANA_PA, objects, LAYOUT)
+    bridge, *plans = planner.plan(SPLIT_BANANA_PA, objects, LAYOUT)
+    assert bridge.tentative and not any(p.tentative for p in plans)
     expected = math.atan2(1.0, 2.0) - math.pi / 2
     for t, p in zip(thesis, plans, strict=True):
         assert t.theta == 0.0 and p.cog == t.cog and p.modules == t.modules
@@ -371,3 +373,38 @@ def test_only_one_module_objects_beside_others_are_turned() -> None:
     turned, kept = across_pairs([lone, pair])
     assert kept == pair
     assert turned.theta == pytest.approx(math.atan2(0.7, 2.0) - math.pi / 2)
+
+
+def test_a_pair_of_ends_is_first_grasped_between_them() -> None:
+    """The split banana: before its two ends, a tentative grasp on modules 3 and 4 at the
+    mean of their centres weighted by their increments (a rigid body on two supports has its
+    centre of mass where their forces balance), closing across the line joining them."""
+    planner = GripperAwarePlanner(GRIPPER, sensing_ratio=0.44)
+    bridge = planner.plan(SPLIT_BANANA_PA, detect_objects(SPLIT_BANANA_PA, LAYOUT), LAYOUT)[0]
+    w3, w4 = SPLIT_BANANA_PA[2], SPLIT_BANANA_PA[3]
+    x = (w3 * 2.5 + w4 * 0.5) / (w3 + w4)
+    y = (w3 * 1.5 + w4 * 0.5) / (w3 + w4)
+    assert bridge.modules == (3, 4) and bridge.rule == "bridge-pair"
+    assert bridge.cog == pytest.approx((x, y), abs=1e-12) and bridge.pcom == bridge.cog
+    assert bridge.theta == pytest.approx(math.atan2(1.0, 2.0) - math.pi / 2, abs=1e-12)
+    assert bridge.to_dict(LAYOUT)["tentative"] is True
+
+
+def test_only_mutually_nearest_one_module_objects_are_bridged() -> None:
+    """A lone one-module object, or one beside a larger object, gets no bridge; of three
+    one-module objects in a row (1 apart, then 1.5), only the two closer ones are bridged."""
+    d = (100.0, 0.0, 100.0, 100.0, 0.0, 100.0)
+    a = GraspPlan((1,), (0.0, 0.0), (0.0, 0.0), 0.0, "n1", (1,))
+    b = GraspPlan((3,), (1.0, 0.0), (1.0, 0.0), 0.0, "n1", (3,))
+    c = GraspPlan((4,), (2.5, 0.0), (2.5, 0.0), 0.0, "n1", (4,))
+    big = GraspPlan((3, 6), (1.0, 0.5), (1.0, 0.5), 0.0, "n2", (3, 6))
+    assert bridge_pairs([a], d) == [a]
+    assert bridge_pairs([a, big], d) == [a, big]
+    bridge, *rest = bridge_pairs([a, b, c], d)
+    assert rest == [a, b, c]
+    assert bridge.modules == (1, 3) and bridge.cog == pytest.approx((0.5, 0.0))
+    assert bridge.theta == pytest.approx(math.pi / 2)  # across the line along x
+    # the weights move the centre towards the heavier end; no weight at all: the middle
+    heavy = bridge_pairs([a, b], (300.0, 0.0, 100.0, 0.0, 0.0, 0.0))[0]
+    assert heavy.cog == pytest.approx((0.25, 0.0))
+    assert bridge_pairs([a, b], (0.0,) * 6)[0].cog == pytest.approx((0.5, 0.0))

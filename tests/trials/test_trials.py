@@ -382,3 +382,69 @@ def test_a_grasp_that_lands_on_the_can_and_misses_is_retried_turned() -> None:
         assert not once.success and once.attempts == 1
         assert once.cause == "jaws_hit_object", once.detail
         assert once.theta is not None and abs(once.theta) < 1e-6
+
+
+def _without_bridges(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The gripper-aware planner as it was before bridge_pairs (the ends grasped alone)."""
+    from softpad.planning import _gripper_aware
+
+    monkeypatch.setattr(_gripper_aware, "bridge_pairs", lambda plans, increments_pa: plans)
+
+
+class _Events:
+    """Keeps the loop's events of a trial."""
+
+    def __init__(self) -> None:
+        self.events: list[tuple[str, dict]] = []
+
+    def frame(self, frame: object, phase: str) -> None:
+        pass
+
+    def event(self, t_s: float, kind: str, **data: object) -> None:
+        self.events.append((kind, data))
+
+    def of(self, kind: str) -> list[dict]:
+        return [d for k, d in self.events if k == kind]
+
+
+@pytest.mark.slow
+def test_a_banana_on_its_ends_is_grasped_between_them(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A development trial (seed 110, trial 1): the banana's middle arches over modules 2
+    and 5, the pad shows two one-module objects (3 and 4). The planner tries a grasp between
+    them first (tentative, at their increment-weighted mean, across the line joining them):
+    it holds the banana, both modules unload during the hold and neither end is grasped
+    again. Grasped at its ends alone, a jaw comes down on the banana."""
+    spec = get_object("banana")
+    seed = trial_seed(110, "banana", 1)
+    cfg = TrialConfig(
+        trial_execution_params(hold_s=1.0), planner="gripper-aware", detector="adaptive"
+    )
+    log = _Events()
+    result, _ = run_trial(spec, 1, seed, cfg, recorder=log)
+    assert result.success, result.detail
+    (plan,) = log.of("plan")
+    assert [o["modules"] for o in plan["objects"]] == [[3, 4], [3], [4]]
+    assert [o["tentative"] for o in plan["objects"]] == [True, False, False]
+    assert [d["modules"] for d in log.of("phase") if d["phase"] == "approach"] == [[3, 4]]
+    assert [d["modules"] for d in log.of("carried")] == [[3, 4]]
+    _without_bridges(monkeypatch)
+    ends, _ = run_trial(spec, 1, seed, cfg)
+    assert not ends.success and ends.cause == "jaws_hit_object", ends.detail
+
+
+@pytest.mark.slow
+def test_an_end_held_carries_the_other(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Development seed 110, trial 0, ends grasped alone (no bridge): the first end's grasp
+    holds the banana, module 4 unloads with it, so its stale plan is dropped and the trial
+    holds. Grasping it anyway (``drop_carried`` off), the jaws come down on the banana,
+    which the release put elsewhere."""
+    _without_bridges(monkeypatch)
+    spec = get_object("banana")
+    seed = trial_seed(110, "banana", 0)
+    aware = dict(planner="gripper-aware", detector="adaptive")
+    results = {}
+    for drop in (True, False):
+        cfg = TrialConfig(trial_execution_params(hold_s=1.0, drop_carried=drop), **aware)
+        results[drop], _ = run_trial(spec, 0, seed, cfg)
+    assert results[True].success, results[True].detail
+    assert not results[False].success and results[False].cause == "jaws_hit_object"

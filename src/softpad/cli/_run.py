@@ -106,6 +106,14 @@ def register(sub: Any) -> None:
         "would push the object (default: on; docs/beat-the-thesis.md)",
     )
     p.add_argument(
+        "--drop-carried",
+        action=argparse.BooleanOptionalAction,
+        default=True,
+        help="after a grasp that held, do not grasp the planned objects whose modules "
+        "unloaded while it was held: they went up with it (one object seen as two, a banana "
+        "on its ends; default: on, with a planner that has a retry)",
+    )
+    p.add_argument(
         "--config",
         metavar="FILE.toml",
         help="installation file: thresholds (p0, t_adj, t_o, t_g, window, maximum), gripper and "
@@ -217,6 +225,7 @@ def execution_params(args: argparse.Namespace) -> Any:
         max_attempts=args.max_attempts,
         landing_height_m=args.landing_height_mm * 1e-3,
         retry_before_close=args.retry_before_close,
+        drop_carried=args.drop_carried,
     )
 
 
@@ -407,6 +416,10 @@ _EVENT_TEXT: dict[str, Any] = {
         f"no contact detected down to {d['z_m'] * 1e3:.1f} mm: gripper not closed"
     ],
     "retry": lambda d: [_retry_text(d)],
+    "carried": lambda d: [
+        f"module(s) {_modules(d)} unloaded during the hold: that object went up with this "
+        "one, not grasped again"
+    ],
     "outcome": lambda d: [d["outcome"]],
 }
 _SHOWN_PHASES = ("approach", "descend", "close", "lift", "hold", "release")

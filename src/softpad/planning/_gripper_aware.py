@@ -199,7 +199,7 @@ class GripperAwarePlanner:
         plans = self.thesis.plan(d, outlined, layout)
         # turned last: a module's outline, 45 mm square, spans 60.4 mm across the banana's
         # (2, 1) diagonal, and improve() would turn it 15 degrees back to fit the 6 cm jaws
-        return across_pairs([self.improve(p, layout, d) for p in plans])
+        return bridge_pairs(across_pairs([self.improve(p, layout, d) for p in plans]), d)
 
     def tip_share(self, cog: tuple[float, float], theta: float, layout: PadLayout) -> float:
         """Sensed share of the better-placed fingertip for a grasp at ``cog`` (module units)."""
@@ -377,6 +377,53 @@ def across_pairs(plans: list[GraspPlan]) -> list[GraspPlan]:
         theta = theta_perpendicular(near.pcom[0] - p.cog[0], near.pcom[1] - p.cog[1])
         out[i] = replace(p, theta=theta, rule=p.rule + "+across-pair")
     return out
+
+
+def bridge_pairs(plans: list[GraspPlan], increments_pa: ArrayLike) -> list[GraspPlan]:
+    """The plans with a tentative grasp before each pair of one-module objects that are
+    each other's nearest: centred between them at the increment-weighted mean of their PCOMs,
+    closing across the line joining them.
+
+    Two one-module objects may be one long object resting on its two ends (a banana whose
+    middle arches over the pad and loads nothing). A rigid body on two supports has its
+    centre of mass on the segment between them where the supports' forces balance: the
+    weighted mean, the pad's increments standing for the forces. Grasped there it hangs
+    balanced between the jaws, where a grasp on one end holds it at its tip. If they are two
+    objects, the jaws come down on the pad between them and close on nothing; the loop then
+    grasps each in turn (:attr:`GraspPlan.tentative`)."""
+    d = np.clip(np.asarray(increments_pa, dtype=float), 0.0, None)
+    out: list[GraspPlan] = []
+    paired: list[GraspPlan] = []
+    for p in plans:
+        q = _end_partner(p, plans)
+        if q is not None and all(p is not r for r in paired):
+            out.append(_bridge(p, q, d))
+            paired += [p, q]
+        out.append(p)
+    return out
+
+
+def _end_partner(p: GraspPlan, plans: list[GraspPlan]) -> GraspPlan | None:
+    """The one-module plan nearest to one-module ``p`` when ``p`` is also nearest to it."""
+
+    def nearest(a: GraspPlan) -> GraspPlan | None:
+        others = [b for b in plans if b is not a]
+        return min(others, key=lambda b: math.dist(a.pcom, b.pcom)) if others else None
+
+    q = nearest(p)
+    if len(p.modules) != 1 or q is None or len(q.modules) != 1 or nearest(q) is not p:
+        return None
+    return q
+
+
+def _bridge(p: GraspPlan, q: GraspPlan, d: NDArray[np.float64]) -> GraspPlan:
+    wp, wq = float(d[p.modules[0] - 1]), float(d[q.modules[0] - 1])
+    a, b = np.asarray(p.pcom), np.asarray(q.pcom)
+    c = (wp * a + wq * b) / (wp + wq) if wp + wq > 0 else (a + b) / 2
+    centre = (float(c[0]), float(c[1]))
+    modules = tuple(sorted(p.modules + q.modules))
+    theta = theta_perpendicular(float(b[0] - a[0]), float(b[1] - a[1]))
+    return GraspPlan(modules, centre, centre, theta, "bridge-pair", modules, tentative=True)
 
 
 def landing_side(plan: GraspPlan, layout: PadLayout, landing_rise_pa: ArrayLike) -> int:

@@ -27,6 +27,11 @@ class GraspPlan:
     #: True when the plan hinged on an exact tie (PCOM exactly on a bisector, two axes at the
     #: same distance, two modules equally far) that a documented convention decided.
     tie_break: bool = False
+    #: True for a grasp tried on a guess before the plans that follow it (two one-module
+    #: objects taken as one long object resting on its ends, :func:`bridge_pairs`): when it
+    #: holds, the loop sees the others go up with it; when it misses, they are grasped in
+    #: turn and its miss does not count in the run's outcome.
+    tentative: bool = False
 
     def cog_m(self, layout: PadLayout) -> tuple[float, float]:
         """Centre of grasp in metres in the pad frame (COG times the module pitch)."""
@@ -42,4 +47,5 @@ class GraspPlan:
             "theta": self.theta,
             "rule": self.rule,
             "cog_m": list(self.cog_m(layout)),
+            "tentative": self.tentative,
         }

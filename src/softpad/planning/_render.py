@@ -72,6 +72,8 @@ def format_plans(
             f"  theta  {math.degrees(p.theta):+.1f} deg ({p.theta:+.4f} rad), jaws close along it",
             f"  rule   {p.rule}" + (" (decided by a tie-break)" if p.tie_break else ""),
         ]
+        if p.tentative:
+            lines.append("  tried first: if it misses, the objects after it are grasped in turn")
         if p.reduced_modules != p.modules:
             lines.append(f"  kept   modules {', '.join(map(str, p.reduced_modules))}")
     return "\n".join(lines)
