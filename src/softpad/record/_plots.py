@@ -116,6 +116,7 @@ def _grasp_plans(plans: list[dict[str, Any]]) -> list[Any]:
             float(o["theta"]),
             str(o["rule"]),
             tuple(o["modules"]),
+            tentative=o.get("tentative") is True,  # absent in runs recorded before it
         )
         for o in plans
     ]
