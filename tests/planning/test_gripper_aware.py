@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
+import numpy as np
 import pytest
 
 from softpad.errors import InputError
@@ -12,14 +13,18 @@ from softpad.layout import GripperSpec, PadLayout
 from softpad.planning import (
     TABLE_6_1,
     GripperAwarePlanner,
+    PlannerParams,
     RetryPlanner,
     ThesisPlanner,
     across_pairs,
+    along_load_axis,
     bridge_pairs,
     centred_on_load,
     landing_side,
+    load_axis,
     make_planner,
     object_extent_m,
+    plan_grasps,
     pressed_share,
     sensed_share,
 )
@@ -408,3 +413,45 @@ def test_only_mutually_nearest_one_module_objects_are_bridged() -> None:
     heavy = bridge_pairs([a, b], (300.0, 0.0, 100.0, 0.0, 0.0, 0.0))[0]
     assert heavy.cog == pytest.approx((0.25, 0.0))
     assert bridge_pairs([a, b], (0.0,) * 6)[0].cog == pytest.approx((0.5, 0.0))
+
+
+def test_the_load_axis_of_modules() -> None:
+    """Equal loads on two modules: the line through their centres; a square of equal loads
+    or no load: no axis; a lighter third module turns the axis towards it."""
+    d = np.zeros(6)
+    d[[2, 3]] = 200.0  # modules 3 and 4
+    assert load_axis((3, 4), LAYOUT, d) == pytest.approx(math.atan2(1.0, 2.0), abs=1e-12)
+    assert load_axis((1, 2, 4, 5), LAYOUT, np.full(6, 100.0)) is None
+    assert load_axis((3, 4), LAYOUT, np.zeros(6)) is None
+    d[1] = 60.0  # module 2, above the 4-3 line
+    assert math.atan2(1.0, 2.0) < load_axis((2, 3, 4), LAYOUT, d) < math.pi / 4
+
+
+#: A simulated banana on modules 2, 3 and 4 (development seed 105, trial 1): its centre of
+#: mass over the pad's centre, the PCOM 0.01 module units right of the bisector through 2.
+DIAGONAL_BANANA_PA = (-2.7, 60.3, 206.8, 201.7, 4.2, -1.0)
+
+
+def test_a_diagonal_linked_object_is_planned_on_the_side_of_its_load_axis() -> None:
+    """The thesis takes side module 3 (the PCOM right of the bisector): (1.71, 1.5), closing
+    along y, 27 degrees off the banana's 4-3 chord. The load's axis (27 degrees) lies nearer
+    the 2-4 diagonal (45) than the 2-3 row (0): side module 4, the thesis's own Table 6.1
+    plan for the banana, (1, 1) closing at -45 degrees. Mirrored so that the PCOM falls left
+    of the bisector, the thesis already takes side 4 and the plan is the thesis's."""
+    thesis = plan_grasps(DIAGONAL_BANANA_PA)[0]
+    assert thesis.rule == "n3-diagonal-shift" and thesis.theta == pytest.approx(math.pi / 2)
+    turned = along_load_axis(thesis, LAYOUT, DIAGONAL_BANANA_PA, PlannerParams())
+    assert turned.rule == "n3-diagonal-corner+load-axis"
+    assert turned.cog == pytest.approx((1.0, 1.0)) and turned.theta == pytest.approx(-math.pi / 4)
+    assert turned.pcom == thesis.pcom and turned.modules == thesis.modules
+    planner = GripperAwarePlanner(GRIPPER, sensing_ratio=0.44)
+    objects = detect_objects(DIAGONAL_BANANA_PA, LAYOUT)
+    assert planner.plan(DIAGONAL_BANANA_PA, objects, LAYOUT)[0].rule.startswith(turned.rule)
+    left = (-2.7, 60.3, 201.7, 206.8, 4.2, -1.0)  # PCOM left of the bisector
+    kept = plan_grasps(left)[0]
+    assert kept.rule == "n3-diagonal-corner"
+    assert along_load_axis(kept, LAYOUT, left, PlannerParams()) is kept
+    # not diagonal-linked (a row, an L): as it is
+    for d in ((100.0, 100.0, 100.0, 0, 0, 0), (100.0, 100.0, 0, 100.0, 0, 0)):
+        p = plan_grasps(d)[0]
+        assert along_load_axis(p, LAYOUT, d, PlannerParams()) is p

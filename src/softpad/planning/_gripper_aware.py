@@ -61,6 +61,7 @@ from softpad.planning._geometry import theta_perpendicular
 from softpad.planning._params import PlannerParams
 from softpad.planning._plan import ThesisPlanner
 from softpad.planning._records import GraspPlan
+from softpad.planning._thesis_rules import diagonal_linked_plan, linked_three
 from softpad.sensing import (
     DEFAULT_OUTLINE_THRESHOLD_PA,
     ContactDetector,
@@ -196,7 +197,10 @@ class GripperAwarePlanner:
     ) -> list[GraspPlan]:
         d = check_increments(increments_pa, layout)
         outlined = outline_objects(d, objects, layout, self.outline_threshold_pa)
-        plans = self.thesis.plan(d, outlined, layout)
+        params = self.thesis.params
+        plans = [
+            along_load_axis(p, layout, d, params) for p in self.thesis.plan(d, outlined, layout)
+        ]
         # turned last: a module's outline, 45 mm square, spans 60.4 mm across the banana's
         # (2, 1) diagonal, and improve() would turn it 15 degrees back to fit the 6 cm jaws
         return bridge_pairs(across_pairs([self.improve(p, layout, d) for p in plans]), d)
@@ -377,6 +381,61 @@ def across_pairs(plans: list[GraspPlan]) -> list[GraspPlan]:
         theta = theta_perpendicular(near.pcom[0] - p.cog[0], near.pcom[1] - p.cog[1])
         out[i] = replace(p, theta=theta, rule=p.rule + "+across-pair")
     return out
+
+
+def load_axis(
+    modules: tuple[int, ...], layout: PadLayout, increments_pa: ArrayLike
+) -> float | None:
+    """Direction of the major axis of the modules' load (their centres' second moments
+    weighted by their increments, clipped at 0), radians in (-pi/2, pi/2]; None when they
+    weigh nothing or the moments have no major axis."""
+    d = check_increments(increments_pa, layout)
+    w = np.array([max(float(d[m - 1]), 0.0) for m in modules])
+    if w.sum() <= 0.0:
+        return None
+    c = np.array([layout.center(m) for m in modules], dtype=float)
+    r = c - (w[:, None] * c).sum(axis=0) / w.sum()
+    sxx, syy, sxy = (
+        (w * r[:, 0] ** 2).sum(),
+        (w * r[:, 1] ** 2).sum(),
+        (w * r[:, 0] * r[:, 1]).sum(),
+    )
+    if math.hypot(sxx - syy, 2 * sxy) < 1e-9 * w.sum():
+        return None
+    return _wrap(0.5 * math.atan2(2 * sxy, sxx - syy))
+
+
+def along_load_axis(
+    plan: GraspPlan, layout: PadLayout, increments_pa: ArrayLike, params: PlannerParams
+) -> GraspPlan:
+    """A plan of three diagonal-linked modules made on the side module whose axis from the
+    corner module lies nearest the load's major axis (:func:`load_axis`); the thesis takes the
+    side module on the PCOM's side of the bisector through the corner. Other plans, and plans
+    whose side is the same either way, as they are.
+
+    The bisector's side is a coin toss when the PCOM lies near it: the banana on modules 2,
+    3 and 4 has its centre of mass over the pad's centre, on the bisector through module 2,
+    and the thesis's plan flips between closing across the 2-4 diagonal (across the banana)
+    and across the 2-3 row (27 degrees off, at its middle's edge). The load's major axis runs
+    from end to end of such an object whichever side its PCOM falls."""
+    shape = linked_three(layout, plan.modules)
+    axis = None if shape is None else load_axis(plan.modules, layout, increments_pa)
+    if shape is None or axis is None or plan.reduced_modules != plan.modules:
+        return plan
+    k = layout.center(shape[0])
+
+    def off(side: int) -> float:
+        c = layout.center(side)
+        return abs(math.remainder(math.atan2(c[1] - k[1], c[0] - k[0]) - axis, math.pi))
+
+    a, b = off(shape[1]), off(shape[2])
+    if math.isclose(a, b, abs_tol=1e-9):
+        return plan
+    d = check_increments(increments_pa, layout)
+    best = diagonal_linked_plan(d, plan.modules, layout, params, shape[1] if a < b else shape[2])
+    if math.isclose(best.theta, plan.theta, abs_tol=1e-12):
+        return plan
+    return replace(best, rule=best.rule + "+load-axis")
 
 
 def bridge_pairs(plans: list[GraspPlan], increments_pa: ArrayLike) -> list[GraspPlan]:

@@ -260,7 +260,41 @@ def _corner_shaped(obj: _Object, mods: tuple[int, ...], corner: int, c_s: float)
     return _Grasp(cog, theta_perpendicular(ux, uy), "n3-corner-shift", mods, tie)
 
 
-def _diagonal_linked(obj: _Object, mods: tuple[int, ...], corner: int, c_s: float) -> _Grasp:
+def linked_three(layout: PadLayout, modules: tuple[int, ...]) -> tuple[int, int, int] | None:
+    """(corner, side, side) of three modules with a diagonal link (the corner module touches
+    both sides, one of them only at a corner), None for any other set of modules."""
+    if len(modules) != 3 or len(layout.connected_groups(list(modules))) != 1:
+        return None
+    kind, k = _three_shape(layout, tuple(sorted(modules)))
+    if kind != "linked":
+        return None
+    a, b = (m for m in sorted(modules) if m != k)
+    return k, a, b
+
+
+def diagonal_linked_plan(
+    delta: NDArray[np.float64],
+    modules: tuple[int, ...],
+    layout: PadLayout,
+    params: PlannerParams,
+    side: int,
+) -> GraspPlan:
+    """The thesis's rule for three diagonal-linked modules with the side module given, where
+    the thesis takes the one on the PCOM's side of the bisector (:func:`linked_three`)."""
+    mods = tuple(sorted(modules))
+    shape = linked_three(layout, mods)
+    if shape is None or side not in shape[1:]:
+        raise ValueError(f"modules {mods} are not diagonal-linked with side module {side}")
+    obj = _Object(delta, mods, layout)
+    g = _diagonal_linked(obj, mods, shape[0], params.safety_shift, side)
+    return GraspPlan(
+        mods, obj.pcom, (float(g.cog[0]), float(g.cog[1])), float(g.theta), g.rule, mods
+    )
+
+
+def _diagonal_linked(
+    obj: _Object, mods: tuple[int, ...], corner: int, c_s: float, side: int | None = None
+) -> _Grasp:
     """Three modules with a diagonal link (seed, Fig. 6.4d-(4)(5)).
 
     The bisector through the corner module is taken perpendicular to the pad's long side of
@@ -268,7 +302,8 @@ def _diagonal_linked(obj: _Object, mods: tuple[int, ...], corner: int, c_s: floa
     linking the corner module to the side module on the PCOM's side of the bisector. If the
     projection falls in the corner module, the COG moves to the nearest corner of the side
     module (diagonal link) or, for a straight link, by c_s towards the side module as in the
-    corner-shaped case. The jaws close perpendicular to the axis.
+    corner-shaped case. The jaws close perpendicular to the axis. ``side`` overrides the
+    side module.
     """
     p = obj.pcom
     k = obj.c(corner)
@@ -276,8 +311,10 @@ def _diagonal_linked(obj: _Object, mods: tuple[int, ...], corner: int, c_s: floa
     long_x = (c1 - c0) >= (r1 - r0)
     sides = sorted((m for m in mods if m != corner), key=lambda m: obj.c(m)[0 if long_x else 1])
     offset = (p[0] - k[0]) if long_x else (p[1] - k[1])
-    tie = abs(offset) < 1e-12
-    if tie:
+    tie = side is None and abs(offset) < 1e-12
+    if side is not None:
+        s = side
+    elif tie:
         # PCOM on the bisector: the side with the larger increment, else the lower/left one.
         s = sides[1] if obj.delta[sides[1] - 1] > obj.delta[sides[0] - 1] else sides[0]
     else:

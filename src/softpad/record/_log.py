@@ -27,7 +27,7 @@ class RunLog:
     events
         ``(t_s, kind, data)`` in arrival order; kinds include ``phase``, ``adjusted``,
         ``reference``, ``object_seen``, ``plan``, ``contact``, ``no_contact``,
-        ``retry``, ``outcome``, ``fault``.
+        ``retry``, ``outcome``, ``carried``, ``fault``.
     meta
         Free JSON-ready facts about the run (box URL, objects...).
     """

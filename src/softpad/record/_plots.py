@@ -33,6 +33,7 @@ MARKED_EVENTS = {
     "contact": "tab:red",
     "no_contact": "tab:orange",
     "retry": "tab:purple",
+    "carried": "tab:green",
     "fault": "k",
 }
 
