@@ -38,7 +38,11 @@ over the thesis detector's at the same sample rate and sensor noise
 (:func:`softpad.sensing.sensing_ratio`; 0.44 for the adaptive CUSUM at 100 Hz, 0.19 at 1 kHz).
 
 Two objects seen on one module each are grasped across the line joining them
-(:func:`across_pairs`): a banana resting on its ends, its middle arching over the pad.
+(:func:`across_pairs`): a banana resting on its ends, its middle arching over the pad. Before
+them, when each is the other's nearest, comes a tentative grasp between them at their
+increment-weighted mean (:func:`bridge_pairs`): where a rigid body on two supports has its
+centre of mass. Three diagonal-linked modules are planned on the side module nearest the
+load's major axis, not the PCOM's side of the bisector (:func:`along_load_axis`).
 
 Objects are outlined at the pad's noise floor before planning
 (:func:`softpad.sensing.outline_objects`): a module next to an object whose increment is above
