@@ -455,3 +455,12 @@ def test_a_diagonal_linked_object_is_planned_on_the_side_of_its_load_axis() -> N
     for d in ((100.0, 100.0, 100.0, 0, 0, 0), (100.0, 100.0, 0, 100.0, 0, 0)):
         p = plan_grasps(d)[0]
         assert along_load_axis(p, LAYOUT, d, PlannerParams()) is p
+
+
+def test_bridge_pairs_names_bad_increments() -> None:
+    a = GraspPlan((1,), (0.5, 1.5), (0.5, 1.5), 0.0, "n1", (1,))
+    b = GraspPlan((6,), (2.5, 0.5), (2.5, 0.5), 0.0, "n1", (6,))
+    with pytest.raises(InputError, match="module 6"):
+        bridge_pairs([a, b], (1.0, 2.0))
+    with pytest.raises(InputError, match="finite"):
+        bridge_pairs([a, b], (1.0, float("nan"), 0, 0, 0, 1.0))

@@ -455,6 +455,12 @@ def bridge_pairs(plans: list[GraspPlan], increments_pa: ArrayLike) -> list[Grasp
     objects, the jaws come down on the pad between them and close on nothing; the loop then
     grasps each in turn (:attr:`GraspPlan.tentative`)."""
     d = np.clip(np.asarray(increments_pa, dtype=float), 0.0, None)
+    needed = max((m for p in plans for m in p.modules), default=0)
+    if d.ndim != 1 or d.size < needed or not np.all(np.isfinite(d)):
+        raise InputError(
+            f"increments must be {needed} or more finite values (module {needed} is planned), "
+            f"got {np.asarray(increments_pa).tolist()!r}"
+        )
     out: list[GraspPlan] = []
     paired: list[GraspPlan] = []
     for p in plans:
