@@ -10,6 +10,7 @@ import pytest
 
 from softpad.cli.main import main
 from softpad.planning import GraspPlan
+from softpad.record import RunLog
 from softpad.sim import get_object
 from softpad.trials import (
     FAILURE_CAUSES,
@@ -391,22 +392,6 @@ def _without_bridges(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(_gripper_aware, "bridge_pairs", lambda plans, increments_pa: plans)
 
 
-class _Events:
-    """Keeps the loop's events of a trial."""
-
-    def __init__(self) -> None:
-        self.events: list[tuple[str, dict]] = []
-
-    def frame(self, frame: object, phase: str) -> None:
-        pass
-
-    def event(self, t_s: float, kind: str, **data: object) -> None:
-        self.events.append((kind, data))
-
-    def of(self, kind: str) -> list[dict]:
-        return [d for k, d in self.events if k == kind]
-
-
 @pytest.mark.slow
 def test_a_banana_on_its_ends_is_grasped_between_them(monkeypatch: pytest.MonkeyPatch) -> None:
     """A development trial (seed 110, trial 1): the banana's middle arches over modules 2
@@ -419,14 +404,14 @@ def test_a_banana_on_its_ends_is_grasped_between_them(monkeypatch: pytest.Monkey
     cfg = TrialConfig(
         trial_execution_params(hold_s=1.0), planner="gripper-aware", detector="adaptive"
     )
-    log = _Events()
+    log = RunLog()
     result, _ = run_trial(spec, 1, seed, cfg, recorder=log)
     assert result.success, result.detail
-    (plan,) = log.of("plan")
+    ((_, plan),) = log.events_of("plan")
     assert [o["modules"] for o in plan["objects"]] == [[3, 4], [3], [4]]
     assert [o["tentative"] for o in plan["objects"]] == [True, False, False]
-    assert [d["modules"] for d in log.of("phase") if d["phase"] == "approach"] == [[3, 4]]
-    assert [d["modules"] for d in log.of("carried")] == [[3, 4]]
+    assert [d["modules"] for _, d in log.events_of("phase") if d["phase"] == "approach"] == [[3, 4]]
+    assert [d["modules"] for _, d in log.events_of("carried")] == [[3, 4]]
     _without_bridges(monkeypatch)
     ends, _ = run_trial(spec, 1, seed, cfg)
     assert not ends.success and ends.cause == "jaws_hit_object", ends.detail

@@ -518,19 +518,19 @@ class GraspExecution:
         while todo:
             record = self._grasp(todo.pop(0), delta)
             if drop and record.outcome == "held" and self._hold_rise is not None:
-                loaded = {
-                    k
-                    for obj in self.object_detector.objects(self._hold_rise, self.layout)
-                    for k in obj
-                }
+                loaded = self._loaded_modules(self._hold_rise)
                 carried = [pl for pl in todo if not loaded.intersection(pl.modules)]
+                todo = [pl for pl in todo if loaded.intersection(pl.modules)]
                 if carried:
-                    todo = [pl for pl in todo if all(pl is not c for c in carried)]
                     modules = tuple(sorted(k for pl in carried for k in pl.modules))
                     self.recorder.event(self._last_t, "carried", modules=list(modules))
                     record = replace(record, carried_modules=modules)
             records.append(record)
         return tuple(records)
+
+    def _loaded_modules(self, increments: NDArray[np.float64]) -> set[int]:
+        """Modules of every object the object detector finds in ``increments``."""
+        return {k for obj in self.object_detector.objects(increments, self.layout) for k in obj}
 
     def _grasp(self, plan: GraspPlan, delta: NDArray[np.float64]) -> GraspRecord:
         """Grasp one object (``delta``: the increments it was planned from), retrying after

@@ -422,8 +422,9 @@ def along_load_axis(
     and the thesis's plan flips between closing across the 2-4 diagonal (across the banana)
     and across the 2-3 row (27 degrees off, at its middle's edge). The load's major axis runs
     from end to end of such an object whichever side its PCOM falls."""
+    d = check_increments(increments_pa, layout)
     shape = linked_three(layout, plan.modules)
-    axis = None if shape is None else load_axis(plan.modules, layout, increments_pa)
+    axis = None if shape is None else load_axis(plan.modules, layout, d)
     if shape is None or axis is None or plan.reduced_modules != plan.modules:
         return plan
     k = layout.center(shape[0])
@@ -435,7 +436,6 @@ def along_load_axis(
     a, b = off(shape[1]), off(shape[2])
     if math.isclose(a, b, abs_tol=1e-9):
         return plan
-    d = check_increments(increments_pa, layout)
     best = diagonal_linked_plan(d, plan.modules, layout, params, shape[1] if a < b else shape[2])
     if math.isclose(best.theta, plan.theta, abs_tol=1e-12):
         return plan
