@@ -419,17 +419,53 @@ def test_a_banana_on_its_ends_is_grasped_between_them(monkeypatch: pytest.Monkey
 
 @pytest.mark.slow
 def test_an_end_held_carries_the_other(monkeypatch: pytest.MonkeyPatch) -> None:
-    """Development seed 110, trial 0, ends grasped alone (no bridge): the first end's grasp
-    holds the banana, module 4 unloads with it, so its stale plan is dropped and the trial
-    holds. Grasping it anyway (``drop_carried`` off), the jaws come down on the banana,
-    which the release put elsewhere."""
+    """Development seed 115, trial 4, ends grasped alone (no bridge): the first end's grasp
+    holds the banana, the other end's module unloads with it, so its stale plan is dropped
+    and the trial holds. Grasping it anyway (``drop_carried`` off), the jaws come down on
+    the banana, which the release put elsewhere."""
     _without_bridges(monkeypatch)
     spec = get_object("banana")
-    seed = trial_seed(110, "banana", 0)
+    seed = trial_seed(115, "banana", 4)
     aware = dict(planner="gripper-aware", detector="adaptive")
-    results = {}
+    results, logs = {}, {}
     for drop in (True, False):
         cfg = TrialConfig(trial_execution_params(hold_s=1.0, drop_carried=drop), **aware)
-        results[drop], _ = run_trial(spec, 0, seed, cfg)
+        logs[drop] = RunLog()
+        results[drop], _ = run_trial(spec, 4, seed, cfg, recorder=logs[drop])
     assert results[True].success, results[True].detail
+    assert len(logs[True].events_of("carried")) == 1
     assert not results[False].success and results[False].cause == "jaws_hit_object"
+    assert not logs[False].events_of("carried")
+
+
+@pytest.mark.slow
+def test_a_resting_toy_is_not_sensed_as_a_contact_high_above_it(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """Development seed 103, trial 4: the toy rests on four domes. With MuJoCo's default
+    convex-collision tolerance (1e-6) the depth of its hand on module 3 jittered by micrometres
+    from step to step, a 0.5 N spike one step in five, and both detectors saw a contact with
+    the fingers 120 mm above the pad base, three times the toy's 40 mm height: the trial
+    closed on air. At ``CCD_TOLERANCE`` every contact of the descent is sensed at the toy or
+    below it, and the toy is held."""
+    from softpad.sim import _mujoco_model
+
+    spec = get_object("toy")
+    seed = trial_seed(103, "toy", 4)
+    cfg = TrialConfig(
+        trial_execution_params(hold_s=1.0), planner="gripper-aware", detector="adaptive"
+    )
+    fixed, default = _mujoco_model.CCD_TOLERANCE, 1e-6
+    heights = {}
+    for tolerance in (fixed, default):
+        monkeypatch.setattr(_mujoco_model, "CCD_TOLERANCE", tolerance)
+        log = RunLog()
+        result, _ = run_trial(spec, 4, seed, cfg, recorder=log)
+        heights[tolerance] = [d["z_m"] for _, d in log.events_of("contact")]
+        if tolerance == default:
+            assert not result.success
+        else:
+            assert result.success, result.detail
+    top_m = 0.04 + 8.3e-3 + 2e-3  # the toy's 40 mm on the 8.3 mm modules, 2 mm of sinking
+    assert heights[fixed] and max(heights[fixed]) < top_m
+    assert max(heights[default]) > 2 * top_m
