@@ -119,11 +119,11 @@ class PadPhysics(CheckedFields, what="pad"):
 
 #: Convergence tolerance of MuJoCo's convex collider (``ccd_tolerance``), which finds the
 #: contacts of the domes (ellipsoids) with boxes. At MuJoCo's default (1e-6) the depth of a
-#: toy's hand resting on a dome changed by up to 7 um from one 2 ms step to the next with
-#: nothing moving; through the contacts' 1 mm impedance width that is a 0.5 N spike on the
-#: module, one step in five, which the box read as 300 Pa pressure jumps and the detectors as
+#: toy's hand resting on a dome changed by up to 7 um from one 2 ms step to the next with the
+#: toy at rest; through the contacts' 1 mm impedance width that is a 0.5 N spike, one step in
+#: five, and the module's sample load jumped by up to 0.6 N, which the detectors sensed as
 #: contacts 80 to 120 mm above the pad (development seeds 102 and 103 of the toy). At 1e-9 the
-#: depth is steady and a trial runs no slower (measured; tests/sim/test_mujoco_world.py).
+#: depth is steady and a trial runs no slower (tests/trials/test_trials.py runs that toy).
 CCD_TOLERANCE = 1e-9
 
 
