@@ -40,6 +40,7 @@ from softpad.sensing import (
     RunningAverage,
     ThesisContactDetector,
     ThesisObjectDetector,
+    measured_change,
 )
 
 
@@ -458,7 +459,7 @@ class GraspExecution:
         seen_at = self._wait_for_object(adj.reference_pa)
 
         self._enter("plan")
-        delta = self._mean_reads(p.planning_reads) - adj.reference_pa
+        delta = measured_change(self._mean_reads(p.planning_reads) - adj.reference_pa)
         objects = self.object_detector.objects(delta, self.layout)
         plans = tuple(self.planner.plan(delta, objects, self.layout))
         self.recorder.event(
@@ -494,7 +495,7 @@ class GraspExecution:
         t0 = self._last_t
         seen_at: float | None = None
         while True:
-            d = filt.update(self._read() - reference)
+            d = measured_change(filt.update(self._read() - reference))
             if seen_at is not None:
                 if self._last_t - seen_at >= p.object_settle_s:
                     return seen_at
@@ -614,7 +615,7 @@ class GraspExecution:
             frame = self._read()
             if self.contact_detector.update(frame):
                 self.robot.stop()
-                self._landing_rise = frame - reference
+                self._landing_rise = measured_change(frame - reference)
                 modules = list(self.contact_detector.triggered_modules)
                 z = self.robot.state().z_m
                 self.recorder.event(self._last_t, "contact", modules=modules, z_m=z)
@@ -642,7 +643,8 @@ class GraspExecution:
         while self._last_t - t_hold < p.hold_s:
             last.append(self._read())
         # the pad with the object in the air: which planned objects went up with it
-        self._hold_rise = np.mean(last, axis=0) - self._reference if last else None
+        rise = np.mean(last, axis=0) - self._reference if last else None
+        self._hold_rise = measured_change(rise) if rise is not None else None
         held = self.robot.holding()
         outcome = "held" if held else ("dropped" if lifted else "missed")
         self.recorder.event(self._last_t, "outcome", outcome=outcome)

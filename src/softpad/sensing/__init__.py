@@ -38,9 +38,11 @@ from softpad.sensing._objects import (
     DEFAULT_CONTACT_THRESHOLD_PA,
     DEFAULT_OBJECT_THRESHOLD_PA,
     DEFAULT_OUTLINE_THRESHOLD_PA,
+    SMALLEST_PLAUSIBLE_INCREMENT_PA,
     ObjectDetector,
     ThesisObjectDetector,
     detect_objects,
+    measured_change,
     outline_objects,
 )
 
@@ -52,6 +54,7 @@ __all__ = [
     "DEFAULT_CONTACT_THRESHOLD_PA",
     "DEFAULT_OBJECT_THRESHOLD_PA",
     "DEFAULT_OUTLINE_THRESHOLD_PA",
+    "SMALLEST_PLAUSIBLE_INCREMENT_PA",
     "AdaptiveCusumDetector",
     "AdaptiveParams",
     "ContactDetector",
@@ -75,6 +78,7 @@ __all__ = [
     "fit_limit",
     "increments",
     "make_contact_detector",
+    "measured_change",
     "outline_objects",
     "sensing_ratio",
     "step_floor_pa",

@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Protocol, runtime_checkable
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from softpad import thesis
 from softpad.errors import InputError
@@ -23,6 +23,22 @@ SENSOR_FULL_SCALE_PA = 10_000.0
 #: Below this, a non-zero set of increments is under the converter's resolution (2.4 Pa) and
 #: the sensor noise (8 Pa): kPa values given as pascals.
 SMALLEST_PLAUSIBLE_INCREMENT_PA = 1.0
+
+
+def measured_change(delta_pa: ArrayLike) -> NDArray[np.float64]:
+    """A change the loop measured (reads minus the reference), as increments for the detectors
+    and planners: zeros where every module changed by less than
+    :data:`SMALLEST_PLAUSIBLE_INCREMENT_PA`.
+
+    An average of quantised reads minus an averaged reference can land anywhere between the
+    converter's steps, so a quiet pad can measure a fraction of a pascal on every module;
+    :func:`check_increments` takes such a vector for kPa given as pascals, which is right for
+    numbers a user typed and wrong for a measurement. Under a pascal on every module (far under
+    the noise and every threshold) is no change."""
+    d = np.asarray(delta_pa, dtype=float)
+    if d.size and np.all(np.abs(d) < SMALLEST_PLAUSIBLE_INCREMENT_PA):
+        return np.zeros_like(d)
+    return d
 
 
 def check_increments(delta_pa: ArrayLike, layout: PadLayout) -> np.ndarray:
