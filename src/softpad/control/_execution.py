@@ -495,12 +495,13 @@ class GraspExecution:
         t0 = self._last_t
         seen_at: float | None = None
         while True:
-            d = measured_change(filt.update(self._read() - reference))
+            d = filt.update(self._read() - reference)
             if seen_at is not None:
                 if self._last_t - seen_at >= p.object_settle_s:
                     return seen_at
                 continue
-            objects = self.object_detector.objects(d, self.layout) if filt.full else []
+            full = filt.full
+            objects = self.object_detector.objects(measured_change(d), self.layout) if full else []
             if objects:
                 seen_at = self._last_t
                 modules = sorted(k for obj in objects for k in obj)
@@ -643,8 +644,7 @@ class GraspExecution:
         while self._last_t - t_hold < p.hold_s:
             last.append(self._read())
         # the pad with the object in the air: which planned objects went up with it
-        rise = np.mean(last, axis=0) - self._reference if last else None
-        self._hold_rise = measured_change(rise) if rise is not None else None
+        self._hold_rise = measured_change(np.mean(last, axis=0) - self._reference) if last else None
         held = self.robot.holding()
         outcome = "held" if held else ("dropped" if lifted else "missed")
         self.recorder.event(self._last_t, "outcome", outcome=outcome)

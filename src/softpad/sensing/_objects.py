@@ -27,7 +27,7 @@ SMALLEST_PLAUSIBLE_INCREMENT_PA = 1.0
 
 def measured_change(delta_pa: ArrayLike) -> NDArray[np.float64]:
     """A change the loop measured (reads minus the reference), as increments for the detectors
-    and planners: zeros where every module changed by less than
+    and planners: zeros when every module changed by less than
     :data:`SMALLEST_PLAUSIBLE_INCREMENT_PA`.
 
     An average of quantised reads minus an averaged reference can land anywhere between the
