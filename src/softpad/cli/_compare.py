@@ -137,7 +137,11 @@ def _show(d: dict[str, Any], args: argparse.Namespace) -> int:
         emit(d)
     else:
         print(_table(d))
-    return 0
+    from softpad.cli._trials import trial_errors_exit
+
+    return trial_errors_exit(
+        [t for c in d["combinations"] for t in c.get("errored", [])], "compare"
+    )
 
 
 def _bar(total: int, enabled: bool) -> Any:

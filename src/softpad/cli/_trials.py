@@ -26,7 +26,9 @@ the COG, descend at the approach speed until the pad senses the fingers (t_g), c
 10 cm, hold 15 s. Several seeds are pooled: per object trials, successes, a 95 % Wilson
 interval and failures by cause, next to Table 6.1 (5/5 or 4/5) and the thesis's failures.
 Failure causes: contact_not_detected, cog_outside_object, jaws_hit_object, object_outside_jaws,
-slipped_during_hold, object_too_narrow, object_not_detected, box_fault.
+slipped_during_hold, object_too_narrow, object_not_detected, box_fault; trial_error (the
+trial raised: a bug; the other trials still run, the table counts it as failed, the JSON holds
+its traceback and the command exits 4).
 """
 
 
@@ -105,6 +107,31 @@ def progress_bar(total: int, enabled: bool, desc: str = "trials") -> Any:
     return tqdm(total=total, desc=desc, unit="trial", file=sys.stderr, dynamic_ncols=True)
 
 
+def trial_errors_exit(errored: list[dict[str, Any]], prog: str) -> int:
+    """Exit code of a command whose trials ran: 0, or the internal-error code with a message on
+    stderr naming the trials that raised (``errored``: their ``to_dict()`` records, cause
+    ``trial_error``, the traceback in ``detail``)."""
+    from softpad.errors import EXIT_INTERNAL
+
+    if not errored:
+        return 0
+    named = ", ".join(f"{t['object']} trial {t['trial']} (seed {t['seed']})" for t in errored[:5])
+    more = f" and {len(errored) - 5} more" if len(errored) > 5 else ""
+    last = (errored[0].get("detail") or "").strip().splitlines()[-1:] or [""]
+    print(
+        f"softpad {prog}: error: {len(errored)} trial(s) raised and count as failed: {named}"
+        f"{more}; first: {last[0]}. This is a bug; the tracebacks are in the trials' 'detail' "
+        "(--json)",
+        file=sys.stderr,
+    )
+    return EXIT_INTERNAL
+
+
+def errored(trials: Any) -> list[dict[str, Any]]:
+    """The records of the trials that raised (cause ``trial_error``)."""
+    return [t.to_dict() for t in trials if t.cause == "trial_error"]
+
+
 def check_counts(trials: int, workers: int | None) -> None:
     """Validate ``--trials`` and ``--workers`` (shared by ``trials`` and ``demo``)."""
     if not 1 <= trials <= 1000:
@@ -176,7 +203,7 @@ def run(args: argparse.Namespace) -> int:
     )
     if args.json:
         emit(pooled.to_dict())
-    return 0
+    return trial_errors_exit(errored(pooled.trials), "trials")
 
 
 def _config(args: argparse.Namespace) -> Any:
@@ -223,4 +250,4 @@ def _run_on_dask(args: argparse.Namespace, specs: list[Any], seeds: list[int]) -
     )
     if args.json:
         emit(pooled.to_dict())
-    return 0
+    return trial_errors_exit(errored(pooled.trials), "trials")

@@ -17,10 +17,15 @@ from softpad.errors import InputError
 
 
 def _trial_task(spec: Any, k: int, seed: int, config: Any) -> Any:
-    """One trial (a Dask task); the trial's own seed is derived as in ``run_experiment``."""
-    from softpad.trials import run_trial, trial_seed
+    """One trial (a Dask task); the trial's own seed is derived as in ``run_experiment``, and a
+    trial that raises is recorded as ``trial_error`` as there."""
+    from softpad.trials import errored_trial, run_trial, trial_seed
 
-    result, _ = run_trial(spec, k, trial_seed(seed, spec.name, k), config)
+    s = trial_seed(seed, spec.name, k)
+    try:
+        result, _ = run_trial(spec, k, s, config)
+    except Exception as exc:
+        return errored_trial(spec, k, s, config, exc)
     return result
 
 

@@ -23,6 +23,7 @@ from softpad.trials._records import (
     TrialResult,
 )
 from softpad.trials._runner import (
+    errored_trial,
     perturbed_placement,
     run_experiment,
     run_trial,
@@ -41,6 +42,7 @@ __all__ = [
     "TrialConfig",
     "TrialResult",
     "compare",
+    "errored_trial",
     "idle_false_alarms_per_hour",
     "merge_comparisons",
     "perturbed_placement",

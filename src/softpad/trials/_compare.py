@@ -100,7 +100,8 @@ def compare(
 
     Returns the ``softpad compare --json`` document: ``combinations``, each with ``planner``,
     ``detector``, overall ``success``, ``success_interval``, delays, finger travel,
-    ``false_alarms_per_hour`` (idle pad, ``idle_hours`` at 100 Hz) and ``objects``.
+    ``false_alarms_per_hour`` (idle pad, ``idle_hours`` at 100 Hz), ``objects`` and
+    ``errored`` (the records of trials that raised: counted as failed, cause ``trial_error``).
     """
     if not seeds:
         raise InputError("compare needs at least one seed")
@@ -123,6 +124,8 @@ def compare(
                 ],
                 "idle_hours": idle_hours,
                 "objects": [{"name": n, **summarise(ts)} for n, ts in by_object.items()],
+                # trials that raised (a bug, not a grasp outcome): their records, tracebacks
+                "errored": [t.to_dict() for t in results if t.cause == "trial_error"],
             }
         )
     return {"schema_version": softpad.SCHEMA_VERSION, "seeds": list(seeds), "combinations": combos}

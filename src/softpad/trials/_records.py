@@ -47,7 +47,9 @@ THESIS_FAILURES: dict[str, dict[str, int]] = {
 #: than the mounting's minimum width; ``object_not_detected``: the planner found nothing;
 #: ``box_fault``: the loop stopped on a box fault (a module read above the 3 kPa limit, which
 #: the simulated box's module model reaches when a fingertip pushes a module with more than
-#: about 1.5 N).
+#: about 1.5 N); ``trial_error``: the trial raised an exception, a defect of the loop or the
+#: simulator and not a grasp outcome (``detail`` holds the traceback; the commands that run
+#: trials exit with the internal-error code when any trial has it).
 FAILURE_CAUSES = (
     "contact_not_detected",
     "cog_outside_object",
@@ -57,6 +59,7 @@ FAILURE_CAUSES = (
     "object_too_narrow",
     "object_not_detected",
     "box_fault",
+    "trial_error",
 )
 
 

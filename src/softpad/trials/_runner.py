@@ -17,6 +17,7 @@ from __future__ import annotations
 import math
 import os
 import time
+import traceback
 import zlib
 from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
@@ -120,14 +121,33 @@ def run_trial(
     return result, trace
 
 
+def errored_trial(
+    spec: Any, trial: int, seed: int, config: TrialConfig, exc: Exception
+) -> TrialResult:
+    """The record of a trial that raised ``exc``: failed, cause ``trial_error``, the traceback
+    in ``detail`` with the call that runs the trial again alone."""
+    text = "".join(traceback.format_exception(exc)).rstrip()
+    rerun = f"run_trial(get_object({spec.name!r}), {trial}, {seed}, config) runs it again"
+    return TrialResult(
+        object=spec.name,
+        trial=trial,
+        seed=seed,
+        placement=perturbed_placement(spec, seed, config),
+        mounting=spec.gripper,
+        success=False,
+        cause="trial_error",
+        detail=f"{rerun}\n{text}",
+    )
+
+
 def _worker(args: tuple[Any, int, int, TrialConfig]) -> tuple[TrialResult, Any | None]:
+    """One trial of a sweep; a trial that raises is recorded (``trial_error``) so that one
+    defect does not lose the sweep's other trials."""
     spec, trial, seed, config = args
     try:
         return run_trial(spec, trial, seed, config)
     except Exception as exc:
-        # name the trial, so that it can be rerun alone with run_trial(spec, trial, seed)
-        exc.add_note(f"in trial {trial} of {spec.name!r} (seed {seed})")
-        raise
+        return errored_trial(spec, trial, seed, config, exc), None
 
 
 def run_experiment(
