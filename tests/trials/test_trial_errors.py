@@ -80,6 +80,10 @@ def test_compare_keeps_the_comparison_and_names_the_errored_trials() -> None:
     (c,) = doc["combinations"]
     assert c["successes"] == 3 and c["failures"] == {"trial_error": 1}
     assert [(t["object"], t["trial"]) for t in c["errored"]] == [BAD]
+    # every failed trial is listed with its experiment seed, to be run again alone
+    assert c["failed_trials"] == [
+        {"object": "banana", "trial": 1, "seed": 3, "cause": "trial_error"}
+    ]
     assert "a planted defect" in c["errored"][0]["detail"]
     assert "banana trial 1 (seed" in err
 

@@ -100,7 +100,8 @@ def compare(
 
     Returns the ``softpad compare --json`` document: ``combinations``, each with ``planner``,
     ``detector``, overall ``success``, ``success_interval``, delays, finger travel,
-    ``false_alarms_per_hour`` (idle pad, ``idle_hours`` at 100 Hz), ``objects`` and
+    ``false_alarms_per_hour`` (idle pad, ``idle_hours`` at 100 Hz), ``objects``,
+    ``failed_trials`` (object, trial number, experiment seed and cause of each) and
     ``errored`` (the records of trials that raised: counted as failed, cause ``trial_error``).
     """
     if not seeds:
@@ -110,9 +111,11 @@ def compare(
     for planner, detector in pairs:
         cfg = replace(config, planner=planner, detector=detector)
         results: list[TrialResult] = []
+        trial_seeds: list[int] = []  # the experiment seed of each result
         for seed in seeds:
             exp, _ = run_experiment(specs, trials, seed, workers, cfg, on_trial)
             results += exp.trials
+            trial_seeds += [seed] * len(exp.trials)
         by_object = {s.name: [t for t in results if t.object == s.name] for s in specs}
         combos.append(
             {
@@ -124,6 +127,12 @@ def compare(
                 ],
                 "idle_hours": idle_hours,
                 "objects": [{"name": n, **summarise(ts)} for n, ts in by_object.items()],
+                # every failed trial, to run it again alone (trial_seed of seed, object, trial)
+                "failed_trials": [
+                    {"object": t.object, "trial": t.trial, "seed": s, "cause": t.cause}
+                    for s, t in zip(trial_seeds, results, strict=True)
+                    if not t.success
+                ],
                 # trials that raised (a bug, not a grasp outcome): their records, tracebacks
                 "errored": [t.to_dict() for t in results if t.cause == "trial_error"],
             }
