@@ -167,27 +167,6 @@ def test_a_banana_split_at_t_o_is_planned_as_one_object() -> None:
     assert aware.cog == pytest.approx((1.0, 1.0)) and aware.theta == pytest.approx(-math.pi / 4)
 
 
-#: A toy's plan increments with its foot loading module 6 above the outline threshold but
-#: under t_o (compared seed 3, trial 2: the trial in which the four-module rule lost it).
-TOY_FOOT_PA = (321.53, -5.13, 316.41, 3.91, 449.22, 29.79)
-
-
-def test_an_outline_that_joins_nothing_leaves_the_thesis_rule() -> None:
-    """t_o sees the toy on modules 1, 3 and 5 (Table 6.1's shape; the thesis grasp (1, 1,
-    pi/4) holds it). The outline adds module 6 (30 Pa) to its extent, but the rule still sees
-    the three modules above t_o: before, the four-module rule dropped module 1 and centred
-    the grasp at (2.29, 0.29), 18 mm beside the toy."""
-    objects = detect_objects(TOY_FOOT_PA, LAYOUT)
-    assert objects == [(1, 3, 5)]
-    (thesis,) = ThesisPlanner().plan(TOY_FOOT_PA, objects, LAYOUT)
-    (aware,) = GripperAwarePlanner(GripperSpec()).plan(TOY_FOOT_PA, objects, LAYOUT)
-    assert aware.modules == (1, 3, 5, 6) and aware.reduced_modules == (1, 3, 5)
-    assert aware.cog == pytest.approx(thesis.cog) and aware.theta == pytest.approx(thesis.theta)
-    # the four-module rule on the outline is what it avoids
-    (grown,) = ThesisPlanner().plan(TOY_FOOT_PA, [(1, 3, 5, 6)], LAYOUT)
-    assert grown.rule.startswith("n4") and grown.cog != pytest.approx(thesis.cog)
-
-
 def test_a_shift_off_the_seam_goes_towards_the_load() -> None:
     """The toy's thesis grasp (1.5, ~1.0, 0) puts both fingertips on the row seam. Both
     shifts across it reach sensed area; the load term picks the side of the toy's body

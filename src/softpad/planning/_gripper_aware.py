@@ -47,9 +47,7 @@ load's major axis, not the PCOM's side of the bisector (:func:`along_load_axis`)
 Objects are outlined at the pad's noise floor before planning
 (:func:`softpad.sensing.outline_objects`): a module next to an object whose increment is above
 the outline threshold (25 Pa) but under t_o joins it, so a banana whose middle stays under t_o
-is one object, not two ends planned apart. The outline is the object's extent (the fit checks,
-the retry); the thesis's rule sees it only where it joins objects, and otherwise the modules
-above t_o, as in the thesis.
+is one object, not two ends planned apart.
 """
 
 from __future__ import annotations
@@ -202,32 +200,14 @@ class GripperAwarePlanner:
         self, increments_pa: ArrayLike, objects: list[tuple[int, ...]], layout: PadLayout
     ) -> list[GraspPlan]:
         d = check_increments(increments_pa, layout)
+        outlined = outline_objects(d, objects, layout, self.outline_threshold_pa)
+        params = self.thesis.params
         plans = [
-            self._outlined_plan(d, group, objects, layout)
-            for group in outline_objects(d, objects, layout, self.outline_threshold_pa)
+            along_load_axis(p, layout, d, params) for p in self.thesis.plan(d, outlined, layout)
         ]
         # turned last: a module's outline, 45 mm square, spans 60.4 mm across the banana's
         # (2, 1) diagonal, and improve() would turn it 15 degrees back to fit the 6 cm jaws
         return bridge_pairs(across_pairs([self.improve(p, layout, d) for p in plans]), d)
-
-    def _outlined_plan(
-        self,
-        d: NDArray[np.float64],
-        group: tuple[int, ...],
-        objects: list[tuple[int, ...]],
-        layout: PadLayout,
-    ) -> GraspPlan:
-        """The thesis's plan of one outlined object, its modules the outline.
-
-        The thesis's rule sees the outline only where it joins objects found at t_o (a
-        banana's two ends and its light middle); an object the outline only grows keeps the
-        rule of its modules above t_o, as in the thesis: a toy on modules 1, 3 and 5 whose
-        foot loads module 6 with 30 Pa is Table 6.1's three-module diagonal plan, not the
-        four-module rule's, whose centre fell beside the toy."""
-        inside = [o for o in objects if set(o) <= set(group)]
-        ruled = group if len(inside) != 1 else tuple(sorted(inside[0]))
-        (p,) = self.thesis.plan(d, [ruled], layout)
-        return replace(along_load_axis(p, layout, d, self.thesis.params), modules=group)
 
     def tip_share(self, cog: tuple[float, float], theta: float, layout: PadLayout) -> float:
         """Sensed share of the better-placed fingertip for a grasp at ``cog`` (module units)."""
