@@ -147,6 +147,32 @@ def test_centring_needs_load_under_the_jaws_path() -> None:
     assert centred_on_load(across, LAYOUT, (100, 0, 0, 300, 0, 0)) == across
 
 
+#: A toy's plan increments with its foot loading module 6 above the outline threshold but
+#: under t_o (compared seed 3, trial 2: one of three trials the toy was lost in this way).
+TOY_FOOT_PA = (321.53, -5.13, 316.41, 3.91, 449.22, 29.79)
+
+
+def test_centring_counts_only_load_above_t_o() -> None:
+    """The toy on modules 1, 3 and 5 with its foot on module 6 (30 Pa) is outlined as four
+    modules and gets Table 6.1's own toy grasp (2, 1, -pi/4). Its path crosses module 6 and
+    the unloaded module 2 only, and the outline is wider than the jaws that way: centred on
+    the foot, the centre went to module 6's centre and then to (2.29, 0.29), 18 mm beside the
+    toy. Only modules above t_o count, and the path has none: the thesis's grasp stays."""
+    objects = detect_objects(TOY_FOOT_PA, LAYOUT)
+    assert objects == [(1, 3, 5)]
+    (aware,) = GripperAwarePlanner(GripperSpec()).plan(TOY_FOOT_PA, objects, LAYOUT)
+    assert aware.modules == (1, 3, 5, 6)
+    assert aware.cog == pytest.approx(TABLE_6_1_TOY[:2]) and aware.theta == TABLE_6_1_TOY[2]
+    plan = replace(aware, cog=(2.0, 1.0))
+    assert centred_on_load(plan, LAYOUT, TOY_FOOT_PA) == plan
+    # the same foot at t_o or above is load: the centre moves onto it
+    heavy = (*TOY_FOOT_PA[:5], 60.0)
+    assert centred_on_load(plan, LAYOUT, heavy).cog == pytest.approx((2.5, 0.5))
+
+
+TABLE_6_1_TOY = (2.0, 1.0, -math.pi / 4)
+
+
 #: Plan increments of simulated trials (MuJoCo, experiment seeds 100-103, not among the
 #: compared seeds 0-19), pascals.
 TOY_PA = (402.34, 78.37, 310.3, -0.49, 312.74, -0.73)  # hands on 1 and 3, body on 5

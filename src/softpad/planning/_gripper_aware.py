@@ -72,7 +72,11 @@ from softpad.sensing import (
     outline_objects,
     sensing_ratio,
 )
-from softpad.sensing._objects import check_increments
+from softpad.sensing._objects import (
+    DEFAULT_OBJECT_THRESHOLD_PA,
+    check_increments,
+    check_threshold,
+)
 
 #: Width of the bonded, non-sensitive seam between two chambers, m. A pad specification
 #: (measured on the pad; the simulated MuJoCo pad has 5 mm), not a thesis number.
@@ -224,7 +228,8 @@ class GripperAwarePlanner:
         load = None if increments_pa is None else _load_shares(plan, layout, increments_pa)
         fits = not self._too_wide(plan, plan.theta, layout)
         if not fits and increments_pa is not None:
-            plan = centred_on_load(plan, layout, increments_pa)
+            t_o = self.thesis.params.object_threshold_pa
+            plan = centred_on_load(plan, layout, increments_pa, t_o)
         sensed = self.tip_share(plan.cog, plan.theta, layout) >= self.needed_share
         if sensed and (fits or not self._fitting_turns(plan, layout)):
             return plan  # good as it is, or too wide whichever way it turns: nothing to gain
@@ -331,18 +336,33 @@ class GripperAwarePlanner:
         return score if load is None else score + self.load_cost * float(load[module - 1])
 
 
-def centred_on_load(plan: GraspPlan, layout: PadLayout, increments_pa: ArrayLike) -> GraspPlan:
+def centred_on_load(
+    plan: GraspPlan,
+    layout: PadLayout,
+    increments_pa: ArrayLike,
+    threshold_pa: float = DEFAULT_OBJECT_THRESHOLD_PA,
+) -> GraspPlan:
     """The plan with its centre moved along the closing direction to the middle of the load
     under the jaws' path: the increment-weighted mean position, along that direction, of the
-    plan's modules whose centres lie within half a pitch of the line the jaws close on.
+    plan's modules above ``threshold_pa`` (t_o) whose centres lie within half a pitch of the
+    line the jaws close on.
 
     The thesis's rules put the centre on module centres and seams; for an object that may fill
     the opening (its outline is wider than the jaws) the load tells better where its middle
-    is. The plan itself when nothing under the path is loaded."""
+    is. Only modules above t_o count: a module of the noise-floor outline tells where a light
+    part may reach, not where the object's weight lies (a toy's foot on module 6 at 30 Pa, the
+    only outline module on its diagonal plan's path, drew the centre onto itself, beside the
+    toy). The plan itself when nothing under the path is loaded above t_o."""
+    d = check_increments(increments_pa, layout)
+    t = check_threshold(threshold_pa, "object threshold")
     u = np.array([math.cos(plan.theta), math.sin(plan.theta)])
     normal = np.array([-u[1], u[0]])
     cog = np.asarray(plan.cog, dtype=float)
-    on_path = [m for m in plan.modules if abs((np.asarray(layout.center(m)) - cog) @ normal) < 0.5]
+    on_path = [
+        m
+        for m in plan.modules
+        if d[m - 1] > t and abs((np.asarray(layout.center(m)) - cog) @ normal) < 0.5
+    ]
     along = _weighted_lever(plan, layout, increments_pa, on_path)
     if along is None or abs(along) < 1e-9:
         return plan
