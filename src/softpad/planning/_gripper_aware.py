@@ -17,7 +17,7 @@ wider than the jaws open. The load term sends a shift towards where the object's
 
 Where the outline is wider than the jaws open along the closing direction (the object may
 fill the opening), the centre first moves along that direction to the middle of the load under
-the jaws' path (:func:`centred_on_load`): the thesis's rules keep it on a row seam, which the
+the jaws' path (its modules above t_o; :func:`centred_on_load`): the thesis's rules keep it on a row seam, which the
 55 mm charger between 60 mm jaws missed by more than the 2.5 mm a side in half its grasps.
 
 When the jaws land on the object and close on nothing (the loop sees the fingers sensed high
