@@ -42,8 +42,9 @@ def register(sub: Any) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from softpad.cli._trials import check_counts, errored, run_with_progress, trial_errors_exit
+    from softpad.cli._trials import check_counts, run_with_progress, trial_errors_exit
     from softpad.sim import get_object, object_names
+    from softpad.trials._records import errored_records
     from softpad.trials._report import write_report
 
     check_counts(args.trials, args.workers)
@@ -84,7 +85,7 @@ def run(args: argparse.Namespace) -> int:
     )
     if args.json:
         emit({"report": str(out), "files": [str(p) for p in paths], **exp.to_dict()})
-    return trial_errors_exit(errored(exp.trials), "demo")
+    return trial_errors_exit(errored_records(exp.trials), "demo")
 
 
 def _reference_plans(out: Path) -> None:

@@ -127,11 +127,6 @@ def trial_errors_exit(errored: list[dict[str, Any]], prog: str) -> int:
     return EXIT_INTERNAL
 
 
-def errored(trials: Any) -> list[dict[str, Any]]:
-    """The records of the trials that raised (cause ``trial_error``)."""
-    return [t.to_dict() for t in trials if t.cause == "trial_error"]
-
-
 def check_counts(trials: int, workers: int | None) -> None:
     """Validate ``--trials`` and ``--workers`` (shared by ``trials`` and ``demo``)."""
     if not 1 <= trials <= 1000:
@@ -176,6 +171,7 @@ def run(args: argparse.Namespace) -> int:
         )
     check_trial_recordings(args.record, specs, args.trials, args.force)
     from softpad.trials import ExperimentResult
+    from softpad.trials._records import errored_records
 
     done: list[Any] = []
     args.partial = {"seeds": seeds, "completed_seeds": [e.seed for e in done]}
@@ -203,7 +199,7 @@ def run(args: argparse.Namespace) -> int:
     )
     if args.json:
         emit(pooled.to_dict())
-    return trial_errors_exit(errored(pooled.trials), "trials")
+    return trial_errors_exit(errored_records(pooled.trials), "trials")
 
 
 def _config(args: argparse.Namespace) -> Any:
@@ -218,6 +214,7 @@ def _run_on_dask(args: argparse.Namespace, specs: list[Any], seeds: list[int]) -
     """``--scheduler``: every seed's trials as Dask tasks (softpad.design's client), pooled."""
     from softpad.design import check_scheduler_address, run_experiment_on_dask
     from softpad.trials import ExperimentResult
+    from softpad.trials._records import errored_records
 
     if args.record:
         raise InputError("--record is not available with --scheduler (trials run on Dask workers)")
@@ -250,4 +247,4 @@ def _run_on_dask(args: argparse.Namespace, specs: list[Any], seeds: list[int]) -
     )
     if args.json:
         emit(pooled.to_dict())
-    return trial_errors_exit(errored(pooled.trials), "trials")
+    return trial_errors_exit(errored_records(pooled.trials), "trials")

@@ -17,8 +17,9 @@ wider than the jaws open. The load term sends a shift towards where the object's
 
 Where the outline is wider than the jaws open along the closing direction (the object may
 fill the opening), the centre first moves along that direction to the middle of the load under
-the jaws' path (its modules above t_o; :func:`centred_on_load`): the thesis's rules keep it on a row seam, which the
-55 mm charger between 60 mm jaws missed by more than the 2.5 mm a side in half its grasps.
+the jaws' path (its modules above t_o; :func:`centred_on_load`): the thesis's rules keep it on
+a row seam, which the 55 mm charger between 60 mm jaws missed by more than the 2.5 mm a side
+in half its grasps.
 
 When the jaws land on the object and close on nothing (the loop sees the fingers sensed high
 above the pad and a fully closed gripper), :meth:`GripperAwarePlanner.retry` offers the grasp
@@ -363,7 +364,7 @@ def centred_on_load(
         for m in plan.modules
         if d[m - 1] > t and abs((np.asarray(layout.center(m)) - cog) @ normal) < 0.5
     ]
-    along = _weighted_lever(plan, layout, increments_pa, on_path)
+    along = _weighted_lever(plan, layout, d, on_path)
     if along is None or abs(along) < 1e-9:
         return plan
     c = cog + along * u

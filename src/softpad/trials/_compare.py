@@ -13,7 +13,7 @@ import numpy as np
 import softpad
 from softpad.errors import InputError
 from softpad.trials._config import TrialConfig
-from softpad.trials._records import TrialResult
+from softpad.trials._records import TrialResult, errored_records
 from softpad.trials._runner import run_experiment
 
 #: The pairs ``softpad compare`` runs by default: the thesis's and the best found here.
@@ -134,7 +134,7 @@ def compare(
                     if not t.success
                 ],
                 # trials that raised (a bug, not a grasp outcome): their records, tracebacks
-                "errored": [t.to_dict() for t in results if t.cause == "trial_error"],
+                "errored": errored_records(results),
             }
         )
     return {"schema_version": softpad.SCHEMA_VERSION, "seeds": list(seeds), "combinations": combos}

@@ -147,6 +147,11 @@ class TrialResult:
         }
 
 
+def errored_records(trials: Any) -> list[dict[str, Any]]:
+    """The ``to_dict()`` records of the trials that raised (cause ``trial_error``)."""
+    return [t.to_dict() for t in trials if t.cause == "trial_error"]
+
+
 @dataclass(frozen=True)
 class ObjectSummary:
     """Trials of one object, next to the thesis's Table 6.1 entry."""
