@@ -175,7 +175,8 @@ def test_run_retries_a_grasp_that_landed_on_the_can(cli) -> None:
     assert code == 0
     (g,) = json.loads(out)["grasps"]
     assert g["attempts"] == 2 and g["outcome"] == "held"
-    assert g["plan"]["rule"].endswith("+turned-after-miss") and g["stop_z_m"] < 0.017
+    assert g["plan"]["rule"].endswith("+turned-after-miss+load-centred")
+    assert g["stop_z_m"] < 0.017
     code, out, _ = cli(*base, "--max-attempts", "1")
     assert code == 1
     (g,) = json.loads(out)["grasps"]

@@ -270,20 +270,50 @@ def test_planner_for_a_detector_measures_its_ratio_only_for_the_gripper_aware_pl
 CAN_PA = (138.0, 28.0, -1.0, 102.0, 60.0, 7.0)
 
 
-def test_a_missed_square_is_retried_a_quarter_turn_about_its_centre() -> None:
+def test_a_missed_square_is_retried_a_quarter_turn_across_its_load() -> None:
     """The can seen as a square of modules 1, 2, 4, 5: planned at the square's centre closing
-    along x (the thesis's default direction); after a miss, closing along y about the same
-    centre (on the seam the can lies on)."""
+    along x (the thesis's default direction); after a miss, closing along y, the centre's x
+    kept and its y moved to the load centroid's (the PCOM's)."""
     planner = GripperAwarePlanner(GRIPPER, sensing_ratio=0.44)
     (plan,) = planner.plan(CAN_PA, detect_objects(CAN_PA, LAYOUT), LAYOUT)
     assert plan.modules == (1, 2, 4, 5) and plan.theta == pytest.approx(0.0)
+    assert plan.cog == pytest.approx((1.0, 1.0))
     turned = planner.retry(plan, CAN_PA, LAYOUT, CAN_PA)
-    assert turned is not None
-    assert turned.theta == pytest.approx(math.pi / 2) and turned.cog == plan.cog
-    assert turned.modules == plan.modules and turned.rule == plan.rule + "+turned-after-miss"
-    # a second miss turns back: a plain quarter turn each time, wrapped to (-pi/2, pi/2]
+    assert turned is not None and turned.theta == pytest.approx(math.pi / 2)
+    # rows at y = 1.5 (modules 1, 2) and 0.5 (4, 5), weighted by their increments
+    y = (1.5 * (138.0 + 28.0) + 0.5 * (102.0 + 60.0)) / (138.0 + 28.0 + 102.0 + 60.0)
+    assert turned.cog == pytest.approx((1.0, y), abs=1e-12)
+    assert turned.cog[1] == pytest.approx(plan.pcom[1], abs=1e-12)
+    assert turned.modules == plan.modules
+    assert turned.rule == plan.rule + "+turned-after-miss+load-centred"
+    # a second miss turns back: a quarter turn each time, wrapped to (-pi/2, pi/2]
     again = planner.retry(turned, CAN_PA, LAYOUT, CAN_PA)
     assert again is not None and again.theta == pytest.approx(0.0)
+    assert again.cog == pytest.approx(plan.pcom, abs=1e-12)
+
+
+#: Plan increments of a simulated can trial (MuJoCo, development seed 116, trial 2), pascals:
+#: the heavy end on module 4 by the row seam, the body on the top row (1, 2, 3).
+CAN_L_PA = (72.75, 92.53, 27.83, 192.38, -1.22, -2.93)
+#: Where that can's axis crossed x = 22.5 mm (the plan's x) once it had settled, metres
+#: (MuJoCo: the can's geom centre and yaw read when the retry landed on it).
+CAN_L_AXIS_Y_M = 0.0437
+
+
+def test_a_can_missed_along_its_length_is_retried_across_its_axis() -> None:
+    """The L of modules 1-4 is planned along the top row (the corner-shift rule, 36 mm up);
+    closing across the can about that centre put a jaw on it 7.7 mm off its axis, more than
+    the 5 mm a side a 50 mm can leaves between 60 mm jaws. Centred on the load, the turned
+    grasp lies within that clearance."""
+    planner = GripperAwarePlanner(GRIPPER, sensing_ratio=0.44)
+    (plan,) = planner.plan(CAN_L_PA, detect_objects(CAN_L_PA, LAYOUT), LAYOUT)
+    assert plan.modules == (1, 2, 3, 4) and plan.theta == pytest.approx(0.0)
+    clearance_m = (GRIPPER.max_width_m - 0.050) / 2
+    assert abs(plan.cog[1] * LAYOUT.pitch_m - CAN_L_AXIS_Y_M) > clearance_m
+    turned = planner.retry(plan, CAN_L_PA, LAYOUT, CAN_L_PA)
+    assert turned is not None and turned.theta == pytest.approx(math.pi / 2)
+    assert turned.cog[0] == pytest.approx(plan.cog[0], abs=1e-12)
+    assert abs(turned.cog[1] * LAYOUT.pitch_m - CAN_L_AXIS_Y_M) < clearance_m / 2
 
 
 @pytest.mark.parametrize(

@@ -23,9 +23,9 @@ in half its grasps.
 
 When the jaws land on the object and close on nothing (the loop sees the fingers sensed high
 above the pad and a fully closed gripper), :meth:`GripperAwarePlanner.retry` offers the grasp
-turned a quarter turn about the same centre, where the object's outline is no wider that way:
-a can lying along a row seam, whose light body leaves it looking like a square of four
-modules, is first grasped along its length. Otherwise the grasp moves half a sole towards
+turned a quarter turn, where the object's outline is no wider that way, its centre moved
+across to the object's load centroid: a can lying along a row seam, whose light body leaves
+it looking like a square of four modules, is first grasped along its length. Otherwise the grasp moves half a sole towards
 the side the landing pressed. The loop also asks at the landing itself, before closing
 (``closed=False``); the planner answers there only when the landing pressed one side of the
 jaws' centre line alone (:func:`pressed_share`): a jaw on a brick's edge, which closing
@@ -260,26 +260,32 @@ class GripperAwarePlanner:
         the jaws (a toy's arm, its body on the line: closing holds it).
 
         Where the object's outline is no wider a quarter turn away (a can lying along a row
-        seam, seen as a square of four modules or an L), the grasp turned about the same
-        centre: across the can the thesis's square centre lies on the seam it lies on.
+        seam, seen as a square of four modules or an L), the grasp turned a quarter turn, its
+        centre moved along the new closing direction to the object's load centroid (the
+        increment-weighted mean of its modules, the PCOM): a straight object's axis runs
+        through it, so the jaws straddle the can there. The thesis's rules place the centre
+        along the first direction, not across it: an L's corner-shift rule left it on the top
+        row's edge, 7.7 mm from a can's axis, more than the 5 mm a side a 50 mm can leaves
+        in 60 mm jaws (development seed 124).
         Otherwise (a 75 x 55 mm brick missed across its 55 mm would not fit across its 75),
         one jaw came down on the object's edge: the centre moves half a fingertip sole's
         thickness along the closing direction towards the side where the landing pressed the
         object into the pad (:func:`landing_side`); None when the landing pressed both sides.
         """
-        check_increments(increments_pa, layout)
+        d = check_increments(increments_pa, layout)
         if not closed and pressed_share(plan, layout, landing_rise_pa) < ONE_SIDED_SHARE:
             return None
         theta = _wrap(plan.theta + math.pi / 2)
         turned_extent = object_extent_m(plan.modules, theta, layout)
         if turned_extent <= object_extent_m(plan.modules, plan.theta, layout) + 1e-9:
-            return replace(plan, theta=theta, rule=plan.rule + "+turned-after-miss")
+            turned = replace(plan, theta=theta, rule=plan.rule + "+turned-after-miss")
+            lever = _weighted_lever(turned, layout, d, plan.modules)
+            return turned if lever is None else _moved(turned, lever, "+load-centred")
         side = landing_side(plan, layout, landing_rise_pa)
         if side == 0:
             return None
         step = side * 0.5 * self.gripper.tip_thickness_m / layout.pitch_m
-        c = np.asarray(plan.cog) + step * np.array([math.cos(plan.theta), math.sin(plan.theta)])
-        return replace(plan, cog=(float(c[0]), float(c[1])), rule=plan.rule + "+shifted-after-miss")
+        return _moved(plan, step, "+shifted-after-miss")
 
     def _too_wide(self, plan: GraspPlan, theta: float, layout: PadLayout) -> bool:
         extent = object_extent_m(plan.modules, theta, layout)
@@ -369,6 +375,12 @@ def centred_on_load(
         return plan
     c = cog + along * u
     return replace(plan, cog=(float(c[0]), float(c[1])), rule=plan.rule + "+load-centred")
+
+
+def _moved(plan: GraspPlan, along: float, why: str) -> GraspPlan:
+    """The plan with its centre moved ``along`` its closing direction, module units."""
+    c = np.asarray(plan.cog) + along * np.array([math.cos(plan.theta), math.sin(plan.theta)])
+    return replace(plan, cog=(float(c[0]), float(c[1])), rule=plan.rule + why)
 
 
 def _weighted_lever(
