@@ -360,6 +360,35 @@ def test_a_brick_missed_across_its_width_is_retried_towards_the_pressed_side(
     assert landing_side(plan, LAYOUT, (100, 100, 0, 67, 67, 66)) == 0
 
 
+#: A can along the row seam, its heavy end on module 1 (development seed 120, trial 3):
+#: plan increments, the rise when a jaw landed on it, and where its settled axis crossed the
+#: plan's x (45.2 mm; MuJoCo, the can's geom centre and yaw at the landing), pascals, metres.
+CAN_SEAM_PA = (200.2, 3.2, -5.1, 58.1, 94.2, 55.9)
+CAN_SEAM_LANDING_PA = (617.0, 8.0, 13.0, 394.0, 552.0, 563.0)
+CAN_SEAM_AXIS_Y_M = 0.0441
+
+
+def test_a_can_landed_on_far_from_its_axis_is_retried_on_the_load_under_the_path() -> None:
+    """The corner-side rule grasps the can across on the bottom row's centre line, 21.6 mm
+    from its axis; half a sole's shift (the brick's retry) would land on it again. The
+    retry goes to the middle of the load under the fingertips' path instead: the path runs
+    along the seam between columns 1 and 2, so modules 1, 4 and 5 count (2 is under t_o),
+    and the centre lands within the 5 mm a side a 50 mm can leaves in 60 mm jaws."""
+    planner = GripperAwarePlanner(GRIPPER, sensing_ratio=0.44)
+    (plan,) = planner.plan(CAN_SEAM_PA, detect_objects(CAN_SEAM_PA, LAYOUT), LAYOUT)
+    assert plan.modules == (1, 4, 5, 6) and plan.theta == pytest.approx(math.pi / 2)
+    clearance_m = (GRIPPER.max_width_m - 0.050) / 2
+    half_sole_m = GRIPPER.tip_thickness_m / 2
+    assert CAN_SEAM_AXIS_Y_M - (plan.cog[1] * LAYOUT.pitch_m + half_sole_m) > clearance_m
+    assert landing_side(plan, LAYOUT, CAN_SEAM_LANDING_PA) == 1
+    got = planner.retry(plan, CAN_SEAM_PA, LAYOUT, CAN_SEAM_LANDING_PA)
+    assert got is not None and got.theta == plan.theta and got.cog[0] == plan.cog[0]
+    y = (1.5 * 200.2 + 0.5 * (58.1 + 94.2)) / (200.2 + 58.1 + 94.2)
+    assert got.cog[1] == pytest.approx(y, abs=1e-9)
+    assert abs(got.cog[1] * LAYOUT.pitch_m - CAN_SEAM_AXIS_Y_M) < clearance_m
+    assert got.rule == plan.rule + "+shifted-after-miss"
+
+
 #: Landing rises of development trials (seeds 101 and 104, pascals): a jaw on the charger's
 #: brick edge (the top row pressed, the bottom row unloaded as the brick tips), and a jaw on
 #: the toy's right arm (module 3) with its body pressing module 5, on the jaws' centre line.

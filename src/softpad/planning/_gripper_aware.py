@@ -268,9 +268,15 @@ class GripperAwarePlanner:
         row's edge, 7.7 mm from a can's axis, more than the 5 mm a side a 50 mm can leaves
         in 60 mm jaws (development seed 124).
         Otherwise (a 75 x 55 mm brick missed across its 55 mm would not fit across its 75),
-        one jaw came down on the object's edge: the centre moves half a fingertip sole's
-        thickness along the closing direction towards the side where the landing pressed the
-        object into the pad (:func:`landing_side`); None when the landing pressed both sides.
+        one jaw came down on the object: the centre moves along the closing direction towards
+        the side where the landing pressed the object into the pad (:func:`landing_side`;
+        None when the landing pressed both sides), half a fingertip sole's thickness (a jaw
+        on a brick's edge), or further, to the middle of the load under the fingertips' path
+        (its modules above t_o whose centres lie within half a pitch plus half a fingertip's
+        width of the jaws' line), when that lies further on the pressed side: the thesis's
+        corner-side rule put a can lying along the row seam on a row's centre line, 20 mm
+        from its axis, where half a sole lands on the can again (development seeds 120 and
+        128). A path along a seam counts the modules on both sides of it.
         """
         d = check_increments(increments_pa, layout)
         if not closed and pressed_share(plan, layout, landing_rise_pa) < ONE_SIDED_SHARE:
@@ -284,8 +290,13 @@ class GripperAwarePlanner:
         side = landing_side(plan, layout, landing_rise_pa)
         if side == 0:
             return None
-        step = side * 0.5 * self.gripper.tip_thickness_m / layout.pitch_m
-        return _moved(plan, step, "+shifted-after-miss")
+        step = 0.5 * self.gripper.tip_thickness_m / layout.pitch_m
+        band = 0.5 + 0.5 * self.gripper.tip_width_m / layout.pitch_m
+        t_o = self.thesis.params.object_threshold_pa
+        lever = _path_lever(plan, layout, d, t_o, band)
+        if lever is not None and side * lever > step:
+            step = side * lever
+        return _moved(plan, side * step, "+shifted-after-miss")
 
     def _too_wide(self, plan: GraspPlan, theta: float, layout: PadLayout) -> bool:
         extent = object_extent_m(plan.modules, theta, layout)
@@ -362,19 +373,33 @@ def centred_on_load(
     toy). The plan itself when nothing under the path is loaded above t_o."""
     d = check_increments(increments_pa, layout)
     t = check_threshold(threshold_pa, "object threshold")
+    along = _path_lever(plan, layout, d, t, 0.5)
+    if along is None or abs(along) < 1e-9:
+        return plan
+    return _moved(plan, along, "+load-centred")
+
+
+def _path_lever(
+    plan: GraspPlan,
+    layout: PadLayout,
+    increments_pa: NDArray[np.float64],
+    threshold_pa: float,
+    half_width: float,
+) -> float | None:
+    """Offset of the load under the jaws' path from the plan's centre along its closing
+    direction, module units: the increment-weighted mean of the plan's modules above
+    ``threshold_pa`` whose centres lie within ``half_width`` of the line the jaws close on;
+    None when none is loaded."""
     u = np.array([math.cos(plan.theta), math.sin(plan.theta)])
     normal = np.array([-u[1], u[0]])
     cog = np.asarray(plan.cog, dtype=float)
     on_path = [
         m
         for m in plan.modules
-        if d[m - 1] > t and abs((np.asarray(layout.center(m)) - cog) @ normal) < 0.5
+        if increments_pa[m - 1] > threshold_pa
+        and abs((np.asarray(layout.center(m)) - cog) @ normal) < half_width
     ]
-    along = _weighted_lever(plan, layout, d, on_path)
-    if along is None or abs(along) < 1e-9:
-        return plan
-    c = cog + along * u
-    return replace(plan, cog=(float(c[0]), float(c[1])), rule=plan.rule + "+load-centred")
+    return _weighted_lever(plan, layout, increments_pa, on_path)
 
 
 def _moved(plan: GraspPlan, along: float, why: str) -> GraspPlan:
