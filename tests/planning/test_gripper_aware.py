@@ -327,16 +327,34 @@ def test_a_can_missed_along_its_length_is_retried_across_its_axis() -> None:
 def test_a_retry_turns_only_where_the_outline_is_no_wider(
     modules: tuple[int, ...], theta: float, turned: float | None
 ) -> None:
-    """Where turning is wider and the landing pressed nothing, there is no retry."""
+    """Where turning is wider and the landing pressed nothing, the retry after a miss is the
+    same grasp again (nothing says where else), and there is none at the landing."""
     plan = GraspPlan(modules, (1.0, 1.0), (1.0, 1.0), theta, "given", modules)
-    got = GripperAwarePlanner(GRIPPER).retry(plan, (100.0,) * 6, LAYOUT, (0.0,) * 6)
+    planner = GripperAwarePlanner(GRIPPER)
+    got = planner.retry(plan, (100.0,) * 6, LAYOUT, (0.0,) * 6)
     before = object_extent_m(modules, theta, LAYOUT)
     after = object_extent_m(modules, theta + math.pi / 2, LAYOUT)
     assert (after <= before) is (turned is not None)
+    assert got is not None
     if turned is None:
-        assert got is None
+        assert got == replace(plan, rule="given+again-after-miss")
+        assert planner.retry(plan, (100.0,) * 6, LAYOUT, (0.0,) * 6, closed=False) is None
     else:
-        assert got is not None and got.theta == pytest.approx(turned)
+        assert got.theta == pytest.approx(turned)
+
+
+def test_a_balanced_miss_is_retried_as_it_was_unless_tentative() -> None:
+    """A miss whose landing pressed both sides of the jaws' centre alike (object 6's rocking
+    stack sensed above its top; a banana nudged by the jaws) is tried once more as it was;
+    a tentative grasp (between two one-module objects, which may be two objects) is not."""
+    planner = GripperAwarePlanner(GRIPPER)
+    row = GraspPlan((4, 5, 6), (1.48, 0.5), (1.48, 0.5), math.pi / 2, "n3-row", (4, 5, 6))
+    rise = (4.0, 2.0, -2.0, 108.0, 142.0, 125.0)  # development seed 122, trial 1: even
+    assert landing_side(row, LAYOUT, rise) == 0
+    again = planner.retry(row, (2.0, -5.0, -2.0, 226.0, 244.0, 211.0), LAYOUT, rise)
+    assert again == replace(row, rule="n3-row+again-after-miss")
+    bridge = replace(row, tentative=True)
+    assert planner.retry(bridge, (2.0, -5.0, -2.0, 226.0, 244.0, 211.0), LAYOUT, rise) is None
 
 
 @pytest.mark.parametrize(("top", "bottom", "side"), [(180.0, 20.0, 1), (15.0, 160.0, -1)])

@@ -277,6 +277,12 @@ class GripperAwarePlanner:
         corner-side rule put a can lying along the row seam on a row's centre line, 20 mm
         from its axis, where half a sole lands on the can again (development seeds 120 and
         128). A path along a seam counts the modules on both sides of it.
+
+        After a miss (``closed``) whose landing pressed both sides alike, nothing says where
+        else to go: the same grasp once more (a contact sensed above a rocking stack, a
+        banana nudged by the jaws; development seeds 100-129: banana 148 -> 150, object 6
+        146 -> 147 of 150, no trial lost), except a tentative grasp (the bridge between two
+        one-module objects, which may be two objects).
         """
         d = check_increments(increments_pa, layout)
         if not closed and pressed_share(plan, layout, landing_rise_pa) < ONE_SIDED_SHARE:
@@ -289,6 +295,8 @@ class GripperAwarePlanner:
             return turned if lever is None else _moved(turned, lever, "+load-centred")
         side = landing_side(plan, layout, landing_rise_pa)
         if side == 0:
+            if closed and not plan.tentative:
+                return replace(plan, rule=plan.rule + "+again-after-miss")
             return None
         step = 0.5 * self.gripper.tip_thickness_m / layout.pitch_m
         band = 0.5 + 0.5 * self.gripper.tip_width_m / layout.pitch_m
