@@ -193,6 +193,29 @@ def test_a_banana_split_at_t_o_is_planned_as_one_object() -> None:
     assert aware.cog == pytest.approx((1.0, 1.0)) and aware.theta == pytest.approx(-math.pi / 4)
 
 
+#: Object 2 (a plate bridging two bricks, diagonal from module 1 to 5; development seed 140,
+#: trial 2): the plate crosses module 2's corner, 33 Pa, under t_o, pascals.
+BRIDGE_PA = (60.0, 33.0, 0.0, 3.0, 110.0, 0.0)
+
+
+def test_a_diagonal_pair_is_not_outlined_into_an_l() -> None:
+    """At t_o object 2 is the diagonal pair (1, 5), which the thesis grasps across the
+    diagonal. The outline would add module 2, the corner the plate crosses, and the L's
+    corner rule closes along a row, onto a brick (the trial was lost); the pair is kept.
+    A module beside the pair that is not a corner between its two still joins it."""
+    objects = detect_objects(BRIDGE_PA, LAYOUT)
+    assert objects == [(1, 5)]
+    (aware,) = GripperAwarePlanner(GRIPPER).plan(BRIDGE_PA, objects, LAYOUT)
+    (pair,) = ThesisPlanner().plan(BRIDGE_PA, objects, LAYOUT)
+    assert aware.modules == (1, 5) and aware.theta == pytest.approx(math.pi / 4)
+    assert aware.cog == pytest.approx(pair.cog) and aware.rule == pair.rule
+    (l_shape,) = ThesisPlanner().plan(BRIDGE_PA, [(1, 2, 5)], LAYOUT)
+    assert l_shape.theta == pytest.approx(0.0)  # what the outline gave
+    beside = (60.0, 0.0, 0.0, 3.0, 110.0, 33.0)  # module 6, next to 5 only
+    (grown,) = GripperAwarePlanner(GRIPPER).plan(beside, detect_objects(beside, LAYOUT), LAYOUT)
+    assert grown.modules == (1, 5, 6)
+
+
 def test_a_shift_off_the_seam_goes_towards_the_load() -> None:
     """The toy's thesis grasp (1.5, ~1.0, 0) puts both fingertips on the row seam. Both
     shifts across it reach sensed area; the load term picks the side of the toy's body

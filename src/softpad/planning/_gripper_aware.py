@@ -48,7 +48,9 @@ load's major axis, not the PCOM's side of the bisector (:func:`along_load_axis`)
 Objects are outlined at the pad's noise floor before planning
 (:func:`softpad.sensing.outline_objects`): a module next to an object whose increment is above
 the outline threshold (25 Pa) but under t_o joins it, so a banana whose middle stays under t_o
-is one object, not two ends planned apart.
+is one object, not two ends planned apart. A diagonal pair whose outline only adds the
+corners between its modules is kept as found (:func:`_kept_diagonals`): object 2's plate
+crosses the corner module lightly, and as an L it was grasped along a row onto its bricks.
 """
 
 from __future__ import annotations
@@ -205,7 +207,9 @@ class GripperAwarePlanner:
         self, increments_pa: ArrayLike, objects: list[tuple[int, ...]], layout: PadLayout
     ) -> list[GraspPlan]:
         d = check_increments(increments_pa, layout)
-        outlined = outline_objects(d, objects, layout, self.outline_threshold_pa)
+        outlined = _kept_diagonals(
+            objects, outline_objects(d, objects, layout, self.outline_threshold_pa), layout
+        )
         params = self.thesis.params
         plans = [
             along_load_axis(p, layout, d, params) for p in self.thesis.plan(d, outlined, layout)
@@ -432,6 +436,34 @@ def _weighted_lever(
         return None
     lever = sum(float(w[m - 1]) * float((np.asarray(layout.center(m)) - cog) @ u) for m in modules)
     return lever / weight
+
+
+def _kept_diagonals(
+    objects: list[tuple[int, ...]], outlined: list[tuple[int, ...]], layout: PadLayout
+) -> list[tuple[int, ...]]:
+    """``outlined`` with every object found as a diagonal pair of modules kept as found where
+    the outline only added the corners between its two modules: a bridge lying across the
+    corner of a module loads it lightly, and the pair's own rule (closing across the
+    diagonal) is the grasp; as an L, the corner rules close along a row onto its ends."""
+    out = []
+    for group in outlined:
+        inside = [obj for obj in objects if set(obj) <= set(group)]
+        if len(inside) == 1 and _diagonal_pair(inside[0], layout):
+            a, b = (np.asarray(layout.center(m)) for m in inside[0])
+            corners = {layout.module_containing(*c) for c in ((a[0], b[1]), (b[0], a[1]))}
+            if set(group) - set(inside[0]) <= corners:
+                out.append(inside[0])
+                continue
+        out.append(group)
+    return out
+
+
+def _diagonal_pair(modules: tuple[int, ...], layout: PadLayout) -> bool:
+    """Whether ``modules`` are two modules that touch only at a corner."""
+    if len(modules) != 2:
+        return False
+    a, b = (np.asarray(layout.center(m)) for m in modules)
+    return bool(np.allclose(np.abs(a - b), 1.0))
 
 
 def across_pairs(plans: list[GraspPlan]) -> list[GraspPlan]:
