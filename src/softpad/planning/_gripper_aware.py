@@ -25,8 +25,9 @@ When the jaws land on the object and close on nothing (the loop sees the fingers
 above the pad and a fully closed gripper), :meth:`GripperAwarePlanner.retry` offers the grasp
 turned a quarter turn, where the object's outline is no wider that way, its centre moved
 across to the object's load centroid: a can lying along a row seam, whose light body leaves
-it looking like a square of four modules, is first grasped along its length. Otherwise the grasp moves half a sole towards
-the side the landing pressed. The loop also asks at the landing itself, before closing
+it looking like a square of four modules, is first grasped along its length. Otherwise the
+grasp moves towards the side the landing pressed, half a sole or on to the load under the
+fingertips' path; after a miss that pressed both sides alike, it is tried again. The loop also asks at the landing itself, before closing
 (``closed=False``); the planner answers there only when the landing pressed one side of the
 jaws' centre line alone (:func:`pressed_share`): a jaw on a brick's edge, which closing
 would shove across the pad.
@@ -270,7 +271,7 @@ class GripperAwarePlanner:
         through it, so the jaws straddle the can there. The thesis's rules place the centre
         along the first direction, not across it: an L's corner-shift rule left it on the top
         row's edge, 7.7 mm from a can's axis, more than the 5 mm a side a 50 mm can leaves
-        in 60 mm jaws (development seed 124).
+        in 60 mm jaws (development seed 116).
         Otherwise (a 75 x 55 mm brick missed across its 55 mm would not fit across its 75),
         one jaw came down on the object: the centre moves along the closing direction towards
         the side where the landing pressed the object into the pad (:func:`landing_side`;
