@@ -27,10 +27,10 @@ turned a quarter turn, where the object's outline is no wider that way, its cent
 across to the object's load centroid: a can lying along a row seam, whose light body leaves
 it looking like a square of four modules, is first grasped along its length. Otherwise the
 grasp moves towards the side the landing pressed, half a sole or on to the load under the
-fingertips' path; after a miss that pressed both sides alike, it is tried again. The loop also asks at the landing itself, before closing
-(``closed=False``); the planner answers there only when the landing pressed one side of the
-jaws' centre line alone (:func:`pressed_share`): a jaw on a brick's edge, which closing
-would shove across the pad.
+fingertips' path; after a miss that pressed both sides alike, it is tried again. The loop
+also asks at the landing itself, before closing (``closed=False``); the planner answers there
+only when the landing pressed one side of the jaws' centre line alone (:func:`pressed_share`):
+a jaw on a brick's edge, which closing would shove across the pad.
 
 "Sensed" depends on the detector. The response map (:func:`sensed_share`) says what share of a
 centred fingertip's rise a fingertip raises where it lands; with the thesis's detector a grasp
@@ -449,22 +449,21 @@ def _kept_diagonals(
     out = []
     for group in outlined:
         inside = [obj for obj in objects if set(obj) <= set(group)]
-        if len(inside) == 1 and _diagonal_pair(inside[0], layout):
-            a, b = (np.asarray(layout.center(m)) for m in inside[0])
-            corners = {layout.module_containing(*c) for c in ((a[0], b[1]), (b[0], a[1]))}
-            if set(group) - set(inside[0]) <= corners:
-                out.append(inside[0])
-                continue
-        out.append(group)
+        corners = _corners_between(inside[0], layout) if len(inside) == 1 else None
+        kept = corners is not None and set(group) - set(inside[0]) <= corners
+        out.append(inside[0] if kept else group)
     return out
 
 
-def _diagonal_pair(modules: tuple[int, ...], layout: PadLayout) -> bool:
-    """Whether ``modules`` are two modules that touch only at a corner."""
+def _corners_between(modules: tuple[int, ...], layout: PadLayout) -> set[int] | None:
+    """The two modules at the corners between a diagonal pair (two modules that touch only
+    at a corner); None for anything else."""
     if len(modules) != 2:
-        return False
-    a, b = (np.asarray(layout.center(m)) for m in modules)
-    return bool(np.allclose(np.abs(a - b), 1.0))
+        return None
+    (ra, ca), (rb, cb) = (layout.row_col(m) for m in modules)
+    if abs(ra - rb) != 1 or abs(ca - cb) != 1:
+        return None
+    return {layout.module_at(ra, cb), layout.module_at(rb, ca)}
 
 
 def across_pairs(plans: list[GraspPlan]) -> list[GraspPlan]:
