@@ -25,7 +25,7 @@ an idle pad with noise and drift."""
 
 
 def register(sub: Any) -> None:
-    from softpad.cli._trials import add_trial_options
+    from softpad.cli._trials import add_randomize_option, add_trial_options
 
     p = add_command(
         sub,
@@ -36,6 +36,7 @@ def register(sub: Any) -> None:
         json="print the comparison as one JSON object",
     )
     add_trial_options(p, seeds="0-9")
+    add_randomize_option(p)
     p.add_argument(
         "--pair",
         action="append",
@@ -79,7 +80,7 @@ def run(args: argparse.Namespace) -> int:
 
     from softpad.cli._paths import check_output
     from softpad.cli._trials import check_counts, select_objects
-    from softpad.trials import compare
+    from softpad.trials import TrialConfig, compare
 
     check_output(args.png, "--png", force=args.force, suffix=".png")  # before hours of trials
     if args.merge:
@@ -98,6 +99,7 @@ def run(args: argparse.Namespace) -> int:
             trials=args.trials,
             workers=args.workers,
             idle_hours=args.idle_hours,
+            config=TrialConfig(randomize=args.randomize),
             on_trial=(lambda _: bar.update(1)) if bar else None,
         )
     finally:

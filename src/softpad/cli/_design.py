@@ -11,6 +11,7 @@ from typing import Any
 from softpad import thesis
 from softpad.cli._args import add_command, int_ranges, name_list
 from softpad.cli._output import emit, say
+from softpad.cli._trials import add_randomize_option
 from softpad.errors import InputError
 
 _EPILOG = """examples:
@@ -76,6 +77,7 @@ def register(sub: Any) -> None:
         default=None,
         help=f"hold time in s (default {thesis.HOLD_S:g}; --quick 2)",
     )
+    add_randomize_option(p)
     p.add_argument("--planner", default="thesis", help="planner: thesis, gripper-aware")
     p.add_argument("--detector", default="thesis", help="contact detector: thesis, cusum")
     p.add_argument(
@@ -165,7 +167,7 @@ def run(args: argparse.Namespace) -> int:
     hold_s = args.hold_s if args.hold_s is not None else (2.0 if args.quick else thesis.HOLD_S)
     if not (math.isfinite(hold_s) and 0 <= hold_s <= 60):
         raise InputError(f"--hold-s must be from 0 to 60 s, got {hold_s!r}")
-    options = TrialOptions(trials, args.planner, args.detector, hold_s)
+    options = TrialOptions(trials, args.planner, args.detector, hold_s, randomize=args.randomize)
     if args.scheduler is not None:
         check_scheduler_address(args.scheduler)
     if args.workers is not None and not 1 <= args.workers <= 256:

@@ -48,6 +48,7 @@ def register(sub: Any) -> None:
     )
     add_trial_options(p)
     add_part_options(p)
+    add_randomize_option(p)
     p.add_argument(
         "--scheduler",
         metavar="tcp://127.0.0.1:PORT|local",
@@ -59,6 +60,18 @@ def register(sub: Any) -> None:
     )
     add_record_option(p, per_trial=True)
     p.set_defaults(handler=run)
+
+
+def add_randomize_option(p: Any) -> None:
+    """``--randomize``: draw the simulator's uncertain inputs per trial (seeded)."""
+    p.add_argument(
+        "--randomize",
+        action="store_true",
+        help="draw every uncertain input of the simulated lab (pad and tip physics, grip force, "
+        "seam, sample rate, noise, tubing, placement, unknown object sizes) from its sourced "
+        "range per trial, seeded by the trial seed; --json carries the drawn values per trial "
+        "(list: softpad.sim.UNCERTAIN_PARAMETERS, docs/trials.md)",
+    )
 
 
 def add_trial_options(
@@ -207,7 +220,9 @@ def _config(args: argparse.Namespace) -> Any:
     from softpad.trials import TrialConfig, trial_execution_params
 
     execution = trial_execution_params(hold_s=args.hold_s)
-    return TrialConfig(execution, planner=args.planner, detector=args.detector)
+    return TrialConfig(
+        execution, planner=args.planner, detector=args.detector, randomize=args.randomize
+    )
 
 
 def _run_on_dask(args: argparse.Namespace, specs: list[Any], seeds: list[int]) -> int:

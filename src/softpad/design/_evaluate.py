@@ -44,6 +44,11 @@ class TrialOptions:
     sample_rate_hz: float = 100.0
     #: Sensor noise on.
     noise: bool = True
+    #: Draw the uncertain inputs per trial (:data:`softpad.sim.UNCERTAIN_PARAMETERS`, seeded
+    #: by the trial seed): tip stiffness, fingertip friction and grip force of the analytic
+    #: world's gripper, sample rate, sensor noise, placement noise, the charger's and the
+    #: can's unknowns; the design's own FEM pad keeps its seam and tubing.
+    randomize: bool = False
 
     def __post_init__(self) -> None:
         from softpad.planning import PLANNERS
@@ -126,9 +131,11 @@ def _one_trial(
     from softpad.trials import TrialConfig, perturbed_placement, trial_execution_params, trial_seed
 
     layout = design.layout
-    world = AnalyticWorld(layout, SimGripper.mounting(object_set.mounting(obj)))
-    spec = obj.placed_on((design.cols * design.pitch_m, design.rows * design.pitch_m))
     s = trial_seed(seed, obj.name, k)
+    options, lab, physics = _varied(options, s)
+    world = AnalyticWorld(layout, SimGripper.mounting(object_set.mounting(obj), **physics))
+    spec = obj.placed_on((design.cols * design.pitch_m, design.rows * design.pitch_m))
+    spec = spec if lab is None else lab.object(spec)
     noise = TrialConfig(
         position_sigma_m=options.position_sigma_m, yaw_sigma_rad=options.yaw_sigma_rad
     )
@@ -143,7 +150,9 @@ def _one_trial(
         sample_rate_hz=options.sample_rate_hz,
         seed=s % (2**31),
         characteristic=characteristic,
-        sensor=SensorParams() if options.noise else SensorParams.ideal(),
+        sensor=(SensorParams() if lab is None else lab.sensor())
+        if options.noise
+        else SensorParams.ideal(),
         initial_pressure_pa=0.9 * design.p0_pa,
     )
     box.safety_limits = SafetyLimits(max_pressure_pa=9.5e3, release_pa=2.5e3)
@@ -161,6 +170,8 @@ def _one_trial(
         place_objects=lambda: world.place_object(spec, placement),
     )
     record: dict[str, Any] = {"object": obj.name, "trial": k, "seed": seed}
+    if lab is not None:
+        record["parameters"] = lab.to_dict()
     with box:
         try:
             result = loop.run()
@@ -180,3 +191,29 @@ def _one_trial(
         "contact_delay_s": delay,
         "sim_time_s": box.time_s,
     }
+
+
+def _varied(options: TrialOptions, seed: int) -> tuple[TrialOptions, Any, dict[str, float]]:
+    """With ``options.randomize``: the options with the drawn placement noise and sample rate,
+    the :class:`softpad.sim.LabVariation` of ``seed`` and the analytic gripper's drawn fields;
+    else the options, None and no fields."""
+    if not options.randomize:
+        return options, None, {}
+    from dataclasses import replace
+
+    from softpad.sim import LabVariation, draw_uncertain
+
+    lab = LabVariation.of(draw_uncertain(seed))
+    v = lab.values
+    options = replace(
+        options,
+        position_sigma_m=v["placement_sigma_m"],
+        yaw_sigma_rad=v["placement_yaw_sigma_rad"],
+        sample_rate_hz=v["sample_rate_hz"],
+    )
+    physics = {
+        "tip_stiffness_n_m": v["pad_tip_stiffness_n_m"],
+        "friction": v["fingertip_friction"],
+        "grip_force_n": v["grip_force_n"],
+    }
+    return options, lab, physics

@@ -45,6 +45,13 @@ from softpad.sim._response import (
     packaged_response_path,
 )
 from softpad.sim._sensor import SensorBank, SensorParams
+from softpad.sim._uncertain import (
+    UNCERTAIN_PARAMETERS,
+    LabVariation,
+    UncertainParameter,
+    draw_uncertain,
+    nominal_uncertain,
+)
 from softpad.sim._world import GripperState, World
 
 __all__ = [
@@ -52,6 +59,7 @@ __all__ = [
     "DEFAULT_LINE_WIDTH_M",
     "GRAVITY_M_S2",
     "GRIPPER_MOUNTINGS",
+    "UNCERTAIN_PARAMETERS",
     "AnalyticCharacteristic",
     "AnalyticWorld",
     "ChamberBank",
@@ -59,6 +67,7 @@ __all__ = [
     "Disturbances",
     "GripperContacts",
     "GripperState",
+    "LabVariation",
     "ModuleCharacteristic",
     "ModuleResponse",
     "MujocoGripper",
@@ -76,13 +85,16 @@ __all__ = [
     "SensorParams",
     "SimGripper",
     "TabulatedCharacteristic",
+    "UncertainParameter",
     "World",
     "catalogue_to_json",
     "default_characteristic",
     "default_response",
+    "draw_uncertain",
     "fingertip_overlap",
     "get_object",
     "load_catalogue",
+    "nominal_uncertain",
     "object_footprint",
     "object_names",
     "packaged_response_path",

@@ -23,7 +23,7 @@ from softpad.sim._mujoco_arm import ARM_ACCELERATION_M_S2, KinematicArm
 from softpad.sim._mujoco_contacts import ContactSensing, GripperContacts
 from softpad.sim._mujoco_model import MujocoGripper, ObjectModel, PadPhysics, parking_position
 from softpad.sim._mujoco_scene import MujocoScene
-from softpad.sim._response import ModuleResponse, operating_pressure
+from softpad.sim._response import ModuleResponse, PadResponse, operating_pressure
 from softpad.sim._world import GripperState, PadWorld
 
 __all__ = ["ARM_ACCELERATION_M_S2", "GripperContacts", "MujocoWorld", "ObjectPose"]
@@ -91,7 +91,7 @@ class MujocoWorld(PadWorld):
         pad: PadPhysics | None = None,
         gripper: MujocoGripper | None = None,
         timestep_s: float = 2e-3,
-        response: ModuleResponse | None = None,
+        response: ModuleResponse | PadResponse | None = None,
     ) -> None:
         import mujoco
 

@@ -90,14 +90,30 @@ class PadResponse:
         Pad geometry (pitch, rows, columns).
     response
         Module response (the packaged FEM one by default).
+    seam_width_m
+        Bonded width between chambers instead of the response's, metres (an uncertain
+        parameter, :mod:`softpad.sim._uncertain`): the chambers shrink to the pitch less it and
+        the FEM response is scaled onto them, an approximation like a different pitch.
     """
 
-    def __init__(self, layout: PadLayout | None = None, response: ModuleResponse | None = None):
+    def __init__(
+        self,
+        layout: PadLayout | None = None,
+        response: ModuleResponse | None = None,
+        seam_width_m: float | None = None,
+    ):
         self.layout = layout or PadLayout()
         self.response = response or default_response()
         seam = float(self.response.meta.get("seam_width_m", 0.0))
         #: Pad pitch over the FEM module's pitch (1 for the default pad).
         self.scale = self.layout.pitch_m / (self.response.chamber_side_m + seam)
+        if seam_width_m is not None:
+            if not 0.0 <= seam_width_m < self.layout.pitch_m:
+                raise InputError(
+                    f"seam width must be within 0..{self.layout.pitch_m * 1e3:g} mm, got "
+                    f"{seam_width_m * 1e3:g} mm"
+                )
+            self.scale = (self.layout.pitch_m - seam_width_m) / self.response.chamber_side_m
 
     @property
     def chamber_side_m(self) -> float:

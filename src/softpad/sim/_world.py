@@ -143,9 +143,14 @@ class PadWorld:
         FEM module response (the packaged one by default); its chamber side fixes the seams.
     """
 
-    def __init__(self, layout: PadLayout | None, response: ModuleResponse | None) -> None:
+    def __init__(
+        self, layout: PadLayout | None, response: ModuleResponse | PadResponse | None
+    ) -> None:
         self._layout = layout or PadLayout()
-        self.response = PadResponse(self._layout, response)
+        # a PadResponse as it is (a seam of its own: softpad.sim._uncertain)
+        self.response = (
+            response if isinstance(response, PadResponse) else PadResponse(self._layout, response)
+        )
         self._time_s = 0.0
         self._probe: tuple[tuple[float, float], tuple[float, float], float, float] | None = None
         self._probe_loads = np.zeros(self._layout.n_modules)

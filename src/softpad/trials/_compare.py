@@ -129,7 +129,13 @@ def compare(
                 "objects": [{"name": n, **summarise(ts)} for n, ts in by_object.items()],
                 # every failed trial, to run it again alone (trial_seed of seed, object, trial)
                 "failed_trials": [
-                    {"object": t.object, "trial": t.trial, "seed": s, "cause": t.cause}
+                    {
+                        "object": t.object,
+                        "trial": t.trial,
+                        "seed": s,
+                        "cause": t.cause,
+                        "parameters": t.parameters,
+                    }
                     for s, t in zip(trial_seeds, results, strict=True)
                     if not t.success
                 ],
@@ -137,7 +143,12 @@ def compare(
                 "errored": errored_records(results),
             }
         )
-    return {"schema_version": softpad.SCHEMA_VERSION, "seeds": list(seeds), "combinations": combos}
+    return {
+        "schema_version": softpad.SCHEMA_VERSION,
+        "seeds": list(seeds),
+        "randomize": config.randomize,
+        "combinations": combos,
+    }
 
 
 def merge_comparisons(documents: Sequence[tuple[str, Any]]) -> dict[str, Any]:

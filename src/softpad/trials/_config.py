@@ -44,6 +44,11 @@ class TrialConfig:
     planner: str = "thesis"
     #: Contact detector by name (:data:`softpad.sensing.CONTACT_DETECTORS`).
     detector: str = "thesis"
+    #: Draw every uncertain input of the simulated lab (:data:`softpad.sim.UNCERTAIN_PARAMETERS`:
+    #: pad and fingertip physics, grip force, seam, sample rate, sensor noise, tubing,
+    #: placement noise, the charger's size and the can's mass distribution) from its range,
+    #: per trial, seeded by the trial's seed; False: every one at its nominal value.
+    randomize: bool = False
 
     def __post_init__(self) -> None:
         for name in ("position_sigma_m", "yaw_sigma_rad", "sample_rate_hz"):

@@ -113,10 +113,12 @@ class _Trial:
         mounting: str | None,
         truth: Any | None = None,
         gripper: Any | None = None,
+        lab: Any | None = None,
     ) -> None:
         from softpad.box import SafetyLimits, SimBox
         from softpad.harness import SimulatedRobot
-        from softpad.layout import GripperSpec
+        from softpad.layout import GripperSpec, PadLayout
+        from softpad.sim import PadResponse
         from softpad.sim._mujoco_model import MujocoGripper, parse_mounting
         from softpad.sim._mujoco_world import MujocoWorld
         from softpad.sim._sensor import SensorParams
@@ -126,13 +128,26 @@ class _Trial:
         self.placement = placement
         self.placed = _Placed(*placement)
         self.geometry = gripper or GripperSpec(*parse_mounting(mounting or spec.gripper))
-        self.gripper = MujocoGripper.from_spec(self.geometry)
-        self.world = MujocoWorld(gripper=self.gripper)
+        #: The drawn uncertain parameters (``config.randomize``), or None.
+        self.lab = lab
+        world: dict[str, Any] = {}
+        if lab is not None:
+            layout = PadLayout()
+            seam = lab.values["seam_width_m"]
+            world = dict(
+                pad=lab.pad_physics(layout.pitch_m),
+                response=PadResponse(layout, seam_width_m=seam),
+            )
+        physics = lab.gripper_physics() if lab is not None else {}
+        self.gripper = MujocoGripper.from_spec(self.geometry, **physics)
+        self.world = MujocoWorld(gripper=self.gripper, **world)
+        sensor = SensorParams() if lab is None else lab.sensor()
         self.box = SimBox(
             self.world,
             sample_rate_hz=config.sample_rate_hz,
             seed=seed % (2**31),
-            sensor=SensorParams() if config.noise else SensorParams.ideal(),
+            sensor=sensor if config.noise else SensorParams.ideal(),
+            pneumatics=None if lab is None else lab.pneumatics(),
             # between trials of a session the modules stay near p0 (1 kPa, under it)
             initial_pressure_pa=1.0e3 if config.inflated_start else 0.0,
         )
@@ -181,6 +196,28 @@ class TrialOverrides:
     gripper: Any | None = None
 
 
+def varied_lab(spec: Any, seed: int, config: TrialConfig) -> tuple[Any, TrialConfig, Any | None]:
+    """The object, trial configuration and :class:`softpad.sim.LabVariation` of one trial:
+    with ``config.randomize`` every uncertain parameter drawn from the trial's seed (the
+    placement noise and sample rate into the configuration, the charger's and the can's
+    unknowns into the object), else ``spec``, ``config`` and None."""
+    if not config.randomize:
+        return spec, config, None
+    from dataclasses import replace
+
+    from softpad.sim import LabVariation, draw_uncertain
+
+    lab = LabVariation.of(draw_uncertain(seed))
+    v = lab.values
+    config = replace(
+        config,
+        position_sigma_m=v["placement_sigma_m"],
+        yaw_sigma_rad=v["placement_yaw_sigma_rad"],
+        sample_rate_hz=v["sample_rate_hz"],
+    )
+    return lab.object(spec), config, lab
+
+
 def execute_trial(
     spec: Any,
     placement: tuple[float, float, float],
@@ -196,7 +233,8 @@ def execute_trial(
     from softpad.sensing import make_contact_detector
 
     o = overrides or TrialOverrides()
-    t = _Trial(spec, placement, seed, config, o.opening_m, o.mounting, o.truth, o.gripper)
+    spec, config, lab = varied_lab(spec, seed, config)
+    t = _Trial(spec, placement, seed, config, o.opening_m, o.mounting, o.truth, o.gripper, lab)
     log = RunLog({"object": spec.name, "seed": seed}) if config.record_trace else None
     mcap = _trial_recorder(t, seed)
     watcher = _TrialWatcher(t, Tee(log, mcap, o.recorder))
@@ -214,7 +252,12 @@ def execute_trial(
         place_objects=t.place,
     )
     base: dict[str, Any] = dict(
-        object=spec.name, trial=0, seed=seed, placement=placement, mounting=t.gripper.mounting
+        object=spec.name,
+        trial=0,
+        seed=seed,
+        placement=placement,
+        mounting=t.gripper.mounting,
+        parameters=None if lab is None else lab.to_dict(),
     )
     with t.box, mcap if mcap is not None else contextlib.nullcontext():
         try:

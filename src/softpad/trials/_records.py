@@ -109,6 +109,9 @@ class TrialResult:
     wall_time_s: float = 0.0
     #: Free text: what happened.
     detail: str = ""
+    #: The uncertain parameters drawn for this trial (``--randomize``, names of
+    #: :data:`softpad.sim.UNCERTAIN_PARAMETERS`), None when every one was at its nominal value.
+    parameters: dict[str, float] | None = None
 
     def __post_init__(self) -> None:
         if self.cause is not None and self.cause not in FAILURE_CAUSES:
@@ -144,6 +147,7 @@ class TrialResult:
             "sim_time_s": round(self.sim_time_s, 3),
             "wall_time_s": round(self.wall_time_s, 3),
             "detail": self.detail,
+            "parameters": self.parameters,
         }
 
 

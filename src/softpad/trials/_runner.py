@@ -109,11 +109,11 @@ def run_trial(
     -------
     The trial's result, and its :class:`softpad.record.RunLog` when ``config.record_trace``.
     """
-    from softpad.trials._loop import TrialOverrides, execute_trial
+    from softpad.trials._loop import TrialOverrides, execute_trial, varied_lab
 
     config = config or TrialConfig()
-    if placement is None:
-        placement = perturbed_placement(spec, seed, config)
+    if placement is None:  # with the drawn placement noise under config.randomize
+        placement = perturbed_placement(spec, seed, varied_lab(spec, seed, config)[1])
     t0 = time.perf_counter()
     o = TrialOverrides(plan_override, opening_m, mounting, truth, recorder, gripper)
     result, trace = execute_trial(spec, placement, seed, config, o)

@@ -1,0 +1,111 @@
+"""The simulator's uncertain inputs: one list with ranges and sources, seeded draws that stay in
+their ranges and reach the simulated lab (issue 33)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from softpad.errors import InputError
+from softpad.sim import (
+    UNCERTAIN_PARAMETERS,
+    LabVariation,
+    draw_uncertain,
+    get_object,
+    nominal_uncertain,
+)
+
+N_SEEDS = 400
+
+
+def test_every_parameter_has_a_range_and_a_source() -> None:
+    names = [p.name for p in UNCERTAIN_PARAMETERS]
+    assert len(set(names)) == len(names)
+    for p in UNCERTAIN_PARAMETERS:
+        assert p.low < p.high, p.name
+        assert len(p.source) > 30 and p.sets, p.name
+        # a nominal outside its sourced range must say so
+        if not p.low <= p.nominal <= p.high:
+            assert "nominal" in p.note, p.name
+    # the figures the issue names are in the list
+    for name in ("pad_tip_stiffness_n_m", "fingertip_friction", "seam_width_m", "sample_rate_hz"):
+        assert name in names
+    # the pad stiffness range is the project's FEM's (docs/fem.md: 96-187 N/m near 1 kPa)
+    k = {p.name: p for p in UNCERTAIN_PARAMETERS}["pad_tip_stiffness_n_m"]
+    assert (k.low, k.high) == (96.0, 187.0)
+
+
+def test_draws_stay_in_range_are_reproducible_and_spread_uniformly() -> None:
+    draws = [draw_uncertain(s) for s in range(N_SEEDS)]
+    assert draw_uncertain(7) == draw_uncertain(7)
+    for p in UNCERTAIN_PARAMETERS:
+        x = np.array([d[p.name] for d in draws])
+        assert np.all((p.low <= x) & (x <= p.high)), p.name
+        u = (x - p.low) / (p.high - p.low)
+        # uniform on [0, 1]: mean 0.5 with standard error 1/sqrt(12 N) = 0.0144; 5 sigma
+        assert abs(u.mean() - 0.5) < 5 / np.sqrt(12 * N_SEEDS), p.name
+        assert len(set(x.tolist())) == N_SEEDS, p.name  # every seed draws its own value
+    # parameters are drawn independently of each other (|r| under 5 / sqrt(N) = 0.25)
+    a = np.array([[d[p.name] for p in UNCERTAIN_PARAMETERS] for d in draws])
+    r = np.corrcoef(a.T)
+    assert np.max(np.abs(r - np.eye(len(r)))) < 5 / np.sqrt(N_SEEDS)
+
+
+def test_values_are_checked() -> None:
+    with pytest.raises(InputError, match="unknown uncertain parameter"):
+        LabVariation.of({"nope": 1.0})
+    with pytest.raises(InputError, match=r"grip_force_n must be within 10\.\.35"):
+        LabVariation.of({"grip_force_n": 90.0})
+    with pytest.raises(InputError, match="integer >= 0"):
+        draw_uncertain(-1)
+    assert LabVariation.of(None).values == nominal_uncertain()
+
+
+def test_unknown_object_figures_vary_and_keep_the_thesis_mass() -> None:
+    lab = LabVariation.of({"charger_brick_scale": 0.9, "cylinder_heavy_x_m": -0.02})
+    charger, can = get_object("charger"), get_object("cylinder")
+    c2, can2 = lab.object(charger), lab.object(can)
+    assert c2.parts[0].size_m[0] == pytest.approx(0.9 * charger.parts[0].size_m[0])
+    assert c2.mass_kg == charger.mass_kg  # Table 6.1's mass stays
+    heavy = next(p for p in can2.parts if p.name == "heavy part")
+    assert heavy.pos_m[0] == pytest.approx(-0.02)
+    assert lab.object(get_object("object-1")) == get_object("object-1")
+
+
+def test_drawn_values_reach_the_simulated_lab() -> None:
+    """The drawn stiffness, frictions, grip force and seam appear in the built MuJoCo model;
+    rate, sensor noise and tubing in the simulated box."""
+    from softpad.trials import TrialConfig
+    from softpad.trials._loop import _Trial, varied_lab
+
+    spec = get_object("object-1")
+    config = TrialConfig(randomize=True)
+    spec2, cfg, lab = varied_lab(spec, 123, config)
+    assert lab is not None and lab.values == draw_uncertain(123)
+    v = lab.values
+    assert cfg.sample_rate_hz == v["sample_rate_hz"]
+    assert cfg.position_sigma_m == v["placement_sigma_m"]
+    t = _Trial(spec2, (0.1, 0.045, 0.0), 123, cfg, None, None, lab=lab)
+    model = t.world.scene.model
+    stiff = [float(model.jnt_stiffness[j]) for j in range(model.njnt)]
+    assert any(s == pytest.approx(v["pad_tip_stiffness_n_m"], rel=1e-5) for s in stiff)
+    frictions = {round(float(f), 5) for f in model.geom_friction[:, 0]}
+    assert round(v["fingertip_friction"], 5) in frictions
+    assert round(v["pad_friction"], 5) in frictions
+    assert model.actuator_forcerange[:, 1] == pytest.approx(v["grip_force_n"], rel=1e-5)
+    assert t.world.response.seam_width_m == pytest.approx(v["seam_width_m"], abs=1e-12)
+    assert t.box.sample_rate_hz == pytest.approx(v["sample_rate_hz"])
+    assert t.box.pneumatics.tubing_volume_m3 == v["tubing_volume_m3"]
+    assert t.box.sensor_params.noise_std_pa == pytest.approx(8.0 * v["sensor_noise_scale"])
+
+
+def test_a_randomized_trial_reports_its_draws() -> None:
+    from softpad.trials import TrialConfig, run_trial, trial_execution_params
+
+    cfg = TrialConfig(trial_execution_params(hold_s=0.2), randomize=True)
+    result, _ = run_trial(get_object("object-1"), seed=5, config=cfg)
+    assert result.parameters is not None
+    assert result.parameters == LabVariation.of(draw_uncertain(5)).to_dict()
+    assert result.to_dict()["parameters"] == result.parameters
+    plain, _ = run_trial(get_object("object-1"), seed=5, config=TrialConfig(cfg.execution))
+    assert plain.parameters is None
