@@ -121,6 +121,8 @@ def compare(
             {
                 "planner": planner,
                 "detector": detector,
+                # uncertain inputs drawn per trial (each failed trial carries its values)
+                "randomize": config.randomize,
                 **summarise(results),
                 "false_alarms_per_hour": idle_false_alarms_per_hour([detector], idle_hours)[
                     detector
@@ -143,12 +145,7 @@ def compare(
                 "errored": errored_records(results),
             }
         )
-    return {
-        "schema_version": softpad.SCHEMA_VERSION,
-        "seeds": list(seeds),
-        "randomize": config.randomize,
-        "combinations": combos,
-    }
+    return {"schema_version": softpad.SCHEMA_VERSION, "seeds": list(seeds), "combinations": combos}
 
 
 def merge_comparisons(documents: Sequence[tuple[str, Any]]) -> dict[str, Any]:
