@@ -50,6 +50,23 @@ REFERENCE_READS = 10
 MAX_PRESSURE_PA = 3000.0
 
 # --- Sensing (Sections 6.2.1.2, 6.2.2, 6.3) --------------------------------------------------
+#: Ambient (atmospheric) pressure added to the box's gauge readings where a message needs an
+#: absolute pressure (``sensor_msgs/FluidPressure``), Pa. Not in the seed: the ISO 2533 standard
+#: atmosphere at sea level; an installation sets its own (``box.ambient_pressure_kpa``).
+AMBIENT_PRESSURE_PA = 101325.0
+#: White noise of one pressure sample, Pa rms. Not in the seed (it says only that the data "look
+#: noisy mostly because of the pressure sensors performance", Fig. 6.8); the simulator's sensor
+#: model (softpad.sim, docs/box-and-simulator.md) uses it.
+SENSOR_NOISE_STD_PA = 8.0
+#: Stationary rms of the sensor's slow drift, Pa (the same sensor model).
+SENSOR_DRIFT_STD_PA = 3.0
+#: Resolution of the box's converter, Pa: a 12-bit converter over a 10 kPa span (the same model).
+SENSOR_QUANTIZATION_PA = 10e3 / 4096
+#: Variance of one pressure reading, Pa^2: white noise, drift and quantisation of the sensor
+#: model (published as ``FluidPressure.variance``).
+SENSOR_VARIANCE_PA2 = (
+    SENSOR_NOISE_STD_PA**2 + SENSOR_DRIFT_STD_PA**2 + SENSOR_QUANTIZATION_PA**2 / 12
+)
 #: t_o, object-detection threshold on the increment, Pa (0.05 kPa detects a 12.6 g Duplo brick).
 OBJECT_THRESHOLD_PA = 50.0
 #: t_g, gripper-contact threshold on the filtered increment, Pa (0.09 kPa).

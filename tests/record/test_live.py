@@ -14,17 +14,21 @@ import pytest
 pytest.importorskip("foxglove")
 websockets = pytest.importorskip("websockets")
 
-#: Subprotocol of the Foxglove WebSocket protocol.
-SUBPROTOCOL = "foxglove.sdk.v1"
+#: Subprotocols of the Foxglove WebSocket protocol: the classic one (Foxglove Studio before the
+#: SDK, Lichtblick, @foxglove/ws-protocol clients) and the Foxglove SDK's (today's app).
+SUBPROTOCOLS = ("foxglove.websocket.v1", "foxglove.sdk.v1")
 
 
-async def _receive_pressures(url: str, topic: str, n: int) -> tuple[dict, list[dict]]:
+async def _receive_pressures(
+    url: str, topic: str, n: int, subprotocol: str
+) -> tuple[dict, dict[str, dict], list[dict]]:
     from websockets.asyncio.client import connect
 
-    async with connect(url, subprotocols=[SUBPROTOCOL], open_timeout=30) as ws:
+    async with connect(url, subprotocols=[subprotocol], open_timeout=30) as ws:
+        assert ws.subprotocol == subprotocol
         channels: dict[str, dict] = {}
         info: dict = {}
-        while topic not in channels:
+        while topic not in channels or "/tf_static" not in channels:
             msg = json.loads(await asyncio.wait_for(ws.recv(), 30))
             if msg["op"] == "serverInfo":
                 info = msg
@@ -39,10 +43,11 @@ async def _receive_pressures(url: str, topic: str, n: int) -> tuple[dict, list[d
                 sub_id, _log_time = struct.unpack_from("<IQ", data, 1)
                 assert sub_id == 7
                 received.append(json.loads(data[13:]))
-        return info, received
+        return info, channels, received
 
 
-def test_monitor_serves_module_pressures_to_a_websocket_client() -> None:
+@pytest.mark.parametrize("subprotocol", SUBPROTOCOLS)
+def test_monitor_serves_module_pressures_to_a_websocket_client(subprotocol: str) -> None:
     url_box = "sim://?inflated_kpa=1.1&noise=0"
     entry = "import sys; from softpad.cli.main import main; sys.exit(main(sys.argv[1:]))"
     argv = ["-c", entry, "box", "monitor", "--foxglove", "--port", "0"]
@@ -54,17 +59,26 @@ def test_monitor_serves_module_pressures_to_a_websocket_client() -> None:
         line = child.stdout.readline()
         assert line.startswith("foxglove: ws://127.0.0.1:"), line
         url = line.split()[1]
-        info, msgs = asyncio.run(_receive_pressures(url, "/softpad/module_3/pressure", 5))
+        topic = "/softpad/module_3/pressure"
+        info, channels, msgs = asyncio.run(_receive_pressures(url, topic, 5, subprotocol))
     finally:
         child.terminate()
         child.wait(timeout=30)
     assert info["name"] == "softpad"
     assert [m["header"]["frame_id"] for m in msgs] == ["softpad_module_3"] * 5
-    # inflated to 1.1 kPa without noise: every reading is p0 within 1 Pa
+    # only the 2 x 3 pad's modules, not the box's channels 7 and 8
+    modules = sorted(t for t in channels if t.startswith("/softpad/module_"))
+    assert modules == [f"/softpad/module_{k}/pressure" for k in range(1, 7)]
+    schema = json.loads(channels[topic]["schema"])
+    assert set(schema["properties"]["header"]["properties"]["stamp"]["properties"]) == {
+        "sec",
+        "nanosec",
+    }  # ROS 2's field names
+    # inflated to 1.1 kPa without noise: every reading is p0 within 1 Pa, absolute (FluidPressure)
     for m in msgs:
-        assert m["fluid_pressure"] == pytest.approx(1100.0, abs=1.0)
-    stamps = [m["header"]["stamp"]["sec"] + 1e-9 * m["header"]["stamp"]["nsec"] for m in msgs]
-    assert np.all(np.diff(stamps) > 0)
+        assert m["fluid_pressure"] == pytest.approx(101325.0 + 1100.0, abs=1.0)
+    stamps = [m["header"]["stamp"]["sec"] + 1e-9 * m["header"]["stamp"]["nanosec"] for m in msgs]
+    assert np.all(np.diff(stamps) > 0) and stamps[0] > 1.7e9  # the recorded clock (UNIX)
 
 
 def test_monitor_without_foxglove_prints_a_live_line(capsys) -> None:

@@ -152,7 +152,9 @@ def test_node_publishes_pressures_diagnostics_and_the_plan(procs: _Procs) -> Non
     assert all(levels[names.index(f"softpad: channel {k}")] == 0 for k in range(1, 7))
     pressure = _echo(procs, "/softpad/module_1/pressure")
     assert 'frame_id: "softpad_module_1"' in pressure
-    assert 1000.0 < _floats(pressure, "fluid_pressure")[0] < 1300.0  # p0 = 1.1 kPa, Pa
+    # absolute: p0 = 1.1 kPa gauge over the standard atmosphere (101.325 kPa), Pa
+    assert 102325.0 < _floats(pressure, "fluid_pressure")[0] < 102625.0
+    assert _floats(pressure, "variance")[0] == pytest.approx(73.5, abs=0.1)  # sensor model
     r = procs.run("rosservice", "call", "/softpad/plan")
     assert "success: True" in r.stdout, r.stdout + r.stderr
     assert "n3-row" in r.stdout

@@ -259,6 +259,10 @@ def run(args: argparse.Namespace) -> int:
             "run", box, args.box, names, params, gripper=gripper,
             planner=args.planner, contact_detector=args.detector,
         )  # fmt: skip
+        if args.config:  # FluidPressure is absolute: the site's ambient pressure
+            from softpad.config import load_installation
+
+            meta["ambient_pressure_pa"] = load_installation(args.config).box.ambient_pressure_pa
         recorder = open_recorder(str(record_path) if record_path else None, box, meta, args.force)
         live = _live(args.foxglove, box, args.json)
         try:

@@ -57,12 +57,15 @@ class ChannelWiring:
 
 @dataclass(frozen=True, slots=True)
 class BoxSettings:
-    """The box's wiring: channels (1-based, in order), the supply sensor, the sampling rate."""
+    """The box's wiring: channels (1-based, in order), the supply sensor, the sampling rate,
+    and the ambient pressure of the site (added to gauge readings where a message is absolute,
+    ``sensor_msgs/FluidPressure``), Pa."""
 
     channels: tuple[ChannelWiring, ...] = ()
     supply: ChannelWiring | None = None
     sample_rate_hz: float = 1000.0
     iio_root: str = "/sys/bus/iio/devices"
+    ambient_pressure_pa: float = thesis.AMBIENT_PRESSURE_PA
 
 
 @dataclass(frozen=True, slots=True)
@@ -223,7 +226,7 @@ def _wiring(t: dict[str, Any], where: str, channel: int, valves: bool) -> Channe
 
 def _box(raw: dict[str, Any]) -> BoxSettings:
     t = _table(raw, "box")
-    _unknown(t, {"channel", "supply", "sample_rate_hz", "iio_root"}, "box")
+    _unknown(t, {"channel", "supply", "sample_rate_hz", "iio_root", "ambient_pressure_kpa"}, "box")
     chans = t.get("channel", [])
     if not isinstance(chans, list) or not all(isinstance(c, dict) for c in chans):
         raise ConfigError(
@@ -243,6 +246,9 @@ def _box(raw: dict[str, Any]) -> BoxSettings:
             seen[(w.gpiochip, line)] = here
     supply = t.get("supply")
     rate = _get(t, "sample_rate_hz", "box", float, 1000.0)
+    ambient = _get(t, "ambient_pressure_kpa", "box", float, thesis.AMBIENT_PRESSURE_PA / 1e3)
+    # the lowest and highest sea-level pressures on record, with room for a site up a mountain
+    ambient = _range("box.ambient_pressure_kpa", ambient, 50.0, 110.0, " kPa")
     return BoxSettings(
         channels=wiring,
         supply=None
@@ -250,6 +256,7 @@ def _box(raw: dict[str, Any]) -> BoxSettings:
         else _wiring(_table(t, "supply", "box"), "box.supply", 0, False),
         sample_rate_hz=_range("box.sample_rate_hz", rate, 1.0, 10000.0, " Hz"),
         iio_root=_get(t, "iio_root", "box", str, "/sys/bus/iio/devices"),
+        ambient_pressure_pa=ambient * 1e3,
     )
 
 
@@ -438,6 +445,7 @@ def describe(inst: Installation) -> list[str]:
     out = [f"# {inst.source}"]
     out.append(f"box.sample_rate_hz = {box.sample_rate_hz:g} Hz")
     out.append(f"box.iio_root = {box.iio_root}")
+    out.append(f"box.ambient_pressure_kpa = {box.ambient_pressure_pa / 1e3:g} kPa")
     for w in (*box.channels, *([box.supply] if box.supply else [])):
         name = "box.supply" if w.channel == 0 else f"box.channel.{w.channel}"
         valves = (

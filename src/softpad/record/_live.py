@@ -3,34 +3,49 @@
 :class:`FoxgloveLive` is a ``softpad.control.Recorder`` (so it rides along any run through
 :class:`softpad.record.Tee`) that publishes, to any number of connected viewers:
 
-- ``/softpad/module_K/pressure``: each channel's pressure (JSON shaped like
-  ``sensor_msgs/msg/FluidPressure``: ``header.stamp`` = box time, ``fluid_pressure`` in Pa);
+- ``/softpad/module_K/pressure`` for each module of the pad: JSON shaped like ROS 2's
+  ``sensor_msgs/msg/FluidPressure`` (``header.stamp.sec/nanosec`` on the recorded clock,
+  ``fluid_pressure`` absolute in Pa, ``variance``), as in recordings;
+- ``/softpad/pressures``: the gauge readings, Pa (modules, then the supply);
 - ``/softpad/supply/pressure``; ``/softpad/events`` (kind + data, SI); ``/softpad/plan``;
   ``/softpad/robot/pose`` (when a robot state source is given);
+- ``/tf_static``: ``foxglove.FrameTransforms`` base -> softpad -> softpad_module_K;
 - ``/softpad/pad``: a ``foxglove.SceneUpdate`` picture of the pad, one box per module whose
   height follows its pressure, and the planned centre of grasp.
 
-The server binds 127.0.0.1 only (SoftPad's network rule).
+Clients: the Foxglove SDK's server speaks the subprotocol ``foxglove.sdk.v1`` only (today's
+Foxglove app); older Foxglove Studio, Lichtblick and other clients of the classic
+``foxglove.websocket.v1`` get HTTP 400 from it. So the public port is a small relay
+(``websockets``) that accepts either subprotocol and passes every frame, both ways, to the SDK's
+server on a private loopback port (the two protocols share their messages). Both bind
+127.0.0.1 only (SoftPad's network rule).
 """
 
 from __future__ import annotations
 
+import asyncio
 import math
+import threading
 import time
 from collections.abc import Callable
 from typing import Any
 
 from softpad import thesis
 from softpad.box import PressureFrame
+from softpad.errors import InputError
 from softpad.record._closing import ClosedOnExit
 from softpad.record._mcap import jsonable
 from softpad.record._schemas import (
     EVENT_TOPIC,
+    GAUGE_LABEL,
+    GAUGE_TOPIC,
     PAD_FRAME,
     ROBOT_POSE_TOPIC,
     SUPPLY_TOPIC,
+    TF_STATIC_TOPIC,
     module_frame,
     module_topic,
+    static_frames,
 )
 
 #: Host the server binds (loopback only).
@@ -40,8 +55,11 @@ HOST = "127.0.0.1"
 PAD_TOPIC = "/softpad/pad"
 LIVE_PLAN_TOPIC = "/softpad/plan"
 
-#: Smallest wall-time spacing of pad pictures, seconds (10 Hz).
+#: Smallest wall-time spacing of pad pictures (and of the static transforms), seconds (10 Hz).
 PAD_PERIOD_S = 0.1
+
+#: WebSocket subprotocols the public port accepts: the classic protocol and the SDK's.
+SUBPROTOCOLS = ("foxglove.websocket.v1", "foxglove.sdk.v1")
 
 _PRESSURE_SCHEMA = {
     "type": "object",
@@ -52,21 +70,96 @@ _PRESSURE_SCHEMA = {
             "properties": {
                 "stamp": {
                     "type": "object",
-                    "properties": {"sec": {"type": "integer"}, "nsec": {"type": "integer"}},
+                    "properties": {"sec": {"type": "integer"}, "nanosec": {"type": "integer"}},
                 },
                 "frame_id": {"type": "string"},
             },
         },
-        "fluid_pressure": {"type": "number", "description": "gauge pressure, Pa"},
-        "variance": {"type": "number"},
+        "fluid_pressure": {"type": "number", "description": "absolute pressure, Pa"},
+        "variance": {"type": "number", "description": "Pa^2"},
+    },
+}
+_GAUGE_SCHEMA = {
+    "type": "object",
+    "title": "std_msgs/msg/Float64MultiArray",
+    "properties": {
+        "layout": {"type": "object"},
+        "data": {"type": "array", "items": {"type": "number"}, "description": "gauge, Pa"},
     },
 }
 _ANY_SCHEMA = {"type": "object"}
 
 
-def _stamp(t_s: float) -> dict[str, int]:
-    sec = math.floor(t_s)
-    return {"sec": int(sec), "nsec": min(round((t_s - sec) * 1e9), 999_999_999)}
+def _stamp(ns: int) -> dict[str, int]:
+    sec, nanosec = divmod(int(ns), 1_000_000_000)
+    return {"sec": sec, "nanosec": nanosec}
+
+
+class _Relay:
+    """A WebSocket relay on 127.0.0.1:``port`` that accepts :data:`SUBPROTOCOLS` and passes
+    every frame both ways to the SDK's server at ``upstream`` (its own thread and event loop)."""
+
+    def __init__(self, port: int, upstream: str) -> None:
+        self.upstream = upstream
+        self.loop = asyncio.new_event_loop()
+        self._ready = threading.Event()
+        self._error: BaseException | None = None
+        self._stop: asyncio.Event | None = None
+        self.port = 0
+        self.thread = threading.Thread(target=self._run, args=(port,), daemon=True)
+        self.thread.start()
+        self._ready.wait(30.0)
+        if self._error is not None:
+            raise InputError(f"cannot serve Foxglove on 127.0.0.1:{port}: {self._error}")
+
+    def _run(self, port: int) -> None:
+        asyncio.set_event_loop(self.loop)
+        try:
+            self.loop.run_until_complete(self._serve(port))
+        except BaseException as exc:  # reported by __init__ (port in use, ...)
+            self._error = exc
+            self._ready.set()
+        finally:
+            self.loop.close()
+
+    async def _serve(self, port: int) -> None:
+        from websockets.asyncio.server import serve
+        from websockets.typing import Subprotocol
+
+        protocols = [Subprotocol(p) for p in SUBPROTOCOLS]
+        self._stop = asyncio.Event()
+        async with serve(self._client, HOST, port, subprotocols=protocols, max_size=None) as srv:
+            self.port = int(next(iter(srv.sockets)).getsockname()[1])
+            self._ready.set()
+            await self._stop.wait()
+
+    async def _client(self, client: Any) -> None:
+        from websockets.asyncio.client import connect
+        from websockets.exceptions import ConnectionClosed
+        from websockets.typing import Subprotocol
+
+        sdk = [Subprotocol("foxglove.sdk.v1")]
+        async with connect(self.upstream, subprotocols=sdk, max_size=None) as server:
+
+            async def pump(src: Any, dst: Any) -> None:
+                try:
+                    async for frame in src:
+                        await dst.send(frame)
+                except ConnectionClosed:
+                    pass
+
+            tasks = [
+                asyncio.ensure_future(pump(client, server)),
+                asyncio.ensure_future(pump(server, client)),
+            ]
+            await asyncio.wait(tasks, return_when=asyncio.FIRST_COMPLETED)
+            for t in tasks:
+                t.cancel()
+
+    def close(self) -> None:
+        if self._stop is not None and self.loop.is_running():
+            self.loop.call_soon_threadsafe(self._stop.set)
+        self.thread.join(10.0)
 
 
 class FoxgloveLive(ClosedOnExit):
@@ -77,7 +170,11 @@ class FoxgloveLive(ClosedOnExit):
     port
         TCP port on 127.0.0.1 (0: a free one, see :attr:`port`).
     layout
-        Pad layout for the pad picture (default the 2 x 3 prototype).
+        Pad layout (default the 2 x 3 prototype): its modules are published, and pictured.
+    pad
+        Pose of the pad in the base frame (``/tf_static``), default the identity.
+    ambient_pa
+        Ambient pressure added to gauge readings in ``FluidPressure``, Pa.
     robot_state
         Optional source of the measured robot state (``x_m, y_m, z_m, yaw_rad``).
     name
@@ -90,15 +187,25 @@ class FoxgloveLive(ClosedOnExit):
         layout: Any = None,
         robot_state: Callable[[], Any] | None = None,
         name: str = "softpad",
+        pad: Any = None,
+        ambient_pa: float = thesis.AMBIENT_PRESSURE_PA,
     ) -> None:
         import foxglove
 
-        from softpad.layout import parse_layout
+        from softpad.layout import PadPose, parse_layout
 
         self._fg = foxglove
         self.layout = layout or parse_layout("2x3")
+        self.pad = pad or PadPose()
+        self.ambient_pa = float(ambient_pa)
         self._ctx = foxglove.Context()
-        self.server = foxglove.start_server(name=name, host=HOST, port=port, context=self._ctx)
+        self.server = foxglove.start_server(name=name, host=HOST, port=0, context=self._ctx)
+        try:
+            self._relay = _Relay(port, f"ws://{HOST}:{self.server.port}")
+        except BaseException:
+            self.server.stop()
+            raise
+        self._offset_ns: int | None = None
         self._channels: dict[str, Any] = {}
         self._robot_state = robot_state
         self._last_pad = -math.inf
@@ -108,8 +215,8 @@ class FoxgloveLive(ClosedOnExit):
 
     @property
     def port(self) -> int:
-        """Port the server listens on."""
-        return int(self.server.port)
+        """Port viewers connect to (either subprotocol)."""
+        return self._relay.port
 
     @property
     def url(self) -> str:
@@ -122,19 +229,37 @@ class FoxgloveLive(ClosedOnExit):
             ch = self._channels[topic] = self._fg.Channel(topic, schema=schema, context=self._ctx)
         return ch
 
+    def _stamp(self, t_s: float) -> dict[str, int]:
+        """Box time on the recorded clock (the wall clock at the first frame), as a stamp."""
+        if self._offset_ns is None:
+            self._offset_ns = time.time_ns() - round(t_s * 1e9)
+        return _stamp(self._offset_ns + round(t_s * 1e9))
+
+    def _pressure(self, stamp: dict[str, int], frame_id: str, gauge_pa: float) -> dict[str, Any]:
+        p = float(gauge_pa) + self.ambient_pa
+        return {
+            "header": {"stamp": stamp, "frame_id": frame_id},
+            "fluid_pressure": p if math.isfinite(p) else None,
+            "variance": thesis.SENSOR_VARIANCE_PA2,
+        }
+
     def frame(self, frame: PressureFrame, phase: str) -> None:
-        """Publish one frame (every channel, the supply, the pad picture at most at 10 Hz)."""
+        """Publish one frame (each module of the pad, the supply, the gauge readings; the pad
+        picture and the static transforms at most at 10 Hz)."""
         if self.closed:
             return
         now = time.time_ns()
-        stamp = _stamp(frame.t_s)
-        for k, p in enumerate(frame.pressures_pa, start=1):
-            msg: dict[str, Any] = {"header": {"stamp": stamp, "frame_id": module_frame(k)}}
-            msg.update(fluid_pressure=float(p) if math.isfinite(p) else None, variance=0.0)
+        stamp = self._stamp(frame.t_s)
+        gauge = [float(p) for p in frame.pressures_pa[: self.layout.n_modules]]
+        for k, p in enumerate(gauge, start=1):
+            msg = self._pressure(stamp, module_frame(k), p)
             self._channel(module_topic(k), _PRESSURE_SCHEMA).log(msg, log_time=now)
-        supply: dict[str, Any] = {"header": {"stamp": stamp, "frame_id": "softpad_supply"}}
-        supply.update(fluid_pressure=float(frame.supply_pa), variance=0.0)
+        supply = self._pressure(stamp, PAD_FRAME, frame.supply_pa)
         self._channel(SUPPLY_TOPIC, _PRESSURE_SCHEMA).log(supply, log_time=now)
+        data = [v if math.isfinite(v) else None for v in [*gauge, float(frame.supply_pa)]]
+        dim = {"label": GAUGE_LABEL, "size": len(data), "stride": len(data)}
+        array = {"layout": {"dim": [dim], "data_offset": 0}, "data": data}
+        self._channel(GAUGE_TOPIC, _GAUGE_SCHEMA).log(array, log_time=now)
         if self._robot_state is not None:
             s = self._robot_state()
             pose = {"x_m": s.x_m, "y_m": s.y_m, "z_m": s.z_m, "yaw_rad": s.yaw_rad, "phase": phase}
@@ -142,6 +267,7 @@ class FoxgloveLive(ClosedOnExit):
         if (now * 1e-9) - self._last_pad >= PAD_PERIOD_S:
             self._last_pad = now * 1e-9
             self._pad_picture(frame, now)
+            self._transforms(now)
 
     def event(self, t_s: float, kind: str, **data: Any) -> None:
         """Publish an event (and the plan on its own topic)."""
@@ -149,7 +275,7 @@ class FoxgloveLive(ClosedOnExit):
             return
         now = time.time_ns()
         data = jsonable(data)
-        msg = {"stamp": _stamp(t_s), "kind": kind, "data": data}
+        msg = {"stamp": self._stamp(t_s), "kind": kind, "data": data}
         self._channel(EVENT_TOPIC).log(msg, log_time=now)
         if kind == "plan":
             self._channel(LIVE_PLAN_TOPIC).log(msg, log_time=now)
@@ -201,6 +327,30 @@ class FoxgloveLive(ClosedOnExit):
         entity = SceneEntity(frame_id=PAD_FRAME, id="pad", cubes=cubes, spheres=spheres)
         self._scene_channel().log(SceneUpdate(entities=[entity]), log_time=now_ns)
 
+    def _transforms(self, now_ns: int) -> None:
+        """``/tf_static`` as ``foxglove.FrameTransforms`` (repeated: viewers join any time)."""
+        from foxglove.messages import FrameTransform, FrameTransforms, Quaternion, Vector3
+
+        out = []
+        for parent, child, (x, y, z, yaw) in static_frames(self.layout, self.pad):
+            q = Quaternion(x=0, y=0, z=math.sin(yaw / 2), w=math.cos(yaw / 2))
+            out.append(
+                FrameTransform(
+                    parent_frame_id=parent,
+                    child_frame_id=child,
+                    translation=Vector3(x=x, y=y, z=z),
+                    rotation=q,
+                )
+            )
+        ch = self._channels.get(TF_STATIC_TOPIC)
+        if ch is None:
+            from foxglove.channels import FrameTransformsChannel
+
+            ch = self._channels[TF_STATIC_TOPIC] = FrameTransformsChannel(
+                TF_STATIC_TOPIC, context=self._ctx
+            )
+        ch.log(FrameTransforms(transforms=out), log_time=now_ns)
+
     def _scene_channel(self) -> Any:
         ch = self._channels.get(PAD_TOPIC)
         if ch is None:
@@ -213,4 +363,5 @@ class FoxgloveLive(ClosedOnExit):
         """Stop the server. Idempotent."""
         if not self.closed:
             self.closed = True
+            self._relay.close()
             self.server.stop()

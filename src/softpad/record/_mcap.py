@@ -2,8 +2,17 @@
 
 The file is a rosbag2-compatible MCAP (profile ``ros2``, CDR, message definitions embedded)
 written with ``mcap`` and ``mcap-ros2-support``, so ``ros2 bag info``, Foxglove, PlotJuggler and
-``rosbags`` open it without SoftPad. Every message carries two clocks: the header stamp is the
-box's time (:attr:`PressureFrame.t_s`), the MCAP ``log_time`` is the wall clock (UNIX ns).
+``rosbags`` open it without SoftPad. Header stamps and the MCAP ``log_time`` are both on the
+recorded clock: the box's time (:attr:`PressureFrame.t_s`) mapped onto the wall clock at the
+run's start (UNIX ns; the offset is the ``softpad_clock`` metadata record), so a simulated run
+that lasted 27.8 s of box time spans 27.8 s on playback however fast it was computed.
+
+Pressures: ``sensor_msgs/msg/FluidPressure`` is absolute (its definition), so each module's
+message carries the gauge reading plus the ambient pressure (the installation's, default the
+standard atmosphere) and the sensor model's variance; the gauge readings themselves are on
+``/softpad/pressures`` (Pa, modules then the supply). Only the pad's modules are recorded
+(a 6-module pad on an 8-channel box: 6 topics), with ``/tf_static`` placing each
+``softpad_module_K`` on the pad ``softpad`` in ``base``.
 
 Crash safety: the writer closes its chunk and flushes the file with the first message written
 after :data:`FLUSH_PERIOD_S` of wall time since the last flush, so a ``kill -9`` loses at most
@@ -22,8 +31,10 @@ from typing import Any
 
 import numpy as np
 
+from softpad import thesis
 from softpad.box import PressureFrame
 from softpad.errors import InputError
+from softpad.layout import PadLayout, PadPose, parse_layout
 from softpad.record import _schemas as S
 from softpad.record._closing import ClosedOnExit
 
@@ -37,13 +48,9 @@ CHUNK_SIZE = 32 * 1024
 ROBOT_POSE_PERIOD_S = 0.05
 
 
-def _stamp(t_s: float) -> dict[str, int]:
-    sec = math.floor(t_s)
-    return {"sec": int(sec), "nanosec": min(round((t_s - sec) * 1e9), 999_999_999)}
-
-
-def _header(t_s: float, frame_id: str) -> dict[str, Any]:
-    return {"stamp": _stamp(t_s), "frame_id": frame_id}
+def _stamp_ns(ns: int) -> dict[str, int]:
+    sec, nanosec = divmod(int(ns), 1_000_000_000)
+    return {"sec": sec, "nanosec": nanosec}
 
 
 def _pose(x: float, y: float, z: float, yaw: float) -> dict[str, Any]:
@@ -106,6 +113,16 @@ class McapRecorder(ClosedOnExit):
         :data:`ROBOT_POSE_PERIOD_S` of box time.
     flush_period_s
         Longest wall time between flushes, seconds.
+    layout
+        The pad (``PadLayout`` or ``"RxC"``); default the metadata's ``layout``, else 2 x 3.
+        Only its modules are recorded.
+    pad
+        Pose of the pad in the base frame (``/tf_static``); default the identity.
+    ambient_pa
+        Ambient pressure added to gauge readings in ``FluidPressure``, Pa; default the
+        metadata's ``ambient_pressure_pa``, else :data:`softpad.thesis.AMBIENT_PRESSURE_PA`.
+    variance_pa2
+        ``FluidPressure.variance``, Pa^2 (default the sensor model's).
 
     Notes
     -----
@@ -122,10 +139,27 @@ class McapRecorder(ClosedOnExit):
         valves: Callable[[], Sequence[Any]] | None = None,
         robot_state: Callable[[], Any] | None = None,
         flush_period_s: float = FLUSH_PERIOD_S,
+        layout: PadLayout | str | None = None,
+        pad: PadPose | None = None,
+        ambient_pa: float | None = None,
+        variance_pa2: float = thesis.SENSOR_VARIANCE_PA2,
     ) -> None:
         from mcap.writer import CompressionType
         from mcap_ros2.writer import Writer
 
+        metadata = dict(metadata or {})
+        layout = layout if layout is not None else metadata.get("layout") or "2x3"
+        self.layout = parse_layout(layout) if isinstance(layout, str) else layout
+        self.pad = pad or PadPose()
+        ambient = metadata.get("ambient_pressure_pa") if ambient_pa is None else ambient_pa
+        self.ambient_pa = float(thesis.AMBIENT_PRESSURE_PA if ambient is None else ambient)
+        self.variance_pa2 = float(variance_pa2)
+        metadata.update(
+            layout=self.layout.name,
+            modules=self.layout.n_modules,
+            ambient_pressure_pa=self.ambient_pa,
+            pressure_variance_pa2=self.variance_pa2,
+        )
         self.path = check_output(path, force)
         self._file = open(self.path, "wb")
         self._writer = Writer(self._file, chunk_size=CHUNK_SIZE, compression=CompressionType.ZSTD)
@@ -141,7 +175,9 @@ class McapRecorder(ClosedOnExit):
         self.closed = False
         self.messages = 0
         self.last_log_ns = 0
-        self._write_metadata(metadata or {})
+        #: Recorded clock: box time t_s is stamped offset_ns + t_s * 1e9 (set by the first message).
+        self.offset_ns: int | None = None
+        self._write_metadata(metadata)
 
     # --- writing ----------------------------------------------------------------------
     def _schema(self, datatype: str) -> Any:
@@ -150,10 +186,37 @@ class McapRecorder(ClosedOnExit):
             s = self._schemas[datatype] = self._writer.register_msgdef(datatype, S.msgdef(datatype))
         return s
 
-    def _write(self, topic: str, datatype: str, message: dict[str, Any]) -> None:
+    def _ns(self, t_s: float) -> int:
+        """The recorded clock at box time ``t_s``, UNIX ns (fixes the offset on first use)."""
+        if self.offset_ns is None:
+            self.offset_ns = time.time_ns() - round(t_s * 1e9)
+            self._writer.add_metadata(S.CLOCK_RECORD, {"offset_ns": str(self.offset_ns)})
+            self._tf_static(t_s)
+        return self.offset_ns + round(t_s * 1e9)
+
+    def _header(self, t_s: float, frame_id: str) -> dict[str, Any]:
+        return {"stamp": _stamp_ns(self._ns(t_s)), "frame_id": frame_id}
+
+    def _tf_static(self, t_s: float) -> None:
+        transforms = []
+        for parent, child, (x, y, z, yaw) in S.static_frames(self.layout, self.pad):
+            transforms.append(
+                {
+                    "header": self._header(t_s, parent),
+                    "child_frame_id": child,
+                    "transform": {
+                        "translation": {"x": x, "y": y, "z": z},
+                        "rotation": _pose(0, 0, 0, yaw)["orientation"],
+                    },
+                }
+            )
+        tf = {"transforms": transforms}
+        self._write(S.TF_STATIC_TOPIC, "tf2_msgs/msg/TFMessage", tf, t_s)
+
+    def _write(self, topic: str, datatype: str, message: dict[str, Any], t_s: float) -> None:
         if self.closed:
             return
-        self.last_log_ns = time.time_ns()
+        self.last_log_ns = self._ns(t_s)
         self._writer.write_message(topic, self._schema(datatype), message, self.last_log_ns)
         self.messages += 1
         now = time.monotonic()
@@ -179,18 +242,28 @@ class McapRecorder(ClosedOnExit):
         self._writer.add_metadata("softpad", record)
 
     # --- Recorder hook ------------------------------------------------------------------
+    def _pressure(self, t: float, frame_id: str, gauge_pa: float) -> dict[str, Any]:
+        """``FluidPressure``: absolute (gauge + ambient), NaN kept for a missing reading."""
+        absolute = float(gauge_pa) + self.ambient_pa
+        header = self._header(t, frame_id)
+        return {"header": header, "fluid_pressure": absolute, "variance": self.variance_pa2}
+
     def frame(self, frame: PressureFrame, phase: str) -> None:
-        """Record one frame: a ``FluidPressure`` per channel and one for the supply."""
+        """Record one frame: an absolute ``FluidPressure`` per module of the pad and one for
+        the supply, and the gauge readings as one array on ``/softpad/pressures``."""
         t = frame.t_s
         self._t_s = t
         self._channels = frame.channels
-        for k, p in enumerate(frame.pressures_pa, start=1):
-            msg = {"header": _header(t, S.module_frame(k)), "fluid_pressure": float(p)}
-            msg["variance"] = 0.0
-            self._write(S.module_topic(k), "sensor_msgs/msg/FluidPressure", msg)
-        supply = {"header": _header(t, "softpad_supply"), "fluid_pressure": float(frame.supply_pa)}
-        supply["variance"] = 0.0
-        self._write(S.SUPPLY_TOPIC, "sensor_msgs/msg/FluidPressure", supply)
+        gauge = [float(p) for p in frame.pressures_pa[: self.layout.n_modules]]
+        for k, p in enumerate(gauge, start=1):
+            msg = self._pressure(t, S.module_frame(k), p)
+            self._write(S.module_topic(k), "sensor_msgs/msg/FluidPressure", msg, t)
+        supply = self._pressure(t, S.PAD_FRAME, frame.supply_pa)
+        self._write(S.SUPPLY_TOPIC, "sensor_msgs/msg/FluidPressure", supply, t)
+        data = [*gauge, float(frame.supply_pa)]
+        dim = {"label": S.GAUGE_LABEL, "size": len(data), "stride": len(data)}
+        array = {"layout": {"dim": [dim], "data_offset": 0}, "data": data}
+        self._write(S.GAUGE_TOPIC, "std_msgs/msg/Float64MultiArray", array, t)
         self._poll(t)
 
     def _poll(self, t: float) -> None:
@@ -203,10 +276,10 @@ class McapRecorder(ClosedOnExit):
             self._last_pose_t = t
             s = self._robot_source()
             pose = {
-                "header": _header(t, S.PAD_FRAME),
+                "header": self._header(t, S.PAD_FRAME),
                 "pose": _pose(s.x_m, s.y_m, s.z_m, s.yaw_rad),
             }
-            self._write(S.ROBOT_POSE_TOPIC, "geometry_msgs/msg/PoseStamped", pose)
+            self._write(S.ROBOT_POSE_TOPIC, "geometry_msgs/msg/PoseStamped", pose, t)
 
     def _valve_state(self, channel: int, command: str) -> list[str]:
         state = list(self._last_valves or ())
@@ -217,8 +290,8 @@ class McapRecorder(ClosedOnExit):
         return state
 
     def _valve_message(self, t: float, commands: list[str]) -> None:
-        msg = {"header": _header(t, "softpad_box"), "commands": commands}
-        self._write(S.VALVE_TOPIC, "softpad_msgs/msg/ValveCommands", msg)
+        msg = {"header": self._header(t, S.PAD_FRAME), "commands": commands}
+        self._write(S.VALVE_TOPIC, "softpad_msgs/msg/ValveCommands", msg, t)
 
     def event(self, t_s: float, kind: str, **data: Any) -> None:
         """Record an event on ``/softpad/events``; plans, valves and robot commands also typed."""
@@ -231,12 +304,13 @@ class McapRecorder(ClosedOnExit):
             self._valve_message(t_s, self._valve_state(int(data["channel"]), str(data["command"])))
         elif kind == "robot" and all(k in data for k in ("x_m", "y_m", "z_m")):
             pose = _pose(data["x_m"], data["y_m"], data["z_m"], data.get("yaw_rad", 0.0))
-            command = {"header": _header(t_s, S.PAD_FRAME), "pose": pose}
-            self._write(S.ROBOT_COMMAND_TOPIC, "geometry_msgs/msg/PoseStamped", command)
+            command = {"header": self._header(t_s, S.PAD_FRAME), "pose": pose}
+            self._write(S.ROBOT_COMMAND_TOPIC, "geometry_msgs/msg/PoseStamped", command, t_s)
         elif kind == "plan":
             self._plan_messages(t_s, data.get("objects", []))
-        event = {"header": _header(t_s, "softpad"), "kind": kind, "data_json": json.dumps(data)}
-        self._write(S.EVENT_TOPIC, "softpad_msgs/msg/Event", event)
+        event = {"header": self._header(t_s, S.PAD_FRAME), "kind": kind}
+        event["data_json"] = json.dumps(data)
+        self._write(S.EVENT_TOPIC, "softpad_msgs/msg/Event", event, t_s)
 
     def _plan_messages(self, t: float, objects: list[dict[str, Any]]) -> None:
         grasps, pcoms = [], []
@@ -245,12 +319,12 @@ class McapRecorder(ClosedOnExit):
             grasps.append(_pose(x, y, 0.0, float(o["theta"])))
             pitch = math.hypot(x, y) / math.hypot(u, v) if math.hypot(u, v) > 0 else 0.0
             pcoms.append(_pose(o["pcom"][0] * pitch, o["pcom"][1] * pitch, 0.0, 0.0))
-        header = _header(t, S.PAD_FRAME)
+        header = self._header(t, S.PAD_FRAME)
         self._write(
-            S.PLAN_TOPIC, "geometry_msgs/msg/PoseArray", {"header": header, "poses": grasps}
+            S.PLAN_TOPIC, "geometry_msgs/msg/PoseArray", {"header": header, "poses": grasps}, t
         )
         self._write(
-            S.OBJECT_TOPIC, "geometry_msgs/msg/PoseArray", {"header": header, "poses": pcoms}
+            S.OBJECT_TOPIC, "geometry_msgs/msg/PoseArray", {"header": header, "poses": pcoms}, t
         )
 
     # --- closing ------------------------------------------------------------------------

@@ -41,7 +41,8 @@ class RecordedRun:
     supply_pa
         Supply pressure, pascals, shape (n,).
     wall_ns
-        Wall-clock time (UNIX ns) at which each frame was recorded, shape (n,).
+        Recorded clock of each frame (UNIX ns: the box time mapped onto the wall clock at the
+        run's start; format 1 recordings: the wall clock when the frame was written), shape (n,).
     events
         ``(t_s, kind, data)`` in time order.
     valves
@@ -242,7 +243,9 @@ def load_recording(path: str | Path) -> RecordedRun:
         elif isinstance(rec, Channel):
             channels[rec.id] = rec
         elif isinstance(rec, Metadata) and rec.name == "softpad":
-            meta = _decode_metadata(dict(rec.metadata))
+            meta.update(_decode_metadata(dict(rec.metadata)))
+        elif isinstance(rec, Metadata) and rec.name == S.CLOCK_RECORD:
+            meta["clock_offset_ns"] = int(rec.metadata["offset_ns"])
         elif isinstance(rec, Message) and rec.channel_id in channels:
             ch = channels[rec.channel_id]
             dec = decoders.get(ch.schema_id)
@@ -252,18 +255,23 @@ def load_recording(path: str | Path) -> RecordedRun:
                     raise InputError(f"{str(p)!r}: no CDR decoder for {schemas[ch.schema_id].name}")
                 dec = decoders[ch.schema_id] = found
             by_topic.setdefault(ch.topic, []).append((rec.log_time, dec(rec.data)))
-    if meta.get("format") != S.RECORDING_FORMAT:
+    if meta.get("format") not in S.READABLE_FORMATS:
         raise InputError(f"{str(p)!r} is not a SoftPad recording ({S.RECORDING_FORMAT})")
     return _assemble(p, meta, by_topic, complete)
-
-
-def _t(msg: Any) -> float:
-    return float(msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9)
 
 
 def _assemble(
     path: Path, meta: dict[str, Any], by_topic: dict[str, list[tuple[int, Any]]], complete: bool
 ) -> RecordedRun:
+    offset = int(meta.get("clock_offset_ns", 0))  # format 1: stamps are box time
+
+    def _t(msg: Any) -> float:
+        return (msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec - offset) * 1e-9
+
+    # format 2 publishes absolute pressures (gauge + ambient); the run holds gauge readings
+    ambient = (
+        float(meta.get("ambient_pressure_pa", 0.0)) if meta["format"] != "softpad-mcap/1" else 0.0
+    )
     n_ch = 0
     while S.module_topic(n_ch + 1) in by_topic:
         n_ch += 1
@@ -272,7 +280,7 @@ def _assemble(
     t = np.array([_t(m) for _, m in supply[:n]], dtype=float)
     p = np.full((n, n_ch), np.nan)
     for k in range(n_ch):
-        p[:, k] = [m.fluid_pressure for _, m in by_topic[S.module_topic(k + 1)][:n]]
+        p[:, k] = [m.fluid_pressure - ambient for _, m in by_topic[S.module_topic(k + 1)][:n]]
     events = [
         (_t(m), str(m.kind), dict(json.loads(m.data_json)))
         for _, m in by_topic.get(S.EVENT_TOPIC, [])
@@ -297,7 +305,7 @@ def _assemble(
         meta,
         t,
         p,
-        np.array([m.fluid_pressure for _, m in supply[:n]], dtype=float),
+        np.array([m.fluid_pressure - ambient for _, m in supply[:n]], dtype=float),
         np.array([w for w, _ in supply[:n]], dtype=np.int64),
         events,
         valves,

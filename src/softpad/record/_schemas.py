@@ -10,11 +10,24 @@ from __future__ import annotations
 
 from functools import cache
 
+from softpad.layout import PadLayout, PadPose
+
 #: Profile of the MCAP files (rosbag2-compatible: ROS 2 message definitions, CDR encoding).
 PROFILE = "ros2"
 
-#: Format tag stored in the recording's ``softpad`` metadata record.
-RECORDING_FORMAT = "softpad-mcap/1"
+#: Format tag stored in the recording's ``softpad`` metadata record. Version 2: absolute
+#: pressures in ``FluidPressure`` (gauge on :data:`GAUGE_TOPIC`), stamps and ``log_time`` on the
+#: recorded clock, ``/tf_static``, only the pad's modules. Version 1 (gauge pressures, stamps =
+#: box time, ``log_time`` = wall clock) is still read.
+RECORDING_FORMAT = "softpad-mcap/2"
+
+#: Formats :func:`softpad.record.load_recording` reads.
+READABLE_FORMATS = ("softpad-mcap/1", RECORDING_FORMAT)
+
+#: Name of the metadata record holding the recorded clock: ``offset_ns`` such that a box time
+#: ``t_s`` is stamped ``offset_ns + t_s * 1e9`` (UNIX ns: the box's time mapped onto the wall
+#: clock at the run's start), written with the first message.
+CLOCK_RECORD = "softpad_clock"
 
 #: The project's own message types: name -> ROS 2 .msg text (dependencies appended on use).
 OWN_TYPES = {
@@ -37,6 +50,12 @@ _SEPARATOR = "=" * 80 + "\n"
 
 #: Topics of a recording.
 SUPPLY_TOPIC = "/softpad/supply/pressure"
+#: Gauge pressures, Pa (``std_msgs/msg/Float64MultiArray``): modules 1..N, then the supply.
+GAUGE_TOPIC = "/softpad/pressures"
+#: Label of :data:`GAUGE_TOPIC`'s one dimension (the same as the ROS node's).
+GAUGE_LABEL = "module_1..N_then_supply_pa"
+#: Static transforms base -> softpad -> softpad_module_K (``tf2_msgs/msg/TFMessage``).
+TF_STATIC_TOPIC = "/tf_static"
 EVENT_TOPIC = "/softpad/events"
 VALVE_TOPIC = "/softpad/valves"
 PLAN_TOPIC = "/softpad/plan/grasps"
@@ -44,8 +63,12 @@ OBJECT_TOPIC = "/softpad/plan/objects"
 ROBOT_POSE_TOPIC = "/softpad/robot/pose"
 ROBOT_COMMAND_TOPIC = "/softpad/robot/command"
 
-#: Frame of the pad (origin at its bottom-left corner, DESIGN.md) used by poses and plans.
-PAD_FRAME = "softpad_pad"
+#: Frame of the pad (origin at its bottom-left corner, DESIGN.md) used by poses, plans, the
+#: supply and events; the same name as the ROS node's.
+PAD_FRAME = "softpad"
+
+#: Parent of :data:`PAD_FRAME` (the robot's base; the installation's pad pose places the pad).
+BASE_FRAME = "base"
 
 
 def module_topic(channel: int) -> str:
@@ -56,6 +79,18 @@ def module_topic(channel: int) -> str:
 def module_frame(channel: int) -> str:
     """``frame_id`` of channel ``channel``'s pressure messages."""
     return f"softpad_module_{channel}"
+
+
+def static_frames(layout: PadLayout, pad: PadPose) -> list[tuple[str, str, tuple[float, ...]]]:
+    """``(parent, child, (x, y, z, yaw))`` of every static frame, metres and radians: the pad
+    in the base frame, then each module's centre on the pad surface."""
+    out: list[tuple[str, str, tuple[float, ...]]] = [
+        (BASE_FRAME, PAD_FRAME, (pad.x_m, pad.y_m, pad.z_m, pad.yaw_rad))
+    ]
+    for k in range(1, layout.n_modules + 1):
+        x, y = layout.center(k)
+        out.append((PAD_FRAME, module_frame(k), (x * layout.pitch_m, y * layout.pitch_m, 0.0, 0.0)))
+    return out
 
 
 @cache

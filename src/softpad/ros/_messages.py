@@ -9,6 +9,7 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
+from softpad import thesis
 from softpad.layout import PadLayout, PadPose
 from softpad.planning import GraspPlan
 
@@ -38,11 +39,18 @@ def pose(x_m: float, y_m: float, z_m: float, yaw_rad: float) -> Any:
     return Pose(Point(x_m, y_m, z_m), Quaternion(*quaternion_z(yaw_rad)))
 
 
-def fluid_pressure(stamp: Any, k: int, pressure_pa: float) -> Any:
-    """sensor_msgs/FluidPressure of module ``k`` (Pa; variance 0 = unknown)."""
+def fluid_pressure(
+    stamp: Any,
+    k: int,
+    gauge_pa: float,
+    ambient_pa: float = thesis.AMBIENT_PRESSURE_PA,
+    variance_pa2: float = thesis.SENSOR_VARIANCE_PA2,
+) -> Any:
+    """sensor_msgs/FluidPressure of module ``k``: absolute (the message's definition), the
+    gauge reading plus ``ambient_pa``, Pa; ``variance_pa2`` that of the sensor model, Pa^2."""
     from sensor_msgs.msg import FluidPressure
 
-    msg = FluidPressure(fluid_pressure=float(pressure_pa), variance=0.0)
+    msg = FluidPressure(fluid_pressure=float(gauge_pa) + ambient_pa, variance=variance_pa2)
     msg.header.stamp, msg.header.frame_id = stamp, module_frame(k)
     return msg
 

@@ -29,6 +29,7 @@ from softpad.layout import PadLayout, PadPose
 CONFIG_KEYS = (
     "box", "layout", "pad_x_m", "pad_y_m", "pad_z_m", "pad_yaw_rad", "base_frame",
     "object_threshold_pa", "contact_threshold_pa", "settle_s", "place", "place_after_s",
+    "ambient_pressure_pa",
 )  # fmt: skip
 
 
@@ -54,6 +55,9 @@ class NodeConfig:
     place
         Simulation only: catalogue objects put on a ``sim://`` box ``place_after_s`` after the
         reference (for demonstrations and tests; a person places them on a real pad).
+    ambient_pressure_pa
+        Added to the gauge readings in ``sensor_msgs/FluidPressure`` (absolute), Pa (default
+        the standard atmosphere, 101325 Pa).
     """
 
     box: str = "sim://"
@@ -65,6 +69,7 @@ class NodeConfig:
     settle_s: float = 0.5
     place: tuple[str, ...] = ()
     place_after_s: float = 1.0
+    ambient_pressure_pa: float = thesis.AMBIENT_PRESSURE_PA
 
     def updated(self, values: dict[str, Any]) -> NodeConfig:
         """This config with ``values`` (keys of :data:`CONFIG_KEYS`) applied, checked."""
@@ -75,7 +80,10 @@ class NodeConfig:
             )
         pad = {k[4:]: _finite(k, values[k]) for k in values if k.startswith("pad_")}
         out = replace(self, pad=replace(self.pad, **pad))
-        for k in ("object_threshold_pa", "contact_threshold_pa", "settle_s", "place_after_s"):
+        for k in (
+            "object_threshold_pa", "contact_threshold_pa", "settle_s", "place_after_s",
+            "ambient_pressure_pa",
+        ):  # fmt: skip
             if k in values:
                 v = _finite(k, values[k])
                 if v < 0:
@@ -290,7 +298,9 @@ class PadNode:
         stamp = self.rospy.Time.now()
         p = frame.pressures_pa[: self.n]
         for k, pub in enumerate(self.pub_module):
-            pub.publish(m.fluid_pressure(stamp, k + 1, float(p[k])))
+            pub.publish(
+                m.fluid_pressure(stamp, k + 1, float(p[k]), self.config.ambient_pressure_pa)
+            )
         self.pub_all.publish(m.labelled_array([*p, frame.supply_pa], "module_1..N_then_supply_pa"))
         self._last_pressures = p
 

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from softpad import thesis
 from softpad.errors import CheckedFields, InputError, NonNegative, Positive
 
 
@@ -32,13 +33,13 @@ class SensorParams(CheckedFields, what="sensor"):
     """Parameters of the channel pressure sensors and of the supply sensor."""
 
     #: Standard deviation of the white noise of one sample, pascals.
-    noise_std_pa: NonNegative = 8.0
+    noise_std_pa: NonNegative = thesis.SENSOR_NOISE_STD_PA
     #: Stationary standard deviation of the slow drift, pascals.
-    drift_std_pa: NonNegative = 3.0
+    drift_std_pa: NonNegative = thesis.SENSOR_DRIFT_STD_PA
     #: Correlation time of the drift, seconds.
     drift_time_s: Positive = 2.0
     #: Resolution of the converter, pascals (0: none).
-    quantization_pa: NonNegative = 10e3 / 4096
+    quantization_pa: NonNegative = thesis.SENSOR_QUANTIZATION_PA
     #: Standard deviation of the per-channel zero offset, pascals.
     offset_std_pa: NonNegative = 20.0
     #: Readings saturate at these values, pascals.
