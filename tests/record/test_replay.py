@@ -112,19 +112,28 @@ def test_replay_cli_json_and_text(capsys) -> None:
     assert "plan: same" in out and "verdict: today's code decides what was recorded" in out
 
 
-def test_foxglove_layout_plots_the_recorded_topics() -> None:
-    """docs/foxglove-layout.json plots topics that a recording (and the live view) has."""
+def test_foxglove_layout_plots_the_recorded_topics(tmp_path: Path) -> None:
+    """docs/foxglove-layout.json plots topics and follows a frame that a recording (and the
+    live view) has: the gauge array's six modules and the supply, the pad frame of /tf_static."""
+    from rosbags.highlevel import AnyReader
+
+    from softpad.cli.main import main
     from softpad.record._live import PAD_TOPIC
 
     layout = json.loads((DATA.parents[1] / "docs" / "foxglove-layout.json").read_text())
-    run_topics = {f"/softpad/module_{k}/pressure" for k in range(1, 7)} | {
-        "/softpad/supply/pressure"
-    }
     paths = [p["value"] for cfg in layout["configById"].values() for p in cfg.get("paths", [])]
-    assert {p.split(".")[0] for p in paths} == run_topics
-    assert all(p.endswith(".fluid_pressure") for p in paths)
-    assert layout["configById"]["3D!softpadpad"]["topics"] == {PAD_TOPIC: {"visible": True}}
-    from rosbags.highlevel import AnyReader
-
-    with AnyReader([DATA / "banana.mcap"]) as reader:
-        assert run_topics <= {c.topic for c in reader.connections}
+    assert sorted(paths) == [f"/softpad/pressures.data[{k}]" for k in range(7)]
+    pad = layout["configById"]["3D!softpadpad"]
+    assert set(pad["topics"]) == {PAD_TOPIC, "/tf_static"}
+    path = tmp_path / "run.mcap"
+    assert main(["run", "--hold-s", "0.5", "--record", str(path), "--box", "sim://?seed=3"]) == 0
+    with AnyReader([path]) as reader:
+        by_topic = {c.topic: c for c in reader.connections}
+        assert {"/softpad/pressures", "/tf_static"} <= set(by_topic)
+        c = by_topic["/softpad/pressures"]
+        _, _, raw = next(iter(reader.messages([c])))
+        assert len(reader.deserialize(raw, c.msgtype).data) == 7  # six modules + the supply
+        c = by_topic["/tf_static"]
+        _, _, raw = next(iter(reader.messages([c])))
+        frames = {t.child_frame_id for t in reader.deserialize(raw, c.msgtype).transforms}
+    assert pad["followTf"] in frames
