@@ -34,6 +34,7 @@ _COMMAND_MODULES = (
     "_config",
     "_trials",
     "_compare",
+    "_validate",
     "_fem",
     "_design",
     "_pad",
