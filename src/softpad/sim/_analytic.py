@@ -30,7 +30,7 @@ from softpad.sim._footprint import (
     to_pad_frame,
 )
 from softpad.sim._objects import ObjectSpec, Placement
-from softpad.sim._response import ModuleResponse, operating_pressure
+from softpad.sim._response import ModuleResponse, PadResponse, operating_pressure
 from softpad.sim._world import GripperState, PadWorld
 
 #: Opening ranges of the thesis's gripper mountings, (max, min) width in metres (Section 6.3).
@@ -150,7 +150,7 @@ class AnalyticWorld(PadWorld):
         layout: PadLayout | None = None,
         gripper: SimGripper | None = None,
         start_height_m: float = 0.15,
-        response: ModuleResponse | None = None,
+        response: ModuleResponse | PadResponse | None = None,
     ) -> None:
         super().__init__(layout, response)
         self.surface = PadSurface(self._layout, self.response.seam_width_m)
