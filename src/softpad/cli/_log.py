@@ -13,6 +13,8 @@ _EPILOG = """examples:
   softpad log info run.mcap --json
   softpad log plot run.mcap --png traces.png --pad-png pad.png
   softpad log export run.mcap --out run.csv (or run.parquet, needs pyarrow)
+  softpad log export run.mcap --rosbag2 run_bag   a rosbag2 directory (ros2 bag info|play)
+  softpad log export run.mcap --rosbag1 run.bag   a ROS 1 bag (rosbag play)
   softpad log recover crashed.mcap --out fixed.mcap
 
 A recording cut short by a crash (kill -9, power loss) is read up to its last flushed chunk;
@@ -42,9 +44,20 @@ def register(sub: Any) -> None:
     plot.add_argument("file", metavar="FILE.mcap")
     plot.add_argument("--png", metavar="FILE", required=True, help="pressure traces picture")
     plot.add_argument("--pad-png", metavar="FILE", help="pad picture with objects and grasps")
-    export = add_command(actions, "export", "frames and events as CSV or Parquet", json=written)
+    export = add_command(
+        actions, "export", "as a table (CSV, Parquet), a rosbag2 directory or a ROS 1 bag",
+        json=written,
+    )  # fmt: skip
     export.add_argument("file", metavar="FILE.mcap")
-    export.add_argument("--out", metavar="FILE", required=True, help="FILE.csv or FILE.parquet")
+    to = export.add_mutually_exclusive_group(required=True)
+    to.add_argument("--out", metavar="FILE", help="FILE.csv or FILE.parquet: frames and events")
+    to.add_argument("--csv", metavar="FILE.csv", help="frames and events as CSV")
+    to.add_argument("--parquet", metavar="FILE.parquet", help="the same as Parquet (pyarrow)")
+    to.add_argument(
+        "--rosbag2", metavar="DIR", help="every message as a rosbag2 directory (SQLite 3)"
+    )
+    to.add_argument("--rosbag1", metavar="FILE.bag", help="every message as a ROS 1 bag")
+    export.add_argument("--force", action="store_true", help="overwrite an existing output")
     recover = add_command(actions, "recover", "rewrite a crash-truncated recording", json=written)
     recover.add_argument("file", metavar="FILE.mcap")
     recover.add_argument("--out", metavar="FILE.mcap", help="default: FILE.recovered.mcap")
@@ -104,7 +117,6 @@ def _info(run: Any, as_json: bool) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from softpad.errors import InputError
     from softpad.record import load_recording, recover
 
     if args.log_command == "recover":
@@ -129,18 +141,32 @@ def run(args: argparse.Namespace) -> int:
             files=[f for f in (args.png, args.pad_png) if f],
         )
     else:
-        if args.out.endswith(".csv"):
-            rec.to_csv(args.out)
-        elif args.out.endswith(".parquet"):
-            rec.to_parquet(args.out)
-        else:
-            raise InputError(f"--out must end in .csv or .parquet, got {args.out!r}")
-        _done(
-            args,
-            f"{len(rec)} frames and {len(rec.events)} events written to {args.out}",
-            files=[args.out],
-        )
+        _export(args, rec)
     return 0
+
+
+def _export(args: argparse.Namespace, rec: Any) -> None:
+    from softpad.errors import InputError
+
+    if args.rosbag2 or args.rosbag1:
+        from softpad.record import to_rosbag1, to_rosbag2
+
+        out = args.rosbag2 or args.rosbag1
+        write = to_rosbag2 if args.rosbag2 else to_rosbag1
+        write(args.file, out, force=args.force)
+        kind = "rosbag2 directory" if args.rosbag2 else "ROS 1 bag"
+        _done(args, f"{len(rec)} frames and every message written to the {kind} {out}", files=[out])
+        return
+    out = args.out or args.csv or args.parquet
+    if (args.csv and not out.endswith(".csv")) or (args.parquet and not out.endswith(".parquet")):
+        raise InputError(f"the file's name must end in its format's suffix, got {out!r}")
+    if out.endswith(".csv"):
+        rec.to_csv(out)
+    elif out.endswith(".parquet"):
+        rec.to_parquet(out)
+    else:
+        raise InputError(f"--out must end in .csv or .parquet, got {out!r}")
+    _done(args, f"{len(rec)} frames and {len(rec.events)} events written to {out}", files=[out])
 
 
 def _done(args: argparse.Namespace, text: str, **result: Any) -> None:

@@ -8,6 +8,7 @@ file cut short by a crash; ``replay://run.mcap`` plays it back as a box (:class:
 in-memory recorder, :class:`Tee` sends a run to several recorders.
 """
 
+from softpad.record._bags import to_rosbag1, to_rosbag2
 from softpad.record._live import FoxgloveLive
 from softpad.record._log import RunLog
 from softpad.record._mcap import FLUSH_PERIOD_S, McapRecorder, check_output
@@ -46,4 +47,6 @@ __all__ = [
     "module_topic",
     "open_replay_url",
     "recover",
+    "to_rosbag1",
+    "to_rosbag2",
 ]

@@ -1,0 +1,91 @@
+"""Export a recording as a rosbag2 directory or a ROS 1 bag, with ``rosbags``' writers.
+
+Every message of the MCAP file is copied with its recorded clock (``log_time``), so the bag
+plays back at the run's real speed: into rosbag2 unchanged (CDR, the embedded ROS 2 message
+definitions, ``/tf_static`` offered as transient-local, i.e. latched), into a ROS 1 bag converted
+to ROS 1 serialisation by ``rosbags``' converter (``std_msgs/Header`` gains its ``seq``),
+readable by ``rosbag play`` and Debian's ``python3-rosbag``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from softpad.errors import InputError
+from softpad.record._schemas import TF_STATIC_TOPIC
+
+
+def _latched_qos() -> Any:
+    """The QoS ``/tf_static`` is published with in ROS 2: reliable, transient local, depth 1."""
+    from rosbags.interfaces import (
+        Qos,
+        QosDurability,
+        QosHistory,
+        QosLiveliness,
+        QosReliability,
+        QosTime,
+    )
+
+    never = QosTime(0x7FFFFFFF, 0xFFFFFFFF)
+    return Qos(
+        QosHistory.KEEP_LAST, 1, QosReliability.RELIABLE, QosDurability.TRANSIENT_LOCAL,
+        never, never, QosLiveliness.AUTOMATIC, never, False,
+    )  # fmt: skip
+
+
+def _refuse_existing(out: Path, force: bool) -> None:
+    if out.exists() and not force:
+        raise InputError(f"{str(out)!r} exists; refusing to overwrite it (add --force)")
+    if not out.parent.exists():
+        raise InputError(f"directory {str(out.parent)!r} of {str(out)!r} does not exist")
+
+
+def to_rosbag2(recording: str | Path, out: str | Path, force: bool = False) -> Path:
+    """Write ``recording`` (a SoftPad MCAP file) as the rosbag2 directory ``out`` (SQLite 3
+    storage, ``metadata.yaml`` version 9), which ``ros2 bag info|play`` and ``rosbags`` read.
+
+    An existing ``out`` is refused unless ``force`` (then it is replaced).
+    """
+    import shutil
+
+    from rosbags.highlevel import AnyReader
+    from rosbags.rosbag2 import Writer
+
+    src, dst = Path(recording), Path(out)
+    _refuse_existing(dst, force)
+    if dst.exists():
+        shutil.rmtree(dst) if dst.is_dir() else dst.unlink()
+    with AnyReader([src]) as reader, Writer(dst, version=9) as writer:
+        conns = {}
+        for c in reader.connections:
+            qos = [_latched_qos()] if c.topic == TF_STATIC_TOPIC else []
+            conns[c.id] = writer.add_connection(
+                c.topic, c.msgtype, typestore=reader.typestore, offered_qos_profiles=qos
+            )
+        for c, t_ns, raw in reader.messages():
+            writer.write(conns[c.id], t_ns, raw)
+    return dst
+
+
+def to_rosbag1(recording: str | Path, out: str | Path, force: bool = False) -> Path:
+    """Write ``recording`` as the ROS 1 bag ``out`` (``.bag``): ``rosbags``' converter turns
+    each message into ROS 1 serialisation against ROS Noetic's types (``std_msgs/Header``
+    gains ``seq``; the project's two types are carried over); ``rosbag play`` and Debian's
+    ``rosbag`` Python package read it. ``/tf_static`` is not marked latched (the converter
+    writes no latching flag): ``rosbag play`` publishes it once at the start."""
+    import contextlib
+    import io
+
+    from rosbags.convert import convert
+    from rosbags.typesys import Stores, get_typestore
+
+    src, dst = Path(recording), Path(out)
+    if dst.suffix != ".bag":
+        raise InputError(f"a ROS 1 bag's name ends in .bag, got {str(dst)!r}")
+    _refuse_existing(dst, force)
+    dst.unlink(missing_ok=True)
+    noetic = get_typestore(Stores.ROS1_NOETIC)
+    with contextlib.redirect_stdout(io.StringIO()):  # it names the types it carries over
+        convert([src], dst, "sqlite3", 9, None, "file", None, noetic, [], [], [], [])
+    return dst
