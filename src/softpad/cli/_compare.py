@@ -12,6 +12,7 @@ from softpad.errors import InputError
 _EPILOG = """examples:
   softpad compare --seeds 0-19 --json            the thesis pair against gripper-aware + adaptive
   softpad compare --seeds 0-2 --objects object-1,cylinder --pair thesis:cusum
+  softpad compare --seeds 0 --objects-file src/softpad/data/object_sets/ycb-dev.toml --json
   softpad compare --seeds 0 --trials 1 --idle-hours 0.1 --png compare.png
   softpad compare --merge a.json --merge b.json --png both.png   pairs run apart, one table
 """
@@ -86,7 +87,7 @@ def run(args: argparse.Namespace) -> int:
     if args.merge:
         return _show(_merged(args), args)
     seeds, pairs = int_ranges(args.seeds, "--seeds", lo=0, hi=2**32 - 1), parse_pairs(args.pair)
-    specs = select_objects(args.objects)
+    specs = select_objects(args.objects, args.objects_file)
     check_counts(args.trials, args.workers)
     if not (math.isfinite(args.idle_hours) and 0 < args.idle_hours <= 100):
         raise InputError(f"--idle-hours must be in (0, 100] h, got {args.idle_hours!r}")

@@ -74,6 +74,17 @@ def register(sub: Any) -> None:
         unit="module units",
     )
     p.add_argument(
+        "--planner",
+        default="thesis",
+        help="planner by name: thesis, gripper-aware or model-based (default thesis)",
+    )
+    p.add_argument(
+        "--gripper",
+        default="10/4",
+        metavar="MOUNTING",
+        help="gripper mounting the planner plans for: 10/4, 6/2 or 4/0 cm (default 10/4)",
+    )
+    p.add_argument(
         "--png", metavar="FILE.png", help="draw the pad, increments, PCOM, COG and fingertips"
     )
     p.add_argument("--plot", action=Renamed, new="--png FILE.png")
@@ -161,13 +172,14 @@ def _numbers(values: Any, key: str) -> list[float]:
 
 def run(args: argparse.Namespace) -> int:
     from softpad.layout import parse_layout
-    from softpad.planning import PlannerParams, format_plans, plan_grasps
+    from softpad.planning import PlannerParams, format_plans
     from softpad.sensing import increments
 
     try:
         layout = parse_layout(args.layout, pitch_m=args.pitch_mm / 1e3)
     except InputError as exc:
         raise InputError(f"--layout {args.layout!r}: {exc}") from None
+    _check_planner(args.planner, args.gripper)
     png = check_output(args.png, "--png", force=args.force, suffix=".png")
     reference: list[float] | None
     source = "--delta" if args.delta is not None else f"--frame {args.frame!r}"
@@ -209,7 +221,7 @@ def run(args: argparse.Namespace) -> int:
         object_threshold_pa=args.threshold_kpa * 1e3, safety_shift=args.safety_shift
     )
     try:
-        plans = plan_grasps(delta, layout, params)
+        plans = _plans(args, delta, layout, params)
     except InputError as exc:
         raise InputError(f"{source}: {exc}") from None
     if png is not None:
@@ -219,6 +231,32 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(format_plans(delta, plans, layout, params.object_threshold_pa))
     return 0
+
+
+def _check_planner(planner: str, mounting: str) -> None:
+    """``--planner`` and ``--gripper`` known, else an InputError naming them."""
+    from softpad import thesis as t
+    from softpad.planning import PLANNERS
+
+    if planner not in PLANNERS:
+        raise InputError(f"--planner must be one of {', '.join(PLANNERS)}, got {planner!r}")
+    if mounting not in t.GRIPPER_MOUNTINGS_M:
+        raise InputError(
+            f"--gripper must be one of {', '.join(t.GRIPPER_MOUNTINGS_M)}, got {mounting!r}"
+        )
+
+
+def _plans(args: argparse.Namespace, delta: list[float], layout: Any, params: Any) -> Any:
+    """The plans of ``--planner`` (the thesis's: :func:`softpad.planning.plan_grasps`)."""
+    from softpad.layout import GripperSpec
+    from softpad.planning import make_planner, plan_grasps
+    from softpad.sensing import detect_objects
+
+    gripper = GripperSpec.from_mounting(args.gripper)
+    if args.planner == "thesis":
+        return plan_grasps(delta, layout, params)
+    planner = make_planner(args.planner, gripper, params)
+    return planner.plan(delta, detect_objects(delta, layout, params.object_threshold_pa), layout)
 
 
 def _check_readings(values_pa: list[float], what: str) -> None:

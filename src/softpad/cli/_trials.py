@@ -84,7 +84,15 @@ def add_trial_options(
         p.add_argument(
             "--objects",
             metavar="NAME,...",
-            help="comma-separated catalogue names (default: all of Table 6.1)",
+            help="comma-separated catalogue names (default: all of Table 6.1), or names of "
+            "the --objects-file's objects",
+        )
+        p.add_argument(
+            "--objects-file",
+            metavar="FILE.toml",
+            help="run the objects of this object set (the design format, docs/design.md: "
+            "catalogue names or boxes and lying cylinders with mass, size, placement and "
+            "mounting) instead of Table 6.1's",
         )
     p.add_argument("--trials", type=int, default=5, help="trials per object (default 5)")
     if one_seed:
@@ -97,10 +105,14 @@ def add_trial_options(
     p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
 
 
-def select_objects(names_text: str | None) -> list[Any]:
-    """Catalogue objects named in ``names_text`` (comma-separated), all when None."""
+def select_objects(names_text: str | None, objects_file: str | None = None) -> list[Any]:
+    """Catalogue objects named in ``names_text`` (comma-separated), all when None; with
+    ``objects_file``, that object set's objects (those named, all when None), each placed on
+    the thesis's 2 x 3 pad with its mounting."""
     from softpad.sim import get_object, object_names
 
+    if objects_file is not None:
+        return _set_objects(objects_file, names_text)
     known = list(object_names())
     if names_text is None:
         return [get_object(n) for n in known]
@@ -109,6 +121,30 @@ def select_objects(names_text: str | None) -> list[Any]:
         if n not in known:
             raise InputError(f"unknown object {n!r}; known objects: {', '.join(known)}")
     return [get_object(n) for n in names]
+
+
+def _set_objects(path: str, names_text: str | None) -> list[Any]:
+    """The objects of the object-set file ``path`` as catalogue specs on the 2 x 3 pad."""
+    from dataclasses import replace
+
+    from softpad.design import load_object_set
+
+    objects = load_object_set(path)
+    pad = (
+        thesis.PROTOTYPE_COLS * thesis.MODULE_PITCH_M,
+        thesis.PROTOTYPE_ROWS * thesis.MODULE_PITCH_M,
+    )
+    chosen = list(objects.objects)
+    if names_text is not None:
+        names = name_list(names_text, "--objects")
+        unknown = [n for n in names if n not in objects.names]
+        if unknown:
+            raise InputError(
+                f"--objects: {', '.join(unknown)} not in {path!r}; its objects: "
+                f"{', '.join(objects.names)}"
+            )
+        chosen = [o for o in chosen if o.name in names]
+    return [replace(o.placed_on(pad), gripper=objects.mounting(o)) for o in chosen]
 
 
 def progress_bar(total: int, enabled: bool, desc: str = "trials") -> Any:
@@ -171,7 +207,7 @@ def run_with_progress(
 def run(args: argparse.Namespace) -> int:
     import math
 
-    specs = select_objects(args.objects)
+    specs = select_objects(args.objects, args.objects_file)
     check_counts(args.trials, args.workers)
     seeds = int_ranges(args.seeds, "--seeds", lo=0, hi=2**32 - 1)
     if len(seeds) > 100:

@@ -42,7 +42,7 @@ from softpad.errors import InputError
 #: Schema tag of an object-set file.
 OBJECT_SET_SCHEMA = "softpad-object-set/1"
 #: Object sets shipped with the package (``--example NAME``).
-EXAMPLE_SETS = ("thesis-set", "blocks")
+EXAMPLE_SETS = ("thesis-set", "blocks", "ycb-dev", "ycb-eval")
 _MOUNTINGS = ("10/4", "6/2", "4/0")
 _THESIS_PAD_M = (
     thesis.PROTOTYPE_COLS * thesis.MODULE_PITCH_M,

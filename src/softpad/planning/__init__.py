@@ -22,6 +22,7 @@ from softpad.planning._gripper_aware import (
     pressed_share,
     sensed_share,
 )
+from softpad.planning._model_based import ModelBasedParams, ModelBasedPlanner, PadModel
 from softpad.planning._params import DEFAULT_SAFETY_SHIFT, PlannerParams
 from softpad.planning._pcom import pcom
 from softpad.planning._plan import Planner, RetryPlanner, ThesisPlanner, plan_grasps
@@ -37,6 +38,9 @@ __all__ = [
     "TABLE_6_1",
     "GraspPlan",
     "GripperAwarePlanner",
+    "ModelBasedParams",
+    "ModelBasedPlanner",
+    "PadModel",
     "PlanCase",
     "Planner",
     "PlannerParams",

@@ -66,6 +66,7 @@ from softpad import thesis
 from softpad.errors import InputError
 from softpad.layout import GripperSpec, PadLayout
 from softpad.planning._geometry import theta_perpendicular
+from softpad.planning._model_based import ModelBasedPlanner
 from softpad.planning._params import PlannerParams
 from softpad.planning._plan import ThesisPlanner
 from softpad.planning._records import GraspPlan
@@ -640,7 +641,10 @@ def _wrap(theta: float) -> float:
 
 
 #: Planners by name (``--planner``).
-PLANNERS = ("thesis", "gripper-aware")
+PLANNERS = ("thesis", "gripper-aware", "model-based")
+
+#: Planners told the contact detector's sensing ratio (which fingertips it senses).
+_SENSING_PLANNERS = ("gripper-aware", "model-based")
 
 
 def make_planner(
@@ -648,15 +652,18 @@ def make_planner(
     gripper: GripperSpec | None = None,
     params: PlannerParams | None = None,
     sensing_ratio: float | None = None,
-) -> ThesisPlanner | GripperAwarePlanner:
-    """A planner by name: ``thesis`` or ``gripper-aware`` (which needs the gripper's geometry
-    and, to know which fingertips are sensed, the contact detector's sensing ratio,
-    :func:`softpad.sensing.sensing_ratio`; None: the thesis detector's, 1)."""
+) -> ThesisPlanner | GripperAwarePlanner | ModelBasedPlanner:
+    """A planner by name: ``thesis``, ``gripper-aware`` or ``model-based`` (the last two
+    need the gripper's geometry and, to know which fingertips are sensed, the contact
+    detector's sensing ratio, :func:`softpad.sensing.sensing_ratio`; None: the thesis
+    detector's, 1)."""
+    ratio = 1.0 if sensing_ratio is None else sensing_ratio
     if name == "thesis":
         return ThesisPlanner(params)
     if name == "gripper-aware":
-        ratio = 1.0 if sensing_ratio is None else sensing_ratio
         return GripperAwarePlanner(gripper, params, sensing_ratio=ratio)
+    if name == "model-based":
+        return ModelBasedPlanner(gripper or GripperSpec(), sensing_ratio=ratio)
     raise InputError(f"unknown planner {name!r}; use one of {', '.join(PLANNERS)}")
 
 
@@ -666,9 +673,10 @@ def planner_for(
     params: PlannerParams | None,
     detector: ContactDetector,
     sample_rate_hz: float,
-) -> ThesisPlanner | GripperAwarePlanner:
+) -> ThesisPlanner | GripperAwarePlanner | ModelBasedPlanner:
     """:func:`make_planner` for a loop that detects contact with ``detector`` at
-    ``sample_rate_hz``: the gripper-aware planner is told the detector's sensing ratio, which
-    is measured only for it (the probe of a 1 kHz detector takes seconds)."""
-    ratio = sensing_ratio(detector, sample_rate_hz) if name == "gripper-aware" else None
+    ``sample_rate_hz``: the gripper-aware and model-based planners are told the detector's
+    sensing ratio, which is measured only for them (the probe of a 1 kHz detector takes
+    seconds)."""
+    ratio = sensing_ratio(detector, sample_rate_hz) if name in _SENSING_PLANNERS else None
     return make_planner(name, gripper, params, ratio)

@@ -1,0 +1,567 @@
+"""A planner that estimates where the load lies from a model of the pad, then decides.
+
+The module reads top to bottom in the order the planner works:
+
+1. **The pad model** (:class:`PadModel`): how much a load at a point of a module raises its
+   chamber's pressure, relative to the same load at the centre: the project's FEM response
+   (``softpad/data/module_response.npz``, written by ``softpad fem response``), read as data.
+2. **Estimate** (:func:`estimate`): hypotheses of a rectangular footprint (centre, length,
+   width, yaw on a coarse grid) carrying the object's weight evenly; each predicts every
+   module's increment up to one unknown scale (the weight), fitted in closed form; the Gaussian
+   likelihood of the measured increments under the sensor's noise plus a relative model error
+   weighs the hypotheses (:class:`Posterior`).
+3. **Candidates** (:func:`candidates`): grasp centres at the likely footprints' centres and
+   beside them, closing directions along a fixed fan and across each likely footprint.
+4. **Score** (:func:`predicted_success`): the chance that a grasp succeeds under the
+   posterior: a fingertip lands where the contact detector in use senses it (the response
+   map under its sole against the detector's step floor), both jaws come down clear of the
+   object, the object is wide enough for the jaws to close on, and the grasp centre lies in
+   the middle of the object across the jaws. A footprint may be a box's own or the contact
+   strip of a lying cylinder (half its diameter, the simulator's and a soft pad's contact):
+   both count, with equal weight, since the pad cannot tell them apart.
+5. **Choose** (:class:`ModelBasedPlanner`): the candidate with the highest predicted success.
+   A landing on the object (the fingers sensed high above the pad) is evidence: the
+   posterior keeps the hypotheses under which that grasp would have landed a jaw on the
+   object on the side the pad felt pressed, and the choice is made again.
+
+Every number the planner uses is a field of :class:`ModelBasedParams`; nothing in it names an
+object. The derivation and its limits are in docs/planner.md ("The model-based planner").
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from functools import lru_cache
+from importlib import resources
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from softpad import thesis
+from softpad.errors import InputError
+from softpad.layout import GripperSpec, PadLayout
+from softpad.planning._pcom import pcom
+from softpad.planning._records import GraspPlan
+from softpad.sensing import DEFAULT_OUTLINE_THRESHOLD_PA, outline_objects
+from softpad.sensing._objects import check_increments
+
+Array = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class ModelBasedParams:
+    """The model-based planner's parameters (SI units; module units where named)."""
+
+    #: Noise of one planning increment (10-read mean minus 10-read reference, with drift),
+    #: Pa rms: 5.5 Pa for the box's sensor (softpad.sensing.DEFAULT_OUTLINE_THRESHOLD_PA).
+    noise_pa: float = 5.5
+    #: Relative rms error of the even-load model of a module's increment (uneven weight,
+    #: the characteristic's curvature, tilt); an assumption, set before any trial ran.
+    model_error: float = 0.3
+    #: Sub-positions per module side of the hypotheses' centres (4: an 11 mm grid).
+    centre_steps: int = 4
+    #: Footprint sides tried, mm (the length and the width take every pair of them).
+    sizes_mm: tuple[float, ...] = (12.0, 24.0, 40.0, 60.0, 90.0, 125.0)
+    #: Footprint yaws tried, in [0, pi) (6: 30 degree steps).
+    yaw_steps: int = 6
+    #: Largest share of a footprint's area off the pad (an object lies on the pad).
+    overhang: float = 0.2
+    #: Log-likelihood below the best under which a hypothesis is dropped (e^-12: 6e-6).
+    log_floor: float = 12.0
+    #: Hypotheses drawn from the posterior for the decision (after the evidence).
+    kept_hypotheses: int = 32
+    #: Closing directions of the fixed fan of candidates in [0, pi) (8: 22.5 degree steps).
+    directions: int = 8
+    #: Gap left between each open jaw and the object on the way down, m.
+    clearance_m: float = 2e-3
+    #: Half-width of the band across the jaws, as a share of the object's half-extent, in
+    #: which the grasp centre must lie for the object to hang balanced between the jaws.
+    centre_band: float = 0.5
+    #: Mean response under a fingertip's sole, as a share of the centre's, at which the
+    #: thesis's contact detector senses it (scaled by the detector's sensing ratio).
+    needed_share: float = 0.5
+    #: Chance that a grasp lands a jaw on the object (or on the side not pressed) under a
+    #: hypothesis that says it would not: placement drift and model error.
+    surprise: float = 0.05
+    #: Share of a landing's rise on one side of the jaws' centre line from which the pad
+    #: says that side was pressed (else the side is unknown).
+    side_share: float = 2.0 / 3.0
+    #: Pressure of the modules at which the response map is read, Pa (p0).
+    pressure_pa: float = thesis.P0_PA
+    #: Increment above which a module next to an object joins its outline, Pa.
+    outline_threshold_pa: float = DEFAULT_OUTLINE_THRESHOLD_PA
+
+    def __post_init__(self) -> None:
+        positive = ("noise_pa", "clearance_m", "centre_band", "needed_share", "pressure_pa")
+        for name in (
+            *positive,
+            "model_error",
+            "surprise",
+            "side_share",
+            "overhang",
+            "outline_threshold_pa",
+        ):
+            v = getattr(self, name)
+            if not (isinstance(v, int | float) and math.isfinite(v) and v >= 0):
+                raise InputError(f"model-based parameter {name} must be a number >= 0, got {v!r}")
+        for name in ("centre_steps", "yaw_steps", "kept_hypotheses", "directions"):
+            v = getattr(self, name)
+            if not (isinstance(v, int) and 1 <= v <= 64):
+                raise InputError(
+                    f"model-based parameter {name} must be an integer 1..64, got {v!r}"
+                )
+        if not self.sizes_mm or not all(0 < s <= 500 for s in self.sizes_mm):
+            raise InputError(f"sizes_mm must be lengths in (0, 500] mm, got {self.sizes_mm!r}")
+
+
+# --- 1. the pad model --------------------------------------------------------------------------
+
+#: Samples per module side of the response lookup table.
+_LOOKUP = 91
+
+
+@dataclass(frozen=True, eq=False)
+class PadModel:
+    """Relative response of a module to a load at a point of its top face (1 at the centre,
+    0 at the clamped edge), tabulated on a module's square in module units."""
+
+    #: Response on a ``_LOOKUP`` x ``_LOOKUP`` grid over [-0.5, 0.5]^2 module units.
+    table: Array
+
+    def response(self, local: Array) -> Array:
+        """Relative response at points relative to their module's centre, module units."""
+        idx = np.rint((np.clip(local, -0.5, 0.5) + 0.5) * (_LOOKUP - 1)).astype(np.int64)
+        return self.table[idx[..., 0], idx[..., 1]]
+
+    def on_pad(self, points: Array, layout: PadLayout) -> Array:
+        """Relative response at pad-frame points in module units (0 off the pad)."""
+        inside = (points[..., 0] >= 0) & (points[..., 0] < layout.cols)
+        inside &= (points[..., 1] >= 0) & (points[..., 1] < layout.rows)
+        return np.where(inside, self.response(points - np.floor(points) - 0.5), 0.0)
+
+
+@lru_cache(maxsize=4)
+def packaged_pad_model(pressure_pa: float = thesis.P0_PA) -> PadModel:
+    """The pad model from the packaged FEM response at the pressure nearest ``pressure_pa``
+    (bilinear between the FEM's nodes)."""
+    path = resources.files("softpad").joinpath("data", "module_response.npz")
+    try:
+        with path.open("rb") as fh, np.load(fh, allow_pickle=False) as z:
+            p, axis, infl = z["pressure_pa"], z["axis_m"], z["influence_m3_n"]
+    except (OSError, KeyError, ValueError) as exc:
+        raise InputError(f"cannot read the packaged module response: {exc}") from None
+    s = infl[int(np.argmin(np.abs(p - pressure_pa)))]
+    side = 2.0 * float(axis[-1])  # the FEM module's chamber; its seam is 0 (thesis figures)
+    grid = np.abs(np.linspace(-0.5, 0.5, _LOOKUP)) * side
+    along_x = np.array([np.interp(grid, axis, s[:, j]) for j in range(axis.size)])  # (N, L)
+    table = np.array([np.interp(grid, axis, along_x[:, i]) for i in range(_LOOKUP)])
+    return PadModel(np.clip(table / s[0, 0], 0.0, None))
+
+
+# --- 2. estimate -------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class _Templates:
+    """Every footprint hypothesis with its centre in one module, as predicted increments of
+    the (2r+1)^2 modules around it per unit weight."""
+
+    offsets: Array  # (T, 2) centre from its module's centre, module units
+    halves: Array  # (T, 2) half length and half width, module units
+    yaws: Array  # (T,) radians in [0, pi)
+    starts: NDArray[np.int64]  # (T,) first entry of each template's window modules
+    modules: NDArray[np.int64]  # (E,) window module of each entry
+    shares: Array  # (E,) response-weighted share of the load on it
+    covers: Array  # (E,) share of the footprint's area on it
+    window: NDArray[np.int64]  # (W, 2) column and row-from-bottom offsets of the window
+    radius: int
+
+    def sums(self, values: Array, share: Array) -> Array:
+        """Sum over each template's modules of ``share`` (one of the entries' arrays) times
+        ``values`` (W, C) of the window's modules: (T, C)."""
+        return np.add.reduceat(share[:, None] * values[self.modules], self.starts, axis=0)
+
+
+@lru_cache(maxsize=8)
+def _templates(pitch_m: float, params: ModelBasedParams, model: PadModel) -> _Templates:
+    """The footprint hypotheses of ``params`` on a pad of ``pitch_m``."""
+    k = params.centre_steps
+    offs = (np.arange(k) + 0.5) / k - 0.5
+    sizes = np.asarray(sorted(params.sizes_mm)) * 1e-3 / pitch_m
+    pairs = [(a, b) for i, a in enumerate(sizes) for b in sizes[: i + 1]]
+    yaws = np.arange(params.yaw_steps) * math.pi / params.yaw_steps
+    radius = math.ceil(0.5 + 0.5 * math.hypot(sizes[-1], sizes[-1]))
+    rng = np.arange(-radius, radius + 1)
+    window = np.array([(c, r) for r in rng for c in rng], dtype=np.int64)
+    rows = [
+        (o, (a / 2, b / 2), y, *_pattern(np.array(o), a, b, y, model, radius))
+        for a, b in pairs
+        for y in yaws
+        for o in ((ox, oy) for ox in offs for oy in offs)
+    ]
+    patterns, covers = np.array([r[3] for r in rows]), np.array([r[4] for r in rows])
+    touched = covers > 0  # every footprint covers its centre module
+    starts = np.concatenate([[0], np.cumsum(touched.sum(axis=1))[:-1]])
+    return _Templates(
+        np.array([r[0] for r in rows]),
+        np.array([r[1] for r in rows]),
+        np.array([r[2] for r in rows]),
+        starts.astype(np.int64),
+        np.nonzero(touched)[1].astype(np.int64),
+        patterns[touched],
+        covers[touched],
+        window,
+        radius,
+    )
+
+
+def _pattern(
+    offset: Array, length: float, width: float, yaw: float, model: PadModel, radius: int
+) -> tuple[Array, Array]:
+    """Share of an evenly spread unit load on each window module, weighted by the response
+    at each point, and share of the footprint's area on it (module units; the window's
+    module (0, 0) holds the centre)."""
+    n = max(2, math.ceil(max(length, width) / 0.05))
+    u = (np.arange(n) + 0.5) / n - 0.5
+    gx, gy = np.meshgrid(u * length, u * width, indexing="ij")
+    c, s = math.cos(yaw), math.sin(yaw)
+    pts = np.column_stack([c * gx.ravel() - s * gy.ravel(), s * gx.ravel() + c * gy.ravel()])
+    pts += offset + 0.5  # the centre module spans [0, 1)^2
+    cell = np.floor(pts).astype(np.int64)
+    resp = model.response(pts - cell - 0.5)
+    side = 2 * radius + 1
+    idx = (cell[:, 1] + radius) * side + (cell[:, 0] + radius)
+    ok = (np.abs(cell) <= radius).all(axis=1)
+    load = np.bincount(idx[ok], weights=resp[ok], minlength=side * side) / len(pts)
+    return load, np.bincount(idx[ok], minlength=side * side) / len(pts)
+
+
+@dataclass(frozen=True)
+class Posterior:
+    """The most likely footprints of one object (module units, pad frame)."""
+
+    centres: Array  # (H, 2)
+    halves: Array  # (H, 2) half length, half width
+    yaws: Array  # (H,)
+    probs: Array  # (H,) summing to 1
+
+    def mean_centre(self) -> tuple[float, float]:
+        """Posterior mean of the footprint's centre, module units."""
+        c = self.probs @ self.centres
+        return float(c[0]), float(c[1])
+
+    def spread(self) -> float:
+        """Posterior rms distance of the centre from its mean, module units."""
+        r = self.centres - np.asarray(self.mean_centre())
+        return float(math.sqrt(self.probs @ (r**2).sum(axis=1)))
+
+    def sample(self, n: int) -> Posterior:
+        """``n`` hypotheses drawn in proportion to their probability (systematic: evenly
+        spaced quantiles, deterministic), each distinct one weighted by its count."""
+        cum = np.cumsum(self.probs)
+        picks = np.searchsorted(cum, (np.arange(n) + 0.5) / n * cum[-1])
+        i, count = np.unique(np.minimum(picks, self.probs.size - 1), return_counts=True)
+        return Posterior(self.centres[i], self.halves[i], self.yaws[i], count / count.sum())
+
+    def reweighted(self, likelihood: Array) -> Posterior:
+        """The posterior times ``likelihood``, normalised (unchanged where it is all 0)."""
+        p = self.probs * likelihood
+        return self if p.sum() <= 0 else replace(self, probs=p / p.sum())
+
+
+def estimate(
+    increments_pa: Array,
+    modules: tuple[int, ...],
+    layout: PadLayout,
+    model: PadModel,
+    params: ModelBasedParams,
+    masked: frozenset[int] = frozenset(),
+) -> Posterior:
+    """The footprint posterior of the object on ``modules`` (its centre on one of them):
+    every hypothesis within ``log_floor`` of the most likely; ``masked`` modules (other
+    objects') say nothing about it."""
+    t = _templates(layout.pitch_m, params, model)
+    grid, weight, pad = _padded(increments_pa, layout, t.radius, masked, params)
+    cols = np.array([layout.row_col(m)[1] for m in modules])
+    rows = np.array([layout.rows - 1 - layout.row_col(m)[0] for m in modules])
+    gi = (
+        rows[:, None] + t.radius + t.window[None, :, 1],
+        cols[:, None] + t.radius + t.window[None, :, 0],
+    )
+    d, w = grid[gi], weight[gi]  # (C, W) each
+    b = t.sums((w * d).T, t.shares)  # (T, C): sum w d g
+    a = t.sums(w.T, t.shares**2)  # (T, C): sum w g^2
+    scale = np.where(a > 0, np.clip(b, 0.0, None) / np.where(a > 0, a, 1.0), 0.0)
+    loglik = -0.5 * ((w * d * d).sum(axis=1)[None, :] - 2 * scale * b + scale**2 * a)
+    on_pad = t.sums(pad[gi].T, t.covers)  # (T, C): share of the footprint on the pad
+    loglik[on_pad < 1.0 - params.overhang] = -np.inf
+    flat = loglik.ravel()
+    keep = np.flatnonzero(flat > flat.max() - params.log_floor)
+    ti, ci = np.unravel_index(keep, loglik.shape)
+    centres = np.column_stack([cols[ci] + 0.5, rows[ci] + 0.5]) + t.offsets[ti]
+    p = np.exp(flat[keep] - flat[keep].max())
+    return Posterior(centres, t.halves[ti], t.yaws[ti], p / p.sum())
+
+
+def _padded(
+    increments_pa: Array,
+    layout: PadLayout,
+    radius: int,
+    masked: frozenset[int],
+    params: ModelBasedParams,
+) -> tuple[Array, Array, Array]:
+    """The increments, their likelihood weights (1 / variance; 0 off the pad and on
+    ``masked`` modules) and 1 on the pad, on the pad grid (row from the bottom, column)
+    padded by ``radius`` modules of 0."""
+    r, c = layout.rows, layout.cols
+    grid = np.zeros((r + 2 * radius, c + 2 * radius))
+    weight = np.zeros_like(grid)
+    d = increments_pa.reshape(r, c)[::-1]  # row 0 at the bottom
+    var = params.noise_pa**2 + (params.model_error * d) ** 2
+    w = 1.0 / var
+    for m in masked:
+        row, col = layout.row_col(m)
+        w[r - 1 - row, col] = 0.0
+    grid[radius : radius + r, radius : radius + c] = d
+    weight[radius : radius + r, radius : radius + c] = w
+    pad = np.zeros_like(grid)
+    pad[radius : radius + r, radius : radius + c] = 1.0
+    return grid, weight, pad
+
+
+# --- 3. candidates -----------------------------------------------------------------------------
+
+
+def candidates(post: Posterior, params: ModelBasedParams) -> tuple[Array, Array]:
+    """Grasp centres (G, 2), module units, and closing directions (G,): every likely
+    footprint's centre and points half a hypothesis step beside it, each with the fixed fan
+    of directions and the directions across the likely footprints."""
+    step = 0.5 / params.centre_steps
+    shifts = np.array([(0, 0), (step, 0), (-step, 0), (0, step), (0, -step)])
+    likely = np.unique(np.round(post.centres, 6), axis=0)
+    centres = np.unique(np.round((likely[:, None, :] + shifts).reshape(-1, 2), 6), axis=0)
+    fan = np.arange(params.directions) * math.pi / params.directions
+    across = (post.yaws + math.pi / 2) % math.pi
+    thetas = np.unique(np.concatenate([fan, across]))
+    cg = np.repeat(centres, thetas.size, axis=0)
+    tg = np.tile(thetas, centres.shape[0])
+    return cg, tg
+
+
+# --- 4. score ----------------------------------------------------------------------------------
+
+#: Sample points of a fingertip's sole: fractions of its thickness (along the closing
+#: direction) and of its width (across it).
+_SOLE = np.array([(a, b) for a in (-0.4, 0.0, 0.4) for b in (-0.4, -0.2, 0.0, 0.2, 0.4)])
+
+
+def tip_response(
+    centres: Array, thetas: Array, gripper: GripperSpec, layout: PadLayout, model: PadModel
+) -> Array:
+    """Mean relative response under the better-placed of the two open fingertips of each
+    grasp (G,): what the contact detector has to sense."""
+    u = np.column_stack([np.cos(thetas), np.sin(thetas)])
+    n = np.column_stack([-u[:, 1], u[:, 0]])
+    reach = (gripper.max_width_m + gripper.tip_thickness_m) / 2 / layout.pitch_m
+    sole = (
+        _SOLE[:, 0, None, None] * gripper.tip_thickness_m * u[None]
+        + _SOLE[:, 1, None, None] * gripper.tip_width_m * n[None]
+    ) / layout.pitch_m  # (S, G, 2)
+    best = np.zeros(len(thetas))
+    for sign in (1.0, -1.0):
+        pts = centres[None] + sign * reach * u[None] + sole
+        best = np.maximum(best, model.on_pad(pts, layout).mean(axis=0))
+    return best
+
+
+def _offsets(post: Posterior, centres: Array, thetas: Array) -> tuple[Array, ...]:
+    """Offsets of each footprint's centre from each grasp centre along and across the
+    closing direction, and |cos|, |sin| of the footprint's yaw from it: (G, H) each."""
+    u = np.column_stack([np.cos(thetas), np.sin(thetas)])
+    delta = post.centres[None, :, :] - centres[:, None, :]
+    m_u = delta[:, :, 0] * u[:, None, 0] + delta[:, :, 1] * u[:, None, 1]
+    m_n = delta[:, :, 1] * u[:, None, 0] - delta[:, :, 0] * u[:, None, 1]
+    phi = post.yaws[None, :] - thetas[:, None]
+    return m_u, m_n, np.abs(np.cos(phi)), np.abs(np.sin(phi))
+
+
+def _half_extents(post: Posterior, c: Array, s: Array, widen: float) -> tuple[Array, Array]:
+    """Half extents of the footprints along and across the closing direction (G, H);
+    ``widen`` multiplies the footprint's width (2: a lying cylinder, whose contact strip is
+    half its diameter)."""
+    hl, hw = post.halves[None, :, 0], widen * post.halves[None, :, 1]
+    return hl * c + hw * s, hl * s + hw * c
+
+
+def fit_chance(
+    post: Posterior,
+    centres: Array,
+    thetas: Array,
+    gripper: GripperSpec,
+    layout: PadLayout,
+    params: ModelBasedParams,
+) -> Array:
+    """Posterior chance (G,) that each grasp's jaws come down clear of the object, close on
+    it and hold it balanced, a box's footprint and a lying cylinder's counting alike."""
+    half_open = (gripper.max_width_m / 2 - params.clearance_m) / layout.pitch_m
+    narrow = gripper.min_width_m / layout.pitch_m
+    m_u, m_n, c, s = _offsets(post, centres, thetas)
+    chance = np.zeros(len(thetas))
+    for widen in (1.0, 2.0):
+        e_u, e_n = _half_extents(post, c, s, widen)
+        ok = (np.abs(m_u) + e_u < half_open) & (2 * e_u > narrow)
+        ok &= np.abs(m_n) < params.centre_band * e_n
+        chance += 0.5 * (ok @ post.probs)
+    return chance
+
+
+def predicted_success(
+    post: Posterior,
+    centres: Array,
+    thetas: Array,
+    gripper: GripperSpec,
+    layout: PadLayout,
+    model: PadModel,
+    params: ModelBasedParams,
+    sensing_ratio: float,
+) -> Array:
+    """Predicted success of each grasp (G,): the chance a fingertip is sensed (its sole's
+    response over the share the detector needs, at most 1) times :func:`fit_chance`."""
+    need = params.needed_share * sensing_ratio
+    sensed = np.clip(tip_response(centres, thetas, gripper, layout, model) / need, 0.0, 1.0)
+    return sensed * fit_chance(post, centres, thetas, gripper, layout, params)
+
+
+def landing_likelihood(
+    post: Posterior,
+    plan: GraspPlan,
+    side: int,
+    gripper: GripperSpec,
+    layout: PadLayout,
+    params: ModelBasedParams,
+) -> Array:
+    """Likelihood (H,) of a landing of ``plan``'s jaws on the object, on the ``side`` of the
+    centre the pad felt pressed (+1 along the closing direction, -1 against, 0 unknown):
+    1 where the footprint (either shape) puts a jaw there, ``surprise`` elsewhere."""
+    centre, theta = np.array([plan.cog]), np.array([plan.theta])
+    half_open = gripper.max_width_m / 2 / layout.pitch_m
+    tip_half = gripper.tip_width_m / 2 / layout.pitch_m
+    m_u, m_n, c, s = (a[0] for a in _offsets(post, centre, theta))
+    like = np.zeros(len(post.probs))
+    for widen in (1.0, 2.0):
+        e_u, e_n = (a[0] for a in _half_extents(post, c[None], s[None], widen))
+        under = np.abs(m_n) < e_n + tip_half
+        plus, minus = under & (m_u + e_u > half_open), under & (m_u - e_u < -half_open)
+        hit = {1: plus, -1: minus}.get(side, plus | minus)
+        like += 0.5 * np.where(hit, 1.0, params.surprise)
+    return like
+
+
+# --- 5. choose ---------------------------------------------------------------------------------
+
+
+@dataclass
+class ModelBasedPlanner:
+    """Estimate the footprint from the pad model, then the grasp most likely to succeed
+    (a ``RetryPlanner``; see the module's docstring).
+
+    Parameters
+    ----------
+    gripper
+        Jaw geometry: opening range, fingertip size.
+    params
+        The planner's parameters.
+    sensing_ratio
+        The contact detector's step floor over the thesis detector's
+        (:func:`softpad.sensing.sensing_ratio`; 1 for the thesis's).
+    object_threshold_pa
+        t_o: the increment of a module an object's landing pressure is weighed over, Pa.
+    """
+
+    gripper: GripperSpec = field(default_factory=GripperSpec)
+    params: ModelBasedParams = field(default_factory=ModelBasedParams)
+    sensing_ratio: float = 1.0
+    model: PadModel | None = None
+    _evidence: dict[tuple[object, ...], list[tuple[GraspPlan, int]]] = field(
+        default_factory=dict, repr=False
+    )
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.sensing_ratio) and self.sensing_ratio > 0):
+            raise InputError(f"sensing ratio must be a number > 0, got {self.sensing_ratio!r}")
+        if self.model is None:
+            self.model = packaged_pad_model(self.params.pressure_pa)
+
+    def plan(
+        self, increments_pa: ArrayLike, objects: list[tuple[int, ...]], layout: PadLayout
+    ) -> list[GraspPlan]:
+        d = check_increments(increments_pa, layout)
+        groups = outline_objects(d, objects, layout, self.params.outline_threshold_pa)
+        self._evidence.clear()
+        return [self._choose(d, g, groups, layout, []) for g in groups]
+
+    def retry(
+        self,
+        plan: GraspPlan,
+        increments_pa: ArrayLike,
+        layout: PadLayout,
+        landing_rise_pa: ArrayLike,
+        closed: bool = True,
+    ) -> GraspPlan | None:
+        """The grasp chosen again once ``plan``'s landing on the object (and the side it
+        pressed) is evidence; before closing (not ``closed``) only when it differs from
+        ``plan``, after a miss whatever it is."""
+        d = check_increments(increments_pa, layout)
+        rise = check_increments(landing_rise_pa, layout)
+        side = _pressed_side(plan, layout, rise, self.params.side_share)
+        key = (plan.modules, d.round(3).tobytes())
+        seen = self._evidence.setdefault(key, [])
+        seen.append((plan, side))
+        groups = outline_objects(d, [plan.modules], layout, self.params.outline_threshold_pa)
+        best = self._choose(d, plan.modules, groups, layout, seen)
+        moved = math.dist(best.cog, plan.cog) * layout.pitch_m > 2e-3
+        turned = abs(math.remainder(best.theta - plan.theta, math.pi)) > math.radians(5)
+        if not closed and not (moved or turned):
+            return None
+        return replace(best, rule=best.rule + "+after-landing")
+
+    def _choose(
+        self,
+        d: Array,
+        modules: tuple[int, ...],
+        groups: list[tuple[int, ...]],
+        layout: PadLayout,
+        evidence: list[tuple[GraspPlan, int]],
+    ) -> GraspPlan:
+        assert self.model is not None
+        others = frozenset(m for g in groups if g != modules for m in g)
+        post = estimate(d, modules, layout, self.model, self.params, others)
+        for tried, side in evidence:
+            post = post.reweighted(
+                landing_likelihood(post, tried, side, self.gripper, layout, self.params)
+            )
+        post = post.sample(self.params.kept_hypotheses)
+        cg, tg = candidates(post, self.params)
+        score = predicted_success(
+            post, cg, tg, self.gripper, layout, self.model, self.params, self.sensing_ratio
+        )
+        i = int(np.argmax(score))
+        centre = (float(cg[i, 0]), float(cg[i, 1]))
+        theta = float(tg[i]) - (math.pi if tg[i] > math.pi / 2 + 1e-12 else 0.0)
+        rule = f"model-based p={score[i]:.2f}"
+        return GraspPlan(modules, pcom(d, modules, layout), centre, theta, rule, modules)
+
+
+def _pressed_side(plan: GraspPlan, layout: PadLayout, rise: Array, share: float) -> int:
+    """+1 or -1: the side of the plan's centre along its closing direction where the
+    landing's rise (clipped at 0) weighs at least ``share`` of the total; 0 otherwise."""
+    w = np.clip(rise, 0.0, None)
+    if w.sum() <= 0:
+        return 0
+    u = np.array([math.cos(plan.theta), math.sin(plan.theta)])
+    along = (layout.centers - np.asarray(plan.cog)) @ u
+    plus, minus = float(w[along > 0].sum()), float(w[along < 0].sum())
+    if max(plus, minus) < share * float(w.sum()):
+        return 0
+    return 1 if plus > minus else -1

@@ -1,0 +1,159 @@
+"""The model-based planner: footprints estimated from increments the simulator's FEM response
+predicts (an independent implementation: softpad.sim.PadResponse), grasps chosen under them."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from softpad import thesis
+from softpad.errors import InputError
+from softpad.layout import GripperSpec, PadLayout
+from softpad.planning import (
+    TABLE_6_1,
+    ModelBasedParams,
+    ModelBasedPlanner,
+    RetryPlanner,
+    make_planner,
+)
+from softpad.planning._model_based import estimate, packaged_pad_model
+from softpad.sensing import detect_objects
+
+LAYOUT = PadLayout()
+WIDE = GripperSpec.from_mounting("10/4")
+
+
+def _increments(centre_mm, size_mm, yaw_deg, mass_g, layout=LAYOUT):
+    """Sealed-chamber rises of an evenly loaded rectangle, Pa (the simulator's FEM model)."""
+    from softpad.sim import PadResponse
+
+    pad = PadResponse(layout)
+    loads = pad.rect_equivalent_loads(
+        np.asarray(centre_mm) * 1e-3,
+        np.asarray(size_mm) * 1e-3,
+        mass_g * 1e-3 * 9.80665,
+        thesis.P0_PA,
+        math.radians(yaw_deg),
+    )
+    return pad.sealed_rise_pa(loads, thesis.P0_PA)
+
+
+#: Rectangles (centre mm, size mm, yaw deg, mass g) over the 2 x 3 pad (135 x 90 mm).
+BOXES = [
+    ((67.5, 45.0), (60.0, 30.0), 0.0, 120.0),
+    ((40.0, 60.0), (40.0, 40.0), 20.0, 90.0),
+    ((95.0, 40.0), (80.0, 25.0), 90.0, 180.0),
+    ((70.0, 50.0), (100.0, 20.0), 30.0, 75.0),
+    ((30.0, 25.0), (25.0, 25.0), 0.0, 45.0),
+]
+
+
+@pytest.mark.parametrize("box", BOXES)
+def test_estimate_finds_the_centre_of_a_simulated_rectangle(box):
+    centre, size, yaw, mass = box
+    d = _increments(centre, size, yaw, mass)
+    (obj,) = detect_objects(d, LAYOUT)
+    post = estimate(d, obj, LAYOUT, packaged_pad_model(), ModelBasedParams())
+    assert post.probs.sum() == pytest.approx(1.0)
+    got = np.asarray(post.mean_centre()) * LAYOUT.pitch_m * 1e3
+    # the hypotheses' centres lie on an 11 mm grid: the mean within a grid step
+    assert math.dist(got, centre) < 11.25, (got, centre)
+
+
+@pytest.mark.parametrize("box", BOXES)
+def test_chosen_grasp_holds_the_simulated_rectangle(box):
+    """The grasp centre lies on the rectangle, in the middle half across the jaws, and the
+    open jaws clear it (its extent along the closing direction within the opening)."""
+    centre, size, yaw, mass = box
+    d = _increments(centre, size, yaw, mass)
+    (plan,) = ModelBasedPlanner(WIDE).plan(d, detect_objects(d, LAYOUT), LAYOUT)
+    c = np.asarray(plan.cog) * LAYOUT.pitch_m * 1e3 - np.asarray(centre)
+    u = np.array([math.cos(plan.theta), math.sin(plan.theta)])
+    phi = math.radians(yaw) - plan.theta
+    e_u = (size[0] * abs(math.cos(phi)) + size[1] * abs(math.sin(phi))) / 2
+    e_n = (size[0] * abs(math.sin(phi)) + size[1] * abs(math.cos(phi))) / 2
+    along, across = float(c @ u), float(c @ np.array([-u[1], u[0]]))
+    assert abs(along) + e_u < WIDE.max_width_m * 1e3 / 2, (plan, along, e_u)
+    assert abs(across) < e_n, (plan, across, e_n)
+
+
+def test_plan_is_a_retry_planner_and_one_plan_per_object():
+    planner = make_planner("model-based", WIDE)
+    assert isinstance(planner, RetryPlanner)
+    d = _increments((30.0, 45.0), (25.0, 25.0), 0.0, 60.0) + _increments(
+        (115.0, 45.0), (20.0, 20.0), 0.0, 60.0
+    )
+    objects = detect_objects(d, LAYOUT)
+    plans = planner.plan(d, objects, LAYOUT)
+    assert [p.modules for p in plans] == objects
+    for p in plans:  # each grasped on its own side of the pad
+        assert LAYOUT.module_containing(*p.cog) in p.modules
+
+
+def test_landing_is_evidence_that_moves_the_grasp():
+    """A landing on the side the pad felt pressed rules out the hypotheses under which the
+    jaws clear the object: the grasp chosen again differs from the one that landed, and
+    the same evidence twice is no weaker."""
+    d = _increments(*BOXES[0])
+    planner = ModelBasedPlanner(WIDE)
+    (plan,) = planner.plan(d, detect_objects(d, LAYOUT), LAYOUT)
+    u = np.array([math.cos(plan.theta), math.sin(plan.theta)])
+    rise = np.clip((LAYOUT.centers - np.asarray(plan.cog)) @ u, 0.0, None) * 100.0
+    after = planner.retry(plan, d, LAYOUT, rise, closed=True)
+    assert after is not None and after.rule.endswith("+after-landing")
+    moved = math.dist(after.cog, plan.cog) > 1e-6
+    turned = abs(math.remainder(after.theta - plan.theta, math.pi)) > 1e-6
+    assert moved or turned
+
+
+def test_landing_before_closing_offers_a_different_grasp_or_none():
+    """At the landing, before closing, the planner offers a grasp only when the evidence
+    moves its choice (more than 2 mm or 5 degrees), else None: the loop closes."""
+    planner = ModelBasedPlanner(WIDE)
+    for box in BOXES:
+        d = _increments(*box)
+        (plan,) = planner.plan(d, detect_objects(d, LAYOUT), LAYOUT)
+        for rise in (np.zeros(6), d):
+            after = planner.retry(plan, d, LAYOUT, rise, closed=False)
+            if after is not None:
+                moved = math.dist(after.cog, plan.cog) * LAYOUT.pitch_m > 2e-3
+                turned = abs(math.remainder(after.theta - plan.theta, math.pi)) > 0.087
+                assert moved or turned
+
+
+def test_table_6_1_plans_keep_the_centre_on_the_objects_modules():
+    planner = ModelBasedPlanner(WIDE)
+    for case in TABLE_6_1:
+        d = np.asarray(case.delta_pa)
+        for p in planner.plan(d, detect_objects(d, LAYOUT), LAYOUT):
+            assert -math.pi / 2 < p.theta <= math.pi / 2
+            assert 0 <= p.cog[0] <= LAYOUT.cols and 0 <= p.cog[1] <= LAYOUT.rows
+
+
+def test_a_larger_pad_is_planned_the_same_way():
+    big = PadLayout(rows=8, cols=8)
+    d = _increments((200.0, 150.0), (60.0, 30.0), 0.0, 120.0, big)
+    (plan,) = ModelBasedPlanner(WIDE).plan(d, detect_objects(d, big), big)
+    assert math.dist(np.asarray(plan.cog) * 45.0, (200.0, 150.0)) < 20.0
+
+
+@pytest.mark.parametrize(
+    "change",
+    [
+        {"noise_pa": -1.0},
+        {"model_error": math.nan},
+        {"centre_steps": 0},
+        {"sizes_mm": ()},
+        {"sizes_mm": (10.0, 900.0)},
+    ],
+)
+def test_bad_parameters_are_refused(change):
+    with pytest.raises(InputError):
+        ModelBasedParams(**change)
+
+
+def test_bad_sensing_ratio_is_refused():
+    with pytest.raises(InputError, match="sensing ratio"):
+        ModelBasedPlanner(WIDE, sensing_ratio=0.0)
