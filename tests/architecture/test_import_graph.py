@@ -98,3 +98,15 @@ def test_importing_the_controller_loads_no_simulator_world() -> None:
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert out.returncode == 0, out.stdout + out.stderr
+
+
+def test_planning_has_no_function_over_60_lines() -> None:
+    """Issue 34: the planners read as short steps (docstrings count)."""
+    long = []
+    for path in sorted((SRC / "planning").glob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef):
+                n = (node.end_lineno or node.lineno) - node.lineno + 1
+                if n > 60:
+                    long.append(f"{path.name}:{node.name} ({n} lines)")
+    assert not long, long

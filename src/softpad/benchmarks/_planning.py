@@ -1,4 +1,6 @@
-"""Planner speed: one plan on the 2 x 3 pad, in process (target <= 20 us, issue 15)."""
+"""Planner speed: one plan on the 2 x 3 pad, in process (target <= 20 us, issue 15); the
+model-based planner on the 2 x 3 pad (<= 1 ms, the 1 kHz sample period) and on a 64 x 64 pad
+(<= 20 ms), issue 34."""
 
 from __future__ import annotations
 
@@ -7,6 +9,9 @@ from typing import Any
 from softpad.benchmarks._common import BenchResult, median_time_s
 
 TARGET_S = 20e-6
+#: Model-based planner targets (issue 34): 2 x 3 pad, 64 x 64 pad, seconds.
+MODEL_TARGET_2X3_S = 1e-3
+MODEL_TARGET_64X64_S = 20e-3
 
 
 def slowest_plan_s(cases: Any, repeats: int, inner: int) -> tuple[str, float]:
@@ -53,4 +58,58 @@ def run(quick: bool = False) -> list[BenchResult]:
     results.append(
         plan_2x3_figure(name, worst, "median per case of 11 x 200 calls; the largest median")
     )
-    return results
+    return results + model_based_figures(quick)
+
+
+def model_based_figures(quick: bool) -> list[BenchResult]:
+    """The model-based planner's plan time: the slowest Table 6.1 case on the 2 x 3 pad, and
+    the banana's increments placed in the middle of a 64 x 64 pad (one object)."""
+    import numpy as np
+
+    from softpad.layout import GripperSpec, PadLayout
+    from softpad.planning import TABLE_6_1, ModelBasedPlanner
+    from softpad.sensing import detect_objects
+
+    planner = ModelBasedPlanner(GripperSpec())
+    repeats, inner = (5, 5) if quick else (11, 20)
+    small = PadLayout()
+    worst_name, worst = "", 0.0
+    for case in TABLE_6_1:
+        d = np.asarray(case.delta_pa)
+        objects = detect_objects(d, small)
+        planner.plan(d, objects, small)  # the hypotheses' tables are built once per pitch
+
+        def plan_small(d: object = d, objects: object = objects) -> object:
+            return planner.plan(d, objects, small)  # type: ignore[arg-type]
+
+        t = median_time_s(plan_small, repeats, inner)
+        if t > worst:
+            worst_name, worst = case.name, t
+    big = PadLayout(rows=64, cols=64)
+    grid = np.zeros((64, 64))
+    grid[31:33, 31:34] = np.reshape(
+        next(c for c in TABLE_6_1 if c.name == "banana").delta_pa, (2, 3)
+    )
+    d_big = grid.ravel()
+    objects_big = detect_objects(d_big, big)
+    planner.plan(d_big, objects_big, big)
+    t_big = median_time_s(lambda: planner.plan(d_big, objects_big, big), repeats, inner)
+    detail = f"median of {repeats} x {inner} calls of ModelBasedPlanner.plan"
+    return [
+        BenchResult(
+            f"plan 2x3 model-based, slowest Table 6.1 case ({worst_name})",
+            worst * 1e3,
+            "ms",
+            target="<= 1 ms",
+            met=worst <= MODEL_TARGET_2X3_S,
+            detail=detail,
+        ),
+        BenchResult(
+            "plan 64x64 model-based (banana's increments mid-pad)",
+            t_big * 1e3,
+            "ms",
+            target="<= 20 ms",
+            met=t_big <= MODEL_TARGET_64X64_S,
+            detail=detail,
+        ),
+    ]

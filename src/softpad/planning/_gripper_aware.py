@@ -1,57 +1,22 @@
 """A planner that knows the gripper: fingertips on sensitive area, opening that spans the object.
 
-The thesis's two seam failures came from a fingertip landing on the non-sensitive seam between
-modules (Section 6.3). :class:`GripperAwarePlanner` starts from the thesis's plan and keeps it
-whenever a fingertip is sensed by the contact detector in use; otherwise it tries grasps
-shifted along and across the closing direction (turned too, when the object's outline is wider
-than the jaws open along the thesis's direction), and takes the best by the score
+:class:`GripperAwarePlanner` starts from the thesis's plan (objects outlined at the noise floor,
+:func:`softpad.sensing.outline_objects`) and keeps it when a fingertip is sensed by the contact
+detector in use and the jaws span the object's outline; otherwise it takes the best-scoring
+grasp shifted along and across the closing direction (and turned, where the outline is wider
+than the jaws), the score being the better fingertip's sensed share (:func:`sensed_share`,
+the FEM response under its sole) less costs for the shift, the turn and an outline wider than
+the jaws, plus a term for the load under the centre. Where the outline is wider than the
+jaws, the centre first moves to the load under the jaws' path (:func:`centred_on_load`).
+Pairs of one-module objects are grasped across the line joining them (:func:`across_pairs`),
+after a tentative grasp between them (:func:`bridge_pairs`); three diagonal-linked modules
+are planned along the load's major axis (:func:`along_load_axis`). :meth:`retry` answers a
+landing on the object: a quarter turn where the outline allows, else a shift towards the
+pressed side, else (after a miss pressed alike on both sides) the same grasp again.
 
-    score = sensed response of the better-placed fingertip - shift_cost * shift / max_shift
-            - turn_cost * |turn| / max_turn
-            + load_cost * dP of the module under the centre / the object's largest dP
-
-among those whose centre stays on the object's modules, with a penalty of 1 when the object's
-extent estimated from the pad (its modules' outline, projected on the closing direction) is
-wider than the jaws open. The load term sends a shift towards where the object's weight lies
-(a V-shaped toy's body, not its light arms across the seam).
-
-Where the outline is wider than the jaws open along the closing direction (the object may
-fill the opening), the centre first moves along that direction to the middle of the load under
-the jaws' path (its modules above t_o; :func:`centred_on_load`): the thesis's rules keep it on
-a row seam, which the 55 mm charger between 60 mm jaws missed by more than the 2.5 mm a side
-in half its grasps.
-
-When the jaws land on the object and close on nothing (the loop sees the fingers sensed high
-above the pad and a fully closed gripper), :meth:`GripperAwarePlanner.retry` offers the grasp
-turned a quarter turn, where the object's outline is no wider that way, its centre moved
-across to the object's load centroid: a can lying along a row seam, whose light body leaves
-it looking like a square of four modules, is first grasped along its length. Otherwise the
-grasp moves towards the side the landing pressed, half a sole or on to the load under the
-fingertips' path; after a miss that pressed both sides alike, it is tried again. The loop
-also asks at the landing itself, before closing (``closed=False``); the planner answers there
-only when the landing pressed one side of the jaws' centre line alone (:func:`pressed_share`):
-a jaw on a brick's edge, which closing would shove across the pad.
-
-"Sensed" depends on the detector. The response map (:func:`sensed_share`) says what share of a
-centred fingertip's rise a fingertip raises where it lands; with the thesis's detector a grasp
-is kept from a share of ``good_share`` (0.5). A detector that catches smaller rises needs
-proportionally less: ``good_share`` is scaled by the detector's sensing ratio, its step floor
-over the thesis detector's at the same sample rate and sensor noise
-(:func:`softpad.sensing.sensing_ratio`; 0.44 for the adaptive CUSUM at 100 Hz, 0.19 at 1 kHz).
-
-Two objects seen on one module each are grasped across the line joining them
-(:func:`across_pairs`): a banana resting on its ends, its middle arching over the pad. Before
-them, when each is the other's nearest, comes a tentative grasp between them at their
-increment-weighted mean (:func:`bridge_pairs`): where a rigid body on two supports has its
-centre of mass. Three diagonal-linked modules are planned on the side module nearest the
-load's major axis, not the PCOM's side of the bisector (:func:`along_load_axis`).
-
-Objects are outlined at the pad's noise floor before planning
-(:func:`softpad.sensing.outline_objects`): a module next to an object whose increment is above
-the outline threshold (25 Pa) but under t_o joins it, so a banana whose middle stays under t_o
-is one object, not two ends planned apart. A diagonal pair whose outline only adds the
-corners between its modules is kept as found (:func:`_kept_diagonals`): object 2's plate
-crosses the corner module lightly, and as an L it was grasped along a row onto its bricks.
+The rules grew from losses on Table 6.1's objects in the simulator; docs/beat-the-thesis.md
+("The gripper-aware planner's development history") keeps the record of each one. The
+model-based planner (:mod:`softpad.planning._model_based`) replaces them with one model.
 """
 
 from __future__ import annotations
@@ -91,10 +56,8 @@ DEFAULT_SEAM_WIDTH_M = 5e-3
 LANDING_BALANCE = 0.05
 
 #: Share of a landing's rise on one side of the jaws' centre line from which the landing
-#: counts as one-sided (:func:`pressed_share`). On development seeds 100-107 the chargers'
-#: landings put 0.97 to 1.0 of their rise on the pressed row (a jaw on the brick's edge tips
-#: it, its far side lifts), the toys' (a jaw on an arm, the body pressing on the line, held
-#: when the jaws closed) 0.31 to 0.72.
+#: counts as one-sided (:func:`pressed_share`; chosen between development objects'
+#: distributions, see docs/beat-the-thesis.md).
 ONE_SIDED_SHARE = 0.9
 
 #: Distance of a module's centre from the jaws' centre line, module units, under which it
@@ -259,36 +222,18 @@ class GripperAwarePlanner:
         closed: bool = True,
     ) -> GraspPlan | None:
         """After ``plan``'s jaws landed on the object and closed on nothing (``closed``), or
-        at the landing itself, before closing (not ``closed``): then only when the landing
-        pressed one side alone (:func:`pressed_share` at least ``ONE_SIDED_SHARE``), a jaw
-        on the edge of an object that tips about the jaws' centre line (a brick, which
-        closing would shove across the pad), not a jaw on a part beside what lies between
-        the jaws (a toy's arm, its body on the line: closing holds it).
+        at the landing itself, before closing (not ``closed``: then only when the landing
+        pressed one side alone, :func:`pressed_share` at least ``ONE_SIDED_SHARE``).
 
-        Where the object's outline is no wider a quarter turn away (a can lying along a row
-        seam, seen as a square of four modules or an L), the grasp turned a quarter turn, its
-        centre moved along the new closing direction to the object's load centroid (the
-        increment-weighted mean of its modules, the PCOM): a straight object's axis runs
-        through it, so the jaws straddle the can there. The thesis's rules place the centre
-        along the first direction, not across it: an L's corner-shift rule left it on the top
-        row's edge, 7.7 mm from a can's axis, more than the 5 mm a side a 50 mm can leaves
-        in 60 mm jaws (development seed 116).
-        Otherwise (a 75 x 55 mm brick missed across its 55 mm would not fit across its 75),
-        one jaw came down on the object: the centre moves along the closing direction towards
-        the side where the landing pressed the object into the pad (:func:`landing_side`;
-        None when the landing pressed both sides), half a fingertip sole's thickness (a jaw
-        on a brick's edge), or further, to the middle of the load under the fingertips' path
-        (its modules above t_o whose centres lie within half a pitch plus half a fingertip's
-        width of the jaws' line), when that lies further on the pressed side: the thesis's
-        corner-side rule put a can lying along the row seam on a row's centre line, 20 mm
-        from its axis, where half a sole lands on the can again (development seeds 120 and
-        128). A path along a seam counts the modules on both sides of it.
-
-        After a miss (``closed``) whose landing pressed both sides alike, nothing says where
-        else to go: the same grasp once more (a contact sensed above a rocking stack, a
-        banana nudged by the jaws; development seeds 100-129: banana 148 -> 150, object 6
-        146 -> 147 of 150, no trial lost), except a tentative grasp (the bridge between two
-        one-module objects, which may be two objects).
+        Where the object's outline is no wider a quarter turn away, the grasp turned a
+        quarter turn, its centre moved along the new closing direction to the object's load
+        centroid (PCOM). Otherwise the centre moves along the closing direction towards the
+        side the landing pressed (:func:`landing_side`): half a fingertip sole's thickness,
+        or on to the middle of the load under the fingertips' path (modules above t_o within
+        half a pitch plus half a fingertip's width of the jaws' line) when that lies further
+        on the pressed side. After a miss pressed alike on both sides: the same grasp once
+        more, except a tentative one; None where nothing applies. Why each answer exists:
+        docs/beat-the-thesis.md (development history).
         """
         d = check_increments(increments_pa, layout)
         if not closed and pressed_share(plan, layout, landing_rise_pa) < ONE_SIDED_SHARE:
