@@ -43,6 +43,14 @@ class PadLayout:
                 f"module pitch must be between 1 mm and 1000 mm, got {self.pitch_m * 1e3:g} mm"
             )
 
+    def __hash__(self) -> int:
+        # the planner's caches key on the layout several times a plan: hash the fields once
+        h: int | None = self.__dict__.get("_hash")
+        if h is None:
+            h = hash((self.rows, self.cols, self.pitch_m))
+            self.__dict__["_hash"] = h
+        return h
+
     @property
     def n_modules(self) -> int:
         """Number of modules R*C."""
@@ -79,7 +87,9 @@ class PadLayout:
         return tuple((k // self.cols, k % self.cols) for k in range(self.n_modules))
 
     @cached_property
-    def _center_table(self) -> tuple[tuple[float, float], ...]:
+    def center_table(self) -> tuple[tuple[float, float], ...]:
+        """Centre (x, y) of every module in module units, index = module - 1 (plain floats:
+        the planner's hot path reads them without a check per module)."""
         return tuple((c + 0.5, (self.rows - 1 - r) + 0.5) for r, c in self._row_col_table)
 
     @cached_property
@@ -110,7 +120,7 @@ class PadLayout:
 
     def center(self, module: int) -> tuple[float, float]:
         """Centre (x, y) of a module in module units."""
-        return self._center_table[self.check_module(module) - 1]
+        return self.center_table[self.check_module(module) - 1]
 
     @cached_property
     def centers(self) -> NDArray[np.float64]:

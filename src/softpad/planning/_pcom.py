@@ -30,13 +30,19 @@ def pcom(delta_pa: ArrayLike, modules: Sequence[int], layout: PadLayout) -> tupl
     -------
     (x, y) in module units.
     """
-    d = delta_pa.tolist() if isinstance(delta_pa, np.ndarray) else list(np.asarray(delta_pa, float))
+    if isinstance(delta_pa, list):
+        d = delta_pa
+    elif isinstance(delta_pa, np.ndarray):
+        d = delta_pa.tolist()
+    else:
+        d = list(np.asarray(delta_pa, float))
     if not modules:
         raise InputError("an object needs at least one module to compute its PCOM")
+    centres = layout.center_table
     total = sx = sy = 0.0
     for m in modules:
         w = float(d[layout.check_module(m) - 1])
-        x, y = layout.center(m)
+        x, y = centres[m - 1]
         total += w
         sx += w * x
         sy += w * y

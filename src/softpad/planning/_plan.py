@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from functools import lru_cache
 from typing import Protocol, runtime_checkable
 
 from numpy.typing import ArrayLike
@@ -11,7 +12,7 @@ from softpad.layout import PadLayout, parse_layout
 from softpad.planning._params import PlannerParams
 from softpad.planning._records import GraspPlan
 from softpad.planning._thesis_rules import plan_with_rules
-from softpad.sensing._objects import check_increments
+from softpad.sensing._objects import check_increments, increments_list
 
 
 @runtime_checkable
@@ -87,8 +88,19 @@ def plan_grasps(
         layout = parse_layout(layout)
     elif layout is not None and not isinstance(layout, PadLayout):
         raise InputError(f"layout must be a PadLayout or a string like '2x3', got {layout!r}")
-    layout = layout or PadLayout()
-    params = params or PlannerParams()
-    d = check_increments(delta_pa, layout)
-    touched = [k + 1 for k, v in enumerate(d.tolist()) if v > params.object_threshold_pa]
-    return [plan_with_rules(d, g, layout, params) for g in layout.connected_groups(touched)]
+    layout = layout or _DEFAULT_LAYOUT
+    params = params or _DEFAULT_PARAMS
+    d = increments_list(delta_pa, layout)
+    t_o = params.object_threshold_pa
+    touched = tuple(k for k, v in enumerate(d, 1) if v > t_o)
+    return [plan_with_rules(d, g, layout, params) for g in _objects(layout, touched)]
+
+
+_DEFAULT_LAYOUT = PadLayout()
+_DEFAULT_PARAMS = PlannerParams()
+
+
+@lru_cache(maxsize=4096)
+def _objects(layout: PadLayout, touched: tuple[int, ...]) -> list[tuple[int, ...]]:
+    """The objects of a set of touched modules: it depends on the set only (cached)."""
+    return layout.connected_groups(touched)

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from typing import Any
 
 from softpad.layout import PadLayout
@@ -49,3 +49,17 @@ class GraspPlan:
             "cog_m": list(self.cog_m(layout)),
             "tentative": self.tentative,
         }
+
+
+_FIELDS = tuple(f.name for f in fields(GraspPlan))
+
+
+def new_plan(*values: Any) -> GraspPlan:
+    """``GraspPlan(*values)`` with every field given, in field order, built without the frozen
+    dataclass's ``object.__setattr__`` per field (a third of a 2 x 3 plan's time; equal to
+    the constructor's plan, which a test checks)."""
+    if len(values) != len(_FIELDS):
+        raise TypeError(f"new_plan takes all {len(_FIELDS)} fields, got {len(values)}")
+    plan = object.__new__(GraspPlan)
+    plan.__dict__.update(zip(_FIELDS, values, strict=True))
+    return plan

@@ -26,9 +26,11 @@ from softpad.planning._geometry import (
 )
 from softpad.planning._params import PlannerParams
 from softpad.planning._pcom import pcom as compute_pcom
-from softpad.planning._records import GraspPlan
+from softpad.planning._records import GraspPlan, new_plan
 
 Point = tuple[float, float]
+#: Increments of every module, pascals (a list on the planner's hot path, or an array).
+Increments = list[float] | NDArray[np.float64]
 
 
 class _Grasp(NamedTuple):
@@ -45,14 +47,12 @@ class _Grasp(NamedTuple):
 class _Object:
     """One detected object: its modules, their increments and the PCOM, with grid helpers."""
 
-    def __init__(self, delta: NDArray[np.float64], modules: tuple[int, ...], layout: PadLayout):
+    def __init__(self, delta: Increments, modules: tuple[int, ...], layout: PadLayout):
         self.delta = delta
         self.modules = modules
         self.layout = layout
         self.pcom = compute_pcom(delta, modules, layout)
-        cells, centres = _tables(layout)
-        self._cells = {m: cells[m - 1] for m in modules}
-        self._centres = {m: centres[m - 1] for m in modules}
+        self._cells, self._centres = _module_tables(layout, modules)
 
     def c(self, m: int) -> Point:
         return self._centres[m]
@@ -109,6 +109,15 @@ def _tables(layout: PadLayout) -> tuple[tuple[tuple[int, int], ...], tuple[Point
     return cells, tuple(layout.center(m) for m in layout.modules)
 
 
+@lru_cache(maxsize=4096)
+def _module_tables(
+    layout: PadLayout, modules: tuple[int, ...]
+) -> tuple[dict[int, tuple[int, int]], dict[int, Point]]:
+    """Cells and centres of ``modules`` by module number (shared, read-only)."""
+    cells, centres = _tables(layout)
+    return {m: cells[m - 1] for m in modules}, {m: centres[m - 1] for m in modules}
+
+
 @lru_cache(maxsize=16384)
 def _bbox(layout: PadLayout, mods: tuple[int, ...]) -> tuple[int, int, int, int]:
     cells = _tables(layout)[0]
@@ -156,7 +165,7 @@ def _reduce_candidates(layout: PadLayout, mods: tuple[int, ...]) -> tuple[int, .
 
 
 def plan_with_rules(
-    delta: NDArray[np.float64],
+    delta: Increments,
     modules: tuple[int, ...],
     layout: PadLayout,
     params: PlannerParams,
@@ -164,15 +173,8 @@ def plan_with_rules(
     """Plan one object with the thesis's rules (dispatch on N and shape)."""
     obj = _Object(delta, modules, layout)
     g = _plan(obj, modules, params.safety_shift, params.default_theta)
-    return GraspPlan(
-        modules=modules,
-        pcom=obj.pcom,
-        cog=(float(g.cog[0]), float(g.cog[1])),
-        theta=float(g.theta),
-        rule=g.rule,
-        reduced_modules=g.kept,
-        tie_break=g.tie,
-    )
+    cog = (float(g.cog[0]), float(g.cog[1]))
+    return new_plan(modules, obj.pcom, cog, float(g.theta), g.rule, g.kept, g.tie, False)
 
 
 def _plan(obj: _Object, mods: tuple[int, ...], c_s: float, theta0: float) -> _Grasp:
