@@ -35,6 +35,7 @@ _COMMAND_MODULES = (
     "_trials",
     "_compare",
     "_validate",
+    "_calibrate",
     "_fem",
     "_design",
     "_pad",

@@ -5,6 +5,14 @@ A sub-package of its own because a trial drives every layer below it (the MuJoCo
 ``softpad.control``) and so sits above them.
 """
 
+from softpad.trials._calibrate import (
+    CalibrationLoad,
+    CalibrationResult,
+    calibrate,
+    protocol_loads,
+    record_calibration,
+    simulated_session,
+)
 from softpad.trials._compare import (
     DEFAULT_PAIRS,
     IDLE_BOX,
@@ -30,6 +38,7 @@ from softpad.trials._runner import (
     trial_recording_path,
     trial_seed,
 )
+from softpad.trials._validate import Observation, ValidationResult, validate
 
 __all__ = [
     "DEFAULT_PAIRS",
@@ -37,19 +46,28 @@ __all__ = [
     "IDLE_BOX",
     "THESIS_OVERALL_SUCCESS",
     "THESIS_TABLE_6_1",
+    "CalibrationLoad",
+    "CalibrationResult",
     "ExperimentResult",
     "ObjectSummary",
+    "Observation",
     "TrialConfig",
     "TrialResult",
+    "ValidationResult",
+    "calibrate",
     "compare",
     "errored_trial",
     "idle_false_alarms_per_hour",
     "merge_comparisons",
     "perturbed_placement",
+    "protocol_loads",
+    "record_calibration",
     "run_experiment",
     "run_trial",
+    "simulated_session",
     "trial_execution_params",
     "trial_recording_path",
     "trial_seed",
+    "validate",
     "wilson_interval",
 ]
