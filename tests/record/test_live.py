@@ -81,9 +81,19 @@ def test_monitor_serves_module_pressures_to_a_websocket_client(subprotocol: str)
     assert np.all(np.diff(stamps) > 0) and stamps[0] > 1.7e9  # the recorded clock (UNIX)
 
 
-def test_monitor_without_foxglove_prints_a_live_line(capsys) -> None:
+def test_monitor_without_foxglove_prints_plain_lines_into_a_pipe(capsys) -> None:
+    """Into a pipe or file (capsys is not a terminal): a header, then one plain line per period
+    (no carriage returns), the pad's six modules only."""
     from softpad.cli.main import main
 
-    assert main(["box", "monitor", "--count", "20"]) == 0
+    assert main(["box", "monitor", "--count", "20", "--period-s", "0.05"]) == 0
     out = capsys.readouterr().out
-    assert "seq        20" in out and "lost 0" in out
+    assert "\r" not in out
+    header, *lines = out.splitlines()
+    assert header.split() == [
+        "seq", "t_s", *[f"m{k}_kpa" for k in range(1, 7)], "supply_kpa", "frames/s",
+        "p50_ms", "p99_ms", "lost",
+    ]  # fmt: skip
+    assert [int(line.split()[0]) for line in lines] == [5, 10, 15, 20]  # 100 Hz, 0.05 s
+    assert all(len(line.split()) == len(header.split()) for line in lines)
+    assert [line.split()[-1] for line in lines] == ["0"] * 4

@@ -9,6 +9,7 @@ from typing import Any
 
 from softpad.cli._args import add_box_option, add_command, add_group, add_number, add_p0_option
 from softpad.cli._output import emit
+from softpad.errors import InputError
 
 _EPILOG = """examples:
   softpad box read --count 5
@@ -18,7 +19,7 @@ _EPILOG = """examples:
 
 _SERVE_EPILOG = """examples:
   softpad box serve --sim                                   the simulator on tcp/127.0.0.1:7447
-  softpad box serve --sim --box 'sim://?rate_hz=1000' --listen tcp/127.0.0.1:7450
+  softpad box serve --sim --port 7450 --rate-hz 500         (--port N: tcp/127.0.0.1:N)
   softpad box serve --hardware /etc/softpad/site.toml       the real box (GPIO + IIO)
   then: softpad box monitor --box zenoh://127.0.0.1:7447
         softpad run --box zenoh://127.0.0.1:7447 --objects object-5   (with --sim)
@@ -49,8 +50,19 @@ _INFLATE_EPILOG = """examples:
 
 
 _MONITOR_DESCRIPTION = """\
-Live pressures (kPa), frame rate and lost frames on one line; with --foxglove the frames are
-served to Foxglove viewers. A monitor never commands valves."""
+Live figures of a box, one line per period (--period-s): sequence number, box time, the pad's
+module pressures and the supply (gauge, kPa), frames per second, latency p50/p99 (ms, from the
+daemon's sample to this monitor; a served box on this machine) and frames lost on the way. On a
+terminal the line refreshes in place under a header; into a pipe or a file each period is a
+plain line; --json prints one JSON object per period. With --foxglove the frames are served to
+Foxglove viewers. A monitor never commands valves."""
+
+#: Fields of ``box read --json`` (one object per frame) and ``box monitor --json`` (per period).
+READ_FIELDS = ("seq", "t_s", "pressures_kpa", "supply_kpa")
+MONITOR_FIELDS = (
+    "seq", "t_s", "pressures_kpa", "supply_kpa", "rate_hz", "latency_p50_ms",
+    "latency_p99_ms", "lost",
+)  # fmt: skip
 
 _INFLATE_DESCRIPTION = """\
 Bring every module to p0 within t_adj and print the reference (mean of 10 reads); works on
@@ -70,21 +82,27 @@ def register(sub: Any) -> None:
         "print frames (gauge pressure of every channel and the supply, kPa)",
         "Read frames from a box and print one line per frame (kPa).",
         _EPILOG,
-        json="JSON lines: seq, t_s, pressures_pa, supply_pa (the last the error if any)",
+        json=f"JSON lines, one per frame: {', '.join(READ_FIELDS)} (gauge, kPa)",
     )
     r.add_argument("--count", type=int, default=10, help="frames, 0 for endless (default 10)")
     r.add_argument("--every", type=int, default=1, help="print every k-th frame (default 1)")
     m = _action(
         bsub,
         monitor,
-        "watch a box live: one refreshing line, or Foxglove (--foxglove; read-only)",
+        "watch a box live: a line per period, or Foxglove (--foxglove; read-only)",
         _MONITOR_DESCRIPTION,
         _MONITOR_EPILOG,
-        json="with --foxglove: the viewer URL as JSON",
+        json=f"JSON lines, one per period: {', '.join(MONITOR_FIELDS)} (kPa, ms); with "
+        "--foxglove: the viewer URL",
     )
     m.add_argument("--foxglove", action="store_true", help="serve to Foxglove (WebSocket)")
     m.add_argument("--port", type=int, default=8765, help="port on 127.0.0.1 (0: a free one)")
     m.add_argument("--count", type=int, default=0, help="frames, 0 for endless (default 0)")
+    add_number(
+        m, "--period-s", "box time between two lines, s (default 0.5)", 0.5, lo=0.001, hi=3600.0,
+        unit="s",
+    )  # fmt: skip
+    m.add_argument("--layout", default="2x3", help="the pad: its modules are shown (default 2x3)")
     _action(
         bsub,
         stats,
@@ -135,6 +153,18 @@ def _register_serve(bsub: Any) -> None:
         action="append",
         metavar="ENDPOINT",
         help="zenoh endpoint (default tcp/127.0.0.1:7447 or the installation file's)",
+    )
+    s.add_argument(
+        "--port", type=int, help="listen on tcp/127.0.0.1:PORT (loopback), beside any --listen"
+    )
+    add_number(
+        s,
+        "--rate-hz",
+        "with --sim: frames per second of the simulated box (default 1000, or the --box URL's "
+        "rate_hz); 'softpad box stats' tells what the machine achieves",
+        lo=1.0,
+        hi=10000.0,
+        unit="Hz",
     )
     add_number(
         s,
@@ -195,29 +225,79 @@ def monitor(args: argparse.Namespace) -> int:
 
     from softpad.box import open_box
     from softpad.errors import InputError
+    from softpad.layout import parse_layout
 
-    if args.foxglove:
-        return _monitor_foxglove(args)
     if args.count < 0:
         raise InputError(f"--count must be >= 0 (0: endless), got {args.count}")
-
+    layout = parse_layout(args.layout)
+    if args.foxglove:
+        return _monitor_foxglove(args, layout)
     with open_box(args.box) as box:
-        i, t0, gaps, last = 0, time.monotonic(), 0, None
-        while args.count == 0 or i < args.count:
-            seq, f = _stamped(box, i)
-            gaps += 0 if last is None else max(0, seq - last - 1)
-            last, i = seq, i + 1
-            if i % max(1, int(box.sample_rate_hz) // 10) == 0 or i == args.count:
-                rate = i / max(time.monotonic() - t0, 1e-9)
-                vals = " ".join(f"{v / 1e3:7.3f}" for v in f.pressures_pa)
-                print(
-                    f"\rseq {seq:9d}  t {f.t_s:9.3f} s  {vals} kPa  {rate:7.1f} frames/s  "
-                    f"lost {gaps}",
-                    end="",
-                    flush=True,
-                )
-        print()
+        n = min(layout.n_modules, box.channels)
+        terminal = sys.stdout.isatty() and not args.json
+        if not args.json:
+            print(_monitor_header(n), flush=True)
+        every = max(1, round(box.sample_rate_hz * args.period_s))
+        i, lost, last, lat, t0, i0 = 0, 0, None, [], time.monotonic(), 0
+        try:
+            while args.count == 0 or i < args.count:
+                seq, f, latency_s = _timed(box, i)
+                lost += 0 if last is None else max(0, seq - last - 1)
+                last, i = seq, i + 1
+                if latency_s is not None:
+                    lat.append(latency_s)
+                if i % every == 0 or i == args.count:  # frames per wall second in the period
+                    now = time.monotonic()
+                    rate = (i - i0) / max(now - t0, 1e-9)
+                    _monitor_line(args.json, terminal, seq, f, n, rate, lat, lost)
+                    lat, t0, i0 = [], now, i
+        except KeyboardInterrupt:
+            pass
+        if terminal:
+            print()
     return 0
+
+
+def _timed(box: Any, i: int) -> tuple[int, Any, float | None]:
+    """(seq, frame, latency s): the latency from the daemon's sample to now for a served box
+    (its monotonic clock is this machine's on loopback), None for a box opened here."""
+    import time
+
+    from softpad.box import ZenohBox
+
+    if isinstance(box, ZenohBox):
+        s = box.read_stamped()
+        return s.seq, s.frame, time.monotonic() - s.mono_s
+    return i + 1, box.read(), None
+
+
+def _monitor_header(n: int) -> str:
+    modules = " ".join(f"{f'm{k + 1}_kpa':>8s}" for k in range(n))
+    return (
+        f"{'seq':>9s} {'t_s':>9s} {modules} {'supply_kpa':>10s} {'frames/s':>9s} "
+        f"{'p50_ms':>8s} {'p99_ms':>8s} {'lost':>6s}"
+    )
+
+
+def _monitor_line(
+    as_json: bool, terminal: bool, seq: int, f: Any, n: int, rate: float, lat: list[float],
+    lost: int,
+) -> None:  # fmt: skip
+    import numpy as np
+
+    p50 = p99 = None
+    if lat:
+        p50, p99 = (round(float(v) * 1e3, 3) for v in np.percentile(lat, [50, 99]))
+    if as_json:
+        d = f.to_dict()
+        d["pressures_kpa"] = d["pressures_kpa"][:n]
+        emit({"seq": seq, **d, "rate_hz": round(rate, 1), "latency_p50_ms": p50,
+              "latency_p99_ms": p99, "lost": lost})  # fmt: skip
+        return
+    vals = " ".join(f"{v / 1e3:8.3f}" for v in f.pressures_pa[:n])
+    ms = " ".join(f"{'-':>8s}" if v is None else f"{v:8.2f}" for v in (p50, p99))
+    line = f"{seq:9d} {f.t_s:9.3f} {vals} {f.supply_pa / 1e3:10.2f} {rate:9.1f} {ms} {lost:6d}"
+    print("\r" + line if terminal else line, end="" if terminal else "\n", flush=True)
 
 
 def stats(args: argparse.Namespace) -> int:
@@ -255,14 +335,17 @@ def _daemon_for(args: argparse.Namespace) -> Any:
     path = args.hardware or args.config
     inst = load_installation(path) if path else Installation()
     link = inst.link
-    if args.listen:
+    listen = [check_endpoint(e, "--listen") for e in args.listen or ()]
+    if args.port is not None:
+        if not 1 <= args.port <= 65535:
+            raise InputError(f"--port must be within 1..65535, got {args.port}")
+        listen.append(f"tcp/127.0.0.1:{args.port}")
+    if listen:
         import dataclasses
 
-        link = dataclasses.replace(
-            link, listen=tuple(check_endpoint(e, "--listen") for e in args.listen)
-        )
+        link = dataclasses.replace(link, listen=tuple(listen))
         check_remote_policy(link)
-    box = HardwareBox(inst.box) if args.hardware else open_box(args.box)
+    box = HardwareBox(inst.box) if args.hardware else open_box(_sim_url(args))
     try:
         services = {}
         if isinstance(box, SimBox):  # the world and robot too, so 'softpad run' works over zenoh
@@ -284,6 +367,27 @@ def _daemon_for(args: argparse.Namespace) -> Any:
     except BaseException:
         box.close()
         raise
+
+
+#: Frame rate of ``box serve --sim`` unless the URL or --rate-hz says otherwise, Hz (the
+#: hardware box's default sample rate).
+SERVE_SIM_RATE_HZ = 1000.0
+
+
+def _sim_url(args: argparse.Namespace) -> str:
+    """The --box URL with the served simulator's rate: --rate-hz, else the URL's rate_hz, else
+    :data:`SERVE_SIM_RATE_HZ`."""
+    from softpad.box import parse_url
+
+    url = str(args.box)
+    if not args.sim or not url.startswith("sim://"):
+        return url
+    if args.rate_hz is None and "rate_hz" in parse_url(url)[2]:
+        return url
+    rate = args.rate_hz or SERVE_SIM_RATE_HZ
+    if "rate_hz" in parse_url(url)[2]:
+        raise InputError("give the rate once: --rate-hz or the URL's rate_hz")
+    return url + ("&" if "?" in url else "?") + f"rate_hz={rate:g}"
 
 
 def _auth(link: Any) -> dict[str, Any]:
@@ -362,7 +466,7 @@ def inflate(args: argparse.Namespace) -> int:
     return 0
 
 
-def _monitor_foxglove(args: argparse.Namespace) -> int:
+def _monitor_foxglove(args: argparse.Namespace, layout: Any) -> int:
     """Read frames from the box and publish them to Foxglove, paced to real time."""
     import sys
     import time
@@ -373,9 +477,7 @@ def _monitor_foxglove(args: argparse.Namespace) -> int:
 
     if not 0 <= args.port <= 65535:
         raise InputError(f"--port must be within 0..65535, got {args.port}")
-    if args.count < 0:
-        raise InputError(f"--count must be >= 0 (0: endless), got {args.count}")
-    with open_box(args.box) as box, FoxgloveLive(args.port) as live:
+    with open_box(args.box) as box, FoxgloveLive(args.port, layout) as live:
         if args.json:
             emit({"foxglove": live.url, "port": live.port, "serving": args.box})
         else:
