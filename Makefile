@@ -4,7 +4,7 @@ PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
 
-.PHONY: demo test bench lint typecheck venv clean ros-deps
+.PHONY: demo test bench lint typecheck venv clean ros-deps results
 
 $(VENV)/.installed: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -44,6 +44,11 @@ test: lint typecheck ros-deps
 
 bench: venv
 	MPLBACKEND=Agg $(BIN)/softpad bench
+
+# Every result the docs quote, rerun at this commit into docs/results.md (about 30 min on 2
+# cores: seeds 0-1 for the trials; `softpad results --full --force` for the docs' seeds).
+results: venv
+	MPLBACKEND=Agg $(BIN)/softpad results --force
 
 clean:
 	rm -rf $(VENV) build src/*.egg-info .pytest_cache .mypy_cache .ruff_cache report

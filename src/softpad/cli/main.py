@@ -36,6 +36,7 @@ _COMMAND_MODULES = (
     "_compare",
     "_validate",
     "_calibrate",
+    "_results",
     "_fem",
     "_design",
     "_pad",
