@@ -124,3 +124,28 @@ def test_run_takes_thresholds_from_the_installation_file(
         == 0
     )
     assert json.loads(capsys.readouterr().out)["outcome"] == "held"
+
+
+def test_cli_check_lists_every_error_not_the_first(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Errors in two channels, the link, the thresholds and an unknown table: all five named."""
+    bad = tmp_path / "bad.toml"
+    bad.write_text(
+        "[[box.channel]]\ninflate_line = 1\ndeflate_line = 2\niio_device = 0\niio_channel = -1\n"
+        "[[box.channel]]\ninflate_line = 3\niio_device = 0\niio_channel = 1\n"
+        "[link]\nwatchdog_action = 'explode'\n"
+        "[thresholds]\nt_g_kpa = -1\n"
+        "[nonsense]\n"
+    )
+    assert main(["config", "check", str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert "5 errors" in err
+    for named in (
+        "box.channel.1.iio_channel",
+        "box.channel.2.deflate_line",
+        "link.watchdog_action",
+        "thresholds.t_g_kpa",
+        "unknown key nonsense",
+    ):
+        assert named in err, err

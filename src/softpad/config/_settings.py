@@ -234,7 +234,15 @@ def _box(raw: dict[str, Any]) -> BoxSettings:
         )
     if len(chans) > 64:
         raise ConfigError(f"box.channel: at most 64 channels, got {len(chans)}")
-    wiring = tuple(_wiring(c, f"box.channel.{i}", i, True) for i, c in enumerate(chans, 1))
+    errors: list[str] = []
+    found = [
+        _collect(errors, _wiring, c, f"box.channel.{i}", i, True) for i, c in enumerate(chans, 1)
+    ]
+    if errors:  # every channel's error, not only the first channel's
+        exc = ConfigError(errors[0])
+        exc.errors = errors  # type: ignore[attr-defined]
+        raise exc
+    wiring = tuple(found)
     seen: dict[tuple[str, int], str] = {}
     for w in wiring:
         for key, line in (("inflate_line", w.inflate_line), ("deflate_line", w.deflate_line)):
@@ -401,22 +409,53 @@ def _thresholds(raw: dict[str, Any]) -> Thresholds:
     return th
 
 
-def parse_installation(raw: dict[str, Any], source: str = "<dict>") -> Installation:
-    """Validate a parsed TOML document into :class:`Installation` (ConfigError names the key)."""
-    _unknown(raw, {"box", "link", "pad", "thresholds", "gripper"}, "")
+def _gripper(raw: dict[str, Any]) -> str | None:
     gripper = _table(raw, "gripper")
     _unknown(gripper, {"mounting"}, "gripper")
-    mounting = _get(gripper, "mounting", "gripper", str, None)
+    mounting: str | None = _get(gripper, "mounting", "gripper", str, None)
     if mounting is not None and mounting not in thesis.GRIPPER_MOUNTINGS_M:
         raise ConfigError(
             f"gripper.mounting must be one of {', '.join(thesis.GRIPPER_MOUNTINGS_M)}; got {mounting!r}"
         )
+    return mounting
+
+
+def _collect(errors: list[str], parse: Any, *args: Any) -> Any:
+    """``parse(*args)``, or None with its ConfigError's message(s) appended to ``errors``."""
+    try:
+        return parse(*args)
+    except ConfigError as exc:
+        errors.extend(getattr(exc, "errors", None) or [str(exc)])
+        return None
+
+
+def parse_installation(raw: dict[str, Any], source: str = "<dict>") -> Installation:
+    """Validate a parsed TOML document into :class:`Installation`.
+
+    Every table is checked, and every channel of the box; the ConfigError lists every error
+    found (one per line, each naming its key), not only the first.
+    """
+    errors: list[str] = []
+    _collect(errors, _unknown, raw, {"box", "link", "pad", "thresholds", "gripper"}, "")
+    parts = {
+        name: _collect(errors, parse, raw)
+        for name, parse in (
+            ("box", _box), ("link", _link), ("pad", _pad), ("thresholds", _thresholds),
+            ("gripper", _gripper),
+        )
+    }  # fmt: skip
+    if errors:
+        if len(errors) == 1:
+            raise ConfigError(errors[0])
+        exc = ConfigError(f"{len(errors)} errors:\n  " + "\n  ".join(errors))
+        exc.errors = errors  # type: ignore[attr-defined]
+        raise exc
     return Installation(
-        box=_box(raw),
-        link=_link(raw),
-        pad=_pad(raw),
-        thresholds=_thresholds(raw),
-        gripper_mounting=mounting,
+        box=parts["box"],
+        link=parts["link"],
+        pad=parts["pad"],
+        thresholds=parts["thresholds"],
+        gripper_mounting=parts["gripper"],
         source=source,
     )
 
