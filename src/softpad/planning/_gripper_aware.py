@@ -48,8 +48,10 @@ from softpad.sensing._objects import (
     check_threshold,
 )
 
-#: Width of the bonded, non-sensitive seam between two chambers, m. A pad specification
-#: (measured on the pad; the simulated MuJoCo pad has 5 mm), not a thesis number.
+#: Width of the bonded, non-sensitive seam between two chambers that the planner assumes, m.
+#: A pad specification (measured on the pad, e.g. by ``softpad calibrate``), not a thesis
+#: number; the simulated pad's seam is 0 mm nominal, 0-3 mm in its uncertain range
+#: (``seam_width_m`` of ``softpad.sim.UNCERTAIN_PARAMETERS``).
 DEFAULT_SEAM_WIDTH_M = 5e-3
 
 #: Lever of a landing's rise (module units) under which it counts as pressing both sides.
