@@ -334,19 +334,19 @@ def _padded(
 
 
 def candidates(post: Posterior, params: ModelBasedParams) -> tuple[Array, Array]:
-    """Grasp centres (G, 2), module units, and closing directions (G,): every likely
-    footprint's centre and points half a hypothesis step beside it, each with the fixed fan
-    of directions and the directions across the likely footprints."""
-    step = 0.5 / params.centre_steps
-    shifts = np.array([(0, 0), (step, 0), (-step, 0), (0, step), (0, -step)])
-    likely = np.unique(np.round(post.centres, 6), axis=0)
-    centres = np.unique(np.round((likely[:, None, :] + shifts).reshape(-1, 2), 6), axis=0)
+    """Grasp centres (G, 2), module units, and closing directions (G,): the fixed fan of
+    directions and the directions across the likely footprints, each with its centre on the
+    posterior mean of the footprint's centre and shifted from it across the closing
+    direction by half and one hypothesis step either way. Along the closing direction the
+    centre stays on the mean: the object's extent is known only as its footprint (a ball's
+    or a can's is wider), so the centred grasp leaves the most room on both sides."""
+    step = 1.0 / params.centre_steps
     fan = np.arange(params.directions) * math.pi / params.directions
-    across = (post.yaws + math.pi / 2) % math.pi
-    thetas = np.unique(np.concatenate([fan, across]))
-    cg = np.repeat(centres, thetas.size, axis=0)
-    tg = np.tile(thetas, centres.shape[0])
-    return cg, tg
+    thetas = np.unique(np.concatenate([fan, (post.yaws + math.pi / 2) % math.pi]))
+    across = np.array([0.0, 0.5, -0.5, 1.0, -1.0]) * step
+    normal = np.column_stack([-np.sin(thetas), np.cos(thetas)])  # (D, 2)
+    centres = np.asarray(post.mean_centre()) + across[:, None, None] * normal[None]
+    return centres.reshape(-1, 2), np.tile(thetas, across.size)
 
 
 # --- 4. score ----------------------------------------------------------------------------------
