@@ -25,8 +25,12 @@ PHASE_COLOURS = {
     "lift": "#e2f5e2",
     "hold": "#d0f0d0",
     "release": "#f0e6ff",
+    "valve_check": "#f2f2e0",
     "safe": "#ffb3b3",
 }
+
+#: A rise above the hold's level, Pa, during ``release`` that is marked as the object landing.
+LANDING_MARK_PA = 90.0
 
 #: Events drawn as vertical lines.
 MARKED_EVENTS = {
@@ -53,8 +57,10 @@ def _modules(run: RecordedRun) -> int:
 def plot_traces(run: RecordedRun, path: str | Path | None = None, title: str | None = None) -> Any:
     """Pressure of every module against box time, phases as shaded bands (cf. seed Fig. 6.8).
 
-    One legend entry per module; each band is named once, inside the plot above the traces;
-    contact, missed contact and faults are vertical lines.
+    One legend entry per module and one per phase (so a phase too short to name inside its band
+    is still named); wide bands are also named inside the plot; contact, missed contact and
+    faults are vertical lines; the rise of a module while the held object is put back down
+    (``release``: down at the approach speed, then the jaws open) is marked as its landing.
 
     Parameters
     ----------
@@ -95,15 +101,55 @@ def plot_traces(run: RecordedRun, path: str | Path | None = None, title: str | N
             ax.axvline(
                 t, color=colour, ls="--", lw=0.8, label=kind.replace("_", " ") if i == 0 else None
             )
+    _mark_landing(ax, run, n)
     ax.set_xlabel("box time (s)")
     ax.set_ylabel("gauge pressure (kPa)")
     ax.set_xlim(float(run.t_s[0]), float(run.t_s[-1])) if len(run) else None
     objects = ", ".join(run.metadata.get("objects") or []) or str(run.path.name)
     ax.set_title(title or f"{objects}: module pressures, phases shaded (outcome {run.outcome})")
-    ax.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=8, frameon=False)
+    modules = ax.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=8, frameon=False)
+    ax.add_artist(modules)
+    _phase_legend(ax, run)
     if path is not None:
         fig.savefig(path, dpi=120)
     return fig
+
+
+def _phase_legend(ax: Any, run: RecordedRun) -> None:
+    """A legend naming every phase's colour, in the order the run went through them."""
+    from matplotlib.patches import Patch
+
+    seen = list(dict.fromkeys(ph for ph, t0, t1 in run.phase_spans() if t1 > t0))
+    handles = [
+        Patch(color=PHASE_COLOURS.get(ph, "#f5f5f5"), label=ph.replace("_", " ")) for ph in seen
+    ]
+    if handles:
+        ax.legend(
+            handles=handles, title="phases", loc="lower left", bbox_to_anchor=(1.0, 0.0),
+            fontsize=8, title_fontsize=8, frameon=False,
+        )  # fmt: skip
+
+
+def _mark_landing(ax: Any, run: RecordedRun, n: int) -> None:
+    """Mark the largest rise above the hold's level during ``release``: the held object landing
+    on the pad as it is put back down (its weight and the arm's push), before the jaws open."""
+    spans = {ph: (t0, t1) for ph, t0, t1 in run.phase_spans()}
+    if "release" not in spans or "hold" not in spans or not len(run):
+        return
+    (h0, h1), (r0, r1) = spans["hold"], spans["release"]
+    hold = (run.t_s >= h0) & (run.t_s < h1)
+    release = (run.t_s >= r0) & (run.t_s < r1)
+    if not hold.any() or not release.any():
+        return
+    rise = run.pressures_pa[release, :n] - np.nanmedian(run.pressures_pa[hold, :n], axis=0)
+    if not np.isfinite(rise).any() or np.nanmax(rise) < LANDING_MARK_PA:
+        return
+    i, k = np.unravel_index(np.nanargmax(rise), rise.shape)
+    t, p = float(run.t_s[release][i]), float(run.pressures_pa[release][i, k]) / 1e3
+    ax.annotate(
+        f"object put back down:\nmodule {k + 1} rises as it lands", xy=(t, p), xytext=(-40, 22),
+        textcoords="offset points", ha="right", fontsize=8, arrowprops={"arrowstyle": "->", "lw": 0.8},
+    )  # fmt: skip
 
 
 def _grasp_plans(plans: list[dict[str, Any]]) -> list[Any]:
