@@ -1,4 +1,5 @@
-"""Pictures of an experiment: every planned grasp over the pad, like the thesis's Fig. 6.10."""
+"""Pictures of an experiment: a representative planned grasp of each object over the pad, like
+the thesis's Fig. 6.10, beside every trial's outcome (success per object with its interval)."""
 
 from __future__ import annotations
 
@@ -21,7 +22,8 @@ def draw_grasp(
 ) -> None:
     """Draw one trial on ``ax``: modules, object outline, planned fingertips (black), COG.
 
-    Lengths on the axes are millimetres in the pad frame.
+    Lengths on the axes are millimetres in the pad frame; the title gives the planned COG in
+    millimetres and the direction of grasp in degrees, and this trial's outcome.
     """
     from matplotlib.patches import Polygon, Rectangle
 
@@ -35,7 +37,7 @@ def draw_grasp(
                 (cx - side / 2, cy - side / 2), side, side, facecolor=colour, edgecolor="none"
             )
         )
-        ax.text(cx - side / 2 + 2, cy + side / 2 - 7, str(k), fontsize=6, color="#7a5060")
+        ax.text(cx - side / 2 + 2, cy + side / 2 - 8, str(k), fontsize=8, color="#7a5060")
     x, y, yaw = trial.placement
 
     class _P:
@@ -54,17 +56,20 @@ def draw_grasp(
         ):
             ax.add_patch(Polygon(rect * 1e3, closed=True, facecolor="black", edgecolor="black"))
         ax.plot([cog[0] * 1e3], [cog[1] * 1e3], marker="+", color="black", ms=6)
-    verdict = "ok" if trial.success else (trial.cause or "failed").replace("_", " ")
+    verdict = "held" if trial.success else (trial.cause or "failed").replace("_", " ")
     plan = (
-        ""
+        "no plan"
         if trial.cog is None or trial.theta is None
-        else f"({trial.cog[0]:.2f}, {trial.cog[1]:.2f}, {math.degrees(trial.theta):.0f}°)"
+        else f"COG ({trial.cog[0] * p:.0f}, {trial.cog[1] * p:.0f}) mm, "
+        f"{math.degrees(trial.theta):.0f}°"
     )
-    ax.set_title(f"{trial.object} {plan}\n{verdict}", fontsize=7)
+    ax.set_title(f"{trial.object}: {plan}\ntrial {trial.trial + 1}: {verdict}", fontsize=8)
     ax.set_xlim(-20, layout.cols * p + 20)
     ax.set_ylim(-20, layout.rows * p + 20)
     ax.set_aspect("equal")
-    ax.tick_params(labelsize=5)
+    ax.set_xlabel("x (mm)", fontsize=8)
+    ax.set_ylabel("y (mm)", fontsize=8)
+    ax.tick_params(labelsize=7)
 
 
 def plot_grasps(
@@ -77,7 +82,8 @@ def plot_grasps(
     line_width_m: float | None = None,
     trial_index: int = 0,
 ) -> None:
-    """Save a figure with the planned grasp of trial ``trial_index`` of every object (Fig. 6.10).
+    """Save a figure with the planned grasp of trial ``trial_index`` of every object (Fig. 6.10)
+    beside a bar chart of every object's successes over all its trials (Wilson intervals).
 
     Parameters
     ----------
@@ -111,21 +117,53 @@ def plot_grasps(
     n = len(names)
     cols = min(4, n)
     rows = math.ceil(n / cols)
-    fig, axes = plt.subplots(rows, cols, figsize=(3.0 * cols, 2.3 * rows), squeeze=False)
-    for ax in axes.flat[n:]:
-        ax.axis("off")
-    for ax, name in zip(axes.flat, names, strict=False):
+    fig = plt.figure(figsize=(3.3 * cols + 4.6, 3.0 * rows + 0.6))
+    grid = fig.add_gridspec(rows, cols + 2)
+    for i, name in enumerate(names):
+        ax = fig.add_subplot(grid[i // cols, i % cols])
         trials = [t for t in result.trials if t.object == name]
         trial = trials[min(trial_index, len(trials) - 1)]
         draw_grasp(ax, specs[name], trial, layout, tip_thickness_m, tip_width_m, line_width_m)
+        held = sum(t.success for t in trials)
+        ax.set_title(f"{ax.get_title()} ({held}/{len(trials)} held in all)", fontsize=8)
+    success_chart(fig.add_subplot(grid[:, cols:]), result)
     fig.suptitle(
-        "Planned grasps (black: fingertips at the approach opening; pink: modules above t_o); "
-        "lengths in mm",
-        fontsize=8,
+        f"Planned grasp of trial {trial_index + 1} of each object (black: fingertips at the "
+        "approach opening; pink: modules above t_o), and every trial's outcome (right)",
+        fontsize=10,
     )
     fig.tight_layout()
     fig.savefig(path, dpi=150)
     plt.close(fig)
+
+
+def wilson_interval(held: int, trials: int, confidence: float = 0.95) -> tuple[float, float]:
+    """Wilson score interval of a success proportion (``scipy.stats.binomtest``)."""
+    from scipy.stats import binomtest
+
+    ci = binomtest(held, trials).proportion_ci(confidence_level=confidence, method="wilson")
+    return float(ci.low), float(ci.high)
+
+
+def success_chart(ax: Any, result: ExperimentResult) -> None:
+    """Horizontal bars: each object's share of trials held, with its 95 % Wilson interval and
+    the count (every trial of every object, not only the one drawn on the pad)."""
+    names = result.object_names
+    for i, name in enumerate(names):
+        outcomes = [t.success for t in result.trials if t.object == name]
+        k, n = sum(outcomes), len(outcomes)
+        lo, hi = wilson_interval(k, n)
+        ax.barh(i, k / n, color="#7fb27f" if k == n else "#e0a060", height=0.6)
+        ax.errorbar(k / n, i, xerr=[[k / n - lo], [hi - k / n]], color="k", capsize=3, lw=1)
+        ax.text(1.03, i, f"{k}/{n}", va="center", fontsize=8)
+    ax.set_yticks(range(len(names)), names, fontsize=8)
+    ax.invert_yaxis()
+    ax.set_xlim(0, 1.15)
+    ax.set_xticks([0, 0.25, 0.5, 0.75, 1.0])
+    ax.tick_params(axis="x", labelsize=8)
+    ax.set_xlabel("share of trials held (bar), 95 % Wilson interval (line)", fontsize=8)
+    total = sum(t.success for t in result.trials)
+    ax.set_title(f"every trial: {total}/{len(result.trials)} held", fontsize=9)
 
 
 def _sizes(
