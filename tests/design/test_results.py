@@ -74,3 +74,15 @@ def test_json_csv_parquet_png_report(result: SweepResult, tmp_path: Path) -> Non
     result.plot(tmp_path / "p.png")
     assert (tmp_path / "p.png").stat().st_size > 1000
     assert "ranks 2" in result.report()
+
+
+def test_design_rows_count_each_objects_held_grasps() -> None:
+    from softpad.design._results import _per_object
+
+    trials = [
+        {"object": "a", "success": True},
+        {"object": "b", "success": False},
+        {"object": "a", "success": False},
+        {"object": "a", "success": True},
+    ]
+    assert _per_object(trials) == {"a": (2, 3), "b": (0, 1)}

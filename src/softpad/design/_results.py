@@ -58,6 +58,8 @@ class DesignRow:
     failures: dict[str, int] = field(default_factory=dict)
     #: On the Pareto front of (success up, minimum detectable mass down, modules down).
     pareto: bool = False
+    #: Held grasps and trials of each object, in the set's order.
+    objects: dict[str, tuple[int, int]] = field(default_factory=dict)
     #: 1 = best: success rate, then its interval's lower end, minimum detectable mass,
     #: module count, detection delay.
     rank: int = 0
@@ -86,6 +88,7 @@ class DesignRow:
             fem=self.response,
             failures=dict(self.failures),
             pareto=self.pareto,
+            objects={k: {"successes": v[0], "trials": v[1]} for k, v in self.objects.items()},
         )
         return d
 
@@ -122,7 +125,17 @@ def design_row(
         success_interval=wilson_interval(ok, len(trials)),
         detection_delay_ms=round(1e3 * statistics.median(delays), 1) if delays else None,
         failures=dict(fails),
+        objects=_per_object(trials),
     )
+
+
+def _per_object(trials: list[dict[str, Any]]) -> dict[str, tuple[int, int]]:
+    """Held grasps and trials of each object of ``trials``, in the order first seen."""
+    out: dict[str, tuple[int, int]] = {}
+    for t in trials:
+        k, n = out.get(t["object"], (0, 0))
+        out[t["object"]] = (k + bool(t["success"]), n + 1)
+    return out
 
 
 def _dominates(a: DesignRow, b: DesignRow) -> bool:
@@ -304,5 +317,13 @@ class SweepResult:
             "```",
             self.to_text(),
             "```",
+            "",
+            "Held grasps per object (best design; the thesis's pad):",
+            "",
+            *(
+                f"- {name}: {k}/{n}; {base.objects.get(name, (0, 0))[0]}/"
+                f"{base.objects.get(name, (0, 0))[1]}"
+                for name, (k, n) in best.objects.items()
+            ),
         ]
         return "\n".join(lines) + "\n"
