@@ -157,3 +157,18 @@ def test_bad_parameters_are_refused(change):
 def test_bad_sensing_ratio_is_refused():
     with pytest.raises(InputError, match="sensing ratio"):
         ModelBasedPlanner(WIDE, sensing_ratio=0.0)
+
+
+def test_one_landing_asked_about_twice_is_evidence_once():
+    """The loop asks at the landing (before closing) and again after the miss: the same
+    landing weighs once, so the second answer equals a first ask after the miss."""
+    d = _increments(*BOXES[0])
+    objects = detect_objects(d, LAYOUT)
+    twice, once = ModelBasedPlanner(WIDE), ModelBasedPlanner(WIDE)
+    (plan,) = twice.plan(d, objects, LAYOUT)
+    once.plan(d, objects, LAYOUT)
+    rise = np.zeros(6)
+    twice.retry(plan, d, LAYOUT, rise, closed=False)
+    assert twice.retry(plan, d, LAYOUT, rise, closed=True) == once.retry(
+        plan, d, LAYOUT, rise, closed=True
+    )

@@ -475,8 +475,8 @@ class ModelBasedPlanner:
     sensing_ratio
         The contact detector's step floor over the thesis detector's
         (:func:`softpad.sensing.sensing_ratio`; 1 for the thesis's).
-    object_threshold_pa
-        t_o: the increment of a module an object's landing pressure is weighed over, Pa.
+    model
+        The pad model (:func:`packaged_pad_model` at ``params.pressure_pa`` by default).
     """
 
     gripper: GripperSpec = field(default_factory=GripperSpec)
@@ -517,7 +517,8 @@ class ModelBasedPlanner:
         side = _pressed_side(plan, layout, rise, self.params.side_share)
         key = (plan.modules, d.round(3).tobytes())
         seen = self._evidence.setdefault(key, [])
-        seen.append((plan, side))
+        if (plan, side) not in seen:  # asked at the landing, then after the miss: one landing
+            seen.append((plan, side))
         groups = outline_objects(d, [plan.modules], layout, self.params.outline_threshold_pa)
         best = self._choose(d, plan.modules, groups, layout, seen)
         moved = math.dist(best.cog, plan.cog) * layout.pitch_m > 2e-3
