@@ -86,3 +86,27 @@ def test_design_rows_count_each_objects_held_grasps() -> None:
         {"object": "a", "success": True},
     ]
     assert _per_object(trials) == {"a": (2, 3), "b": (0, 1)}
+
+
+def test_pareto_rank_labels_do_not_overlap(result: SweepResult) -> None:
+    """Two designs a hair apart (the thesis's 8/10 at 9.0 g and one at 9.05 g): one label names
+    both; no label's box overlaps another's; every rank is written once."""
+    import matplotlib.pyplot as plt
+
+    from softpad.design import THESIS_DESIGN
+
+    rows = [*result.rows, _row(PadDesign(2, 3, 0.045, thickness_m=0.0025), 8, 10, 9.05)]
+    crowded = SweepResult(tuple(rank_rows([r for r in rows])), "synthetic", {})
+    assert any(r.design == THESIS_DESIGN for r in crowded.rows)
+    fig = crowded.plot()
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()  # type: ignore[attr-defined]
+    ax = fig.axes[0]
+    labels = [t for t in ax.texts if t.get_text()[:1].isdigit()]
+    boxes = [t.get_window_extent(renderer) for t in labels]
+    for i, a in enumerate(boxes):
+        for b in boxes[i + 1 :]:
+            assert not a.overlaps(b)
+    ranks = sorted(int(v) for t in labels for v in t.get_text().split(", "))
+    assert ranks == list(range(1, len(crowded.rows) + 1))
+    plt.close(fig)

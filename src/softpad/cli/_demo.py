@@ -126,22 +126,37 @@ def _pi(theta: float) -> str:
 
 
 def _plot_all(path: Path, results: list[Any], layout: Any) -> None:
+    """Every reference case on one figure: one colour scale (the largest increment of all
+    cases), one colour bar and one legend for all panels, axes in module units."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    import numpy as np
 
     from softpad.planning import plot_plans
 
     n = len(results)
     cols = 4
-    fig, axes = plt.subplots(
-        math.ceil(n / cols), cols, figsize=(4.2 * cols, 2.6 * math.ceil(n / cols))
-    )
+    rows = math.ceil(n / cols)
+    vmax = max(float(np.max(case.delta_pa)) for case, _ in results) / 1e3
+    fig, axes = plt.subplots(rows, cols, figsize=(3.9 * cols, 2.7 * rows), squeeze=False)
     for ax, (case, plan) in zip(axes.flat, results, strict=False):
-        plot_plans(case.delta_pa, [plan], layout, ax=ax, title=f"{case.name} ({case.weight_g:g} g)")
+        plot_plans(
+            case.delta_pa, [plan], layout, ax=ax, title=f"{case.name} ({case.weight_g:g} g)",
+            vmax_kpa=vmax, legend=False, colorbar=False,
+        )  # fmt: skip
+        pitch_mm = layout.pitch_m * 1e3
+        ax.set_xlabel(f"x (module units, 1 = {pitch_mm:g} mm)", fontsize=8)
+        ax.set_ylabel("y (module units)", fontsize=8)
     for ax in list(axes.flat)[n:]:
         ax.axis("off")
-    fig.tight_layout()
+    handles, labels = axes.flat[0].get_legend_handles_labels()
+    handles.append(matplotlib.patches.Patch(color="k", label="fingertips"))
+    fig.legend(handles, [*labels, "fingertips"], loc="lower right", fontsize=9, frameon=False)
+    fig.tight_layout(rect=(0, 0, 0.92, 1))
+    image = axes.flat[0].images[0]
+    bar = fig.colorbar(image, ax=axes.ravel().tolist(), fraction=0.02, pad=0.01)
+    bar.set_label("pressure increment dP (kPa), one scale for all panels")
     fig.savefig(path, dpi=110)
     plt.close(fig)

@@ -239,7 +239,8 @@ class SweepResult:
     def plot(self, path: str | Path | None = None) -> Any:
         """Pareto plot: success rate (95 % interval bars) against the minimum detectable mass,
         colour = module count; designs on the (success, mass, modules) front ringed in black,
-        the thesis's pad in red; each point labelled with its rank. Returns the figure."""
+        the thesis's pad in red; each point labelled with its rank (points closer than a label
+        share one label, ranks left to right). Returns the figure."""
         import matplotlib
 
         matplotlib.use("Agg")
@@ -277,26 +278,43 @@ class SweepResult:
             zorder=4,
         )
         ax.scatter([], [], s=70, facecolors="none", edgecolors="k", label="Pareto front")
-        seen: dict[tuple[float, float], int] = {}
-        for r in self.rows:
-            key = (round(r.min_detectable_mass_g, 1), round(r.success, 3))
-            k = seen[key] = seen.get(key, -1) + 1
-            ax.annotate(
-                str(r.rank),
-                (r.min_detectable_mass_g, r.success),
-                textcoords="offset points",
-                xytext=(6 + 9 * k, 4),
-                fontsize=8,
-            )
         ax.set_xlabel("minimum detectable mass at t_o (g, FEM)")
         ax.set_ylabel("grasp success rate")
         ax.set_ylim(-0.05, 1.05)
+        self._rank_labels(ax)
         ax.set_title(f"design sweep on {self.object_set} (numbers: rank)")
         ax.legend(loc="lower right", fontsize=8)
         fig.tight_layout()
         if path is not None:
             fig.savefig(path, dpi=120)
         return fig
+
+    def _rank_labels(self, ax: Any, near_px: float = 16.0) -> None:
+        """One label per group of points closer than ``near_px`` on screen: their ranks, left
+        to right, above the group (so no label sits on another label or on a point)."""
+        ax.autoscale_view()
+        points = sorted(
+            ((*ax.transData.transform((r.min_detectable_mass_g, r.success)), r) for r in self.rows),
+            key=lambda p: (p[0], p[1]),
+        )
+        groups: list[list[tuple[float, float, DesignRow]]] = []
+        for p in points:
+            near = next(
+                (
+                    g
+                    for g in groups
+                    if any(abs(p[0] - q[0]) < near_px and abs(p[1] - q[1]) < near_px for q in g)
+                ),
+                None,
+            )
+            near.append(p) if near is not None else groups.append([p])
+        for g in groups:
+            top = max(g, key=lambda q: q[1])[2]
+            ax.annotate(
+                ", ".join(str(q[2].rank) for q in g),
+                (sum(q[2].min_detectable_mass_g for q in g) / len(g), top.success),
+                textcoords="offset points", xytext=(0, 12), ha="center", fontsize=9,
+            )  # fmt: skip
 
     def report(self) -> str:
         """A short Markdown report: the best design against the thesis's, the table."""

@@ -86,10 +86,15 @@ def plot_plans(
     gripper: GripperSpec | None = None,
     ax: Axes | None = None,
     title: str = "",
+    vmax_kpa: float | None = None,
+    legend: bool = True,
+    colorbar: bool = True,
 ) -> Any:
     """Draw the pad, the increments as a heat map, PCOM, COG and the two fingertips (Fig. 6.10).
 
-    Returns the matplotlib Axes. Module units on both axes.
+    Returns the matplotlib Axes. Module units on both axes. ``vmax_kpa`` fixes the top of the
+    colour scale (several panels on one scale; default this panel's largest increment);
+    ``legend`` and ``colorbar`` may be left to the caller (one for a whole figure).
     """
     import matplotlib.pyplot as plt
 
@@ -97,13 +102,16 @@ def plot_plans(
     d = np.asarray(delta_pa, dtype=float) / 1e3
     if ax is None:
         _, ax = plt.subplots(figsize=(1.6 * layout.cols + 1.4, 1.6 * layout.rows + 0.6))
-    _draw_increments(ax, d, layout)
+    _draw_increments(ax, d, layout, vmax_kpa, colorbar)
     for plan in plans:
         _draw_plan(ax, plan, layout, gripper)
     handles, labels = ax.get_legend_handles_labels()
     uniq = dict(zip(labels, handles, strict=False))
-    if uniq:
-        ax.legend(uniq.values(), uniq.keys(), loc="upper right", fontsize=7, framealpha=0.8)
+    if uniq and legend:  # outside the pad, so that it covers no module
+        ax.legend(
+            uniq.values(), uniq.keys(), loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=7,
+            frameon=False,
+        )  # fmt: skip
     ax.set_xlim(-0.3, layout.cols + 0.3)
     ax.set_ylim(-0.3, layout.rows + 0.3)
     ax.set_aspect("equal")
@@ -114,14 +122,20 @@ def plot_plans(
     return ax
 
 
-def _draw_increments(ax: Any, d_kpa: NDArray[np.float64], layout: PadLayout) -> None:
+def _draw_increments(
+    ax: Any,
+    d_kpa: NDArray[np.float64],
+    layout: PadLayout,
+    vmax_kpa: float | None = None,
+    colorbar: bool = True,
+) -> None:
     """Heat map of the increments (kPa) over the modules, module numbers and module edges."""
     d = d_kpa
     grid = np.zeros((layout.rows, layout.cols))
     for m in layout.modules:
         r, c = layout.row_col(m)
         grid[layout.rows - 1 - r, c] = d[m - 1]
-    vmax = max(float(np.max(np.abs(d))), 1e-6)
+    vmax = vmax_kpa if vmax_kpa is not None else max(float(np.max(np.abs(d))), 1e-6)
     im = ax.imshow(
         grid,
         origin="lower",
@@ -130,7 +144,8 @@ def _draw_increments(ax: Any, d_kpa: NDArray[np.float64], layout: PadLayout) -> 
         vmin=0,
         vmax=vmax,
     )
-    ax.figure.colorbar(im, ax=ax, label="dP (kPa)", fraction=0.04)
+    if colorbar:
+        ax.figure.colorbar(im, ax=ax, label="dP (kPa)", fraction=0.04)
     for m in layout.modules:
         x, y = layout.center(m)
         ax.text(x - 0.45, y + 0.33, str(m), fontsize=8, color="0.3")
