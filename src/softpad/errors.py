@@ -90,6 +90,39 @@ def check_finite(name: str, value: float) -> float:
     return v
 
 
+def check_range(
+    name: str, value: object, lo: float, hi: float, unit: str = "", hint: str = ""
+) -> float:
+    """Return ``value`` as a finite float within [lo, hi], or raise :class:`InputError` naming
+    ``name``, the value, the limits and ``unit``.
+
+    ``hint`` is added when the value lies above ``hi`` (for example ``"millimetres given as
+    metres?"``), the usual cause of a value a thousand times too large at the library's edge.
+    """
+    v = check_finite(name, value)  # type: ignore[arg-type]
+    if not lo <= v <= hi:
+        u = f" {unit}" if unit else ""
+        extra = f" ({hint})" if hint and v > hi else ""
+        raise InputError(f"{name} must be from {lo:g} to {hi:g}{u}, got {v:g}{u}{extra}")
+    return v
+
+
+def check_count(name: str, value: object, lo: int, hi: int) -> int:
+    """Return ``value`` as an integer within [lo, hi] (bools refused), or raise
+    :class:`InputError` naming it and the limits."""
+    import numbers
+
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise InputError(f"{name} must be an integer from {lo} to {hi}, got {value!r}")
+    if not lo <= int(value) <= hi:
+        raise InputError(f"{name} must be from {lo} to {hi}, got {value}")
+    return int(value)
+
+
+#: Hint for a length a thousand times too large: millimetres given where metres are expected.
+MM_AS_M = "millimetres given as metres?"
+
+
 def check_fields(
     owner: object,
     what: str,

@@ -8,6 +8,7 @@ channels. Software reads timestamped frames and commands each channel's valves.
 from __future__ import annotations
 
 import enum
+import math
 from abc import ABC, abstractmethod
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -65,6 +66,14 @@ class PressureFrame:
     t_s: float
     pressures_pa: NDArray[np.float64]
     supply_pa: float
+
+    def __post_init__(self) -> None:
+        if not math.isfinite(self.t_s):
+            raise InputError(
+                f"frame time stamp t_s must be a finite number of seconds, got {self.t_s!r}"
+            )
+        if getattr(self.pressures_pa, "ndim", None) != 1:
+            raise InputError("frame pressures_pa must be a 1-D array, one value per channel")
 
     @property
     def channels(self) -> int:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import functools
 import math
+import re
 import sys
 from typing import Any
 
@@ -13,21 +14,34 @@ from softpad.errors import InputError
 
 def number_list(text: str, flag: str, scale: float = 1.0, positive: bool = False) -> list[float]:
     """Parse ``"1,1.5,2"`` into floats times ``scale``, naming the flag and the bad item on error."""
-    items = [s.strip() for s in str(text).replace(";", ",").split(",")]
+    items = [s.strip() for s in str(text).split(",")]
     if items == [""]:
         raise InputError(f"{flag} needs comma-separated numbers, got an empty value")
     out = []
     for i, s in enumerate(items, 1):
-        try:
-            v = float(s)
-        except ValueError:
-            raise InputError(f"{flag}: item {i} {s!r} is not a number") from None
-        if not math.isfinite(v):
+        v = plain_number(s, f"{flag}: item {i}")
+        if not math.isfinite(v * scale):
             raise InputError(f"{flag}: item {i} must be finite, got {s!r}")
         if positive and v <= 0:
             raise InputError(f"{flag}: item {i} must be > 0, got {s!r}")
         out.append(v * scale)
     return out
+
+
+#: What a number on the command line may look like: ASCII digits, one optional sign, decimal
+#: point and exponent; no digit separators (``1_0``), no other scripts' digits, no spaces.
+_PLAIN_NUMBER = re.compile(
+    r"[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?|[+-]?(inf|nan)", re.IGNORECASE | re.ASCII
+)
+
+
+def plain_number(text: str, what: str) -> float:
+    """``float(text)`` for a plain ASCII decimal number only, else :class:`InputError` naming
+    ``what`` and the text (Python's ``float`` also takes ``1_0`` and non-ASCII digits)."""
+    s = str(text).strip()
+    if not _PLAIN_NUMBER.fullmatch(s):
+        raise InputError(f"{what} {s!r} is not a number (ASCII digits like 0.12 or 1e-3)")
+    return float(s)
 
 
 def kpa_list(text: str, flag: str) -> list[float]:
@@ -40,8 +54,8 @@ def finite_float(name: str, lo: float | None = None, hi: float | None = None, un
 
     def parse(text: str) -> float:
         try:
-            v = float(text)
-        except ValueError:
+            v = plain_number(text, name)
+        except InputError:
             raise argparse.ArgumentTypeError(f"{name} must be a number, got {text!r}") from None
         if not math.isfinite(v):
             raise argparse.ArgumentTypeError(f"{name} must be finite, got {text!r}")

@@ -7,7 +7,14 @@ import argparse
 import sys
 from typing import Any
 
-from softpad.cli._args import add_box_option, add_command, add_group, add_number, add_p0_option
+from softpad.cli._args import (
+    add_box_option,
+    add_command,
+    add_group,
+    add_number,
+    add_p0_option,
+    finite_float,
+)
 from softpad.cli._output import emit
 from softpad.errors import InputError
 
@@ -180,7 +187,11 @@ def _register_serve(bsub: Any) -> None:
         help="with --sim: run the simulator on the wall clock even when its controller lags "
         "(default: at most 2 frames ahead of the frames the controller has read)",
     )
-    s.add_argument("--duration-s", type=float, help="stop after this long (default: run forever)")
+    s.add_argument(
+        "--duration-s",
+        type=finite_float("--duration-s", lo=0.001, unit="s"),
+        help="stop after this long (default: run forever)",
+    )
 
 
 def _stamped(box: Any, i: int) -> tuple[int, Any]:

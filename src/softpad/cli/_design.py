@@ -105,20 +105,20 @@ def _designs(args: argparse.Namespace) -> list[Any]:
         return list(d.QUICK_DESIGNS)
     base = d.THESIS_DESIGN
     space = d.DesignSpace(
-        grids=d.parse_grids(args.grid) if args.grid else ((base.rows, base.cols),),
+        grids=d.parse_grids(args.grid) if args.grid is not None else ((base.rows, base.cols),),
         pitches_m=d.parse_values(args.pitch_mm, "--pitch-mm", 1e-3, d.LIMITS["pitch_m"])
-        if args.pitch_mm
+        if args.pitch_mm is not None
         else (base.pitch_m,),
         thicknesses_m=d.parse_values(
             args.thickness_mm, "--thickness-mm", 1e-3, d.LIMITS["thickness_m"]
         )
-        if args.thickness_mm
+        if args.thickness_mm is not None
         else (base.thickness_m,),
         materials=tuple(name_list(args.material, "--material"))
-        if args.material
+        if args.material is not None
         else (base.material,),
         p0s_pa=d.parse_values(args.p0_kpa, "--p0-kpa", 1e3, d.LIMITS["p0_pa"])
-        if args.p0_kpa
+        if args.p0_kpa is not None
         else (base.p0_pa,),
     )
     if space.size > 500:

@@ -111,6 +111,12 @@ def _read_frame(path: str) -> tuple[list[float], list[float] | None]:
         data = parse_json(stripped, f"frame file {path!r}")
         if not isinstance(data, dict):
             raise InputError(f"frame file {path!r} must hold a JSON object")
+        keys = [k for k in ("delta_kpa", "pressures_kpa", "reference_kpa") if k in data]
+        if "delta_kpa" in keys and len(keys) > 1:
+            raise InputError(
+                f"frame file {path!r} gives both delta_kpa and {keys[1]}: give one of "
+                "delta_kpa, or pressures_kpa with reference_kpa"
+            )
         if "delta_kpa" in data:
             return _numbers(data["delta_kpa"], "delta_kpa"), None
         if "pressures_kpa" in data and "reference_kpa" in data:
@@ -147,6 +153,10 @@ def _read_frame(path: str) -> tuple[list[float], list[float] | None]:
             raise InputError(f"frame file {path!r}: a row has no {name} column") from None
 
     if "delta_kpa" in header:
+        if "pressure_kpa" in header or "reference_kpa" in header:
+            raise InputError(
+                f"frame file {path!r}: header names delta_kpa and pressures; give one of them"
+            )
         return column("delta_kpa"), None
     if "pressure_kpa" in header and "reference_kpa" in header:
         return column("pressure_kpa"), column("reference_kpa")
@@ -170,6 +180,21 @@ def _numbers(values: Any, key: str) -> list[float]:
     return kpa_list(",".join(str(v) for v in values), key)
 
 
+def _check_increment_range(delta_pa: list[float], source: str) -> None:
+    """A module's pressure cannot fall below ambient, so its increment is at least -p0, and p0
+    is at most 2.8 kPa (thesis Section 6.2); above, the sensor's 10 kPa full scale bounds it."""
+    from softpad.sensing import SENSOR_FULL_SCALE_PA
+
+    lo = -thesis.P0_RANGE_PA[1]
+    for k, d in enumerate(delta_pa, 1):
+        if not lo <= d <= SENSOR_FULL_SCALE_PA:
+            raise InputError(
+                f"{source}: increment of module {k} is {d / 1e3:g} kPa, outside "
+                f"{lo / 1e3:g} to {SENSOR_FULL_SCALE_PA / 1e3:g} kPa (a module cannot fall "
+                "below ambient, nor read above the sensor's full scale)"
+            )
+
+
 def run(args: argparse.Namespace) -> int:
     from softpad.layout import parse_layout
     from softpad.planning import PlannerParams, format_plans
@@ -185,6 +210,8 @@ def run(args: argparse.Namespace) -> int:
     source = "--delta" if args.delta is not None else f"--frame {args.frame!r}"
     if args.pressures is not None:
         source = "--pressures/--reference"
+    if args.reference is not None and args.pressures is None:
+        raise InputError(f"--reference goes with --pressures only, not with {source}")
     if args.delta is not None:
         values, reference = kpa_list(args.delta, "--delta"), None
     elif args.pressures is not None:
@@ -217,6 +244,7 @@ def run(args: argparse.Namespace) -> int:
                 f"(modules 1..{layout.n_modules}), got {len(values)}"
             )
         delta = values
+        _check_increment_range(delta, source)
     params = PlannerParams(
         object_threshold_pa=args.threshold_kpa * 1e3, safety_shift=args.safety_shift
     )

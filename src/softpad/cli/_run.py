@@ -232,7 +232,7 @@ def execution_params(args: argparse.Namespace) -> Any:
 def _object_names(args: argparse.Namespace) -> list[str]:
     from softpad.cli._args import name_list
 
-    names: list[str] = name_list(args.objects, "--objects") if args.objects else []
+    names: list[str] = name_list(args.objects, "--objects") if args.objects is not None else []
     for text in args.object or []:
         names += name_list(text, "--object")
     return names or ["object-5"]

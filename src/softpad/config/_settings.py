@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from softpad import thesis
-from softpad.errors import InputError
+from softpad.errors import MM_AS_M, InputError, check_count, check_range
 
 #: Thesis defaults (seed, Section 6.2, from :mod:`softpad.thesis`), pascals / samples / metres.
 DEFAULT_P0_PA = thesis.P0_PA
@@ -27,6 +27,22 @@ DEFAULT_MAX_PRESSURE_PA = thesis.MAX_PRESSURE_PA
 DEFAULT_PITCH_M = thesis.MODULE_PITCH_M
 
 WATCHDOG_ACTIONS = ("hold", "vent")
+
+# Limits of the settings, SI. The installation file and the Python records check the same ones.
+#: Rows or columns of a pad: 1 to 16.
+MAX_PAD_SIDE = 16
+#: Module pitch, m: 5 mm to 0.5 m.
+PITCH_RANGE_M = (0.005, 0.5)
+#: The pad's position in the robot base frame, at most this far from the origin, m.
+POSE_LIMIT_M = 10.0
+#: Tolerance of the initial adjustment t_adj, Pa (the thesis's is 30 Pa).
+TOLERANCE_RANGE_PA = (1.0, 1000.0)
+#: Object and contact thresholds t_o, t_g, Pa (the thesis's are 50 and 90 Pa).
+THRESHOLD_RANGE_PA = (1.0, 5000.0)
+#: Running-average window, samples (the thesis's is 10).
+MAX_FILTER_WINDOW = 1000
+#: Configured maximum pressure, Pa: from 0.2 kPa to the thesis's ceiling.
+MAX_PRESSURE_RANGE_PA = (200.0, thesis.MAX_PRESSURE_PA)
 
 
 class ConfigError(InputError):
@@ -108,6 +124,23 @@ class PadSettings:
     z_m: float = 0.0
     yaw_rad: float = 0.0
 
+    def __post_init__(self) -> None:
+        check_count("pad rows", self.rows, 1, MAX_PAD_SIDE)
+        check_count("pad cols", self.cols, 1, MAX_PAD_SIDE)
+        check_range("pad pitch_m", self.pitch_m, *PITCH_RANGE_M, "m", MM_AS_M)
+        for name in ("x_m", "y_m", "z_m"):
+            check_range(
+                f"pad pose {name}", getattr(self, name), -POSE_LIMIT_M, POSE_LIMIT_M, "m", MM_AS_M
+            )
+        check_range(
+            "pad pose yaw_rad",
+            self.yaw_rad,
+            -2 * math.pi,
+            2 * math.pi,
+            "rad",
+            "degrees given as radians?",
+        )
+
 
 @dataclass(frozen=True, slots=True)
 class Thresholds:
@@ -119,6 +152,23 @@ class Thresholds:
     contact_threshold_pa: float = DEFAULT_CONTACT_THRESHOLD_PA
     filter_window: int = DEFAULT_FILTER_WINDOW
     max_pressure_pa: float = DEFAULT_MAX_PRESSURE_PA
+
+    def __post_init__(self) -> None:
+        p0 = check_range("thresholds p0_pa", self.p0_pa, *thesis.P0_RANGE_PA, "Pa")
+        tol = check_range(
+            "thresholds adjust_tolerance_pa", self.adjust_tolerance_pa, *TOLERANCE_RANGE_PA, "Pa"
+        )
+        for name in ("object_threshold_pa", "contact_threshold_pa"):
+            check_range(f"thresholds {name}", getattr(self, name), *THRESHOLD_RANGE_PA, "Pa")
+        check_count("thresholds filter_window", self.filter_window, 1, MAX_FILTER_WINDOW)
+        top = check_range(
+            "thresholds max_pressure_pa", self.max_pressure_pa, *MAX_PRESSURE_RANGE_PA, "Pa"
+        )
+        if p0 + tol >= top:
+            raise InputError(
+                f"thresholds p0 + adjustment tolerance ({(p0 + tol) / 1e3:g} kPa) must stay "
+                f"below the maximum pressure ({top / 1e3:g} kPa)"
+            )
 
 
 @dataclass(frozen=True, slots=True)
@@ -367,8 +417,9 @@ def _pad(raw: dict[str, Any]) -> PadSettings:
     rows = _get(t, "rows", "pad", int, 2)
     cols = _get(t, "cols", "pad", int, 3)
     for k, v in (("rows", rows), ("cols", cols)):
-        _range(f"pad.{k}", v, 1, 16)
-    pitch = _range("pad.pitch_mm", _get(t, "pitch_mm", "pad", float, 45.0), 5.0, 500.0, " mm")
+        _range(f"pad.{k}", v, 1, MAX_PAD_SIDE)
+    lo_mm, hi_mm = (v * 1e3 for v in PITCH_RANGE_M)
+    pitch = _range("pad.pitch_mm", _get(t, "pitch_mm", "pad", float, 45.0), lo_mm, hi_mm, " mm")
     return PadSettings(
         rows=rows,
         cols=cols,
@@ -385,28 +436,26 @@ def _thresholds(raw: dict[str, Any]) -> Thresholds:
     keys = {"p0_kpa", "t_adj_kpa", "t_o_kpa", "t_g_kpa", "window", "max_pressure_kpa"}
     _unknown(t, keys, "thresholds")
 
-    def kpa(key: str, default_pa: float, lo: float, hi: float) -> float:
+    def kpa(key: str, default_pa: float, lo_pa: float, hi_pa: float) -> float:
         v = _get(t, key, "thresholds", float, default_pa / 1e3)
-        return _range(f"thresholds.{key}", v, lo, hi, " kPa") * 1e3
+        return _range(f"thresholds.{key}", v, lo_pa / 1e3, hi_pa / 1e3, " kPa") * 1e3
 
-    th = Thresholds(
-        p0_pa=kpa("p0_kpa", DEFAULT_P0_PA, *(v / 1e3 for v in thesis.P0_RANGE_PA)),
-        adjust_tolerance_pa=kpa("t_adj_kpa", DEFAULT_ADJUST_TOLERANCE_PA, 0.001, 1.0),
-        object_threshold_pa=kpa("t_o_kpa", DEFAULT_OBJECT_THRESHOLD_PA, 0.001, 5.0),
-        contact_threshold_pa=kpa("t_g_kpa", DEFAULT_CONTACT_THRESHOLD_PA, 0.001, 5.0),
-        filter_window=int(
-            _range("thresholds.window", _get(t, "window", "thresholds", int, 10), 1, 1000)
-        ),
-        max_pressure_pa=kpa(
-            "max_pressure_kpa", DEFAULT_MAX_PRESSURE_PA, 0.2, thesis.MAX_PRESSURE_PA / 1e3
-        ),
-    )
-    if th.p0_pa + th.adjust_tolerance_pa >= th.max_pressure_pa:
+    values = {
+        "p0_pa": kpa("p0_kpa", DEFAULT_P0_PA, *thesis.P0_RANGE_PA),
+        "adjust_tolerance_pa": kpa("t_adj_kpa", DEFAULT_ADJUST_TOLERANCE_PA, *TOLERANCE_RANGE_PA),
+        "object_threshold_pa": kpa("t_o_kpa", DEFAULT_OBJECT_THRESHOLD_PA, *THRESHOLD_RANGE_PA),
+        "contact_threshold_pa": kpa("t_g_kpa", DEFAULT_CONTACT_THRESHOLD_PA, *THRESHOLD_RANGE_PA),
+        "max_pressure_pa": kpa("max_pressure_kpa", DEFAULT_MAX_PRESSURE_PA, *MAX_PRESSURE_RANGE_PA),
+    }
+    window = _get(t, "window", "thresholds", int, DEFAULT_FILTER_WINDOW)
+    _range("thresholds.window", window, 1, MAX_FILTER_WINDOW)
+    if values["p0_pa"] + values["adjust_tolerance_pa"] >= values["max_pressure_pa"]:
         raise ConfigError(
-            f"thresholds.p0_kpa + t_adj_kpa ({(th.p0_pa + th.adjust_tolerance_pa) / 1e3:g} kPa) "
-            f"must stay below max_pressure_kpa ({th.max_pressure_pa / 1e3:g} kPa)"
+            "thresholds.p0_kpa + t_adj_kpa "
+            f"({(values['p0_pa'] + values['adjust_tolerance_pa']) / 1e3:g} kPa) "
+            f"must stay below max_pressure_kpa ({values['max_pressure_pa'] / 1e3:g} kPa)"
         )
-    return th
+    return Thresholds(filter_window=int(window), **values)
 
 
 def _gripper(raw: dict[str, Any]) -> str | None:
@@ -424,7 +473,7 @@ def _collect(errors: list[str], parse: Any, *args: Any) -> Any:
     """``parse(*args)``, or None with its ConfigError's message(s) appended to ``errors``."""
     try:
         return parse(*args)
-    except ConfigError as exc:
+    except InputError as exc:  # ConfigError, or a settings record refusing a value
         errors.extend(getattr(exc, "errors", None) or [str(exc)])
         return None
 
@@ -435,6 +484,10 @@ def parse_installation(raw: dict[str, Any], source: str = "<dict>") -> Installat
     Every table is checked, and every channel of the box; the ConfigError lists every error
     found (one per line, each naming its key), not only the first.
     """
+    if not isinstance(raw, dict):
+        raise ConfigError(
+            f"an installation is a table of settings (a dict), got {type(raw).__name__}"
+        )
     errors: list[str] = []
     _collect(errors, _unknown, raw, {"box", "link", "pad", "thresholds", "gripper"}, "")
     parts = {

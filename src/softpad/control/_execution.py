@@ -24,6 +24,7 @@ from softpad.control._inflation import (
 from softpad.control._robot import Robot, RobotState, ToolPose
 from softpad.control._safety import DetectedFault, RunSafety, SafeStateResult
 from softpad.errors import (
+    MM_AS_M,
     CheckedFields,
     Count,
     HardwareFault,
@@ -31,6 +32,7 @@ from softpad.errors import (
     NonNegative,
     Positive,
     SoftPadError,
+    check_range,
 )
 from softpad.layout import PadLayout
 from softpad.planning import GraspPlan, Planner, PlannerParams, RetryPlanner, ThesisPlanner
@@ -73,6 +75,13 @@ class _NullRecorder:
 
     def event(self, t_s: float, kind: str, **data: Any) -> None:
         pass
+
+
+#: Fastest arm or jaw motion the loop accepts, m/s (a robot arm near a pad; the thesis's
+#: approach is 0.05 m/s): a larger value is a unit mix-up.
+MAX_SPEED_M_S = 2.0
+#: Longest height or lift the loop accepts, m.
+MAX_TRAVEL_M = 2.0
 
 
 @dataclass(frozen=True)
@@ -141,6 +150,20 @@ class ExecutionParams(CheckedFields, what="execution"):
     #: grasped in turn from the one plan, as the thesis does. False: grasp every planned
     #: object (the loop before 2026-11-24).
     drop_carried: bool = True
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        for name in ("approach_speed_m_s", "travel_speed_m_s", "gripper_speed_m_s"):
+            check_range(
+                f"execution {name}",
+                getattr(self, name),
+                1e-4,
+                MAX_SPEED_M_S,
+                "m/s",
+                "millimetres per second given as metres per second?",
+            )
+        for name in ("approach_height_m", "min_height_m", "lift_m", "landing_height_m"):
+            check_range(f"execution {name}", getattr(self, name), 0.0, MAX_TRAVEL_M, "m", MM_AS_M)
 
 
 @dataclass(frozen=True)

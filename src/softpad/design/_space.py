@@ -12,6 +12,7 @@ import hashlib
 import itertools
 import json
 import math
+from collections.abc import Callable, Sequence
 from dataclasses import asdict, dataclass
 from typing import Any
 
@@ -206,6 +207,7 @@ def parse_values(
     for part in text.split(","):
         values.extend(_values_of(part.strip(), name))
     si = tuple(round(v * scale, 12) for v in values)
+    _once(si, name, lambda v: f"{v / scale:g}")
     lo, hi = limits
     for v in si:
         if not math.isfinite(v) or not lo <= v <= hi:
@@ -225,13 +227,21 @@ def parse_grids(text: str) -> tuple[tuple[int, int], ...]:
         if not (lo <= r <= hi and lo <= c <= hi):
             raise InputError(f"--grid: rows and columns must be {lo:g}..{hi:g}, got {part.strip()}")
         out.append((r, c))
+    _once(out, "--grid", lambda g: f"{g[0]}x{g[1]}")
     return tuple(out)
+
+
+def _once(values: Sequence[Any], name: str, show: Callable[[Any], str]) -> None:
+    """InputError when a value of a design option is given twice (it would be computed twice)."""
+    for i, v in enumerate(values):
+        if v in values[:i]:
+            raise InputError(f"{name}: {show(v)} is given twice")
 
 
 def _values_of(part: str, name: str) -> list[float]:
     """One item of a design option: a number or ``start:stop:step`` (at most 100 values)."""
     try:
-        numbers = [float(x) for x in part.split(":")] if part else []
+        numbers = [float(x) for x in part.split(":")] if part.isascii() and "_" not in part else []
     except ValueError:
         numbers = []
     if len(numbers) == 1:

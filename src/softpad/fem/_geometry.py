@@ -7,7 +7,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from softpad import thesis
-from softpad.errors import InputError, check_finite
+from softpad.errors import MM_AS_M, InputError, check_finite, check_range
+
+#: Widest module the model accepts, m (the prototype's is 45 mm): wider is a unit mix-up.
+MAX_MODULE_WIDTH_M = 0.5
 
 #: Module width of the prototype, m (thesis Section 6.1: 45 x 45 mm air channel).
 DEFAULT_WIDTH_M = thesis.MODULE_PITCH_M
@@ -43,6 +46,7 @@ class ModuleGeometry:
             raise InputError(f"module width must be > 0 m, got {w!r} m")
         if t <= 0:
             raise InputError(f"layer thickness must be > 0 m, got {t!r} m")
+        check_range("module width_m", w, 0.0, MAX_MODULE_WIDTH_M, "m", MM_AS_M)
         if t > 0.5 * w:
             raise InputError(
                 f"layer thickness {t * 1e3:.4g} mm exceeds half the module width "

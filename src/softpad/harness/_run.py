@@ -22,6 +22,10 @@ _REMOTE_WORLD = (
 
 def resolve_objects(names: Sequence[str] | None) -> list[ObjectSpec]:
     """Catalogue objects by name (``object-5`` when None); InputError lists the known names."""
+    if isinstance(names, str):
+        raise InputError(
+            f"objects must be a list of names, got the string {names!r}: use [{names!r}]"
+        )
     if names is not None and len(names) == 0:
         raise InputError("no object given: name at least one catalogue object")
     names = list(names) if names else ["object-5"]

@@ -6,7 +6,11 @@ import math
 from dataclasses import dataclass
 
 from softpad import thesis
-from softpad.errors import InputError
+from softpad.errors import MM_AS_M, InputError, check_range
+
+#: Largest jaw opening or finger length accepted, m: a parallel-jaw gripper for objects on a pad
+#: (the thesis's opens 10 cm at most); a larger value is a unit mix-up.
+MAX_GRIPPER_SIZE_M = 0.5
 
 #: The three ways the thesis mounted the Sawyer gripper: (max width, min width) in metres.
 GRIPPER_CONFIGS_M: dict[str, tuple[float, float]] = {
@@ -52,6 +56,10 @@ class GripperSpec:
             v = getattr(self, name)
             if not math.isfinite(v) or v <= 0:
                 raise InputError(f"gripper {name} must be a positive length, got {v!r}")
+        check_range("gripper max_width_m", self.max_width_m, 0.0, MAX_GRIPPER_SIZE_M, "m", MM_AS_M)
+        check_range(
+            "gripper finger_length_m", self.finger_length_m, 0.0, MAX_GRIPPER_SIZE_M, "m", MM_AS_M
+        )
         if not (0 <= self.min_width_m < self.max_width_m):
             raise InputError(
                 f"gripper min width must be in [0, max width = {self.max_width_m} m), "

@@ -7,6 +7,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from softpad.errors import check_finite
+
 
 @dataclass(frozen=True)
 class PadPose:
@@ -25,6 +27,10 @@ class PadPose:
     y_m: float = 0.0
     z_m: float = 0.0
     yaw_rad: float = 0.0
+
+    def __post_init__(self) -> None:
+        for name in ("x_m", "y_m", "z_m", "yaw_rad"):
+            check_finite(f"pad pose {name}", getattr(self, name))
 
     @property
     def rotation(self) -> NDArray[np.float64]:

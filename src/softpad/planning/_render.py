@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from softpad.errors import InputError
 from softpad.layout import GripperSpec, PadLayout
 from softpad.planning._records import GraspPlan
 
@@ -54,6 +55,10 @@ def format_plans(
     delta_pa: ArrayLike, plans: Sequence[GraspPlan], layout: PadLayout, threshold_pa: float
 ) -> str:
     """The table ``softpad plan`` prints."""
+    if np.size(delta_pa) != layout.n_modules:
+        raise InputError(
+            f"a {layout.name} pad needs {layout.n_modules} increments, got {np.size(delta_pa)}"
+        )
     lines = [
         f"SoftPad {layout.name}, pitch {layout.pitch_m * 1e3:g} mm, "
         f"object threshold t_o = {threshold_pa / 1e3:.3f} kPa",

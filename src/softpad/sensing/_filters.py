@@ -16,6 +16,13 @@ DEFAULT_FILTER_LENGTH = thesis.FILTER_WINDOW
 DEFAULT_REFERENCE_READS = thesis.REFERENCE_READS
 
 
+#: Largest gauge pressure, Pa, below which a whole vector of pressures and its reference are
+#: taken for kilopascals given as pascals: a module adjusted to p0 reads 500 to 2800 Pa
+#: (thesis Section 6.2), so no real reading pair lies entirely under 10 Pa but a quiet, deflated
+#: pad, which reads 0.
+PLAUSIBLE_PRESSURE_PA = 10.0
+
+
 def _as_pressures(values: ArrayLike, name: str) -> NDArray[np.float64]:
     a = np.asarray(values, dtype=float)
     if a.ndim != 1:
@@ -93,4 +100,10 @@ def increments(pressures: ArrayLike, reference: ArrayLike) -> NDArray[np.float64
     r = _as_pressures(reference, "reference")
     if p.shape != r.shape:
         raise InputError(f"got {p.size} pressures but {r.size} reference values")
+    top = max(float(np.abs(p).max(initial=0.0)), float(np.abs(r).max(initial=0.0)))
+    if 0.0 < top < PLAUSIBLE_PRESSURE_PA:
+        raise InputError(
+            f"pressures and reference are all under {PLAUSIBLE_PRESSURE_PA:g} Pa (largest "
+            f"{top:g}): give pascals, not kPa (a module at p0 reads 500 to 2800 Pa)"
+        )
     return p - r

@@ -49,6 +49,10 @@ def check_increments(delta_pa: ArrayLike, layout: PadLayout) -> np.ndarray:
     sensor's full scale (10 kPa: pascals given as kPa?) or a non-zero vector whose largest
     increment is under 1 Pa (kPa given as pascals?).
     """
+    if not isinstance(layout, PadLayout):
+        raise InputError(
+            f"layout must be a PadLayout (parse_layout('2x3') for a name), got {layout!r}"
+        )
     try:
         d = np.asarray(delta_pa, dtype=float)
     except (TypeError, ValueError):

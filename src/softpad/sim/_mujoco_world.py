@@ -64,6 +64,10 @@ class ObjectPose:
     #: Angle between the object's z axis and the vertical, radians.
     tilt_rad: float
 
+    def __post_init__(self) -> None:
+        for name in ("x_m", "y_m", "z_m", "yaw_rad", "tilt_rad"):
+            check_finite(f"object pose {name}", getattr(self, name))
+
 
 class MujocoWorld(PadWorld):
     """Pad, gripper and objects simulated by MuJoCo; implements :class:`~softpad.sim.World`.

@@ -25,7 +25,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from softpad import thesis
-from softpad.errors import CheckedFields, InputError, NonNegative, Positive
+from softpad.errors import CheckedFields, InputError, NonNegative, Positive, check_count
 
 
 @dataclass(frozen=True)
@@ -85,6 +85,9 @@ class SensorBank:
         rng: np.random.Generator,
         block: int = 4096,
     ) -> None:
+        check_count("sensor bank n_channels", n_channels, 1, 1024)
+        if not (isinstance(dt_s, int | float) and math.isfinite(dt_s) and dt_s > 0):
+            raise InputError(f"sensor bank sample period dt_s must be > 0 seconds, got {dt_s!r}")
         self.params = params
         self.n = n_channels
         self.rng = rng

@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from softpad.control import ExecutionParams, InflationParams
-from softpad.errors import InputError
+from softpad.errors import MM_AS_M, InputError, check_range
 
 
 @dataclass(frozen=True)
@@ -55,6 +55,16 @@ class TrialConfig:
             v = getattr(self, name)
             if not isinstance(v, int | float) or not math.isfinite(v) or v < 0:
                 raise InputError(f"trial parameter {name} must be a finite number >= 0, got {v!r}")
+        # a placement spread beyond a module pitch is a unit mix-up, not a hand placement
+        check_range("trial position_sigma_m", self.position_sigma_m, 0.0, 0.05, "m", MM_AS_M)
+        check_range(
+            "trial yaw_sigma_rad",
+            self.yaw_sigma_rad,
+            0.0,
+            math.pi,
+            "rad",
+            "degrees given as radians?",
+        )
         from softpad.planning import PLANNERS
         from softpad.sensing import CONTACT_DETECTORS
 

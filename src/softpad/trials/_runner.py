@@ -45,6 +45,9 @@ def trial_seed(seed: int, object_name: str, trial: int) -> int:
     Independent of the worker count and of which other objects run alongside, so trial k of
     an object is the same trial in ``softpad demo`` and in ``softpad trials --objects NAME``.
     """
+    for name, v in (("seed", seed), ("trial", trial)):
+        if isinstance(v, bool) or not isinstance(v, int | np.integer) or v < 0:
+            raise InputError(f"trial {name} must be an integer >= 0, got {v!r}")
     name_key = zlib.crc32(str(object_name).encode("utf-8"))
     ss = np.random.SeedSequence([int(seed), name_key, int(trial)])
     return int(ss.generate_state(1)[0])
