@@ -4,9 +4,11 @@ from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
 from typing import Any
 
 from softpad.cli._args import add_command, add_group
+from softpad.errors import InputError
 
 _EPILOG = """examples:
   softpad log info run.mcap                 topics, duration, objects, plan, contact, outcome
@@ -44,6 +46,7 @@ def register(sub: Any) -> None:
     plot.add_argument("file", metavar="FILE.mcap")
     plot.add_argument("--png", metavar="FILE", required=True, help="pressure traces picture")
     plot.add_argument("--pad-png", metavar="FILE", help="pad picture with objects and grasps")
+    plot.add_argument("--force", action="store_true", help="overwrite existing pictures")
     export = add_command(
         actions, "export", "as a table (CSV, Parquet), a rosbag2 directory or a ROS 1 bag",
         json=written,
@@ -124,6 +127,7 @@ def run(args: argparse.Namespace) -> int:
         n = len(load_recording(out))
         _done(args, f"recovered {n} frames into {out}", files=[str(out)], frames=n)
         return 0
+    _check_outputs(args)  # before reading: nothing is computed for a file that cannot be written
     rec = load_recording(args.file)
     if not rec.complete:
         print(
@@ -145,8 +149,27 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+def _check_outputs(args: argparse.Namespace) -> None:
+    """The output files of ``plot`` and ``export``: right suffix, writable, not clobbered."""
+    from softpad.cli._paths import check_output
+
+    if args.log_command == "plot":
+        check_output(args.png, "--png", force=args.force, suffix=".png")
+        check_output(args.pad_png, "--pad-png", force=args.force, suffix=".png")
+        if args.pad_png is not None and Path(args.pad_png).resolve() == Path(args.png).resolve():
+            raise InputError("--png and --pad-png name the same file")
+    elif args.log_command == "export":
+        # --rosbag2 DIR: checked by softpad.record.to_rosbag2 itself
+        for flag, value, suffix in (
+            ("--out", args.out, (".csv", ".parquet")),
+            ("--csv", args.csv, ".csv"),
+            ("--parquet", args.parquet, ".parquet"),
+            ("--rosbag1", args.rosbag1, ".bag"),
+        ):
+            check_output(value, flag, force=args.force, suffix=suffix)
+
+
 def _export(args: argparse.Namespace, rec: Any) -> None:
-    from softpad.errors import InputError
 
     if args.rosbag2 or args.rosbag1:
         from softpad.record import to_rosbag1, to_rosbag2

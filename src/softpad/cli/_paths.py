@@ -63,6 +63,14 @@ def _check_folder(folder: Path, flag: str, text: str) -> None:
         raise InputError(f"{flag} {text!r}: folder {str(folder)!r} does not exist")
     if not os.access(folder, os.W_OK | os.X_OK):
         raise InputError(f"{flag} {text!r}: folder {str(folder)!r} is not writable")
+    # root passes os.access everywhere; a read-only file system or /proc only shows on a try
+    try:
+        with tempfile.NamedTemporaryFile(dir=folder, prefix=".softpad-probe-"):
+            pass
+    except OSError as exc:
+        raise InputError(
+            f"{flag} {text!r}: cannot write in folder {str(folder)!r} ({exc.strerror})"
+        ) from None
 
 
 @contextlib.contextmanager

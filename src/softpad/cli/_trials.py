@@ -185,14 +185,22 @@ def check_counts(trials: int, workers: int | None) -> None:
 
 
 def run_with_progress(
-    specs: list[Any], trials: int, show: bool, desc: str = "trials", **kwargs: Any
+    specs: list[Any],
+    trials: int,
+    show: bool,
+    desc: str = "trials",
+    finished: list[dict[str, Any]] | None = None,
+    **kwargs: Any,
 ) -> tuple[Any, Any]:
-    """``run_experiment`` with a progress bar that names each finished trial's outcome."""
+    """``run_experiment`` with a progress bar that names each finished trial's outcome;
+    each finished trial's dict is appended to ``finished`` (kept when the run is interrupted)."""
     from softpad.trials import run_experiment
 
     bar = progress_bar(len(specs) * trials, show, desc=desc)
 
     def tick(result: Any) -> None:
+        if finished is not None:
+            finished.append(result.to_dict())
         if bar is not None:
             bar.set_postfix_str(f"{result.object}: {'held' if result.success else result.cause}")
             bar.update(1)
@@ -223,7 +231,8 @@ def run(args: argparse.Namespace) -> int:
     from softpad.trials._records import errored_records
 
     done: list[Any] = []
-    args.partial = {"seeds": seeds, "completed_seeds": [e.seed for e in done]}
+    finished: list[dict[str, Any]] = []
+    args.partial = {"seeds": seeds, "completed_seeds": [], "finished_trials": finished}
     if getattr(args, "scheduler", None) is not None:
         return _run_on_dask(args, specs, seeds)
     for seed in seeds:
@@ -231,6 +240,7 @@ def run(args: argparse.Namespace) -> int:
             specs,
             args.trials,
             not args.no_progress and sys.stderr.isatty(),
+            finished=finished,
             seed=seed,
             workers=args.workers,
             config=_config(args),

@@ -129,6 +129,14 @@ def main(argv: Sequence[str] | None = None) -> int:
         return int(args.handler(args) or 0)
     except KeyboardInterrupt:
         print(f"softpad {name}: interrupted", file=sys.stderr)
+        if json_mode:  # what was finished before Ctrl-C, as the one JSON object on stdout
+            from softpad.cli._output import emit, error_object
+
+            emit(
+                error_object(
+                    "interrupted", "interrupted by the user", getattr(args, "partial", None)
+                )
+            )
         return 130
     except BrokenPipeError:
         return 0

@@ -22,6 +22,7 @@ from softpad.design._objects import (
     ObjectSet,
     SetObject,
     example_object_set,
+    footprint_centre_m,
     load_object_set,
     object_set_from_dict,
 )
@@ -67,6 +68,7 @@ __all__ = [
     "design_sweep",
     "example_object_set",
     "fem_response",
+    "footprint_centre_m",
     "has_dask",
     "load_object_set",
     "object_set_from_dict",

@@ -347,9 +347,10 @@ def recover(path: str | Path, out: str | Path | None = None, force: bool = False
         w = Writer(f)
         w.start(profile=S.PROFILE, library="softpad recover")
         for rec in records:
-            if isinstance(rec, Schema):
+            # a complete file repeats its schemas and channels in the summary: register once
+            if isinstance(rec, Schema) and rec.id not in schema_ids:
                 schema_ids[rec.id] = w.register_schema(rec.name, rec.encoding, rec.data)
-            elif isinstance(rec, Channel):
+            elif isinstance(rec, Channel) and rec.id not in channel_ids:
                 channel_ids[rec.id] = w.register_channel(
                     rec.topic, rec.message_encoding, schema_ids.get(rec.schema_id, 0), rec.metadata
                 )

@@ -267,6 +267,11 @@ def compare_replay(recording: RecordedRun | str | Path) -> dict[str, Any]:
     from softpad.layout import parse_layout
 
     run = recording if isinstance(recording, RecordedRun) else load_recording(recording)
+    if len(run) == 0:
+        raise InputError(
+            f"recording {str(run.path)!r} holds no frames (cut short before the first was "
+            "written?): nothing to replay"
+        )
     params = _params(run)
     layout = parse_layout(str(run.metadata.get("layout", "2x3")))
     phases = _phase_starts(run)
