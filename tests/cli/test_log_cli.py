@@ -50,7 +50,7 @@ def test_log_export_csv_has_frames_and_events(tmp_path, capsys) -> None:
 
 def test_log_export_refuses_other_formats(tmp_path, capsys) -> None:
     assert main(["log", "export", str(DATA / "banana.mcap"), "--out", str(tmp_path / "x.xls")]) == 2
-    assert "--out must end in .csv or .parquet" in capsys.readouterr().err
+    assert "--out must name a .csv or .parquet file" in capsys.readouterr().err
 
 
 def test_log_recover_a_cut_file(tmp_path, capsys) -> None:
