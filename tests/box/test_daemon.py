@@ -170,7 +170,7 @@ def test_non_loopback_listen_without_auth_is_refused(
     assert main(["box", "serve", "--sim", "--listen", "tcp/0.0.0.0:7447"]) == 2
     assert "allow_remote" in capsys.readouterr().err
     site = tmp_path / "open.toml"
-    site.write_text('[link]\nlisten = ["tcp/192.168.7.2:7447"]\nallow_remote = true\n')
+    site.write_text('[link]\nlisten = ["tls/192.168.7.2:7447"]\nallow_remote = true\n')
     assert main(["box", "serve", "--sim", "--config", str(site)]) == 2
     err = capsys.readouterr().err
     assert "no authentication" in err and err.count("\n") == 1

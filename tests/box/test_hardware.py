@@ -121,3 +121,25 @@ def test_gpiod_lines_on_gpio_sim() -> None:  # pragma: no cover - needs the kern
         (base / "live").write_text("0")
         (base / "bank0").rmdir()
         base.rmdir()
+
+
+def test_a_box_without_a_supply_sensor_never_trips_supply_loss(tmp_path: Path) -> None:
+    """Issue 35 item 10: without [box.supply] the frames report 0 Pa; the run's fault monitor
+    must not call that a supply loss (it did after 10 frames, on every run)."""
+    from softpad.control._safety import RunSafety
+
+    _fake_iio(tmp_path, [2000, 2100, 2200])
+    settings = _settings(tmp_path, 3, supply=False)
+    with HardwareBox(settings, lines=_lines(settings)) as box:
+        assert box.supply_sensor is False
+        safety = RunSafety(box, 3, 3000.0, 50.0)
+        for _ in range(30):
+            safety.watch(box.read())  # raises MonitoredFault on a fault
+    _fake_iio(tmp_path / "wired", [2000, 2100, 2200, 0])
+    wired = _settings(tmp_path / "wired", 3, supply=True)
+    with HardwareBox(wired, lines=_lines(wired)) as box:
+        assert box.supply_sensor is True
+        safety = RunSafety(box, 3, 3000.0, 50.0)
+        with pytest.raises(Exception, match="supply"):
+            for _ in range(30):
+                safety.watch(box.read())

@@ -77,12 +77,14 @@ def test_wrong_values_are_named(raw: dict, named: str) -> None:
 def test_non_loopback_listen_needs_allow_remote_and_auth() -> None:
     with pytest.raises(ConfigError, match="allow_remote"):
         parse_installation({"link": {"listen": ["tcp/0.0.0.0:7447"]}})
-    with pytest.raises(ConfigError, match="no authentication"):
+    with pytest.raises(ConfigError, match="plain tcp"):
         parse_installation({"link": {"listen": ["tcp/0.0.0.0:7447"], "allow_remote": True}})
+    with pytest.raises(ConfigError, match="no authentication"):
+        parse_installation({"link": {"listen": ["tls/0.0.0.0:7447"], "allow_remote": True}})
     ok = parse_installation(
         {
             "link": {
-                "listen": ["tcp/192.168.7.2:7447"],
+                "listen": ["tls/192.168.7.2:7447"],
                 "allow_remote": True,
                 "user": "lab",
                 "password_file": "/etc/softpad/password",

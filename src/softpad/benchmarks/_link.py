@@ -21,12 +21,13 @@ from softpad.benchmarks._common import BenchResult
 _MONITOR = r"""
 import json, sys, time, threading
 import zenoh
+from softpad.box._auth import split_frame
 from softpad.box._link import decode_frame, session_config
 port, duration = int(sys.argv[1]), float(sys.argv[2])
 rows = []
 def on(sample):
     now = time.monotonic()
-    f = decode_frame(sample.payload.to_bytes())
+    f = decode_frame(split_frame(sample.payload.to_bytes())[0])
     rows.append((f.seq, now - f.mono_s))
 s = zenoh.open(session_config("client", connect=(f"tcp/127.0.0.1:{port}",)))
 sub = s.declare_subscriber("softpad/box/frames", on)

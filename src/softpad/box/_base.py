@@ -134,6 +134,12 @@ class Box(ABC):
 
     # --- public API -----------------------------------------------------------------
     @property
+    def supply_sensor(self) -> bool:
+        """True when the box measures its supply pressure (a box without one reports 0 Pa,
+        and supply-loss checks must not judge it)."""
+        return True
+
+    @property
     def closed(self) -> bool:
         """True after :meth:`close`."""
         return self._closed

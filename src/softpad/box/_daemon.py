@@ -30,6 +30,7 @@ from typing import Any
 import numpy as np
 
 from softpad import __version__
+from softpad.box._auth import Verifier, new_key, seal_frame
 from softpad.box._base import Box, PressureFrame, ValveCommand
 from softpad.box._link import (
     DEFAULT_PREFIX,
@@ -38,6 +39,7 @@ from softpad.box._link import (
     encode_json,
     session_config,
 )
+from softpad.box._notes import ThrottledLog
 from softpad.box._safety import SafetyTrip
 from softpad.errors import HardwareFault, InputError, SoftPadError
 
@@ -78,6 +80,8 @@ class _Stats:
         self.vents = 0
         self.faults = 0
         self.unsent = 0
+        self.auth_failures = 0
+        self.service_max_s = 0.0
         self.started = time.monotonic()
         self._intervals: list[float] = []
         self._last: float | None = None
@@ -104,6 +108,8 @@ class _Stats:
             "unsent_frames": self.unsent,
             "malformed_payloads": self.malformed,
             "refused_commands": self.refused,
+            "auth_failures": self.auth_failures,
+            "service_max_s": round(self.service_max_s, 6),
             "watchdog_trips": self.watchdog_trips,
             "safety_vents": self.vents,
             "box_faults": self.faults,
@@ -138,7 +144,8 @@ class BoxDaemon:
         None (hardware): free-running.
     services
         Extra queryables ``PREFIX/ext/OP`` (the served simulator's world and robot); a handler
-        takes the request and returns the reply's fields. Only the controller may call them.
+        takes the request and returns the reply's fields. Only the controller may call them,
+        and only a simulated box offers them (bounded: :mod:`softpad.harness._remote`).
     auth
         Keyword arguments of :func:`softpad.box._link.session_config` (user/password, TLS).
     log
@@ -164,6 +171,11 @@ class BoxDaemon:
             raise InputError(f"watchdog action must be hold or vent, got {watchdog_action!r}")
         if not (math.isfinite(watchdog_s) and 0.01 <= watchdog_s <= 60):
             raise InputError(f"watchdog time must be within 0.01..60 s, got {watchdog_s!r}")
+        if services and not _simulated(box):
+            raise InputError(
+                f"services ({', '.join(sorted(services))}) are for a simulated box only, "
+                f"not {type(box).__name__}"
+            )
         self.box = guard_box(box, max_pressure_pa)
         self.listen = tuple(listen)
         self.prefix = key_prefix.rstrip("/")
@@ -174,6 +186,13 @@ class BoxDaemon:
         self.services = dict(services or {})
         self._auth = dict(auth or {})
         self._log = log
+        #: Repeating lines (a box fault every frame, a flood of forged messages) said once,
+        #: then at most every 10 s with their count.
+        self._note = ThrottledLog(log)
+        #: Drawn at start: tags every frame for monitors (handed on ``info``).
+        self._read_key = new_key()
+        #: The controller's key and counters (None: nobody controls).
+        self._verifier: Verifier | None = None
         self._lock = threading.RLock()
         self._stop = threading.Event()
         self.stats = _Stats(float(box.sample_rate_hz))
@@ -292,7 +311,7 @@ class BoxDaemon:
                     self._safety(frame, mono)
             except SoftPadError as exc:
                 self.stats.faults += 1
-                self._say(f"box fault: {exc}; valves closed")
+                self._note(f"box fault: {exc}; valves closed", key="box fault")
                 self._safe_state("hold")
                 time.sleep(period)
                 continue
@@ -324,8 +343,8 @@ class BoxDaemon:
         try:
             msg = decode_request(sample.payload.to_bytes())
             seq = msg.get("seq")
-            if msg.get("client") == self.controller and isinstance(seq, int):
-                self._acked = max(self._acked, seq)
+            if self._authentic("ack", "control/ack", msg) and type(seq) is int:
+                self._acked = max(self._acked, min(seq, self._seq))
                 self._ack_event.set()
         except Exception:
             self.stats.malformed += 1
@@ -338,8 +357,9 @@ class BoxDaemon:
                 data = self._outbox.get(timeout=0.1)
             except queue.Empty:
                 continue
+            v = self._verifier
             try:
-                self._pub.put(data)
+                self._pub.put(seal_frame(data, self._read_key, v.secret if v else None))
             except Exception as exc:  # the session is closing
                 self._say(f"publishing: {exc}")
                 return
@@ -393,6 +413,7 @@ class BoxDaemon:
         """Watchdog: the controller is gone; close inflation, hold or vent, free control."""
         with self._lock:
             who, self.controller = self.controller, None
+            self._verifier = None
             if who is None:
                 return
             self.stats.watchdog_trips += 1
@@ -454,6 +475,7 @@ class BoxDaemon:
         return c
 
     def _require_control(self, msg: dict[str, Any]) -> str:
+        """The controller's id when ``msg`` is its authentic, fresh query; else refused."""
         c = self._client(msg)
         if self.controller != c:
             holder = self.controller or "nobody"
@@ -461,7 +483,25 @@ class BoxDaemon:
                 "control",
                 f"client {c} does not control the box (controller: {holder}); take control first",
             )
+        key = str(msg.get("_key", "")).removeprefix(self.prefix + "/")
+        if not self._authentic("query", key, msg):
+            raise _Refused(
+                "control",
+                f"{key} refused: not authenticated as controller {c} (forged or replayed)",
+            )
         return c
+
+    def _authentic(self, stream: str, key: str, msg: dict[str, Any]) -> bool:
+        """True when ``msg`` on ``key`` carries the controller's valid tag and a fresh counter;
+        a failure is counted and logged (throttled)."""
+        v = self._verifier
+        why = "nobody controls the box" if v is None else v.check(stream, key, msg)
+        if why is None:
+            return True
+        if v is not None and msg.get("client") == v.client:  # claims to be the controller
+            self.stats.auth_failures += 1
+            self._note(f"refused {key} claiming client {v.client}: {why}", key=f"auth {key}")
+        return False
 
     def info(self) -> dict[str, Any]:
         """What the daemon advertises on ``PREFIX/info``."""
@@ -475,6 +515,8 @@ class BoxDaemon:
             "box": type(self.box).__name__,
             "controller": self.controller,
             "services": sorted(self.services),
+            "supply_sensor": bool(getattr(self.box, "supply_sensor", True)),
+            "read_key": self._read_key.hex(),
             "version": f"softpad {__version__}",
         }
 
@@ -493,29 +535,38 @@ class BoxDaemon:
                     f"box is controlled by client {self.controller}; it must release control "
                     "or vanish (watchdog) first",
                 )
+            if self.controller == c:  # the same id again: only its holder, proven by its key
+                self._require_control(msg)
             # granted now; the liveliness token (declared before the request, on the same
-            # link) must be seen within the watchdog time or control is withdrawn
+            # link) must be seen within the watchdog time or control is withdrawn. The key
+            # goes in this reply only (to the querier), never published.
+            secret = new_key()
+            self._verifier = Verifier(c, secret)
             self.controller = c
             self._heartbeat = self._taken_at = time.monotonic()
             self._acked = self._seq
         self._say(f"client {c} took control")
-        return {"controller": c, "watchdog_s": self.watchdog_s, "seq": self._seq}
+        return {
+            "controller": c,
+            "watchdog_s": self.watchdog_s,
+            "seq": self._seq,
+            "key": secret.hex(),
+        }
 
     def _on_release(self, msg: dict[str, Any]) -> dict[str, Any]:
         c = self._require_control(msg)
         with self._lock:
             self._safe_state("hold")
             self.controller = None
+            self._verifier = None
         self._say(f"client {c} released control; valves closed")
         return {}
 
     def _on_heartbeat(self, sample: Any) -> None:
         try:
             msg = decode_request(sample.payload.to_bytes())
-            if msg.get("client") == self.controller:
+            if self._authentic("heartbeat", "control/heartbeat", msg):
                 self._heartbeat = time.monotonic()
-        except InputError:
-            self.stats.malformed += 1
         except Exception:
             self.stats.malformed += 1
 
@@ -569,9 +620,14 @@ class BoxDaemon:
         handler = self.services.get(op)
         if handler is None:
             raise InputError(f"unknown service {op!r}; offered: {', '.join(sorted(self.services))}")
-        self._require_control(msg)
+        self._require_control({**msg, "_key": f"{self.prefix}/ext/{op}"})
+        request = {k: v for k, v in msg.items() if k not in ("mac", "n", "client")}
         with self._lock:
-            return handler({**msg, "op": op})
+            t0 = time.monotonic()
+            try:
+                return handler({**request, "op": op})
+            finally:
+                self.stats.service_max_s = max(self.stats.service_max_s, time.monotonic() - t0)
 
 
 class _Refused(SoftPadError):
@@ -580,6 +636,13 @@ class _Refused(SoftPadError):
     def __init__(self, kind: str, message: str) -> None:
         super().__init__(message)
         self.kind = kind
+
+
+def _simulated(box: Box) -> bool:
+    """True for a simulated box (the only kind that may offer services)."""
+    from softpad.box._sim import SimBox
+
+    return isinstance(box, SimBox)
 
 
 def new_client_id() -> str:

@@ -244,6 +244,11 @@ class HardwareBox(Box):
     def sample_rate_hz(self) -> float:
         return float(self.settings.sample_rate_hz)
 
+    @property
+    def supply_sensor(self) -> bool:
+        """False without a ``[box.supply]`` sensor (frames then report 0 Pa)."""
+        return self.settings.supply is not None
+
     def _read(self) -> PressureFrame:
         self._tick += 1
         due = self._t0 + self._tick * self._period

@@ -39,6 +39,9 @@ from softpad.errors import InputError
 #: Largest accepted request payload, bytes.
 MAX_PAYLOAD_BYTES = 4096
 
+#: Deepest accepted nesting of arrays and objects in a request (checked before parsing).
+MAX_PAYLOAD_DEPTH = 8
+
 #: Default key prefix of a box.
 DEFAULT_PREFIX = "softpad/box"
 
@@ -97,13 +100,41 @@ def decode_request(data: bytes | None) -> dict[str, Any]:
         return {}
     if len(data) > MAX_PAYLOAD_BYTES:
         raise InputError(f"payload of {len(data)} bytes exceeds the limit of {MAX_PAYLOAD_BYTES}")
+    depth = nesting_depth(data)
+    if depth > MAX_PAYLOAD_DEPTH:
+        raise InputError(
+            f"payload nests arrays and objects {depth} deep; the limit is {MAX_PAYLOAD_DEPTH}"
+        )
     try:
         msg = json.loads(data.decode("utf-8"), parse_constant=_no_constant)
-    except (UnicodeDecodeError, json.JSONDecodeError, ValueError) as exc:
+    except (UnicodeDecodeError, json.JSONDecodeError, ValueError, RecursionError) as exc:
         raise InputError(f"malformed JSON payload: {exc}") from None
     if not isinstance(msg, dict):
         raise InputError(f"payload must be a JSON object, got {type(msg).__name__}")
     return msg
+
+
+def nesting_depth(data: bytes) -> int:
+    """Deepest nesting of ``[`` and ``{`` in JSON text, outside strings (no parsing: a deep
+    payload is refused before :func:`json.loads` could recurse on it)."""
+    depth = deepest = 0
+    in_string = escaped = False
+    for c in data:
+        if in_string:
+            if escaped:
+                escaped = False
+            elif c == 0x5C:  # backslash
+                escaped = True
+            elif c == 0x22:  # quote
+                in_string = False
+        elif c == 0x22:
+            in_string = True
+        elif c in (0x5B, 0x7B):
+            depth += 1
+            deepest = max(deepest, depth)
+        elif c in (0x5D, 0x7D):
+            depth -= 1
+    return deepest
 
 
 def _no_constant(token: str) -> Any:
@@ -134,9 +165,11 @@ def session_config(
     listen, connect
         Zenoh endpoints (``tcp/127.0.0.1:7447``); nothing else is listened on or scouted.
     user, password, dictionary_file
-        Zenoh user/password authentication (the listener checks ``dictionary_file``).
+        Zenoh user/password authentication: a connecting side logs in with ``user`` and
+        ``password`` (both or neither); a listener checks them against ``dictionary_file``
+        (``user:password`` lines). See :mod:`softpad.box._credentials`.
     tls
-        ``transport/link/tls`` settings (certificate, private key, root CA).
+        ``transport/link/tls`` settings (certificate, private key, root CA, ``enable_mtls``).
     """
     try:
         import zenoh
@@ -151,12 +184,14 @@ def session_config(
     c.insert_json5("connect/endpoints", json.dumps(list(connect)))
     if mode == "client":
         c.insert_json5("connect/timeout_ms", "3000")
-    if user is not None:
-        auth: dict[str, str] = {"user": user}
-        if password is not None:
-            auth["password"] = password
-        if dictionary_file is not None:
-            auth["dictionary_file"] = dictionary_file
+    auth: dict[str, str] = {}
+    if (user is None) != (password is None):  # zenoh rejects one without the other
+        raise InputError("zenoh user/password authentication needs both a user and a password")
+    if user is not None and password is not None:
+        auth.update(user=user, password=password)
+    if dictionary_file is not None:
+        auth["dictionary_file"] = dictionary_file
+    if auth:
         c.insert_json5("transport/auth/usrpwd", json.dumps(auth))
     if tls:
         c.insert_json5("transport/link/tls", json.dumps(tls))

@@ -35,6 +35,10 @@ class BoxWrapper(Box):
         return self.inner.sample_rate_hz
 
     @property
+    def supply_sensor(self) -> bool:
+        return self.inner.supply_sensor
+
+    @property
     def valves(self) -> tuple[ValveCommand, ...]:
         """The wrapped box's valve states (its safety guard may vent a channel)."""
         return self.inner.valves

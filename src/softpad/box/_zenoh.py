@@ -9,11 +9,15 @@ heartbeats). Another client controlling the box makes valve commands fail with
 
 from __future__ import annotations
 
+import atexit
+import logging
 import math
 import queue
 import threading
+import weakref
 from typing import Any
 
+from softpad.box._auth import Sealer, split_frame, tag_ok
 from softpad.box._base import Box, ConnectionLost, PressureFrame, ValveCommand
 from softpad.box._daemon import new_client_id
 from softpad.box._link import (
@@ -28,6 +32,25 @@ from softpad.errors import HardwareFault, InputError
 
 #: Seconds to wait for a frame or a reply before the link counts as lost.
 DEFAULT_TIMEOUT_S = 5.0
+
+_log = logging.getLogger("softpad.box")
+
+#: Boxes still open; closed at interpreter exit. zenoh-python runs callbacks on a non-daemon
+#: thread that lives as long as the session: a script that never closed its box would wait
+#: for it forever, so the boxes are closed before the interpreter joins its threads.
+_OPEN: weakref.WeakSet[ZenohBox] = weakref.WeakSet()
+
+
+def _close_open_boxes() -> None:
+    for box in list(_OPEN):
+        try:
+            box.close()
+        except Exception:  # exiting: nothing more to do about it
+            pass
+
+
+# threading's exit hooks run before non-daemon threads are joined (atexit's run after)
+getattr(threading, "_register_atexit", atexit.register)(_close_open_boxes)
 
 
 class ControlRefused(HardwareFault):
@@ -48,7 +71,10 @@ class ZenohBox(Box):
     queue_frames
         Frames kept while nobody reads; older ones are dropped (counted in :attr:`dropped`).
     auth
-        Keyword arguments of :func:`softpad.box._link.session_config` (user/password, TLS).
+        Keyword arguments of :func:`softpad.box._link.session_config` (user/password, TLS;
+        :func:`softpad.box._credentials.client_auth` makes them from the installation file).
+    protocol
+        ``tcp`` or ``tls`` (the daemon's endpoint's protocol).
 
     Raises
     ------
@@ -64,6 +90,7 @@ class ZenohBox(Box):
         timeout_s: float = DEFAULT_TIMEOUT_S,
         queue_frames: int = 100_000,
         auth: dict[str, Any] | None = None,
+        protocol: str = "tcp",
     ) -> None:
         super().__init__()
         if isinstance(port, bool) or not isinstance(port, int) or not 1 <= port <= 65535:
@@ -71,12 +98,21 @@ class ZenohBox(Box):
         if not (math.isfinite(timeout_s) and timeout_s > 0):
             raise InputError(f"timeout_s must be > 0 s, got {timeout_s!r}")
         host_part = f"[{host}]" if ":" in host else host
-        self.endpoint = f"tcp/{host_part}:{port}"
+        if protocol not in ("tcp", "tls"):
+            raise InputError(f"zenoh protocol must be tcp or tls, got {protocol!r}")
+        self.endpoint = f"{protocol}/{host_part}:{port}"
         self.address = f"zenoh://{host_part}:{port}/{key_prefix}"
         self.prefix = key_prefix.strip("/")
         self.timeout_s = float(timeout_s)
         self.client_id = new_client_id()
         self.dropped = 0
+        #: Frames refused: a wrong tag (forged) or a sequence number not above the last.
+        self.forged_frames = 0
+        self._last_seq = -1
+        self._read_key: bytes | None = None
+        self._sealer: Sealer | None = None
+        self._take_seq = 0
+        self._request_lock = threading.Lock()
         self._queue: queue.Queue[StampedFrame] = queue.Queue(maxsize=queue_frames)
         self._token: Any = None
         self._ack: Any = None
@@ -93,21 +129,47 @@ class ZenohBox(Box):
             raise ConnectionLost(f"cannot connect to the box at {self.endpoint}: {why}") from None
         try:
             self.info = self._get("info", {})
+            self._read_key = _hex_key(self.info.get("read_key"))
             self._sub = self._session.declare_subscriber(f"{self.prefix}/frames", self._on_frame)
         except BaseException:
             self._session.close()
             raise
+        _OPEN.add(self)
 
     # --- frames -----------------------------------------------------------------------
     def _on_frame(self, sample: Any) -> None:
+        data = sample.payload.to_bytes()
+        body, read_tag, control_tag = split_frame(data)
         try:
-            f = decode_frame(sample.payload.to_bytes())
+            f = decode_frame(body)
         except InputError:
+            self._forged("a payload that is not a frame")
             return
+        sealer = self._sealer
+        if sealer is not None:  # the controller believes only frames under its own key
+            if not tag_ok(sealer.secret, body, control_tag):
+                if not (f.seq <= self._take_seq + 2 and tag_ok(self._read_key, body, read_tag)):
+                    self._forged(f"frame {f.seq} without the control key's tag")
+                return  # else sampled before control was granted: stale, not forged
+        elif not tag_ok(self._read_key, body, read_tag):
+            self._forged(f"frame {f.seq} without the box's read tag")
+            return
+        if f.seq <= self._last_seq:
+            self._forged(f"frame {f.seq} after frame {self._last_seq} (replayed)")
+            return
+        self._last_seq = f.seq
         try:
             self._queue.put_nowait(f)
         except queue.Full:
             self.dropped += 1
+
+    def _forged(self, what: str) -> None:
+        self.forged_frames += 1
+        n = self.forged_frames
+        if n & (n - 1) == 0:  # the 1st, 2nd, 4th, 8th ...: said, never a flood
+            _log.warning(
+                "%s: ignored %s (%d forged or replayed frames so far)", self.address, what, n
+            )
 
     def read_stamped(self) -> StampedFrame:
         """The next published frame with its sequence number and the daemon's time stamp."""
@@ -119,8 +181,10 @@ class ZenohBox(Box):
                 f"no frame from the box at {self.endpoint} for {self.timeout_s:g} s"
             ) from None
         self.last = f
-        if self._ack is not None:  # a lock-stepped simulator waits for the controller
-            self._ack.put(encode_json({"client": self.client_id, "seq": f.seq}))
+        sealer = self._sealer
+        if self._ack is not None and sealer is not None:  # a lock-stepped simulator waits
+            msg = sealer.seal("ack", "control/ack", {"client": self.client_id, "seq": f.seq})
+            self._ack.put(encode_json(msg))
         return f
 
     @property
@@ -132,6 +196,11 @@ class ZenohBox(Box):
     def sample_rate_hz(self) -> float:
         """Frame rate of the served box, from its ``info``, hertz."""
         return float(self.info["sample_rate_hz"])
+
+    @property
+    def supply_sensor(self) -> bool:
+        """Whether the served box measures its supply, from its ``info``."""
+        return self.info.get("supply_sensor") is not False
 
     def _read(self) -> PressureFrame:
         return self.read_stamped().frame
@@ -162,7 +231,14 @@ class ZenohBox(Box):
         ControlRefused
             Control is held by another client, or a safety limit refused the command.
         """
-        reply = self._get(key, {"client": self.client_id, **fields})
+        with self._request_lock:  # one at a time: the counters arrive in order
+            msg = {"client": self.client_id, **fields}
+            if self._sealer is not None:
+                try:
+                    msg = self._sealer.seal("query", key, msg)
+                except (TypeError, ValueError) as exc:  # NaN, a non-JSON value
+                    raise InputError(f"request {key} cannot be sent: {exc}") from None
+            reply = self._get(key, msg)
         if reply.get("ok") is True:
             return reply
         kind, text = reply.get("kind"), str(reply.get("error", "refused"))
@@ -186,13 +262,16 @@ class ZenohBox(Box):
         )
         try:
             reply = self.request("control/take")
+            secret = _hex_key(reply.get("key"))
+            if secret is None:
+                raise HardwareFault(f"box at {self.endpoint} granted control without a key")
         except BaseException:
             self._token.undeclare()
             self._token = None
-            if self._ack is not None:
-                self._ack.undeclare()
-                self._ack = None
             raise
+        seq = reply.get("seq")
+        self._take_seq = seq if type(seq) is int else 0
+        self._sealer = Sealer(secret)
         self._ack = self._session.declare_publisher(f"{self.prefix}/control/ack", express=True)
         period = float(reply.get("watchdog_s", 0.5)) / 5
         self._beat_stop.clear()
@@ -201,9 +280,10 @@ class ZenohBox(Box):
 
     def _heartbeats(self, period: float) -> None:
         pub = self._session.declare_publisher(f"{self.prefix}/control/heartbeat", express=True)
-        msg = encode_json({"client": self.client_id})
-        while not self._beat_stop.wait(period):
-            pub.put(msg)
+        sealer = self._sealer
+        while not self._beat_stop.wait(period) and sealer is not None:
+            msg = sealer.seal("heartbeat", "control/heartbeat", {"client": self.client_id})
+            pub.put(encode_json(msg))
         pub.undeclare()
 
     def release_control(self) -> None:
@@ -218,6 +298,7 @@ class ZenohBox(Box):
                 self._beat.join(timeout=2.0)
             self._token.undeclare()
             self._token = None
+            self._sealer = None
             if self._ack is not None:
                 self._ack.undeclare()
                 self._ack = None
@@ -245,6 +326,7 @@ class ZenohBox(Box):
                 pass  # control or link lost: the daemon's watchdog has closed the valves
 
     def _close(self) -> None:
+        _OPEN.discard(self)
         try:
             self.release_control()
         except HardwareFault:
@@ -253,14 +335,34 @@ class ZenohBox(Box):
             self._session.close()
 
 
+def _hex_key(value: object) -> bytes | None:
+    """A key sent as hex text, or None when absent or malformed."""
+    if not isinstance(value, str):
+        return None
+    try:
+        return bytes.fromhex(value)
+    except ValueError:
+        return None
+
+
 def open_zenoh_url(location: str, options: dict[str, str]) -> ZenohBox:
-    """Factory for ``zenoh://HOST:PORT[/KEY-PREFIX]?timeout_s=5``."""
+    """Factory for ``zenoh://HOST:PORT[/KEY-PREFIX]?timeout_s=5&config=FILE.toml`` (the
+    installation file with the link's credentials; :mod:`softpad.box._credentials`)."""
     from urllib.parse import urlsplit
 
-    unknown = set(options) - {"timeout_s"}
+    from softpad.box._credentials import ENV_PASSWORD, ENV_USER, client_auth, client_link
+
+    unknown = set(options) - {"timeout_s", "config"}
     if unknown:
-        raise InputError(f"unknown zenoh:// option {sorted(unknown)[0]!r}; known: timeout_s")
+        raise InputError(
+            f"unknown zenoh:// option {sorted(unknown)[0]!r}; known: timeout_s, config"
+        )
     hostport, _, prefix = location.partition("/")
+    if "@" in hostport:
+        raise InputError(
+            "a zenoh:// URL never carries credentials (it is logged and recorded): give them "
+            f"in the installation file (config=FILE) or in {ENV_USER} and {ENV_PASSWORD}"
+        )
     parts = urlsplit(f"//{hostport}")
     try:
         port = parts.port
@@ -278,4 +380,28 @@ def open_zenoh_url(location: str, options: dict[str, str]) -> ZenohBox:
             raise InputError(
                 f"zenoh:// timeout_s must be a number, got {options['timeout_s']!r}"
             ) from None
-    return ZenohBox(parts.hostname, port, prefix.strip("/") or DEFAULT_PREFIX, timeout)
+    protocol, auth = client_auth(client_link(options))
+    if protocol == "tcp" and not _loopback(parts.hostname):
+        raise InputError(
+            f"zenoh://{hostport} is beyond loopback over plain tcp: refused; give the link's "
+            "TLS settings (link.tls_root_ca, and a client certificate) with config=FILE"
+        )
+    return ZenohBox(
+        parts.hostname,
+        port,
+        prefix.strip("/") or DEFAULT_PREFIX,
+        timeout,
+        auth=auth,
+        protocol=protocol,
+    )
+
+
+def _loopback(host: str) -> bool:
+    import ipaddress
+
+    if host == "localhost":
+        return True
+    try:
+        return ipaddress.ip_address(host).is_loopback
+    except ValueError:
+        return False

@@ -341,6 +341,7 @@ def stats(args: argparse.Namespace) -> int:
 
 def _daemon_for(args: argparse.Namespace) -> Any:
     from softpad.box import BoxDaemon, HardwareBox, SimBox, open_box
+    from softpad.box._credentials import daemon_auth
     from softpad.config import Installation, check_endpoint, check_remote_policy, load_installation
 
     path = args.hardware or args.config
@@ -372,7 +373,7 @@ def _daemon_for(args: argparse.Namespace) -> Any:
             watchdog_action=link.watchdog_action,
             services=services,
             lockstep_frames=2 if services and not args.realtime else None,
-            auth=_auth(link),
+            auth=daemon_auth(link),
             log=lambda text: print(f"softpad box serve: {text}", file=sys.stderr, flush=True),
         )
     except BaseException:
@@ -399,22 +400,6 @@ def _sim_url(args: argparse.Namespace) -> str:
     if "rate_hz" in parse_url(url)[2]:
         raise InputError("give the rate once: --rate-hz or the URL's rate_hz")
     return url + ("&" if "?" in url else "?") + f"rate_hz={rate:g}"
-
-
-def _auth(link: Any) -> dict[str, Any]:
-    """session_config keyword arguments for the link's authentication."""
-    out: dict[str, Any] = {}
-    if link.user is not None:
-        out.update(user=link.user, dictionary_file=link.password_file)
-    if link.tls_certificate is not None:
-        tls = {
-            "listen_certificate": link.tls_certificate,
-            "listen_private_key": link.tls_private_key,
-        }
-        if link.tls_root_ca:
-            tls["root_ca_certificate"] = link.tls_root_ca
-        out["tls"] = tls
-    return out
 
 
 def serve(args: argparse.Namespace) -> int:

@@ -88,8 +88,11 @@ class BoxSettings:
 class LinkSettings:
     """The zenoh link: endpoints, authentication, watchdog.
 
-    Listening beyond 127.0.0.1 needs ``allow_remote = true`` and authentication (user and
-    password file, or TLS certificate and key).
+    Listening beyond 127.0.0.1 needs ``allow_remote = true``, a ``tls/`` endpoint (plain
+    ``tcp/`` beyond loopback is refused whatever else is set) and authentication: user and
+    password file, or mutual TLS (certificate, key and the root CA that verifies the other
+    side's certificate). Each side reads its own end of these keys
+    (:mod:`softpad.box._credentials`).
     """
 
     listen: tuple[str, ...] = ("tcp/127.0.0.1:7447",)
@@ -106,9 +109,13 @@ class LinkSettings:
 
     @property
     def has_auth(self) -> bool:
-        """True when user/password or TLS authentication is configured."""
+        """True when user/password or mutual TLS (certificate, key and a root CA to verify
+        the other side's certificate) is configured; TLS without a root CA authenticates
+        nobody."""
         return (self.user is not None and self.password_file is not None) or (
-            self.tls_certificate is not None and self.tls_private_key is not None
+            self.tls_certificate is not None
+            and self.tls_private_key is not None
+            and self.tls_root_ca is not None
         )
 
 
@@ -402,11 +409,19 @@ def check_remote_policy(link: LinkSettings) -> None:
                 f"link.listen/connect endpoint {e!r} is not on 127.0.0.1; set "
                 "link.allow_remote = true (and authentication) to use it"
             )
+        if not e.startswith("tls/"):
+            raise ConfigError(
+                f"endpoint {e!r} is plain tcp/ beyond loopback: refused whatever else is set "
+                "(nothing on it would be encrypted); use tls/HOST:PORT"
+            )
         if not link.has_auth:
             raise ConfigError(
                 f"endpoint {e!r} is beyond loopback but no authentication is configured: set "
-                "link.user + link.password_file, or link.tls_certificate + link.tls_private_key"
+                "link.user + link.password_file, or link.tls_certificate + "
+                "link.tls_private_key + link.tls_root_ca (mutual TLS)"
             )
+    if link.tls_certificate is not None and link.tls_private_key is None:
+        raise ConfigError("link.tls_certificate needs link.tls_private_key")
 
 
 def _pad(raw: dict[str, Any]) -> PadSettings:
@@ -553,6 +568,8 @@ def describe(inst: Installation) -> list[str]:
     out.append(f"link.connect = {', '.join(link.connect) or '-'}")
     out.append(f"link.key_prefix = {link.key_prefix}")
     auth = "user/password" if link.user else ("TLS" if link.tls_certificate else "none")
+    if link.tls_certificate and link.tls_root_ca:
+        auth += " + mutual TLS" if link.user else " (mutual)"
     out.append(f"link.auth = {auth}; allow_remote = {str(link.allow_remote).lower()}")
     out.append(f"link.watchdog = {link.watchdog_s:g} s, then {link.watchdog_action}")
     out.append(f"pad = {pad.rows} x {pad.cols} modules, pitch {pad.pitch_m * 1e3:g} mm")

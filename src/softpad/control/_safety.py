@@ -424,7 +424,12 @@ class RunSafety:
         self.max_pressure_pa = max_pressure_pa
         self.monitor = FaultMonitor(
             n_modules,
-            FaultThresholds(max_pressure_pa=max_pressure_pa, trip_margin_pa=trip_margin_pa),
+            FaultThresholds(
+                max_pressure_pa=max_pressure_pa,
+                trip_margin_pa=trip_margin_pa,
+                # a box without a supply sensor reports 0 Pa: no supply-loss judgement
+                supply_min_pa=FaultThresholds.supply_min_pa if box.supply_sensor else 0.0,
+            ),
         )
         self.faults: list[DetectedFault] = []
         self.safe_state: SafeStateResult | None = None

@@ -24,6 +24,11 @@ request                fields                                             reply
                                                                           or null per descent]
 =====================  =================================================  =====================
 
+The services are bounded so that a request cannot hold the daemon's sampling and safety loop
+(each runs under its lock): at most :data:`MAX_SERVED_OBJECTS` objects on the served pad, names
+of at most 64 characters, every request at most ``MAX_PAYLOAD_BYTES`` and 8 levels deep (the
+daemon checks before parsing); a hardware box offers no services at all (the daemon refuses).
+
 Every robot request maps one to one onto the served :class:`SimulatedRobot`, so a run over
 ``zenoh://`` gives the run on the same ``sim://`` box in-process (tested). A real robot
 would not be served this way: it has its own controller behind the :class:`Robot` protocol.
@@ -57,6 +62,11 @@ SIMULATION_OPS = (
     "robot.holding",
     "robot.touches",
 )
+
+
+#: Most objects a served simulator holds on its pad (the thesis's scenes have at most four;
+#: each placement costs the world a footprint, so the bound bounds a request's time).
+MAX_SERVED_OBJECTS = 8
 
 
 def _number(msg: dict[str, Any], key: str) -> float:
@@ -100,6 +110,7 @@ class _SimulationService:
         self.robot = SimulatedRobot(self.world)
         self._judged_at: float | None = None
         self._moving = True
+        self._placed_here = 0  # objects this service placed (a world that cannot count them)
 
     def commanding(self, fn: Callable[[dict[str, Any]], None]) -> Handler:
         """A handler running ``fn`` and forgetting the last motion judgement."""
@@ -124,12 +135,29 @@ class _SimulationService:
 
     def place(self, msg: dict[str, Any]) -> dict[str, Any]:
         names = msg.get("objects")
-        if not isinstance(names, list) or not all(isinstance(n, str) for n in names):
-            raise InputError(f"sim.place: objects must be a list of names, got {names!r}")
+        if not isinstance(names, list) or not all(
+            isinstance(n, str) and len(n) <= 64 for n in names
+        ):
+            raise InputError(
+                f"sim.place: objects must be a list of names (64 characters at most), "
+                f"got {str(names)[:80]!r}"
+            )
+        after = self._on_pad() + len(names)
+        if after > MAX_SERVED_OBJECTS:
+            raise InputError(
+                f"sim.place: {len(names)} objects would make {after} on the served pad; "
+                f"the limit is {MAX_SERVED_OBJECTS}"
+            )
         specs = [get_object(n) for n in names]  # every name checked before placing any
         for s in specs:
             self.world.place_object(s)
+        self._placed_here += len(specs)
         return {}
+
+    def _on_pad(self) -> int:
+        if isinstance(self.world, AnalyticWorld):
+            return len(self.world.objects)
+        return self._placed_here
 
     def is_moving(self, msg: dict[str, Any]) -> dict[str, Any]:
         if self._judged_at != self.box.time_s:

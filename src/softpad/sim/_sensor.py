@@ -104,6 +104,8 @@ class SensorBank:
             if params.drift_std_pa
             else np.zeros(n_channels)
         )
+        if params.drift_std_pa:  # imported here, not in the first sample: a box daemon
+            import scipy.signal  # noqa: F401  samples under its lock (seconds on a busy host)
         self._q = params.quantization_pa
         self._lo, self._hi = params.range_min_pa, params.range_max_pa
         self._inv_q = 1.0 / self._q if self._q else 0.0
