@@ -214,3 +214,18 @@ def test_randomized_static_draws_differ_and_repeat() -> None:
     a = static_draws(spec, 3, 0, randomize=True)
     assert a == static_draws(spec, 3, 0, randomize=True)
     assert a != static_draws(spec, 3, 0, randomize=False)
+
+
+def test_cylinder_line_budget_is_short_of_six_modules() -> None:
+    """docs/validation.md's argument, regenerated: the lightest column's share under the
+    planned x_COG = 1.14 is (1.14 - 0.5) / 3 (hand-worked: 0.2133), so the needed S is
+    t_o / (0.2133 x 0.8718 N) = 268.8 Pa/N; the clamped-edge FEM's strip gives less than that
+    and less than a homogeneous can's 172 Pa/N; the point response falls towards the line."""
+    from softpad.trials._validate import cylinder_line_budget
+
+    b = cylinder_line_budget()
+    assert b["s_needed_pa_n"] == pytest.approx(50.0 / (0.64 / 3 * 0.0889 * 9.80665), rel=1e-6)
+    assert b["s_needed_even_pa_n"] == pytest.approx(172.1, abs=0.1)
+    assert b["s_fem_pa_n"] < b["s_needed_even_pa_n"] < b["s_needed_pa_n"]
+    points = [b[f"point_{d:g}_mm_pa_n"] for d in (0.0, 2.5, 5.0, 10.0, 15.0, 22.5)]
+    assert points == sorted(points)

@@ -659,3 +659,39 @@ def validate(
         randomize=randomize,
         trials=tuple(t.to_dict() for t in results),
     )
+
+
+def cylinder_line_budget(contact_width_m: float = 0.025) -> dict[str, float]:
+    """Why the cylinder cannot be seen on six modules with the clamped-edge FEM response.
+
+    The can (Table 6.1: 88.9 g) lies on the line between the rows; each column's share ``F_c``
+    rests on a 45 mm x ``contact_width_m`` strip astride the line and raises each of the
+    column's two modules by ``S F_c`` (``S`` from the FEM response, Pa/N). Seeing all six
+    modules needs ``S F_c >= t_o`` for the lightest column. With the planned x_COG = 1.14
+    (PCOM of column shares w: 0.5 w1 + 1.5 w2 + 2.5 w3), the lightest share is at most
+    ``(1.14 - 0.5) / 3`` (w = 0.57, 0.21, 0.21 is the most even), a homogeneous can's 1/3.
+
+    Returns
+    -------
+    S of the FEM (``s_fem_pa_n``), the S needed with Table 6.1's x_COG
+    (``s_needed_pa_n``) and with a homogeneous can (``s_needed_even_pa_n``), and the
+    point rise of module 1 per newton on a 5 x 5 mm patch at 0 to 22.5 mm from the line.
+    """
+    from softpad.sim import PadResponse
+
+    r = PadResponse()
+    p, t_o = thesis.P0_PA, thesis.OBJECT_THRESHOLD_PA
+    pitch = r.layout.pitch_m
+    eq = r.rect_equivalent_loads((pitch / 2, pitch), (pitch, contact_width_m), 1.0, p)
+    s_fem = float(r.sealed_rise_pa(eq, p)[0])
+    weight = THESIS_TABLE_6_1["cylinder"][0] * 1e-3 * GRAVITY_M_S2
+    lightest = (THESIS_TABLE_6_1["cylinder"][1][0] - 0.5) / 3.0
+    out = {
+        "s_fem_pa_n": s_fem,
+        "s_needed_pa_n": t_o / (lightest * weight),
+        "s_needed_even_pa_n": t_o / (weight / 3.0),
+    }
+    for d_mm in (0.0, 2.5, 5.0, 10.0, 15.0, 22.5):
+        eq = r.rect_equivalent_loads((pitch / 2, pitch + d_mm * 1e-3), (0.005, 0.005), 1.0, p)
+        out[f"point_{d_mm:g}_mm_pa_n"] = float(r.sealed_rise_pa(eq, p)[0])
+    return out
