@@ -162,6 +162,9 @@ def run(quick: bool) -> list[BenchResult]:
             detail=f"of {s['runs']}; {s['unverified']} ended unverified, naming the channel",
         ),
     ]
+    from softpad.benchmarks._attacks import run as run_attacks
+
+    out.extend(run_attacks(quick))
     for kind, d in s["delay_s"].items():
         out.append(
             BenchResult(

@@ -9,7 +9,8 @@ Control is proven on every message, not claimed by a name:
   message's canonical JSON). The daemon refuses a message whose tag is wrong (forged) or whose
   counter is not above the last one of its stream (replayed), counts it and logs it;
 * every published frame carries two 16-byte tags: HMAC(read key, frame) and HMAC(control key,
-  frame) (zeros while nobody controls). The **read key** is drawn when the daemon starts and
+  frame) (the key of the current or last controller: one that lost control by the watchdog
+  still reads; zeros before anyone took control). The **read key** is drawn when the daemon starts and
   handed on ``PREFIX/info``: monitors check it. The controller checks the control tag, which
   only the daemon and the controller can compute. A client drops a frame whose tag is wrong
   or whose sequence number does not increase, counts it and says so (a warning).

@@ -193,6 +193,9 @@ class BoxDaemon:
         self._read_key = new_key()
         #: The controller's key and counters (None: nobody controls).
         self._verifier: Verifier | None = None
+        #: The key of the current or the last controller: frames keep its tag after a
+        #: release or a trip, so a client that lost control still reads them.
+        self._frame_key: bytes | None = None
         self._lock = threading.RLock()
         self._stop = threading.Event()
         self.stats = _Stats(float(box.sample_rate_hz))
@@ -357,9 +360,8 @@ class BoxDaemon:
                 data = self._outbox.get(timeout=0.1)
             except queue.Empty:
                 continue
-            v = self._verifier
             try:
-                self._pub.put(seal_frame(data, self._read_key, v.secret if v else None))
+                self._pub.put(seal_frame(data, self._read_key, self._frame_key))
             except Exception as exc:  # the session is closing
                 self._say(f"publishing: {exc}")
                 return
@@ -542,6 +544,7 @@ class BoxDaemon:
             # goes in this reply only (to the querier), never published.
             secret = new_key()
             self._verifier = Verifier(c, secret)
+            self._frame_key = secret
             self.controller = c
             self._heartbeat = self._taken_at = time.monotonic()
             self._acked = self._seq

@@ -16,9 +16,15 @@ key                         kind         payload
 ``PREFIX/ext/OP``           queryable    JSON: a served simulator's world and robot
 ==========================  ===========  ================================================
 
+The controller's messages also carry ``n`` (a counter) and ``mac`` (HMAC-SHA256 under the key
+that ``control/take`` answered with), and every frame carries a read tag and a control tag:
+see :mod:`softpad.box._auth`. A client's credentials for the link itself (mutual TLS,
+user/password) come from :mod:`softpad.box._credentials`.
+
 Every query is answered with a JSON object ``{"ok": true, ...}`` or ``{"ok": false, "kind":
 K, "error": MESSAGE}`` (``K``: ``input``, ``control``, ``safety``, ``hardware``). Payloads
-larger than :data:`MAX_PAYLOAD_BYTES` or not a JSON object are counted and dropped.
+larger than :data:`MAX_PAYLOAD_BYTES`, nested deeper than :data:`MAX_PAYLOAD_DEPTH` or not a
+JSON object are counted and answered with an ``input`` error.
 
 Network rule: multicast scouting and gossip are off, and only the endpoints given are used.
 """
