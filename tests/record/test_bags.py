@@ -86,6 +86,7 @@ with rosbag.Bag(sys.argv[1]) as bag:
     topics = list(bag.get_type_and_topic_info().topics)
     m5 = [(t.to_sec(), m) for _, m, t in bag.read_messages(topics=["/softpad/module_5/pressure"])]
     tf = [m for _, m, _ in bag.read_messages(topics=["/tf_static"])][0].transforms
+    latched = [c.header.get("latching") == b"1" for c in bag._get_connections(topics=["/tf_static"])]
 p = sorted(m.fluid_pressure for _, m in m5[len(m5) // 4 : len(m5) // 2])
 stamps = [m.header.stamp.to_sec() for _, m in m5]
 print(json.dumps({
@@ -97,6 +98,7 @@ print(json.dumps({
     "time_span_s": m5[-1][0] - m5[0][0],
     "first_stamp_s": stamps[0],
     "type": m5[0][1]._type,
+    "tf_static_latched": latched,
 }))
 """
 
@@ -126,6 +128,7 @@ def test_rosbag1_reads_back_with_debians_rosbag(recording: Path, tmp_path: Path)
     assert done.returncode == 0, done.stderr
     summary = json.loads(done.stdout)
     assert summary["type"] == "sensor_msgs/FluidPressure"
+    assert summary["tf_static_latched"] == [True]  # rosbag play latches it
     _check(summary, load_recording(recording).duration_s)
 
 

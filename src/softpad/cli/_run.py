@@ -347,7 +347,8 @@ def _live(port: int | None, box: Any, json_mode: bool) -> Any:
     from softpad.record import FoxgloveLive
 
     robot = box.world.gripper_state if isinstance(box, SimBox) else None
-    live = FoxgloveLive(port, robot_state=robot)
+    layout = box.world.layout if isinstance(box, SimBox) else None  # the pad's modules only
+    live = FoxgloveLive(port, layout, robot_state=robot)
     say(f"foxglove: {live.url} (port {live.port})", json_mode)
     return live
 

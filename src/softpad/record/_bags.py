@@ -3,8 +3,8 @@
 Every message of the MCAP file is copied with its recorded clock (``log_time``), so the bag
 plays back at the run's real speed: into rosbag2 unchanged (CDR, the embedded ROS 2 message
 definitions, ``/tf_static`` offered as transient-local, i.e. latched), into a ROS 1 bag converted
-to ROS 1 serialisation by ``rosbags``' converter (``std_msgs/Header`` gains its ``seq``),
-readable by ``rosbag play`` and Debian's ``python3-rosbag``.
+to ROS 1 serialisation by ``rosbags``' converter (``std_msgs/Header`` gains its ``seq``;
+``/tf_static`` latched), readable by ``rosbag play`` and Debian's ``python3-rosbag``.
 """
 
 from __future__ import annotations
@@ -71,9 +71,9 @@ def to_rosbag2(recording: str | Path, out: str | Path, force: bool = False) -> P
 def to_rosbag1(recording: str | Path, out: str | Path, force: bool = False) -> Path:
     """Write ``recording`` as the ROS 1 bag ``out`` (``.bag``): ``rosbags``' converter turns
     each message into ROS 1 serialisation against ROS Noetic's types (``std_msgs/Header``
-    gains ``seq``; the project's two types are carried over); ``rosbag play`` and Debian's
-    ``rosbag`` Python package read it. ``/tf_static`` is not marked latched (the converter
-    writes no latching flag): ``rosbag play`` publishes it once at the start."""
+    gains ``seq``; the project's two types are carried over), then copied once more to mark
+    ``/tf_static`` latched (the converter writes no latching flag); ``rosbag play`` and
+    Debian's ``rosbag`` Python package read it."""
     import contextlib
     import io
 
@@ -86,6 +86,27 @@ def to_rosbag1(recording: str | Path, out: str | Path, force: bool = False) -> P
     _refuse_existing(dst, force)
     dst.unlink(missing_ok=True)
     noetic = get_typestore(Stores.ROS1_NOETIC)
-    with contextlib.redirect_stdout(io.StringIO()):  # it names the types it carries over
-        convert([src], dst, "sqlite3", 9, None, "file", None, noetic, [], [], [], [])
+    converted = dst.with_name(dst.stem + ".converting.bag")
+    converted.unlink(missing_ok=True)
+    try:
+        with contextlib.redirect_stdout(io.StringIO()):  # it names the types it carries over
+            convert([src], converted, "sqlite3", 9, None, "file", None, noetic, [], [], [], [])
+        _latch_tf_static(converted, dst)
+    finally:
+        converted.unlink(missing_ok=True)
     return dst
+
+
+def _latch_tf_static(src: Path, dst: Path) -> None:
+    """Copy the ROS 1 bag ``src`` to ``dst`` message for message, ``/tf_static`` latched."""
+    from rosbags.rosbag1 import Reader, Writer
+
+    with Reader(src) as reader, Writer(dst) as writer:
+        conns = {}
+        for c in reader.connections:
+            conns[c.id] = writer.add_connection(
+                c.topic, c.msgtype, msgdef=c.msgdef.data, md5sum=c.digest, callerid="/softpad",
+                latching=1 if c.topic == TF_STATIC_TOPIC else None,
+            )  # fmt: skip
+        for c, t_ns, raw in reader.messages():
+            writer.write(conns[c.id], t_ns, raw)
