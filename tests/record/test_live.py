@@ -64,7 +64,7 @@ def test_monitor_serves_module_pressures_to_a_websocket_client(subprotocol: str)
     finally:
         child.terminate()
         child.wait(timeout=30)
-    assert info["name"] == "softpad"
+    assert info["name"] == "softpad" and "time" in info["capabilities"]  # the recorded clock
     assert [m["header"]["frame_id"] for m in msgs] == ["softpad_module_3"] * 5
     # only the 2 x 3 pad's modules, not the box's channels 7 and 8
     modules = sorted(t for t in channels if t.startswith("/softpad/module_"))

@@ -45,8 +45,11 @@ _MONITOR_EPILOG = """examples:
   then in Foxglove: Open connection -> Foxglove WebSocket -> ws://127.0.0.1:8765
   (docs/foxglove-layout.json: a pressure plot per module and the pad picture)
 
-Serves /softpad/module_K/pressure (Pa), /softpad/supply/pressure and /softpad/pad (3D picture)
-to any number of viewers, on 127.0.0.1 only, at the box's pace (never faster than real time).
+Serves /softpad/module_K/pressure for the pad's modules (--layout; FluidPressure: absolute, Pa),
+/softpad/pressures (gauge, Pa), /softpad/supply/pressure, /tf_static and /softpad/pad (3D
+picture) to any number of viewers, on 127.0.0.1 only, at the box's pace (never faster than real
+time). Clients of either subprotocol connect: foxglove.websocket.v1 (Foxglove Studio before the
+SDK, Lichtblick) and foxglove.sdk.v1 (today's Foxglove app).
 Ctrl-C stops. 'softpad run --foxglove PORT' serves a whole run (plans, contact, robot) live.
 """
 

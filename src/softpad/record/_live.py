@@ -199,7 +199,12 @@ class FoxgloveLive(ClosedOnExit):
         self.pad = pad or PadPose()
         self.ambient_pa = float(ambient_pa)
         self._ctx = foxglove.Context()
-        self.server = foxglove.start_server(name=name, host=HOST, port=0, context=self._ctx)
+        # capability "time": the server broadcasts the recorded clock (box time mapped onto the
+        # wall clock at the first frame), so viewers follow the box's time, not their own
+        self.server = foxglove.start_server(
+            name=name, host=HOST, port=0, context=self._ctx,
+            capabilities=[foxglove.Capability.Time],
+        )  # fmt: skip
         try:
             self._relay = _Relay(port, f"ws://{HOST}:{self.server.port}")
         except BaseException:
@@ -268,6 +273,7 @@ class FoxgloveLive(ClosedOnExit):
             self._last_pad = now * 1e-9
             self._pad_picture(frame, now)
             self._transforms(now)
+            self.server.broadcast_time(stamp["sec"] * 1_000_000_000 + stamp["nanosec"])
 
     def event(self, t_s: float, kind: str, **data: Any) -> None:
         """Publish an event (and the plan on its own topic)."""
