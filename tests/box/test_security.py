@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from softpad.box import ConnectionLost, ValveCommand, ZenohBox, open_box
+from softpad.box import ConnectionLost, ControlRefused, ValveCommand, ZenohBox, open_box
 from softpad.box._auth import seal_frame, split_frame
 from softpad.box._base import PressureFrame
 from softpad.box._link import decode_request, encode_frame, encode_json, session_config
@@ -535,3 +535,30 @@ def test_fuzzed_payloads_never_break_the_daemon(attack) -> None:
         assert daemon.controller == a.client_id
         frames = daemon.stats.frames
         _until(lambda: daemon.stats.frames > frames + 5, "sampling going on")
+
+
+def test_tls_keys_on_a_tcp_endpoint_are_refused(tmp_path: Path, cli) -> None:
+    """Issue 35 item 5: TLS settings on a tcp/ endpoint looked like authentication."""
+    site = _site(
+        tmp_path / "s.toml",
+        listen=["tcp/127.0.0.1:7447"],
+        tls_certificate="/c.pem",
+        tls_private_key="/k.pem",
+        tls_root_ca="/ca.pem",
+    )
+    code, _out, err = cli("box", "serve", "--sim", "--config", str(site), "--duration-s", "1")
+    assert code == 2 and "protect nothing" in err
+
+
+def test_a_controller_that_lost_control_reads_on_after_another_takes(attack) -> None:
+    with attack(watchdog_s=0.3) as (daemon, url, a, _bad):
+        a._beat_stop.set()  # frozen: the watchdog withdraws control
+        _until(lambda: daemon.controller is None, "the watchdog trip")
+        with open_box(url) as b:
+            b.set_valve(1, "deflate")  # another client takes control
+            with pytest.raises(ControlRefused, match="does not control"):
+                a.set_valve(1, "inflate")
+            forged = a.forged_frames
+            seqs = [a.read_stamped().seq for _ in range(30)]
+            assert np.all(np.diff(seqs) > 0)
+            assert a.forged_frames - forged <= 2  # at most the frames in flight

@@ -245,6 +245,8 @@ class ZenohBox(Box):
         if kind == "input":
             raise InputError(f"box: {text}")
         if kind in ("control", "safety"):
+            if "does not control the box" in text:  # lost it (watchdog): frames by read tag
+                self._sealer = None
             raise ControlRefused(f"box refused: {text}")
         raise HardwareFault(f"box: {text}")
 

@@ -360,6 +360,11 @@ def _daemon_for(args: argparse.Namespace) -> Any:
 
         link = dataclasses.replace(link, listen=tuple(listen))
         check_remote_policy(link)
+    if link.tls_certificate is not None and not any(e.startswith("tls/") for e in link.listen):
+        raise InputError(
+            "link.tls_certificate is set but no listen endpoint is tls/: TLS would protect "
+            f"nothing on {', '.join(link.listen)}; listen on tls/HOST:PORT or drop the TLS keys"
+        )
     box = HardwareBox(inst.box) if args.hardware else open_box(_sim_url(args))
     try:
         services = {}
