@@ -562,3 +562,28 @@ def test_a_controller_that_lost_control_reads_on_after_another_takes(attack) -> 
             seqs = [a.read_stamped().seq for _ in range(30)]
             assert np.all(np.diff(seqs) > 0)
             assert a.forged_frames - forged <= 2  # at most the frames in flight
+
+
+def test_an_impostor_queryable_neither_takes_commands_nor_fakes_answers(attack) -> None:
+    """zenoh's default query target picks one queryable: an impostor answering ``valves``
+    would have swallowed the controller's commands. Every queryable now gets each query and
+    only the box pinned at connection is believed; two boxes at connection is refused."""
+    from softpad.errors import HardwareFault
+
+    with attack() as (daemon, url, a, bad):
+        fake = {"ok": True, "valves": ["closed"] * 8}
+        queryables = [
+            bad.s.declare_queryable(
+                f"softpad/box/{k}", lambda q: q.reply(q.key_expr, encode_json(fake))
+            )
+            for k in ("valves", "info")
+        ]
+        try:
+            a.set_valve(2, "deflate")  # reaches the box, not the impostor
+            assert daemon.box.valves[1] is ValveCommand.DEFLATE
+            assert a.impostor_replies >= 1
+            with pytest.raises(HardwareFault, match="impostor"):
+                open_box(url)
+        finally:
+            for q in queryables:
+                q.undeclare()

@@ -193,6 +193,28 @@ def _service_flood(s: _Scene) -> tuple[float, str]:
     )
 
 
+def _impostor(s: _Scene) -> tuple[float, str]:
+    """An impostor queryable on ``valves`` acknowledges everything: the controller's
+    commands must still reach the box. Figure: commands that did not reach it."""
+    from softpad.box import ValveCommand
+    from softpad.box._link import encode_json
+
+    fake = encode_json({"ok": True, "valves": ["closed"] * 8})
+    q = s.bad.declare_queryable("softpad/box/valves", lambda q: q.reply(q.key_expr, fake))
+    try:
+        missed = 0
+        for k in range(30):
+            ch, cmd = 1 + k % 6, ("deflate", "closed")[k % 2]
+            s.ctl.set_valve(ch, cmd)
+            missed += s.daemon.box.valves[ch - 1] is not ValveCommand.parse(cmd)
+    finally:
+        q.undeclare()
+    return (
+        missed,
+        f"of 30 controller commands missed the box ({s.ctl.impostor_replies} impostor answers ignored)",
+    )
+
+
 ATTACKS: tuple[tuple[str, Callable[[_Scene], tuple[float, str]]], ...] = (
     ("forged commands (controller's id)", _forged_commands),
     ("forged release and take", _forged_release_take),
@@ -200,6 +222,7 @@ ATTACKS: tuple[tuple[str, Callable[[_Scene], tuple[float, str]]], ...] = (
     ("forged frames (NaN, 9 kPa, seq 1e9)", _forged_frames),
     ("replayed commands", _replayed_commands),
     ("sim.place with 300 objects", _service_flood),
+    ("impostor queryable acknowledging commands", _impostor),
 )
 
 

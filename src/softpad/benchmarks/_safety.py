@@ -162,9 +162,6 @@ def run(quick: bool) -> list[BenchResult]:
             detail=f"of {s['runs']}; {s['unverified']} ended unverified, naming the channel",
         ),
     ]
-    from softpad.benchmarks._attacks import run as run_attacks
-
-    out.extend(run_attacks(quick))
     for kind, d in s["delay_s"].items():
         out.append(
             BenchResult(
@@ -174,4 +171,7 @@ def run(quick: bool) -> list[BenchResult]:
                 detail=f"max {s['delay_max_s'][kind]:.2f} s; from the fault's start to its event",
             )
         )
+    from softpad.benchmarks._attacks import run as run_attacks
+
+    out.extend(run_attacks(quick))
     return out

@@ -25,8 +25,10 @@ What this protects against, and what not (docs/hardware.md):
   participant that queried ``info`` can still forge frames for *monitors* (not for the
   controller): on a shared network, keep untrusted parties off the link with its own
   authentication (mutual TLS or user/password, :func:`softpad.box._link.session_config`);
-* a participant that answers ``control/take`` in the daemon's place (a fake box) is seen only
-  when two boxes answer; the link's authentication is what keeps such a participant out.
+* every queryable on a key gets each query and a client believes only the box it pinned at
+  connection (its zenoh id on ``info``; two boxes answering then is refused), so an impostor's
+  queryable neither swallows commands nor fakes answers; an impostor answering *alone* while
+  the daemon is down is believed: the link's authentication keeps such a participant out.
 """
 
 from __future__ import annotations

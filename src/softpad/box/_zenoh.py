@@ -113,6 +113,10 @@ class ZenohBox(Box):
         self._sealer: Sealer | None = None
         self._take_seq = 0
         self._request_lock = threading.Lock()
+        #: The daemon's zenoh id, pinned by the ``info`` query at connection (one box only).
+        self._box_zid: str | None = None
+        #: Answers to this client's queries from others than the pinned box (impostors).
+        self.impostor_replies = 0
         self._queue: queue.Queue[StampedFrame] = queue.Queue(maxsize=queue_frames)
         self._token: Any = None
         self._ack: Any = None
@@ -211,15 +215,44 @@ class ZenohBox(Box):
             payload = encode_json(msg)
         except (TypeError, ValueError) as exc:
             raise InputError(f"request {key} cannot be sent: {exc}") from None
-        replies = self._session.get(f"{self.prefix}/{key}", payload=payload, timeout=self.timeout_s)
+        import zenoh
+
+        # every queryable on the key gets the query (zenoh's default picks one: an impostor's
+        # queryable would take the daemon's commands); the answer is the pinned box's
+        replies = self._session.get(
+            f"{self.prefix}/{key}",
+            payload=payload,
+            timeout=self.timeout_s,
+            target=zenoh.QueryTarget.ALL,
+            consolidation=zenoh.ConsolidationMode.NONE,
+        )
+        answers: dict[str, bytes] = {}
         for r in replies:
-            if r.ok is None:
-                continue
-            try:
-                return decode_request(r.ok.payload.to_bytes())
-            except InputError as exc:
-                raise HardwareFault(f"box at {self.endpoint} answered garbage: {exc}") from None
-        raise ConnectionLost(f"no box answers {self.prefix}/{key} at {self.endpoint}")
+            if r.ok is not None:
+                rid = r.replier_id
+                answers.setdefault(
+                    str(rid.zid) if rid is not None else "?", r.ok.payload.to_bytes()
+                )
+        if self._box_zid is None and len(answers) > 1:
+            raise HardwareFault(
+                f"{len(answers)} boxes answer {self.prefix}/{key} at {self.endpoint}: one is an "
+                "impostor or a second daemon on the same key prefix; refusing to connect"
+            )
+        if self._box_zid is None and answers:
+            self._box_zid = next(iter(answers))
+        others = len(answers) - (self._box_zid in answers)
+        if others:
+            self.impostor_replies += others
+            _log.warning(
+                "%s: ignored %d answer(s) to %s not from the box", self.address, others, key
+            )
+        data = answers.get(self._box_zid or "")
+        if data is None:
+            raise ConnectionLost(f"no box answers {self.prefix}/{key} at {self.endpoint}")
+        try:
+            return decode_request(data)
+        except InputError as exc:
+            raise HardwareFault(f"box at {self.endpoint} answered garbage: {exc}") from None
 
     def request(self, key: str, **fields: Any) -> dict[str, Any]:
         """Send one query carrying this client's id; raise on a refusal.
