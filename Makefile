@@ -1,10 +1,12 @@
-# SoftPad: `make demo` runs the main job on the simulated box, `make test` runs the checks.
+# SoftPad: `make demo` runs the main job on the simulated box, `make test` runs the checks
+# (all but those marked slow: target 3 minutes on 2 cores), `make test-slow` the slow ones
+# (full trials, FEM solves, the demo's report); CI (.ci/run) runs both.
 # Both create the virtual environment in .venv and install everything on first use.
 PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
 
-.PHONY: demo test bench lint typecheck venv clean ros-deps results
+.PHONY: demo test test-slow bench lint typecheck venv clean ros-deps results
 
 $(VENV)/.installed: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -40,7 +42,10 @@ ros-deps:
 	else echo "ros-deps: ROS 1 not installed and not root: ROS tests will be skipped"; fi
 
 test: lint typecheck ros-deps
-	MPLBACKEND=Agg $(BIN)/pytest -n 2 -q
+	MPLBACKEND=Agg $(BIN)/pytest -n 2 -q -m "not slow" --durations=10
+
+test-slow: venv ros-deps
+	MPLBACKEND=Agg $(BIN)/pytest -n 2 -q -m slow --durations=10
 
 bench: venv
 	MPLBACKEND=Agg $(BIN)/softpad bench

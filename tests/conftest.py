@@ -16,6 +16,10 @@ def _free_port() -> int:
         return int(s.getsockname()[1])
 
 
+#: Client timeout on the links to ``served`` daemons, seconds.
+SERVED_TIMEOUT_S = 60.0
+
+
 @contextmanager
 def _served(url: str = "sim://?seed=4", **kwargs: Any) -> Iterator[tuple[Any, str]]:
     from softpad.box import BoxDaemon, SimBox, open_box
@@ -26,7 +30,9 @@ def _served(url: str = "sim://?seed=4", **kwargs: Any) -> Iterator[tuple[Any, st
     services = simulation_extensions(box) if isinstance(box, SimBox) else None
     daemon = BoxDaemon(box, (f"tcp/127.0.0.1:{port}",), services=services, **kwargs)
     with daemon:
-        yield daemon, f"zenoh://127.0.0.1:{port}"
+        # a generous deadline for every frame and answer (the client's default is 5 s): on a
+        # busy machine the simulator's first frames can take longer than that (issue 36)
+        yield daemon, f"zenoh://127.0.0.1:{port}?timeout_s={SERVED_TIMEOUT_S:g}"
 
 
 @pytest.fixture(scope="session")

@@ -37,7 +37,7 @@ def test_sim_backend_passes_conformance(url: str) -> None:
 def test_zenoh_backend_passes_conformance(served) -> None:
     """The zenoh back-end, against a simulated box served on loopback by the daemon."""
     with served("sim://?seed=5") as (daemon, url):
-        check_conformance(open_box(url + "?timeout_s=5"))
+        check_conformance(open_box(url))
         assert daemon.controller is None  # closing gave control back
 
 

@@ -115,6 +115,7 @@ OPTIONS = (
         (["box", "serve", "--sim"], "--listen"),
         (["box", "serve", "--sim"], "--watchdog-s"),
         (["box", "serve", "--sim"], "--duration-s"),
+        (["box", "serve", "--sim"], "--rt-priority"),
         (["box", "stats"], "--box"),
     ]
     + [(["trials"], o) for o in ("--objects", "--trials", "--seeds", "--workers", "--hold-s")]

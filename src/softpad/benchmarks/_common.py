@@ -26,9 +26,13 @@ class BenchResult:
     detail: str = ""
 
     def line(self) -> str:
-        status = "" if self.met is None else ("  [met]" if self.met else "  [NOT MET]")
-        tgt = f"  (target {self.target})" if self.target else ""
-        return f"{self.name}: {self.value:.4g} {self.unit}{tgt}{status}  -- {self.detail}"
+        """One printed line: the figure, its target and whether it is met, how it was measured
+        (a figure without a target says so)."""
+        if self.met is None:
+            status = f"target {self.target}" if self.target and self.target != "-" else "no target"
+        else:
+            status = f"target {self.target}: {'met' if self.met else 'NOT MET'}"
+        return f"{self.name}: {self.value:.4g} {self.unit}  [{status}]  -- {self.detail}"
 
 
 def median_time_s(fn: Callable[[], object], repeats: int, inner: int = 1) -> float:

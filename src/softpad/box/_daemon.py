@@ -27,8 +27,6 @@ import uuid
 from collections.abc import Callable, Mapping
 from typing import Any
 
-import numpy as np
-
 from softpad import __version__
 from softpad.box._auth import Verifier, new_key, seal_frame
 from softpad.box._base import Box, PressureFrame, ValveCommand
@@ -41,6 +39,13 @@ from softpad.box._link import (
 )
 from softpad.box._notes import ThrottledLog
 from softpad.box._safety import SafetyTrip
+from softpad.box._schedule import (
+    CpuClock,
+    GcPauses,
+    PeriodRing,
+    TickSchedule,
+    set_realtime_priority,
+)
 from softpad.errors import HardwareFault, InputError, SoftPadError
 
 Handler = Callable[[dict[str, Any]], dict[str, Any]]
@@ -82,29 +87,29 @@ class _Stats:
         self.unsent = 0
         self.auth_failures = 0
         self.service_max_s = 0.0
+        self.rt_priority: int | None = None
         self.started = time.monotonic()
-        self._intervals: list[float] = []
-        self._last: float | None = None
+        self.periods = PeriodRing(1.0 / rate_hz)
+        self.gc = GcPauses()
+        self.cpu = CpuClock()
 
     def sampled(self, mono: float) -> None:
         self.frames += 1
-        if self._last is not None:
-            self._intervals.append(mono - self._last)
-            if len(self._intervals) > 20000:
-                del self._intervals[:10000]
-        self._last = mono
+        self.periods.add(mono)
 
     def to_dict(self) -> dict[str, Any]:
-        iv = np.asarray(self._intervals[-10000:])
         elapsed = max(time.monotonic() - self.started, 1e-9)
+        periods = self.periods.summary()
         return {
             "target_rate_hz": self.rate_hz,
             "achieved_rate_hz": round(self.frames / elapsed, 2),
             "frames": self.frames,
-            "period_mean_s": float(iv.mean()) if iv.size else None,
-            "jitter_std_s": float(iv.std()) if iv.size else None,
-            "period_p99_s": float(np.percentile(iv, 99)) if iv.size else None,
+            **periods,
+            "jitter_std_s": periods["period_std_s"],
             "dropped_samples": self.missed_ticks,
+            **self.gc.to_dict(),
+            **self.cpu.to_dict(),
+            "realtime_priority": self.rt_priority,
             "unsent_frames": self.unsent,
             "malformed_payloads": self.malformed,
             "refused_commands": self.refused,
@@ -150,6 +155,13 @@ class BoxDaemon:
         Keyword arguments of :func:`softpad.box._link.session_config` (user/password, TLS).
     log
         Called with one line per event; None: silent.
+    spin_s
+        The last this many seconds before each tick's deadline are busy-waited rather than
+        slept (sleep's wake-up latency, for a tighter period at the cost of CPU); 0: sleep.
+    rt_priority
+        Run the daemon's threads under ``SCHED_FIFO`` at this priority (1..99; Linux, root or
+        ``CAP_SYS_NICE``): the 1 kHz schedule then holds on a loaded machine. None: the
+        ordinary scheduler.
     """
 
     def __init__(
@@ -166,11 +178,21 @@ class BoxDaemon:
         auth: Mapping[str, Any] | None = None,
         log: Callable[[str], None] | None = None,
         lockstep_frames: int | None = None,
+        spin_s: float = 0.0,
+        rt_priority: int | None = None,
     ) -> None:
         if watchdog_action not in ("hold", "vent"):
             raise InputError(f"watchdog action must be hold or vent, got {watchdog_action!r}")
         if not (math.isfinite(watchdog_s) and 0.01 <= watchdog_s <= 60):
             raise InputError(f"watchdog time must be within 0.01..60 s, got {watchdog_s!r}")
+        if rt_priority is not None and (
+            isinstance(rt_priority, bool)
+            or not isinstance(rt_priority, int)
+            or not 1 <= rt_priority <= 99
+        ):
+            raise InputError(
+                f"real-time priority must be an integer from 1 to 99, got {rt_priority!r}"
+            )
         if services and not _simulated(box):
             raise InputError(
                 f"services ({', '.join(sorted(services))}) are for a simulated box only, "
@@ -199,6 +221,7 @@ class BoxDaemon:
         self._lock = threading.RLock()
         self._stop = threading.Event()
         self.stats = _Stats(float(box.sample_rate_hz))
+        self.stats.rt_priority = rt_priority
         self.controller: str | None = None
         self._heartbeat = 0.0
         self._taken_at = 0.0
@@ -214,11 +237,15 @@ class BoxDaemon:
         self.lockstep_frames = lockstep_frames
         self._acked = 0
         self._ack_event = threading.Event()
+        self.spin_s = float(spin_s)
+        self.rt_priority = rt_priority
 
     # --- life cycle -------------------------------------------------------------------
     def start(self) -> BoxDaemon:
         """Open the zenoh session, declare every key and start sampling."""
         config = session_config("peer", self.listen, **self._auth)  # names a missing zenoh
+        if self.rt_priority is not None:  # before any thread starts: they all inherit it
+            set_realtime_priority(self.rt_priority)
         import zenoh
 
         try:
@@ -245,6 +272,7 @@ class BoxDaemon:
                 f"{p}/control/holder/*", self._on_liveliness, history=True
             )
         )
+        self.stats.gc.start()  # start-up's objects never scanned again; collections between ticks
         self._sender = threading.Thread(target=self._send_loop, name="softpad-sender", daemon=True)
         self._sender.start()
         self._thread = threading.Thread(
@@ -275,6 +303,7 @@ class BoxDaemon:
                 except SoftPadError as exc:
                     self._say(f"closing the box: {exc}")
         finally:
+            self.stats.gc.stop()
             if self._session is not None:
                 self._session.close()
                 self._session = None
@@ -291,21 +320,18 @@ class BoxDaemon:
 
     # --- sampling ---------------------------------------------------------------------
     def _sample_loop(self) -> None:
-        period = 1.0 / self.stats.rate_hz
+        """Sample, check the limits and run the watchdog on the fixed schedule
+        (:mod:`softpad.box._schedule`); frames go to the sender thread, never out from here."""
+        stats = self.stats
+        period = 1.0 / stats.rate_hz
         paced = bool(getattr(self.box, "self_paced", False))
-        due = time.monotonic()
+        schedule = TickSchedule(stats.rate_hz, self.spin_s)
         while not self._stop.is_set():
             if self._wait_for_controller():
-                due = time.monotonic()  # the simulated clock waited: not a missed tick
+                schedule.restart()  # the simulated clock waited: not a missed tick
+                stats.periods.restart()
             if not paced:
-                due += period
-                now = time.monotonic()
-                if now < due:
-                    time.sleep(due - now)
-                elif now - due > period:
-                    missed = int((now - due) / period)
-                    self.stats.missed_ticks += missed
-                    due += missed * period
+                stats.missed_ticks += schedule.wait()
             try:
                 with self._lock:
                     frame = self.box.read()
@@ -322,8 +348,10 @@ class BoxDaemon:
             try:
                 self._outbox.put_nowait(encode_frame(self._seq, mono, frame))
             except queue.Full:
-                self.stats.unsent += 1
-            self.stats.sampled(mono)
+                stats.unsent += 1
+            stats.sampled(mono)
+            stats.cpu.sampled_by_this_thread()
+            stats.gc.collect_if_due()  # right after the tick's work, never in the middle of it
         if paced:
             self.stats.missed_ticks += int(getattr(self.box, "missed_ticks", 0))
 
@@ -337,6 +365,7 @@ class BoxDaemon:
             and not self._stop.is_set()
         ):
             waited = True
+            self.stats.gc.collect_if_due()
             self._ack_event.wait(0.01)
             self._ack_event.clear()
             self._check_controller(time.monotonic())

@@ -1,0 +1,100 @@
+"""The daemon's fixed-rate schedule, period ring and GC control (softpad.box._schedule),
+on a fake clock: what is counted, not how fast this machine is."""
+
+from __future__ import annotations
+
+import gc
+import sys
+
+import numpy as np
+import pytest
+
+from softpad.box import _schedule
+from softpad.box._schedule import GcPauses, PeriodRing, TickSchedule, set_realtime_priority
+from softpad.errors import InputError
+
+
+class _Clock:
+    """time.monotonic and time.sleep on a fake clock (sleep advances it)."""
+
+    def __init__(self) -> None:
+        self.t = 100.0
+        self.slept: list[float] = []
+
+    def monotonic(self) -> float:
+        return self.t
+
+    def sleep(self, s: float) -> None:
+        self.slept.append(s)
+        self.t += s
+
+
+@pytest.fixture
+def clock(monkeypatch: pytest.MonkeyPatch) -> _Clock:
+    c = _Clock()
+    monkeypatch.setattr(_schedule.time, "monotonic", c.monotonic)
+    monkeypatch.setattr(_schedule.time, "sleep", c.sleep)
+    return c
+
+
+def test_deadlines_are_absolute_and_late_ticks_are_dropped(clock: _Clock) -> None:
+    s = TickSchedule(1000.0)
+    t0 = clock.t
+    assert s.wait() == 0 and clock.t == pytest.approx(t0 + 1e-3)
+    clock.t += 0.4e-3  # the tick's work took 0.4 ms: the next wait is 0.6 ms, not 1 ms
+    assert s.wait() == 0 and clock.t == pytest.approx(t0 + 2e-3)
+    clock.t += 0.5e-3 + 1e-3  # late by half a period for tick 3: sampled late, not dropped
+    assert s.wait() == 0 and clock.t == pytest.approx(t0 + 3.5e-3)
+    assert s.wait() == 0 and clock.t == pytest.approx(t0 + 4e-3)  # back on the grid
+    clock.t += 3.7e-3  # ticks 5..7 more than a period late: 2 dropped, tick 7 sampled late
+    assert s.wait() == 2 and clock.t == pytest.approx(t0 + 7.7e-3)
+    assert s.wait() == 0 and clock.t == pytest.approx(t0 + 8e-3)  # the grid never shifted
+
+
+def test_restart_starts_the_grid_at_now(clock: _Clock) -> None:
+    s = TickSchedule(100.0)
+    s.wait()
+    clock.t += 5.0  # a pause that is not the schedule's fault (a lock-stepped simulator)
+    s.restart()
+    assert s.wait() == 0 and clock.slept[-1] == pytest.approx(0.01)
+
+
+def test_the_ring_reports_percentiles_of_the_periods_it_kept() -> None:
+    ring = PeriodRing(1e-3, size=1000)
+    assert ring.summary()["period_p99_s"] is None
+    t = 0.0
+    for k in range(3000):  # the ring keeps the last 1000: periods of 1 ms and every 100th 3 ms
+        t += 3e-3 if k % 100 == 0 else 1e-3
+        ring.add(t)
+    s = ring.summary()
+    assert s["period_p50_s"] == pytest.approx(1e-3)
+    assert s["period_max_s"] == pytest.approx(3e-3)
+    assert s["period_error_max_s"] == pytest.approx(2e-3)
+    assert s["period_p99_s"] == pytest.approx(np.percentile([1e-3] * 990 + [3e-3] * 10, 99))
+    ring.restart()  # the next sample starts a new period: nothing spans the pause
+    ring.add(t + 10.0)
+    assert ring.summary()["period_max_s"] == pytest.approx(3e-3)
+
+
+def test_gc_is_collected_between_ticks_and_restored() -> None:
+    enabled, switch = gc.isenabled(), sys.getswitchinterval()
+    pauses = GcPauses()
+    pauses.start()
+    try:
+        assert not gc.isenabled() and gc.get_freeze_count() > 0
+        junk = [[] for _ in range(_schedule.GC_YOUNG_BATCH + 10)]  # young containers
+        pauses.collect_if_due()
+        assert pauses.count >= 1 and pauses.max_s > 0 and pauses.max_generation >= 0
+        del junk
+        d = pauses.to_dict()
+        assert d["gc_collections"] == pauses.count and d["gc_pause_max_s"] >= 0
+    finally:
+        pauses.stop()
+    assert gc.isenabled() == enabled and gc.get_freeze_count() == 0
+    assert sys.getswitchinterval() == switch
+
+
+@pytest.mark.parametrize("priority", [0, 100, -1, True, 1.5])
+def test_real_time_priority_out_of_range_is_refused(priority) -> None:
+    with pytest.raises(InputError, match="1 to 99"):
+        set_realtime_priority(priority)
