@@ -10,6 +10,7 @@ a descent (the first touch of a tip on a module or of a finger on an object).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -20,6 +21,8 @@ from softpad.sim._response import PadResponse
 
 #: A contact normal with a vertical component above this is "from above" (cosine).
 _FROM_ABOVE = 0.7
+_NO_MODULES = np.zeros(0, dtype=np.intp)
+_NO_FORCES = np.zeros(0)
 
 
 @dataclass(frozen=True)
@@ -54,10 +57,6 @@ class ContactSensing:
 
     Attributes
     ----------
-    loads
-        Equivalent load on every module at the last MuJoCo step, N.
-    forces
-        Plain normal contact force on every module top at the last step, N.
     pressure_pa
         Chamber pressure at which the response is evaluated, Pa.
     first_touch_s
@@ -79,8 +78,15 @@ class ContactSensing:
         self._centres = response.module_centers_m() if response is not None else None
         self._mj = mujoco
         self._force = np.zeros(6)
-        self.loads = np.zeros(n_modules)
-        self.forces = np.zeros(n_modules)
+        self._n = n_modules
+        self._last: tuple[NDArray[np.intp], NDArray[np.float64]] = (_NO_MODULES, _NO_FORCES)
+        # contacts of the steps not yet weighted: (modules, normal forces, points) per step
+        self._pending: list[tuple[NDArray[np.intp], NDArray[np.float64], Any]] = []
+        self._pending_pressure = self.pressure_pa
+        self._flushed = np.zeros(n_modules)
+        self._steps = 0
+        self._gm: tuple[MujocoScene, list[int]] | None = None
+        self._grip: frozenset[int] = frozenset()
         self.first_touch_s: float | None = None
         self.first_touch_z_m: float | None = None
         self.tip_hit_object: str | None = None
@@ -94,58 +100,128 @@ class ContactSensing:
         self.open_width_m = open_width_m
 
     def update(self, s: MujocoScene, time_s: float, tip_z_m: float, width_m: float) -> None:
-        """Compute :attr:`loads` after a MuJoCo step and record a first touch at ``time_s``.
+        """Read the module contacts after a MuJoCo step and record a first touch at ``time_s``.
 
-        ``tip_z_m`` is the tips' height and ``width_m`` the jaw setpoint at that time.
+        ``tip_z_m`` is the tips' height and ``width_m`` the jaw setpoint at that time. The
+        contacts are read from MuJoCo's arrays at once (the normal force of an elliptic-cone
+        contact is its first constraint force, what ``mj_contactForce`` returns); their
+        equivalent loads are weighted later, all steps of a sample period in one call
+        (:meth:`mean_loads`), at the pressure the period ran at.
         """
         d, m = s.data, s.model
-        ks: list[int] = []
-        forces: list[float] = []
-        points: list[NDArray[np.float64]] = []
-        gm = s.geom_module
-        soles, fingers = s.sole, s.finger
+        con = d.contact
+        g1, g2 = con.geom1.tolist(), con.geom2.tolist()
+        gm = self._geom_modules(s)
+        grip = self._grip
         watch = self.first_touch_s is None or self.tip_hit_object is None
-        for i in range(d.ncon):
-            c = d.contact[i]
-            g1, g2 = int(c.geom1), int(c.geom2)
-            k = gm[g1] if gm[g1] >= 0 else gm[g2]
+        on: list[int] = []
+        ks: list[int] = []
+        near: list[int] = []  # contacts of a sole or a finger (the first-touch records)
+        for i, (a, b) in enumerate(zip(g1, g2, strict=True)):
+            k = gm[a] if gm[a] >= 0 else gm[b]
             if k >= 0:
-                # the normal force indents the membrane and compresses the chamber; friction
-                # shears it along its surface and hardly changes the volume
-                self._mj.mj_contactForce(m, d, i, self._force)
-                ks.append(int(k))
-                forces.append(abs(self._force[0]))
-                points.append(c.pos[:2].copy())
-            if not watch:
-                continue
-            if g1 in soles or g2 in soles:
-                if k >= 0 and self.first_touch_s is None:
-                    self._touched(time_s, tip_z_m)
-            elif g1 in fingers or g2 in fingers:
-                other = g2 if g1 in fingers else g1
-                b = int(m.geom_bodyid[other])
-                if b in s.body_object and abs(c.frame[2]) > _FROM_ABOVE:
-                    if self.first_touch_s is None:
-                        self._touched(time_s, tip_z_m)
-                    if self.tip_hit_object is None and width_m >= self.open_width_m:
-                        self.tip_hit_object = s.body_object[b]
-        self.loads = self._equivalent(ks, forces, points)
+                on.append(i)
+                ks.append(k)
+            if watch and (a in grip or b in grip):
+                near.append(i)
+        if on:
+            if m.opt.cone == self._mj.mjtCone.mjCONE_ELLIPTIC:
+                addr = con.efc_address[on]
+                f = np.abs(d.efc_force[addr])
+                if addr.min() < 0:  # excluded contacts carry no force
+                    f[addr < 0] = 0.0
+            else:
+                f = np.array([self._normal_force(s, i) for i in on])
+            self._flush_if_pressure_changed()
+            k_arr = np.array(ks, dtype=np.intp)
+            self._pending.append((k_arr, f, con.pos[on, :2]))
+            self._last = (k_arr, f)
+        else:
+            self._last = (_NO_MODULES, _NO_FORCES)
+        self._steps += 1
+        for i in near:
+            self._watch(s, time_s, tip_z_m, width_m, i, g1[i], g2[i], gm)
 
-    def _equivalent(
-        self, ks: list[int], forces: list[float], points: list[NDArray[np.float64]]
-    ) -> NDArray[np.float64]:
-        """Equivalent load per module of normal forces on module tops at contact points."""
-        n = len(self.loads)
-        if not ks:
-            self.forces = np.zeros(n)
-            return np.zeros(n)
-        k, f = np.array(ks), np.array(forces)
-        self.forces = np.bincount(k, weights=f, minlength=n).astype(float)
+    def _geom_modules(self, s: MujocoScene) -> list[int]:
+        """The scene's geom -> module table as a list (read per contact), and the gripper's
+        sole and finger geoms."""
+        if self._gm is None or self._gm[0] is not s:
+            self._gm = (s, s.geom_module.tolist())
+            self._grip = frozenset((*s.sole, *s.finger))
+        return self._gm[1]
+
+    def _normal_force(self, s: MujocoScene, i: int) -> float:
+        self._mj.mj_contactForce(s.model, s.data, i, self._force)
+        return abs(float(self._force[0]))
+
+    def _watch(
+        self,
+        s: MujocoScene,
+        time_s: float,
+        tip_z_m: float,
+        width_m: float,
+        i: int,
+        a: int,
+        b: int,
+        gm: list[int],
+    ) -> None:
+        """First touch of a sole on a module or of a finger on an object from above."""
+        soles, fingers = s.sole, s.finger
+        if a in soles or b in soles:
+            k = gm[a] if gm[a] >= 0 else gm[b]
+            if k >= 0 and self.first_touch_s is None:
+                self._touched(time_s, tip_z_m)
+        elif a in fingers or b in fingers:
+            other = b if a in fingers else a
+            body = int(s.model.geom_bodyid[other])
+            if body in s.body_object and abs(s.data.contact.frame[i, 2]) > _FROM_ABOVE:
+                if self.first_touch_s is None:
+                    self._touched(time_s, tip_z_m)
+                if self.tip_hit_object is None and width_m >= self.open_width_m:
+                    self.tip_hit_object = s.body_object[body]
+
+    @property
+    def forces(self) -> NDArray[np.float64]:
+        """Plain normal contact force on every module top at the last step, N."""
+        k, f = self._last
+        return np.bincount(k, weights=f, minlength=self._n).astype(float)
+
+    def mean_loads(self) -> NDArray[np.float64] | None:
+        """Equivalent load per module, averaged over the steps since the last call (None when
+        there was none): each step's loads summed in step order, as a per-step sum would."""
+        if not self._steps:
+            return None
+        total = self._flushed
+        self._flush()
+        self._flushed = np.zeros(self._n)
+        out = total / self._steps
+        self._steps = 0
+        return out
+
+    def _flush_if_pressure_changed(self) -> None:
+        if self._pending and self.pressure_pa != self._pending_pressure:
+            self._flush()
+        if not self._pending:
+            self._pending_pressure = self.pressure_pa
+
+    def _flush(self) -> None:
+        """Weight the pending steps' forces (one influence call) and add each step's loads."""
+        pending, self._pending = self._pending, []
+        if not pending:
+            return
+        ks = np.concatenate([p[0] for p in pending])
+        f = np.concatenate([p[1] for p in pending])
         if self.response is not None and self._centres is not None:
             r = self.response.response
-            local = (np.array(points) - self._centres[k]) / self.response.scale
-            f = f * r.influence(local, self.pressure_pa) / r.reference_influence(self.pressure_pa)
-        return np.bincount(k, weights=f, minlength=n).astype(float)
+            pts = np.concatenate([p[2] for p in pending])
+            p = self._pending_pressure
+            local = (pts - self._centres[ks]) / self.response.scale
+            f = f * r.influence(local, p) / r.reference_influence(p)
+        total, start = self._flushed, 0
+        for step in pending:
+            stop = start + step[0].size
+            total += np.bincount(ks[start:stop], weights=f[start:stop], minlength=self._n)
+            start = stop
 
     def _touched(self, time_s: float, tip_z_m: float) -> None:
         self.first_touch_s = time_s

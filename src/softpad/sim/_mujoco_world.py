@@ -203,19 +203,17 @@ class MujocoWorld(PadWorld):
         # the hand moves continuously (the robot sees it move on every sample, whatever the
         # sample period); MuJoCo steps each time a whole time step has elapsed
         remaining = dt
-        total, steps = np.zeros(self._layout.n_modules), 0
         while self._pending_s + remaining >= ts * (1 - 1e-9):
             chunk = max(ts - self._pending_s, 0.0)
             self._arm.move(chunk)
             remaining -= chunk
             self._pending_s = 0.0
             self._mj_step(ts)
-            total += self._sensing.loads
-            steps += 1
-        if steps:
-            # the chamber feels the impulse of the step's contacts, not the peak of one solver
-            # step: the loads of the steps in this period, averaged (see module_loads_n)
-            self._loads = total / steps
+        # the chamber feels the impulse of the step's contacts, not the peak of one solver
+        # step: the loads of the steps in this period, averaged (see module_loads_n)
+        mean = self._sensing.mean_loads()
+        if mean is not None:
+            self._loads = mean
         if remaining > 0:
             self._arm.move(remaining)
             self._pending_s += remaining
