@@ -587,3 +587,15 @@ def test_an_impostor_queryable_neither_takes_commands_nor_fakes_answers(attack) 
         finally:
             for q in queryables:
                 q.undeclare()
+
+
+def test_config_option_carries_the_link_credentials_to_the_box_url(tmp_path: Path) -> None:
+    from softpad.cli._installation import _defaults
+    from softpad.config import load_installation
+
+    site = _site(
+        tmp_path / "ws.toml", connect=["tcp/127.0.0.1:7447"], user="robot", password_file="/p"
+    )
+    assert _defaults(load_installation(site))["box"] == (
+        f"zenoh://127.0.0.1:7447/softpad/box?config={site}"
+    )

@@ -351,7 +351,7 @@ def stats(args: argparse.Namespace) -> int:
             f"longest {ms(d['gc_pause_max_s'])}; load average {d['load_average_1min']:g}"
         )
     print(
-        f"safety    {d['safety_vents']} vents, {d['watchdog_trips']} watchdog trips, {d['refused_commands']} refused"
+        f"safety    {d['safety_vents']} vents, {d['watchdog_trips']} watchdog trips, {d['refused_commands']} refused, {d.get('auth_failures', 0)} forged or replayed"
     )
     print(f"control   {d['controller'] or 'nobody'}; frames {d['frames']}, seq {d['seq']}")
     return 0

@@ -60,6 +60,8 @@ def _defaults(inst: Any) -> dict[str, Any]:
     if link.connect:
         host_port = link.connect[0].split("/", 1)[1]
         out["box"] = f"zenoh://{host_port}/{link.key_prefix}"
+        if link.user is not None or link.tls_root_ca is not None:  # the link's credentials
+            out["box"] += f"?config={inst.source}"
     return out
 
 
