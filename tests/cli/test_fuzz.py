@@ -271,6 +271,7 @@ def _check(argv: list[str], flag: str, value: str, capsys: pytest.CaptureFixture
     return code
 
 
+@pytest.mark.slow  # 300 examples, about 33 s: make test-slow (issue 38)
 @settings(
     max_examples=300,
     deadline=None,

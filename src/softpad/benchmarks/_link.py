@@ -152,7 +152,7 @@ def run(quick: bool) -> list[BenchResult]:
     err_ms = (stats.get("period_error_p99_s") or 0.0) * 1e3
     ms = {k: (stats.get(f"period_{k}_s") or 0.0) * 1e3 for k in ("p50", "p99", "max")}
     loop = (
-        f"{stats['frames']} frames in {stats['uptime_s']:.0f} s, period p50/p99/max "
+        f"{stats['frames']} frames in the measured window, period p50/p99/max "
         f"{ms['p50']:.3f}/{ms['p99']:.3f}/{ms['max']:.3f} ms, longest gc "
         f"{stats.get('gc_pause_max_s', 0) * 1e3:.2f} ms, load {load:.1f} at the start, "
         f"SCHED_FIFO {stats.get('realtime_priority') or 'off'}"
