@@ -13,7 +13,8 @@ import softpad
 
 SRC = Path(softpad.__file__).parent
 
-#: Sub-packages each sub-package may import (besides itself, ``errors`` and ``thesis``).
+#: Sub-packages each sub-package may import (besides itself and the modules every layer may
+#: use: ``errors``, ``thesis`` and ``registry``).
 ALLOWED: dict[str, set[str]] = {
     "layout": set(),
     "sensing": {"layout"},
@@ -43,6 +44,9 @@ ALLOWED: dict[str, set[str]] = {
     },
 }
 
+#: Modules below every layer: the errors, the thesis's constants, the registries' base.
+EVERY_LAYER = ("errors", "thesis", "registry")
+
 
 def _is_module(name: str) -> bool:
     return not name.startswith("_") and ((SRC / name).is_dir() or (SRC / f"{name}.py").is_file())
@@ -68,7 +72,7 @@ def _imports(path: Path) -> set[str]:
 def test_package_imports_only_lower_layers(package: str) -> None:
     bad = {}
     for path in sorted((SRC / package).glob("*.py")):
-        extra = _imports(path) - ALLOWED[package] - {package, "errors", "thesis"}
+        extra = _imports(path) - ALLOWED[package] - {package, *EVERY_LAYER}
         if extra:
             bad[path.name] = sorted(extra)
     assert not bad, f"softpad.{package} imports higher layers: {bad}"

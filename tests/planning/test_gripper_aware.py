@@ -96,7 +96,7 @@ def test_cylinder_keeps_its_direction_and_moves_along_its_axis() -> None:
 
 
 def test_planner_names() -> None:
-    assert isinstance(make_planner("gripper-aware", GRIPPER), GripperAwarePlanner)
+    assert isinstance(make_planner("gripper-aware", gripper=GRIPPER), GripperAwarePlanner)
     with pytest.raises(InputError, match="unknown planner 'magic'"):
         make_planner("magic")
 

@@ -80,7 +80,7 @@ def test_chosen_grasp_holds_the_simulated_rectangle(box):
 
 
 def test_plan_is_a_retry_planner_and_one_plan_per_object():
-    planner = make_planner("model-based", WIDE)
+    planner = make_planner("model-based", gripper=WIDE)
     assert isinstance(planner, RetryPlanner)
     d = _increments((30.0, 45.0), (25.0, 25.0), 0.0, 60.0) + _increments(
         (115.0, 45.0), (20.0, 20.0), 0.0, 60.0

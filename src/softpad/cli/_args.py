@@ -232,3 +232,13 @@ def add_p0_option(p: Any) -> None:
         hi=2.8,
         unit="kPa",
     )
+
+
+def add_registry_option(
+    p: Any, flag: str, registry: Any, what: str, default: str | None = "thesis"
+) -> None:
+    """``flag`` choosing a part from ``registry`` (:class:`softpad.registry.Registry`): its
+    choices and help are the registered parts (entry points of installed packages included)."""
+    parts = registry.help().replace("%", "%%")
+    tail = f" (default {default})" if default is not None else ""
+    p.add_argument(flag, choices=registry.names(), default=default, help=f"{what}: {parts}{tail}")

@@ -27,6 +27,8 @@ an idle pad with noise and drift."""
 
 def register(sub: Any) -> None:
     from softpad.cli._trials import add_randomize_option, add_trial_options
+    from softpad.planning import available_planners
+    from softpad.sensing import available_contact_detectors
 
     p = add_command(
         sub,
@@ -42,7 +44,9 @@ def register(sub: Any) -> None:
         "--pair",
         action="append",
         metavar="PLANNER:DETECTOR",
-        help="a pair to run (repeatable; default thesis:thesis and gripper-aware:adaptive)",
+        help="a pair to run (repeatable; default thesis:thesis and gripper-aware:adaptive); "
+        f"PLANNER from {', '.join(available_planners())}, DETECTOR from "
+        f"{', '.join(available_contact_detectors())}",
     )
     p.add_argument("--idle-hours", type=float, default=1.0, help="idle time for false alarms")
     p.add_argument("--png", metavar="FILE.png", help="draw success and delay per pair")
@@ -58,8 +62,8 @@ def register(sub: Any) -> None:
 
 
 def parse_pairs(pairs: list[str] | None) -> list[tuple[str, str]]:
-    from softpad.planning import PLANNERS
-    from softpad.sensing import CONTACT_DETECTORS
+    from softpad.planning import available_planners
+    from softpad.sensing import available_contact_detectors
     from softpad.trials import DEFAULT_PAIRS
 
     if not pairs:
@@ -67,10 +71,11 @@ def parse_pairs(pairs: list[str] | None) -> list[tuple[str, str]]:
     out = []
     for text in pairs:
         planner, _, detector = text.partition(":")
-        if planner not in PLANNERS or detector not in CONTACT_DETECTORS:
+        planners, detectors = available_planners(), available_contact_detectors()
+        if planner not in planners or detector not in detectors:
             raise InputError(
-                f"--pair must be PLANNER:DETECTOR with PLANNER in {', '.join(PLANNERS)} and "
-                f"DETECTOR in {', '.join(CONTACT_DETECTORS)}, got {text!r}"
+                f"--pair must be PLANNER:DETECTOR with PLANNER in {', '.join(planners)} and "
+                f"DETECTOR in {', '.join(detectors)}, got {text!r}"
             )
         out.append((planner, detector))
     return out

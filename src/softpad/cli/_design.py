@@ -11,6 +11,7 @@ from typing import Any
 from softpad import thesis
 from softpad.cli._args import add_command, int_ranges, name_list
 from softpad.cli._output import emit, say
+from softpad.cli._run import add_part_options
 from softpad.cli._trials import add_randomize_option
 from softpad.errors import InputError
 
@@ -78,8 +79,7 @@ def register(sub: Any) -> None:
         help=f"hold time in s (default {thesis.HOLD_S:g}; --quick 2)",
     )
     add_randomize_option(p)
-    p.add_argument("--planner", default="thesis", help="planner: thesis, gripper-aware")
-    p.add_argument("--detector", default="thesis", help="contact detector: thesis, cusum")
+    add_part_options(p)
     p.add_argument(
         "--scheduler", metavar="tcp://127.0.0.1:PORT", help="a running Dask scheduler on loopback"
     )

@@ -76,7 +76,7 @@ def register(sub: Any) -> None:
     p.add_argument(
         "--planner",
         default="thesis",
-        help="planner by name: thesis, gripper-aware or model-based (default thesis)",
+        help=f"planner by name: {_planner_help()} (default thesis)",
     )
     p.add_argument(
         "--gripper",
@@ -261,13 +261,19 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+def _planner_help() -> str:
+    from softpad.planning import PLANNER_REGISTRY
+
+    return PLANNER_REGISTRY.help().replace("%", "%%")
+
+
 def _check_planner(planner: str, mounting: str) -> None:
     """``--planner`` and ``--gripper`` known, else an InputError naming them."""
     from softpad import thesis as t
-    from softpad.planning import PLANNERS
+    from softpad.planning import available_planners
 
-    if planner not in PLANNERS:
-        raise InputError(f"--planner must be one of {', '.join(PLANNERS)}, got {planner!r}")
+    if planner not in (names := available_planners()):
+        raise InputError(f"--planner must be one of {', '.join(names)}, got {planner!r}")
     if mounting not in t.GRIPPER_MOUNTINGS_M:
         raise InputError(
             f"--gripper must be one of {', '.join(t.GRIPPER_MOUNTINGS_M)}, got {mounting!r}"
@@ -283,7 +289,7 @@ def _plans(args: argparse.Namespace, delta: list[float], layout: Any, params: An
     gripper = GripperSpec.from_mounting(args.gripper)
     if args.planner == "thesis":
         return plan_grasps(delta, layout, params)
-    planner = make_planner(args.planner, gripper, params)
+    planner = make_planner(args.planner, layout=layout, gripper=gripper, params=params)
     return planner.plan(delta, detect_objects(delta, layout, params.object_threshold_pa), layout)
 
 

@@ -111,15 +111,18 @@ def run_with_robot_url(
     params: Any,
     **parts: Any,
 ) -> Any:
-    """``softpad run --robot URL``: the loop with a robot reached by URL (``ros1://``)."""
+    """``softpad run --robot URL``: the loop with a robot made by the robot registry
+    (``ros1://``, or a robot an installed package registers)."""
+    from softpad.control import make_robot
     from softpad.harness import SimulatedRun, TouchTruth
-    from softpad.ros import open_robot
-    from softpad.ros._run import run_with_robot
+    from softpad.ros import run_with_robot
 
-    robot = open_robot(args.robot)
+    robot = make_robot(args.robot, box=box)
     try:
         result = run_with_robot(names, box, robot, params, recorder, gripper=args.gripper, **parts)
     finally:
-        robot.close()
+        close = getattr(robot, "close", None)
+        if close is not None:
+            close()
     # no ground truth of the touches through ROS: the report leaves them empty
     return SimulatedRun(result, tuple(TouchTruth(None, None) for _ in result.grasps))

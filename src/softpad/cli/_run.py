@@ -50,12 +50,7 @@ def register(sub: Any) -> None:
         _EPILOG,
     )
     add_box_option(p)
-    p.add_argument(
-        "--robot",
-        default="sim://",
-        metavar="URL",
-        help="robot URL: sim:// (the simulated box's own, default) or ros1:// (docs/ros.md)",
-    )
+    _add_robot_option(p)
     p.add_argument(
         "--objects",
         metavar="NAME,...",
@@ -131,44 +126,59 @@ def register(sub: Any) -> None:
     p.set_defaults(handler=run)
 
 
-def add_part_options(p: argparse.ArgumentParser) -> None:
-    """``--planner`` and ``--detector``: the loop's parts by name (docs/beat-the-thesis.md)."""
-    from softpad.planning import PLANNERS
-    from softpad.sensing import CONTACT_DETECTORS
+def _add_robot_option(p: argparse.ArgumentParser) -> None:
+    from softpad.control import ROBOT_REGISTRY
 
+    names = ROBOT_REGISTRY.names()
+    robots = "; ".join(f"{n}://: {ROBOT_REGISTRY.summary(n)}" for n in names).replace("%", "%%")
     p.add_argument(
-        "--planner",
-        choices=PLANNERS,
-        default="thesis",
-        help="grasp planner: the thesis's rules, or gripper-aware (fingertips on sensed area, "
-        "opening spanning the object) (default %(default)s)",
+        "--robot",
+        default="sim://",
+        metavar="URL",
+        help=f"robot URL: {robots} (default %(default)s; docs/ros.md)",
     )
-    p.add_argument(
-        "--detector",
-        choices=CONTACT_DETECTORS,
-        default="thesis",
-        help="contact detector: the thesis's running average above t_g, cusum (calibrated "
-        "for the box's sample rate) or adaptive (a CUSUM whose allowance follows each "
-        "module's own motion: objects rocking on the pad) (default %(default)s)",
-    )
+
+
+def add_part_options(p: argparse.ArgumentParser) -> None:
+    """``--planner`` and ``--detector``: the loop's parts by name, choices and help from the
+    registries (docs/beat-the-thesis.md, docs/architecture.md)."""
+    from softpad.cli._args import add_registry_option
+    from softpad.planning import PLANNER_REGISTRY
+    from softpad.sensing import CONTACT_DETECTOR_REGISTRY
+
+    add_registry_option(p, "--planner", PLANNER_REGISTRY, "grasp planner")
+    add_registry_option(p, "--detector", CONTACT_DETECTOR_REGISTRY, "contact detector")
+
+
+def box_layout(box: Any) -> Any:
+    """The pad on ``box``: a simulated box's world's, else the thesis's 2 x 3 (a served
+    simulator states its pad only when the run sets it up)."""
+    from softpad.layout import PadLayout
+
+    layout = getattr(getattr(box, "world", None), "layout", None)
+    return layout if isinstance(layout, PadLayout) else PadLayout()
 
 
 def loop_parts(args: argparse.Namespace, box: Any, params: Any, mounting: str) -> dict[str, Any]:
-    """The planner and contact detector named by ``--planner`` and ``--detector``; the thesis's
-    are left to the execution (built from the loop parameters)."""
+    """The planner and contact detector named by ``--planner`` and ``--detector``, made by
+    their registries for the box's sample rate, its pad and the gripper ``mounting``."""
     from softpad.layout import GripperSpec
     from softpad.planning import planner_for
     from softpad.sensing import make_contact_detector
 
-    parts: dict[str, Any] = {}
-    detector = make_contact_detector(args.detector, box.sample_rate_hz)
-    if args.planner != "thesis":
-        spec = GripperSpec.from_mounting(mounting)
-        rate = box.sample_rate_hz
-        parts["planner"] = planner_for(args.planner, spec, params.planner, detector, rate)
-    if args.detector != "thesis":
-        parts["contact_detector"] = detector
-    return parts
+    rate, layout = box.sample_rate_hz, box_layout(box)
+    spec = GripperSpec.from_mounting(mounting)
+    detector = make_contact_detector(
+        args.detector,
+        rate,
+        layout,
+        gripper=spec,
+        contact_threshold_pa=params.contact_threshold_pa,
+        object_threshold_pa=params.planner.object_threshold_pa,
+        window=params.filter_length,
+    )
+    planner = planner_for(args.planner, spec, params.planner, detector, rate, layout)
+    return {"planner": planner, "contact_detector": detector}
 
 
 def add_thesis_params(p: argparse.ArgumentParser) -> None:
@@ -268,7 +278,7 @@ def run(args: argparse.Namespace) -> int:
         try:
             tee = Tee(log, recorder, live)
             parts = loop_parts(args, box, params, gripper or resolve_objects(names)[0].gripper)
-            if args.robot == "sim://":
+            if args.robot.partition("://")[0].lower() == "sim":
                 result = run_simulated(names, box, params, tee, gripper=gripper, **parts)
             else:
                 from softpad.cli._ros import run_with_robot_url

@@ -26,6 +26,14 @@ from softpad.control._inflation import (
     make_safe,
 )
 from softpad.control._robot import Robot, RobotState, ToolPose
+from softpad.control._robots import (
+    ROBOT_REGISTRY,
+    RobotContext,
+    RobotFactory,
+    available_robots,
+    make_robot,
+    register_robot,
+)
 from softpad.control._safety import (
     DetectedFault,
     FaultMonitor,
@@ -41,6 +49,7 @@ __all__ = [
     "DEFAULT_MAX_PRESSURE_PA",
     "DEFAULT_TARGET_PA",
     "DEFAULT_TOLERANCE_PA",
+    "ROBOT_REGISTRY",
     "AdjustmentResult",
     "DetectedFault",
     "ExecutionError",
@@ -54,13 +63,18 @@ __all__ = [
     "MonitoredFault",
     "Recorder",
     "Robot",
+    "RobotContext",
+    "RobotFactory",
     "RobotState",
     "RunSafety",
     "SafeStateResult",
     "ToolPose",
+    "available_robots",
     "check_frame",
     "check_valves",
     "inflate_and_adjust",
+    "make_robot",
     "make_safe",
     "reach_safe_state",
+    "register_robot",
 ]

@@ -30,9 +30,9 @@ class TrialOptions:
 
     #: Trials per object and seed.
     trials: int = 1
-    #: Planner name (:data:`softpad.planning.PLANNERS`).
+    #: Planner name (:func:`softpad.planning.available_planners`).
     planner: str = "thesis"
-    #: Contact detector name (:data:`softpad.sensing.CONTACT_DETECTORS`).
+    #: Contact detector name (:func:`softpad.sensing.available_contact_detectors`).
     detector: str = "thesis"
     #: Hold time after the lift, seconds (thesis: 15 s).
     hold_s: float = thesis.HOLD_S
@@ -51,8 +51,8 @@ class TrialOptions:
     randomize: bool = False
 
     def __post_init__(self) -> None:
-        from softpad.planning import PLANNERS
-        from softpad.sensing import CONTACT_DETECTORS
+        from softpad.planning import PLANNER_REGISTRY
+        from softpad.sensing import CONTACT_DETECTOR_REGISTRY
 
         if (
             isinstance(self.trials, bool)
@@ -62,12 +62,8 @@ class TrialOptions:
             raise InputError(
                 f"trials per object must be an integer from 1 to 100, got {self.trials!r}"
             )
-        if self.planner not in PLANNERS:
-            raise InputError(f"unknown planner {self.planner!r}; use one of {', '.join(PLANNERS)}")
-        if self.detector not in CONTACT_DETECTORS:
-            raise InputError(
-                f"unknown detector {self.detector!r}; use one of {', '.join(CONTACT_DETECTORS)}"
-            )
+        PLANNER_REGISTRY.factory(self.planner)  # InputError naming the known ones
+        CONTACT_DETECTOR_REGISTRY.factory(self.detector)
         if not (math.isfinite(self.hold_s) and 0 <= self.hold_s <= 60):
             raise InputError(f"hold time must be within 0..60 s, got {self.hold_s!r} s")
 
@@ -157,14 +153,19 @@ def _one_trial(
     )
     box.safety_limits = SafetyLimits(max_pressure_pa=9.5e3, release_pa=2.5e3)
     robot = SimulatedRobot(world)
-    detector = make_contact_detector(options.detector, box.sample_rate_hz, layout.n_modules)
+    detector = make_contact_detector(options.detector, box.sample_rate_hz, layout)
     loop = GraspExecution(
         box,
         robot,
         layout,
         params,
         planner=planner_for(
-            options.planner, world.gripper.geometry, params.planner, detector, box.sample_rate_hz
+            options.planner,
+            world.gripper.geometry,
+            params.planner,
+            detector,
+            box.sample_rate_hz,
+            layout,
         ),
         contact_detector=detector,
         place_objects=lambda: world.place_object(spec, placement),

@@ -19,7 +19,7 @@ from softpad.harness._remote import (
     has_simulation,
     simulation_extensions,
 )
-from softpad.harness._robot import SimulatedRobot, TouchTruth
+from softpad.harness._robot import SimulatedRobot, TouchTruth, open_sim_robot
 from softpad.harness._run import SimulatedRun, resolve_objects, run_simulated
 
 __all__ = [
@@ -31,6 +31,7 @@ __all__ = [
     "TouchTruth",
     "has_simulation",
     "inflation_study",
+    "open_sim_robot",
     "recommend_p0",
     "resolve_objects",
     "run_simulated",

@@ -79,7 +79,9 @@ def inflation_point(
                 box,
                 params,
                 probe,
-                contact_detector=make_contact_detector(detector, box.sample_rate_hz),
+                contact_detector=make_contact_detector(
+                    detector, box.sample_rate_hz, box.world.layout
+                ),
             )
         held += run.outcome == "held"
         for v, out in ((run.contact_delay_s(), delays), (run.finger_travel_m(), travels)):

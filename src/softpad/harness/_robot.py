@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 from softpad.control import RobotState, ToolPose
 from softpad.errors import InputError
@@ -141,3 +142,16 @@ class SimulatedRobot:
 
     def holding(self) -> bool:
         return self.world.holding()
+
+
+def open_sim_robot(location: str, options: dict[str, str], context: Any) -> SimulatedRobot:
+    """The ``sim://`` factory of :data:`softpad.control.ROBOT_REGISTRY`: the arm of the
+    simulated box in ``context.box`` (:class:`softpad.box.SimBox`); no location or options."""
+    from softpad.box import SimBox
+
+    if location not in ("", "/") or options:
+        raise InputError(f"the simulated robot is plain sim:// (no options), got {location!r}")
+    box = getattr(context, "box", None)
+    if not isinstance(box, SimBox):
+        raise InputError(f"a sim:// robot needs a simulated box (sim://), got {type(box).__name__}")
+    return SimulatedRobot(box.world)

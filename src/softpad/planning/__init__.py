@@ -8,7 +8,6 @@ direction theta) with the thesis's rules, generalised to R x C pads (docs/planne
 from softpad.planning._cases import FIG_6_7, RULE_CASES, TABLE_6_1, PlanCase
 from softpad.planning._gripper_aware import (
     DEFAULT_SEAM_WIDTH_M,
-    PLANNERS,
     GripperAwarePlanner,
     across_pairs,
     along_load_axis,
@@ -16,9 +15,7 @@ from softpad.planning._gripper_aware import (
     centred_on_load,
     landing_side,
     load_axis,
-    make_planner,
     object_extent_m,
-    planner_for,
     pressed_share,
     sensed_share,
 )
@@ -27,13 +24,22 @@ from softpad.planning._params import DEFAULT_SAFETY_SHIFT, PlannerParams
 from softpad.planning._pcom import pcom
 from softpad.planning._plan import Planner, RetryPlanner, ThesisPlanner, plan_grasps
 from softpad.planning._records import GraspPlan
+from softpad.planning._registry import (
+    PLANNER_REGISTRY,
+    PlannerContext,
+    PlannerFactory,
+    available_planners,
+    make_planner,
+    planner_for,
+    register_planner,
+)
 from softpad.planning._render import ascii_pad, format_plans, plot_plans
 
 __all__ = [
     "DEFAULT_SAFETY_SHIFT",
     "DEFAULT_SEAM_WIDTH_M",
     "FIG_6_7",
-    "PLANNERS",
+    "PLANNER_REGISTRY",
     "RULE_CASES",
     "TABLE_6_1",
     "GraspPlan",
@@ -43,12 +49,15 @@ __all__ = [
     "PadModel",
     "PlanCase",
     "Planner",
+    "PlannerContext",
+    "PlannerFactory",
     "PlannerParams",
     "RetryPlanner",
     "ThesisPlanner",
     "across_pairs",
     "along_load_axis",
     "ascii_pad",
+    "available_planners",
     "bridge_pairs",
     "centred_on_load",
     "format_plans",
@@ -61,5 +70,6 @@ __all__ = [
     "planner_for",
     "plot_plans",
     "pressed_share",
+    "register_planner",
     "sensed_share",
 ]

@@ -31,16 +31,13 @@ from softpad import thesis
 from softpad.errors import InputError
 from softpad.layout import GripperSpec, PadLayout
 from softpad.planning._geometry import theta_perpendicular
-from softpad.planning._model_based import ModelBasedPlanner
 from softpad.planning._params import PlannerParams
 from softpad.planning._plan import ThesisPlanner
 from softpad.planning._records import GraspPlan
 from softpad.planning._thesis_rules import diagonal_linked_plan, linked_three
 from softpad.sensing import (
     DEFAULT_OUTLINE_THRESHOLD_PA,
-    ContactDetector,
     outline_objects,
-    sensing_ratio,
 )
 from softpad.sensing._objects import (
     DEFAULT_OBJECT_THRESHOLD_PA,
@@ -585,45 +582,3 @@ def _wrap(theta: float) -> float:
     elif t > math.pi / 2:
         t -= math.pi
     return t
-
-
-#: Planners by name (``--planner``).
-PLANNERS = ("thesis", "gripper-aware", "model-based")
-
-#: Planners told the contact detector's sensing ratio (which fingertips it senses).
-_SENSING_PLANNERS = ("gripper-aware", "model-based")
-
-
-def make_planner(
-    name: str,
-    gripper: GripperSpec | None = None,
-    params: PlannerParams | None = None,
-    sensing_ratio: float | None = None,
-) -> ThesisPlanner | GripperAwarePlanner | ModelBasedPlanner:
-    """A planner by name: ``thesis``, ``gripper-aware`` or ``model-based`` (the last two
-    need the gripper's geometry and, to know which fingertips are sensed, the contact
-    detector's sensing ratio, :func:`softpad.sensing.sensing_ratio`; None: the thesis
-    detector's, 1)."""
-    ratio = 1.0 if sensing_ratio is None else sensing_ratio
-    if name == "thesis":
-        return ThesisPlanner(params)
-    if name == "gripper-aware":
-        return GripperAwarePlanner(gripper, params, sensing_ratio=ratio)
-    if name == "model-based":
-        return ModelBasedPlanner(gripper or GripperSpec(), sensing_ratio=ratio)
-    raise InputError(f"unknown planner {name!r}; use one of {', '.join(PLANNERS)}")
-
-
-def planner_for(
-    name: str,
-    gripper: GripperSpec | None,
-    params: PlannerParams | None,
-    detector: ContactDetector,
-    sample_rate_hz: float,
-) -> ThesisPlanner | GripperAwarePlanner | ModelBasedPlanner:
-    """:func:`make_planner` for a loop that detects contact with ``detector`` at
-    ``sample_rate_hz``: the gripper-aware and model-based planners are told the detector's
-    sensing ratio, which is measured only for them (the probe of a 1 kHz detector takes
-    seconds)."""
-    ratio = sensing_ratio(detector, sample_rate_hz) if name in _SENSING_PLANNERS else None
-    return make_planner(name, gripper, params, ratio)

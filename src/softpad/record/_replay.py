@@ -191,11 +191,11 @@ def _parts(run: RecordedRun, layout: Any, params: Any) -> tuple[Any, Any]:
     def detector() -> Any:
         if detector_name == "thesis":
             return ThesisContactDetector(params.contact_threshold_pa, params.filter_length)
-        return make_contact_detector(detector_name, rate, layout.n_modules)
+        return make_contact_detector(detector_name, rate, layout)
 
     mounting = str(meta.get("gripper") or meta.get("mounting") or "6/2")
     gripper = GripperSpec.from_mounting(mounting)
-    return detector, planner_for(planner_name, gripper, params.planner, detector(), rate)
+    return detector, planner_for(planner_name, gripper, params.planner, detector(), rate, layout)
 
 
 def _replan(

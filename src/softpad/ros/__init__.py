@@ -5,7 +5,13 @@ it lazily, so ``import softpad.ros`` works without ROS. docs/ros.md has the topi
 the arm contract and the frames.
 """
 
-from softpad.ros._arm import ARM_COMMAND_TOPIC, ARM_STATE_TOPIC, Ros1Robot, open_robot
+from softpad.ros._arm import (
+    ARM_COMMAND_TOPIC,
+    ARM_STATE_TOPIC,
+    Ros1Robot,
+    open_robot,
+    open_ros1_robot,
+)
 from softpad.ros._node import CONFIG_KEYS, NodeConfig, PadNode, load_config
 from softpad.ros._rospy_path import INSTALL_HINT, ROS_MODULES, ensure_rospy, rospy_available
 from softpad.ros._run import run_with_robot
@@ -22,6 +28,7 @@ __all__ = [
     "ensure_rospy",
     "load_config",
     "open_robot",
+    "open_ros1_robot",
     "rospy_available",
     "run_with_robot",
 ]

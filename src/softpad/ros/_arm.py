@@ -129,7 +129,8 @@ class Ros1Robot:
 def open_robot(url: str) -> Ros1Robot:
     """Robot by URL: ``ros1://`` (options ``?timeout_s=10&stale_s=1``).
 
-    ``sim://`` robots belong to a simulated box and are made by the simulated run itself.
+    ``sim://`` robots belong to a simulated box and are made by the simulated run itself;
+    every scheme is reached through :func:`softpad.control.make_robot`.
     """
     parts = urlsplit(url)
     if parts.scheme == "sim":
@@ -141,13 +142,24 @@ def open_robot(url: str) -> Ros1Robot:
             f"ros1:// takes no host or path (ROS_MASTER_URI names the master), got {url!r}"
         )
     opts = {k: v[-1] for k, v in parse_qs(parts.query).items()}
-    unknown = sorted(set(opts) - {"timeout_s", "stale_s"})
+    return open_ros1_robot("", opts)
+
+
+def open_ros1_robot(location: str, options: dict[str, str], context: object = None) -> Ros1Robot:
+    """The ``ros1://`` factory of :data:`softpad.control.ROBOT_REGISTRY`: options
+    ``timeout_s`` (arm state awaited at start, s) and ``stale_s`` (state older than this is a
+    lost arm, s), each in (0, 3600)."""
+    if location not in ("", "/"):
+        raise InputError(
+            f"ros1:// takes no host or path (ROS_MASTER_URI names the master), got {location!r}"
+        )
+    unknown = sorted(set(options) - {"timeout_s", "stale_s"})
     if unknown:
         raise InputError(f"unknown ros1:// option {unknown[0]!r}; known: timeout_s, stale_s")
     try:
-        vals = {k: float(v) for k, v in opts.items()}
+        vals = {k: float(v) for k, v in options.items()}
     except ValueError:
-        raise InputError(f"ros1:// options must be numbers, got {opts}") from None
+        raise InputError(f"ros1:// options must be numbers, got {options}") from None
     if any(not 0 < v < 3600 for v in vals.values()):
         raise InputError(f"ros1:// options must be in (0, 3600) s, got {vals}")
     return Ros1Robot(vals.get("timeout_s", 10.0), vals.get("stale_s", 1.0))

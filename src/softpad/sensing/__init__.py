@@ -19,7 +19,6 @@ from softpad.sensing._contact import (
     count_alarms,
 )
 from softpad.sensing._cusum import (
-    CONTACT_DETECTORS,
     CUSUM_CALIBRATIONS,
     DEFAULT_BASELINE_TIME_S,
     CusumCalibration,
@@ -30,7 +29,6 @@ from softpad.sensing._cusum import (
     cusum_statistics,
     excursion_peaks,
     fit_limit,
-    make_contact_detector,
 )
 from softpad.sensing._filters import RunningAverage, capture_reference, increments
 from softpad.sensing._floor import sensing_ratio, step_floor_pa
@@ -46,29 +44,48 @@ from softpad.sensing._objects import (
     measured_change,
     outline_objects,
 )
+from softpad.sensing._registry import (
+    CONTACT_DETECTOR_REGISTRY,
+    OBJECT_DETECTOR_REGISTRY,
+    ContactDetectorFactory,
+    DetectorContext,
+    ObjectDetectorFactory,
+    available_contact_detectors,
+    available_object_detectors,
+    make_contact_detector,
+    make_object_detector,
+    register_contact_detector,
+    register_object_detector,
+)
 
 __all__ = [
     "ADAPTIVE_CALIBRATIONS",
-    "CONTACT_DETECTORS",
+    "CONTACT_DETECTOR_REGISTRY",
     "CUSUM_CALIBRATIONS",
     "DEFAULT_BASELINE_TIME_S",
     "DEFAULT_CONTACT_THRESHOLD_PA",
     "DEFAULT_OBJECT_THRESHOLD_PA",
     "DEFAULT_OUTLINE_THRESHOLD_PA",
+    "OBJECT_DETECTOR_REGISTRY",
     "SENSOR_FULL_SCALE_PA",
     "SMALLEST_PLAUSIBLE_INCREMENT_PA",
     "AdaptiveCusumDetector",
     "AdaptiveParams",
     "ContactDetector",
+    "ContactDetectorFactory",
     "CusumCalibration",
     "CusumContactDetector",
     "CusumLimit",
+    "DetectorContext",
     "LatchingContactDetector",
     "ObjectDetector",
+    "ObjectDetectorFactory",
     "RunningAverage",
     "ThesisContactDetector",
     "ThesisObjectDetector",
     "adaptive_for_rate",
+    "available_contact_detectors",
+    "available_object_detectors",
     "calibrate_adaptive",
     "calibrate_cusum",
     "capture_reference",
@@ -80,8 +97,11 @@ __all__ = [
     "fit_limit",
     "increments",
     "make_contact_detector",
+    "make_object_detector",
     "measured_change",
     "outline_objects",
+    "register_contact_detector",
+    "register_object_detector",
     "sensing_ratio",
     "step_floor_pa",
 ]

@@ -31,7 +31,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from softpad.errors import InputError
-from softpad.sensing._contact import ContactDetector, LatchingContactDetector
+from softpad.sensing._contact import LatchingContactDetector
 from softpad.sensing._objects import check_threshold
 
 #: Time constant of the baseline that follows an idle pad, seconds: long against a fingertip's
@@ -339,30 +339,4 @@ def calibrate_cusum(
     pair = fit_limit(np.concatenate(pair_peaks), drifts_pa[1], hours, 2 * hours_per_alarm)
     return CusumCalibration(
         sample_rate_hz, x.shape[1], single, pair, hours_per_alarm, round(hours, 6)
-    )
-
-
-#: Contact detectors by name (``--detector``).
-CONTACT_DETECTORS = ("thesis", "cusum", "adaptive")
-
-
-def make_contact_detector(
-    name: str, sample_rate_hz: float = 100.0, modules: int = 6
-) -> ContactDetector:
-    """A contact detector by name for a pad of ``modules`` modules on a box sampling at
-    ``sample_rate_hz``: ``thesis`` (10-sample average above t_g), ``cusum`` (calibrated
-    for the rate and size) or ``adaptive`` (the CUSUM whose allowance follows each module's
-    own motion, :class:`softpad.sensing.AdaptiveCusumDetector`)."""
-    from softpad.sensing._contact import ThesisContactDetector
-
-    if name == "thesis":
-        return ThesisContactDetector()
-    if name == "cusum":
-        return cusum_for_rate(sample_rate_hz, modules)
-    if name == "adaptive":
-        from softpad.sensing._adaptive import adaptive_for_rate
-
-        return adaptive_for_rate(sample_rate_hz, modules)
-    raise InputError(
-        f"unknown contact detector {name!r}; use one of {', '.join(CONTACT_DETECTORS)}"
     )

@@ -48,17 +48,20 @@ def idle_false_alarms_per_hour(
     """False contact alarms per hour of an idle pad for each named detector, all fed the same
     frames; each detector is re-armed with the same reference after every alarm."""
     from softpad.box import open_box
+    from softpad.layout import PadLayout
     from softpad.sensing import capture_reference, count_alarms, make_contact_detector
 
     alarms = dict.fromkeys(detectors, 0)
     with open_box(IDLE_BOX.format(rate=rate_hz, seed=seed)) as box:
-        reference = capture_reference([f.pressures_pa[:6] for f in box.read_many(10)])
-        dets = {d: make_contact_detector(d, box.sample_rate_hz) for d in detectors}
+        layout = PadLayout()  # the simulated box's default pad, the thesis's 2 x 3
+        n = layout.n_modules
+        reference = capture_reference([f.pressures_pa[:n] for f in box.read_many(10)])
+        dets = {d: make_contact_detector(d, box.sample_rate_hz, layout) for d in detectors}
         for det in dets.values():
             det.reset(reference)
         left = round(hours * 3600 * box.sample_rate_hz)
         while left > 0:  # blocks of frames, every detector keeping its state between them
-            block = [box.read().pressures_pa[:6] for _ in range(min(left, 100_000))]
+            block = [box.read().pressures_pa[:n] for _ in range(min(left, 100_000))]
             left -= len(block)
             for name, det in dets.items():
                 alarms[name] += count_alarms(det, reference, block, rearm_only=True)

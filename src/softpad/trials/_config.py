@@ -40,9 +40,9 @@ class TrialConfig:
     #: Record the trial as MCAP into this file (:class:`softpad.record.McapRecorder`;
     #: overwritten: the caller checks it first, see :func:`softpad.trials.trial_recording_path`).
     record_path: str | None = None
-    #: Planner by name (:data:`softpad.planning.PLANNERS`), given the trial's gripper.
+    #: Planner by name (:func:`softpad.planning.available_planners`), given the trial's gripper.
     planner: str = "thesis"
-    #: Contact detector by name (:data:`softpad.sensing.CONTACT_DETECTORS`).
+    #: Contact detector by name (:func:`softpad.sensing.available_contact_detectors`).
     detector: str = "thesis"
     #: Draw every uncertain input of the simulated lab (:data:`softpad.sim.UNCERTAIN_PARAMETERS`:
     #: pad and fingertip physics, grip force, seam, sample rate, sensor noise, tubing,
@@ -65,15 +65,11 @@ class TrialConfig:
             "rad",
             "degrees given as radians?",
         )
-        from softpad.planning import PLANNERS
-        from softpad.sensing import CONTACT_DETECTORS
+        from softpad.planning import PLANNER_REGISTRY
+        from softpad.sensing import CONTACT_DETECTOR_REGISTRY
 
-        if self.planner not in PLANNERS:
-            raise InputError(f"unknown planner {self.planner!r}; use one of {', '.join(PLANNERS)}")
-        if self.detector not in CONTACT_DETECTORS:
-            raise InputError(
-                f"unknown contact detector {self.detector!r}; use one of {', '.join(CONTACT_DETECTORS)}"
-            )
+        PLANNER_REGISTRY.factory(self.planner)  # InputError naming the known ones
+        CONTACT_DETECTOR_REGISTRY.factory(self.detector)
         if self.sample_rate_hz <= 0:
             raise InputError("trial sample_rate_hz must be > 0 Hz")
 

@@ -174,6 +174,7 @@ class _Trial:
             self.config.execution.planner,
             detector,
             self.box.sample_rate_hz,
+            self.world.layout,
         )
 
     def place(self) -> None:
@@ -238,9 +239,7 @@ def execute_trial(
     log = RunLog({"object": spec.name, "seed": seed}) if config.record_trace else None
     mcap = _trial_recorder(t, seed)
     watcher = _TrialWatcher(t, Tee(log, mcap, o.recorder))
-    detector = make_contact_detector(
-        config.detector, t.box.sample_rate_hz, t.world.layout.n_modules
-    )
+    detector = make_contact_detector(config.detector, t.box.sample_rate_hz, t.world.layout)
     execution = GraspExecution(
         t.box,
         t.robot,
