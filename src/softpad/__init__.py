@@ -11,7 +11,9 @@ lazily inside the functions that need them.
 
 from softpad.errors import SoftPadError
 
-__version__ = "0.2.0"
+#: The package's version, its one source (pyproject.toml reads it; recordings, the box
+#: daemon's info and the design cache's keys carry it).
+__version__ = "0.3.0"
 
 #: Version of every JSON document SoftPad prints or writes; bumped when a key changes meaning.
 SCHEMA_VERSION = 2

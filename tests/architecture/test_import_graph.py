@@ -94,12 +94,60 @@ def test_the_checker_sees_a_forbidden_import(tmp_path: Path) -> None:
     assert _imports(f) == {"sim", "harness", "trials"}
 
 
-def test_importing_the_controller_loads_no_simulator_world() -> None:
-    code = (
-        "import sys, softpad.control, softpad.planning, softpad.sensing;"
-        "bad = [m for m in ('softpad.harness', 'softpad.trials', 'mujoco', 'felupe') "
-        "if m in sys.modules]; print(bad); sys.exit(1 if bad else 0)"
+def _private_imports(path: Path, package: str) -> list[str]:
+    """``softpad.X._y`` modules of another sub-package X that a module of ``package`` imports
+    (lazy imports included): what it needs must come from ``softpad.X`` itself."""
+    found: list[str] = []
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        names: list[str] = []
+        if isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+            names = [node.module]
+        elif isinstance(node, ast.Import):
+            names = [a.name for a in node.names]
+        for n in names:
+            parts = n.split(".")
+            if parts[0] == "softpad" and len(parts) > 2 and parts[1] != package:
+                if any(p.startswith("_") for p in parts[2:]):
+                    found.append(n)
+    return found
+
+
+def _packages() -> list[str]:
+    return sorted(p.name for p in SRC.iterdir() if (p / "__init__.py").is_file())
+
+
+@pytest.mark.parametrize("package", _packages())
+def test_no_private_module_of_another_package_is_imported(package: str) -> None:
+    bad = {
+        path.name: found
+        for path in sorted((SRC / package).glob("*.py"))
+        if (found := _private_imports(path, package))
+    }
+    assert not bad, f"softpad.{package} imports private modules of other packages: {bad}"
+
+
+def test_the_checker_sees_a_private_import(tmp_path: Path) -> None:
+    f = tmp_path / "m.py"
+    f.write_text(
+        "from softpad.sensing._objects import x\ndef f():\n    import softpad.sim._sensor\n"
+        "from softpad.planning import y\nfrom softpad.box._sim import z\n"
     )
+    assert _private_imports(f, "box") == ["softpad.sensing._objects", "softpad.sim._sensor"]
+
+
+#: What the controller side and the box computer never load: the simulator, the FEM, the lab.
+SIMULATOR_MODULES = ("softpad.sim", "softpad.fem", "softpad.harness", "softpad.trials")
+_LOADED = (
+    "bad = sorted(m for m in sys.modules if m.startswith({mods!r}) or m in ('mujoco', 'felupe'));"
+    "print(bad, file=sys.stderr); sys.exit(5 if bad else 0)"
+)
+
+
+@pytest.mark.parametrize(
+    "modules", ["softpad.control, softpad.planning, softpad.sensing", "softpad.box"]
+)
+def test_importing_the_controller_loads_no_simulator(modules: str) -> None:
+    code = f"import sys, {modules};" + _LOADED.format(mods=SIMULATOR_MODULES)
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert out.returncode == 0, out.stdout + out.stderr
 
@@ -114,3 +162,17 @@ def test_planning_has_no_function_over_60_lines() -> None:
                 if n > 60:
                     long.append(f"{path.name}:{node.name} ({n} lines)")
     assert not long, long
+
+
+def test_the_box_daemon_on_hardware_loads_no_simulator() -> None:
+    """``softpad box serve --hardware FILE`` up to opening the GPIO lines (absent here: exit
+    3) imports neither the simulator nor the FEM (the box computer installs neither)."""
+    site = Path(__file__).resolve().parents[2] / "examples" / "site.toml"
+    code = (
+        "import sys; from softpad.cli.main import main;"
+        f"rc = main(['box', 'serve', '--hardware', {str(site)!r}]); print('rc', rc);"
+        + _LOADED.format(mods=SIMULATOR_MODULES)
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert "rc 3" in out.stdout and "GPIO" in out.stderr, out.stdout + out.stderr
+    assert out.returncode == 0, out.stderr

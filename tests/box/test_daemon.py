@@ -207,7 +207,7 @@ def test_served_simulator_holds_object_5_while_two_monitors_watch(
     # a generous deadline for every answer (the default 5 s): on a busy machine the served
     # simulator's process can take longer than that to answer its first control request
     url = f"zenoh://127.0.0.1:{port}?timeout_s=60"
-    cli = [sys.executable, "-m", "softpad.cli.main"]
+    cli = [sys.executable, "-m", "softpad"]
     serve = subprocess.Popen(
         [
             *cli,

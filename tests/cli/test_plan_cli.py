@@ -148,7 +148,7 @@ def test_argparse_range_errors_exit_2_without_traceback() -> None:
         [
             sys.executable,
             "-m",
-            "softpad.cli.main",
+            "softpad",
             "plan",
             "--delta",
             BANANA,

@@ -19,8 +19,7 @@ def run(quick: bool = False) -> list[BenchResult]:
 
 
 def _world_step(quick: bool) -> BenchResult:
-    from softpad.sim import Placement, get_object
-    from softpad.sim._mujoco_world import MujocoWorld
+    from softpad.sim import MujocoWorld, Placement, get_object
 
     # MuJoCo step with the charger (the heaviest object, most contacts) resting on the pad
     world = MujocoWorld()

@@ -6,10 +6,14 @@ a :class:`ValveCommand`. The simulated box (``sim://``, :class:`SimBox`) is the 
 ``zenoh://host:port[/prefix]`` (:class:`ZenohBox`) reaches a box served over zenoh by
 :class:`BoxDaemon` (``softpad box serve``) with the same interface; :class:`HardwareBox`
 drives the real Pneumaticbox (GPIO valves, IIO sensors). The hand-written ``tcp://``
-protocol of earlier versions is gone.
+protocol of earlier versions is gone. The simulated box is imported only when used
+(``sim://`` or one of its names below): ``import softpad.box`` on the box computer loads
+neither :mod:`softpad.sim` nor :mod:`softpad.fem`.
 Every back-end must pass :func:`check_conformance`; :class:`BoxWrapper` is the base of views
 that add something around a box (a hook around reads, an event per valve command).
 """
+
+from typing import TYPE_CHECKING, Any
 
 from softpad.box._base import Box, ConnectionLost, PressureFrame, ValveCommand
 from softpad.box._conformance import ConformanceError, check_conformance
@@ -24,9 +28,27 @@ from softpad.box._hardware import (
 from softpad.box._link import MAX_PAYLOAD_BYTES, StampedFrame, decode_frame, encode_frame
 from softpad.box._registry import DEFAULT_URL, backends, open_box, parse_url, register_backend
 from softpad.box._safety import RATED_MAX_PRESSURE_PA, SafetyGuard, SafetyLimits, SafetyTrip
-from softpad.box._sim import FAULT_KINDS, Fault, SimBox, open_sim_url
 from softpad.box._wrapper import BoxWrapper
 from softpad.box._zenoh import ControlRefused, ZenohBox, open_zenoh_url
+
+if TYPE_CHECKING:
+    from softpad.box._sim import FAULT_KINDS, Fault, SimBox, open_sim_url
+
+#: Names of the simulated box, imported from ``softpad.box._sim`` on first use.
+_SIMULATED = ("FAULT_KINDS", "Fault", "SimBox", "open_sim_url")
+
+
+def __getattr__(name: str) -> Any:
+    if name in _SIMULATED:
+        from softpad.box import _sim
+
+        value = getattr(_sim, name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'softpad.box' has no attribute {name!r}")
+
+
+from softpad.box._credentials import daemon_auth
 
 __all__ = [
     "DEFAULT_URL",
@@ -55,6 +77,7 @@ __all__ = [
     "ZenohBox",
     "backends",
     "check_conformance",
+    "daemon_auth",
     "decode_frame",
     "encode_frame",
     "guard_box",

@@ -28,15 +28,22 @@ def backends() -> tuple[str, ...]:
     return tuple(sorted(set(_BACKENDS) | {ep.name for ep in entry_points(group=ENTRY_POINT_GROUP)}))
 
 
+def _open_sim(location: str, options: dict[str, str]) -> Box:
+    """``sim://``: the simulator is imported only when a simulated box is opened."""
+    from softpad.box._sim import open_sim_url
+
+    return open_sim_url(location, options)
+
+
+def _open_zenoh(location: str, options: dict[str, str]) -> Box:
+    from softpad.box._zenoh import open_zenoh_url
+
+    return open_zenoh_url(location, options)
+
+
 def _ensure_builtin() -> None:
-    if "sim" not in _BACKENDS:
-        from softpad.box._sim import open_sim_url
-
-        register_backend("sim", open_sim_url)
-    if "zenoh" not in _BACKENDS:
-        from softpad.box._zenoh import open_zenoh_url
-
-        register_backend("zenoh", open_zenoh_url)
+    _BACKENDS.setdefault("sim", _open_sim)
+    _BACKENDS.setdefault("zenoh", _open_zenoh)
 
 
 #: Entry-point group through which installed packages offer box back-ends by URL scheme (the

@@ -19,15 +19,21 @@ from softpad import thesis
 from softpad.box._base import Box, ConnectionLost, PressureFrame, ValveCommand
 from softpad.errors import InputError
 from softpad.layout import PadLayout, parse_layout
-from softpad.sim import AnalyticWorld, SimGripper, World, get_object
-from softpad.sim._characteristic import (
+from softpad.sim import (
     AnalyticCharacteristic,
+    AnalyticWorld,
+    ChamberBank,
+    DisturbanceParams,
+    Disturbances,
     ModuleCharacteristic,
+    PneumaticParams,
+    SensorBank,
+    SensorParams,
+    SimGripper,
+    World,
     default_characteristic,
+    get_object,
 )
-from softpad.sim._disturbances import DisturbanceParams, Disturbances
-from softpad.sim._pneumatics import ChamberBank, PneumaticParams
-from softpad.sim._sensor import SensorBank, SensorParams
 
 #: (inflation valve open, deflation valve open) for each command.
 _VALVE_OPEN = {

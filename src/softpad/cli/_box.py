@@ -358,8 +358,7 @@ def stats(args: argparse.Namespace) -> int:
 
 
 def _daemon_for(args: argparse.Namespace) -> Any:
-    from softpad.box import BoxDaemon, HardwareBox, SimBox, open_box
-    from softpad.box._credentials import daemon_auth
+    from softpad.box import BoxDaemon, HardwareBox, daemon_auth, open_box
     from softpad.config import Installation, check_endpoint, check_remote_policy, load_installation
     from softpad.errors import InputError
 
@@ -385,11 +384,7 @@ def _daemon_for(args: argparse.Namespace) -> Any:
         )
     box = HardwareBox(inst.box) if args.hardware else open_box(_sim_url(args))
     try:
-        services = {}
-        if isinstance(box, SimBox):  # the world and robot too, so 'softpad run' works over zenoh
-            from softpad.harness import simulation_extensions
-
-            services = simulation_extensions(box)
+        services = {} if args.hardware else _simulation_services(box)
         return BoxDaemon(
             box,
             link.listen,
@@ -427,6 +422,18 @@ def _sim_url(args: argparse.Namespace) -> str:
     if "rate_hz" in parse_url(url)[2]:
         raise InputError("give the rate once: --rate-hz or the URL's rate_hz")
     return url + ("&" if "?" in url else "?") + f"rate_hz={rate:g}"
+
+
+def _simulation_services(box: Any) -> dict[str, Any]:
+    """A simulated box's world and robot as services, so 'softpad run' works over zenoh (the
+    simulator is imported only for a box that is not the hardware)."""
+    from softpad.box import SimBox
+
+    if not isinstance(box, SimBox):
+        return {}
+    from softpad.harness import simulation_extensions
+
+    return simulation_extensions(box)
 
 
 def serve(args: argparse.Namespace) -> int:

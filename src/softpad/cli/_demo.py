@@ -44,8 +44,7 @@ def register(sub: Any) -> None:
 def run(args: argparse.Namespace) -> int:
     from softpad.cli._trials import check_counts, run_with_progress, trial_errors_exit
     from softpad.sim import get_object, object_names
-    from softpad.trials._records import errored_records
-    from softpad.trials._report import write_report
+    from softpad.trials import errored_records, write_report
 
     check_counts(args.trials, args.workers)
     out = check_output_dir(args.out, "--out", force=args.force)

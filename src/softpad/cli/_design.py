@@ -35,9 +35,18 @@ Sweep pad designs (grid, pitch, layer thickness, material, p0) for an object set
 them by grasp success, minimum detectable mass, detection delay and module count."""
 
 
-def register(sub: Any) -> None:
-    from softpad.design import EXAMPLE_SETS
+def _example_sets() -> list[str]:
+    """The packaged object sets (``softpad.design.EXAMPLE_SETS``), read from the package's
+    data so that building the parser imports neither the design layer nor the FEM."""
+    from importlib import resources
 
+    folder = resources.files("softpad").joinpath("data", "object_sets")
+    return sorted(
+        p.name.removesuffix(".toml") for p in folder.iterdir() if p.name.endswith(".toml")
+    )
+
+
+def register(sub: Any) -> None:
     p = add_command(
         sub,
         "design",
@@ -48,7 +57,7 @@ def register(sub: Any) -> None:
     )
     src = p.add_mutually_exclusive_group()
     src.add_argument(
-        "--example", metavar="NAME", help="packaged object set: " + ", ".join(EXAMPLE_SETS)
+        "--example", metavar="NAME", help="packaged object set: " + ", ".join(_example_sets())
     )
     src.add_argument("--objects", metavar="FILE.toml", help="object set file (docs/design.md)")
     p.add_argument(

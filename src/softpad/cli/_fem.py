@@ -304,7 +304,7 @@ def _check_outputs(args: argparse.Namespace) -> None:
 
 
 def _save_figure(fig: Any, path: Any) -> None:
-    from softpad.fem._results import save_figure
+    from softpad.fem import save_figure
 
     with atomic_path(path) as tmp:
         save_figure(fig, tmp)
@@ -725,7 +725,7 @@ def _characteristic(args: argparse.Namespace) -> int:
 
 
 def _characteristic_csv(result: Any, path: str) -> None:
-    from softpad.fem._results import write_csv
+    from softpad.fem import write_csv
 
     rows = []
     for i, p in enumerate(result.pressure_pa):
@@ -735,7 +735,7 @@ def _characteristic_csv(result: Any, path: str) -> None:
 
 
 def _response(args: argparse.Namespace) -> int:
-    from softpad.fem._response import (
+    from softpad.fem import (
         DEFAULT_RESPONSE_PRESSURES_PA,
         module_response,
         response_convergence,

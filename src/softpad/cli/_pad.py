@@ -132,7 +132,7 @@ def _open_sim(url: str) -> Any:
 
 
 def _probe(args: argparse.Namespace) -> int:
-    from softpad.sim._probe import probe_box
+    from softpad.sim import probe_box
 
     size = _footprint(args)
     with _open_sim(args.box) as box:
@@ -172,7 +172,7 @@ def _probe(args: argparse.Namespace) -> int:
 def _map(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from softpad.sim._probe import sealed_rise_map
+    from softpad.sim import sealed_rise_map
 
     size = _footprint(args)
     png = check_output(args.png, "--png", force=args.force, suffix=".png")

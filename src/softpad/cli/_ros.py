@@ -92,7 +92,7 @@ def run_node(args: argparse.Namespace) -> int:
 
 
 def run_arm_node(args: argparse.Namespace) -> int:
-    from softpad.ros._sim_arm import SimArmNode
+    from softpad.ros import SimArmNode
 
     node = SimArmNode(args.box, args.port, args.lose_arm_on)
     if args.json:

@@ -278,8 +278,9 @@ def run(args: argparse.Namespace) -> int:
         try:
             tee = Tee(log, recorder, live)
             parts = loop_parts(args, box, params, gripper or resolve_objects(names)[0].gripper)
-            if args.robot.partition("://")[0].lower() == "sim":
-                result = run_simulated(names, box, params, tee, gripper=gripper, **parts)
+            if args.robot.partition("://")[0].lower() == "sim" or _in_process(box):
+                robot = _robot(args.robot, box, gripper or resolve_objects(names)[0].gripper)
+                result = run_simulated(names, box, params, tee, gripper, robot, **parts)
             else:
                 from softpad.cli._ros import run_with_robot_url
 
@@ -295,6 +296,24 @@ def run(args: argparse.Namespace) -> int:
                     r.close()
             _save_png(log, png_path, names)
     return _report(args, log, result, names, png_path, record_path)
+
+
+def _in_process(box: Any) -> bool:
+    from softpad.box import SimBox
+
+    return isinstance(box, SimBox)
+
+
+def _robot(url: str, box: Any, mounting: str) -> Any:
+    """The ``--robot`` on an in-process simulated box: None for plain ``sim://`` (the run's
+    own simulated arm, with its ground truth), else the robot registry's."""
+    from softpad.control import make_robot
+    from softpad.layout import GripperSpec
+
+    if url.rstrip("/").lower() == "sim:":
+        return None
+    gripper = GripperSpec.from_mounting(mounting)
+    return make_robot(url, box=box, layout=box_layout(box), gripper=gripper)
 
 
 def _report(args: Any, log: Any, result: Any, names: list[str], png: Any, record: Any) -> int:

@@ -227,8 +227,7 @@ def run(args: argparse.Namespace) -> int:
             "--record takes one seed at a time (trial files are named by object and trial)"
         )
     check_trial_recordings(args.record, specs, args.trials, args.force)
-    from softpad.trials import ExperimentResult
-    from softpad.trials._records import errored_records
+    from softpad.trials import ExperimentResult, errored_records
 
     done: list[Any] = []
     finished: list[dict[str, Any]] = []
@@ -274,8 +273,7 @@ def _config(args: argparse.Namespace) -> Any:
 def _run_on_dask(args: argparse.Namespace, specs: list[Any], seeds: list[int]) -> int:
     """``--scheduler``: every seed's trials as Dask tasks (softpad.design's client), pooled."""
     from softpad.design import check_scheduler_address, run_experiment_on_dask
-    from softpad.trials import ExperimentResult
-    from softpad.trials._records import errored_records
+    from softpad.trials import ExperimentResult, errored_records
 
     if args.record:
         raise InputError("--record is not available with --scheduler (trials run on Dask workers)")

@@ -58,7 +58,15 @@ from softpad.fem._response import (
     module_response,
     response_convergence,
 )
-from softpad.fem._response_table import ModuleResponse
+from softpad.fem._response_table import (
+    PACKAGED_RESPONSE,
+    PRESSURE_STEP_PA,
+    RESPONSE_STEP_M,
+    RESPONSE_VERSION,
+    ModuleResponse,
+    rect_points,
+)
+from softpad.fem._results import save_figure, write_csv
 from softpad.fem._studies import (
     DesignResult,
     InflationResult,
@@ -82,6 +90,10 @@ __all__ = [
     "DEFAULT_WIDTH_M",
     "MATERIAL_PRESETS",
     "MODEL_NAMES",
+    "PACKAGED_RESPONSE",
+    "PRESSURE_STEP_PA",
+    "RESPONSE_STEP_M",
+    "RESPONSE_VERSION",
     "ChamberResult",
     "ComparisonResult",
     "ConvergenceError",
@@ -111,8 +123,11 @@ __all__ = [
     "module_response",
     "plate_center_deflection_m",
     "read_measurements",
+    "rect_points",
     "response_convergence",
+    "save_figure",
     "sealed_chamber_study",
     "sensitive_area_study",
     "stiffness_study",
+    "write_csv",
 ]

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from softpad.box import Box, SimBox, ZenohBox, open_box
-from softpad.control import ExecutionParams, ExecutionResult, GraspExecution, Recorder
+from softpad.control import ExecutionParams, ExecutionResult, GraspExecution, Recorder, Robot
 from softpad.errors import InputError
 from softpad.harness._remote import RemoteRobot, has_simulation
 from softpad.harness._robot import SimulatedRobot, TouchTruth
@@ -94,6 +94,7 @@ def run_simulated(
     params: ExecutionParams | None = None,
     recorder: Recorder | None = None,
     gripper: str | None = None,
+    robot: Robot | None = None,
     **parts: Any,
 ) -> SimulatedRun:
     """Run the loop once on a simulated box with catalogue objects placed as in the thesis.
@@ -114,6 +115,10 @@ def run_simulated(
     gripper
         Gripper mounting ``"10/4"``, ``"6/2"`` or ``"4/0"``; by default the first object's
         mounting in the catalogue (the thesis mounted the gripper per object, Section 6.3).
+    robot
+        The arm on an in-process simulated box (:func:`softpad.control.make_robot`, e.g. a
+        registered ``--robot`` URL); None: :class:`SimulatedRobot` on the box's world. The
+        touches' ground truth comes from a :class:`SimulatedRobot` (or a subclass) only.
     parts
         ``planner``, ``object_detector``, ``contact_detector`` for :class:`GraspExecution`.
 
@@ -134,17 +139,19 @@ def run_simulated(
         world = b.world
         if isinstance(world, AnalyticWorld):
             world.gripper = SimGripper.mounting(mounting)
-        robot = SimulatedRobot(world)
+        arm = SimulatedRobot(world) if robot is None else robot
 
         def place() -> None:
             for s in specs:
                 world.place_object(s)
 
         loop = GraspExecution(
-            b, robot, world.layout, params, recorder=recorder, place_objects=place, **parts
+            b, arm, world.layout, params, recorder=recorder, place_objects=place, **parts
         )
         result = loop.run()
-        return SimulatedRun(result, tuple(robot.touches))
+        if isinstance(arm, SimulatedRobot):
+            return SimulatedRun(result, tuple(arm.touches))
+        return SimulatedRun(result, tuple(TouchTruth(None, None) for _ in result.grasps))
     finally:
         if owns:
             b.close()

@@ -36,13 +36,11 @@ from softpad.planning._plan import ThesisPlanner
 from softpad.planning._records import GraspPlan
 from softpad.planning._thesis_rules import diagonal_linked_plan, linked_three
 from softpad.sensing import (
-    DEFAULT_OUTLINE_THRESHOLD_PA,
-    outline_objects,
-)
-from softpad.sensing._objects import (
     DEFAULT_OBJECT_THRESHOLD_PA,
+    DEFAULT_OUTLINE_THRESHOLD_PA,
     check_increments,
     check_threshold,
+    outline_objects,
 )
 
 #: Width of the bonded, non-sensitive seam between two chambers that the planner assumes, m.

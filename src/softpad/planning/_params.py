@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 from softpad import thesis
 from softpad.errors import InputError
-from softpad.sensing._objects import DEFAULT_OBJECT_THRESHOLD_PA, check_threshold
+from softpad.sensing import DEFAULT_OBJECT_THRESHOLD_PA, check_threshold
 
 #: c_s in the thesis: safety shift for corner-shaped objects, module units (Section 6.2.1.3).
 DEFAULT_SAFETY_SHIFT = thesis.SAFETY_SHIFT

@@ -12,7 +12,7 @@ from softpad.layout import PadLayout, parse_layout
 from softpad.planning._params import PlannerParams
 from softpad.planning._records import GraspPlan
 from softpad.planning._thesis_rules import plan_with_rules
-from softpad.sensing._objects import check_increments, increments_list
+from softpad.sensing import check_increments, increments_list
 
 
 @runtime_checkable

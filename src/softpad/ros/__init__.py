@@ -5,6 +5,8 @@ it lazily, so ``import softpad.ros`` works without ROS. docs/ros.md has the topi
 the arm contract and the frames.
 """
 
+from typing import TYPE_CHECKING, Any
+
 from softpad.ros._arm import (
     ARM_COMMAND_TOPIC,
     ARM_STATE_TOPIC,
@@ -16,6 +18,19 @@ from softpad.ros._node import CONFIG_KEYS, NodeConfig, PadNode, load_config
 from softpad.ros._rospy_path import INSTALL_HINT, ROS_MODULES, ensure_rospy, rospy_available
 from softpad.ros._run import run_with_robot
 
+if TYPE_CHECKING:
+    from softpad.ros._sim_arm import SimArmNode
+
+
+def __getattr__(name: str) -> Any:
+    """:class:`SimArmNode` is imported on first use (it needs the simulated box)."""
+    if name == "SimArmNode":
+        from softpad.ros._sim_arm import SimArmNode
+
+        return SimArmNode
+    raise AttributeError(f"module 'softpad.ros' has no attribute {name!r}")
+
+
 __all__ = [
     "ARM_COMMAND_TOPIC",
     "ARM_STATE_TOPIC",
@@ -25,6 +40,7 @@ __all__ = [
     "NodeConfig",
     "PadNode",
     "Ros1Robot",
+    "SimArmNode",
     "ensure_rospy",
     "load_config",
     "open_robot",

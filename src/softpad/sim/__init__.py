@@ -25,7 +25,7 @@ from softpad.sim._footprint import (
     fingertip_overlap,
     object_footprint,
 )
-from softpad.sim._mujoco_model import MujocoGripper, PadPhysics
+from softpad.sim._mujoco_model import MujocoGripper, PadPhysics, parse_mounting
 from softpad.sim._mujoco_world import GripperContacts, MujocoWorld, ObjectPose
 from softpad.sim._objects import (
     CATALOGUE_SCHEMA,
@@ -38,6 +38,7 @@ from softpad.sim._objects import (
     object_names,
 )
 from softpad.sim._pneumatics import ChamberBank, PneumaticParams
+from softpad.sim._probe import probe_box, sealed_rise_map
 from softpad.sim._response import (
     ModuleResponse,
     PadResponse,
@@ -99,5 +100,8 @@ __all__ = [
     "object_names",
     "packaged_response_path",
     "packaged_table_path",
+    "parse_mounting",
+    "probe_box",
+    "sealed_rise_map",
     "sealed_sensitivity_pa_n",
 ]

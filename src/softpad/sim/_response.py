@@ -26,7 +26,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from softpad.errors import InputError
-from softpad.fem._response_table import (
+from softpad.fem import (
     PACKAGED_RESPONSE,
     PRESSURE_STEP_PA,
     RESPONSE_STEP_M,

@@ -29,7 +29,9 @@ from softpad.trials._records import (
     ExperimentResult,
     ObjectSummary,
     TrialResult,
+    errored_records,
 )
+from softpad.trials._report import write_report
 from softpad.trials._runner import (
     errored_trial,
     perturbed_placement,
@@ -56,6 +58,7 @@ __all__ = [
     "ValidationResult",
     "calibrate",
     "compare",
+    "errored_records",
     "errored_trial",
     "idle_false_alarms_per_hour",
     "merge_comparisons",
@@ -70,4 +73,5 @@ __all__ = [
     "trial_seed",
     "validate",
     "wilson_interval",
+    "write_report",
 ]

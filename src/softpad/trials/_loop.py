@@ -118,10 +118,13 @@ class _Trial:
         from softpad.box import SafetyLimits, SimBox
         from softpad.harness import SimulatedRobot
         from softpad.layout import GripperSpec, PadLayout
-        from softpad.sim import PadResponse
-        from softpad.sim._mujoco_model import MujocoGripper, parse_mounting
-        from softpad.sim._mujoco_world import MujocoWorld
-        from softpad.sim._sensor import SensorParams
+        from softpad.sim import (
+            MujocoGripper,
+            MujocoWorld,
+            PadResponse,
+            SensorParams,
+            parse_mounting,
+        )
 
         self.spec, self.config, self.opening_m = spec, config, opening_m
         self.truth = spec if truth is None else truth
