@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any
 
 from softpad.box._base import Box, ConnectionLost, PressureFrame, ValveCommand
 from softpad.box._conformance import ConformanceError, check_conformance
+from softpad.box._credentials import daemon_auth
 from softpad.box._daemon import BoxDaemon, guard_box
 from softpad.box._hardware import (
     FakeValveLines,
@@ -47,8 +48,6 @@ def __getattr__(name: str) -> Any:
         return value
     raise AttributeError(f"module 'softpad.box' has no attribute {name!r}")
 
-
-from softpad.box._credentials import daemon_auth
 
 __all__ = [
     "DEFAULT_URL",

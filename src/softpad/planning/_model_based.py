@@ -43,8 +43,7 @@ from softpad.errors import InputError
 from softpad.layout import GripperSpec, PadLayout
 from softpad.planning._pcom import pcom
 from softpad.planning._records import GraspPlan
-from softpad.sensing import DEFAULT_OUTLINE_THRESHOLD_PA, outline_objects
-from softpad.sensing._objects import check_increments
+from softpad.sensing import DEFAULT_OUTLINE_THRESHOLD_PA, check_increments, outline_objects
 
 Array = NDArray[np.float64]
 
