@@ -126,6 +126,11 @@ def _read_frame(path: str) -> tuple[list[float], list[float] | None]:
         raise InputError(
             f"frame file {path!r} needs key delta_kpa, or pressures_kpa and reference_kpa"
         )
+    return _csv_frame(path, stripped)
+
+
+def _csv_frame(path: str, stripped: str) -> tuple[list[float], list[float] | None]:
+    """A CSV frame file's (values_pa, reference_pa or None)."""
     try:  # newline="" semantics: a lone \r ends a line as \n does
         rows = [
             r for r in csv.reader(io.StringIO(stripped, newline=None)) if any(c.strip() for c in r)
@@ -198,7 +203,6 @@ def _check_increment_range(delta_pa: list[float], source: str) -> None:
 def run(args: argparse.Namespace) -> int:
     from softpad.layout import parse_layout
     from softpad.planning import PlannerParams, format_plans
-    from softpad.sensing import increments
 
     try:
         layout = parse_layout(args.layout, pitch_m=args.pitch_mm / 1e3)
@@ -206,45 +210,8 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(f"--layout {args.layout!r}: {exc}") from None
     _check_planner(args.planner, args.gripper)
     png = check_output(args.png, "--png", force=args.force, suffix=".png")
-    reference: list[float] | None
-    source = "--delta" if args.delta is not None else f"--frame {args.frame!r}"
-    if args.pressures is not None:
-        source = "--pressures/--reference"
-    if args.reference is not None and args.pressures is None:
-        raise InputError(f"--reference goes with --pressures only, not with {source}")
-    if args.delta is not None:
-        values, reference = kpa_list(args.delta, "--delta"), None
-    elif args.pressures is not None:
-        if args.reference is None:
-            raise InputError("--pressures needs --reference (the pressures saved after inflation)")
-        values, reference = (
-            kpa_list(args.pressures, "--pressures"),
-            kpa_list(args.reference, "--reference"),
-        )
-    else:
-        try:
-            values, reference = _read_frame(args.frame)
-        except InputError as exc:
-            if repr(args.frame) in str(exc):
-                raise
-            raise InputError(f"frame file {args.frame!r}: {exc}") from None
-    if reference is not None:
-        _check_readings(values, "pressures")
-        _check_readings(reference, "reference")
-        if len(values) != layout.n_modules or len(reference) != layout.n_modules:
-            raise InputError(
-                f"--pressures/--reference: a {layout.name} pad needs {layout.n_modules} pressures "
-                f"and {layout.n_modules} reference values, got {len(values)} and {len(reference)}"
-            )
-        delta = list(increments(values, reference))
-    else:
-        if len(values) != layout.n_modules:
-            raise InputError(
-                f"{source}: a {layout.name} pad needs {layout.n_modules} increments "
-                f"(modules 1..{layout.n_modules}), got {len(values)}"
-            )
-        delta = values
-        _check_increment_range(delta, source)
+    source, values, reference = _readings(args)
+    delta = _increments(values, reference, layout, source)
     params = PlannerParams(
         object_threshold_pa=args.threshold_kpa * 1e3, safety_shift=args.safety_shift
     )
@@ -259,6 +226,53 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(format_plans(delta, plans, layout, params.object_threshold_pa))
     return 0
+
+
+def _readings(args: argparse.Namespace) -> tuple[str, list[float], list[float] | None]:
+    """Where the readings come from (for messages), the values and the reference (None for
+    increments), pascals."""
+    if args.reference is not None and args.pressures is None:
+        source = "--delta" if args.delta is not None else f"--frame {args.frame!r}"
+        raise InputError(f"--reference goes with --pressures only, not with {source}")
+    if args.delta is not None:
+        return "--delta", kpa_list(args.delta, "--delta"), None
+    if args.pressures is not None:
+        if args.reference is None:
+            raise InputError("--pressures needs --reference (the pressures saved after inflation)")
+        pressures = kpa_list(args.pressures, "--pressures")
+        return "--pressures/--reference", pressures, kpa_list(args.reference, "--reference")
+    try:
+        values, reference = _read_frame(args.frame)
+    except InputError as exc:
+        if repr(args.frame) in str(exc):
+            raise
+        raise InputError(f"frame file {args.frame!r}: {exc}") from None
+    return f"--frame {args.frame!r}", values, reference
+
+
+def _increments(
+    values: list[float], reference: list[float] | None, layout: Any, source: str
+) -> list[float]:
+    """The increments of every module, pascals, checked against the pad's module count."""
+    from softpad.sensing import increments
+
+    n = layout.n_modules
+    if reference is None:
+        if len(values) != n:
+            raise InputError(
+                f"{source}: a {layout.name} pad needs {n} increments (modules 1..{n}), "
+                f"got {len(values)}"
+            )
+        _check_increment_range(values, source)
+        return values
+    _check_readings(values, "pressures")
+    _check_readings(reference, "reference")
+    if len(values) != n or len(reference) != n:
+        raise InputError(
+            f"--pressures/--reference: a {layout.name} pad needs {n} pressures "
+            f"and {n} reference values, got {len(values)} and {len(reference)}"
+        )
+    return list(increments(values, reference))
 
 
 def _planner_help() -> str:

@@ -136,25 +136,37 @@ def run_simulated(
             return _run_remote(b, specs, mounting, params, recorder, parts)
         if not isinstance(b, SimBox):
             raise InputError(f"{_REMOTE_WORLD} (got a {type(b).__name__})")
-        world = b.world
-        if isinstance(world, AnalyticWorld):
-            world.gripper = SimGripper.mounting(mounting)
-        arm = SimulatedRobot(world) if robot is None else robot
-
-        def place() -> None:
-            for s in specs:
-                world.place_object(s)
-
-        loop = GraspExecution(
-            b, arm, world.layout, params, recorder=recorder, place_objects=place, **parts
-        )
-        result = loop.run()
-        if isinstance(arm, SimulatedRobot):
-            return SimulatedRun(result, tuple(arm.touches))
-        return SimulatedRun(result, tuple(TouchTruth(None, None) for _ in result.grasps))
+        return _run_local(b, specs, mounting, params, recorder, robot, parts)
     finally:
         if owns:
             b.close()
+
+
+def _run_local(
+    box: SimBox,
+    specs: list[ObjectSpec],
+    mounting: str,
+    params: ExecutionParams | None,
+    recorder: Recorder | None,
+    robot: Robot | None,
+    parts: dict[str, Any],
+) -> SimulatedRun:
+    world = box.world
+    if isinstance(world, AnalyticWorld):
+        world.gripper = SimGripper.mounting(mounting)
+    arm = SimulatedRobot(world) if robot is None else robot
+
+    def place() -> None:
+        for s in specs:
+            world.place_object(s)
+
+    loop = GraspExecution(
+        box, arm, world.layout, params, recorder=recorder, place_objects=place, **parts
+    )
+    result = loop.run()
+    if isinstance(arm, SimulatedRobot):
+        return SimulatedRun(result, tuple(arm.touches))
+    return SimulatedRun(result, tuple(TouchTruth(None, None) for _ in result.grasps))
 
 
 def _run_remote(
