@@ -73,6 +73,28 @@ def register(sub: Any) -> None:
     )
     add_thesis_params(p)
     add_part_options(p)
+    _add_attempt_options(p)
+    p.add_argument(
+        "--config",
+        metavar="FILE.toml",
+        help="installation file: thresholds (p0, t_adj, t_o, t_g, window, maximum), gripper and "
+        "box link; the options above given on the command line win",
+    )
+    p.add_argument("--png", metavar="FILE.png", help="draw the pressure traces with the phases")
+    p.add_argument("--plot", action=Renamed, new="--png FILE.png")
+    add_record_option(p)
+    p.add_argument(
+        "--foxglove",
+        type=int,
+        metavar="PORT",
+        help="serve the run live to Foxglove on ws://127.0.0.1:PORT (0: a free port)",
+    )
+    p.set_defaults(handler=run)
+
+
+def _add_attempt_options(p: argparse.ArgumentParser) -> None:
+    """What the loop does after a landing on the object: retries, the landing height, the
+    carried objects (docs/beat-the-thesis.md)."""
     add_integer(
         p,
         "--max-attempts",
@@ -108,22 +130,6 @@ def register(sub: Any) -> None:
         "unloaded while it was held: they went up with it (one object seen as two, a banana "
         "on its ends; default: on, with a planner that has a retry)",
     )
-    p.add_argument(
-        "--config",
-        metavar="FILE.toml",
-        help="installation file: thresholds (p0, t_adj, t_o, t_g, window, maximum), gripper and "
-        "box link; the options above given on the command line win",
-    )
-    p.add_argument("--png", metavar="FILE.png", help="draw the pressure traces with the phases")
-    p.add_argument("--plot", action=Renamed, new="--png FILE.png")
-    add_record_option(p)
-    p.add_argument(
-        "--foxglove",
-        type=int,
-        metavar="PORT",
-        help="serve the run live to Foxglove on ws://127.0.0.1:PORT (0: a free port)",
-    )
-    p.set_defaults(handler=run)
 
 
 def _add_robot_option(p: argparse.ArgumentParser) -> None:
