@@ -13,9 +13,12 @@ from pathlib import Path
 
 import pytest
 
-from softpad.planning import PLANNERS
+from softpad.planning import available_planners
 
 DATA = Path(__file__).parents[1] / "data"
+#: The built-in planners (tests/data/make_plan_regression.py's BUILT_IN), all registered.
+PLANNERS = ("thesis", "gripper-aware", "model-based")
+assert set(PLANNERS) <= set(available_planners())
 DOC = json.loads((DATA / "plan_regression.json").read_text(encoding="utf-8"))
 
 

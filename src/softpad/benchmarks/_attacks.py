@@ -39,8 +39,7 @@ class _Scene:
     def __init__(self) -> None:
         import zenoh
 
-        from softpad.box import BoxDaemon, ZenohBox, open_box
-        from softpad.box._link import session_config
+        from softpad.box import BoxDaemon, ZenohBox, open_box, session_config
         from softpad.harness import simulation_extensions
 
         port = _free_port()
@@ -74,7 +73,7 @@ class _Scene:
         inflate_and_adjust(self.ctl, 6, InflationParams(target_pa=1100.0))
 
     def ask(self, key: str, payload: bytes) -> dict[str, Any]:
-        from softpad.box._link import decode_request
+        from softpad.box import decode_request
 
         for r in self.bad.get(f"softpad/box/{key}", payload=payload, timeout=5.0):
             if r.ok is not None:
@@ -92,7 +91,7 @@ class _Scene:
 
 
 def _forged_commands(s: _Scene) -> tuple[float, str]:
-    from softpad.box._link import encode_json
+    from softpad.box import encode_json
 
     cid = s.ctl.client_id
     ok = 0
@@ -106,7 +105,7 @@ def _forged_commands(s: _Scene) -> tuple[float, str]:
 
 
 def _forged_release_take(s: _Scene) -> tuple[float, str]:
-    from softpad.box._link import encode_json
+    from softpad.box import encode_json
 
     cid = s.ctl.client_id
     ok = sum(
@@ -121,7 +120,7 @@ def _forged_release_take(s: _Scene) -> tuple[float, str]:
 def _frozen_controller(s: _Scene) -> tuple[float, str]:
     """Controller inflating then frozen; attacker holds a token in its name and sends
     forged heartbeats. Figure: seconds from its last authentic heartbeat to the trip."""
-    from softpad.box._link import encode_json
+    from softpad.box import encode_json
 
     for ch in range(1, 7):
         s.ctl.set_valve(ch, "inflate")
@@ -141,9 +140,7 @@ def _frozen_controller(s: _Scene) -> tuple[float, str]:
 
 
 def _forged_frames(s: _Scene) -> tuple[float, str]:
-    from softpad.box._auth import seal_frame
-    from softpad.box._base import PressureFrame
-    from softpad.box._link import encode_frame
+    from softpad.box import PressureFrame, encode_frame, seal_frame
 
     s.ctl.take_control()
     bad = PressureFrame(0.0, np.full(8, np.nan), 1e4)
@@ -161,7 +158,7 @@ def _forged_frames(s: _Scene) -> tuple[float, str]:
 
 
 def _replayed_commands(s: _Scene) -> tuple[float, str]:
-    from softpad.box._link import encode_json
+    from softpad.box import encode_json
 
     sealer = s.ctl._sealer
     if sealer is None:

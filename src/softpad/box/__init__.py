@@ -15,6 +15,7 @@ that add something around a box (a hook around reads, an event per valve command
 
 from typing import TYPE_CHECKING, Any
 
+from softpad.box._auth import seal_frame
 from softpad.box._base import Box, ConnectionLost, PressureFrame, ValveCommand
 from softpad.box._conformance import ConformanceError, check_conformance
 from softpad.box._credentials import daemon_auth
@@ -26,7 +27,15 @@ from softpad.box._hardware import (
     IIOReader,
     ValveLines,
 )
-from softpad.box._link import MAX_PAYLOAD_BYTES, StampedFrame, decode_frame, encode_frame
+from softpad.box._link import (
+    MAX_PAYLOAD_BYTES,
+    StampedFrame,
+    decode_frame,
+    decode_request,
+    encode_frame,
+    encode_json,
+    session_config,
+)
 from softpad.box._registry import DEFAULT_URL, backends, open_box, parse_url, register_backend
 from softpad.box._safety import RATED_MAX_PRESSURE_PA, SafetyGuard, SafetyLimits, SafetyTrip
 from softpad.box._wrapper import BoxWrapper
@@ -78,11 +87,15 @@ __all__ = [
     "check_conformance",
     "daemon_auth",
     "decode_frame",
+    "decode_request",
     "encode_frame",
+    "encode_json",
     "guard_box",
     "open_box",
     "open_sim_url",
     "open_zenoh_url",
     "parse_url",
     "register_backend",
+    "seal_frame",
+    "session_config",
 ]

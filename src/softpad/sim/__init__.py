@@ -43,6 +43,7 @@ from softpad.sim._response import (
     ModuleResponse,
     PadResponse,
     default_response,
+    operating_pressure,
     packaged_response_path,
 )
 from softpad.sim._sensor import SensorBank, SensorParams
@@ -98,6 +99,7 @@ __all__ = [
     "nominal_uncertain",
     "object_footprint",
     "object_names",
+    "operating_pressure",
     "packaged_response_path",
     "packaged_table_path",
     "parse_mounting",

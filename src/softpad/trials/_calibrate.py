@@ -252,8 +252,7 @@ def predicted_increments(
     one gas-law step of sealed chambers on the module characteristic (the probe's
     :func:`softpad.sim._probe.sealed_rise_map`, vectorised over the steps), at the steps'
     median operating pressure."""
-    from softpad.sim import ChamberBank, default_characteristic
-    from softpad.sim._response import operating_pressure
+    from softpad.sim import ChamberBank, default_characteristic, operating_pressure
 
     r = scaled_pad_response(response_scale, seam_width_m)
     p = float(np.median([s.reference_pa for s in steps]))
