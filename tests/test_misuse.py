@@ -97,7 +97,7 @@ CLI_CASES = {
 def test_cli_misuse_exits_2_naming_the_value(case):
     argv, words = CLI_CASES[case]
     r = subprocess.run(
-        [sys.executable, "-m", "softpad.cli.main", *argv],
+        [sys.executable, "-m", "softpad", *argv],
         capture_output=True,
         text=True,
         timeout=120,
@@ -112,7 +112,7 @@ def test_a_frame_file_with_both_increments_and_pressures_is_refused(tmp_path):
     f = tmp_path / "frame.json"
     f.write_text('{"delta_kpa": [0,0,0,0,0,0], "pressures_kpa": [1,1,1,1,1,1]}')
     r = subprocess.run(
-        [sys.executable, "-m", "softpad.cli.main", "plan", "--frame", str(f)],
+        [sys.executable, "-m", "softpad", "plan", "--frame", str(f)],
         capture_output=True,
         text=True,
         timeout=120,

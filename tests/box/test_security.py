@@ -417,7 +417,7 @@ def test_cli_serves_with_user_password_from_the_installation_file(
         [
             sys.executable,
             "-m",
-            "softpad.cli.main",
+            "softpad",
             "box",
             "serve",
             "--sim",

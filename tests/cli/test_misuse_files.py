@@ -16,7 +16,7 @@ DATA = Path(__file__).resolve().parents[1] / "data"
 
 def softpad(*argv: str) -> subprocess.CompletedProcess[str]:
     return subprocess.run(
-        [sys.executable, "-m", "softpad.cli.main", *argv],
+        [sys.executable, "-m", "softpad", *argv],
         capture_output=True,
         text=True,
         timeout=300,
