@@ -193,8 +193,7 @@ def _service_flood(s: _Scene) -> tuple[float, str]:
 def _impostor(s: _Scene) -> tuple[float, str]:
     """An impostor queryable on ``valves`` acknowledges everything: the controller's
     commands must still reach the box. Figure: commands that did not reach it."""
-    from softpad.box import ValveCommand
-    from softpad.box import encode_json
+    from softpad.box import ValveCommand, encode_json
 
     fake = encode_json({"ok": True, "valves": ["closed"] * 8})
     q = s.bad.declare_queryable("softpad/box/valves", lambda q: q.reply(q.key_expr, fake))
