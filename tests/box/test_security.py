@@ -36,7 +36,9 @@ class _Attacker:
     def __init__(self, url: str, prefix: str = "softpad/box") -> None:
         import zenoh
 
-        port = int(url.rsplit(":", 1)[1])
+        from urllib.parse import urlsplit
+
+        port = urlsplit(url).port
         self.s = zenoh.open(session_config("client", connect=(f"tcp/127.0.0.1:{port}",)))
         self.p = prefix
 
