@@ -34,9 +34,9 @@ class _Attacker:
     """A plain zenoh client on the daemon's endpoint: queries and publishes what it likes."""
 
     def __init__(self, url: str, prefix: str = "softpad/box") -> None:
-        import zenoh
-
         from urllib.parse import urlsplit
+
+        import zenoh
 
         port = urlsplit(url).port
         self.s = zenoh.open(session_config("client", connect=(f"tcp/127.0.0.1:{port}",)))
