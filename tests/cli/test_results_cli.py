@@ -3,6 +3,7 @@ the command of each."""
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import pytest
@@ -13,9 +14,11 @@ from softpad.cli.main import main
 
 @pytest.mark.slow
 @pytest.mark.mujoco
-def test_quick_results_file(tmp_path: Path) -> None:
+def test_quick_results_file(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     out = tmp_path / "results.md"
-    assert main(["results", "--quick", "--out", str(out), "--workers", "1"]) == 0
+    assert main(["results", "--quick", "--out", str(out), "--workers", "1", "--json"]) == 0
+    ran = json.loads(capsys.readouterr().out)
+    assert [r["exit"] for r in ran["results"]] == [0] * len(RESULTS)
     text = out.read_text()
     for key in ("- commit: ", "- date: ", "- machine: ", "- size: quick"):
         assert key in text

@@ -23,6 +23,7 @@ from datetime import UTC, datetime
 from typing import Any
 
 from softpad.cli._args import add_command
+from softpad.cli._output import emit, say
 from softpad.errors import InputError
 
 _DESCRIPTION = """\
@@ -189,7 +190,7 @@ def register(sub: Any) -> None:
         "rerun every result the docs quote at this commit into docs/results.md",
         _DESCRIPTION,
         _EPILOG,
-        json=None,
+        json="print what was run (commit, size, file, each command's exit code and wall time)",
         force=True,
     )
     size = p.add_mutually_exclusive_group()
@@ -245,14 +246,17 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(f"--workers must be from 1 to 256, got {args.workers}")
     size = "quick" if args.quick else "full" if args.full else "default"
     started = datetime.now(UTC)
-    sections, failed = [], 0
+    sections, failed, ran = [], 0, []
     for spec in RESULTS:
         argv = list({"quick": spec.quick, "full": spec.full, "default": spec.argv}[size])
         if args.workers is not None and argv[0] in ("validate", "compare"):
             argv += ["--workers", str(args.workers)]
-        print(f"softpad results: {spec.name}: softpad {' '.join(argv)}", flush=True)
+        say(f"softpad results: {spec.name}: softpad {' '.join(argv)}", args.json)
         rc, doc, err, wall = run_result(argv)
         failed += rc != 0 or doc is None
+        ran.append(
+            {"name": spec.name, "command": ["softpad", *argv], "exit": rc, "wall_s": round(wall, 1)}
+        )
         body = spec.figures(doc) if rc == 0 and doc else [f"**failed (exit {rc})**: `{err}`"]
         sections += [
             f"## {spec.name}",
@@ -283,7 +287,9 @@ def run(args: argparse.Namespace) -> int:
         "",
     ]
     write_text_atomic(out, "\n".join(head + sections))
-    print(f"softpad results: written to {out}", flush=True)
+    say(f"softpad results: written to {out}", args.json)
+    if args.json:
+        emit({"commit": _commit(), "size": size, "out": str(out), "results": ran})
     return 1 if failed else 0
 
 
