@@ -163,6 +163,25 @@ def test_node_publishes_pressures_diagnostics_and_the_plan(procs: _Procs) -> Non
     assert 'child_frame_id: "softpad"' in tf and 'child_frame_id: "softpad_module_6"' in tf
 
 
+def test_node_plans_with_the_registered_parts_by_name(procs: _Procs) -> None:
+    """``ros node --planner model-based --detector cusum``: the plan service answers with the
+    registered planner's plans (the same part ``softpad run --planner`` makes), and the
+    CUSUM sees no contact on an untouched pad."""
+    node, log = procs.start(
+        "node", SOFTPAD, "ros", "node", "--box", "sim://", "--place", "object-5",
+        "--planner", "model-based", "--detector", "cusum",
+    )  # fmt: skip
+
+    def planned() -> str:
+        assert node.poll() is None, log.read_text()
+        r = procs.run("rosservice", "call", "/softpad/plan")
+        return r.stdout if "model-based" in r.stdout else ""
+
+    text = _wait(planned, 90.0, "a model-based plan from /softpad/plan")
+    assert "success: True" in text and "[1, 2, 3]" in text
+    assert "data: False" in _echo(procs, "/softpad/contact")
+
+
 def _arm(procs: _Procs, *extra: str) -> tuple[subprocess.Popen[bytes], Path, str]:
     arm, log = procs.start("arm", SOFTPAD, "sim", "arm-node", "--port", "0", *extra)
     url = _wait(

@@ -43,6 +43,7 @@ def register(sub: Any) -> None:
     )
     node.add_argument("--config", metavar="FILE.json", help="installation file (docs/ros.md)")
     add_box_option(node, None, "box URL (overrides the config; default sim://)")
+    _add_node_parts(node)
     node.add_argument(
         "--place",
         metavar="NAMES",
@@ -73,6 +74,17 @@ def register(sub: Any) -> None:
     arm.set_defaults(handler=run_arm_node)
 
 
+def _add_node_parts(node: Any) -> None:
+    """``--planner`` and ``--detector`` of the node, from the registries (default: the
+    installation file's, else the thesis's)."""
+    from softpad.cli._args import add_registry_option
+    from softpad.planning import PLANNER_REGISTRY
+    from softpad.sensing import CONTACT_DETECTOR_REGISTRY
+
+    add_registry_option(node, "--planner", PLANNER_REGISTRY, "grasp planner", None)
+    add_registry_option(node, "--detector", CONTACT_DETECTOR_REGISTRY, "contact detector", None)
+
+
 def run_node(args: argparse.Namespace) -> int:
     from softpad.ros import PadNode, load_config
 
@@ -82,6 +94,9 @@ def run_node(args: argparse.Namespace) -> int:
         changes["box"] = args.box
     if args.place:
         changes["place"] = args.place
+    for key in ("planner", "detector"):
+        if getattr(args, key):
+            changes[key] = getattr(args, key)
     node = PadNode(config.updated(changes))
     if args.json:
         print(json.dumps({"box": node.config.box, "layout": node.layout.name}), flush=True)

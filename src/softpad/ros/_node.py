@@ -1,9 +1,11 @@
 """``softpad ros node``: the pad as a ROS 1 node (rospy). Translation only.
 
 The node owns the box: it inflates and adjusts every module (:func:`softpad.control.
-inflate_and_adjust`), keeps the reference, reads every frame and publishes it, and plans with
-:func:`softpad.planning.plan_grasps` on the filtered increments once the objects on the pad have
-settled (and on request). Topics, services and parameters: docs/ros.md.
+inflate_and_adjust`), keeps the reference, reads every frame and publishes it, and plans on the
+filtered increments once the objects on the pad have settled (and on request). Its parts are the
+registered ones ``softpad run`` uses, by name (``planner``, ``detector``: the object detector,
+planner and contact detector of :mod:`softpad.sensing` and :mod:`softpad.planning`'s
+registries, made for the box's rate and the pad). Topics, services and parameters: docs/ros.md.
 """
 
 from __future__ import annotations
@@ -29,7 +31,7 @@ from softpad.layout import PadLayout, PadPose
 CONFIG_KEYS = (
     "box", "layout", "pad_x_m", "pad_y_m", "pad_z_m", "pad_yaw_rad", "base_frame",
     "object_threshold_pa", "contact_threshold_pa", "settle_s", "place", "place_after_s",
-    "ambient_pressure_pa",
+    "ambient_pressure_pa", "planner", "detector",
 )  # fmt: skip
 
 
@@ -58,6 +60,10 @@ class NodeConfig:
     ambient_pressure_pa
         Added to the gauge readings in ``sensor_msgs/FluidPressure`` (absolute), Pa (default
         the standard atmosphere, 101325 Pa).
+    planner, detector
+        The planner and contact detector by name (:func:`softpad.planning.available_planners`,
+        :func:`softpad.sensing.available_contact_detectors`), as ``softpad run --planner
+        --detector``.
     """
 
     box: str = "sim://"
@@ -70,6 +76,8 @@ class NodeConfig:
     place: tuple[str, ...] = ()
     place_after_s: float = 1.0
     ambient_pressure_pa: float = thesis.AMBIENT_PRESSURE_PA
+    planner: str = "thesis"
+    detector: str = "thesis"
 
     def updated(self, values: dict[str, Any]) -> NodeConfig:
         """This config with ``values`` (keys of :data:`CONFIG_KEYS`) applied, checked."""
@@ -89,14 +97,24 @@ class NodeConfig:
                 if v < 0:
                     raise InputError(f"{k} must be >= 0, got {v!r}")
                 out = replace(out, **{k: v})  # type: ignore[arg-type]
-        for k in ("box", "layout", "base_frame"):
+        for k in ("box", "layout", "base_frame", "planner", "detector"):
             if k in values:
                 out = replace(out, **{k: str(values[k])})  # type: ignore[arg-type]
+        _check_parts(out)
         if "place" in values:
             names = values["place"]
             names = names.split(",") if isinstance(names, str) else names
             out = replace(out, place=tuple(str(n) for n in names if n))
         return out
+
+
+def _check_parts(config: NodeConfig) -> None:
+    """The planner and detector are registered ones (InputError naming the known ones)."""
+    from softpad.planning import PLANNER_REGISTRY
+    from softpad.sensing import CONTACT_DETECTOR_REGISTRY
+
+    PLANNER_REGISTRY.factory(config.planner)
+    CONTACT_DETECTOR_REGISTRY.factory(config.detector)
 
 
 def _finite(key: str, v: object) -> float:
@@ -215,6 +233,7 @@ class PadNode:
         with open_box(self.config.box) as box:
             self.box = box
             try:
+                self._make_parts()
                 self._adjust()
                 self._place_later()
                 self._loop(max_frames)
@@ -223,6 +242,24 @@ class PadNode:
                 self._publish_diagnostics()
                 make_safe(box, self.n, DEFAULT_MAX_PRESSURE_PA)
                 raise
+
+    def _make_parts(self) -> None:
+        """The object detector, contact detector and planner from the registries, for the
+        box's sample rate and the pad (as ``softpad run`` makes them)."""
+        from softpad.planning import PlannerParams, planner_for
+        from softpad.sensing import make_contact_detector, make_object_detector
+
+        c, rate = self.config, float(self.box.sample_rate_hz)
+        thresholds = {
+            "contact_threshold_pa": c.contact_threshold_pa,
+            "object_threshold_pa": c.object_threshold_pa,
+        }
+        self.object_detector = make_object_detector("thesis", rate, self.layout, **thresholds)
+        self.contact_detector = make_contact_detector(c.detector, rate, self.layout, **thresholds)
+        params = PlannerParams(object_threshold_pa=c.object_threshold_pa)
+        self.planner = planner_for(
+            c.planner, None, params, self.contact_detector, rate, self.layout
+        )
 
     def _adjust(self) -> None:
         from softpad.control import inflate_and_adjust
@@ -236,7 +273,6 @@ class PadNode:
 
         self.reference_pa = np.asarray(reference_pa, dtype=float)
         self.increments = RunningAverage(thesis.FILTER_WINDOW)
-        self.touch = RunningAverage(thesis.FILTER_WINDOW)
         self.contact_ref: NDArray[np.float64] | None = None
         self._filtered = np.zeros(self.n)
         self.groups: list[tuple[int, ...]] = []
@@ -308,12 +344,10 @@ class PadNode:
         """Objects from the filtered increments; plan once a changed set has settled; contact."""
         from std_msgs.msg import Bool
 
-        from softpad.sensing import detect_objects
-
         assert self.reference_pa is not None
         d = self.increments.update(np.nan_to_num(p - self.reference_pa))
         self._filtered = d
-        groups = detect_objects(d, self.layout, self.config.object_threshold_pa)
+        groups = self.object_detector.objects(d, self.layout)
         if groups != self.groups:
             self.groups, self.changed_at = groups, self.last_t
         elif (
@@ -323,19 +357,16 @@ class PadNode:
             self._plan(d)
         contact = False
         if self.contact_ref is not None:
-            dt = self.touch.update(np.nan_to_num(p - self.contact_ref))
-            contact = bool(self.touch.full and (dt > self.config.contact_threshold_pa).any())
+            contact = bool(self.contact_detector.update(p))
         self.pub_contact.publish(Bool(contact))
 
     def _plan(self, increments_pa: NDArray[np.float64]) -> list[Any]:
-        from softpad.planning import PlannerParams, plan_grasps
-
-        params = PlannerParams(object_threshold_pa=self.config.object_threshold_pa)
-        plans = plan_grasps(increments_pa, self.layout, params)
+        objects = self.object_detector.objects(increments_pa, self.layout)
+        plans = self.planner.plan(increments_pa, objects, self.layout)
         self.planned_at = self.last_t
         assert self.reference_pa is not None
         self.contact_ref = self.reference_pa + increments_pa  # the pad with the objects on it
-        self.touch.reset()
+        self.contact_detector.reset(self.contact_ref)
         self._publish_plans(plans)
         return plans
 
