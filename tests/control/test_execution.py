@@ -320,14 +320,19 @@ def test_an_object_that_went_up_with_a_held_one_is_not_grasped_again() -> None:
     assert [g.outcome for g in r.grasps] == ["held", "held"]
 
 
-def test_the_thesis_planner_grasps_every_planned_object() -> None:
-    """With the thesis's planner (no retry) every plan is grasped, as in the thesis."""
+def test_carried_objects_are_dropped_for_every_planner() -> None:
+    """A loop feature, the same for a planner without a retry (the thesis's kind): the carried
+    ghost plan is not grasped (before issue 33 it was, so the thesis pair could hold a banana
+    on its first grasp and lose the run on its second); ``drop_carried=False`` grasps every
+    planned object, as the thesis does."""
 
     class Plain(_SplittingPlanner):
         retry = None  # type: ignore[assignment]
 
-    r, _ = _split_run(["object-1"], FAST, Plain())
     assert not isinstance(Plain(), RetryPlanner)
+    r, _ = _split_run(["object-1"], FAST, Plain())
+    assert [g.outcome for g in r.grasps] == ["held"] and r.grasps[0].carried_modules == (6,)
+    r, _ = _split_run(["object-1"], ExecutionParams(hold_s=1.0, drop_carried=False), Plain())
     assert len(r.grasps) == 2
 
 

@@ -145,10 +145,9 @@ class ExecutionParams(CheckedFields, what="execution"):
     #: After a grasp that held, skip the later planned objects whose modules all unloaded
     #: while it was held (read at the end of the hold, with the object detector): they went
     #: up with it, one object the pad showed as two (a banana arched over its thin middle,
-    #: resting on its ends). Applied with a planner that has a retry
-    #: (:class:`~softpad.planning.RetryPlanner`); with the thesis's every planned object is
-    #: grasped in turn from the one plan, as the thesis does. False: grasp every planned
-    #: object (the loop before 2026-11-24).
+    #: resting on its ends). A loop feature, the same with every planner (issue 33: until
+    #: 2026-11-27 only with a :class:`~softpad.planning.RetryPlanner`). False: grasp every
+    #: planned object in turn from the one plan, as the thesis does.
     drop_carried: bool = True
 
     def __post_init__(self) -> None:
@@ -537,7 +536,7 @@ class GraspExecution:
     ) -> tuple[GraspRecord, ...]:
         """Grasp the planned objects in order, dropping those that went up with a held one
         (``drop_carried``)."""
-        drop = self.params.drop_carried and isinstance(self.planner, RetryPlanner)
+        drop = self.params.drop_carried
         records: list[GraspRecord] = []
         todo = list(plans)
         while todo:

@@ -81,5 +81,7 @@ class Robot(Protocol):
         ...
 
     def holding(self) -> bool:
-        """True when the gripper carries an object (jaw-width sensing on a real gripper)."""
+        """True when the gripper reports holding something: its jaws, closed, stopped short
+        of their fully closed opening (and its force, where the gripper gives it). Only the
+        robot's own sensing: a simulated robot does not ask the world's contacts."""
         ...

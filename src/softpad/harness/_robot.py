@@ -19,6 +19,12 @@ WORKSPACE_Z_M = (-0.01, 1.0)
 MAX_COMMAND_WIDTH_M = 1.0
 #: Fastest commanded arm or jaw speed, m/s.
 MAX_SPEED_M_S = 2.0
+#: Jaws that stopped this much short of their fully closed opening hold something, metres: the
+#: gripper's own report (the Sawyer's electric gripper tells "gripping" from its position and
+#: force, seed Section 6.3). 1 mm: 100 steps of the 10 um encoder and ten times the
+#: contacts' 0.1 mm penetration; an object less than 1 mm wider than the mounting's minimum
+#: reads as nothing.
+HOLD_MARGIN_M = 1e-3
 
 
 def check_target(x_m: float, y_m: float, z_m: float, width_m: float) -> None:
@@ -69,11 +75,21 @@ class SimulatedRobot:
         The world whose gripper this robot moves.
     max_opening_m
         Widest opening the robot commands, metres (the world clamps to the mounting's).
+    closed_width_m
+        Opening the jaws read when closed on nothing, metres: the installed mounting's minimum
+        (an installation figure, not the object's). :meth:`holding` compares the measured
+        opening with it; None: the world gripper's minimum.
     """
 
-    def __init__(self, world: World, max_opening_m: float = math.inf) -> None:
+    def __init__(
+        self, world: World, max_opening_m: float = math.inf, closed_width_m: float | None = None
+    ) -> None:
         self.world = world
         self.max_opening_m = max_opening_m
+        if closed_width_m is None:
+            closed_width_m = float(getattr(getattr(world, "gripper", None), "min_width_m", 0.0))
+        self.closed_width_m = closed_width_m
+        self._closing = False
         self.touches: list[TouchTruth] = []
         self._target: GripperState | None = None
         self._last: GripperState | None = None
@@ -120,6 +136,7 @@ class SimulatedRobot:
         self._end_descent()
         width_m = min(width_m, self.max_opening_m)
         s = self.world.gripper_state()
+        self._closing = width_m < s.width_m
         self._command(GripperState(s.x_m, s.y_m, s.z_m, s.yaw_rad, width_m), speed_m_s)
 
     def is_moving(self) -> bool:
@@ -141,7 +158,13 @@ class SimulatedRobot:
         return _robot_state(self.world.gripper_state())
 
     def holding(self) -> bool:
-        return self.world.holding()
+        """What the gripper itself reports: its jaws, last commanded to close, stopped more
+        than :data:`HOLD_MARGIN_M` short of their fully closed opening (on nothing a
+        parallel-jaw gripper closes fully; on an object it stops at the object's width). The
+        force adds nothing here: the servo reaches its limit at the closed stops too. The
+        world's contacts are not asked (they only score a trial)."""
+        width = self.world.gripper_state().width_m
+        return self._closing and width > self.closed_width_m + HOLD_MARGIN_M
 
 
 def open_sim_robot(location: str, options: dict[str, str], context: Any) -> SimulatedRobot:

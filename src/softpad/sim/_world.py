@@ -11,7 +11,8 @@ Who calls what (the simulated box is the clock master, see docs/box-and-simulato
 * the simulated box calls :meth:`World.step` once per sample period with the module top
   heights of the previous step, then reads :meth:`World.module_loads_n`;
 * the simulated robot calls :meth:`World.command_gripper` (kinematic target and speed),
-  :meth:`World.gripper_state`, :meth:`World.jaws_settled` and :meth:`World.holding`;
+  :meth:`World.gripper_state` and :meth:`World.jaws_settled` (whether it holds something it
+  tells from its own jaw opening; :meth:`World.holding`, the contacts' truth, only scores);
 * the simulation set-up calls :meth:`World.place_object` (e.g. when the execution state
   machine waits for an object) and :meth:`World.remove_objects`.
 

@@ -49,7 +49,7 @@ class _FixedPlanner:
 
 class _TrialWatcher:
     """The trial's recorder: forwards to the run log and looks at the world (ground truth)
-    at the loop's decisive moments; sets the simulated robot's jaw opening for the object."""
+    at the loop's decisive moments (the scorer: the controller never hears it)."""
 
     def __init__(self, trial: _Trial, log: Any | None) -> None:
         self.t, self.log = trial, log
@@ -83,8 +83,9 @@ class _TrialWatcher:
             if touch is not None and z is not None:
                 seen["delay"] = t_s - touch
                 seen["travel"] = 1e3 * (z - world.gripper_state().z_m)
-        elif kind == "outcome":
+        elif kind == "outcome":  # the end of a hold: is the object carried (truth)?
             seen["outcome"] = data.get("outcome")
+            seen["carried"] = seen.get("carried", False) or world.holding()
         elif kind == "retry":
             seen["attempts"] = seen.get("attempts", 1) + 1
 
@@ -163,7 +164,9 @@ class _Trial:
         # the jaws open to the mounting's width (the loop commands "fully open"); an explicit
         # opening_m is an experimenter's choice that provokes a failure on purpose
         self.robot = SimulatedRobot(
-            self.world, max_opening_m=self.gripper.max_width_m if opening_m is None else opening_m
+            self.world,
+            max_opening_m=self.gripper.max_width_m if opening_m is None else opening_m,
+            closed_width_m=self.geometry.min_width_m,
         )
 
     def planner(self, detector: Any) -> Any:
@@ -329,8 +332,12 @@ def _scored(base: dict[str, Any], seen: dict[str, Any], t: _Trial, sim_time: flo
         finger_travel_mm=seen.get("travel"),
         sim_time_s=sim_time,
     )
-    if outcome == "held":
+    # held when the world carried the object at the end of a hold, whichever grasp did it
+    if seen.get("carried", False):
         return TrialResult(**base, success=True, cause=None, detail="held", **common)
+    if outcome == "held":  # the gripper reported a grip, the world carried nothing
+        why = "the jaws stopped short of closing, the object not carried at the end of the hold"
+        return TrialResult(**base, success=False, cause="slipped_during_hold", detail=why, **common)
     cause, why = _cause(outcome, seen, t.truth, t.placed, t.gripper)
     return TrialResult(**base, success=False, cause=cause, detail=why, **common)
 
