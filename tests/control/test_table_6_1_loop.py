@@ -35,7 +35,12 @@ REFERENCE_HELD_OF_40 = {
     "object-5": 40,
     "object-6": 40,
     "banana": 2,
-    "toy": 40,
+    # 0 since issue 33: the loop's held comes from the gripper's own jaw reading, and the
+    # analytic world latches its grasp of the toy's diagonal arm at the 6/2 mounting's 20 mm
+    # stop (its point-set jaws close through the arm's footprint to 20.5 mm), so the gripper
+    # reads "closed on nothing" while the world carries the toy (40 of 40 by the world's
+    # contacts before); a limit of the analytic world's grasp model, not of the loop
+    "toy": 0,
     "limes": 39,
     "cylinder": 0,
     "charger": 40,
