@@ -20,13 +20,14 @@ import pytest
 
 import softpad.sim
 import softpad.sim._objects
-from softpad.planning import PLANNERS
-from softpad.sensing import CONTACT_DETECTORS
+from softpad.planning import PLANNER_REGISTRY
+from softpad.sensing import CONTACT_DETECTOR_REGISTRY
 from softpad.sim import get_object
 from softpad.trials import TrialConfig, run_trial, trial_execution_params
 from softpad.trials import _loop as loop_module
 
-PAIRS = list(itertools.product(PLANNERS, CONTACT_DETECTORS))
+#: Every registered planner with every registered contact detector (plug-ins included).
+PAIRS = list(itertools.product(PLANNER_REGISTRY.names(), CONTACT_DETECTOR_REGISTRY.names()))
 #: What the controller decides and commands (not the scorer's view of the world).
 _DECISIONS = ("robot", "plan", "contact", "no_contact", "outcome", "retry", "carried")
 
