@@ -137,7 +137,9 @@ def test_valve_commands_by_name_and_member_and_context_manager() -> None:
         b.set_valve(3, "inflate")
         b.set_valve(4, ValveCommand.DEFLATE)
         assert b.valves[2] is ValveCommand.INFLATE and b.valves[3] is ValveCommand.DEFLATE
-    assert b.closed and set(b.valves) == {ValveCommand.CLOSED}
+    # closing closes inflation; a channel being vented keeps venting (issue 35)
+    assert b.closed and b.valves[2] is ValveCommand.CLOSED
+    assert b.valves[3] is ValveCommand.DEFLATE and set(b.valves[4:]) == {ValveCommand.CLOSED}
     with pytest.raises(InputError, match="closed"):
         b.read()
 

@@ -1,9 +1,17 @@
-"""Randomised fault campaign (issue 17): random fault kinds, channels and times over every phase.
+"""Fault campaigns (issues 17 and 35): the whole loop with faults, the true pressure watched.
 
-The simulator's true chamber pressure is checked at every frame during each run and for 30 s
-of box time after it: never above the maximum plus the stated margin (sensor offset and noise
-plus one frame of the fastest rise, ``TRUE_MARGIN_PA``); every run that ends on a fault ends in
-a verified safe state or names the channel it could not make safe.
+* the phase campaign: a stuck inflation valve, a stuck deflation valve and a leak started at a
+  random time inside each phase of the loop (inflation and adjustment, waiting for the
+  object, the hold, the valve check), at 100 Hz and 1 kHz: every one detected within
+  ``MAX_DELAY_S`` (2 s), the run ends in a verified safe state or names the channel, the
+  true pressure never above the maximum plus ``TRUE_MARGIN_PA``, and closing the box never
+  seals a vented channel again (its physics watched 30 s after the close);
+* the random campaign: random kinds, channels and times.
+
+``make test`` runs the phases missed before (adjustment, valve check) and a few random seeds;
+``make test-slow`` the rest and the campaign-wide figures; ``softpad bench --only safety``
+the bigger campaigns. The simulator's true chamber pressure is checked at every frame during
+each run, 30 s after it and 30 s after closing the box.
 """
 
 from __future__ import annotations
@@ -12,8 +20,66 @@ import random
 
 import pytest
 
-from softpad.benchmarks._safety import TRUE_MARGIN_PA, draw_faults, run_one, summarise
+from softpad.benchmarks._safety import (
+    MAX_DELAY_S,
+    PHASE_KINDS,
+    PHASES,
+    TRUE_MARGIN_PA,
+    draw_faults,
+    run_case,
+    run_one,
+    summarise,
+)
 from softpad.box import RATED_MAX_PRESSURE_PA
+
+#: (kind, phase, rate): every kind in every phase at 100 Hz; at 1 kHz a stuck inflation valve
+#: in the valve check (every kind and phase at 1 kHz runs in ``softpad bench --only safety``).
+CASES = [(k, ph, 100.0) for ph in PHASES for k in PHASE_KINDS] + [
+    ("stuck:inflate", "valve_check", 1000.0)
+]
+#: Cases run by ``make test`` (the phases where faults were missed or named only at the
+#: adjustment's timeout); the others by ``make test-slow``.
+QUICK_PHASES = ("adjust", "valve_check")
+SEED = 2000
+
+
+class _Runs(dict):
+    """Runs by key, each run once, when a test first asks for it."""
+
+    def __init__(self, run) -> None:  # type: ignore[no-untyped-def]
+        super().__init__()
+        self._run = run
+
+    def __missing__(self, key):  # type: ignore[no-untyped-def]
+        self[key] = r = self._run(key)
+        return r
+
+
+@pytest.fixture(scope="module")
+def phase_runs() -> dict:
+    return _Runs(lambda c: run_case(c[0], c[1], SEED, c[2]))
+
+
+@pytest.mark.parametrize(
+    "case",
+    [c if c[1] in QUICK_PHASES else pytest.param(c, marks=pytest.mark.slow) for c in CASES],
+    ids=lambda c: f"{c[0]}-{c[1]}-{c[2]:g}Hz",
+)
+def test_fault_in_every_phase_is_detected_within_2_s_and_ends_safe(phase_runs, case) -> None:
+    r = phase_runs[case]
+    assert r.outcome == "fault", r
+    assert r.delay_s is not None and 0.0 <= r.delay_s <= MAX_DELAY_S, (r.faults, r.detected)
+    assert r.verified or r.channel_unsafe is not None, r
+    assert not r.resealed, r
+    assert r.peak_true_pa <= RATED_MAX_PRESSURE_PA + TRUE_MARGIN_PA, (r.faults, r.peak_true_pa)
+
+
+@pytest.mark.slow
+def test_phase_campaign_summary(phase_runs) -> None:
+    s = summarise([phase_runs[c] for c in CASES])
+    assert s["faulted_runs"] == s["runs"] and s["resealed"] == 0
+    assert s["delay_p95_s"] <= MAX_DELAY_S
+
 
 SEEDS = range(24)
 #: Seeds run by ``make test``; the others, and the campaign-wide figures, by ``make test-slow``
@@ -21,17 +87,9 @@ SEEDS = range(24)
 QUICK_SEEDS = range(6)
 
 
-class _Campaign(dict):
-    """Runs of the campaign by seed, each run once, when a test first asks for it."""
-
-    def __missing__(self, seed: int):
-        self[seed] = r = run_one(seed)
-        return r
-
-
 @pytest.fixture(scope="module")
 def campaign() -> dict:
-    return _Campaign()
+    return _Runs(run_one)
 
 
 @pytest.mark.parametrize(
@@ -42,6 +100,7 @@ def campaign() -> dict:
 def test_true_pressure_never_above_max_and_run_ends_safe(campaign, seed: int) -> None:
     r = campaign[seed]
     assert r.peak_true_pa <= RATED_MAX_PRESSURE_PA + TRUE_MARGIN_PA, (r.faults, r.peak_true_pa)
+    assert not r.resealed, r
     if r.outcome == "fault":
         assert r.verified or r.channel_unsafe is not None, r
 

@@ -1,13 +1,13 @@
 """The simulator's fast paths reproduce the reference implementation of the same physics.
 
-The sim box skips work on its hot paths (held gas flows applied lazily, readings precomputed
-along pressure ramps, drift filtered by lfilter, rint/min/max quantisation). These tests pin
+The sim box skips work on its hot paths (steps along a stretch applied lazily, readings
+precomputed along the stretch, drift filtered by lfilter, rint/min/max quantisation). These tests pin
 the results against straightforward implementations written here:
 
 * the whole box, ideal sensors, against an independent integrator of the documented scheme
-  (explicit Euler on the amount of air with the flows of the last exact solve held for at most
-  20 ms, the exact solve done by brentq per channel): within 1e-3 Pa (the box's Newton
-  tolerance is 1e-4 Pa);
+  (exact exponential relaxation along the secant through the open orifices' equilibrium,
+  restarted with an exact solve at least every 20 ms, the solves done by brentq per
+  channel): within 1e-3 Pa (the box's Newton tolerance is 1e-4 Pa);
 * the box read without ever touching its gas state (fully lazy) against the same box whose
   true pressures are read every step (eager): identical noisy readings, true pressures within
   1e-8 Pa (the lazy path adds k steps as one product);
@@ -39,11 +39,14 @@ SCRIPT = {
 def _reference_trajectory(
     rate_hz: float, frames: int, p0_pa: float, script: dict[int, list[str]]
 ) -> np.ndarray:
-    """The documented gas scheme, written out channel by channel (no object, no leak)."""
+    """The documented gas scheme, written out channel by channel (no object, no leak):
+    stretches of 20 ms, each starting with an exact solve (brentq), the equilibrium of the
+    open orifices found by brentq, exact exponential relaxation along the secant through it."""
     char, par = AnalyticCharacteristic(), PneumaticParams()
     patm, vt, rt = par.atmosphere_pa, par.tubing_volume_m3, par.gas_constant_rt
     k = rt * math.sqrt(2 * par.air_density_kg_m3)
     dt = 1.0 / rate_hz
+    steps = max(1, round(20e-3 / dt))
 
     def volume(p: float) -> float:
         return float(char.volume_m3(np.array([p]), np.array([0.0]))[0])
@@ -55,40 +58,54 @@ def _reference_trajectory(
     def orifice(area: float, dp: float) -> float:
         return k * area * dp / math.sqrt(abs(dp) + par.laminar_pa)
 
+    def flow(cmd: str, p: float) -> float:
+        if cmd == "inflate":
+            return orifice(par.inflate_orifice_m2, par.supply_pa - p)
+        if cmd == "deflate":
+            return -orifice(par.deflate_orifice_m2, p)
+        return 0.0
+
     def solve(n: float) -> float:
         return brentq(lambda p: (patm + p) * (volume(p) + vt) - n, -5e3, 2e4, xtol=1e-9)
 
     p = np.full(6, p0_pa)
     n = np.array([(patm + x) * (volume(x) + vt) for x in p])
-    flow = np.zeros(6)
-    rate = np.zeros(6)
-    held = math.inf
+    start = np.zeros((6, 4))  # p0, n0, C, p_eq of each channel's stretch
+    lam = np.zeros(6)
+    j = 0  # steps taken along the current stretch (0: none running)
     cmds: list[str] = ["closed"] * 6
     out = np.empty((frames, 6))
     for i in range(frames):
         changed = i in script
         if changed:
             cmds = script[i]
-        if all(c == "closed" for c in cmds):
-            held = math.inf  # sealed and unloaded: nothing moves, the next opening solves
-            out[i] = p
+        sealed = all(c == "closed" for c in cmds)
+        if j and not changed and not sealed and j < steps:  # along the stretch
+            j += 1
+        elif sealed and not j:
+            out[i] = p  # sealed and unloaded: nothing moves
             continue
-        if changed or held + dt > 20e-3:
+        else:  # a new stretch (or the end of the last one, when sealed): exact solve
             for c in range(6):
+                if j:
+                    p0, n0, cap, p_eq = start[c]
+                    n[c] = n0 + cap * (p[c] - p0)
+                    p[c] = solve(n[c])
+                    if (p[c] - p_eq) * (p0 - p_eq) < 0:
+                        p[c] = p_eq
+                        n[c] = (patm + p_eq) * (volume(p_eq) + vt)
                 if cmds[c] == "inflate":
-                    flow[c] = orifice(par.inflate_orifice_m2, par.supply_pa - p[c])
+                    p_eq = par.supply_pa
                 elif cmds[c] == "deflate":
-                    flow[c] = -orifice(par.deflate_orifice_m2, p[c])
+                    p_eq = 0.0
                 else:
-                    flow[c] = 0.0
-            n = n + flow * dt
-            p = np.array([solve(x) for x in n])
-            rate = flow / np.array([dn_dp(x) for x in p])
-            held = 0.0
-        else:
-            held += dt
-            n = n + flow * dt
-            p = p + rate * dt
+                    p_eq = p[c]
+                d = p[c] - p_eq
+                lam[c] = -flow(cmds[c], p[c]) / d / dn_dp(p[c]) if d else 0.0
+                start[c] = p[c], n[c], dn_dp(p[c]), p_eq
+            j = 0 if sealed else 1
+        if j:
+            p = start[:, 3] + (start[:, 0] - start[:, 3]) * np.exp(-lam * j * dt)
         out[i] = p
     return out
 

@@ -245,12 +245,22 @@ class Box(ABC):
             for ch in range(1, self.channels + 1):
                 self.set_valve(ch, ValveCommand.CLOSED)
 
+    def close_inflation(self) -> None:
+        """The safe state nothing undoes: close every inflation valve and leave every channel
+        being vented venting (a channel the safe state or the guard vented may have a stuck
+        inflation valve: sealing it again would let the supply fill it, issue 35)."""
+        if not self._closed:
+            for ch, cmd in enumerate(self.valves, start=1):
+                if cmd is ValveCommand.INFLATE:
+                    self.set_valve(ch, ValveCommand.CLOSED)
+
     def close(self) -> None:
-        """Close every valve and release the box; further reads raise. Idempotent."""
+        """Close every inflation valve (vented channels keep venting: :meth:`close_inflation`)
+        and release the box; further reads raise. Idempotent."""
         if self._closed:
             return
         try:
-            self.close_valves()
+            self.close_inflation()
         finally:
             self._closed = True
             self._close()

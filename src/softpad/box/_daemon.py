@@ -8,7 +8,8 @@ one client at a time controls the valves. Safety lives here, whatever the client
   inflate command on it is refused;
 * the controller holds a liveliness token and sends heartbeats; when the token vanishes
   (its process died, its link broke) or no heartbeat came for ``watchdog_s``, every inflation
-  valve closes at once and each channel is held (both valves closed) or vented as configured;
+  valve closes at once and each channel is held (sealed; a channel being vented keeps
+  venting) or vented as configured; releasing control holds the same way;
 * malformed or oversized payloads are counted and dropped; no input stops the daemon;
 * frames are published from their own thread, so a slow link or monitor never delays the
   sampling and safety loop (frames it cannot take are counted as unsent).
@@ -407,8 +408,9 @@ class BoxDaemon:
                     self._say(f"channel {ch} at {p[k]:.0f} Pa > {self.trip_pa:.0f} Pa: venting")
                 self.box.set_valve(ch, ValveCommand.DEFLATE)
             elif ch in self._venting and (not math.isfinite(p[k]) or p[k] < self.trip_pa - 200):
+                # back under the limit: the controller may command it again, but it keeps
+                # venting until then (sealing it would let a stuck inflation valve refill it)
                 self._venting.discard(ch)
-                self.box.set_valve(ch, ValveCommand.CLOSED)
         if not math.isfinite(frame.supply_pa):
             self._close_inflation()
         self._check_controller(mono)
@@ -432,11 +434,12 @@ class BoxDaemon:
     def _safe_state(self, action: str) -> None:
         with self._lock:
             try:
+                # "hold" closes inflation only: a channel being vented keeps venting (issue 35:
+                # closing it again re-sealed a stuck inflation valve); "vent" vents every channel
                 self._close_inflation()
-                target = ValveCommand.DEFLATE if action == "vent" else ValveCommand.CLOSED
-                for ch in range(1, self.box.channels + 1):
-                    if ch not in self._venting:
-                        self.box.set_valve(ch, target)
+                if action == "vent":
+                    for ch in range(1, self.box.channels + 1):
+                        self.box.set_valve(ch, ValveCommand.DEFLATE)
             except SoftPadError as exc:
                 self._say(f"could not reach the safe state: {exc}")
 
@@ -591,7 +594,7 @@ class BoxDaemon:
             self._safe_state("hold")
             self.controller = None
             self._verifier = None
-        self._say(f"client {c} released control; valves closed")
+        self._say(f"client {c} released control; inflation closed, vented channels venting")
         return {}
 
     def _on_heartbeat(self, sample: Any) -> None:

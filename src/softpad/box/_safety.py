@@ -112,9 +112,11 @@ class SafetyGuard:
     _times: list[float] = field(init=False, default_factory=list)
     _lows: list[float] = field(init=False, default_factory=list)
     _any_tripped: bool = field(init=False, default=False)
+    _trip_pa: float = field(init=False, default=0.0)
 
     def __post_init__(self) -> None:
         self.tripped = np.zeros(self.channels, dtype=bool)
+        self._trip_pa = self.limits.trip_pa  # read on every frame: not a property call
 
     def check(self, t_s: float, pressures_pa: NDArray[np.float64]) -> list[int]:
         """Update with one frame; return the 1-based channels newly tripped (to vent now)."""
@@ -144,7 +146,7 @@ class SafetyGuard:
         ):
             n = len(history)
             rise = (high - lows[0]) / (n - 1) if n >= 2 and times[-1] > times[0] else 0.0
-            if high + max(rise, 0.0) <= lim.trip_pa:
+            if high + max(rise, 0.0) <= self._trip_pa:
                 return []
         return self._check_arrays(t_s, p, lim)
 
@@ -162,7 +164,7 @@ class SafetyGuard:
             rise = rise if math.isfinite(rise) and rise > 0.0 else 0.0  # NaN: invalid, not rising
             if tripped[k] and v < lim.release_pa and not invalid:
                 tripped[k] = False  # released (a NaN reading is never below)
-            if (invalid or v + rise > lim.trip_pa) and not tripped[k]:
+            if (invalid or v + rise > self._trip_pa) and not tripped[k]:
                 tripped[k] = True
                 new.append(k + 1)
                 cause = (

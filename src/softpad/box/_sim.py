@@ -9,6 +9,7 @@ on request (``realtime=1``). Everything is deterministic for a given ``seed``.
 from __future__ import annotations
 
 import math
+import statistics
 import time
 from dataclasses import dataclass
 
@@ -59,7 +60,9 @@ class Fault:
         ``"nan"`` (sensor reads NaN), ``"dropout"`` (sensor wire broken: reads its lower rail),
         ``"stuck"`` (valves stuck in state ``arg``: closed/inflate/deflate), ``"leak"`` (an
         orifice to atmosphere of ``Cd A = arg`` m^2), ``"supply_loss"`` (supply drops to 0),
-        ``"disconnect"`` (the box stops answering: reads raise :class:`ConnectionLost`).
+        ``"disconnect"`` (the box stops answering: reads and valve commands raise
+        :class:`ConnectionLost`; its physics and its own safety guard go on with every read
+        tried, and the valves stay as they were).
     channel
         1-based channel for channel faults, None for box-wide ones.
     at_s
@@ -115,6 +118,19 @@ class Fault:
         return cls(kind, channel, at_s, arg)
 
 
+def _check_args(n_modules: int, channels: int, sample_rate_hz: float, seed: int) -> None:
+    """Raise InputError naming a bad channel count, sample rate or seed."""
+    if not isinstance(channels, int) or not n_modules <= channels <= 64:
+        raise InputError(
+            f"channels must be an integer from {n_modules} (modules of the pad) to 64, "
+            f"got {channels!r}"
+        )
+    if not (math.isfinite(sample_rate_hz) and 1.0 <= sample_rate_hz <= 100e3):
+        raise InputError(f"sample rate must be within 1 Hz .. 100 kHz, got {sample_rate_hz!r} Hz")
+    if int(seed) < 0:
+        raise InputError(f"seed must be >= 0, got {seed!r}")
+
+
 class SimBox(Box):
     """A simulated pneumatic box driving the modules of a world.
 
@@ -163,20 +179,11 @@ class SimBox(Box):
         # worlds that weight loads by the FEM response evaluate it at the chambers' pressure
         self._operate = getattr(self.world, "set_operating_pressure", lambda p: None)
         n_mod = self.world.layout.n_modules
-        if not isinstance(channels, int) or not n_mod <= channels <= 64:
-            raise InputError(
-                f"channels must be an integer from {n_mod} (modules of the pad) to 64, got {channels!r}"
-            )
-        if not (math.isfinite(sample_rate_hz) and 1.0 <= sample_rate_hz <= 100e3):
-            raise InputError(
-                f"sample rate must be within 1 Hz .. 100 kHz, got {sample_rate_hz!r} Hz"
-            )
+        _check_args(n_mod, channels, sample_rate_hz, seed)
         self._channels = channels
         self._rate = float(sample_rate_hz)
         self._dt = 1.0 / self._rate
         self.seed = int(seed)
-        if self.seed < 0:
-            raise InputError(f"seed must be >= 0, got {seed!r}")
         self.characteristic = (
             characteristic if characteristic is not None else default_characteristic()
         )
@@ -185,14 +192,7 @@ class SimBox(Box):
         rng = np.random.default_rng(self.seed)
         self.chambers = ChamberBank(channels, n_mod, self.characteristic, self.pneumatics)
         if initial_pressure_pa:
-            if not (0 <= initial_pressure_pa <= 5e3):
-                raise InputError(
-                    f"initial pressure must be within 0..5 kPa, got {initial_pressure_pa / 1e3:g} kPa"
-                )
-            self._operate(float(initial_pressure_pa))
-            self.chambers.set_state(
-                np.full(n_mod, float(initial_pressure_pa)), self.world.module_loads_n()
-            )
+            self._start_inflated(float(initial_pressure_pa))
         self.sensors = SensorBank(channels, self._dt, self.sensor_params, rng)
         self._setup_disturbances(disturbances, rng)
         self._n_mod = n_mod
@@ -216,6 +216,16 @@ class SimBox(Box):
         self._disconnected = False
         self.realtime = bool(realtime)
         self._wall0: float | None = None
+
+    def _start_inflated(self, pressure_pa: float) -> None:
+        """Every module at ``pressure_pa`` under the world's loads (0..5 kPa)."""
+        if not (0 <= pressure_pa <= 5e3):
+            raise InputError(
+                f"initial pressure must be within 0..5 kPa, got {pressure_pa / 1e3:g} kPa"
+            )
+        self._operate(pressure_pa)
+        n_mod = self.world.layout.n_modules
+        self.chambers.set_state(np.full(n_mod, pressure_pa), self.world.module_loads_n())
 
     def _setup_disturbances(
         self, params: DisturbanceParams | None, rng: np.random.Generator
@@ -273,8 +283,20 @@ class SimBox(Box):
         self._t = t
         if t >= self._next_fault_s:
             self._activate_faults()
+        values, supply = self._sense(self._step_physics(t, dt))
         if self._disconnected:
-            raise ConnectionLost(f"the simulated box stopped answering at t = {t:.3f} s")
+            self._unreachable(t, values)
+        if self.realtime:
+            now = time.perf_counter()
+            if self._wall0 is None:
+                self._wall0 = now - t
+            wait = self._wall0 + t - now
+            if wait > 0:
+                time.sleep(wait)
+        return PressureFrame(t, values, supply)
+
+    def _step_physics(self, t: float, dt: float) -> bool:
+        """Step the world and the gas physics to ``t``; True when the true pressures changed."""
         world = self.world
         world.step(dt, self._heights)
         loads = world.module_loads_n()
@@ -285,63 +307,75 @@ class SimBox(Box):
         same_load = key == self._loads_key
         if not same_load:
             self._loads_key = key
-        supply_true = self._supply_true
         dist = self.disturbances
         disturbed = dist is not None and t >= dist.next_s
         if disturbed:
             self._disturb(t)
-        held = False
         if not same_load:
             changed = True
-        elif self._any_open or self._leaking:
-            # the hot path of an inflating box: the flows of the last solve are held
-            held = chambers.hold(dt, self._valve_count, supply_true)
+        elif self._any_open or self._leaking or chambers.path is not None:
+            # the hot path of an inflating box: a step along the stretch of the gas physics
+            # (a stretch left running by closing every valve ends with an exact solve)
+            if chambers.hold(dt, self._valve_count, self._supply_true):
+                return True
             changed = True
         else:
             changed = False
-        if changed and not held:
+        if changed:
             changed = chambers.step(
                 dt,
                 self._inf,
                 self._def,
                 loads,
-                supply_true,
+                self._supply_true,
                 self._any_open,
                 same_load=same_load,
                 valve_key=self._valve_count,
             )
-        if disturbed:
-            changed = True
-        sensors = self.sensors
+        return changed or disturbed
+
+    def _sense(self, changed: bool) -> tuple[NDArray[np.float64], float]:
+        """The sensors' readings of the true pressures (and the sensor faults)."""
+        chambers, sensors, supply_true = self.chambers, self.sensors, self._supply_true
         if not changed:
             values, supply = sensors.sample(chambers.pressure_pa, supply_true, False)
-        elif chambers.solved:  # heights follow the exact solves (every <= 20 ms)
-            self._heights = chambers.heights_m()
-            self._operate(float(np.median(chambers.pressure_pa[: self._n_mod])))
-            values, supply = sensors.sample(chambers.pressure_pa, supply_true, True)
-        else:  # a linear stretch between solves: readings precomputed along the ramp
-            hit = sensors.next_on_ramp(chambers.solve_count, supply_true)
-            if hit is None:
-                hit = sensors.sample_ramp(
-                    chambers.pressure_pa, chambers.rate_dt_pa, chambers.solve_count, supply_true
-                )
-            values, supply = hit
+        else:
+            if chambers.solved:  # heights follow the exact solves (every <= 20 ms)
+                self._heights = chambers.heights_m()
+                self._operate(statistics.median(chambers.pressure_pa[: self._n_mod].tolist()))
+            path = chambers.path
+            if path is None:  # a load change of sealed modules
+                values, supply = sensors.sample(chambers.pressure_pa, supply_true, True)
+            else:  # along a stretch of the gas physics: readings precomputed for it
+                hit = sensors.next_on_ramp(chambers.solve_count, supply_true)
+                if hit is None:
+                    hit = sensors.sample_path(
+                        path, chambers.position - 1, chambers.solve_count, supply_true
+                    )
+                values, supply = hit
         if self._sensor_shift is not None:
             values = values + self._sensor_shift
         if self._bad_sensor:
             values = values.copy()
             values[self._dropout] = self.sensor_params.range_min_pa
             values[self._nan] = np.nan
-        if self.realtime:
-            now = time.perf_counter()
-            if self._wall0 is None:
-                self._wall0 = now - t
-            wait = self._wall0 + t - now
-            if wait > 0:
-                time.sleep(wait)
-        return PressureFrame(t, values, supply)
+        return values, supply
+
+    def _unreachable(self, t: float, values: NDArray[np.float64]) -> None:
+        """A disconnected box: its physics and its own guard go on (the box's firmware vents
+        an over-pressure whatever the link does), but no frame reaches the client."""
+        for ch in self.safety.check(t, values):
+            if ch <= self._n_mod:
+                self._cmd_inf[ch - 1], self._cmd_def[ch - 1] = _VALVE_OPEN[ValveCommand.DEFLATE]
+                self._update_effective()
+        raise ConnectionLost(f"the simulated box stopped answering at t = {t:.3f} s")
 
     def _apply_valve(self, channel: int, command: ValveCommand) -> None:
+        if self._disconnected:
+            raise ConnectionLost(
+                f"the simulated box stopped answering at t = {self._t:.3f} s: "
+                f"channel {channel} not commanded"
+            )
         if channel > self._n_mod:
             return  # unconnected port: nothing to drive
         self._cmd_inf[channel - 1], self._cmd_def[channel - 1] = _VALVE_OPEN[command]
@@ -410,6 +444,12 @@ class SimBox(Box):
         if self._disconnected:
             return
         super().close_valves()
+
+    def close_inflation(self) -> None:
+        """Close inflation; a disconnected box cannot be reached (its valves stay as they are)."""
+        if self._disconnected:
+            return
+        super().close_inflation()
 
 
 _SIM_OPTIONS = {

@@ -360,6 +360,15 @@ class ZenohBox(Box):
             except (ControlRefused, ConnectionLost):
                 pass  # control or link lost: the daemon's watchdog has closed the valves
 
+    def close_inflation(self) -> None:
+        """Close every inflation valve (only a controlling client can; a monitor changes
+        nothing); vented channels keep venting."""
+        if self._token is not None and not self.closed:
+            try:
+                super().close_inflation()
+            except (ControlRefused, ConnectionLost):
+                pass  # control or link lost: the daemon's watchdog has closed inflation
+
     def _close(self) -> None:
         _OPEN.discard(self)
         try:

@@ -401,6 +401,7 @@ class GraspExecution:
     def _enter(self, phase: str, **data: Any) -> None:
         self.phase = phase
         self.safety.monitor.loads_expected = phase in _LOADING_PHASES
+        self.safety.monitor.robot_pressing = phase in _LOADING_PHASES[1:]  # descend, close, lift
         self._phases.append((phase, self._last_t))
         self.recorder.event(self._last_t, "phase", phase=phase, **data)
 

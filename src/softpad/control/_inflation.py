@@ -19,11 +19,12 @@ from numpy.typing import NDArray
 
 from softpad import thesis
 from softpad.box import Box, PressureFrame, ValveCommand
+from softpad.control._safety import DetectedFault, MonitoredFault
 from softpad.errors import CheckedFields, HardwareFault, InputError, Positive
+from softpad.sensing import RunningAverage, capture_reference
 
 if TYPE_CHECKING:
     from softpad.control._safety import SafeStateResult
-from softpad.sensing import RunningAverage, capture_reference
 
 #: p0 of the thesis, Pa (:data:`softpad.thesis.P0_PA`).
 DEFAULT_TARGET_PA = thesis.P0_PA
@@ -61,6 +62,22 @@ class InflationParams(CheckedFields, what="inflation"):
     #: adjustments. At 25 Pa/s one adjustment in a hundred named a sound channel as leaking; a
     #: slower leak is caught by the fault monitor, 60 Pa under the reference).
     max_drift_pa_s: Positive = 50.0
+    #: Inflation needs the supply above the highest pressure the controller aims at
+    #: (p0 + t_adj) by at least another t_adj, pascals (2 t_adj = 60 Pa above p0; the flow
+    #: through the inflation orifice grows as sqrt(dp), so 60 Pa passes under a tenth of the
+    #: flow from the nominal 10 kPa supply: too little to finish within the timeout). Judged
+    #: on the supply reading averaged over ``filter_length`` samples (its 20 Pa noise).
+    supply_margin_pa: Positive = 2 * DEFAULT_TOLERANCE_PA
+    #: A channel inflating (deflating) for this long whose filtered pressure has not risen
+    #: (fallen) by ``min_response_pa`` does not respond: stuck valve or leak, seconds (0.75 s:
+    #: the slowest nominal inflation, an empty module of the FEM characteristic from the
+    #: 10 kPa supply, gains 66 Pa in it, 88 Pa/s; near p0 it gains about 350 Pa). A sealed
+    #: channel moving by ``min_response_pa`` within one such window is judged at once.
+    response_s: Positive = 0.75
+    #: The smallest change a working valve makes in ``response_s``, pascals (40 Pa, the valve
+    #: check's ``min_change_pa``: 7 sigma of the difference of two 10-sample means of the
+    #: sensor's 8 Pa noise and 3 Pa drift, 5.6 Pa).
+    min_response_pa: Positive = 40.0
     #: The safety trip acts on a reading this far below ``max_pressure_pa``, pascals (50 Pa:
     #: about six standard deviations of the sensor noise plus a few samples of the fastest
     #: rise), so that the true pressure never exceeds the maximum before the valves react.
@@ -183,6 +200,227 @@ def make_safe(
     return reach_safe_state(box, n_modules, max_pressure_pa, timeout_s=timeout_s, on_frame=on_frame)
 
 
+def _response_fault(valves: int, change_pa: float) -> tuple[str, str]:
+    """The cause (:class:`DetectedFault` kinds) and description of a channel's wrong answer to
+    its valves (1 inflating, -1 deflating, 0 sealed)."""
+    if valves > 0:
+        return "no_response", "does not rise while inflating (leak, stuck deflation valve?)"
+    if valves < 0:
+        return "no_response", "does not fall while deflating (inflation valve stuck open?)"
+    if change_pa > 0:
+        return "rising", "rising with its valves closed (inflation valve stuck open?)"
+    return "falling", "loses pressure with its valves closed (leak or deflation valve stuck open?)"
+
+
+class InflationController:
+    """Initial inflation and adjustment as a state machine stepped with every frame.
+
+    ``adjust`` (a per-channel bang-bang with hysteresis towards p0) -> ``settle`` (every
+    channel sealed within t_adj for ``settle_s``; a channel losing pressure leaks) ->
+    ``reference`` (every valve closed; the mean of ``reference_reads`` frames is the
+    reference) -> ``done``. :meth:`step` takes one frame and returns the valve commands to
+    apply now (1-based channel, command); a fault raises :class:`HardwareFault` naming the
+    channel. Every frame is also checked for faults whatever the state: sensor, over-pressure,
+    supply, and a channel that does not answer its valves (:meth:`_check_response`).
+
+    Parameters
+    ----------
+    n_modules
+        Modules on the pad (channels 1..n_modules).
+    params
+        Inflation parameters (thesis defaults).
+    """
+
+    def __init__(self, n_modules: int, params: InflationParams | None = None) -> None:
+        self.n = int(n_modules)
+        self.params = params or InflationParams()
+        p = self.params
+        self.state = "adjust"
+        self._filt = RunningAverage(p.filter_length)
+        self._fast = RunningAverage(3)  # short filter for stopping: 1 sample of lag
+        self._supply = RunningAverage(p.filter_length)
+        self._valves = np.zeros(self.n, dtype=np.int8)  # 0 closed, 1 inflating, -1 deflating
+        self._since = np.zeros(self.n, dtype=np.int64)  # frames since each channel's change
+        self._since_t = np.zeros(self.n)  # box time of each channel's last change
+        self._from = np.full(self.n, np.nan)  # filtered pressure once the change shows
+        self._starts = np.zeros(self.n, dtype=np.int64)  # corrections started per channel
+        self._t0: float | None = None
+        self._settled: tuple[float, NDArray[np.float64]] | None = None
+        self._reads: list[NDArray[np.float64]] = []
+        #: Box time when every module was within tolerance (end of ``settle``), seconds.
+        self.adjusted_at_s: float | None = None
+        #: The outcome once ``state`` is ``done``.
+        self.result: AdjustmentResult | None = None
+
+    def step(self, frame: PressureFrame) -> list[tuple[int, ValveCommand]]:
+        """Advance with one frame; the valve commands to apply now."""
+        p = self.params
+        self._t0 = frame.t_s if self._t0 is None else self._t0
+        raw = check_frame(frame, self.n, p.max_pressure_pa, trip_margin_pa=p.trip_margin_pa)
+        if self.state == "reference":
+            return self._reference(frame, raw)
+        if self.state == "done":
+            return []
+        filtered = self._filt.update(raw)
+        fast = self._fast.update(raw)
+        supply = float(self._supply.update(np.array([frame.supply_pa]))[0])
+        self._since += 1
+        if not self._filt.full:
+            return []
+        self._check_response(frame.t_s, filtered, fast, supply)
+        commands = self._bang_bang(frame.t_s, filtered, fast)
+        if commands:
+            self._settled = None
+            self.state = "adjust"
+            return commands
+        return self._settle(frame.t_s, filtered)
+
+    def _bang_bang(
+        self, t: float, filtered: NDArray[np.float64], fast: NDArray[np.float64]
+    ) -> list[tuple[int, ValveCommand]]:
+        """Start a correction once the long filter holds no sample from before the channel's
+        last change and it is off by more than t_adj; stop when the short filter crosses p0.
+
+        A sealed channel that drifted t_adj from its baseline within ``response_s`` (over
+        40 Pa/s: the settle check's leak rate is 50 Pa/s) is not corrected but named: at
+        1 kHz the correction would otherwise restart before the drift reaches
+        ``min_response_pa``, and a stuck valve would cycle until the timeout."""
+        p = self.params
+        err, err_fast, v = filtered - p.target_pa, fast - p.target_pa, self._valves
+        start = (v == 0) & (self._since > p.filter_length) & (np.abs(err) > p.tolerance_pa)
+        stop = ((v == 1) & (err_fast >= 0)) | ((v == -1) & (err_fast <= 0))
+        out = []
+        for k in np.flatnonzero(stop):
+            out.append(self._set(int(k), 0))
+        for k in np.flatnonzero(start):
+            moved = float(fast[k] - self._from[k])  # NaN (no baseline yet) compares False
+            if abs(moved) >= p.tolerance_pa and t - self._since_t[k] < p.response_s:
+                cause, what = _response_fault(0, moved)
+                message = (
+                    f"channel {k + 1}: {what} ({moved:+.0f} Pa in "
+                    f"{t - self._since_t[k]:.2f} s) at t = {t:.2f} s"
+                )
+                raise MonitoredFault(DetectedFault(t, int(k) + 1, cause, message))
+            out.append(self._set(int(k), 1 if err[k] < 0 else -1))
+            self._starts[k] += 1
+        return out
+
+    def _set(self, k: int, state: int) -> tuple[int, ValveCommand]:
+        self._valves[k] = state
+        self._since[k] = 0
+        self._from[k] = np.nan
+        cmd = ValveCommand.INFLATE if state > 0 else ValveCommand.DEFLATE
+        return k + 1, cmd if state else ValveCommand.CLOSED
+
+    def _settle(self, t: float, filtered: NDArray[np.float64]) -> list[tuple[int, ValveCommand]]:
+        """Every channel sealed, its filter clean of older samples and within t_adj for
+        ``settle_s``: a channel losing more than ``max_drift_pa_s`` leaks; else the reference."""
+        p = self.params
+        calm = (
+            not self._valves.any()
+            and self._since.min() > p.filter_length
+            and bool((np.abs(filtered - p.target_pa) <= p.tolerance_pa).all())
+        )
+        if not calm:
+            self._settled = None
+            self.state = "adjust"
+            self._check_timeout(t, filtered)
+            return []
+        if self._settled is None:
+            self._settled, self.state = (t, filtered.copy()), "settle"
+            return []
+        t_set, p_set = self._settled
+        if t - t_set < p.settle_s:
+            return []
+        rate = (filtered - p_set) / (t - t_set)
+        leaking = rate < -p.max_drift_pa_s
+        if leaking.any():
+            k = int(np.argmax(leaking))
+            raise HardwareFault(
+                f"channel {k + 1}: loses {-rate[k] / 1e3:.3f} kPa/s with its valves closed (leak)"
+            )
+        self.adjusted_at_s, self.state = t, "reference"
+        return [(ch, ValveCommand.CLOSED) for ch in range(1, self.n + 1)]
+
+    def _reference(
+        self, frame: PressureFrame, raw: NDArray[np.float64]
+    ) -> list[tuple[int, ValveCommand]]:
+        self._reads.append(raw)
+        if len(self._reads) >= self.params.reference_reads:
+            assert self.adjusted_at_s is not None
+            ref = capture_reference(self._reads)
+            self.result = AdjustmentResult(ref, self.adjusted_at_s, frame.t_s)
+            self.state = "done"
+        return []
+
+    def _check_response(
+        self,
+        t: float,
+        filtered: NDArray[np.float64],
+        fast: NDArray[np.float64],
+        supply: float,
+    ) -> None:
+        """Every channel must answer its valves, judged from a baseline taken once its filter
+        holds only samples after its last command (the long filter for a moving channel, the
+        3-sample one for a sealed channel, whose bang-bang may restart within a filter length):
+
+        * at once: a sealed channel moving ``min_response_pa`` from its baseline, an inflating
+          (deflating) channel falling (rising) as much: stuck valve or leak;
+        * after each ``response_s`` window: an inflating (deflating) channel that has not risen
+          (fallen) ``min_response_pa``; the next window starts there.
+
+        An inflating channel needs the supply ``supply_margin_pa`` above p0."""
+        p, v = self.params, self._valves
+        if supply < p.target_pa + p.supply_margin_pa and (v == 1).any():
+            k = int(np.argmax(v == 1))
+            raise HardwareFault(
+                f"channel {k + 1}: supply pressure {supply / 1e3:.2f} kPa is too low to "
+                f"inflate to {p.target_pa / 1e3:.2f} kPa (supply lost?)"
+            )
+        sealed = v == 0
+        level = np.where(sealed, fast, filtered)
+        clear = np.isnan(self._from) & (self._since >= np.where(sealed, 3, p.filter_length))
+        self._from[clear] = level[clear]
+        self._since_t[clear] = t
+        started = ~np.isnan(self._from)
+        change = level - self._from
+        wrong = started & np.where(
+            sealed, np.abs(change) >= p.min_response_pa, change * v <= -p.min_response_pa
+        )
+        window = started & (t - self._since_t >= p.response_s)
+        dead = window & ~sealed & (change * v < p.min_response_pa)
+        bad = wrong | dead
+        if bad.any():
+            k = int(np.argmax(bad))
+            cause, what = _response_fault(int(v[k]), float(change[k]))
+            message = (
+                f"channel {k + 1}: {what} ({change[k]:+.0f} Pa in "
+                f"{t - self._since_t[k]:.2f} s) at t = {t:.2f} s"
+            )
+            raise MonitoredFault(DetectedFault(t, k + 1, cause, message))
+        self._from[window] = level[window]  # the next window starts here
+        self._since_t[window] = t
+
+    def _check_timeout(self, t: float, filtered: NDArray[np.float64]) -> None:
+        p = self.params
+        assert self._t0 is not None
+        if t - self._t0 <= p.timeout_s:
+            return
+        # the culprit: off tolerance, else still correcting, else corrected most often
+        off = np.flatnonzero(np.abs(filtered - p.target_pa) > p.tolerance_pa)
+        if off.size == 0:
+            off = np.flatnonzero(self._valves)
+        if off.size == 0:
+            off = np.flatnonzero(self._starts == self._starts.max())
+        which = ", ".join(str(int(c) + 1) for c in off)
+        now = ", ".join(f"{v / 1e3:.2f}" for v in filtered)
+        raise HardwareFault(
+            f"channel {which}: could not reach {p.target_pa / 1e3:.2f} +/- "
+            f"{p.tolerance_pa / 1e3:.2f} kPa within {p.timeout_s:g} s (now {now} kPa; leak, low "
+            "supply or stuck valve?)"
+        )
+
+
 def inflate_and_adjust(
     box: Box,
     n_modules: int,
@@ -191,7 +429,8 @@ def inflate_and_adjust(
     on_adjusted: Callable[[float], None] | None = None,
     safe_state: bool = True,
 ) -> AdjustmentResult:
-    """Bring modules 1..n_modules to p0 within t_adj and save the reference (Section 6.2.1.1).
+    """Bring modules 1..n_modules to p0 within t_adj and save the reference (Section 6.2.1.1):
+    an :class:`InflationController` stepped with every frame read.
 
     Parameters
     ----------
@@ -213,117 +452,26 @@ def inflate_and_adjust(
     Raises
     ------
     HardwareFault
-        When a channel cannot reach p0 in ``timeout_s`` (leak, supply too low, stuck valve),
-        exceeds the maximum, leaks, or its sensor fails; the message names the channel. The box
-        is put in the safe state first.
+        When a channel cannot reach p0 in ``timeout_s``, does not answer its valves (leak,
+        stuck valve, no supply), exceeds the maximum, leaks, or its sensor fails; the message
+        names the channel. The box is put in the safe state first.
     """
     params = params or InflationParams()
     if not 1 <= n_modules <= box.channels:
         raise InputError(f"a box with {box.channels} channels cannot drive {n_modules} modules")
-    target, tol = params.target_pa, params.tolerance_pa
-    filt = RunningAverage(params.filter_length)
-    fast = RunningAverage(3)  # short filter for stopping: 1 sample of lag, small overshoot
-    state = np.zeros(n_modules, dtype=np.int8)  # 0 closed, 1 inflating, -1 deflating
-    since = np.zeros(n_modules, dtype=np.int64)  # frames since each channel's last change
-    starts = np.zeros(n_modules, dtype=np.int64)  # corrections started per channel
-    settled_since: float | None = None
-    settle_start_p: NDArray[np.float64] | None = None
-    t0: float | None = None
-
-    def apply(k: int, s: int) -> None:
-        if state[k] != s:
-            cmd = (
-                ValveCommand.INFLATE
-                if s > 0
-                else ValveCommand.DEFLATE
-                if s < 0
-                else ValveCommand.CLOSED
-            )
-            box.set_valve(k + 1, cmd)
-            state[k] = s
-            since[k] = 0
-
+    ctl = InflationController(n_modules, params)
     try:
-        while True:
+        while ctl.result is None:
             frame = box.read()
             if on_frame is not None:
                 on_frame(frame)
-            t0 = frame.t_s if t0 is None else t0
-            p_raw = check_frame(
-                frame, n_modules, params.max_pressure_pa, trip_margin_pa=params.trip_margin_pa
-            )
-            p = filt.update(p_raw)
-            p_fast = fast.update(p_raw)
-            since += 1
-            if not filt.full:
-                continue
-            err = p - target
-            err_fast = p_fast - target
-            # start only once the long filter holds no sample from before the last change;
-            # stop when the short filter crosses p0 (decided for all channels at once)
-            start = (state == 0) & (since > params.filter_length) & (np.abs(err) > tol)
-            stop = ((state == 1) & (err_fast >= 0)) | ((state == -1) & (err_fast <= 0))
-            if start.any() or stop.any():
-                for ks in np.flatnonzero(stop):
-                    apply(int(ks), 0)
-                for kb in np.flatnonzero(start):
-                    apply(int(kb), 1 if err[kb] < 0 else -1)
-                    starts[kb] += 1
-            inflating = state == 1
-            if inflating.any() and frame.t_s - t0 > 1.0 and frame.supply_pa < target + 2 * tol:
-                k = int(np.argmax(inflating))
-                raise HardwareFault(
-                    f"channel {k + 1}: supply pressure {frame.supply_pa / 1e3:.2f} kPa is too low to "
-                    f"inflate to {target / 1e3:.2f} kPa (supply lost?)"
-                )
-            # judge sealed channels only once the filter holds no sample from before a change
-            if (
-                not state.any()
-                and since.min() > params.filter_length
-                and (np.abs(err) <= tol).all()
-            ):
-                if settled_since is None:
-                    settled_since, settle_start_p = frame.t_s, p.copy()
-                elif frame.t_s - settled_since >= params.settle_s:
-                    assert settle_start_p is not None
-                    rate = (p - settle_start_p) / (frame.t_s - settled_since)
-                    leaking = rate < -params.max_drift_pa_s
-                    if leaking.any():
-                        k = int(np.argmax(leaking))
-                        raise HardwareFault(
-                            f"channel {k + 1}: loses {-rate[k] / 1e3:.3f} kPa/s with its valves closed (leak)"
-                        )
-                    break
-            else:
-                settled_since = None
-            if frame.t_s - t0 > params.timeout_s:
-                # the culprit: off tolerance, else still correcting, else corrected most often
-                off = np.flatnonzero(np.abs(err) > tol)
-                if off.size == 0:
-                    off = np.flatnonzero(state)
-                if off.size == 0:
-                    off = np.flatnonzero(starts == starts.max())
-                which = ", ".join(str(int(c) + 1) for c in off)
-                raise HardwareFault(
-                    f"channel {which}: could not reach {target / 1e3:.2f} +/- {tol / 1e3:.2f} kPa within "
-                    f"{params.timeout_s:g} s (now {', '.join(f'{v / 1e3:.2f}' for v in p)} kPa; leak, low "
-                    "supply or stuck valve?)"
-                )
-        adjusted_at = frame.t_s
-        box.close_valves()
-        if on_adjusted is not None:
-            on_adjusted(adjusted_at)
-        reads = []
-        for _ in range(params.reference_reads):
-            frame = box.read()
-            if on_frame is not None:
-                on_frame(frame)
-            reads.append(
-                check_frame(
-                    frame, n_modules, params.max_pressure_pa, trip_margin_pa=params.trip_margin_pa
-                )
-            )
-        return AdjustmentResult(capture_reference(reads), adjusted_at, frame.t_s)
+            was = ctl.state
+            for ch, cmd in ctl.step(frame):
+                box.set_valve(ch, cmd)
+            if ctl.state == "reference" and was != "reference" and on_adjusted is not None:
+                assert ctl.adjusted_at_s is not None
+                on_adjusted(ctl.adjusted_at_s)
+        return ctl.result
     except HardwareFault as exc:
         if safe_state and not hasattr(exc, "safe_state"):
             exc.safe_state = make_safe(  # type: ignore[attr-defined]

@@ -82,6 +82,12 @@ class FaultThresholds(CheckedFields, what="fault threshold"):
     #: windows of ``window_s`` is rising without a command, Pa/s (50 Pa/s: 5 sigma of the
     #: slope of a 10-sample mean over 0.5 s; a load step settles within one window).
     rise_pa_s: Positive = 50.0
+    #: The same while an object may be placed on the pad (``loads_expected`` without the
+    #: robot pressing), Pa/s: a load is a step that settles within a window; a stuck-open
+    #: inflation valve fills a
+    #: sealed module at 300-500 Pa/s for as long as the supply lasts (the simulated FEM
+    #: module between 1.1 and 2.9 kPa), so three windows above 150 Pa/s are no load.
+    rise_loaded_pa_s: Positive = 150.0
     #: Length of one rise window, seconds.
     window_s: Positive = 0.5
     #: Consecutive rising windows needed.
@@ -121,8 +127,12 @@ class FaultMonitor:
         self._sealed_window = np.zeros(self.n, dtype=bool)
         #: True while an object is being placed on the pad or the robot presses the pad or an
         #: object on it (wait_object, descend, close, lift): a sealed module then rises because
-        #: of the load, so "rising" is not judged (the range and over-pressure checks still are).
+        #: of the load, so "rising" is judged against ``rise_loaded_pa_s`` instead.
         self.loads_expected = False
+        #: True while the robot presses the pad or an object on it (descend, close, lift): the
+        #: load may rise steadily for seconds, so "rising" is not judged at all (the range and
+        #: over-pressure checks still are; these phases last a few seconds).
+        self.robot_pressing = False
 
     def set_reference(self, reference_pa: Sequence[float] | NDArray[np.float64]) -> None:
         """Pressures the sealed modules must not fall below (the saved reference), pascals."""
@@ -189,7 +199,7 @@ class FaultMonitor:
                 )
                 return _fault(t, k, "falling", what, "leak or deflation valve stuck open?")
         self._sealed_window &= sealed
-        if self._window_start is None or not sealed.any() or self.loads_expected:
+        if self._window_start is None or not sealed.any() or self.robot_pressing:
             self._window_start = (t, mean.copy())
             self._sealed_window = sealed.copy()
             self._rising[:] = 0
@@ -198,7 +208,8 @@ class FaultMonitor:
         if t - t0 < th.window_s:
             return None
         slope = (mean - m0) / (t - t0)
-        judged = self._sealed_window & (slope > th.rise_pa_s)
+        limit = th.rise_loaded_pa_s if self.loads_expected else th.rise_pa_s
+        judged = self._sealed_window & (slope > limit)
         self._rising = np.where(judged, self._rising + 1, 0)
         self._window_start = (t, mean.copy())
         self._sealed_window = sealed.copy()
@@ -444,13 +455,31 @@ class RunSafety:
             raise MonitoredFault(fault)
         return frame.pressures_pa[: self.n]
 
-    def check_valves(self, read: Callable[[], NDArray[np.float64]]) -> None:
+    def check_valves(self, read: Callable[[], NDArray[np.float64]], verify_s: float = 2.0) -> None:
         """Run :func:`check_valves` through ``read``; the falling check is suspended during the
-        pulses and its reference moved to the pressures they leave."""
+        pulses and its reference moved to the pressures they leave. Then every channel is
+        watched sealed for ``verify_s`` (2 s: a fault that starts during the pulses shows
+        within the 2 s the campaign allows): falling 60 Pa below the new reference (leak,
+        stuck deflation valve: the monitor) or rising as far above it (stuck inflation valve)
+        is a fault; a valve that stuck during the check is not missed."""
         self.monitor.reference_pa = None
         check_valves(self.box, self.n, read, clock=lambda: self.last_t)
-        rows = [read() for _ in range(self.monitor.th.filter_length)]
-        self.monitor.set_reference(np.mean(rows, axis=0))
+        th = self.monitor.th
+        rows = [read() for _ in range(th.filter_length)]
+        reference = np.mean(rows, axis=0)
+        self.monitor.set_reference(reference)
+        filt: deque[NDArray[np.float64]] = deque(rows, maxlen=th.filter_length)
+        t_end = self.last_t + verify_s
+        while self.last_t < t_end:
+            filt.append(read())
+            rise = np.mean(filt, axis=0) - reference
+            up = rise > th.fall_pa
+            if up.any():
+                k = int(np.argmax(up))
+                what = f"rising {rise[k]:.0f} Pa above its reference after the valve check"
+                raise MonitoredFault(
+                    _fault(self.last_t, k, "rising", what, "inflation valve stuck open?")
+                )
 
     def fail(
         self, exc: HardwareFault, t_s: float, on_frame: Callable[[PressureFrame], None]

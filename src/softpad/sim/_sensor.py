@@ -115,8 +115,6 @@ class SensorBank:
         self._same = 0
         self._static: NDArray[np.float64] | None = None
         self._static_start = 0
-        #: Most samples computed at once along a pressure ramp.
-        self.ramp_len = 64
         self._ramp: NDArray[np.float64] | None = None
         self._ramp_key = -1
         self._ramp_start = 0
@@ -174,46 +172,36 @@ class SensorBank:
                 return self._static[0], supply_pa + float(self._supply_noise[i])
         return self._quantise(true_pa + self._noise[i]), supply_pa + float(self._supply_noise[i])
 
-    def sample_ramp(
-        self, true_pa: NDArray[np.float64], rate_pa: NDArray[np.float64], key: int, supply_pa: float
+    def sample_path(
+        self, path: NDArray[np.float64], row: int, key: int, supply_pa: float
     ) -> tuple[NDArray[np.float64], float]:
-        """One reading while the true pressures change by ``rate_pa`` per sample.
+        """One reading while the true pressures follow ``path`` (one row per sample; this
+        sample is row ``row``).
 
-        Readings along the ramp are computed for up to ``ramp_len`` samples at once, as long as
-        ``key`` (which identifies the ramp) stays the same and the calls are consecutive. The
-        returned array must not be modified (copy it first).
+        Readings along the path are computed for its remaining rows at once (up to the end
+        of the noise block), as long as ``key`` (which identifies the path) stays the same
+        and the calls are consecutive. The returned array must not be modified (copy it).
         """
         hit = self.next_on_ramp(key, supply_pa)
         if hit is not None:
             return hit
         if self._i >= self.block:
             self._refill()
-            self._static = None
-            self._ramp = None
-            self._ramp_end = -1
         i = self._i
         self._i = i + 1
         self._same = 0
         self._static = None
-        ramp = self._ramp
-        if (
-            ramp is None
-            or key != self._ramp_key
-            or i != self._ramp_next
-            or i - self._ramp_start >= len(ramp)
-        ):
-            k = min(self.ramp_len, self.block - i)
-            steps = np.arange(k, dtype=float)[:, None]
-            ramp = self._quantise(true_pa + rate_pa * steps + self._noise[i : i + k])
-            ramp.flags.writeable = False
-            self._ramp, self._ramp_key, self._ramp_start = ramp, key, i
-            self._ramp_end = i + k
+        k = min(path.shape[0] - row, self.block - i)
+        ramp = self._quantise(path[row : row + k] + self._noise[i : i + k])
+        ramp.flags.writeable = False
+        self._ramp, self._ramp_key, self._ramp_start = ramp, key, i
+        self._ramp_end = i + k
         self._ramp_next = i + 1
-        return ramp[i - self._ramp_start], supply_pa + float(self._supply_noise[i])
+        return ramp[0], supply_pa + float(self._supply_noise[i])
 
     def next_on_ramp(self, key: int, supply_pa: float) -> tuple[NDArray[np.float64], float] | None:
-        """The next reading of the ramp computed by :meth:`sample_ramp` for ``key``, or None
-        when that ramp does not cover it (then call :meth:`sample_ramp`, which recomputes).
+        """The next reading of the ramp computed by :meth:`sample_path` for ``key``, or None
+        when that path does not cover it (then call :meth:`sample_path`, which recomputes).
         Lets the box skip computing the true pressures while a ramp lasts."""
         i = self._i
         # _ramp_end <= block, and -1 when there is no ramp
