@@ -317,7 +317,7 @@ def test_run_passes_the_thesis_parameters_in_si(monkeypatch, capsys) -> None:
 
     seen = {}
 
-    def capture(names, box, params, recorder, gripper=None):
+    def capture(names, box, params, recorder, gripper=None, robot=None, **parts):
         seen["params"] = params
         raise InputError("stop here")
 

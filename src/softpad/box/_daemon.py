@@ -674,9 +674,13 @@ class _Refused(SoftPadError):
 
 
 def _simulated(box: Box) -> bool:
-    """True for a simulated box (the only kind that may offer services)."""
+    """True for a simulated box (the only kind that may offer services), seen through any
+    :class:`~softpad.box.BoxWrapper` views around it (hooks, fault injection)."""
     from softpad.box._sim import SimBox
+    from softpad.box._wrapper import BoxWrapper
 
+    while isinstance(box, BoxWrapper):
+        box = box.inner
     return isinstance(box, SimBox)
 
 

@@ -193,10 +193,11 @@ def _check_increment_range(delta_pa: list[float], source: str) -> None:
     lo = -thesis.P0_RANGE_PA[1]
     for k, d in enumerate(delta_pa, 1):
         if not lo <= d <= SENSOR_FULL_SCALE_PA:
+            hint = ": were pascals given as kPa?" if d > SENSOR_FULL_SCALE_PA else ""
             raise InputError(
                 f"{source}: increment of module {k} is {d / 1e3:g} kPa, outside "
                 f"{lo / 1e3:g} to {SENSOR_FULL_SCALE_PA / 1e3:g} kPa (a module cannot fall "
-                "below ambient, nor read above the sensor's full scale)"
+                f"below ambient, nor read above the sensor's full scale){hint}"
             )
 
 
