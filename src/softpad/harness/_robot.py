@@ -43,6 +43,15 @@ def check_target(x_m: float, y_m: float, z_m: float, width_m: float) -> None:
             raise InputError(f"robot target {name} must be within {lo:g}..{hi:g} m, got {v!r}")
 
 
+def _kept_width(measured_m: float) -> float:
+    """The jaw width an arm motion keeps: the measured one, within 0 .. MAX_COMMAND_WIDTH_M.
+
+    Jaws closed on nothing (a 4/0 mounting) read a little below zero, their contact
+    penetration; a motion keeps them closed instead of commanding a negative width.
+    """
+    return min(max(measured_m, 0.0), MAX_COMMAND_WIDTH_M)
+
+
 @dataclass(frozen=True)
 class TouchTruth:
     """Ground truth of one descent, read from the simulated world after it.
@@ -114,16 +123,15 @@ class SimulatedRobot:
 
     def move_to(self, pose: ToolPose, speed_m_s: float) -> None:
         self._end_descent()
-        s = self.world.gripper_state()
-        self._command(
-            GripperState(pose.x_m, pose.y_m, pose.z_m, pose.yaw_rad, s.width_m), speed_m_s
-        )
+        width = _kept_width(self.world.gripper_state().width_m)
+        self._command(GripperState(pose.x_m, pose.y_m, pose.z_m, pose.yaw_rad, width), speed_m_s)
 
     def descend(self, speed_m_s: float, min_z_m: float) -> None:
         self._end_descent()
         s = self.world.gripper_state()
         self.world.reset_touch()
-        self._command(GripperState(s.x_m, s.y_m, min_z_m, s.yaw_rad, s.width_m), speed_m_s)
+        width = _kept_width(s.width_m)
+        self._command(GripperState(s.x_m, s.y_m, min_z_m, s.yaw_rad, width), speed_m_s)
         self._descending = True
 
     def stop(self) -> None:
