@@ -117,58 +117,25 @@ def _one_trial(
     options: TrialOptions,
 ) -> dict[str, Any]:
     """One trial of one object (see :func:`run_design_trials`)."""
-    from softpad.box import SafetyLimits, SimBox
-    from softpad.control import ExecutionError, GraspExecution, InflationParams
+    from softpad.control import ExecutionError
     from softpad.errors import HardwareFault
     from softpad.harness import SimulatedRobot
-    from softpad.planning import planner_for
-    from softpad.sensing import make_contact_detector
-    from softpad.sim import AnalyticWorld, Placement, SensorParams, SimGripper
-    from softpad.trials import TrialConfig, perturbed_placement, trial_execution_params, trial_seed
+    from softpad.sim import AnalyticWorld, Placement, SimGripper
+    from softpad.trials import TrialConfig, perturbed_placement, trial_seed
 
-    layout = design.layout
     s = trial_seed(seed, obj.name, k)
     options, lab, physics = _varied(options, s)
-    world = AnalyticWorld(layout, SimGripper.mounting(object_set.mounting(obj), **physics))
+    world = AnalyticWorld(design.layout, SimGripper.mounting(object_set.mounting(obj), **physics))
     spec = obj.placed_on((design.cols * design.pitch_m, design.rows * design.pitch_m))
     spec = spec if lab is None else lab.object(spec)
     noise = TrialConfig(
         position_sigma_m=options.position_sigma_m, yaw_sigma_rad=options.yaw_sigma_rad
     )
     placement = Placement(*perturbed_placement(spec, s, noise))
-    params = trial_execution_params(
-        inflation=InflationParams(target_pa=design.p0_pa, max_pressure_pa=9.5e3),
-        hold_s=options.hold_s,
-    )
-    box = SimBox(
-        world,
-        channels=max(8, layout.n_modules),
-        sample_rate_hz=options.sample_rate_hz,
-        seed=s % (2**31),
-        characteristic=characteristic,
-        sensor=(SensorParams() if lab is None else lab.sensor())
-        if options.noise
-        else SensorParams.ideal(),
-        initial_pressure_pa=0.9 * design.p0_pa,
-    )
-    box.safety_limits = SafetyLimits(max_pressure_pa=9.5e3, release_pa=2.5e3)
+    box = _trial_box(design, world, characteristic, s, options, lab)
     robot = SimulatedRobot(world)
-    detector = make_contact_detector(options.detector, box.sample_rate_hz, layout)
-    loop = GraspExecution(
-        box,
-        robot,
-        layout,
-        params,
-        planner=planner_for(
-            options.planner,
-            world.gripper.geometry,
-            params.planner,
-            detector,
-            box.sample_rate_hz,
-            layout,
-        ),
-        contact_detector=detector,
-        place_objects=lambda: world.place_object(spec, placement),
+    loop = _trial_loop(
+        design, world, box, robot, options, lambda: world.place_object(spec, placement)
     )
     record: dict[str, Any] = {"object": obj.name, "trial": k, "seed": seed}
     if lab is not None:
@@ -180,18 +147,76 @@ def _one_trial(
             outcome = "box_fault" if isinstance(exc, HardwareFault) else "object_not_detected"
             return {**record, "success": False, "outcome": outcome, "contact_delay_s": None,
                     "sim_time_s": box.time_s}  # fmt: skip
-    delay = None
-    if result.grasps and robot.touches:
-        g, t = result.grasps[0], robot.touches[0]
-        if g.detected_at_s is not None and t.first_touch_s is not None:
-            delay = float(g.detected_at_s - t.first_touch_s)
     return {
         **record,
         "success": result.outcome == "held",
         "outcome": result.outcome,
-        "contact_delay_s": delay,
+        "contact_delay_s": _contact_delay_s(result, robot),
         "sim_time_s": box.time_s,
     }
+
+
+def _trial_box(
+    design: Any, world: Any, characteristic: Any, seed: int, options: TrialOptions, lab: Any
+) -> Any:
+    """The simulated box of one trial: the design's module characteristic, the trial's sensor
+    noise (drawn by ``lab`` when randomized), started at 0.9 p0 with the sweep's safety limits."""
+    from softpad.box import SafetyLimits, SimBox
+    from softpad.sim import SensorParams
+
+    box = SimBox(
+        world,
+        channels=max(8, design.layout.n_modules),
+        sample_rate_hz=options.sample_rate_hz,
+        seed=seed % (2**31),
+        characteristic=characteristic,
+        sensor=(SensorParams() if lab is None else lab.sensor())
+        if options.noise
+        else SensorParams.ideal(),
+        initial_pressure_pa=0.9 * design.p0_pa,
+    )
+    box.safety_limits = SafetyLimits(max_pressure_pa=9.5e3, release_pa=2.5e3)
+    return box
+
+
+def _trial_loop(
+    design: Any, world: Any, box: Any, robot: Any, options: TrialOptions, place_objects: Any
+) -> Any:
+    """The closed loop of one trial: inflation to the design's p0, the named planner and
+    contact detector on the design's layout and the analytic world's gripper."""
+    from softpad.control import GraspExecution, InflationParams
+    from softpad.planning import planner_for
+    from softpad.sensing import make_contact_detector
+    from softpad.trials import trial_execution_params
+
+    layout = design.layout
+    params = trial_execution_params(
+        inflation=InflationParams(target_pa=design.p0_pa, max_pressure_pa=9.5e3),
+        hold_s=options.hold_s,
+    )
+    detector = make_contact_detector(options.detector, box.sample_rate_hz, layout)
+    geometry = world.gripper.geometry
+    planner = planner_for(
+        options.planner, geometry, params.planner, detector, box.sample_rate_hz, layout
+    )
+    return GraspExecution(
+        box,
+        robot,
+        layout,
+        params,
+        planner=planner,
+        contact_detector=detector,
+        place_objects=place_objects,
+    )
+
+
+def _contact_delay_s(result: Any, robot: Any) -> float | None:
+    """Seconds from the first touch to the first grasp's detected contact, or None."""
+    if result.grasps and robot.touches:
+        g, t = result.grasps[0], robot.touches[0]
+        if g.detected_at_s is not None and t.first_touch_s is not None:
+            return float(g.detected_at_s - t.first_touch_s)
+    return None
 
 
 def _varied(options: TrialOptions, seed: int) -> tuple[TrialOptions, Any, dict[str, float]]:
