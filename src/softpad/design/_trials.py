@@ -59,37 +59,14 @@ def run_experiment_on_dask(
     -------
     One :class:`softpad.trials.ExperimentResult` per seed, in seed order.
     """
-    from softpad.design._dask import dask_client
     from softpad.trials import ExperimentResult, TrialConfig
 
-    if not isinstance(trials, int) or not 1 <= trials <= 1000:
-        raise InputError(f"trials per object must be an integer from 1 to 1000, got {trials!r}")
-    if not specs:
-        raise InputError("no objects to try")
     config = config or TrialConfig()
-    if config.record_path is not None or config.record_trace:
-        raise InputError(
-            "recording trials is not available on Dask (--record needs --workers without --scheduler)"
-        )
-    results: dict[tuple[int, str, int], Any] = {}
+    _check_request(specs, trials, config)
     t0 = time.perf_counter()
-    with dask_client(scheduler, workers) as client:
-        from distributed import as_completed
-
-        n_workers = len(client.scheduler_info().get("workers", {})) or 1
-        futures = {
-            client.submit(
-                _trial_task, spec, k, s, config, key=f"trial-{s}-{spec.name}-{k}-{time.time_ns()}"
-            ): (s, spec.name, k)
-            for s in seeds
-            for spec in specs
-            for k in range(trials)
-        }
-        for fut in as_completed(list(futures)):
-            res = fut.result()
-            results[futures[fut]] = res
-            if on_trial is not None:
-                on_trial(res)
+    results, n_workers = _run_trial_tasks(
+        specs, trials, seeds, config, scheduler, workers, on_trial
+    )
     wall = time.perf_counter() - t0
     noise = {
         "position_sigma_mm": round(config.position_sigma_m * 1e3, 6),
@@ -107,3 +84,49 @@ def run_experiment_on_dask(
         )
         for s in seeds
     ]
+
+
+def _check_request(specs: Sequence[Any], trials: int, config: Any) -> None:
+    """InputError for a trial count outside 1..1000, no objects, or a recording request."""
+    if not isinstance(trials, int) or not 1 <= trials <= 1000:
+        raise InputError(f"trials per object must be an integer from 1 to 1000, got {trials!r}")
+    if not specs:
+        raise InputError("no objects to try")
+    if config.record_path is not None or config.record_trace:
+        raise InputError(
+            "recording trials is not available on Dask (--record needs --workers without --scheduler)"
+        )
+
+
+def _run_trial_tasks(
+    specs: Sequence[Any],
+    trials: int,
+    seeds: Sequence[int],
+    config: Any,
+    scheduler: str | None,
+    workers: int | None,
+    on_trial: Callable[[Any], None] | None,
+) -> tuple[dict[tuple[int, str, int], Any], int]:
+    """Every (seed, object, trial) as a Dask task: the results by (seed, name, k) as they
+    finish (``on_trial`` called with each) and the number of workers."""
+    from softpad.design._dask import dask_client
+
+    results: dict[tuple[int, str, int], Any] = {}
+    with dask_client(scheduler, workers) as client:
+        from distributed import as_completed
+
+        n_workers = len(client.scheduler_info().get("workers", {})) or 1
+        futures = {
+            client.submit(
+                _trial_task, spec, k, s, config, key=f"trial-{s}-{spec.name}-{k}-{time.time_ns()}"
+            ): (s, spec.name, k)
+            for s in seeds
+            for spec in specs
+            for k in range(trials)
+        }
+        for fut in as_completed(list(futures)):
+            res = fut.result()
+            results[futures[fut]] = res
+            if on_trial is not None:
+                on_trial(res)
+    return results, n_workers
