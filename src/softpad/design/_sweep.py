@@ -137,18 +137,8 @@ def run_sweep(
         raise InputError(f"seeds must be distinct and at least one, got {list(seeds)}")
     job = _SweepJob(object_set, options, quick, cache, progress)
     fem_keys = {d.name: job.fem_key(d) for d in designs}
-    common = {"objects": object_set.fingerprint(), "options": options.to_dict()}
-    tasks: list[SweepTask] = []
-    for d in designs:
-        tasks.append(SweepTask("fem", fem_keys[d.name], d))
-        for s in seeds:
-            payload = {**common, "design": d.variables(), "seed": int(s), "fem": fem_keys[d.name]}
-            tasks.append(SweepTask("trials", cache.key("trials", payload), d, int(s)))
-    done: dict[str, Any] = {}
-    for t in tasks:
-        hit = cache.get(t.kind, t.key)
-        if hit is not None:
-            done[t.key] = hit
+    tasks = _sweep_tasks(job, designs, seeds, fem_keys)
+    done = _cached_results(cache, tasks)
     missing = [t for t in tasks if t.key not in done]
     missing = list({t.key: t for t in missing}.values())  # FEM shared by designs: once
     n_cached = len({t.key for t in tasks}) - len(missing)
@@ -165,6 +155,31 @@ def run_sweep(
     return SweepRaw(
         tuple(designs), responses, trials, len(missing), n_cached, time.perf_counter() - t0, used
     )
+
+
+def _sweep_tasks(
+    job: _SweepJob, designs: list[PadDesign], seeds: Sequence[int], fem_keys: dict[str, str]
+) -> list[SweepTask]:
+    """Each design's FEM task, then its trial task for each seed (keyed by objects, options,
+    design variables, seed and FEM key)."""
+    common = {"objects": job.object_set.fingerprint(), "options": job.options.to_dict()}
+    tasks: list[SweepTask] = []
+    for d in designs:
+        tasks.append(SweepTask("fem", fem_keys[d.name], d))
+        for s in seeds:
+            payload = {**common, "design": d.variables(), "seed": int(s), "fem": fem_keys[d.name]}
+            tasks.append(SweepTask("trials", job.cache.key("trials", payload), d, int(s)))
+    return tasks
+
+
+def _cached_results(cache: ResultCache, tasks: list[SweepTask]) -> dict[str, Any]:
+    """The results of ``tasks`` already in ``cache``, by key."""
+    done: dict[str, Any] = {}
+    for t in tasks:
+        hit = cache.get(t.kind, t.key)
+        if hit is not None:
+            done[t.key] = hit
+    return done
 
 
 def _with_baseline(designs: Sequence[PadDesign]) -> list[PadDesign]:
