@@ -136,25 +136,10 @@ def fem_response(
     """
     import time
 
-    from softpad.fem import (
-        ATMOSPHERIC_PRESSURE_PA,
-        DEFAULT_DEAD_VOLUME_M3,
-        LoadPatch,
-        MeshOptions,
-        ModuleGeometry,
-        ModuleModel,
-    )
+    from softpad.fem import ATMOSPHERIC_PRESSURE_PA, DEFAULT_DEAD_VOLUME_M3
 
     t0 = time.perf_counter()
-    scale = width_m / 0.045
-    patch = LoadPatch("rectangle", BRICK_FOOTPRINT_M[0] * scale, BRICK_FOOTPRINT_M[1] * scale)
-    model = ModuleModel(
-        material,
-        geometry=ModuleGeometry(width_m, thickness_m),
-        mesh=MeshOptions(cells_in_plane=cells_in_plane),
-        load_patch=patch,
-        contact=True,
-    )
+    model = _module_model(width_m, thickness_m, material, cells_in_plane)
     state = model.solve(p0_pa, 0.0)
     dudp, compliance = model.pressure_sensitivity(with_compliance=True)
     gas = (state.volume_m3 + DEFAULT_DEAD_VOLUME_M3) / (ATMOSPHERIC_PRESSURE_PA + p0_pa)
@@ -176,6 +161,21 @@ def fem_response(
         map_xy_m=xy,
         map_rise_pa_n=point_rise,
         solve_time_s=time.perf_counter() - t0,
+    )
+
+
+def _module_model(width_m: float, thickness_m: float, material: str, cells_in_plane: int) -> Any:
+    """The module's model with contact, loaded by the brick's footprint scaled to its width."""
+    from softpad.fem import LoadPatch, MeshOptions, ModuleGeometry, ModuleModel
+
+    scale = width_m / 0.045
+    patch = LoadPatch("rectangle", BRICK_FOOTPRINT_M[0] * scale, BRICK_FOOTPRINT_M[1] * scale)
+    return ModuleModel(
+        material,
+        geometry=ModuleGeometry(width_m, thickness_m),
+        mesh=MeshOptions(cells_in_plane=cells_in_plane),
+        load_patch=patch,
+        contact=True,
     )
 
 
