@@ -1,9 +1,8 @@
 """SoftPad: soft sensorized pneumatic surfaces that help rigid grippers grasp.
 
-Sub-packages, in the order data flows (docs/architecture.md)::
-
-    thesis, layout -> sensing -> planning
-    fem -> sim -> box -> control -> harness -> record -> trials -> cli
+One sub-package per domain, in layers: which may import which is the table
+``softpad.layering.ALLOWED_IMPORTS``, drawn in docs/architecture.md (and README.md) by
+``python -m softpad.layering``.
 
 ``import softpad`` stays light: heavy dependencies (FElupe, MuJoCo, matplotlib) are imported
 lazily inside the functions that need them.

@@ -1,4 +1,5 @@
-"""The layering of docs/architecture.md, read from the source's import statements."""
+"""The layering of ``softpad.layering`` (docs/architecture.md's picture), read from the source's
+import statements."""
 
 from __future__ import annotations
 
@@ -10,42 +11,12 @@ from pathlib import Path
 import pytest
 
 import softpad
+from softpad.layering import ALLOWED_IMPORTS, EVERY_LAYER
 
 SRC = Path(softpad.__file__).parent
 
-#: Sub-packages each sub-package may import (besides itself and the modules every layer may
-#: use: ``errors``, ``thesis`` and ``registry``).
-ALLOWED: dict[str, set[str]] = {
-    "layout": set(),
-    "sensing": {"layout"},
-    "planning": {"layout", "sensing"},
-    "fem": set(),
-    "config": set(),
-    "sim": {"layout", "fem"},
-    "box": {"sim", "layout", "config"},
-    "control": {"box", "layout", "sensing", "planning"},
-    # record replays the controller's decisions on recordings (ExecutionParams, detectors)
-    "record": {"box", "control", "layout", "planning", "sensing"},
-    "harness": {"box", "control", "layout", "sim", "planning", "sensing"},
-    "trials": {"box", "control", "harness", "layout", "planning", "record", "sensing", "sim"},
-    # the ROS adapters translate; the simulated arm node uses the harness and the catalogue
-    "ros": {"box", "control", "harness", "layout", "planning", "sensing", "sim"},
-    # design sweeps evaluate pads with the FEM and simulated trials
-    "design": {
-        "box",
-        "control",
-        "fem",
-        "harness",
-        "layout",
-        "planning",
-        "sensing",
-        "sim",
-        "trials",
-    },
-}
-
-#: Modules below every layer: the errors, the thesis's constants, the registries' base.
-EVERY_LAYER = ("errors", "thesis", "registry")
+#: The layering's one table (docs/architecture.md draws it from there).
+ALLOWED = ALLOWED_IMPORTS
 
 
 def _is_module(name: str) -> bool:
