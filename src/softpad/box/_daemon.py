@@ -123,6 +123,31 @@ class _Stats:
         }
 
 
+def _check_options(
+    box: Box,
+    watchdog_s: float,
+    watchdog_action: str,
+    rt_priority: int | None,
+    services: Mapping[str, Handler] | None,
+) -> None:
+    """InputError for a daemon option out of range, or services for a box not simulated."""
+    if watchdog_action not in ("hold", "vent"):
+        raise InputError(f"watchdog action must be hold or vent, got {watchdog_action!r}")
+    if not (math.isfinite(watchdog_s) and 0.01 <= watchdog_s <= 60):
+        raise InputError(f"watchdog time must be within 0.01..60 s, got {watchdog_s!r}")
+    if rt_priority is not None and (
+        isinstance(rt_priority, bool)
+        or not isinstance(rt_priority, int)
+        or not 1 <= rt_priority <= 99
+    ):
+        raise InputError(f"real-time priority must be an integer from 1 to 99, got {rt_priority!r}")
+    if services and not _simulated(box):
+        raise InputError(
+            f"services ({', '.join(sorted(services))}) are for a simulated box only, "
+            f"not {type(box).__name__}"
+        )
+
+
 class BoxDaemon:
     """Serve ``box`` over zenoh (see the module docstring and :mod:`softpad.box._link`).
 
@@ -182,23 +207,7 @@ class BoxDaemon:
         spin_s: float = 0.0,
         rt_priority: int | None = None,
     ) -> None:
-        if watchdog_action not in ("hold", "vent"):
-            raise InputError(f"watchdog action must be hold or vent, got {watchdog_action!r}")
-        if not (math.isfinite(watchdog_s) and 0.01 <= watchdog_s <= 60):
-            raise InputError(f"watchdog time must be within 0.01..60 s, got {watchdog_s!r}")
-        if rt_priority is not None and (
-            isinstance(rt_priority, bool)
-            or not isinstance(rt_priority, int)
-            or not 1 <= rt_priority <= 99
-        ):
-            raise InputError(
-                f"real-time priority must be an integer from 1 to 99, got {rt_priority!r}"
-            )
-        if services and not _simulated(box):
-            raise InputError(
-                f"services ({', '.join(sorted(services))}) are for a simulated box only, "
-                f"not {type(box).__name__}"
-            )
+        _check_options(box, watchdog_s, watchdog_action, rt_priority, services)
         self.box = guard_box(box, max_pressure_pa)
         self.listen = tuple(listen)
         self.prefix = key_prefix.rstrip("/")
@@ -207,11 +216,20 @@ class BoxDaemon:
         self.watchdog_s = float(watchdog_s)
         self.watchdog_action = watchdog_action
         self.services = dict(services or {})
+        self.lockstep_frames = lockstep_frames
+        self.spin_s = float(spin_s)
+        self.rt_priority = rt_priority
         self._auth = dict(auth or {})
         self._log = log
         #: Repeating lines (a box fault every frame, a flood of forged messages) said once,
         #: then at most every 10 s with their count.
         self._note = ThrottledLog(log)
+        self.stats = _Stats(float(box.sample_rate_hz))
+        self.stats.rt_priority = rt_priority
+        self._init_state()
+
+    def _init_state(self) -> None:
+        """Nobody in control, nothing sampled or sent yet, no session or threads."""
         #: Drawn at start: tags every frame for monitors (handed on ``info``).
         self._read_key = new_key()
         #: The controller's key and counters (None: nobody controls).
@@ -221,8 +239,6 @@ class BoxDaemon:
         self._frame_key: bytes | None = None
         self._lock = threading.RLock()
         self._stop = threading.Event()
-        self.stats = _Stats(float(box.sample_rate_hz))
-        self.stats.rt_priority = rt_priority
         self.controller: str | None = None
         self._heartbeat = 0.0
         self._taken_at = 0.0
@@ -235,11 +251,8 @@ class BoxDaemon:
         self._thread: threading.Thread | None = None
         self._decls: list[Any] = []
         self._outbox: queue.Queue[bytes] = queue.Queue(maxsize=2000)
-        self.lockstep_frames = lockstep_frames
         self._acked = 0
         self._ack_event = threading.Event()
-        self.spin_s = float(spin_s)
-        self.rt_priority = rt_priority
 
     # --- life cycle -------------------------------------------------------------------
     def start(self) -> BoxDaemon:
