@@ -194,13 +194,7 @@ def run_experiment(
     if not specs:
         raise InputError("no objects to try")
     config = config or TrialConfig()
-    tasks = []
-    for spec in specs:
-        for k in range(trials):
-            cfg = replace(config, record_trace=(spec.name == trace_object and k == 0))
-            if record is not None:
-                cfg = replace(cfg, record_path=str(trial_recording_path(record, spec.name, k)))
-            tasks.append((spec, k, trial_seed(seed, spec.name, k), cfg))
+    tasks = _experiment_tasks(specs, trials, seed, config, trace_object, record)
     workers = _worker_count(workers, len(tasks))
     t0 = time.perf_counter()
     results, trace = _run_tasks(tasks, workers, on_trial)
@@ -218,6 +212,26 @@ def run_experiment(
         },
     )
     return exp, trace
+
+
+def _experiment_tasks(
+    specs: Sequence[Any],
+    trials: int,
+    seed: int,
+    config: TrialConfig,
+    trace_object: str | None,
+    record: str | Path | None,
+) -> list[tuple[Any, int, int, TrialConfig]]:
+    """``(spec, k, trial seed, config)`` of every trial, object by object; trial 0 of
+    ``trace_object`` records its trace, and each trial its MCAP file under ``record``."""
+    tasks = []
+    for spec in specs:
+        for k in range(trials):
+            cfg = replace(config, record_trace=(spec.name == trace_object and k == 0))
+            if record is not None:
+                cfg = replace(cfg, record_path=str(trial_recording_path(record, spec.name, k)))
+            tasks.append((spec, k, trial_seed(seed, spec.name, k), cfg))
+    return tasks
 
 
 def _worker_count(workers: int | None, n_tasks: int) -> int:
