@@ -116,16 +116,9 @@ class _Trial:
         gripper: Any | None = None,
         lab: Any | None = None,
     ) -> None:
-        from softpad.box import SafetyLimits, SimBox
         from softpad.harness import SimulatedRobot
-        from softpad.layout import GripperSpec, PadLayout
-        from softpad.sim import (
-            MujocoGripper,
-            MujocoWorld,
-            PadResponse,
-            SensorParams,
-            parse_mounting,
-        )
+        from softpad.layout import GripperSpec
+        from softpad.sim import MujocoGripper, MujocoWorld, parse_mounting
 
         self.spec, self.config, self.opening_m = spec, config, opening_m
         self.truth = spec if truth is None else truth
@@ -134,33 +127,11 @@ class _Trial:
         self.geometry = gripper or GripperSpec(*parse_mounting(mounting or spec.gripper))
         #: The drawn uncertain parameters (``config.randomize``), or None.
         self.lab = lab
-        world: dict[str, Any] = {}
-        if lab is not None:
-            layout = PadLayout()
-            seam = lab.values["seam_width_m"]
-            world = dict(
-                pad=lab.pad_physics(layout.pitch_m),
-                response=PadResponse(layout, seam_width_m=seam),
-            )
+        world = _lab_world(lab)
         physics = lab.gripper_physics() if lab is not None else {}
         self.gripper = MujocoGripper.from_spec(self.geometry, **physics)
         self.world = MujocoWorld(gripper=self.gripper, **world)
-        sensor = SensorParams() if lab is None else lab.sensor()
-        self.box = SimBox(
-            self.world,
-            sample_rate_hz=config.sample_rate_hz,
-            seed=seed % (2**31),
-            sensor=sensor if config.noise else SensorParams.ideal(),
-            pneumatics=None if lab is None else lab.pneumatics(),
-            # between trials of a session the modules stay near p0 (1 kPa, under it)
-            initial_pressure_pa=1.0e3 if config.inflated_start else 0.0,
-        )
-        # the box-side limit follows the trials' fault limit (a gripper pressing an object
-        # into the pad reads above the 3 kPa inflation maximum: trial_execution_params)
-        max_pa = config.execution.inflation.max_pressure_pa
-        self.box.safety_limits = SafetyLimits(
-            max_pressure_pa=max_pa, release_pa=min(2500.0, max_pa - 500.0)
-        )
+        self.box = _trial_box(self.world, seed, config, lab)
         # the jaws open to the mounting's width (the loop commands "fully open"); an explicit
         # opening_m is an experimenter's choice that provokes a failure on purpose
         self.robot = SimulatedRobot(
@@ -187,6 +158,43 @@ class _Trial:
         from softpad.sim import Placement
 
         self.world.place_object(self.spec, Placement(*self.placement))
+
+
+def _lab_world(lab: Any | None) -> dict[str, Any]:
+    """The MuJoCo world's pad physics and response drawn by ``lab`` (none: the nominal)."""
+    from softpad.layout import PadLayout
+    from softpad.sim import PadResponse
+
+    if lab is None:
+        return {}
+    layout = PadLayout()
+    seam = lab.values["seam_width_m"]
+    return dict(
+        pad=lab.pad_physics(layout.pitch_m), response=PadResponse(layout, seam_width_m=seam)
+    )
+
+
+def _trial_box(world: Any, seed: int, config: TrialConfig, lab: Any | None) -> Any:
+    """The simulated box over ``world``: the trial's sensor noise and pneumatics (drawn by
+    ``lab``), its start pressure and the box-side safety limits."""
+    from softpad.box import SafetyLimits, SimBox
+    from softpad.sim import SensorParams
+
+    sensor = SensorParams() if lab is None else lab.sensor()
+    box = SimBox(
+        world,
+        sample_rate_hz=config.sample_rate_hz,
+        seed=seed % (2**31),
+        sensor=sensor if config.noise else SensorParams.ideal(),
+        pneumatics=None if lab is None else lab.pneumatics(),
+        # between trials of a session the modules stay near p0 (1 kPa, under it)
+        initial_pressure_pa=1.0e3 if config.inflated_start else 0.0,
+    )
+    # the box-side limit follows the trials' fault limit (a gripper pressing an object
+    # into the pad reads above the 3 kPa inflation maximum: trial_execution_params)
+    max_pa = config.execution.inflation.max_pressure_pa
+    box.safety_limits = SafetyLimits(max_pressure_pa=max_pa, release_pa=min(2500.0, max_pa - 500.0))
+    return box
 
 
 @dataclass(frozen=True)
