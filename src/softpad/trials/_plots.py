@@ -119,13 +119,10 @@ def plot_grasps(
     rows = math.ceil(n / cols)
     fig = plt.figure(figsize=(3.3 * cols + 4.6, 3.0 * rows + 0.6))
     grid = fig.add_gridspec(rows, cols + 2)
+    sizes = (tip_thickness_m, tip_width_m, line_width_m)
     for i, name in enumerate(names):
         ax = fig.add_subplot(grid[i // cols, i % cols])
-        trials = [t for t in result.trials if t.object == name]
-        trial = trials[min(trial_index, len(trials) - 1)]
-        draw_grasp(ax, specs[name], trial, layout, tip_thickness_m, tip_width_m, line_width_m)
-        held = sum(t.success for t in trials)
-        ax.set_title(f"{ax.get_title()} ({held}/{len(trials)} held in all)", fontsize=8)
+        _grasp_panel(ax, result, name, specs[name], layout, sizes, trial_index)
     success_chart(fig.add_subplot(grid[:, cols:]), result)
     fig.suptitle(
         f"Planned grasp of trial {trial_index + 1} of each object (black: fingertips at the "
@@ -135,6 +132,25 @@ def plot_grasps(
     fig.tight_layout()
     fig.savefig(path, dpi=150)
     plt.close(fig)
+
+
+def _grasp_panel(
+    ax: Any,
+    result: ExperimentResult,
+    name: str,
+    spec: Any,
+    layout: PadLayout,
+    sizes: tuple[float, float, float],
+    trial_index: int,
+) -> None:
+    """Trial ``trial_index`` of object ``name`` (its last when it has fewer) drawn by
+    :func:`draw_grasp` with ``sizes`` (tip thickness, tip width, line width, metres), the
+    title ending with how many of all its trials held."""
+    trials = [t for t in result.trials if t.object == name]
+    trial = trials[min(trial_index, len(trials) - 1)]
+    draw_grasp(ax, spec, trial, layout, *sizes)
+    held = sum(t.success for t in trials)
+    ax.set_title(f"{ax.get_title()} ({held}/{len(trials)} held in all)", fontsize=8)
 
 
 def wilson_interval(held: int, trials: int, confidence: float = 0.95) -> tuple[float, float]:
