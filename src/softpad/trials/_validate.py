@@ -244,15 +244,8 @@ def plan_row(
             method=method,
             note=note,
         )
-    thetas = [p[2] for p in made]
-    modal = max(thetas, key=lambda t: sum(_same_theta(t, u) for u in thetas))
-    share = sum(_same_theta(t, thesis_plan[2]) for t in thetas) / len(plans)
-    pick = [p for p in made if _same_theta(p[2], thesis_plan[2])] or [
-        p for p in made if _same_theta(p[2], modal)
-    ]
-    cogs = np.array([p[:2] for p in pick])
-    lo, hi = np.percentile(cogs, 2.5, axis=0), np.percentile(cogs, 97.5, axis=0)
-    med = np.median(np.array([p[:2] for p in made if _same_theta(p[2], modal)]), axis=0)
+    share = sum(_same_theta(p[2], thesis_plan[2]) for p in made) / len(plans)
+    modal, lo, hi, med = _cog_spread(made, thesis_plan[2])
     inside = bool(
         np.all(np.asarray(thesis_plan[:2]) >= lo - COG_TOLERANCE_UNITS)
         and np.all(np.asarray(thesis_plan[:2]) <= hi + COG_TOLERANCE_UNITS)
@@ -273,6 +266,22 @@ def plan_row(
         method=method,
         note=f"{share_text}; {note}" if note else share_text,
     )
+
+
+def _cog_spread(
+    made: list[tuple[float, float, float]], thesis_theta: float
+) -> tuple[float, np.ndarray, np.ndarray, np.ndarray]:
+    """The modal theta of the plans ``made``; the 2.5 and 97.5 % COG percentiles of the plans
+    with the thesis's theta (of the modal theta if none); the median COG of the modal plans."""
+    thetas = [p[2] for p in made]
+    modal = max(thetas, key=lambda t: sum(_same_theta(t, u) for u in thetas))
+    pick = [p for p in made if _same_theta(p[2], thesis_theta)] or [
+        p for p in made if _same_theta(p[2], modal)
+    ]
+    cogs = np.array([p[:2] for p in pick])
+    lo, hi = np.percentile(cogs, 2.5, axis=0), np.percentile(cogs, 97.5, axis=0)
+    med = np.median(np.array([p[:2] for p in made if _same_theta(p[2], modal)]), axis=0)
+    return modal, lo, hi, med
 
 
 # --- static rows: the analytic world behind a noisy box ---------------------------------------
