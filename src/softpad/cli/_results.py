@@ -108,7 +108,7 @@ _TRIALS = ("--no-progress",)
 RESULTS: tuple[ResultSpec, ...] = (
     ResultSpec(
         "Validation against the thesis's observations",
-        "docs/validation.md",
+        "README.md, docs/validation.md",
         ("validate", "--seeds", "0-1", "--json", *_TRIALS),
         ("validate", "--seeds", "0-9", "--json", *_TRIALS),
         ("validate", "--placements", "2", "--json", *_TRIALS),
