@@ -188,8 +188,6 @@ def fit_material(
     Parameters are scaled by their starting values (the unknowns are ratios); trial points
     whose energy is not convex at rest or that do not converge get a large residual.
     """
-    from scipy.optimize import least_squares
-
     p, h = _measurements(pressure_pa, height_m)
     if not (np.all(np.isfinite(p)) and np.all(np.isfinite(h))):
         raise InputError("measurements contain non-finite values")
@@ -199,17 +197,9 @@ def fit_material(
     residuals = _HeightResiduals(start, names, scale, p, h, geometry, mesh)
     residuals.progress, residuals.budget = progress, max_evaluations
     initial_res = residuals(np.ones(len(names)))
-    solution = least_squares(
-        residuals,
-        np.ones(len(names)),
-        x_scale=np.ones(len(names)),
-        diff_step=1e-3,
-        max_nfev=max_evaluations,
-        xtol=1e-6,
-        ftol=1e-8,
-    )
-    fitted = start.with_parameters(**dict(zip(names, solution.x * scale, strict=True)))
-    final = residuals(solution.x)
+    x = _least_squares(residuals, len(names), max_evaluations)
+    fitted = start.with_parameters(**dict(zip(names, x * scale, strict=True)))
+    final = residuals(x)
     return FitResult(
         material=fitted,
         initial=start,
@@ -220,6 +210,23 @@ def fit_material(
         predicted_m=final + h,
         evaluations=residuals.evaluations,
     )
+
+
+def _least_squares(residuals: Any, n: int, max_evaluations: int) -> np.ndarray:
+    """The ``n`` scaled parameters (start: all 1) that minimise ``residuals``, within
+    ``max_evaluations`` sweeps (:func:`scipy.optimize.least_squares`)."""
+    from scipy.optimize import least_squares
+
+    solution = least_squares(
+        residuals,
+        np.ones(n),
+        x_scale=np.ones(n),
+        diff_step=1e-3,
+        max_nfev=max_evaluations,
+        xtol=1e-6,
+        ftol=1e-8,
+    )
+    return np.asarray(solution.x)
 
 
 @dataclass(frozen=True)
