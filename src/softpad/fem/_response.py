@@ -86,13 +86,7 @@ def module_response(
     ModuleResponse
         ``s`` on the quarter's top nodes, volume and compliance per pressure.
     """
-    p = np.array([check_finite("pressure", v) for v in pressures_pa], dtype=float)
-    if p.size < 1 or (p.size > 1 and not (np.diff(p) > 0).all()) or p[0] <= 0:
-        raise InputError(f"response pressures must be increasing and > 0 Pa, got {list(p)}")
-    if p[-1] > thesis.MAX_PRESSURE_PA:
-        raise InputError(
-            f"response pressure {p[-1] / 1e3:g} kPa exceeds {thesis.MAX_PRESSURE_PA / 1e3:g} kPa"
-        )
+    p = _response_pressures(pressures_pa)
     model = (setup or ModuleSetup()).model(load_patch=REFERENCE_PATCH)
     rows, volumes, compliances, refs = [], [], [], []
     axis = np.zeros(0)
@@ -106,7 +100,34 @@ def module_response(
         refs.append(float(np.dot(model.load_patch_weights, dudp[:, 2])))
         if progress is not None:
             progress(k + 1, p.size)
-    meta = {
+    return ModuleResponse(
+        pressure_pa=p,
+        axis_m=axis,
+        influence_m3_n=np.array(rows),
+        volume_m3=np.array(volumes),
+        compliance_m3_pa=np.array(compliances),
+        reference_influence_m3_n=np.array(refs),
+        reference_patch_m=np.array([REFERENCE_PATCH.size_x_m, REFERENCE_PATCH.size_y_m]),
+        meta=_response_meta(model),
+    )
+
+
+def _response_pressures(pressures_pa: Sequence[float]) -> np.ndarray:
+    """The pressures as an array, Pa; InputError unless finite, increasing, > 0 and at most
+    the thesis's maximum."""
+    p = np.array([check_finite("pressure", v) for v in pressures_pa], dtype=float)
+    if p.size < 1 or (p.size > 1 and not (np.diff(p) > 0).all()) or p[0] <= 0:
+        raise InputError(f"response pressures must be increasing and > 0 Pa, got {list(p)}")
+    if p[-1] > thesis.MAX_PRESSURE_PA:
+        raise InputError(
+            f"response pressure {p[-1] / 1e3:g} kPa exceeds {thesis.MAX_PRESSURE_PA / 1e3:g} kPa"
+        )
+    return p
+
+
+def _response_meta(model: ModuleModel) -> dict[str, Any]:
+    """What the response was computed from and what its table means."""
+    return {
         "model": model.material.name,
         "width_m": model.geometry.width_m,
         "thickness_m": model.geometry.thickness_m,
@@ -117,16 +138,6 @@ def module_response(
         "definition": "influence_m3_n[p, i, j] = -dV/dF of a vertical point force at "
         "(axis_m[i], axis_m[j]) from the module centre, unloaded layer at pressure_pa[p]",
     }
-    return ModuleResponse(
-        pressure_pa=p,
-        axis_m=axis,
-        influence_m3_n=np.array(rows),
-        volume_m3=np.array(volumes),
-        compliance_m3_pa=np.array(compliances),
-        reference_influence_m3_n=np.array(refs),
-        reference_patch_m=np.array([REFERENCE_PATCH.size_x_m, REFERENCE_PATCH.size_y_m]),
-        meta=meta,
-    )
 
 
 def _mesh_text(mesh: MeshOptions) -> str:
