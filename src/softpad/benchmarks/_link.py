@@ -146,17 +146,15 @@ def run(quick: bool) -> list[BenchResult]:
     duration = 3.0 if quick else LOOP_SECONDS
     load = os.getloadavg()[0]
     lat, lost, got, stats = _measure(duration)
+    detail = f"3 monitor processes x {duration:g} s, {got} frames received, load {load:.1f}"
+    return [*_link_results(lat, lost, got, detail), *_schedule_results(stats, load)]
+
+
+def _link_results(lat: np.ndarray, lost: int, got: int, detail: str) -> list[BenchResult]:
+    """Latency p50 and p99 (``lat``, seconds, as fractions of the 1 ms period) and frames
+    lost."""
     period = 1e-3
     p50, p99 = (float(np.percentile(lat, q)) / period for q in (50, 99)) if lat.size else (0, 0)
-    detail = f"3 monitor processes x {duration:g} s, {got} frames received, load {load:.1f}"
-    err_ms = (stats.get("period_error_p99_s") or 0.0) * 1e3
-    ms = {k: (stats.get(f"period_{k}_s") or 0.0) * 1e3 for k in ("p50", "p99", "max")}
-    loop = (
-        f"{stats['frames']} frames in the measured window, period p50/p99/max "
-        f"{ms['p50']:.3f}/{ms['p99']:.3f}/{ms['max']:.3f} ms, longest gc "
-        f"{stats.get('gc_pause_max_s', 0) * 1e3:.2f} ms, load {load:.1f} at the start, "
-        f"SCHED_FIFO {stats.get('realtime_priority') or 'off'}"
-    )
     return [
         BenchResult(
             "zenoh link, sample -> receive latency p50, fraction of the 1 ms period",
@@ -180,6 +178,20 @@ def run(quick: bool) -> list[BenchResult]:
             met=lost == 0 and got > 0,
             detail=detail,
         ),
+    ]
+
+
+def _schedule_results(stats: dict, load: float) -> list[BenchResult]:
+    """The daemon's dropped ticks, period error p99 and CPU, from its ``stats``."""
+    err_ms = (stats.get("period_error_p99_s") or 0.0) * 1e3
+    ms = {k: (stats.get(f"period_{k}_s") or 0.0) * 1e3 for k in ("p50", "p99", "max")}
+    loop = (
+        f"{stats['frames']} frames in the measured window, period p50/p99/max "
+        f"{ms['p50']:.3f}/{ms['p99']:.3f}/{ms['max']:.3f} ms, longest gc "
+        f"{stats.get('gc_pause_max_s', 0) * 1e3:.2f} ms, load {load:.1f} at the start, "
+        f"SCHED_FIFO {stats.get('realtime_priority') or 'off'}"
+    )
+    return [
         BenchResult(
             "box daemon at 1 kHz (sim box, 3 monitors), ticks dropped by the schedule",
             float(stats["dropped_samples"]),
