@@ -1,4 +1,4 @@
-"""Release hygiene: one version source, the licence file, ``python -m softpad``."""
+"""Release hygiene: one version source, the licence file, ``python -m softpad``, the changelog."""
 
 from __future__ import annotations
 
@@ -39,3 +39,17 @@ def test_python_m_softpad_runs_the_command() -> None:
     )
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip() == f"softpad {softpad.__version__}" and not out.stderr
+
+
+def test_the_changelog_has_the_version() -> None:
+    """CHANGELOG.md (Keep a Changelog) has a dated section for ``softpad.__version__``, an
+    Unreleased section above it, and its versions newest first."""
+    text = (ROOT / "CHANGELOG.md").read_text(encoding="utf-8")
+    assert "keepachangelog.com" in text
+    versions = re.findall(r"^## \[(\d+\.\d+\.\d+)\] - (\d{4}-\d{2}-\d{2})$", text, flags=re.M)
+    assert versions, "no '## [X.Y.Z] - YYYY-MM-DD' sections"
+    assert versions[0][0] == softpad.__version__, (versions[0], softpad.__version__)
+    numbers = [tuple(int(n) for n in v.split(".")) for v, _ in versions]
+    assert numbers == sorted(numbers, reverse=True)
+    assert [d for _, d in versions] == sorted((d for _, d in versions), reverse=True)
+    assert text.index("## [Unreleased]") < text.index(f"## [{softpad.__version__}]")
