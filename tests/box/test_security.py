@@ -229,7 +229,7 @@ def test_deep_and_oversized_payloads_get_a_clear_reply(attack) -> None:
         assert daemon.stats.malformed >= 3
 
 
-def test_services_are_bounded_and_refused_on_a_hardware_box(attack, served) -> None:
+def test_services_are_bounded_and_refused_on_a_hardware_box(attack, served, tmp_path) -> None:
     from softpad.box import BoxDaemon, BoxWrapper
     from softpad.errors import InputError
     from softpad.harness import simulation_extensions
@@ -241,12 +241,41 @@ def test_services_are_bounded_and_refused_on_a_hardware_box(attack, served) -> N
         with pytest.raises(InputError, match="64 characters"):
             a.request("ext/sim.place", objects=["x" * 100])
         _until(lambda: daemon.stats.frames > frames + 10, "sampling going on")
+    # a hardware box (fake IIO tree, in-memory valve lines), alone and seen through a view,
+    # refuses the simulator's services; a view of a simulator is still a simulator
     sim = open_box("sim://")
+    hw = _hardware_box(tmp_path)
     try:
-        with pytest.raises(InputError, match="simulated box only"):
-            BoxDaemon(BoxWrapper(sim, owns_inner=False), services=simulation_extensions(sim))
+        for box in (hw, BoxWrapper(hw, owns_inner=False)):
+            with pytest.raises(InputError, match="simulated box only"):
+                BoxDaemon(box, services=simulation_extensions(sim))
+        view = BoxDaemon(BoxWrapper(sim, owns_inner=False), services=simulation_extensions(sim))
+        view.close()
     finally:
+        hw.close()
         sim.close()
+
+
+def _hardware_box(root: Path):
+    """A HardwareBox of 2 channels on a fake sysfs IIO tree and in-memory GPIO lines."""
+    from softpad.box import FakeValveLines, HardwareBox
+    from softpad.config import parse_installation
+
+    dev = root / "iio:device0"
+    dev.mkdir(parents=True)
+    for k in range(2):
+        (dev / f"in_voltage{k}_raw").write_text("1100\n")
+    (dev / "in_voltage_scale").write_text("0.439453125\n")
+    chans = [
+        {"gpiochip": "/dev/gpiochip9", "inflate_line": 2 * k, "deflate_line": 2 * k + 1,
+         "iio_device": 0, "iio_channel": k, "pa_per_count": 0.5}
+        for k in range(2)
+    ]  # fmt: skip
+    settings = parse_installation({"box": {"channel": chans, "iio_root": str(root)}}).box
+    lines = FakeValveLines(
+        (w.gpiochip, o) for w in settings.channels for o in (w.inflate_line, w.deflate_line)
+    )
+    return HardwareBox(settings, lines=lines)
 
 
 def test_box_fault_is_logged_once_not_every_frame(free_port) -> None:

@@ -17,7 +17,11 @@ def test_remote_robot_moves_the_served_gripper(served) -> None:
         assert isinstance(box, ZenohBox)
         remote = RemoteRobot(box, gripper="10/4")
         assert (remote.layout.rows, remote.layout.cols) == (2, 3)
-        remote.set_gripper(0.08, 0.1)
+        remote.set_gripper(0.08, 0.1)  # closing to 0.08 m on nothing: reached, holds nothing
+        while remote.is_moving():
+            box.read()
+        assert remote.state().width_m == pytest.approx(0.08, abs=1e-6)
+        assert remote.holding() is False
         remote.move_to(ToolPose(0.05, 0.04, 0.03, 0.3), 0.5)
         while remote.is_moving():
             box.read()

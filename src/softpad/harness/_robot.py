@@ -95,10 +95,10 @@ class SimulatedRobot:
     ) -> None:
         self.world = world
         self.max_opening_m = max_opening_m
-        if closed_width_m is None:
-            closed_width_m = float(getattr(getattr(world, "gripper", None), "min_width_m", 0.0))
-        self.closed_width_m = closed_width_m
+        self._closed_width_m = closed_width_m
         self._closing = False
+        #: Opening the jaws were last commanded to close to (None: fully closed).
+        self._close_to_m: float | None = None
         self.touches: list[TouchTruth] = []
         self._target: GripperState | None = None
         self._last: GripperState | None = None
@@ -145,6 +145,7 @@ class SimulatedRobot:
         width_m = min(width_m, self.max_opening_m)
         s = self.world.gripper_state()
         self._closing = width_m < s.width_m
+        self._close_to_m = width_m
         self._command(GripperState(s.x_m, s.y_m, s.z_m, s.yaw_rad, width_m), speed_m_s)
 
     def is_moving(self) -> bool:
@@ -167,12 +168,24 @@ class SimulatedRobot:
 
     def holding(self) -> bool:
         """What the gripper itself reports: its jaws, last commanded to close, stopped more
-        than :data:`HOLD_MARGIN_M` short of their fully closed opening (on nothing a
-        parallel-jaw gripper closes fully; on an object it stops at the object's width). The
-        force adds nothing here: the servo reaches its limit at the closed stops too. The
-        world's contacts are not asked (they only score a trial)."""
+        than :data:`HOLD_MARGIN_M` short of the commanded opening (or of the fully closed one,
+        when asked to close further): on nothing a parallel-jaw gripper reaches its target; on
+        an object it stops at the object's width. The force adds nothing here: the servo
+        reaches its limit at the closed stops too. The world's contacts are not asked (they
+        only score a trial)."""
         width = self.world.gripper_state().width_m
-        return self._closing and width > self.closed_width_m + HOLD_MARGIN_M
+        goal = self.closed_width_m
+        if self._close_to_m is not None:
+            goal = max(goal, self._close_to_m)
+        return self._closing and width > goal + HOLD_MARGIN_M
+
+    @property
+    def closed_width_m(self) -> float:
+        """The installed mounting's closed opening, m: the one given, else the world gripper's
+        minimum when asked (a mounting installed after this robot was made counts)."""
+        if self._closed_width_m is not None:
+            return self._closed_width_m
+        return float(getattr(getattr(self.world, "gripper", None), "min_width_m", 0.0))
 
 
 def open_sim_robot(location: str, options: dict[str, str], context: Any) -> SimulatedRobot:
