@@ -105,6 +105,24 @@ def _probe_lines(doc: dict[str, Any]) -> list[str]:
 
 
 _TRIALS = ("--no-progress",)
+#: Issue 34's evaluation: the YCB set's evaluation half (never used to develop a planner), one
+#: trial per object and seed, every uncertain input drawn per trial; seeds 5001 and up.
+_EVAL = (
+    "compare",
+    "--objects-file",
+    "src/softpad/data/object_sets/ycb-eval.toml",
+    "--trials",
+    "1",
+    "--randomize",
+)
+_EVAL_PAIRS = (
+    "--pair",
+    "thesis:thesis",
+    "--pair",
+    "gripper-aware:adaptive",
+    "--pair",
+    "model-based:adaptive",
+)
 RESULTS: tuple[ResultSpec, ...] = (
     ResultSpec(
         "Validation against the thesis's observations",
@@ -127,6 +145,26 @@ RESULTS: tuple[ResultSpec, ...] = (
             "1",
             "--objects",
             "object-3",
+            "--idle-hours",
+            "0.001",
+            "--json",
+            *_TRIALS,
+        ),
+        _compare_lines,
+    ),
+    ResultSpec(
+        "The model-based planner on the YCB evaluation half, every uncertain input drawn",
+        "README.md, docs/beat-the-thesis.md (section 5), docs/planner.md",
+        (*_EVAL, "--seeds", "5001-5002", *_EVAL_PAIRS, "--idle-hours", "0.1", "--json", *_TRIALS),
+        (*_EVAL, "--seeds", "5001-5010", *_EVAL_PAIRS, "--idle-hours", "0.5", "--json", *_TRIALS),
+        (
+            *_EVAL,
+            "--seeds",
+            "5001",
+            "--objects",
+            "ycb-077-rubiks-cube",
+            "--pair",
+            "model-based:adaptive",
             "--idle-hours",
             "0.001",
             "--json",
