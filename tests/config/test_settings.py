@@ -151,3 +151,26 @@ def test_cli_check_lists_every_error_not_the_first(
         "unknown key nonsense",
     ):
         assert named in err, err
+
+
+def test_cli_check_lists_every_error_within_a_table(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Several bad keys in one table (and two unknown keys): each named, not only the first."""
+    bad = tmp_path / "bad.toml"
+    bad.write_text(
+        "[box]\nsample_rate_hz = -5\nambient_pressure_kpa = 5000\n"
+        "[pad]\nrows = 0\npitch_mm = 0.045\ncolour = 'red'\nshape = 1\n"
+        "[thresholds]\np0_kpa = -1\nt_o_kpa = nan\nt_g_kpa = 99\nwindow = 0\n"
+    )
+    assert main(["config", "check", str(bad)]) == 2
+    err = capsys.readouterr().err
+    named = (
+        "box.sample_rate_hz", "box.ambient_pressure_kpa", "pad.rows", "pad.pitch_mm",
+        "unknown key pad.colour", "unknown key pad.shape", "thresholds.p0_kpa",
+        "thresholds.t_o_kpa", "thresholds.t_g_kpa", "thresholds.window",
+    )  # fmt: skip
+    assert f"{len(named)} errors" in err, err
+    for key in named:
+        assert key in err, err
+    assert "Traceback" not in err

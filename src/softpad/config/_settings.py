@@ -226,10 +226,41 @@ def _table(raw: dict[str, Any], key: str, where: str = "") -> dict[str, Any]:
 
 def _unknown(table: dict[str, Any], allowed: set[str], where: str) -> None:
     extra = sorted(set(table) - allowed)
-    if extra:
-        raise ConfigError(
-            f"unknown key {where + '.' if where else ''}{extra[0]}; allowed: {', '.join(sorted(allowed))}"
-        )
+    _raise_all(
+        [
+            f"unknown key {where + '.' if where else ''}{key}; allowed: {', '.join(sorted(allowed))}"
+            for key in extra
+        ]
+    )
+
+
+def _raise_all(errors: list[str]) -> None:
+    """Raise one ConfigError carrying every message of ``errors`` (none: nothing)."""
+    if errors:
+        exc = ConfigError(errors[0])
+        exc.errors = list(errors)  # type: ignore[attr-defined]
+        raise exc
+
+
+def _try(errors: list[str], fallback: Any, parse: Any, *args: Any) -> Any:
+    """``parse(*args)``, or ``fallback`` with its error message(s) appended to ``errors`` (so
+    one table's later keys are still checked)."""
+    n = len(errors)
+    value = _collect(errors, parse, *args)
+    return fallback if len(errors) > n else value
+
+
+def _number(
+    errors: list[str], t: dict[str, Any], key: str, where: str, kind: type, default: Any,
+    lo: float, hi: float, unit: str = "",
+) -> Any:  # fmt: skip
+    """``t[key]`` of ``kind`` within ``lo..hi`` (``default`` when absent), or ``default`` with
+    the error appended to ``errors``."""
+
+    def get() -> Any:
+        return _range(f"{where}.{key}", _get(t, key, where, kind, default), lo, hi, unit)
+
+    return _try(errors, default, get)
 
 
 _WIRING_KEYS = {
@@ -295,10 +326,13 @@ def _box(raw: dict[str, Any]) -> BoxSettings:
     found = [
         _collect(errors, _wiring, c, f"box.channel.{i}", i, True) for i, c in enumerate(chans, 1)
     ]
-    if errors:  # every channel's error, not only the first channel's
-        exc = ConfigError(errors[0])
-        exc.errors = errors  # type: ignore[attr-defined]
-        raise exc
+    default_ambient = thesis.AMBIENT_PRESSURE_PA / 1e3
+    rate = _number(errors, t, "sample_rate_hz", "box", float, 1000.0, 1.0, 10000.0, " Hz")
+    # the lowest and highest sea-level pressures on record, with room for a site up a mountain
+    ambient = _number(
+        errors, t, "ambient_pressure_kpa", "box", float, default_ambient, 50.0, 110.0, " kPa"
+    )
+    _raise_all(errors)  # every channel's and key's error, not only the first
     wiring = tuple(found)
     seen: dict[tuple[str, int], str] = {}
     for w in wiring:
@@ -310,16 +344,12 @@ def _box(raw: dict[str, Any]) -> BoxSettings:
                 )
             seen[(w.gpiochip, line)] = here
     supply = t.get("supply")
-    rate = _get(t, "sample_rate_hz", "box", float, 1000.0)
-    ambient = _get(t, "ambient_pressure_kpa", "box", float, thesis.AMBIENT_PRESSURE_PA / 1e3)
-    # the lowest and highest sea-level pressures on record, with room for a site up a mountain
-    ambient = _range("box.ambient_pressure_kpa", ambient, 50.0, 110.0, " kPa")
     return BoxSettings(
         channels=wiring,
         supply=None
         if supply is None
         else _wiring(_table(t, "supply", "box"), "box.supply", 0, False),
-        sample_rate_hz=_range("box.sample_rate_hz", rate, 1.0, 10000.0, " Hz"),
+        sample_rate_hz=rate,
         iio_root=_get(t, "iio_root", "box", str, "/sys/bus/iio/devices"),
         ambient_pressure_pa=ambient * 1e3,
     )
@@ -426,34 +456,39 @@ def check_remote_policy(link: LinkSettings) -> None:
 
 def _pad(raw: dict[str, Any]) -> PadSettings:
     t = _table(raw, "pad")
-    _unknown(t, {"rows", "cols", "pitch_mm", "pose"}, "pad")
-    pose = _table(t, "pose", "pad")
-    _unknown(pose, {"x_mm", "y_mm", "z_mm", "yaw_deg"}, "pad.pose")
-    rows = _get(t, "rows", "pad", int, 2)
-    cols = _get(t, "cols", "pad", int, 3)
-    for k, v in (("rows", rows), ("cols", cols)):
-        _range(f"pad.{k}", v, 1, MAX_PAD_SIDE)
+    errors: list[str] = []
+    _try(errors, None, _unknown, t, {"rows", "cols", "pitch_mm", "pose"}, "pad")
+    pose = _try(errors, {}, _table, t, "pose", "pad")
+    _try(errors, None, _unknown, pose, {"x_mm", "y_mm", "z_mm", "yaw_deg"}, "pad.pose")
+    rows = _number(errors, t, "rows", "pad", int, 2, 1, MAX_PAD_SIDE)
+    cols = _number(errors, t, "cols", "pad", int, 3, 1, MAX_PAD_SIDE)
     lo_mm, hi_mm = (v * 1e3 for v in PITCH_RANGE_M)
-    pitch = _range("pad.pitch_mm", _get(t, "pitch_mm", "pad", float, 45.0), lo_mm, hi_mm, " mm")
+    pitch = _number(errors, t, "pitch_mm", "pad", float, 45.0, lo_mm, hi_mm, " mm")
+    xyz = [_try(errors, 0.0, _get, pose, k, "pad.pose", float, 0.0) for k in _POSE_KEYS]
+    _raise_all(errors)
     return PadSettings(
         rows=rows,
         cols=cols,
         pitch_m=pitch / 1e3,
-        x_m=_get(pose, "x_mm", "pad.pose", float, 0.0) / 1e3,
-        y_m=_get(pose, "y_mm", "pad.pose", float, 0.0) / 1e3,
-        z_m=_get(pose, "z_mm", "pad.pose", float, 0.0) / 1e3,
-        yaw_rad=math.radians(_get(pose, "yaw_deg", "pad.pose", float, 0.0)),
+        x_m=xyz[0] / 1e3,
+        y_m=xyz[1] / 1e3,
+        z_m=xyz[2] / 1e3,
+        yaw_rad=math.radians(xyz[3]),
     )
+
+
+_POSE_KEYS = ("x_mm", "y_mm", "z_mm", "yaw_deg")
 
 
 def _thresholds(raw: dict[str, Any]) -> Thresholds:
     t = _table(raw, "thresholds")
     keys = {"p0_kpa", "t_adj_kpa", "t_o_kpa", "t_g_kpa", "window", "max_pressure_kpa"}
-    _unknown(t, keys, "thresholds")
+    errors: list[str] = []
+    _try(errors, None, _unknown, t, keys, "thresholds")
 
     def kpa(key: str, default_pa: float, lo_pa: float, hi_pa: float) -> float:
-        v = _get(t, key, "thresholds", float, default_pa / 1e3)
-        return _range(f"thresholds.{key}", v, lo_pa / 1e3, hi_pa / 1e3, " kPa") * 1e3
+        where, lo, hi = "thresholds", lo_pa / 1e3, hi_pa / 1e3
+        return float(_number(errors, t, key, where, float, default_pa / 1e3, lo, hi, " kPa")) * 1e3
 
     values = {
         "p0_pa": kpa("p0_kpa", DEFAULT_P0_PA, *thesis.P0_RANGE_PA),
@@ -462,8 +497,10 @@ def _thresholds(raw: dict[str, Any]) -> Thresholds:
         "contact_threshold_pa": kpa("t_g_kpa", DEFAULT_CONTACT_THRESHOLD_PA, *THRESHOLD_RANGE_PA),
         "max_pressure_pa": kpa("max_pressure_kpa", DEFAULT_MAX_PRESSURE_PA, *MAX_PRESSURE_RANGE_PA),
     }
-    window = _get(t, "window", "thresholds", int, DEFAULT_FILTER_WINDOW)
-    _range("thresholds.window", window, 1, MAX_FILTER_WINDOW)
+    window = _number(
+        errors, t, "window", "thresholds", int, DEFAULT_FILTER_WINDOW, 1, MAX_FILTER_WINDOW
+    )
+    _raise_all(errors)
     if values["p0_pa"] + values["adjust_tolerance_pa"] >= values["max_pressure_pa"]:
         raise ConfigError(
             "thresholds.p0_kpa + t_adj_kpa "
