@@ -411,3 +411,34 @@ def test_a_quiet_pad_measured_under_a_pascal_is_no_change() -> None:
     assert [p.modules for p in r.plans] == [(1, 2, 3), (3,)]
     assert [g.outcome for g in r.grasps] == ["held"]
     assert r.grasps[0].carried_modules == (3,)
+
+
+def test_a_given_adjustment_grasps_the_object_already_on_the_pad() -> None:
+    """``adjusted``: the box's owner (the ROS node) adjusted the empty pad before the object
+    was put down; the loop takes that reference, starts at ``wait_object`` and grasps object 5
+    with the plan of the full loop. Adjusting again instead takes the object into the
+    reference: no object is ever seen."""
+    from softpad.control import inflate_and_adjust
+
+    full = run_simulated(["object-5"], "sim://?seed=11", FAST).result
+    world = AnalyticWorld(gripper=SimGripper.mounting(get_object("object-5").gripper))
+    box = SimBox(world, seed=11)
+    adj = inflate_and_adjust(box, world.layout.n_modules)
+    world.place_object(get_object("object-5"))
+    log = RunLog()
+    loop = GraspExecution(
+        box, SimulatedRobot(world), world.layout, FAST, recorder=log, adjusted=adj
+    )
+    r = loop.run()
+    assert r.outcome == "held" and r.adjustment is adj
+    assert [p for p, _ in r.phases][:3] == ["wait_object", "plan", "approach"]
+    assert r.phases[0][1] > adj.reference_at_s  # phases on the box clock, after the reference
+    assert [(p.modules, p.rule) for p in r.plans] == [(p.modules, p.rule) for p in full.plans]
+    np.testing.assert_allclose(r.plans[0].cog, full.plans[0].cog, atol=0.05)
+    assert "adjusted" not in [k for _, k, _ in log.events]
+    again = GraspExecution(box, SimulatedRobot(world), world.layout, ExecutionParams(
+        hold_s=1.0, object_wait_s=2.0))  # fmt: skip
+    from softpad.control import ExecutionError
+
+    with pytest.raises(ExecutionError, match="no object"):
+        again.run()

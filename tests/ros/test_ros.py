@@ -260,3 +260,116 @@ def test_node_ends_on_a_sensor_fault_with_one_line(procs: _Procs) -> None:
     assert r.returncode == 3, r.stdout + r.stderr  # the hardware-fault exit code
     assert "Traceback" not in r.stderr and len(r.stderr.strip().splitlines()) == 1
     assert "channel 3" in r.stderr and "softpad ros: error" in r.stderr
+
+
+def _watch(procs: _Procs, *topics: str) -> dict[str, Path]:
+    """``rostopic echo`` of each topic into its log, returned once each is up: the master lists
+    its subscriber, or (a topic nobody published yet) it waits for the topic to appear."""
+    from softpad.ros import ensure_rospy
+
+    ensure_rospy()
+    import rosgraph
+
+    logs = {t: procs.start("echo" + t.replace("/", "_"), "rostopic", "echo", t)[1] for t in topics}
+    master = rosgraph.Master("/softpad_test", master_uri=procs.env["ROS_MASTER_URI"])
+
+    def subscribed() -> bool:
+        subs = dict(master.getSystemState()[1])
+        return all(
+            any(n.startswith("/rostopic") for n in subs.get(t, []))
+            or "does not appear to be published yet" in logs[t].read_text()
+            for t in topics
+        )
+
+    _wait(subscribed, 30.0, f"rostopic echo of {', '.join(topics)}")
+    return logs
+
+
+def _messages(log: Path) -> list[dict]:  # type: ignore[type-arg]
+    """The complete messages ``rostopic echo`` wrote to ``log`` (YAML documents)."""
+    import yaml
+
+    text = "\n".join(
+        line for line in log.read_text().splitlines() if not line.startswith("WARNING")
+    )
+    return [yaml.safe_load(c) for c in text.split("\n---")[:-1] if c.strip()]
+
+
+def _outcome(logs: dict[str, Path]) -> dict:  # type: ignore[type-arg]
+    outcomes = _wait(lambda: _messages(logs["/softpad/outcome"]), 30.0, "/softpad/outcome")
+    return json.loads(outcomes[-1]["data"])  # type: ignore[no-any-return]
+
+
+def _check_loop_topics(logs: dict[str, Path], outcome: dict) -> None:  # type: ignore[type-arg]
+    """The loop's phases in order on /softpad/phase, contact seen on /softpad/contact while
+    it held the fingers on the pad, and its plan on /softpad/grasps."""
+    phases = [m["data"] for m in _messages(logs["/softpad/phase"])]
+    loop = ["plan", "approach", "descend", "close", "lift", "hold", "release", "done"]
+    assert [p for p in phases if p in loop] == loop, phases
+    contact = [m["data"] for m in _messages(logs["/softpad/contact"])]
+    assert True in contact and contact[0] is False  # untouched until the fingers land
+    (plan,) = outcome["objects"]
+    poses = [
+        (p["position"]["x"], p["position"]["y"])
+        for m in _messages(logs["/softpad/grasps"])
+        for p in m["poses"]
+    ]
+    assert any(
+        abs(x - plan["cog_m"][0]) < 1e-9 and abs(y - plan["cog_m"][1]) < 1e-9 for x, y in poses
+    ), (poses, plan)
+
+
+_LOOP_TOPICS = ("/softpad/phase", "/softpad/contact", "/softpad/outcome", "/softpad/grasps")
+
+
+def test_grasp_service_runs_the_loop_and_publishes_plan_contact_and_outcome(
+    procs: _Procs, tmp_path: Path
+) -> None:
+    """``rosservice call /softpad/grasp`` on ``ros node --robot sim://``: the node runs the
+    grasp loop of ``softpad run`` on its box, from its reference, with its registered parts;
+    object 5 (placed by the node, planned by its watch) is held, and the topics show the
+    loop's phases, the contact, the plan and the outcome the service answers with."""
+    config = tmp_path / "pad.json"
+    config.write_text(json.dumps({"hold_s": 1.0}))
+    node, log = procs.start(
+        "node", SOFTPAD, "ros", "node", "--config", str(config), "--box", "sim://",
+        "--robot", "sim://", "--place", "object-5", "--planner", "model-based",
+        "--detector", "cusum",
+    )  # fmt: skip
+    logs = _watch(procs, *_LOOP_TOPICS)
+    _wait(lambda: "watch" in logs["/softpad/phase"].read_text(), 60.0, "the node's watch")
+    _wait(lambda: "position" in logs["/softpad/grasps"].read_text(), 60.0, "object 5 planned")
+    r = procs.run("rosservice", "call", "/softpad/grasp", timeout_s=180)
+    assert node.poll() is None, log.read_text()
+    assert "success: True" in r.stdout, r.stdout + r.stderr
+    import yaml
+
+    answer = json.loads(yaml.safe_load(r.stdout)["message"])
+    assert answer["outcome"] == "held"
+    outcome = _outcome(logs)
+    assert outcome["outcome"] == "held" and outcome["objects"] == answer["objects"]
+    assert outcome["objects"][0]["rule"].startswith("model-based")  # the part by name
+    assert outcome["objects"][0]["modules"] == [1, 2, 3]
+    assert outcome["grasps"][0]["contact_detected"] is True
+    assert outcome["phases"][0]["phase"] == "wait_object"  # the node's own reference
+    _check_loop_topics(logs, outcome)
+    _wait(lambda: _messages(logs["/softpad/phase"])[-1]["data"] == "watch", 30.0, "watch again")
+
+
+def test_run_with_ros_publishes_the_loop_it_runs(procs: _Procs) -> None:
+    """``softpad run --ros``: the run is the box's one controller and ROS watches it: its
+    phases, contact, plan and outcome on the node's topics, the outcome that of its JSON."""
+    logs = _watch(procs, *_LOOP_TOPICS)
+    r = procs.run(
+        SOFTPAD, "run", "--ros", "--objects", "object-5", "--hold-s", "1", "--json",
+        timeout_s=120,
+    )  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    run = json.loads(r.stdout)
+    outcome = _outcome(logs)
+    assert outcome["outcome"] == run["outcome"] == "held"
+    assert outcome["objects"] == run["objects"]
+    # the run's report adds the simulator's ground truth (first touches) to each grasp
+    pairs = zip(outcome["grasps"], run["grasps"], strict=True)
+    assert [{k: g[k] for k in o} for o, g in pairs] == outcome["grasps"]
+    _check_loop_topics(logs, outcome)

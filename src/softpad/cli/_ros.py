@@ -16,8 +16,9 @@ _NODE_DESCRIPTION = f"""\
 Open the box, inflate and adjust every module, save the reference, then publish every frame
 (/softpad/module_K/pressure, /softpad/pressures), the objects and grasps (/softpad/objects,
 /softpad/grasps), /softpad/contact, /diagnostics and the static transforms; services
-~inflate, ~capture_reference, ~plan. ROS parameters (~box, ~pad_x_m, ...) override the
-config file. {_NETWORK}"""
+~inflate, ~capture_reference, ~plan and ~grasp (the grasp loop of 'softpad run' once, on this
+box, with the --robot; its phase and outcome on /softpad/phase and /softpad/outcome). ROS
+parameters (~box, ~pad_x_m, ...) override the config file. {_NETWORK}"""
 
 _ARM_DESCRIPTION = f"""\
 Own a simulated box and its world; serve the box on zenoh://127.0.0.1:PORT and the arm on
@@ -38,12 +39,20 @@ def register(sub: Any) -> None:
         "node",
         "the pad as a ROS node: pressures, objects, grasps, contact, diagnostics",
         _NODE_DESCRIPTION,
-        "example:\n  softpad ros node --box sim:// --place banana",
+        "examples:\n  softpad ros node --box sim:// --place banana\n"
+        "  softpad ros node --box sim:// --robot sim:// --place object-5   then:\n"
+        "  rosservice call /softpad/grasp",
         json="print the start line as JSON",
     )
     node.add_argument("--config", metavar="FILE.json", help="installation file (docs/ros.md)")
     add_box_option(node, None, "box URL (overrides the config; default sim://)")
     _add_node_parts(node)
+    node.add_argument(
+        "--robot",
+        metavar="URL",
+        help="the arm of the ~grasp service: sim:// (on a sim:// box) or ros1:// (an arm "
+        "node); overrides the config's 'robot' (default: none, no grasps)",
+    )
     node.add_argument(
         "--place",
         metavar="NAMES",
@@ -94,7 +103,7 @@ def run_node(args: argparse.Namespace) -> int:
         changes["box"] = args.box
     if args.place:
         changes["place"] = args.place
-    for key in ("planner", "detector"):
+    for key in ("planner", "detector", "robot"):
         if getattr(args, key):
             changes[key] = getattr(args, key)
     node = PadNode(config.updated(changes))

@@ -84,6 +84,13 @@ def register(sub: Any) -> None:
     p.add_argument("--plot", action=Renamed, new="--png FILE.png")
     add_record_option(p)
     p.add_argument(
+        "--ros",
+        action="store_true",
+        help="publish the run on ROS 1 while it runs, as 'softpad ros node' does (pressures, "
+        "/softpad/phase, /softpad/grasps, /softpad/contact, /softpad/outcome, /diagnostics; "
+        "a simulated box paced to the wall clock; ROS_MASTER_URI on loopback; docs/ros.md)",
+    )
+    p.add_argument(
         "--foxglove",
         type=int,
         metavar="PORT",
@@ -167,24 +174,15 @@ def box_layout(box: Any) -> Any:
 
 def loop_parts(args: argparse.Namespace, box: Any, params: Any, mounting: str) -> dict[str, Any]:
     """The planner and contact detector named by ``--planner`` and ``--detector``, made by
-    their registries for the box's sample rate, its pad and the gripper ``mounting``."""
+    their registries for the box's sample rate, its pad and the gripper ``mounting``
+    (:func:`softpad.control.loop_parts`, as the ROS node's ``~grasp`` makes them)."""
+    from softpad.control import loop_parts as make_parts
     from softpad.layout import GripperSpec
-    from softpad.planning import planner_for
-    from softpad.sensing import make_contact_detector
 
-    rate, layout = box.sample_rate_hz, box_layout(box)
     spec = GripperSpec.from_mounting(mounting)
-    detector = make_contact_detector(
-        args.detector,
-        rate,
-        layout,
-        gripper=spec,
-        contact_threshold_pa=params.contact_threshold_pa,
-        object_threshold_pa=params.planner.object_threshold_pa,
-        window=params.filter_length,
+    return make_parts(
+        args.planner, args.detector, box.sample_rate_hz, box_layout(box), spec, params
     )
-    planner = planner_for(args.planner, spec, params.planner, detector, rate, layout)
-    return {"planner": planner, "contact_detector": detector}
 
 
 def add_thesis_params(p: argparse.ArgumentParser) -> None:
@@ -281,8 +279,9 @@ def run(args: argparse.Namespace) -> int:
             meta["ambient_pressure_pa"] = load_installation(args.config).box.ambient_pressure_pa
         recorder = open_recorder(str(record_path) if record_path else None, box, meta, args.force)
         live = _live(args.foxglove, box, args.json)
+        ros = _ros_watch(args.ros, box, args.box)
         try:
-            tee = Tee(log, recorder, live)
+            tee = Tee(log, recorder, live, ros)
             parts = loop_parts(args, box, params, gripper or resolve_objects(names)[0].gripper)
             if args.robot.partition("://")[0].lower() == "sim" or _in_process(box):
                 robot = _robot(args.robot, box, gripper or resolve_objects(names)[0].gripper)
@@ -291,6 +290,8 @@ def run(args: argparse.Namespace) -> int:
                 from softpad.cli._ros import run_with_robot_url
 
                 result = run_with_robot_url(args, names, box, tee, params, **parts)
+            if ros is not None:
+                ros.finish(result.result)
         except HardwareFault as exc:
             return _report_fault(args, log, names, exc)
         except SoftPadError as exc:
@@ -386,6 +387,15 @@ def _live(port: int | None, box: Any, json_mode: bool) -> Any:
     live = FoxgloveLive(port, layout, robot_state=robot)
     say(f"foxglove: {live.url} (port {live.port})", json_mode)
     return live
+
+
+def _ros_watch(enabled: bool, box: Any, url: str) -> Any:
+    """``--ros``: the publisher of :mod:`softpad.ros` the run reports to, else None."""
+    if not enabled:
+        return None
+    from softpad.ros import watch_loop
+
+    return watch_loop(box_layout(box), box, url)
 
 
 def _report_fault(args: argparse.Namespace, log: Any, names: list[str], exc: Exception) -> int:

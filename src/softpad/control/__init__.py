@@ -26,6 +26,7 @@ from softpad.control._inflation import (
     inflate_and_adjust,
     make_safe,
 )
+from softpad.control._parts import loop_parts
 from softpad.control._robot import Robot, RobotState, ToolPose
 from softpad.control._robots import (
     ROBOT_REGISTRY,
@@ -75,6 +76,7 @@ __all__ = [
     "check_frame",
     "check_valves",
     "inflate_and_adjust",
+    "loop_parts",
     "make_robot",
     "make_safe",
     "reach_safe_state",

@@ -354,6 +354,11 @@ class GraspExecution:
     place_objects
         Called once when the loop starts waiting for an object (in simulation: put the object
         on the pad); None on real hardware, where a person places it.
+    adjusted
+        The adjustment the box's owner already made, with the pad empty (a ROS node that keeps
+        the pad inflated between grasps): the loop starts at ``wait_object`` with its reference
+        instead of inflating again (which would take an object already lying on the pad into
+        the reference). None: the loop adjusts first.
     """
 
     def __init__(
@@ -368,7 +373,9 @@ class GraspExecution:
         contact_detector: ContactDetector | None = None,
         recorder: Recorder | None = None,
         place_objects: Callable[[], None] | None = None,
+        adjusted: AdjustmentResult | None = None,
     ) -> None:
+        self.adjusted = adjusted
         self.layout = layout or PadLayout()
         self.params = p = params or ExecutionParams()
         self.recorder: Recorder = recorder if recorder is not None else _NullRecorder()
@@ -462,20 +469,11 @@ class GraspExecution:
 
     def _run(self) -> ExecutionResult:
         p = self.params
-        self._enter("adjust")
-        adj = inflate_and_adjust(
-            self.box,
-            self.n,
-            p.inflation,
-            on_frame=self._on_adjust_frame,
-            on_adjusted=self._on_adjusted,
-            safe_state=False,
-        )
-        self.recorder.event(
-            adj.reference_at_s, "reference", reference_pa=[float(v) for v in adj.reference_pa]
-        )
+        adj = self._adjust()
         self.safety.monitor.set_reference(adj.reference_pa)
         self._reference = adj.reference_pa
+        if self.adjusted is not None:
+            self._read()  # box time now: the phases start from it
         self._enter("wait_object")
         if self.place_objects is not None:
             self.place_objects()
@@ -501,6 +499,24 @@ class GraspExecution:
         return ExecutionResult(
             self.layout, adj, seen_at, delta, plans, grasps, tuple(self._phases), faults
         )
+
+    def _adjust(self) -> AdjustmentResult:
+        """Inflate and adjust, save the reference; or take the owner's (``adjusted``)."""
+        if self.adjusted is not None:
+            return self.adjusted
+        self._enter("adjust")
+        adj = inflate_and_adjust(
+            self.box,
+            self.n,
+            self.params.inflation,
+            on_frame=self._on_adjust_frame,
+            on_adjusted=self._on_adjusted,
+            safe_state=False,
+        )
+        self.recorder.event(
+            adj.reference_at_s, "reference", reference_pa=[float(v) for v in adj.reference_pa]
+        )
+        return adj
 
     def _on_adjust_frame(self, frame: PressureFrame) -> None:
         self._last_t = frame.t_s

@@ -15,6 +15,13 @@ from softpad.ros._arm import (
     open_ros1_robot,
 )
 from softpad.ros._node import CONFIG_KEYS, NodeConfig, PadNode, load_config
+from softpad.ros._publish import (
+    OUTCOME_TOPIC,
+    PHASE_TOPIC,
+    LoopPublisher,
+    PadPublishers,
+    watch_loop,
+)
 from softpad.ros._rospy_path import INSTALL_HINT, ROS_MODULES, ensure_rospy, rospy_available
 from softpad.ros._run import run_with_robot
 
@@ -36,9 +43,13 @@ __all__ = [
     "ARM_STATE_TOPIC",
     "CONFIG_KEYS",
     "INSTALL_HINT",
+    "OUTCOME_TOPIC",
+    "PHASE_TOPIC",
     "ROS_MODULES",
+    "LoopPublisher",
     "NodeConfig",
     "PadNode",
+    "PadPublishers",
     "Ros1Robot",
     "SimArmNode",
     "ensure_rospy",
@@ -47,4 +58,5 @@ __all__ = [
     "open_ros1_robot",
     "rospy_available",
     "run_with_robot",
+    "watch_loop",
 ]

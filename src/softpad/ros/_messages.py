@@ -11,7 +11,6 @@ from typing import Any
 
 from softpad import thesis
 from softpad.layout import PadLayout, PadPose
-from softpad.planning import GraspPlan
 
 #: Frame of the pad (DESIGN.md: origin at the bottom-left corner, z up out of the pad).
 PAD_FRAME = "softpad"
@@ -73,14 +72,18 @@ def pose_array(stamp: Any, poses: Sequence[Any]) -> Any:
     return msg
 
 
-def object_poses(plans: Sequence[GraspPlan], layout: PadLayout) -> list[Any]:
-    """One pose per object at its PCOM on the pad surface (orientation: identity), metres."""
-    return [pose(p.pcom[0] * layout.pitch_m, p.pcom[1] * layout.pitch_m, 0.0, 0.0) for p in plans]
+def object_poses(plans: Sequence[dict[str, Any]], layout: PadLayout) -> list[Any]:
+    """One pose per object at its PCOM on the pad surface (orientation: identity), metres;
+    ``plans`` as :meth:`GraspPlan.to_dict <softpad.planning.GraspPlan.to_dict>` gives them
+    (the loop's ``plan`` event carries them so)."""
+    xy = [layout.to_metres(tuple(p["pcom"])) for p in plans]
+    return [pose(float(x), float(y), 0.0, 0.0) for x, y in xy]
 
 
-def grasp_poses(plans: Sequence[GraspPlan], layout: PadLayout) -> list[Any]:
-    """One pose per object at its COG on the pad surface, yaw = closing direction theta."""
-    return [pose(*p.cog_m(layout), 0.0, p.theta) for p in plans]
+def grasp_poses(plans: Sequence[dict[str, Any]]) -> list[Any]:
+    """One pose per object at its COG on the pad surface, yaw = closing direction theta;
+    ``plans`` as :meth:`GraspPlan.to_dict <softpad.planning.GraspPlan.to_dict>` gives them."""
+    return [pose(float(p["cog_m"][0]), float(p["cog_m"][1]), 0.0, float(p["theta"])) for p in plans]
 
 
 def static_transform(stamp: Any, pad: PadPose, base_frame: str) -> Any:

@@ -1,11 +1,15 @@
 """``softpad ros node``: the pad as a ROS 1 node (rospy). Translation only.
 
-The node owns the box: it inflates and adjusts every module (:func:`softpad.control.
-inflate_and_adjust`), keeps the reference, reads every frame and publishes it, and plans on the
-filtered increments once the objects on the pad have settled (and on request). Its parts are the
-registered ones ``softpad run`` uses, by name (``planner``, ``detector``: the object detector,
-planner and contact detector of :mod:`softpad.sensing` and :mod:`softpad.planning`'s
-registries, made for the box's rate and the pad). Topics, services and parameters: docs/ros.md.
+The node owns the box (the one controller): it inflates and adjusts every module
+(:func:`softpad.control.inflate_and_adjust`), keeps the reference, reads every frame and
+publishes it, and plans on the filtered increments once the objects on the pad have settled
+(and on request). Its ``~grasp`` service runs :class:`softpad.control.GraspExecution`, the loop
+of ``softpad run``, once on that box from that reference with the ``robot`` of its config, and
+publishes what the loop does as it runs (:class:`softpad.ros._publish.LoopPublisher`). Its parts
+are the registered ones ``softpad run`` uses, by name (``planner``, ``detector``: the object
+detector, planner and contact detector of :mod:`softpad.sensing` and :mod:`softpad.planning`'s
+registries, made for the box's rate and the pad; :func:`softpad.control.loop_parts` for a
+grasp). Topics, services and parameters: docs/ros.md.
 """
 
 from __future__ import annotations
@@ -14,7 +18,6 @@ import json
 import math
 import queue
 import threading
-import time
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -31,7 +34,7 @@ from softpad.layout import PadLayout, PadPose
 CONFIG_KEYS = (
     "box", "layout", "pad_x_m", "pad_y_m", "pad_z_m", "pad_yaw_rad", "base_frame",
     "object_threshold_pa", "contact_threshold_pa", "settle_s", "place", "place_after_s",
-    "ambient_pressure_pa", "planner", "detector",
+    "ambient_pressure_pa", "planner", "detector", "robot", "gripper", "hold_s",
 )  # fmt: skip
 
 
@@ -64,6 +67,14 @@ class NodeConfig:
         The planner and contact detector by name (:func:`softpad.planning.available_planners`,
         :func:`softpad.sensing.available_contact_detectors`), as ``softpad run --planner
         --detector``.
+    robot
+        URL of the arm the ``~grasp`` service drives (:data:`softpad.control.ROBOT_REGISTRY`:
+        ``sim://`` on a ``sim://`` box, ``ros1://`` for an arm node); empty: no grasps.
+    gripper
+        Gripper mounting (``10/4``, ``6/2``, ``4/0``); empty: the first ``place`` object's
+        catalogue mounting, else ``10/4``.
+    hold_s
+        Hold time of a grasp, seconds (thesis: 15).
     """
 
     box: str = "sim://"
@@ -78,6 +89,9 @@ class NodeConfig:
     ambient_pressure_pa: float = thesis.AMBIENT_PRESSURE_PA
     planner: str = "thesis"
     detector: str = "thesis"
+    robot: str = ""
+    gripper: str = ""
+    hold_s: float = thesis.HOLD_S
 
     def updated(self, values: dict[str, Any]) -> NodeConfig:
         """This config with ``values`` (keys of :data:`CONFIG_KEYS`) applied, checked."""
@@ -90,14 +104,14 @@ class NodeConfig:
         out = replace(self, pad=replace(self.pad, **pad))
         for k in (
             "object_threshold_pa", "contact_threshold_pa", "settle_s", "place_after_s",
-            "ambient_pressure_pa",
+            "ambient_pressure_pa", "hold_s",
         ):  # fmt: skip
             if k in values:
                 v = _finite(k, values[k])
                 if v < 0:
                     raise InputError(f"{k} must be >= 0, got {v!r}")
                 out = replace(out, **{k: v})  # type: ignore[arg-type]
-        for k in ("box", "layout", "base_frame", "planner", "detector"):
+        for k in ("box", "layout", "base_frame", "planner", "detector", "robot", "gripper"):
             if k in values:
                 out = replace(out, **{k: str(values[k])})  # type: ignore[arg-type]
         _check_parts(out)
@@ -109,12 +123,22 @@ class NodeConfig:
 
 
 def _check_parts(config: NodeConfig) -> None:
-    """The planner and detector are registered ones (InputError naming the known ones)."""
+    """The planner, detector and robot are registered ones, the gripper a mounting
+    (InputError naming the known ones)."""
+    from softpad.control import ROBOT_REGISTRY
+    from softpad.layout import GripperSpec
     from softpad.planning import PLANNER_REGISTRY
     from softpad.sensing import CONTACT_DETECTOR_REGISTRY
 
     PLANNER_REGISTRY.factory(config.planner)
     CONTACT_DETECTOR_REGISTRY.factory(config.detector)
+    if config.robot:
+        scheme, sep, _ = config.robot.partition("://")
+        if not sep:
+            raise InputError(f"robot must be a URL such as sim:// or ros1://, got {config.robot!r}")
+        ROBOT_REGISTRY.summary(scheme.lower())  # InputError naming the registered robots
+    if config.gripper:
+        GripperSpec.from_mounting(config.gripper)
 
 
 def _finite(key: str, v: object) -> float:
@@ -158,6 +182,7 @@ class PadNode:
     """
 
     def __init__(self, config: NodeConfig, name: str = "softpad") -> None:
+        from softpad.ros._publish import LoopPublisher, PadPublishers
         from softpad.ros._rospy_path import require_master
 
         self.rospy = require_master()
@@ -171,48 +196,35 @@ class PadNode:
         self.layout: PadLayout = parse_layout(self.config.layout)
         self.n = self.layout.n_modules
         self._requests: queue.Queue[_Request] = queue.Queue()
-        self._make_publishers()
+        self.pubs = PadPublishers(
+            self.rospy, self.layout, self.config.box, self.config.ambient_pressure_pa
+        )
+        #: Publishes the grasp loops the ``~grasp`` service runs.
+        self.loop_publisher = LoopPublisher(self.pubs)
         self._make_services()
         self.reference_pa: NDArray[np.float64] | None = None
-        self.frames = 0
-        self.fault: str | None = None
         self.plans: list[Any] = []
-
-    def _make_publishers(self) -> None:
-        from diagnostic_msgs.msg import DiagnosticArray
-        from geometry_msgs.msg import PoseArray
-        from sensor_msgs.msg import FluidPressure
-        from std_msgs.msg import Bool, Float64MultiArray
-        from tf2_msgs.msg import TFMessage
-
-        pub = self.rospy.Publisher
-        self.pub_module = [
-            pub(f"/softpad/module_{k}/pressure", FluidPressure, queue_size=50)
-            for k in range(1, self.n + 1)
-        ]
-        self.pub_all = pub("/softpad/pressures", Float64MultiArray, queue_size=50)
-        self.pub_objects = pub("/softpad/objects", PoseArray, queue_size=5, latch=True)
-        self.pub_grasps = pub("/softpad/grasps", PoseArray, queue_size=5, latch=True)
-        self.pub_contact = pub("/softpad/contact", Bool, queue_size=50)
-        self.pub_diag = pub("/diagnostics", DiagnosticArray, queue_size=5)
-        self.pub_tf = pub("/tf_static", TFMessage, queue_size=1, latch=True)
 
     def _make_services(self) -> None:
         from std_srvs.srv import Trigger, TriggerResponse
 
-        def handler(name: str) -> Callable[[Any], Any]:
+        def handler(name: str, timeout_s: float) -> Callable[[Any], Any]:
             def call(_req: Any) -> Any:
                 r = _Request(name)
                 self._requests.put(r)
-                if not r.done.wait(60.0):
-                    return TriggerResponse(False, f"{name}: the node did not answer in 60 s")
+                if not r.done.wait(timeout_s):
+                    return TriggerResponse(
+                        False, f"{name}: the node did not answer in {timeout_s:g} s"
+                    )
                 return TriggerResponse(r.ok, r.message)
 
             return call
 
+        # a grasp waits for an object (30 s), moves, holds (hold_s): its own bound
+        grasp_s = 600.0 + self.config.hold_s
         self.services = [
-            self.rospy.Service("~" + n, Trigger, handler(n))
-            for n in ("inflate", "capture_reference", "plan")
+            self.rospy.Service("~" + n, Trigger, handler(n, grasp_s if n == "grasp" else 60.0))
+            for n in ("inflate", "capture_reference", "plan", "grasp")
         ]
 
     # --- the loop -------------------------------------------------------------------------
@@ -224,22 +236,18 @@ class PadNode:
         """
         from softpad.box import open_box
         from softpad.control import DEFAULT_MAX_PRESSURE_PA, make_safe
-        from softpad.ros import _messages as m
 
-        stamp = self.rospy.Time.now()
-        tf = m.static_transform(stamp, self.config.pad, self.config.base_frame)
-        tf.transforms.extend(m.module_transforms(stamp, self.layout))
-        self.pub_tf.publish(tf)
+        self.pubs.static_frames(self.config.pad, self.config.base_frame)
         with open_box(self.config.box) as box:
-            self.box = box
+            self.box = self.pubs.box = box
             try:
                 self._make_parts()
                 self._adjust()
                 self._place_later()
                 self._loop(max_frames)
             except HardwareFault as exc:
-                self.fault = str(exc)
-                self._publish_diagnostics()
+                self.pubs.fault = str(exc)
+                self.pubs.diagnostics()
                 make_safe(box, self.n, DEFAULT_MAX_PRESSURE_PA)
                 raise
 
@@ -264,9 +272,9 @@ class PadNode:
     def _adjust(self) -> None:
         from softpad.control import inflate_and_adjust
 
-        self._pace_reset()
-        adj = inflate_and_adjust(self.box, self.n, on_frame=self._publish_frame)
-        self._set_reference(adj.reference_pa)
+        self.pubs.reset_pace()
+        self.adjustment = inflate_and_adjust(self.box, self.n, on_frame=self.pubs.frame)
+        self._set_reference(self.adjustment.reference_pa)
 
     def _set_reference(self, reference_pa: NDArray[np.float64]) -> None:
         from softpad.sensing import RunningAverage
@@ -282,88 +290,67 @@ class PadNode:
     def _place_later(self) -> None:
         self.place_at = None
         if self.config.place:
-            from softpad.box import SimBox
-
-            if not isinstance(self.box, SimBox):
-                raise InputError("place= puts catalogue objects on a sim:// box only")
-            self.place_at = self.last_t + self.config.place_after_s
+            if _simulation(self.box) is None:
+                raise InputError(
+                    "place= puts catalogue objects on a simulated box only (sim://, or a "
+                    "served simulator such as softpad sim arm-node's)"
+                )
+            self.place_at = self.pubs.last_t + self.config.place_after_s
 
     def _loop(self, max_frames: int | None) -> None:
         from softpad.control import DEFAULT_MAX_PRESSURE_PA, check_frame
 
-        next_diag = 0.0
-        while not self.rospy.is_shutdown() and (max_frames is None or self.frames < max_frames):
+        self.pubs.phase("watch")
+        while not self.rospy.is_shutdown() and (
+            max_frames is None or self.pubs.frames < max_frames
+        ):
             frame = self.box.read()
-            self._publish_frame(frame)
+            self.pubs.frame(frame)
             # NaN, dropout or over the maximum: HardwareFault (diagnostics ERROR, box made safe)
             self._track(check_frame(frame, self.n, DEFAULT_MAX_PRESSURE_PA))
             if self.place_at is not None and frame.t_s >= self.place_at:
                 self._place()
             while not self._requests.empty():
                 self._serve(self._requests.get())
-            if time.monotonic() >= next_diag:
-                self._publish_diagnostics()
-                next_diag = time.monotonic() + 1.0
 
     def _place(self) -> None:
-        from softpad.sim import get_object
-
-        for name in self.config.place:
-            self.box.world.place_object(get_object(name))  # type: ignore[attr-defined]
+        sim = _simulation(self.box)
+        assert sim is not None
+        sim("sim.setup", gripper=self._mounting())
+        sim("sim.place", objects=list(self.config.place))
         self.place_at = None
 
+    def _mounting(self) -> str:
+        """The gripper mounting: ``gripper``, else the first placed object's, else 10/4."""
+        if self.config.gripper:
+            return self.config.gripper
+        if self.config.place:
+            from softpad.harness import resolve_objects
+
+            return str(resolve_objects(self.config.place[:1])[0].gripper)
+        return "10/4"
+
     # --- per frame ------------------------------------------------------------------------
-    def _pace_reset(self) -> None:
-        self._wall0: float | None = None
-        self.last_t = 0.0
-        self._rate_window: list[float] = []
-
-    def _publish_frame(self, frame: Any) -> None:
-        """Publish one frame; a simulated box faster than real time is paced to the wall clock."""
-        from softpad.ros import _messages as m
-
-        now = time.monotonic()
-        if self._wall0 is None:
-            self._wall0, self._box0 = now - 0.0, frame.t_s
-        ahead = (frame.t_s - self._box0) - (now - self._wall0)
-        if ahead > 0:
-            time.sleep(ahead)
-        self.frames += 1
-        self.last_t = frame.t_s
-        self._rate_window = [*self._rate_window[-199:], time.monotonic()]
-        stamp = self.rospy.Time.now()
-        p = frame.pressures_pa[: self.n]
-        for k, pub in enumerate(self.pub_module):
-            pub.publish(
-                m.fluid_pressure(stamp, k + 1, float(p[k]), self.config.ambient_pressure_pa)
-            )
-        self.pub_all.publish(m.labelled_array([*p, frame.supply_pa], "module_1..N_then_supply_pa"))
-        self._last_pressures = p
-
     def _track(self, p: NDArray[np.float64]) -> None:
         """Objects from the filtered increments; plan once a changed set has settled; contact."""
-        from std_msgs.msg import Bool
-
         assert self.reference_pa is not None
         d = self.increments.update(np.nan_to_num(p - self.reference_pa))
         self._filtered = d
         groups = self.object_detector.objects(d, self.layout)
+        now = self.pubs.last_t
         if groups != self.groups:
-            self.groups, self.changed_at = groups, self.last_t
-        elif (
-            self.changed_at > self.planned_at
-            and self.last_t - self.changed_at >= self.config.settle_s
-        ):
+            self.groups, self.changed_at = groups, now
+        elif self.changed_at > self.planned_at and now - self.changed_at >= self.config.settle_s:
             self._plan(d)
         contact = False
         if self.contact_ref is not None:
             contact = bool(self.contact_detector.update(p))
-        self.pub_contact.publish(Bool(contact))
+        self.pubs.contact(contact)
 
     def _plan(self, increments_pa: NDArray[np.float64]) -> list[Any]:
         objects = self.object_detector.objects(increments_pa, self.layout)
         plans = self.planner.plan(increments_pa, objects, self.layout)
-        self.planned_at = self.last_t
+        self.planned_at = self.pubs.last_t
         assert self.reference_pa is not None
         self.contact_ref = self.reference_pa + increments_pa  # the pad with the objects on it
         self.contact_detector.reset(self.contact_ref)
@@ -371,76 +358,121 @@ class PadNode:
         return plans
 
     def _publish_plans(self, plans: list[Any]) -> None:
-        from softpad.ros import _messages as m
-
         self.plans = plans
-        stamp = self.rospy.Time.now()
-        self.pub_objects.publish(m.pose_array(stamp, m.object_poses(plans, self.layout)))
-        self.pub_grasps.publish(m.pose_array(stamp, m.grasp_poses(plans, self.layout)))
+        self.pubs.plans([p.to_dict(self.layout) for p in plans])
 
-    # --- services and diagnostics ---------------------------------------------------------
+    # --- services -------------------------------------------------------------------------
     def _serve(self, r: _Request) -> None:
+        from softpad.control import ExecutionError
+
         try:
             if r.name == "inflate":
                 self._adjust()
                 assert self.reference_pa is not None
                 r.message = "adjusted; reference (Pa): " + _pa(self.reference_pa)
             elif r.name == "capture_reference":
-                from softpad.sensing import capture_reference
-
-                reads = []
-                for _ in range(thesis.REFERENCE_READS):
-                    frame = self.box.read()
-                    self._publish_frame(frame)
-                    reads.append(frame.pressures_pa[: self.n])
-                self._set_reference(capture_reference(reads))
+                self._capture_reference()
                 r.message = "reference (Pa): " + _pa(self.reference_pa)
+            elif r.name == "grasp":
+                try:
+                    r.message = json.dumps(_summary(self._grasp().to_dict()))
+                finally:
+                    self.pubs.phase("watch")
             else:
                 plans = self._plan(self._filtered)
                 r.message = json.dumps([p.to_dict(self.layout) for p in plans])
             r.ok = True
-        except InputError as exc:
+        except (InputError, ExecutionError) as exc:
             r.message = str(exc)
+        except HardwareFault as exc:
+            r.message = f"hardware fault: {exc}"  # the node then ends, the box made safe
+            raise
         finally:
             r.done.set()
 
-    def _publish_diagnostics(self) -> None:
-        from diagnostic_msgs.msg import DiagnosticArray
+    def _capture_reference(self) -> None:
+        """Reference := mean of 10 reads now (pad empty); grasps start from it too."""
+        from softpad.sensing import capture_reference
 
-        from softpad.ros import _messages as m
+        reads = []
+        for _ in range(thesis.REFERENCE_READS):
+            frame = self.box.read()
+            self.pubs.frame(frame)
+            reads.append(frame.pressures_pa[: self.n])
+        self._set_reference(capture_reference(reads))
+        assert self.reference_pa is not None
+        self.adjustment = replace(
+            self.adjustment, reference_pa=self.reference_pa, reference_at_s=self.pubs.last_t
+        )
 
-        rate = 0.0
-        w = self._rate_window
-        if len(w) > 1 and w[-1] > w[0]:
-            rate = (len(w) - 1) / (w[-1] - w[0])
-        nominal = float(self.box.sample_rate_hz)
-        link = m.diagnostic_status(
-            2 if self.fault else 0, "softpad: link", self.fault or "OK", box=self.config.box,
-            frames=self.frames,
-        )  # fmt: skip
-        rate_ok = self.fault is None and rate >= 0.8 * nominal
-        rate_st = m.diagnostic_status(
-            0 if rate_ok else 1, "softpad: rate", "OK" if rate_ok else "below the box rate",
-            rate_hz=f"{rate:.1f}", nominal_hz=f"{nominal:g}",
-        )  # fmt: skip
-        status = [link, rate_st]
-        for k in range(1, self.n + 1):
-            status.append(self._channel_status(k))
-        msg = DiagnosticArray(status=status)
-        msg.header.stamp = self.rospy.Time.now()
-        self.pub_diag.publish(msg)
+    def _grasp(self) -> Any:
+        """Run :class:`~softpad.control.GraspExecution` once on the node's box, from its
+        reference, with the registered parts and the ``robot``; published as it runs."""
+        from softpad.control import GraspExecution, loop_parts, make_robot
+        from softpad.layout import GripperSpec
 
-    def _channel_status(self, k: int) -> Any:
-        from softpad.control import DEFAULT_MAX_PRESSURE_PA
-        from softpad.ros import _messages as m
+        c = self.config
+        if not c.robot:
+            raise InputError(
+                "grasp: the node has no robot; set 'robot' (a robot URL: sim:// on a sim:// "
+                "box, ros1:// with an arm node) in its config, ~robot or --robot"
+            )
+        mounting = self._mounting()
+        sim = _simulation(self.box)
+        if sim is not None:
+            sim("sim.setup", gripper=mounting)  # the simulated gripper of this mounting
+        spec = GripperSpec.from_mounting(mounting)
+        params = self._execution_params()
+        rate = float(self.box.sample_rate_hz)
+        parts = loop_parts(c.planner, c.detector, rate, self.layout, spec, params)
+        robot = make_robot(c.robot, box=self.box, layout=self.layout, gripper=spec)
+        # objects configured but not yet down: the loop puts them there when it waits
+        place = self._place if self.place_at is not None else None
+        try:
+            loop = GraspExecution(
+                self.box, robot, self.layout, params, recorder=self.loop_publisher,
+                place_objects=place, adjusted=self.adjustment, **parts,
+            )  # fmt: skip
+            result = loop.run()
+        finally:
+            close = getattr(robot, "close", None)
+            if close is not None:
+                close()
+        self.loop_publisher.finish(result)
+        return result
 
-        p = float(getattr(self, "_last_pressures", np.zeros(self.n))[k - 1])
-        bad = not math.isfinite(p) or p > DEFAULT_MAX_PRESSURE_PA
-        valve = self.box.valves[k - 1].value if hasattr(self.box, "valves") else "?"
-        return m.diagnostic_status(
-            2 if bad else 0, f"softpad: channel {k}", "no valid reading or over the maximum"
-            if bad else "OK", pressure_pa=f"{p:.1f}", valve=valve,
-        )  # fmt: skip
+    def _execution_params(self) -> Any:
+        from softpad.control import ExecutionParams
+        from softpad.planning import PlannerParams
+
+        c = self.config
+        return ExecutionParams(
+            planner=PlannerParams(object_threshold_pa=c.object_threshold_pa),
+            contact_threshold_pa=c.contact_threshold_pa,
+            hold_s=c.hold_s,
+        )
+
+
+def _summary(result: dict[str, Any]) -> dict[str, Any]:
+    """The ``~grasp`` answer: outcome, objects and grasps of the loop's result."""
+    return {k: result[k] for k in ("outcome", "objects", "grasps")}
+
+
+def _simulation(box: Any) -> Callable[..., Any] | None:
+    """``sim(op, **fields)`` calling the simulator's ``sim.setup``/``sim.place`` on ``box``
+    (an in-process ``sim://`` box, or a served simulator offering them); None otherwise."""
+    from softpad.box import SimBox, ZenohBox
+
+    if isinstance(box, SimBox):
+        from softpad.harness import simulation_extensions
+
+        ext = simulation_extensions(box)
+        return lambda op, **fields: ext[op]({"op": op, **fields})
+    if isinstance(box, ZenohBox) and {"sim.setup", "sim.place"} <= set(
+        box.info.get("services", [])
+    ):
+        return lambda op, **fields: box.request("ext/" + op, **fields)
+    return None
 
 
 def _pa(values: Any) -> str:

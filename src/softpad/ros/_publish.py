@@ -1,0 +1,265 @@
+"""What a pad publishes on ROS 1, from the node's own watch and from the grasp loop.
+
+:class:`PadPublishers` owns the pad's topics (docs/ros.md): every frame (paced to the wall
+clock when a simulated box runs faster), objects and grasps, contact, the loop's phase and
+outcome, diagnostics once a second and the static transforms. :class:`LoopPublisher` is a
+:class:`softpad.control.Recorder`: given to :class:`~softpad.control.GraspExecution`, it
+publishes what the loop does through them, so ``softpad ros node``'s ``~grasp`` and
+``softpad run --ros`` show the same topics. Translation only: no decision is made here.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import time
+import warnings
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from softpad import thesis
+from softpad.box import PressureFrame
+from softpad.layout import PadLayout, PadPose
+
+#: The loop's phase (std_msgs/String, latched): ``adjust``, ``wait_object``, ``descend``, ...
+PHASE_TOPIC = "/softpad/phase"
+#: The end of each grasp loop (std_msgs/String, latched): JSON, ``softpad run --json``'s object
+#: (``outcome``, ``objects``, ``grasps``, ``phases``, ...), or ``{"outcome": "fault", ...}``.
+OUTCOME_TOPIC = "/softpad/outcome"
+#: Wall time between two diagnostics messages, seconds.
+DIAGNOSTICS_PERIOD_S = 1.0
+
+
+def init_node(rospy: Any, name: str) -> None:
+    """Make this process a ROS node named ``name`` (anonymous) unless it is one already."""
+    if not rospy.core.is_initialized():
+        rospy.init_node(name, anonymous=True, disable_signals=True)
+
+
+class PadPublishers:
+    """The pad's topics of one ROS node (module docstring).
+
+    Parameters
+    ----------
+    rospy
+        The imported rospy, its node initialised.
+    layout
+        The pad (one pressure topic per module).
+    box_url
+        Named in the diagnostics.
+    ambient_pressure_pa
+        Added to the gauge readings in ``sensor_msgs/FluidPressure`` (absolute), Pa.
+    """
+
+    def __init__(
+        self,
+        rospy: Any,
+        layout: PadLayout,
+        box_url: str,
+        ambient_pressure_pa: float = thesis.AMBIENT_PRESSURE_PA,
+    ) -> None:
+        self.rospy, self.layout, self.n = rospy, layout, layout.n_modules
+        self.box_url, self.ambient_pressure_pa = box_url, ambient_pressure_pa
+        #: The box whose rate and valves the diagnostics report (set once it is open).
+        self.box: Any = None
+        #: The fault the diagnostics report as the link's ERROR, None while healthy.
+        self.fault: str | None = None
+        self.frames, self.last_t = 0, 0.0
+        self._last_pressures = np.zeros(self.n)
+        self._next_diag = 0.0
+        self._make_publishers()
+        self.reset_pace()
+
+    def _make_publishers(self) -> None:
+        from diagnostic_msgs.msg import DiagnosticArray
+        from geometry_msgs.msg import PoseArray
+        from sensor_msgs.msg import FluidPressure
+        from std_msgs.msg import Bool, Float64MultiArray, String
+        from tf2_msgs.msg import TFMessage
+
+        pub = self.rospy.Publisher
+        self.pub_module = [
+            pub(f"/softpad/module_{k}/pressure", FluidPressure, queue_size=50)
+            for k in range(1, self.n + 1)
+        ]
+        self.pub_all = pub("/softpad/pressures", Float64MultiArray, queue_size=50)
+        self.pub_objects = pub("/softpad/objects", PoseArray, queue_size=5, latch=True)
+        self.pub_grasps = pub("/softpad/grasps", PoseArray, queue_size=5, latch=True)
+        self.pub_contact = pub("/softpad/contact", Bool, queue_size=50)
+        self.pub_phase = pub(PHASE_TOPIC, String, queue_size=20, latch=True)
+        with warnings.catch_warnings():  # rospy's advice against synchronous publishers
+            warnings.simplefilter("ignore", SyntaxWarning)
+            # synchronous: the end of a run reaches its subscribers before the process ends
+            self.pub_outcome = pub(OUTCOME_TOPIC, String, queue_size=None, latch=True)
+        self.pub_diag = pub("/diagnostics", DiagnosticArray, queue_size=5)
+        self.pub_tf = pub("/tf_static", TFMessage, queue_size=1, latch=True)
+
+    def static_frames(self, pad: PadPose, base_frame: str) -> None:
+        """``base_frame`` -> ``softpad`` (the pad's pose) and ``softpad`` -> each module."""
+        from softpad.ros import _messages as m
+
+        stamp = self.rospy.Time.now()
+        tf = m.static_transform(stamp, pad, base_frame)
+        tf.transforms.extend(m.module_transforms(stamp, self.layout))
+        self.pub_tf.publish(tf)
+
+    def reset_pace(self) -> None:
+        """Start pacing afresh: the next frame's box time counts from the wall time now."""
+        self._wall0: float | None = None
+        self._box0 = 0.0
+        self._rate_window: list[float] = []
+
+    def frame(self, frame: PressureFrame) -> None:
+        """Publish one frame (paced to the wall clock when the box runs ahead of it), and the
+        diagnostics when their period has passed."""
+        from softpad.ros import _messages as m
+
+        now = time.monotonic()
+        if self._wall0 is None:
+            self._wall0, self._box0 = now, frame.t_s
+        ahead = (frame.t_s - self._box0) - (now - self._wall0)
+        if ahead > 0:
+            time.sleep(ahead)
+        self.frames += 1
+        self.last_t = frame.t_s
+        self._rate_window = [*self._rate_window[-199:], time.monotonic()]
+        stamp = self.rospy.Time.now()
+        p = frame.pressures_pa[: self.n]
+        for k, pub in enumerate(self.pub_module):
+            pub.publish(m.fluid_pressure(stamp, k + 1, float(p[k]), self.ambient_pressure_pa))
+        self.pub_all.publish(m.labelled_array([*p, frame.supply_pa], "module_1..N_then_supply_pa"))
+        self._last_pressures = p
+        if time.monotonic() >= self._next_diag:
+            self.diagnostics()
+
+    def plans(self, plans: Sequence[dict[str, Any]]) -> None:
+        """Objects and grasps of ``plans`` (:meth:`softpad.planning.GraspPlan.to_dict`)."""
+        from softpad.ros import _messages as m
+
+        stamp = self.rospy.Time.now()
+        self.pub_objects.publish(m.pose_array(stamp, m.object_poses(plans, self.layout)))
+        self.pub_grasps.publish(m.pose_array(stamp, m.grasp_poses(plans)))
+
+    def contact(self, touching: bool) -> None:
+        from std_msgs.msg import Bool
+
+        self.pub_contact.publish(Bool(bool(touching)))
+
+    def phase(self, name: str) -> None:
+        from std_msgs.msg import String
+
+        self.pub_phase.publish(String(name))
+
+    def outcome(self, summary: dict[str, Any]) -> None:
+        """The end of a grasp loop, as JSON (non-finite numbers as null)."""
+        from std_msgs.msg import String
+
+        self.pub_outcome.publish(String(json.dumps(_jsonable(summary))))
+
+    def diagnostics(self) -> None:
+        """``/diagnostics``: the link (ERROR with :attr:`fault`), the rate, every channel."""
+        from diagnostic_msgs.msg import DiagnosticArray
+
+        from softpad.ros import _messages as m
+
+        self._next_diag = time.monotonic() + DIAGNOSTICS_PERIOD_S
+        w = self._rate_window
+        rate = (len(w) - 1) / (w[-1] - w[0]) if len(w) > 1 and w[-1] > w[0] else 0.0
+        nominal = float(self.box.sample_rate_hz) if self.box is not None else math.nan
+        link = m.diagnostic_status(
+            2 if self.fault else 0, "softpad: link", self.fault or "OK", box=self.box_url,
+            frames=self.frames,
+        )  # fmt: skip
+        rate_ok = self.fault is None and rate >= 0.8 * nominal
+        rate_st = m.diagnostic_status(
+            0 if rate_ok else 1, "softpad: rate", "OK" if rate_ok else "below the box rate",
+            rate_hz=f"{rate:.1f}", nominal_hz=f"{nominal:g}",
+        )  # fmt: skip
+        status = [link, rate_st, *(self._channel_status(k) for k in range(1, self.n + 1))]
+        msg = DiagnosticArray(status=status)
+        msg.header.stamp = self.rospy.Time.now()
+        self.pub_diag.publish(msg)
+
+    def _channel_status(self, k: int) -> Any:
+        from softpad.control import DEFAULT_MAX_PRESSURE_PA
+        from softpad.ros import _messages as m
+
+        p = float(self._last_pressures[k - 1])
+        bad = not math.isfinite(p) or p > DEFAULT_MAX_PRESSURE_PA
+        valves = getattr(self.box, "valves", None)
+        valve = valves[k - 1].value if valves is not None else "?"
+        return m.diagnostic_status(
+            2 if bad else 0, f"softpad: channel {k}", "no valid reading or over the maximum"
+            if bad else "OK", pressure_pa=f"{p:.1f}", valve=valve,
+        )  # fmt: skip
+
+
+def _jsonable(value: Any) -> Any:
+    """``value`` with NaN and infinities as None (JSON has no such numbers)."""
+    if isinstance(value, float):
+        return value if math.isfinite(value) else None
+    if isinstance(value, dict):
+        return {k: _jsonable(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [_jsonable(v) for v in value]
+    return value
+
+
+#: Phases that end a sensed contact (the fingers leave the pad or go elsewhere).
+_UNTOUCHED = ("approach", "release", "valve_check", "done")
+
+
+class LoopPublisher:
+    """A :class:`softpad.control.Recorder` publishing a grasp loop through ``publishers``.
+
+    Every frame: the pressures and ``/softpad/contact`` (true from the loop's ``contact``
+    event until the grasp's ``release``, or the next ``approach`` after a landing); each phase on :data:`PHASE_TOPIC`; each plan on
+    ``/softpad/objects`` and ``/softpad/grasps``; a fault as the link's ERROR and on
+    :data:`OUTCOME_TOPIC`; :meth:`finish` puts the loop's result there.
+    """
+
+    def __init__(self, publishers: PadPublishers) -> None:
+        self.publishers = publishers
+        self.touching = False
+
+    def frame(self, frame: PressureFrame, phase: str) -> None:
+        self.publishers.frame(frame)
+        self.publishers.contact(self.touching)
+
+    def event(self, t_s: float, kind: str, **data: Any) -> None:
+        pubs = self.publishers
+        if kind == "phase":
+            if data["phase"] in _UNTOUCHED:
+                self.touching = False
+            pubs.phase(str(data["phase"]))
+        elif kind == "plan":
+            pubs.plans(data["objects"])
+        elif kind == "contact":
+            self.touching = True
+        elif kind == "fault":
+            pubs.fault = str(data.get("message"))
+            pubs.diagnostics()
+            pubs.outcome({"outcome": "fault", "t_s": t_s, **data})
+
+    def finish(self, result: Any) -> None:
+        """Publish the loop's result (:class:`softpad.control.ExecutionResult`)."""
+        self.publishers.outcome(result.to_dict())
+
+
+def watch_loop(
+    layout: PadLayout, box: Any, box_url: str, node_name: str = "softpad_run"
+) -> LoopPublisher:
+    """A :class:`LoopPublisher` for a grasp loop run by this process (``softpad run
+    --ros``): this process becomes the ROS node ``node_name`` (anonymous) unless it is one,
+    and publishes the pad's topics, the static transforms with the pad at the base frame's
+    origin. InputError when no ROS master answers."""
+    from softpad.ros._rospy_path import require_master
+
+    rospy = require_master()
+    init_node(rospy, node_name)
+    pubs = PadPublishers(rospy, layout, box_url)
+    pubs.box = box
+    pubs.static_frames(PadPose(), "base")
+    return LoopPublisher(pubs)
