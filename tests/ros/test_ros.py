@@ -172,13 +172,15 @@ def test_node_plans_with_the_registered_parts_by_name(procs: _Procs) -> None:
         "--planner", "model-based", "--detector", "cusum",
     )  # fmt: skip
 
-    def planned() -> str:
+    def settled() -> str:  # the node planned the settled object by itself
         assert node.poll() is None, log.read_text()
-        r = procs.run("rosservice", "call", "/softpad/plan")
-        return r.stdout if "model-based" in r.stdout else ""
+        text = _echo(procs, "/softpad/grasps")
+        return text if "position" in text else ""
 
-    text = _wait(planned, 90.0, "a model-based plan from /softpad/plan")
-    assert "success: True" in text and "[1, 2, 3]" in text
+    _wait(settled, 90.0, "object 5 planned on /softpad/grasps")
+    r = procs.run("rosservice", "call", "/softpad/plan")
+    assert "success: True" in r.stdout and "model-based" in r.stdout, r.stdout + r.stderr
+    assert "[1, 2, 3]" in r.stdout
     assert "data: False" in _echo(procs, "/softpad/contact")
 
 
