@@ -116,3 +116,18 @@ def test_without_a_master_the_node_says_so_at_once(free_port) -> None:
     )  # fmt: skip
     assert r.returncode == 2 and r.stderr.count("\n") == 1
     assert f"no ROS master answers at http://127.0.0.1:{port}" in r.stderr
+
+
+def test_run_with_ros_without_a_master_is_one_line(free_port) -> None:
+    """``softpad run --ros`` with no master: the node's one-line error, exit 2, no run."""
+    from softpad.ros import rospy_available
+
+    if not rospy_available():
+        pytest.skip("ROS 1 not installed (make ros-deps)")
+    port = free_port()
+    r = _softpad(
+        "run", "--ros", "--objects", "object-5", ROS_MASTER_URI=f"http://127.0.0.1:{port}",
+        ROS_IP="127.0.0.1", ROS_HOSTNAME="localhost",
+    )  # fmt: skip
+    assert r.returncode == 2 and r.stderr.count("\n") == 1 and not r.stdout
+    assert f"no ROS master answers at http://127.0.0.1:{port}" in r.stderr
