@@ -375,3 +375,51 @@ def test_run_with_ros_publishes_the_loop_it_runs(procs: _Procs) -> None:
     pairs = zip(outcome["grasps"], run["grasps"], strict=True)
     assert [{k: g[k] for k in o} for o, g in pairs] == outcome["grasps"]
     _check_loop_topics(logs, outcome)
+
+
+def test_grasp_service_drives_the_arm_node_through_ros(procs: _Procs, tmp_path: Path) -> None:
+    """``ros node --box <the arm node's served simulator> --robot ros1://``: the node is the
+    box's controller, places object 5 through the served ``sim.place``, and ``~grasp`` moves
+    the simulated arm over ROS (its commands in the arm node's log); held, with the contact
+    and the outcome on the topics."""
+    arm, arm_log, url = _arm(procs)
+    config = tmp_path / "pad.json"
+    config.write_text(json.dumps({"hold_s": 1.0}))
+    node, log = procs.start(
+        "node", SOFTPAD, "ros", "node", "--config", str(config), "--box", url,
+        "--robot", "ros1://", "--place", "object-5",
+    )  # fmt: skip
+    logs = _watch(procs, *_LOOP_TOPICS)
+    _wait(lambda: "position" in logs["/softpad/grasps"].read_text(), 90.0, "object 5 planned")
+    r = procs.run("rosservice", "call", "/softpad/grasp", timeout_s=180)
+    assert node.poll() is None and arm.poll() is None, log.read_text() + arm_log.read_text()
+    assert "success: True" in r.stdout, r.stdout + r.stderr
+    outcome = _outcome(logs)
+    assert outcome["outcome"] == "held" and outcome["objects"][0]["modules"] == [1, 2, 3]
+    assert "arm: descend" in arm_log.read_text() and "arm: gripper" in arm_log.read_text()
+    _check_loop_topics(logs, outcome)
+
+
+def test_arm_lost_during_a_grasp_from_ros_publishes_the_fault(
+    procs: _Procs, tmp_path: Path
+) -> None:
+    """The arm goes silent at the descent of a ``~grasp``: the loop makes the box safe,
+    ``/softpad/outcome`` says fault in phase ``descend``, the link's diagnostics ERROR, and the
+    node ends with one line and the hardware-fault exit code."""
+    _, _, url = _arm(procs, "--lose-arm-on", "descend")
+    node, log = procs.start(
+        "node", SOFTPAD, "ros", "node", "--box", url, "--robot", "ros1://", "--place", "banana"
+    )
+    logs = _watch(procs, *_LOOP_TOPICS, "/diagnostics")
+    _wait(lambda: "position" in logs["/softpad/grasps"].read_text(), 90.0, "the banana planned")
+    procs.run("rosservice", "call", "/softpad/grasp", timeout_s=180)  # may end with the node
+    outcome = _outcome(logs)
+    assert outcome["outcome"] == "fault" and outcome["phase"] == "descend", outcome
+    assert "arm lost" in outcome["message"]
+    assert node.wait(30) == 3, log.read_text()  # the hardware-fault exit code
+    lines = [s for s in log.read_text().splitlines() if "error" in s]
+    assert len(lines) == 1 and "arm lost" in lines[0] and "Traceback" not in log.read_text()
+    diag = logs["/diagnostics"].read_text()
+    assert re.search(r'level: 2\n\s*name: "softpad: link"\n\s*message: "[^"]*arm lost', diag), diag[
+        -800:
+    ]
