@@ -34,6 +34,10 @@ def test_node_config_file_and_overrides(tmp_path: Path) -> None:
         ({"pad_z_m": math.nan}, "pad_z_m must be a finite number"),
         ({"pad_y_m": "1"}, "pad_y_m must be a finite number"),
         ({"settle_s": -1.0}, "settle_s must be >= 0"),
+        ({"hold_s": -1.0}, "hold_s must be >= 0"),
+        ({"robot": "ur5://"}, "unknown robot 'ur5'; available: "),
+        ({"robot": "sim"}, "robot must be a URL such as sim:// or ros1://"),
+        ({"gripper": "5/5"}, "gripper mounting must be one of 10/4, 6/2, 4/0"),
     ],
 )
 def test_node_config_rejects_bad_values(values: dict[str, object], words: str) -> None:
@@ -131,3 +135,53 @@ def test_run_with_ros_without_a_master_is_one_line(free_port) -> None:
     )  # fmt: skip
     assert r.returncode == 2 and r.stderr.count("\n") == 1 and not r.stdout
     assert f"no ROS master answers at http://127.0.0.1:{port}" in r.stderr
+
+
+def test_the_loop_publisher_translates_the_loops_report() -> None:
+    """LoopPublisher (no ROS needed with stand-in topics): every frame passes with the
+    contact state, true from the loop's contact until the grasp's release; a plan goes to
+    the objects and grasps; the phase is passed on; a fault is the link's error and an
+    outcome; finish() publishes the result's dict."""
+    import numpy as np
+
+    from softpad.box import PressureFrame
+    from softpad.ros import LoopPublisher
+
+    class Topics:
+        fault: str | None = None
+
+        def __init__(self) -> None:
+            self.calls: list[tuple[str, object]] = []
+
+        def __getattr__(self, name: str):  # type: ignore[no-untyped-def]
+            return lambda *a: self.calls.append((name, a[0] if a else None))
+
+    class Result:
+        def to_dict(self) -> dict[str, str]:
+            return {"outcome": "held"}
+
+    topics = Topics()
+    loop = LoopPublisher(topics)  # type: ignore[arg-type]
+    frame = PressureFrame(0.0, np.zeros(6), 0.0)
+    touching = []
+    for kind, data in [
+        ("phase", {"phase": "descend"}), ("frame", None), ("contact", {"modules": [5]}),
+        ("frame", None), ("phase", {"phase": "hold"}), ("frame", None),
+        ("phase", {"phase": "release"}), ("frame", None),
+    ]:  # fmt: skip
+        if kind == "frame":
+            loop.frame(frame, "x")
+            touching.append(topics.calls[-1])
+        else:
+            loop.event(1.0, kind, **(data or {}))
+    assert touching == [("contact", False), ("contact", True), ("contact", True),
+                        ("contact", False)]  # fmt: skip
+    loop.event(2.0, "plan", increments_pa=[], objects=[{"cog_m": [0, 0]}])
+    assert topics.calls[-1] == ("plans", [{"cog_m": [0, 0]}])
+    loop.event(3.0, "fault", message="arm lost", phase="descend")
+    assert topics.fault == "arm lost" and topics.calls[-2] == ("diagnostics", None)
+    assert topics.calls[-1] == (
+        "outcome", {"outcome": "fault", "t_s": 3.0, "message": "arm lost", "phase": "descend"}
+    )  # fmt: skip
+    loop.finish(Result())
+    assert topics.calls[-1] == ("outcome", {"outcome": "held"})

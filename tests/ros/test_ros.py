@@ -158,6 +158,8 @@ def test_node_publishes_pressures_diagnostics_and_the_plan(procs: _Procs) -> Non
     r = procs.run("rosservice", "call", "/softpad/plan")
     assert "success: True" in r.stdout, r.stdout + r.stderr
     assert "n3-row" in r.stdout
+    r = procs.run("rosservice", "call", "/softpad/grasp")  # a node without a robot
+    assert "success: False" in r.stdout and "the node has no robot" in r.stdout, r.stdout
     assert "data: False" in _echo(procs, "/softpad/contact")  # nothing touches the pad
     tf = _echo(procs, "/tf_static")
     assert 'child_frame_id: "softpad"' in tf and 'child_frame_id: "softpad_module_6"' in tf
