@@ -10,6 +10,7 @@ even where the module is stiff and fills fast). The maximum pressure is never ex
 from __future__ import annotations
 
 import math
+from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
@@ -212,6 +213,39 @@ def _response_fault(valves: int, change_pa: float) -> tuple[str, str]:
     return "falling", "loses pressure with its valves closed (leak or deflation valve stuck open?)"
 
 
+class SampleNoise:
+    """The white noise of one pressure sample as the box shows it, Pa: from the first
+    differences of sealed channels' readings (robust: 1.4826 x the median absolute
+    difference / sqrt 2, over the last ``size`` differences); the nominal sensor's until
+    ``min_count`` are in. A real box measures its own noise this way; the controller's
+    sealed-drift thresholds grow with it, so a noisier sensor is judged more slowly, not
+    named faulty."""
+
+    def __init__(
+        self, nominal_pa: float = thesis.SENSOR_NOISE_STD_PA, size: int = 256, min_count: int = 32
+    ) -> None:
+        self.nominal_pa = nominal_pa
+        self.min_count = min_count
+        self._diffs: deque[float] = deque(maxlen=size)
+        self._last: NDArray[np.float64] | None = None
+
+    def update(self, raw: NDArray[np.float64], sealed: NDArray[np.bool_]) -> None:
+        """One frame's readings and which channels were sealed since the previous frame."""
+        if self._last is not None and sealed.any():
+            self._diffs.extend(np.abs(raw[sealed] - self._last[sealed]).tolist())
+        self._last = raw.copy()
+
+    @property
+    def sigma_pa(self) -> float:
+        if len(self._diffs) < self.min_count:
+            return self.nominal_pa
+        return 1.4826 * float(np.median(self._diffs)) / math.sqrt(2.0)
+
+    def scale(self) -> float:
+        """How many times noisier than the nominal sensor the box is (at least 1)."""
+        return max(1.0, self.sigma_pa / self.nominal_pa)
+
+
 class InflationController:
     """Initial inflation and adjustment as a state machine stepped with every frame.
 
@@ -244,6 +278,7 @@ class InflationController:
         self._since_t = np.zeros(self.n)  # box time of each channel's last change
         self._from = np.full(self.n, np.nan)  # filtered pressure once the change shows
         self._starts = np.zeros(self.n, dtype=np.int64)  # corrections started per channel
+        self.noise = SampleNoise()
         self._t0: float | None = None
         self._settled: tuple[float, NDArray[np.float64]] | None = None
         self._reads: list[NDArray[np.float64]] = []
@@ -261,6 +296,7 @@ class InflationController:
             return self._reference(frame, raw)
         if self.state == "done":
             return []
+        self.noise.update(raw, (self._valves == 0) & (self._since >= 1))
         filtered = self._filt.update(raw)
         fast = self._fast.update(raw)
         supply = float(self._supply.update(np.array([frame.supply_pa]))[0])
@@ -294,7 +330,11 @@ class InflationController:
             out.append(self._set(int(k), 0))
         for k in np.flatnonzero(start):
             moved = float(fast[k] - self._from[k])  # NaN (no baseline yet) compares False
-            if abs(moved) >= p.tolerance_pa and t - self._since_t[k] < p.response_s:
+            if (
+                abs(moved) >= p.tolerance_pa
+                and t - self._since_t[k] < p.response_s
+                and abs(moved) >= p.tolerance_pa * self.noise.scale()
+            ):
                 cause, what = _response_fault(0, moved)
                 message = (
                     f"channel {k + 1}: {what} ({moved:+.0f} Pa in "
@@ -387,6 +427,9 @@ class InflationController:
         wrong = started & np.where(
             sealed, np.abs(change) >= p.min_response_pa, change * v <= -p.min_response_pa
         )
+        if wrong.any():  # on a noisier box than the nominal sensor, by as much more
+            limit = p.min_response_pa * self.noise.scale()
+            wrong &= np.where(sealed, np.abs(change) >= limit, change * v <= -limit)
         window = started & (t - self._since_t >= p.response_s)
         dead = window & ~sealed & (change * v < p.min_response_pa)
         bad = wrong | dead
