@@ -185,3 +185,20 @@ def test_the_loop_publisher_translates_the_loops_report() -> None:
     )  # fmt: skip
     loop.finish(Result())
     assert topics.calls[-1] == ("outcome", {"outcome": "held"})
+
+
+def test_only_an_in_process_simulator_is_paced() -> None:
+    """Frames of an in-process ``sim://`` box (lock-step, faster than real time; also behind
+    a BoxWrapper) are paced to the wall clock; a box that sends frames at its own rate is not
+    (pacing it would only delay the loop's reads)."""
+    from softpad.box import BoxWrapper, open_box
+    from softpad.ros import PadPublishers
+
+    pubs = PadPublishers.__new__(PadPublishers)  # the box's setter needs no ROS
+    with open_box("sim://") as sim:
+        pubs.box = sim
+        assert pubs.pace
+        pubs.box = BoxWrapper(sim)
+        assert pubs.pace
+    pubs.box = object()  # a served or hardware box: any other kind
+    assert not pubs.pace

@@ -62,8 +62,9 @@ class PadPublishers:
     ) -> None:
         self.rospy, self.layout, self.n = rospy, layout, layout.n_modules
         self.box_url, self.ambient_pressure_pa = box_url, ambient_pressure_pa
-        #: The box whose rate and valves the diagnostics report (set once it is open).
-        self.box: Any = None
+        self._box: Any = None
+        #: Whether frames are paced to the wall clock (an in-process simulated box only).
+        self.pace = False
         #: The fault the diagnostics report as the link's ERROR, None while healthy.
         self.fault: str | None = None
         self.frames, self.last_t = 0, 0.0
@@ -71,6 +72,23 @@ class PadPublishers:
         self._next_diag = 0.0
         self._make_publishers()
         self.reset_pace()
+
+    @property
+    def box(self) -> Any:
+        """The box whose rate and valves the diagnostics report (set once it is open). Its
+        frames are paced when it is an in-process simulated box (lock-step, faster than real
+        time); a served or hardware box sends them at its own rate, and pacing those would only
+        add latency to the loop's reads."""
+        return self._box
+
+    @box.setter
+    def box(self, box: Any) -> None:
+        from softpad.box import BoxWrapper, SimBox
+
+        self._box, inner = box, box
+        while isinstance(inner, BoxWrapper):
+            inner = inner.inner
+        self.pace = isinstance(inner, SimBox)
 
     def _make_publishers(self) -> None:
         from diagnostic_msgs.msg import DiagnosticArray
@@ -112,15 +130,15 @@ class PadPublishers:
         self._rate_window: list[float] = []
 
     def frame(self, frame: PressureFrame) -> None:
-        """Publish one frame (paced to the wall clock when the box runs ahead of it), and the
-        diagnostics when their period has passed."""
+        """Publish one frame (an in-process simulated box paced to the wall clock when it runs
+        ahead of it), and the diagnostics when their period has passed."""
         from softpad.ros import _messages as m
 
         now = time.monotonic()
         if self._wall0 is None:
             self._wall0, self._box0 = now, frame.t_s
         ahead = (frame.t_s - self._box0) - (now - self._wall0)
-        if ahead > 0:
+        if self.pace and ahead > 0:
             time.sleep(ahead)
         self.frames += 1
         self.last_t = frame.t_s
