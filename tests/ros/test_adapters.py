@@ -185,6 +185,44 @@ def test_the_loop_publisher_translates_the_loops_report() -> None:
     )  # fmt: skip
     loop.finish(Result())
     assert topics.calls[-1] == ("outcome", {"outcome": "held"})
+    loop.error("no object placed on the pad within 30 s")
+    assert topics.calls[-1] == (
+        "outcome", {"outcome": "error", "message": "no object placed on the pad within 30 s"}
+    )  # fmt: skip
+
+
+def test_a_retry_republishes_the_grasp_under_way() -> None:
+    """An ``approach`` to another grasp of a planned object (a retry) republishes
+    /softpad/grasps with it (COG in metres from the pad's pitch); the planned grasp's own
+    approach publishes nothing more."""
+    from softpad.layout import PadLayout
+    from softpad.ros import LoopPublisher
+
+    class Topics:
+        layout = PadLayout()
+
+        def __init__(self) -> None:
+            self.published: list[list[dict[str, object]]] = []
+
+        def phase(self, name: str) -> None:
+            pass
+
+        def plans(self, plans: list[dict[str, object]]) -> None:
+            self.published.append([dict(p) for p in plans])
+
+    topics = Topics()
+    loop = LoopPublisher(topics)  # type: ignore[arg-type]
+    planned = {"modules": [1, 2], "pcom": [1.0, 1.5], "cog": [1.0, 1.5], "theta": 0.0,
+               "cog_m": [0.045, 0.0675], "rule": "n2"}  # fmt: skip
+    loop.event(1.0, "plan", increments_pa=[], objects=[planned])
+    loop.event(1.1, "phase", phase="approach", modules=[1, 2], cog=[1.0, 1.5], theta=0.0)
+    assert len(topics.published) == 1
+    loop.event(5.0, "phase", phase="approach", modules=[1, 2], cog=[1.2, 1.5], theta=1.0)
+    assert len(topics.published) == 2
+    (again,) = topics.published[-1]
+    assert again["theta"] == 1.0 and again["cog"] == [1.2, 1.5]
+    assert again["cog_m"] == pytest.approx([1.2 * 0.045, 1.5 * 0.045], abs=1e-12)
+    assert again["pcom"] == [1.0, 1.5]  # the object is where it was
 
 
 def test_only_an_in_process_simulator_is_paced() -> None:

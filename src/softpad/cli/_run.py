@@ -296,6 +296,8 @@ def run(args: argparse.Namespace) -> int:
             return _report_fault(args, log, names, exc)
         except SoftPadError as exc:
             exc.partial = {"objects": names, "events": _events(log), "frames": len(log)}
+            if ros is not None:
+                ros.error(str(exc))
             raise
         finally:  # whatever happened, what was recorded is kept
             for r in (recorder, live):

@@ -384,6 +384,8 @@ class PadNode:
             r.ok = True
         except (InputError, ExecutionError) as exc:
             r.message = str(exc)
+            if isinstance(exc, ExecutionError):  # the loop ran and could not go on
+                self.loop_publisher.error(r.message)
         except HardwareFault as exc:
             r.message = f"hardware fault: {exc}"  # the node then ends, the box made safe
             raise

@@ -233,14 +233,17 @@ class LoopPublisher:
     """A :class:`softpad.control.Recorder` publishing a grasp loop through ``publishers``.
 
     Every frame: the pressures and ``/softpad/contact`` (true from the loop's ``contact``
-    event until the grasp's ``release``, or the next ``approach`` after a landing); each phase on :data:`PHASE_TOPIC`; each plan on
-    ``/softpad/objects`` and ``/softpad/grasps``; a fault as the link's ERROR and on
-    :data:`OUTCOME_TOPIC`; :meth:`finish` puts the loop's result there.
+    event until the grasp's ``release``, or the next ``approach`` after a landing). Each phase
+    on :data:`PHASE_TOPIC`; the plan on ``/softpad/objects`` and ``/softpad/grasps``, the
+    latter again when an ``approach`` tries another grasp of an object (a retry); a fault as
+    the link's ERROR and on :data:`OUTCOME_TOPIC`, where :meth:`finish` puts the loop's result
+    and :meth:`error` a loop that could not go on.
     """
 
     def __init__(self, publishers: PadPublishers) -> None:
         self.publishers = publishers
         self.touching = False
+        self._plans: list[dict[str, Any]] = []
 
     def frame(self, frame: PressureFrame, phase: str) -> None:
         self.publishers.frame(frame)
@@ -251,9 +254,12 @@ class LoopPublisher:
         if kind == "phase":
             if data["phase"] in _UNTOUCHED:
                 self.touching = False
+            if data["phase"] == "approach":
+                self._approach(data)
             pubs.phase(str(data["phase"]))
         elif kind == "plan":
-            pubs.plans(data["objects"])
+            self._plans = [dict(p) for p in data["objects"]]
+            pubs.plans(self._plans)
         elif kind == "contact":
             self.touching = True
         elif kind == "fault":
@@ -261,9 +267,24 @@ class LoopPublisher:
             pubs.diagnostics()
             pubs.outcome({"outcome": "fault", "t_s": t_s, **data})
 
+    def _approach(self, data: dict[str, Any]) -> None:
+        """The grasp of the object on ``modules`` about to be tried: republished when it is
+        not the planned one (a retry's)."""
+        for p in self._plans:
+            if p["modules"] == data.get("modules") and (
+                p["cog"] != data.get("cog") or p["theta"] != data.get("theta")
+            ):
+                x, y = self.publishers.layout.to_metres(tuple(data["cog"]))
+                p.update(cog=list(data["cog"]), theta=data["theta"], cog_m=[float(x), float(y)])
+                self.publishers.plans(self._plans)
+
     def finish(self, result: Any) -> None:
         """Publish the loop's result (:class:`softpad.control.ExecutionResult`)."""
         self.publishers.outcome(result.to_dict())
+
+    def error(self, message: str) -> None:
+        """Publish that the loop could not go on (no object in time, nothing to grasp)."""
+        self.publishers.outcome({"outcome": "error", "message": message})
 
 
 def watch_loop(
