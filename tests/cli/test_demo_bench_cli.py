@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import pytest
@@ -48,6 +49,12 @@ def test_bench_planning_reports_medians_against_the_target(
     # the model-based planner's two figures (issue 34): 2 x 3 within 1 ms, 64 x 64 within 20 ms
     model = {r["target"] for r in rows if "model-based" in r["name"]}
     assert model == {"<= 1 ms", "<= 20 ms"}
+    # and what a plan costs besides its wall time: CPU, the set-up, the caches' memory
+    for r in rows:
+        if "model-based" in r["name"]:
+            cpu = re.search(r"CPU (\d+\.\d+) ms a plan", r["detail"])
+            assert cpu and 0 < float(cpu.group(1)) < 1e3, r["detail"]
+            assert re.search(r"set-up \d+\.\d+ s .*templates, \d+\.\d MB", r["detail"])
 
 
 def test_bench_unknown_suite_is_a_one_line_error(cli) -> None:

@@ -172,3 +172,67 @@ def test_one_landing_asked_about_twice_is_evidence_once():
     assert twice.retry(plan, d, LAYOUT, rise, closed=True) == once.retry(
         plan, d, LAYOUT, rise, closed=True
     )
+
+
+def _loglik_one_at_a_time(d, layout, params, model, masked):
+    """Every footprint hypothesis (module, centre, halves, yaw) -> (log-likelihood, share of
+    its area on the pad), each predicted on its own from the footprint (``_pattern``) and
+    scored over the pad's modules: the definition, without the planner's tables."""
+    from softpad.planning._model_based import _pattern, _templates
+
+    t = _templates(layout.pitch_m, params, model)
+    side = 2 * t.radius + 1
+    grid = np.asarray(d, dtype=float).reshape(layout.rows, layout.cols)[::-1]  # bottom row 0
+    w = 1.0 / (params.noise_pa**2 + (params.model_error * grid) ** 2)
+    for m in masked:
+        row, col = layout.row_col(m)
+        w[layout.rows - 1 - row, col] = 0.0
+    out = {}
+    for k in range(len(t.yaws)):
+        (hl, hw), yaw = t.halves[k], t.yaws[k]
+        load, cover = _pattern(t.offsets[k], 2 * hl, 2 * hw, yaw, model, t.radius)
+        for m in layout.modules:
+            row, col = layout.rows - 1 - layout.row_col(m)[0], layout.row_col(m)[1]
+            g, c = np.zeros_like(grid), np.zeros_like(grid)
+            for i in range(layout.rows):
+                for j in range(layout.cols):
+                    di, dj = i - row + t.radius, j - col + t.radius
+                    if 0 <= di < side and 0 <= dj < side:
+                        g[i, j], c[i, j] = load[di * side + dj], cover[di * side + dj]
+            b, a = (w * grid * g).sum(), (w * g * g).sum()
+            s = max(b, 0.0) / a if a > 0 else 0.0
+            centre = (col + 0.5 + t.offsets[k][0], row + 0.5 + t.offsets[k][1])
+            out[(m, *centre, hl, hw, yaw)] = (-0.5 * (w * (grid - s * g) ** 2).sum(), c.sum())
+    return out
+
+
+@pytest.mark.parametrize(
+    ("name", "masked"), [("cylinder", frozenset()), ("limes", frozenset({6})), ("toy", frozenset())]
+)
+def test_estimate_is_the_likelihood_of_each_hypothesis_on_its_own(name, masked):
+    """The tabulated, vectorised estimate against the definition, hypothesis by hypothesis:
+    the same hypotheses kept (every one at most ``overhang`` off the pad and within
+    ``log_floor`` of the best) with probabilities proportional to exp(log-likelihood). A
+    footprint whose share on the pad is the limit itself (the area's sample points make
+    that exact: 0.8 of them) is on either side of it in floating point; either is right."""
+    params, model = ModelBasedParams(), packaged_pad_model()
+    d = np.asarray(next(c for c in TABLE_6_1 if c.name == name).delta_pa, dtype=float)
+    modules = tuple(m for m in LAYOUT.modules if m not in masked and d[m - 1] > 0)
+    post = estimate(d, modules, LAYOUT, model, params, masked)
+    hyps = zip(post.centres, post.halves, post.yaws, post.probs, strict=True)
+    got = {(*c, *h, y): p for c, h, y, p in hyps}
+    ref = _loglik_one_at_a_time(d, LAYOUT, params, model, masked)
+    limit = 1.0 - params.overhang
+    on = {k[1:]: ll for k, (ll, share) in ref.items() if k[0] in modules and share > limit + 1e-9}
+    edge = {
+        k[1:]: ll
+        for k, (ll, share) in ref.items()
+        if k[0] in modules and abs(share - limit) <= 1e-9
+    }
+    assert all(k in on or k in edge for k in got)  # keys exact: the same arithmetic
+    best = max([*on.values(), *(edge[k] for k in got if k in edge)])
+    assert {k for k, ll in on.items() if ll > best - params.log_floor} == set(got) - set(edge)
+    ll = np.array([on.get(k, edge.get(k)) for k in got])
+    assert ll.min() > best - params.log_floor
+    want = np.exp(ll - ll.max())
+    np.testing.assert_allclose(list(got.values()), want / want.sum(), rtol=1e-9)

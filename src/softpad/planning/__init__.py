@@ -19,7 +19,12 @@ from softpad.planning._gripper_aware import (
     pressed_share,
     sensed_share,
 )
-from softpad.planning._model_based import ModelBasedParams, ModelBasedPlanner, PadModel
+from softpad.planning._model_based import (
+    ModelBasedParams,
+    ModelBasedPlanner,
+    PadModel,
+    table_bytes,
+)
 from softpad.planning._params import DEFAULT_SAFETY_SHIFT, PlannerParams
 from softpad.planning._pcom import pcom
 from softpad.planning._plan import Planner, RetryPlanner, ThesisPlanner, plan_grasps
@@ -72,4 +77,5 @@ __all__ = [
     "pressed_share",
     "register_planner",
     "sensed_share",
+    "table_bytes",
 ]

@@ -31,7 +31,7 @@ object. The derivation and its limits are in docs/planner.md ("The model-based p
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field, fields, replace
 from functools import lru_cache
 from importlib import resources
 from typing import Any, TypeVar
@@ -133,13 +133,14 @@ class PadModel:
     def response(self, local: Array) -> Array:
         """Relative response at points relative to their module's centre, module units."""
         idx = np.rint((np.clip(local, -0.5, 0.5) + 0.5) * (_LOOKUP - 1)).astype(np.int64)
-        return self.table[idx[..., 0], idx[..., 1]]
+        return self.table.ravel()[idx[..., 0] * _LOOKUP + idx[..., 1]]
 
     def on_pad(self, points: Array, layout: PadLayout) -> Array:
         """Relative response at pad-frame points in module units (0 off the pad)."""
-        inside = (points[..., 0] >= 0) & (points[..., 0] < layout.cols)
-        inside &= (points[..., 1] >= 0) & (points[..., 1] < layout.rows)
-        return np.where(inside, self.response(points - np.floor(points) - 0.5), 0.0)
+        cell = np.floor(points)  # x >= 0 and x < n exactly where floor(x) is (n whole)
+        inside = (cell >= 0) & (cell < (layout.cols, layout.rows))
+        inside = inside[..., 0] & inside[..., 1]
+        return np.where(inside, self.response(points - cell - 0.5), 0.0)
 
 
 @lru_cache(maxsize=4)
@@ -270,9 +271,7 @@ class Posterior:
         spaced quantiles, deterministic), each distinct one weighted by its count."""
         cum = np.cumsum(self.probs)
         picks = np.searchsorted(cum, (np.arange(n) + 0.5) / n * cum[-1])
-        picks = np.minimum(picks, self.probs.size - 1)  # sorted: the quantiles increase
-        first = np.flatnonzero(np.diff(picks, prepend=-1))  # each distinct pick's first draw
-        i, count = picks[first], np.diff(first, append=n)
+        i, count = np.unique(np.minimum(picks, self.probs.size - 1), return_counts=True)
         return Posterior(self.centres[i], self.halves[i], self.yaws[i], count / count.sum())
 
     def reweighted(self, likelihood: Array) -> Posterior:
@@ -357,6 +356,18 @@ def _group(
     return _Group(gi, used_w, shares, flat, ci, *hyp)
 
 
+def table_bytes(
+    layout: PadLayout, modules: tuple[int, ...], params: ModelBasedParams, model: PadModel
+) -> tuple[int, int]:
+    """Memory the planner keeps (bytes): the templates of ``layout``'s pitch, and the
+    hypotheses of the object on ``modules`` (beyond the templates it shares)."""
+    t, g = _templates(layout.pitch_m, params, model), _group(layout, modules, params, model)
+    own = [getattr(t, f.name) for f in fields(t) if isinstance(getattr(t, f.name), np.ndarray)]
+    mine = [*g.window, *(getattr(g, f.name) for f in fields(g) if f.name != "window")]
+    shared = {id(a) for a in own}
+    return sum(a.nbytes for a in own), sum(a.nbytes for a in mine if id(a) not in shared)
+
+
 def _padded(
     increments_pa: Array,
     layout: PadLayout,
@@ -430,8 +441,10 @@ def _offsets(post: Posterior, centres: Array, thetas: Array) -> tuple[Array, ...
     ux, uy = np.cos(thetas)[:, None], np.sin(thetas)[:, None]
     dx = post.centres[None, :, 0] - centres[:, None, 0]
     dy = post.centres[None, :, 1] - centres[:, None, 1]
-    phi = post.yaws[None, :] - thetas[:, None]
-    return dx * ux + dy * uy, dy * ux - dx * uy, np.abs(np.cos(phi)), np.abs(np.sin(phi))
+    directions, row = np.unique(thetas, return_inverse=True)  # a few, each at several centres
+    phi = post.yaws[None, :] - directions[:, None]
+    c, s = np.abs(np.cos(phi))[row], np.abs(np.sin(phi))[row]
+    return dx * ux + dy * uy, dy * ux - dx * uy, c, s
 
 
 def _half_extents(post: Posterior, c: Array, s: Array, widen: float | Array) -> tuple[Array, Array]:
