@@ -134,6 +134,14 @@ class Box(ABC):
 
     # --- public API -----------------------------------------------------------------
     @property
+    def command_seen_after_s(self) -> float | None:
+        """Box time after which frames show the last valve command, seconds; None: from the
+        next frame read. A remote box answers a command with the time of the last frame its
+        daemon had sampled, so that frames already on their way (a busy link) are not taken
+        as the command's effect."""
+        return None
+
+    @property
     def supply_sensor(self) -> bool:
         """True when the box measures its supply pressure (a box without one reports 0 Pa,
         and supply-loss checks must not judge it)."""

@@ -645,7 +645,11 @@ class BoxDaemon:
             if ch in self._venting and cmd is not ValveCommand.DEFLATE:
                 raise _Refused("safety", f"channel {ch} is being vented above the maximum")
             self.box.set_valve(ch, cmd)
-            return {"valves": [v.value for v in self.box.valves]}
+            last = self._last  # frames sampled after this one show the command
+            return {
+                "valves": [v.value for v in self.box.valves],
+                "t_s": None if last is None else last.t_s,
+            }
 
     def _check_inflate(self, ch: int) -> None:
         last = self._last

@@ -39,6 +39,10 @@ class BoxWrapper(Box):
         return self.inner.supply_sensor
 
     @property
+    def command_seen_after_s(self) -> float | None:
+        return self.inner.command_seen_after_s
+
+    @property
     def valves(self) -> tuple[ValveCommand, ...]:
         """The wrapped box's valve states (its safety guard may vent a channel)."""
         return self.inner.valves

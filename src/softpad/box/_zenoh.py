@@ -109,6 +109,7 @@ class ZenohBox(Box):
         #: Frames refused: a wrong tag (forged) or a sequence number not above the last.
         self.forged_frames = 0
         self._last_seq = -1
+        self._command_seen_after_s: float | None = None
         self._read_key: bytes | None = None
         self._sealer: Sealer | None = None
         self._take_seq = 0
@@ -340,7 +341,15 @@ class ZenohBox(Box):
 
     def _apply_valve(self, channel: int, command: ValveCommand) -> None:
         self.take_control()
-        self.request("valves", channel=channel, command=command.value)
+        reply = self.request("valves", channel=channel, command=command.value)
+        t = reply.get("t_s")
+        if isinstance(t, int | float) and not isinstance(t, bool) and math.isfinite(t):
+            self._command_seen_after_s = float(t)
+
+    @property
+    def command_seen_after_s(self) -> float | None:
+        """The daemon's last sampled frame time when it applied the last valve command."""
+        return self._command_seen_after_s
 
     def _vent(self, channel: int) -> None:
         """The client-side guard vents only when this client controls the box; a monitor

@@ -276,6 +276,7 @@ class InflationController:
         self._valves = np.zeros(self.n, dtype=np.int8)  # 0 closed, 1 inflating, -1 deflating
         self._since = np.zeros(self.n, dtype=np.int64)  # frames since each channel's change
         self._since_t = np.zeros(self.n)  # box time of each channel's last change
+        self._seen_after = np.full(self.n, -np.inf)  # frames up to here predate the change
         self._from = np.full(self.n, np.nan)  # filtered pressure once the change shows
         self._starts = np.zeros(self.n, dtype=np.int64)  # corrections started per channel
         self.noise = SampleNoise()
@@ -300,7 +301,7 @@ class InflationController:
         filtered = self._filt.update(raw)
         fast = self._fast.update(raw)
         supply = float(self._supply.update(np.array([frame.supply_pa]))[0])
-        self._since += 1
+        self._since += frame.t_s > self._seen_after
         if not self._filt.full:
             return []
         self._check_response(frame.t_s, filtered, fast, supply)
@@ -344,6 +345,16 @@ class InflationController:
             out.append(self._set(int(k), 1 if err[k] < 0 else -1))
             self._starts[k] += 1
         return out
+
+    def command_seen_after(self, channel: int, t_s: float | None) -> None:
+        """The box applied the last command of ``channel`` (1-based) after its frame at box
+        time ``t_s`` (:attr:`softpad.box.Box.command_seen_after_s`): frames up to then, still
+        on their way, neither count towards the command's filter nor start its windows."""
+        if t_s is None or not math.isfinite(t_s):
+            return
+        k = channel - 1
+        self._seen_after[k] = t_s
+        self._since_t[k] = max(self._since_t[k], t_s)
 
     def _set(self, k: int, state: int) -> tuple[int, ValveCommand]:
         self._valves[k] = state
@@ -511,6 +522,7 @@ def inflate_and_adjust(
             was = ctl.state
             for ch, cmd in ctl.step(frame):
                 box.set_valve(ch, cmd)
+                ctl.command_seen_after(ch, box.command_seen_after_s)
             if ctl.state == "reference" and was != "reference" and on_adjusted is not None:
                 assert ctl.adjusted_at_s is not None
                 on_adjusted(ctl.adjusted_at_s)
