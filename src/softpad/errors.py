@@ -81,6 +81,8 @@ def check_finite(name: str, value: float) -> float:
     """Return ``value`` as float or raise :class:`InputError` naming it when it is NaN or infinite."""
     import math
 
+    if isinstance(value, str | bytes):  # float("50.0") would pass: a number in text is a slip
+        raise InputError(f"{name} must be a number, got the text {value!r}")
     try:
         v = float(value)
     except (TypeError, ValueError):
@@ -91,18 +93,28 @@ def check_finite(name: str, value: float) -> float:
 
 
 def check_range(
-    name: str, value: object, lo: float, hi: float, unit: str = "", hint: str = ""
+    name: str,
+    value: object,
+    lo: float,
+    hi: float,
+    unit: str = "",
+    hint: str = "",
+    low_hint: str = "",
 ) -> float:
     """Return ``value`` as a finite float within [lo, hi], or raise :class:`InputError` naming
     ``name``, the value, the limits and ``unit``.
 
-    ``hint`` is added when the value lies above ``hi`` (for example ``"millimetres given as
-    metres?"``), the usual cause of a value a thousand times too large at the library's edge.
+    ``hint`` is added when the value lies above ``hi``, or below a negative ``lo`` of a range
+    symmetric about zero (for example ``"millimetres given as metres?"``), the usual cause of a
+    value a thousand times too large at the library's edge; ``low_hint`` when it lies below a
+    positive ``lo`` (``"metres given as millimetres?"``).
     """
     v = check_finite(name, value)  # type: ignore[arg-type]
     if not lo <= v <= hi:
         u = f" {unit}" if unit else ""
-        extra = f" ({hint})" if hint and v > hi else ""
+        too_far = v > hi or (lo == -hi and v < lo)
+        why = hint if too_far else low_hint if v < lo and lo > 0 else ""
+        extra = f" ({why})" if why else ""
         raise InputError(f"{name} must be from {lo:g} to {hi:g}{u}, got {v:g}{u}{extra}")
     return v
 
@@ -121,6 +133,10 @@ def check_count(name: str, value: object, lo: int, hi: int) -> int:
 
 #: Hint for a length a thousand times too large: millimetres given where metres are expected.
 MM_AS_M = "millimetres given as metres?"
+#: Hint for a pressure a thousand times too small: kilopascals given where pascals are expected.
+KPA_AS_PA = "kilopascals given as pascals?"
+#: Hint for a duration a thousand times too long: milliseconds given where seconds are expected.
+MS_AS_S = "milliseconds given as seconds?"
 
 
 def check_fields(

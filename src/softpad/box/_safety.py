@@ -24,7 +24,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from softpad import thesis
-from softpad.errors import HardwareFault, InputError
+from softpad.errors import KPA_AS_PA, HardwareFault, InputError, check_range
 
 #: The module's rated maximum pressure, Pa (seed, Section 6.3: modules are usable 0.5..2.8 kPa;
 #: the thesis's box never takes them above 3 kPa).
@@ -84,6 +84,8 @@ class SafetyLimits:
                 f"release pressure {self.release_pa / 1e3:g} kPa must be > 0 and below the trip "
                 f"level {self.trip_pa / 1e3:g} kPa"
             )
+        for name in ("max_pressure_pa", "release_pa"):  # under 100 Pa: kPa given as Pa
+            check_range(f"safety {name}", getattr(self, name), 100.0, 1e6, "Pa", low_hint=KPA_AS_PA)
         if not self.sensor_min_pa < 0:
             raise InputError(f"sensor lower rail must be < 0 Pa, got {self.sensor_min_pa!r}")
         if not (isinstance(self.rise_window, int) and self.rise_window >= 2):

@@ -18,7 +18,7 @@ from numpy.typing import NDArray
 
 from softpad import thesis
 from softpad.box._base import Box, ConnectionLost, PressureFrame, ValveCommand
-from softpad.errors import InputError
+from softpad.errors import InputError, check_range
 from softpad.layout import PadLayout, parse_layout
 from softpad.sim import (
     AnalyticCharacteristic,
@@ -125,9 +125,12 @@ def _check_args(n_modules: int, channels: int, sample_rate_hz: float, seed: int)
             f"channels must be an integer from {n_modules} (modules of the pad) to 64, "
             f"got {channels!r}"
         )
-    if not (math.isfinite(sample_rate_hz) and 1.0 <= sample_rate_hz <= 100e3):
-        raise InputError(f"sample rate must be within 1 Hz .. 100 kHz, got {sample_rate_hz!r} Hz")
-    if int(seed) < 0:
+    check_range("sample rate (sample_rate_hz)", sample_rate_hz, 1.0, 100e3, "Hz")
+    try:
+        s = int(seed)
+    except (TypeError, ValueError):
+        raise InputError(f"seed must be an integer >= 0, got {seed!r}") from None
+    if s < 0:
         raise InputError(f"seed must be >= 0, got {seed!r}")
 
 

@@ -44,6 +44,27 @@ def plain_number(text: str, what: str) -> float:
     return float(s)
 
 
+#: What an integer on the command line may look like (``int`` also takes ``1_0`` and ``٣``).
+_PLAIN_INTEGER = re.compile(r"[+-]?\d+", re.ASCII)
+
+
+def plain_int(text: str) -> int:
+    """``int(text)`` for plain ASCII digits only, else :class:`argparse.ArgumentTypeError`
+    naming the text (the ``type=int`` of every option, see :class:`softpad.cli.main._Parser`)."""
+    s = str(text).strip()
+    if not _PLAIN_INTEGER.fullmatch(s):
+        raise argparse.ArgumentTypeError(f"{s!r} is not an integer (ASCII digits like 10)")
+    return int(s)
+
+
+def plain_float(text: str) -> float:
+    """:func:`plain_number` as an argparse type (the ``type=float`` of every option)."""
+    try:
+        return plain_number(text, "the value")
+    except InputError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
 def kpa_list(text: str, flag: str) -> list[float]:
     """Parse ``"0.1,0,0.2"`` (kPa) into pascals, naming the flag and the bad item on error."""
     return number_list(text, flag, scale=1e3)
@@ -75,8 +96,8 @@ def bounded_int(name: str, lo: int, hi: int):
 
     def parse(text: str) -> int:
         try:
-            v = int(text)
-        except ValueError:
+            v = plain_int(text)
+        except argparse.ArgumentTypeError:
             raise argparse.ArgumentTypeError(f"{name} must be an integer, got {text!r}") from None
         if not lo <= v <= hi:
             raise argparse.ArgumentTypeError(f"{name} must be from {lo} to {hi}, got {v}")

@@ -13,6 +13,7 @@ from softpad.cli._args import (
     add_group,
     add_number,
     add_p0_option,
+    bounded_int,
     finite_float,
 )
 from softpad.cli._output import emit
@@ -106,11 +107,16 @@ def register(sub: Any) -> None:
         "--foxglove: the viewer URL",
     )
     m.add_argument("--foxglove", action="store_true", help="serve to Foxglove (WebSocket)")
-    m.add_argument("--port", type=int, default=8765, help="port on 127.0.0.1 (0: a free one)")
+    m.add_argument(
+        "--port",
+        type=bounded_int("--port", 0, 65535),
+        default=8765,
+        help="port on 127.0.0.1 (0: a free one)",
+    )
     m.add_argument("--count", type=int, default=0, help="frames, 0 for endless (default 0)")
     add_number(
-        m, "--period-s", "box time between two lines, s (default 0.5)", 0.5, lo=0.001, hi=3600.0,
-        unit="s",
+        m, "--period-s", "box time between two lines, s, up to 60 (default 0.5)", 0.5, lo=0.001,
+        hi=60.0, unit="s",
     )  # fmt: skip
     m.add_argument("--layout", default="2x3", help="the pad: its modules are shown (default 2x3)")
     _action(

@@ -164,7 +164,13 @@ def _check_on_pads(object_set: Any, designs: list[Any]) -> None:
     for d in designs:
         w, h = d.cols * d.pitch_m, d.rows * d.pitch_m
         for obj in object_set.objects:
-            p = obj.placed_on((w, h)).placement
+            try:
+                p = obj.placed_on((w, h)).placement
+            except InputError as exc:  # metres away: beyond any placement
+                raise InputError(
+                    f"object {obj.name!r} would lie off the {d.rows}x{d.cols} pad of "
+                    f"{w * 1e3:.0f} x {h * 1e3:.0f} mm: {exc}"
+                ) from None
             cx, cy = footprint_centre_m(obj.spec.parts, p.yaw_rad)
             x, y = p.x_m + cx, p.y_m + cy
             if not (0.0 <= x <= w and 0.0 <= y <= h):

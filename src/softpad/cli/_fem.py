@@ -58,6 +58,12 @@ faces fixed, follower pressure on the lower face, nearly incompressible hyperela
 of thesis Table 7.1)."""
 
 _PRESSURES_KPA = "0.5,0.96,1.42,1.88,2.34,2.8"
+#: Limits of the module's layer thickness and width, of a mass and of a footprint's side, in
+#: the options' units: outside them a value is a unit mix-up more likely than a design.
+THICKNESS_RANGE_MM = (0.1, 20.0)
+WIDTH_RANGE_MM = (5.0, 500.0)
+MASS_RANGE_G = (0.1, 10_000.0)
+MIN_FOOTPRINT_MM = 0.5
 
 
 def _add_study(fem_sub: Any, name: str, help: str, model: bool = True) -> argparse.ArgumentParser:
@@ -78,8 +84,24 @@ def _add_study(fem_sub: Any, name: str, help: str, model: bool = True) -> argpar
             metavar="NAME=VALUE",
             help="override a preset parameter (moduli in Pa), e.g. --param mu=30000; repeatable",
         )
-    add_number(p, "--thickness-mm", "upper-layer thickness in mm (default 1.5)", 1.5, unit="mm")
-    add_number(p, "--width-mm", "module width in mm (default 45)", 45.0, unit="mm")
+    add_number(
+        p,
+        "--thickness-mm",
+        "upper-layer thickness in mm, 0.1..20 (default 1.5)",
+        1.5,
+        lo=THICKNESS_RANGE_MM[0],
+        hi=THICKNESS_RANGE_MM[1],
+        unit="mm",
+    )
+    add_number(
+        p,
+        "--width-mm",
+        "module width in mm, 5..500 (default 45)",
+        45.0,
+        lo=WIDTH_RANGE_MM[0],
+        hi=WIDTH_RANGE_MM[1],
+        unit="mm",
+    )
     p.add_argument(
         "--mesh",
         choices=("coarse", "default", "fine"),
@@ -99,7 +121,9 @@ def _add_pressure(p: argparse.ArgumentParser, help: str, default: float) -> None
 
 def _add_object_threshold(p: argparse.ArgumentParser, help: str) -> None:
     """``--threshold-kpa``: the object-detection threshold t_o the sensitivity is judged by."""
-    add_number(p, "--threshold-kpa", help, thesis.OBJECT_THRESHOLD_PA / 1e3, lo=0.0, unit="kPa")
+    add_number(
+        p, "--threshold-kpa", help, thesis.OBJECT_THRESHOLD_PA / 1e3, lo=0.0, hi=10.0, unit="kPa"
+    )
 
 
 def _table_study(fem_sub: Any, name: str, help: str, default: str, shipped: str) -> Any:
@@ -173,7 +197,12 @@ def _stiffness_study(fem_sub: Any) -> None:
     k.add_argument("--pressures-kpa", default=_PRESSURES_KPA, help="pressures in kPa")
     k.add_argument("--forces-n", default="0.2,0.5,0.8", help="loads in N (default 0.2,0.5,0.8)")
     add_number(
-        k, "--radius-mm", "radius of the loaded central disc in mm (default 10)", 10.0, unit="mm"
+        k,
+        "--radius-mm",
+        "radius of the loaded central disc in mm, >= 0.5 (default 10)",
+        10.0,
+        lo=0.5,
+        unit="mm",
     )
     k.set_defaults(handler=_stiffness)
 
@@ -192,9 +221,10 @@ def _sensitivity_study(fem_sub: Any) -> None:
     add_number(
         a,
         "--probe-g",
-        "probe mass of the absolute (sealed-chamber) definition in g (default 12.6)",
+        "probe mass of the absolute (sealed-chamber) definition in g, 0.1..10000 (default 12.6)",
         12.6,
-        lo=0.0,
+        lo=MASS_RANGE_G[0],
+        hi=MASS_RANGE_G[1],
         unit="g",
     )
     _add_object_threshold(
@@ -221,18 +251,25 @@ def _chamber_study(fem_sub: Any) -> None:
         "layer, as in the simulator (default %(default)g)",
         round((thesis.TUBING_VOLUME_M3 + thesis.CHAMBER_GAP_VOLUME_M3) * 1e6, 4),
         lo=0.0,
+        hi=1000.0,
         unit="mL",
     )
     _add_object_threshold(c, "detection threshold in kPa (default %(default)g, thesis t_o)")
     add_number(
         c,
         "--noise-kpa",
-        "sensor noise (rms) in kPa; if given the threshold is N_SIGMA times it",
+        "sensor noise (rms) in kPa, 0..1; if given the threshold is N_SIGMA times it",
         lo=0.0,
+        hi=1.0,
         unit="kPa",
     )
     add_number(
-        c, "--n-sigma", "threshold in noise rms units with --noise-kpa (default 3)", 3.0, lo=0.0
+        c,
+        "--n-sigma",
+        "threshold in noise rms units with --noise-kpa (default 3)",
+        3.0,
+        lo=0.0,
+        hi=100.0,
     )
     c.set_defaults(handler=_chamber)
 
@@ -242,7 +279,7 @@ def _fit_studies(fem_sub: Any) -> None:
     f = _add_study(fem_sub, "fit", "fit a model's parameters to measured heights")
     f.add_argument("--data", required=True, metavar="CSV", help=data_help)
     f.add_argument("--free", metavar="NAMES", help="parameters to fit (default: all moduli)")
-    f.add_argument("--max-evals", type=int, default=60, help="budget of sweeps (default 60)")
+    add_integer(f, "--max-evals", "budget of sweeps, 1..100000 (default 60)", 60, 1, 100_000)
     f.set_defaults(handler=_fit)
     m = _add_study(fem_sub, "compare", "rank the presets by RMSE on measured heights", model=False)
     m.add_argument("--data", required=True, metavar="CSV", help=data_help)
@@ -464,6 +501,12 @@ def _design(args: argparse.Namespace) -> int:
     values = _numbers(
         args.values_mm or defaults[args.parameter], "--values-mm", 1e-3, positive=True
     )
+    lo, hi = {"thickness": THICKNESS_RANGE_MM, "width": WIDTH_RANGE_MM}[args.parameter]
+    for v in values:
+        if not lo <= v * 1e3 <= hi:
+            raise InputError(
+                f"--values-mm: a {args.parameter} of {v * 1e3:g} mm is outside {lo:g}..{hi:g} mm"
+            )
     geometry, mesh = _geometry(args), _mesh(args)
     result = _run_study(
         args,
@@ -573,14 +616,19 @@ def _parse_footprint(text: str) -> Any:
     from softpad.fem import LoadPatch
 
     t = text.strip().lower()
-    if t.startswith("d"):
-        (d,) = _numbers(t[1:], "--footprint-mm", 1e-3, positive=True)
-        return LoadPatch("disc", d, d)
-    parts = t.split("x")
-    if len(parts) != 2:
+    parts = [t[1:]] if t.startswith("d") else t.split("x")
+    if len(parts) != (1 if t.startswith("d") else 2) or any("," in s for s in parts):
         raise InputError(f"--footprint-mm must be WxH or dD in mm, got {text!r}")
-    w, h = (_numbers(s, "--footprint-mm", 1e-3, positive=True)[0] for s in parts)
-    return LoadPatch("rectangle", w, h)
+    sides = [_numbers(s, "--footprint-mm", 1e-3, positive=True)[0] for s in parts]
+    for side in sides:
+        if side < MIN_FOOTPRINT_MM * 1e-3:
+            raise InputError(
+                f"--footprint-mm {text!r}: a side of {side * 1e3:g} mm is under "
+                f"{MIN_FOOTPRINT_MM:g} mm (metres given as millimetres?)"
+            )
+    if t.startswith("d"):
+        return LoadPatch("disc", sides[0], sides[0])
+    return LoadPatch("rectangle", sides[0], sides[1])
 
 
 def _chamber(args: argparse.Namespace) -> int:
@@ -588,6 +636,12 @@ def _chamber(args: argparse.Namespace) -> int:
 
     _check_outputs(args)
     masses = _numbers(args.masses_g, "--masses-g", 1e-3, positive=True)
+    for m in masses:
+        if not MASS_RANGE_G[0] <= m * 1e3 <= MASS_RANGE_G[1]:
+            raise InputError(
+                f"--masses-g: {m * 1e3:g} g is outside {MASS_RANGE_G[0]:g}..{MASS_RANGE_G[1]:g} g"
+                + (" (kilograms given as grams?)" if m * 1e3 < MASS_RANGE_G[0] else "")
+            )
     if args.pressure_kpa <= 0:
         raise InputError(f"--pressure-kpa must be > 0 kPa, got {args.pressure_kpa:g}")
     threshold = args.threshold_kpa * 1e3
@@ -645,8 +699,6 @@ def _fit(args: argparse.Namespace) -> int:
     _check_outputs(args)
     pressure, height = read_measurements(args.data)
     free = [s.strip() for s in args.free.split(",") if s.strip()] if args.free else None
-    if args.max_evals < 1:
-        raise InputError(f"--max-evals must be >= 1, got {args.max_evals}")
     result = _run_study(
         args,
         f"fit {args.model}",

@@ -6,7 +6,7 @@ import argparse
 import json
 from typing import Any
 
-from softpad.cli._args import add_box_option, add_command, add_group
+from softpad.cli._args import add_box_option, add_command, add_group, bounded_int
 
 _NETWORK = """\
 ROS networking: set ROS_MASTER_URI=http://127.0.0.1:11311, ROS_IP=127.0.0.1 and
@@ -71,7 +71,7 @@ def register(sub: Any) -> None:
     add_box_option(arm, help="sim:// URL (default sim://)")
     arm.add_argument(
         "--port",
-        type=int,
+        type=bounded_int("--port", 0, 65535),
         default=5757,
         help="port of the served box, zenoh on tcp/127.0.0.1 (0: a free one)",
     )

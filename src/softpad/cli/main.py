@@ -76,8 +76,21 @@ class _Parser(argparse.ArgumentParser):
     """ArgumentParser without prefix abbreviations whose usage errors raise :class:`UsageError`."""
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
+        from softpad.cli._args import plain_float, plain_int
+
         kwargs["allow_abbrev"] = False
         super().__init__(*args, **kwargs)
+        # type=int and type=float take plain ASCII numbers only (not 1_0, ٣ or １)
+        self.register("type", int, plain_int)
+        self.register("type", float, plain_float)
+
+    def _get_values(self, action: argparse.Action, arg_strings: list[str]) -> Any:
+        # argparse drops a value "--" (--flag=--) and hands [] on instead of a string
+        if arg_strings == ["--"] and action.option_strings and action.nargs is None:
+            value = self._get_value(action, "--")
+            self._check_value(action, value)
+            return value
+        return super()._get_values(action, arg_strings)
 
     def error(self, message: str) -> NoReturn:
         raise UsageError(f"{message} (see {self.prog} --help)")

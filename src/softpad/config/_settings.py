@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from softpad import thesis
-from softpad.errors import MM_AS_M, InputError, check_count, check_range
+from softpad.errors import KPA_AS_PA, MM_AS_M, MS_AS_S, InputError, check_count, check_range
 
 #: Thesis defaults (seed, Section 6.2, from :mod:`softpad.thesis`), pascals / samples / metres.
 DEFAULT_P0_PA = thesis.P0_PA
@@ -43,6 +43,11 @@ THRESHOLD_RANGE_PA = (1.0, 5000.0)
 MAX_FILTER_WINDOW = 1000
 #: Configured maximum pressure, Pa: from 0.2 kPa to the thesis's ceiling.
 MAX_PRESSURE_RANGE_PA = (200.0, thesis.MAX_PRESSURE_PA)
+#: Sample rate of a hardware box, Hz; ambient (absolute) pressure of a site, Pa; the
+#: daemon's watchdog, s (the installation file's limits).
+SAMPLE_RATE_RANGE_HZ = (1.0, 10_000.0)
+AMBIENT_RANGE_PA = (50e3, 110e3)
+WATCHDOG_RANGE_S = (0.01, 60.0)
 
 
 class ConfigError(InputError):
@@ -83,6 +88,16 @@ class BoxSettings:
     iio_root: str = "/sys/bus/iio/devices"
     ambient_pressure_pa: float = thesis.AMBIENT_PRESSURE_PA
 
+    def __post_init__(self) -> None:
+        check_range("box sample_rate_hz", self.sample_rate_hz, *SAMPLE_RATE_RANGE_HZ, "Hz")
+        check_range(
+            "box ambient_pressure_pa",
+            self.ambient_pressure_pa,
+            *AMBIENT_RANGE_PA,
+            "Pa",
+            low_hint=KPA_AS_PA,
+        )
+
 
 @dataclass(frozen=True, slots=True)
 class LinkSettings:
@@ -106,6 +121,9 @@ class LinkSettings:
     tls_root_ca: str | None = None
     watchdog_s: float = 0.5
     watchdog_action: str = "hold"
+
+    def __post_init__(self) -> None:
+        check_range("link watchdog_s", self.watchdog_s, *WATCHDOG_RANGE_S, "s", MS_AS_S)
 
     @property
     def has_auth(self) -> bool:
@@ -580,7 +598,10 @@ def load_installation(path: str | Path) -> Installation:
         raise ConfigError(f"cannot read installation file {str(p)!r}: {exc.strerror}") from None
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
         raise ConfigError(f"installation file {str(p)!r} is not valid TOML: {exc}") from None
-    return parse_installation(raw, str(p))
+    try:
+        return parse_installation(raw, str(p))
+    except ConfigError as exc:  # the file named: it may be one of several
+        raise ConfigError(f"installation file {str(p)!r}: {exc}") from None
 
 
 def describe(inst: Installation) -> list[str]:

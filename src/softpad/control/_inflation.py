@@ -21,7 +21,7 @@ from numpy.typing import NDArray
 from softpad import thesis
 from softpad.box import Box, PressureFrame, ValveCommand
 from softpad.control._safety import DetectedFault, MonitoredFault
-from softpad.errors import CheckedFields, HardwareFault, InputError, Positive
+from softpad.errors import MS_AS_S, CheckedFields, HardwareFault, InputError, Positive, check_range
 from softpad.sensing import RunningAverage, capture_reference
 
 if TYPE_CHECKING:
@@ -91,6 +91,8 @@ class InflationParams(CheckedFields, what="inflation"):
 
     def __post_init__(self) -> None:
         super().__post_init__()
+        for name, top in (("timeout_s", 600.0), ("settle_s", 60.0)):
+            check_range(f"inflation {name}", getattr(self, name), 0.0, top, "s", MS_AS_S)
         if not (
             math.isfinite(self.trip_margin_pa) and 0 <= self.trip_margin_pa < self.max_pressure_pa
         ):

@@ -23,7 +23,15 @@ import numpy as np
 from numpy.typing import NDArray
 
 from softpad.box import RATED_MAX_PRESSURE_PA, Box, ConnectionLost, PressureFrame, ValveCommand
-from softpad.errors import CheckedFields, Count, HardwareFault, NonNegative, Positive
+from softpad.errors import (
+    KPA_AS_PA,
+    CheckedFields,
+    Count,
+    HardwareFault,
+    NonNegative,
+    Positive,
+    check_range,
+)
 
 
 @dataclass(frozen=True)
@@ -94,6 +102,13 @@ class FaultThresholds(CheckedFields, what="fault threshold"):
     rise_windows: Count = 3
     #: Running-average length of the monitored readings, samples.
     filter_length: Count = 10
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        # a maximum or a full scale under 100 Pa is kilopascals given as pascals
+        for name in ("max_pressure_pa", "sensor_max_pa"):
+            v = getattr(self, name)
+            check_range(f"fault threshold {name}", v, 100.0, 1e6, "Pa", low_hint=KPA_AS_PA)
 
 
 class FaultMonitor:

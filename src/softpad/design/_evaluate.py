@@ -21,7 +21,7 @@ from dataclasses import asdict, dataclass
 from typing import Any
 
 from softpad import thesis
-from softpad.errors import InputError
+from softpad.errors import MM_AS_M, MS_AS_S, InputError, check_range
 
 
 @dataclass(frozen=True)
@@ -64,8 +64,13 @@ class TrialOptions:
             )
         PLANNER_REGISTRY.factory(self.planner)  # InputError naming the known ones
         CONTACT_DETECTOR_REGISTRY.factory(self.detector)
-        if not (math.isfinite(self.hold_s) and 0 <= self.hold_s <= 60):
-            raise InputError(f"hold time must be within 0..60 s, got {self.hold_s!r} s")
+        check_range("trial options hold_s", self.hold_s, 0.0, 60.0, "s", MS_AS_S)
+        # a placement spread beyond a module pitch is a unit mix-up (as TrialConfig says)
+        check_range(
+            "trial options position_sigma_m", self.position_sigma_m, 0.0, 0.05, "m", MM_AS_M
+        )
+        check_range("trial options yaw_sigma_rad", self.yaw_sigma_rad, 0.0, math.pi, "rad")
+        check_range("trial options sample_rate_hz", self.sample_rate_hz, 1.0, 100_000.0, "Hz")
 
     def to_dict(self) -> dict[str, Any]:
         """The options (SI), part of every cache key."""

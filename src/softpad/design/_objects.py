@@ -230,23 +230,45 @@ def _number(d: dict[str, Any], key: str, name: str, default: float | None = None
     return float(v)
 
 
+#: Lightest object and shortest side of an object set, g and mm: below them a mass was given in
+#: kilograms or a length in metres (a 0.1 g object would not press a module measurably).
+MIN_MASS_G = 0.1
+SIZE_RANGE_MM = (1.0, 2000.0)
+
+
+def _length_m(d: dict[str, Any], key: str, name: str) -> float:
+    """A side given in millimetres under ``key``, in metres (mix-ups refused)."""
+    v = _number(d, key, name)
+    lo, hi = SIZE_RANGE_MM
+    if not lo <= v <= hi:
+        hint = " (metres given as millimetres?)" if 0 < v < lo else ""
+        raise InputError(
+            f"object {name!r}: {key} must be within {lo:g}..{hi:g} mm, got {v:g}{hint}"
+        )
+    return v * 1e-3
+
+
 def _primitive_spec(name: str, entry: dict[str, Any]) -> Any:
     """An object of one primitive part from mass and dimensions."""
     from softpad.sim import ObjectSpec, PartSpec, Placement
 
     mass = _number(entry, "mass_g", name) * 1e-3
-    if not 0 < mass <= 2.0:
-        raise InputError(f"object {name!r}: mass_g must be within 0..2000 g, got {mass * 1e3:g}")
+    if not MIN_MASS_G * 1e-3 <= mass <= 2.0:
+        hint = " (kilograms given as grams?)" if 0 < mass < MIN_MASS_G * 1e-3 else ""
+        raise InputError(
+            f"object {name!r}: mass_g must be within {MIN_MASS_G:g}..2000 g, got "
+            f"{mass * 1e3:g}{hint}"
+        )
     shape = entry.get("shape", "box")
     if shape == "box":
         size = entry.get("size_mm")
         if not isinstance(size, list) or len(size) != 3:
             raise InputError(f"object {name!r}: a box needs size_mm = [lx, ly, lz]")
-        lx, ly, lz = (_number({"v": v}, "v", name) * 1e-3 for v in size)
+        lx, ly, lz = (_length_m({"size_mm": v}, "size_mm", name) for v in size)
         part = PartSpec("box", mass, (0.0, 0.0, lz / 2), size_m=(lx, ly, lz), name=name)
     elif shape == "cylinder":
-        r = _number(entry, "diameter_mm", name) * 0.5e-3
-        length = _number(entry, "length_mm", name) * 1e-3
+        r = _length_m(entry, "diameter_mm", name) * 0.5
+        length = _length_m(entry, "length_mm", name)
         part = PartSpec(
             "cylinder", mass, (0.0, 0.0, r), radius_m=r, length_m=length, axis="x", name=name
         )

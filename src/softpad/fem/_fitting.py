@@ -23,6 +23,10 @@ from softpad.fem._model import ModuleSetup, ProgressCallback
 from softpad.fem._results import as_list, label_axes, new_axes, write_csv
 from softpad.fem._studies import InflationResult, inflation_sweep
 
+#: The highest measured height must reach this, metres: below it every height was given in
+#: metres where millimetres are expected (the thesis's module rises 6-15 mm).
+MIN_TOP_HEIGHT_M = 0.05e-3
+
 
 def read_measurements(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
     """Read measured ``pressure_kpa,height_mm`` pairs from a CSV file with a header.
@@ -74,6 +78,11 @@ def read_measurements(path: str | Path) -> tuple[np.ndarray, np.ndarray]:
             heights.append(h * 1e-3)
     if len(pressures) < 2:
         raise InputError(f"measurement file {str(src)!r} has {len(pressures)} rows; need >= 2")
+    if max(heights) < MIN_TOP_HEIGHT_M:  # an inflated module rises millimetres
+        raise InputError(
+            f"measurement file {str(src)!r}: every height_mm is under {MIN_TOP_HEIGHT_M * 1e3:g} "
+            "mm (metres given as millimetres?)"
+        )
     order = np.argsort(pressures)
     return np.asarray(pressures)[order], np.asarray(heights)[order]
 

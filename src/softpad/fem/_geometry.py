@@ -160,6 +160,8 @@ class LoadPatch:
         sy = sx if self.size_y_m is None else check_finite("patch size_y_m", self.size_y_m)
         if sy <= 0:
             raise InputError(f"load patch size must be > 0 m, got {sy!r} m")
+        for name, v in (("size_x_m", sx), ("size_y_m", sy)):  # a module is 45 mm wide
+            check_range(f"load patch {name}", v, 0.0, 1.0, "m", MM_AS_M)
         object.__setattr__(self, "size_x_m", sx)
         object.__setattr__(self, "size_y_m", sy)
 

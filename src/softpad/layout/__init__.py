@@ -9,11 +9,12 @@ The gripper's geometry (Section 6.3) lives here too, since plans become fingerti
 
 from softpad.layout._grid import DEFAULT_PITCH_M, PadLayout, parse_layout
 from softpad.layout._gripper import GRIPPER_CONFIGS_M, GripperSpec
-from softpad.layout._pose import PadPose
+from softpad.layout._pose import POSE_LIMIT_M, PadPose
 
 __all__ = [
     "DEFAULT_PITCH_M",
     "GRIPPER_CONFIGS_M",
+    "POSE_LIMIT_M",
     "GripperSpec",
     "PadLayout",
     "PadPose",

@@ -10,7 +10,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from softpad import thesis
-from softpad.errors import LayoutError
+from softpad.errors import MM_AS_M, InputError, LayoutError, check_finite
 
 #: Module pitch of the thesis prototype: 45 mm square modules (seed, Section 6.1.1).
 DEFAULT_PITCH_M = thesis.MODULE_PITCH_M
@@ -38,9 +38,14 @@ class PadLayout:
         for name, v in (("rows", self.rows), ("cols", self.cols)):
             if not isinstance(v, int | np.integer) or v < 1 or v > 64:
                 raise LayoutError(f"{name} must be an integer from 1 to 64, got {v!r}")
-        if not np.isfinite(self.pitch_m) or not (1e-3 <= self.pitch_m <= 1.0):
+        try:
+            pitch = check_finite("module pitch_m", self.pitch_m)
+        except InputError as exc:
+            raise LayoutError(str(exc)) from None
+        if not (1e-3 <= pitch <= 1.0):
             raise LayoutError(
-                f"module pitch must be between 1 mm and 1000 mm, got {self.pitch_m * 1e3:g} mm"
+                f"module pitch must be between 1 mm and 1000 mm, got {pitch * 1e3:g} mm"
+                + (f" ({MM_AS_M})" if pitch > 1.0 else "")
             )
 
     def __hash__(self) -> int:

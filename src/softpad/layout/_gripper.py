@@ -6,7 +6,7 @@ import math
 from dataclasses import dataclass
 
 from softpad import thesis
-from softpad.errors import MM_AS_M, InputError, check_range
+from softpad.errors import MM_AS_M, InputError, check_finite, check_range
 
 #: Largest jaw opening or finger length accepted, m: a parallel-jaw gripper for objects on a pad
 #: (the thesis's opens 10 cm at most); a larger value is a unit mix-up.
@@ -52,9 +52,10 @@ class GripperSpec:
     tip_thickness_m: float = thesis.FINGERTIP_THICKNESS_M
 
     def __post_init__(self) -> None:
+        check_finite("gripper min_width_m", self.min_width_m)
         for name in ("max_width_m", "finger_length_m", "tip_width_m", "tip_thickness_m"):
-            v = getattr(self, name)
-            if not math.isfinite(v) or v <= 0:
+            v = check_finite(f"gripper {name}", getattr(self, name))
+            if v <= 0:
                 raise InputError(f"gripper {name} must be a positive length, got {v!r}")
         check_range("gripper max_width_m", self.max_width_m, 0.0, MAX_GRIPPER_SIZE_M, "m", MM_AS_M)
         check_range(

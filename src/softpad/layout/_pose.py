@@ -7,7 +7,11 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from softpad.errors import check_finite
+from softpad.errors import MM_AS_M, check_finite, check_range
+
+#: Farthest a pad (or an object on it) may lie from the robot's base, metres: beyond it a
+#: length is a unit mix-up (millimetres given as metres).
+POSE_LIMIT_M = 10.0
 
 
 @dataclass(frozen=True)
@@ -29,8 +33,11 @@ class PadPose:
     yaw_rad: float = 0.0
 
     def __post_init__(self) -> None:
-        for name in ("x_m", "y_m", "z_m", "yaw_rad"):
-            check_finite(f"pad pose {name}", getattr(self, name))
+        for name in ("x_m", "y_m", "z_m"):  # the installation file's limit (PadSettings)
+            check_range(
+                f"pad pose {name}", getattr(self, name), -POSE_LIMIT_M, POSE_LIMIT_M, "m", MM_AS_M
+            )
+        check_finite("pad pose yaw_rad", self.yaw_rad)
 
     @property
     def rotation(self) -> NDArray[np.float64]:

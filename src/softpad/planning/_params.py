@@ -6,7 +6,7 @@ import math
 from dataclasses import dataclass
 
 from softpad import thesis
-from softpad.errors import InputError
+from softpad.errors import InputError, check_finite
 from softpad.sensing import DEFAULT_OBJECT_THRESHOLD_PA, check_threshold
 
 #: c_s in the thesis: safety shift for corner-shaped objects, module units (Section 6.2.1.3).
@@ -26,6 +26,8 @@ class PlannerParams:
 
     def __post_init__(self) -> None:
         check_threshold(self.object_threshold_pa, "object threshold")
+        check_finite("planner safety_shift", self.safety_shift)
+        check_finite("planner default_theta", self.default_theta)
         if not (0.0 <= self.safety_shift < 0.5):
             raise InputError(
                 f"safety shift must be in [0, 0.5) module units, got {self.safety_shift!r}"

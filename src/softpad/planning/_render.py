@@ -55,6 +55,10 @@ def format_plans(
     delta_pa: ArrayLike, plans: Sequence[GraspPlan], layout: PadLayout, threshold_pa: float
 ) -> str:
     """The table ``softpad plan`` prints."""
+    if not isinstance(layout, PadLayout):
+        raise InputError(
+            f"layout must be a PadLayout (parse_layout('2x3') for a name), got {layout!r}"
+        )
     if np.size(delta_pa) != layout.n_modules:
         raise InputError(
             f"a {layout.name} pad needs {layout.n_modules} increments, got {np.size(delta_pa)}"

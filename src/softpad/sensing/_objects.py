@@ -114,6 +114,8 @@ def increments_list(delta_pa: ArrayLike, layout: PadLayout) -> list[float]:
 def check_threshold(threshold_pa: float, name: str = "threshold", positive: bool = False) -> float:
     """Validate a detection threshold: finite, >= 0 Pa (> 0 with ``positive``), within the
     sensor's full scale."""
+    if isinstance(threshold_pa, str | bytes):  # float("50") would pass: text is a slip
+        raise InputError(f"{name} must be a pressure in pascals, got the text {threshold_pa!r}")
     try:
         t = float(threshold_pa)
     except (TypeError, ValueError):

@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from softpad import thesis
-from softpad.errors import CheckedFields, InputError, Positive
+from softpad.errors import CheckedFields, InputError, Positive, check_finite
 from softpad.layout import GripperSpec, PadLayout
 from softpad.sim._footprint import (
     GRAVITY_M_S2,
@@ -75,10 +75,12 @@ class SimGripper(CheckedFields, what="gripper"):
     friction: float = 0.5
 
     def __post_init__(self) -> None:
+        check_finite("gripper min_width_m", self.min_width_m)
+        check_finite("gripper max_width_m", self.max_width_m)
         if not (0 <= self.min_width_m < self.max_width_m <= 0.5):
             raise InputError(
-                f"gripper width range must satisfy 0 <= min < max <= 500 mm, got "
-                f"{self.min_width_m * 1e3:g}..{self.max_width_m * 1e3:g} mm"
+                "gripper min_width_m and max_width_m must satisfy 0 <= min < max <= 0.5 m, got "
+                f"{self.min_width_m:g}..{self.max_width_m:g} m"
             )
         super().__post_init__()
 

@@ -39,7 +39,7 @@ from dataclasses import dataclass
 from typing import Any, Protocol
 
 from softpad import thesis
-from softpad.errors import CheckedFields, InputError, Positive
+from softpad.errors import MM_AS_M, CheckedFields, InputError, Positive, check_range
 from softpad.layout import GripperSpec, PadLayout
 from softpad.sim._objects import PartSpec
 
@@ -105,6 +105,8 @@ class PadPhysics(CheckedFields, what="pad"):
 
     def __post_init__(self) -> None:
         super().__post_init__()
+        for name in ("free_height_m", "sensitive_side_m", "line_height_m", "rim_m"):
+            check_range(f"pad {name}", getattr(self, name), 0.0, 1.0, "m", MM_AS_M)
         if self.line_height_m >= self.free_height_m:
             raise InputError(
                 f"line height ({self.line_height_m * 1e3:g} mm) must be below the module "

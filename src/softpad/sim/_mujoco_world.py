@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from softpad.errors import InputError, check_finite
+from softpad.errors import MM_AS_M, InputError, check_finite, check_range
 from softpad.layout import PadLayout
 from softpad.sim._mujoco_arm import ARM_ACCELERATION_M_S2, KinematicArm
 from softpad.sim._mujoco_contacts import ContactSensing, GripperContacts
@@ -65,7 +65,12 @@ class ObjectPose:
     tilt_rad: float
 
     def __post_init__(self) -> None:
-        for name in ("x_m", "y_m", "z_m", "yaw_rad", "tilt_rad"):
+        from softpad.layout import POSE_LIMIT_M
+
+        for name in ("x_m", "y_m", "z_m"):
+            lim = POSE_LIMIT_M
+            check_range(f"object pose {name}", getattr(self, name), -lim, lim, "m", MM_AS_M)
+        for name in ("yaw_rad", "tilt_rad"):
             check_finite(f"object pose {name}", getattr(self, name))
 
 

@@ -41,7 +41,7 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from softpad.errors import InputError
+from softpad.errors import MM_AS_M, InputError, check_finite, check_range
 
 #: Schema tag written in every catalogue file.
 CATALOGUE_SCHEMA = "softpad-objects/1"
@@ -143,9 +143,13 @@ class Placement:
     yaw_rad: float = 0.0
 
     def __post_init__(self) -> None:
-        for n in ("x_m", "y_m", "yaw_rad"):
-            if not math.isfinite(getattr(self, n)):
-                raise InputError(f"placement {n} must be finite, got {getattr(self, n)!r}")
+        from softpad.layout import POSE_LIMIT_M
+
+        for n in ("x_m", "y_m"):
+            check_range(
+                f"placement {n}", getattr(self, n), -POSE_LIMIT_M, POSE_LIMIT_M, "m", MM_AS_M
+            )
+        check_finite("placement yaw_rad", self.yaw_rad)
 
 
 @dataclass(frozen=True)

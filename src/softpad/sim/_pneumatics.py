@@ -51,8 +51,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from softpad import thesis
-from softpad.errors import CheckedFields, InputError, Positive
+from softpad.errors import KPA_AS_PA, CheckedFields, InputError, Positive, check_finite
 from softpad.sim._characteristic import ModuleCharacteristic
+
+#: Lowest non-zero supply pressure, pascals: a supply this low cannot lift a module off its
+#: base (the thesis's p0 is 1.1 kPa); a lower figure is kilopascals given as pascals.
+MIN_SUPPLY_PA = 100.0
 
 
 @dataclass(frozen=True)
@@ -81,9 +85,13 @@ class PneumaticParams(CheckedFields, what="pneumatic"):
 
     def __post_init__(self) -> None:
         super().__post_init__()
-        if not (math.isfinite(self.supply_pa) and 0 <= self.supply_pa <= 500e3):
+        supply = check_finite("pneumatic supply_pa", self.supply_pa)
+        if not 0 <= supply <= 500e3:
+            raise InputError(f"supply pressure must be within 0..500 kPa, got {supply / 1e3:g} kPa")
+        if 0 < supply < MIN_SUPPLY_PA:  # too low to inflate a module at all: not a supply
             raise InputError(
-                f"supply pressure must be within 0..500 kPa, got {self.supply_pa / 1e3:g} kPa"
+                f"pneumatic supply_pa must be 0 (none) or >= {MIN_SUPPLY_PA:g} Pa, got "
+                f"{supply:g} Pa ({KPA_AS_PA})"
             )
 
     @property
