@@ -1353,11 +1353,12 @@ def campaign(
 
     matplotlib.use("Agg")
     results: list[Result] = []
-    old_cwd = os.getcwd()
+    old_cwd, old_cache = os.getcwd(), os.environ.get("XDG_CACHE_HOME")
     with tempfile.TemporaryDirectory(prefix="softpad-fuzz-") as tmp:
         folder = Path(tmp)
         files = make_files(folder, np.random.default_rng([seed, 0]))
         os.chdir(folder)
+        os.environ["XDG_CACHE_HOME"] = str(folder / ".cache")  # design's result cache
         try:
             with stubbed():
                 for case in cli_cases(n_cli, seed, files):
@@ -1370,6 +1371,10 @@ def campaign(
                     _tick(results[-1])
         finally:
             os.chdir(old_cwd)
+            if old_cache is None:
+                os.environ.pop("XDG_CACHE_HOME", None)
+            else:
+                os.environ["XDG_CACHE_HOME"] = old_cache
     return results
 
 
