@@ -22,12 +22,13 @@ SERVED_TIMEOUT_S = 60.0
 
 @contextmanager
 def _served(url: str = "sim://?seed=4", **kwargs: Any) -> Iterator[tuple[Any, str]]:
-    from softpad.box import BoxDaemon, SimBox, open_box
+    from softpad.box import BoxDaemon, open_box, simulator_of
     from softpad.harness import simulation_extensions
 
     port = _free_port()
     box = open_box(url)
-    services = simulation_extensions(box) if isinstance(box, SimBox) else None
+    sim = simulator_of(box)
+    services = simulation_extensions(sim) if sim is not None else None
     daemon = BoxDaemon(box, (f"tcp/127.0.0.1:{port}",), services=services, **kwargs)
     with daemon:
         # a generous deadline for every frame and answer (the client's default is 5 s): on a

@@ -161,12 +161,12 @@ def test_frame_to_dict_in_kpa_with_nan_as_null() -> None:
 
 def test_realtime_paces_reads_to_the_wall_clock(monkeypatch) -> None:
     """Each read waits until its virtual time has come (sleep is recorded, not performed)."""
-    import softpad.box._sim as simmod
+    import softpad.box._sim_layers as layers
 
     clock = [100.0]
     sleeps: list[float] = []
-    monkeypatch.setattr(simmod.time, "perf_counter", lambda: clock[0])
-    monkeypatch.setattr(simmod.time, "sleep", lambda s: sleeps.append(s))
+    monkeypatch.setattr(layers.time, "perf_counter", lambda: clock[0])
+    monkeypatch.setattr(layers.time, "sleep", lambda s: sleeps.append(s))
     with open_box("sim://?realtime=1&rate_hz=50") as b:
         b.read_many(4)
     np.testing.assert_allclose(sleeps, [0.02, 0.04, 0.06], rtol=1e-9)

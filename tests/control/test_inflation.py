@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from softpad.box import ConnectionLost, Fault, SimBox, ValveCommand, open_box
+from softpad.box import ConnectionLost, Fault, SimBox, ValveCommand, compose_sim_box, open_box
 from softpad.control import InflationParams, inflate_and_adjust
 from softpad.errors import HardwareFault, InputError
 
@@ -70,7 +70,7 @@ def _assert_safe(box: SimBox) -> None:
     ],
 )
 def test_fault_raises_naming_the_cause_and_leaves_the_box_safe(fault: Fault, match: str) -> None:
-    box = SimBox(seed=3)
+    box = compose_sim_box(SimBox(seed=3))  # sensor faults are layers around the plain box
     box.inject_fault(fault)
     frames: list = []
     with pytest.raises(HardwareFault, match=match):
@@ -100,7 +100,7 @@ def test_small_leak_after_adjustment_is_caught_by_the_drift_check() -> None:
 
 
 def test_lost_connection_raises_connection_lost() -> None:
-    box = SimBox(seed=1)
+    box = compose_sim_box(SimBox(seed=1))
     box.inject_fault(Fault("disconnect", None, 0.5))
     with pytest.raises(ConnectionLost, match="stopped answering"):
         inflate_and_adjust(box, N)

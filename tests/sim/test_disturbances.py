@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from softpad import thesis
-from softpad.box import SimBox, open_box
+from softpad.box import SimBox, SimLayer, compose_sim_box, open_box
 from softpad.errors import InputError
 from softpad.sim import AnalyticWorld, DisturbanceParams, SensorParams, default_characteristic
 
@@ -19,7 +19,7 @@ NONE = {
 }
 
 
-def _box(seed: int = 0, **figures: float) -> SimBox:
+def _plain(seed: int = 0, **figures: float) -> SimBox:
     params = DisturbanceParams(**{**NONE, **figures})
     return SimBox(
         AnalyticWorld(),
@@ -29,6 +29,11 @@ def _box(seed: int = 0, **figures: float) -> SimBox:
         disturbances=params,
         sample_rate_hz=10.0,
     )
+
+
+def _box(seed: int = 0, **figures: float) -> SimLayer:
+    """The plain box in the layers of sim:// (the sensors' zero shift among them)."""
+    return compose_sim_box(_plain(seed, **figures))
 
 
 def _gas_terms(p: float) -> tuple[float, float]:
@@ -89,6 +94,11 @@ def test_sensor_thermal_shift_is_within_its_coefficient() -> None:
         shift = frame.pressures_pa[:6] - box.true_pressures_pa[:6]
         worst = max(worst, float(np.abs(shift).max()))
     assert 0.1 < worst <= 2.0 + 1e-9
+    # the shift is the layer's: the plain box's ideal sensors read the gas as it is
+    plain = _plain(temperature_amplitude_k=1.0, sensor_tempco_pa_k=2.0, temperature_period_s=100.0)
+    for _ in range(50):
+        frame = plain.read_many(10)[-1]
+        np.testing.assert_allclose(frame.pressures_pa[:6], plain.true_pressures_pa[:6], atol=1e-6)
 
 
 @pytest.mark.parametrize("seed", [0, 1, 2])

@@ -2,7 +2,8 @@
 
 ``open_box("sim://?seed=1")`` returns a :class:`Box`; frames are :class:`PressureFrame`
 (gauge pressures in pascals per channel plus the supply pressure); each channel's valves take
-a :class:`ValveCommand`. The simulated box (``sim://``, :class:`SimBox`) is the default;
+a :class:`ValveCommand`. The simulated box (``sim://``: the plain :class:`SimBox` in the
+layers of :func:`compose_sim_box`, found behind them by :func:`simulator_of`) is the default;
 ``zenoh://host:port[/prefix]`` (:class:`ZenohBox`) reaches a box served over zenoh by
 :class:`BoxDaemon` (``softpad box serve``) with the same interface; :class:`HardwareBox`
 drives the real Pneumaticbox (GPIO valves, IIO sensors). The hand-written ``tcp://``
@@ -42,17 +43,40 @@ from softpad.box._wrapper import BoxWrapper
 from softpad.box._zenoh import ControlRefused, ZenohBox, open_zenoh_url
 
 if TYPE_CHECKING:
-    from softpad.box._sim import FAULT_KINDS, Fault, SimBox, open_sim_url
+    from softpad.box._sim import FAULT_KINDS, Fault, SimBox
+    from softpad.box._sim_layers import (
+        SensorFaults,
+        SensorZeroShift,
+        SimLayer,
+        Unreachable,
+        WallClock,
+        compose_sim_box,
+        simulator_of,
+    )
+    from softpad.box._sim_url import open_sim_url
 
-#: Names of the simulated box, imported from ``softpad.box._sim`` on first use.
-_SIMULATED = ("FAULT_KINDS", "Fault", "SimBox", "open_sim_url")
+#: Names of the simulated box (the plain box, its layers, ``sim://``) and their modules,
+#: imported on first use.
+_SIMULATED = {
+    "FAULT_KINDS": "_sim",
+    "Fault": "_sim",
+    "SimBox": "_sim",
+    "SensorFaults": "_sim_layers",
+    "SensorZeroShift": "_sim_layers",
+    "SimLayer": "_sim_layers",
+    "Unreachable": "_sim_layers",
+    "WallClock": "_sim_layers",
+    "compose_sim_box": "_sim_layers",
+    "simulator_of": "_sim_layers",
+    "open_sim_url": "_sim_url",
+}
 
 
 def __getattr__(name: str) -> Any:
     if name in _SIMULATED:
-        from softpad.box import _sim
+        import importlib
 
-        value = getattr(_sim, name)
+        value = getattr(importlib.import_module(f"softpad.box.{_SIMULATED[name]}"), name)
         globals()[name] = value
         return value
     raise AttributeError(f"module 'softpad.box' has no attribute {name!r}")
@@ -78,13 +102,19 @@ __all__ = [
     "SafetyGuard",
     "SafetyLimits",
     "SafetyTrip",
+    "SensorFaults",
+    "SensorZeroShift",
     "SimBox",
+    "SimLayer",
     "StampedFrame",
+    "Unreachable",
     "ValveCommand",
     "ValveLines",
+    "WallClock",
     "ZenohBox",
     "backends",
     "check_conformance",
+    "compose_sim_box",
     "daemon_auth",
     "decode_frame",
     "decode_request",
@@ -98,4 +128,5 @@ __all__ = [
     "register_backend",
     "seal_frame",
     "session_config",
+    "simulator_of",
 ]

@@ -693,12 +693,9 @@ class _Refused(SoftPadError):
 def _simulated(box: Box) -> bool:
     """True for a simulated box (the only kind that may offer services), seen through any
     :class:`~softpad.box.BoxWrapper` views around it (hooks, fault injection)."""
-    from softpad.box._sim import SimBox
-    from softpad.box._wrapper import BoxWrapper
+    from softpad.box._sim_layers import simulator_of
 
-    while isinstance(box, BoxWrapper):
-        box = box.inner
-    return isinstance(box, SimBox)
+    return simulator_of(box) is not None
 
 
 def new_client_id() -> str:

@@ -30,7 +30,7 @@ def backends() -> tuple[str, ...]:
 
 def _open_sim(location: str, options: dict[str, str]) -> Box:
     """``sim://``: the simulator is imported only when a simulated box is opened."""
-    from softpad.box._sim import open_sim_url
+    from softpad.box._sim_url import open_sim_url
 
     return open_sim_url(location, options)
 

@@ -1,27 +1,33 @@
-"""The simulated box (``sim://``), the default back-end.
+"""The plain simulated box: gas physics, valves and sensors (the heart of ``sim://``).
 
 The box is the clock master: every :meth:`SimBox.read` advances the virtual clock by one
 sample period, steps the world (objects, gripper) and the gas physics of every channel, and
-returns the sensors' noisy readings. It runs as fast as the computer allows, or at real time
-on request (``realtime=1``). Everything is deterministic for a given ``seed``.
+returns the sensors' noisy readings, as fast as the computer allows. Everything is
+deterministic for a given ``seed``. Its physical faults (a stuck valve, a leak, a lost supply)
+and the slow disturbances of the gas are physics here; what acts on the readings or on the
+link (sensor faults, the sensors' thermal zero shift, a lost link) and the wall-clock pacing
+are layers around it (:mod:`softpad.box._sim_layers`), composed by ``sim://``
+(:func:`softpad.box.open_sim_url`).
 """
 
 from __future__ import annotations
 
-import math
 import statistics
-import time
-from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
 
 from softpad import thesis
-from softpad.box._base import Box, ConnectionLost, PressureFrame, ValveCommand
+from softpad.box._base import Box, PressureFrame, ValveCommand
+from softpad.box._sim_faults import (
+    DEFAULT_LEAK_M2,
+    FAULT_KINDS,
+    PHYSICAL_FAULTS,
+    Fault,
+    FaultSchedule,
+)
 from softpad.errors import InputError, check_range
-from softpad.layout import PadLayout, parse_layout
 from softpad.sim import (
-    AnalyticCharacteristic,
     AnalyticWorld,
     ChamberBank,
     DisturbanceParams,
@@ -30,10 +36,8 @@ from softpad.sim import (
     PneumaticParams,
     SensorBank,
     SensorParams,
-    SimGripper,
     World,
     default_characteristic,
-    get_object,
 )
 
 #: (inflation valve open, deflation valve open) for each command.
@@ -42,80 +46,6 @@ _VALVE_OPEN = {
     ValveCommand.INFLATE: (True, False),
     ValveCommand.DEFLATE: (False, True),
 }
-
-#: Fault kinds the simulated box can inject.
-FAULT_KINDS = ("nan", "dropout", "stuck", "leak", "supply_loss", "disconnect")
-
-#: Default leak effective area (Cd A) when a leak is given without size, m^2.
-DEFAULT_LEAK_M2 = 1.0e-8
-
-
-@dataclass(frozen=True)
-class Fault:
-    """A fault injected into the simulated box.
-
-    Parameters
-    ----------
-    kind
-        ``"nan"`` (sensor reads NaN), ``"dropout"`` (sensor wire broken: reads its lower rail),
-        ``"stuck"`` (valves stuck in state ``arg``: closed/inflate/deflate), ``"leak"`` (an
-        orifice to atmosphere of ``Cd A = arg`` m^2), ``"supply_loss"`` (supply drops to 0),
-        ``"disconnect"`` (the box stops answering: reads and valve commands raise
-        :class:`ConnectionLost`; its physics and its own safety guard go on with every read
-        tried, and the valves stay as they were).
-    channel
-        1-based channel for channel faults, None for box-wide ones.
-    at_s
-        Virtual time at which the fault starts, seconds.
-    arg
-        Stuck state (str) or leak area (float, m^2).
-    """
-
-    kind: str
-    channel: int | None = None
-    at_s: float = 0.0
-    arg: str | float | None = None
-
-    def __post_init__(self) -> None:
-        if self.kind not in FAULT_KINDS:
-            raise InputError(f"unknown fault {self.kind!r}; known faults: {', '.join(FAULT_KINDS)}")
-        if self.kind in ("nan", "dropout", "stuck", "leak") and self.channel is None:
-            raise InputError(f"fault {self.kind!r} needs a channel")
-        if not math.isfinite(self.at_s) or self.at_s < 0:
-            raise InputError(f"fault time must be >= 0 s, got {self.at_s!r}")
-        if self.kind == "stuck":
-            ValveCommand.parse(str(self.arg))
-        if self.kind == "leak" and self.arg is not None:
-            a = float(self.arg)  # type: ignore[arg-type]
-            if not (math.isfinite(a) and 0 < a <= 1e-5):
-                raise InputError(f"leak area must be > 0 and at most 10 mm^2, got {a * 1e6:g} mm^2")
-
-    @classmethod
-    def parse(cls, text: str) -> Fault:
-        """Parse ``KIND[:CHANNEL[:ARG]][@T_S]``, e.g. ``stuck:3:inflate@2``, ``leak:2:0.02``
-        (leak area in mm^2), ``supply_loss@5``."""
-        spec, _, at = text.partition("@")
-        fields = spec.split(":")
-        kind = fields[0].strip()
-        try:
-            at_s = float(at) if at else 0.0
-            if kind in ("supply_loss", "disconnect"):
-                if len(fields) > 1:
-                    raise ValueError
-                return cls(kind, None, at_s)
-            channel = int(fields[1]) if len(fields) > 1 else None
-            arg: str | float | None = None
-            if kind == "stuck":
-                arg = fields[2] if len(fields) > 2 else "inflate"
-            elif kind == "leak":
-                arg = float(fields[2]) * 1e-6 if len(fields) > 2 else DEFAULT_LEAK_M2
-            elif len(fields) > 2:
-                raise ValueError
-        except ValueError:
-            raise InputError(
-                f"malformed fault {text!r}; use KIND[:CHANNEL[:ARG]][@T_S], e.g. stuck:3:inflate@2"
-            ) from None
-        return cls(kind, channel, at_s, arg)
 
 
 def _check_args(n_modules: int, channels: int, sample_rate_hz: float, seed: int) -> None:
@@ -135,7 +65,12 @@ def _check_args(n_modules: int, channels: int, sample_rate_hz: float, seed: int)
 
 
 class SimBox(Box):
-    """A simulated pneumatic box driving the modules of a world.
+    """A simulated pneumatic box driving the modules of a world: the plain physical box.
+
+    Gas physics, valves (with their physical faults: stuck, leaking, no supply) and the
+    sensors with their noise. What acts on the readings or the link (sensor NaN and dropout,
+    the sensors' thermal zero shift, a lost link) and the wall-clock pacing are layers around
+    it: :func:`~softpad.box.compose_sim_box` adds them in their order, as ``sim://`` does.
 
     Parameters
     ----------
@@ -157,11 +92,10 @@ class SimBox(Box):
         Sensor parameters.
     initial_pressure_pa
         Start with every module at this gauge pressure (0: deflated).
-    realtime
-        Pace :meth:`read` to the wall clock.
     disturbances
-        Slow temperature swing, membrane creep, small leaks and the sensors' thermal zero
-        shift (:class:`~softpad.sim.DisturbanceParams`; None: off).
+        Slow temperature swing, membrane creep and small leaks of the gas
+        (:class:`~softpad.sim.DisturbanceParams`; None: off); the sensors' thermal zero shift
+        they also give is the :class:`~softpad.box.SensorZeroShift` layer.
     """
 
     def __init__(
@@ -174,7 +108,6 @@ class SimBox(Box):
         pneumatics: PneumaticParams | None = None,
         sensor: SensorParams | None = None,
         initial_pressure_pa: float = 0.0,
-        realtime: bool = False,
         disturbances: DisturbanceParams | None = None,
     ) -> None:
         super().__init__()
@@ -210,15 +143,8 @@ class SimBox(Box):
         self._heights = self.chambers.heights_m()
         self._loads_key = self.chambers.loads_n.tobytes()
         self._supply_true = self.pneumatics.supply_pa
-        self._faults: list[Fault] = []
-        self._next_fault_s = math.inf
-        self._nan = np.zeros(channels, dtype=bool)
-        self._dropout = np.zeros(channels, dtype=bool)
-        self._bad_sensor = False
+        self._faults = FaultSchedule()
         self._leaking = False
-        self._disconnected = False
-        self.realtime = bool(realtime)
-        self._wall0: float | None = None
 
     def _start_inflated(self, pressure_pa: float) -> None:
         """Every module at ``pressure_pa`` under the world's loads (0..5 kPa)."""
@@ -233,9 +159,11 @@ class SimBox(Box):
     def _setup_disturbances(
         self, params: DisturbanceParams | None, rng: np.random.Generator
     ) -> None:
-        """The slow disturbances (None: off) and the leak area that loses their rate at p0."""
+        """The slow disturbances (None: off) and the leak area that loses their rate at p0.
+
+        Drawn from the sensors' generator right after them (the random phase of the room's
+        temperature, the sensors' thermal coefficients), before any noise block."""
         self.disturbances = None if params is None else Disturbances(params, self._channels, rng)
-        self._sensor_shift: NDArray[np.float64] | None = None
         self._dist_leak_m2 = 0.0
         if self.disturbances is not None:
             ch, p0 = self.chambers, np.array([thesis.P0_PA])
@@ -254,7 +182,6 @@ class SimBox(Box):
         ratio, elapsed = dist.advance(t)
         p = dist.params
         self.chambers.disturb(ratio, elapsed, self._dist_leak_m2, p.creep_fraction, p.creep_time_s)
-        self._sensor_shift = dist.sensor_shift_pa()
 
     # --- Box API --------------------------------------------------------------------
     @property
@@ -284,18 +211,9 @@ class SimBox(Box):
         dt = self._dt
         t = self._t + dt
         self._t = t
-        if t >= self._next_fault_s:
+        if t >= self._faults.next_s:
             self._activate_faults()
         values, supply = self._sense(self._step_physics(t, dt))
-        if self._disconnected:
-            self._unreachable(t, values)
-        if self.realtime:
-            now = time.perf_counter()
-            if self._wall0 is None:
-                self._wall0 = now - t
-            wait = self._wall0 + t - now
-            if wait > 0:
-                time.sleep(wait)
         return PressureFrame(t, values, supply)
 
     def _step_physics(self, t: float, dt: float) -> bool:
@@ -338,7 +256,7 @@ class SimBox(Box):
         return changed or disturbed
 
     def _sense(self, changed: bool) -> tuple[NDArray[np.float64], float]:
-        """The sensors' readings of the true pressures (and the sensor faults)."""
+        """The sensors' readings of the true pressures."""
         chambers, sensors, supply_true = self.chambers, self.sensors, self._supply_true
         if not changed:
             values, supply = sensors.sample(chambers.pressure_pa, supply_true, False)
@@ -356,29 +274,15 @@ class SimBox(Box):
                         path, chambers.position - 1, chambers.solve_count, supply_true
                     )
                 values, supply = hit
-        if self._sensor_shift is not None:
-            values = values + self._sensor_shift
-        if self._bad_sensor:
-            values = values.copy()
-            values[self._dropout] = self.sensor_params.range_min_pa
-            values[self._nan] = np.nan
         return values, supply
 
-    def _unreachable(self, t: float, values: NDArray[np.float64]) -> None:
-        """A disconnected box: its physics and its own guard go on (the box's firmware vents
-        an over-pressure whatever the link does), but no frame reaches the client."""
-        for ch in self.safety.check(t, values):
-            if ch <= self._n_mod:
-                self._cmd_inf[ch - 1], self._cmd_def[ch - 1] = _VALVE_OPEN[ValveCommand.DEFLATE]
-                self._update_effective()
-        raise ConnectionLost(f"the simulated box stopped answering at t = {t:.3f} s")
+    def firmware_vent(self, channel: int) -> None:
+        """Open the deflation valve of ``channel`` as the box's own firmware does when its guard
+        trips with no client to command it (:class:`~softpad.box.Unreachable`): no command,
+        so :attr:`valves` (the commanded states) stays as it was."""
+        self._apply_valve(channel, ValveCommand.DEFLATE)
 
     def _apply_valve(self, channel: int, command: ValveCommand) -> None:
-        if self._disconnected:
-            raise ConnectionLost(
-                f"the simulated box stopped answering at t = {self._t:.3f} s: "
-                f"channel {channel} not commanded"
-            )
         if channel > self._n_mod:
             return  # unconnected port: nothing to drive
         self._cmd_inf[channel - 1], self._cmd_def[channel - 1] = _VALVE_OPEN[command]
@@ -402,32 +306,31 @@ class SimBox(Box):
 
     # --- faults ---------------------------------------------------------------------
     def inject_fault(self, fault: Fault) -> None:
-        """Schedule a fault (it starts at ``fault.at_s`` of virtual time, or at once)."""
+        """Schedule a physical fault (``stuck``, ``leak``, ``supply_loss``; it starts at
+        ``fault.at_s`` of virtual time, or at once).
+
+        Sensor faults and a lost link act on what leaves the box: the layers of
+        :func:`~softpad.box.compose_sim_box` take them (a ``sim://`` box has them).
+        """
         if fault.channel is not None:
             self.check_channel(fault.channel)
             if fault.kind in ("stuck", "leak") and fault.channel > self._n_mod:
                 raise InputError(
                     f"channel {fault.channel} has no module: a {fault.kind} fault needs one"
                 )
-        self._faults.append(fault)
-        self._next_fault_s = min(self._next_fault_s, fault.at_s)
+        if fault.kind not in PHYSICAL_FAULTS:
+            raise InputError(
+                f"a {fault.kind} fault acts on the readings or the link, not the physics: "
+                f"inject it into the box's layers (softpad.box.compose_sim_box, as sim:// does)"
+            )
+        self._faults.add(fault)
         if fault.at_s <= self._t:
             self._activate_faults()
 
     def _activate_faults(self) -> None:
-        pending = []
-        for f in self._faults:
-            if f.at_s > self._t + 1e-12:
-                pending.append(f)
-                continue
+        for f in self._faults.due(self._t):
             ch = f.channel
-            if f.kind == "nan" and ch is not None:
-                self._nan[ch - 1] = True
-                self._bad_sensor = True
-            elif f.kind == "dropout" and ch is not None:
-                self._dropout[ch - 1] = True
-                self._bad_sensor = True
-            elif f.kind == "stuck" and ch is not None:
+            if f.kind == "stuck" and ch is not None:
                 self._stuck[ch] = ValveCommand.parse(str(f.arg))
                 self._update_effective()
             elif f.kind == "leak" and ch is not None:
@@ -437,111 +340,6 @@ class SimBox(Box):
                 self._leaking = True
             elif f.kind == "supply_loss":
                 self._supply_true = 0.0
-            elif f.kind == "disconnect":
-                self._disconnected = True
-        self._faults = pending
-        self._next_fault_s = min((f.at_s for f in pending), default=math.inf)
-
-    def close_valves(self) -> None:
-        """Close every valve; a disconnected box cannot be reached (its valves stay as they are)."""
-        if self._disconnected:
-            return
-        super().close_valves()
-
-    def close_inflation(self) -> None:
-        """Close inflation; a disconnected box cannot be reached (its valves stay as they are)."""
-        if self._disconnected:
-            return
-        super().close_inflation()
 
 
-_SIM_OPTIONS = {
-    "seed": "integer seed of the sensor noise (0)",
-    "channels": "number of channels (8)",
-    "rate_hz": "frames per second (100)",
-    "layout": "pad layout RxC (2x3)",
-    "pitch_mm": "module pitch in mm (45)",
-    "realtime": "1 to pace reads to the wall clock (0)",
-    "inflated_kpa": "start with every module at this pressure (0: deflated)",
-    "supply_kpa": "regulated supply pressure (10)",
-    "noise": "0 for an ideal noise-free sensor (1)",
-    "disturbances": "1 for slow temperature swing, membrane creep, small leaks and sensors' "
-    "thermal zero shift (0)",
-    "characteristic": "analytic, or default (the FEM table when packaged)",
-    "gripper": "gripper mounting 10/4, 6/2 or 4/0 (10/4)",
-    "object": "name of a catalogue object placed on the pad at start",
-    "faults": "comma-separated KIND[:CHANNEL[:ARG]][@T_S], e.g. leak:2:0.01,stuck:3:inflate@1",
-}
-
-
-def _num(options: dict[str, str], key: str, default: float) -> float:
-    if key not in options:
-        return default
-    try:
-        v = float(options[key])
-    except ValueError:
-        raise InputError(f"sim:// option {key}={options[key]!r} must be a number") from None
-    if not math.isfinite(v):
-        raise InputError(f"sim:// option {key}={options[key]!r} must be finite")
-    return v
-
-
-def _int(options: dict[str, str], key: str, default: int) -> int:
-    if key not in options:
-        return default
-    try:
-        return int(options[key])
-    except ValueError:
-        raise InputError(f"sim:// option {key}={options[key]!r} must be an integer") from None
-
-
-def open_sim_url(location: str, options: dict[str, str]) -> SimBox:
-    """Build a :class:`SimBox` from a ``sim://`` URL's options (see ``_SIM_OPTIONS``)."""
-    if location.strip("/"):
-        raise InputError(f"sim:// takes no host or path, got {location!r} (options go after '?')")
-    unknown = sorted(set(options) - set(_SIM_OPTIONS))
-    if unknown:
-        raise InputError(
-            f"unknown sim:// option {unknown[0]!r}; known options: {', '.join(_SIM_OPTIONS)}"
-        )
-    layout = parse_layout(options.get("layout", "2x3")) if "layout" in options else PadLayout()
-    if "pitch_mm" in options:
-        layout = PadLayout(layout.rows, layout.cols, _num(options, "pitch_mm", 45.0) / 1e3)
-    gripper = SimGripper.mounting(options.get("gripper", "10/4"))
-    world = AnalyticWorld(layout, gripper)
-    if "object" in options:
-        world.place_object(get_object(options["object"]))
-    char_name = options.get("characteristic", "default")
-    if char_name == "analytic":
-        characteristic: ModuleCharacteristic = AnalyticCharacteristic()
-    elif char_name == "default":
-        characteristic = default_characteristic()
-    else:
-        raise InputError(
-            f"sim:// option characteristic={char_name!r} must be 'analytic' or 'default'"
-        )
-    noise = options.get("noise", "1")
-    if noise not in ("0", "1"):
-        raise InputError(f"sim:// option noise={noise!r} must be 0 or 1")
-    disturb = options.get("disturbances", "0")
-    if disturb not in ("0", "1"):
-        raise InputError(f"sim:// option disturbances={disturb!r} must be 0 or 1")
-    realtime = options.get("realtime", "0")
-    if realtime not in ("0", "1"):
-        raise InputError(f"sim:// option realtime={realtime!r} must be 0 or 1")
-    supply_pa = _num(options, "supply_kpa", 10.0) * 1e3
-    box = SimBox(
-        world,
-        channels=_int(options, "channels", 8),
-        sample_rate_hz=_num(options, "rate_hz", 100.0),
-        seed=_int(options, "seed", 0),
-        characteristic=characteristic,
-        pneumatics=PneumaticParams(supply_pa=supply_pa),
-        sensor=SensorParams() if noise == "1" else SensorParams.ideal(),
-        initial_pressure_pa=_num(options, "inflated_kpa", 0.0) * 1e3,
-        realtime=realtime == "1",
-        disturbances=DisturbanceParams() if disturb == "1" else None,
-    )
-    for text in filter(None, (s.strip() for s in options.get("faults", "").split(","))):
-        box.inject_fault(Fault.parse(text))
-    return box
+__all__ = ["DEFAULT_LEAK_M2", "FAULT_KINDS", "Fault", "SimBox"]

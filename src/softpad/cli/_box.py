@@ -433,13 +433,14 @@ def _sim_url(args: argparse.Namespace) -> str:
 def _simulation_services(box: Any) -> dict[str, Any]:
     """A simulated box's world and robot as services, so 'softpad run' works over zenoh (the
     simulator is imported only for a box that is not the hardware)."""
-    from softpad.box import SimBox
+    from softpad.box import simulator_of
 
-    if not isinstance(box, SimBox):
+    sim = simulator_of(box)
+    if sim is None:
         return {}
     from softpad.harness import simulation_extensions
 
-    return simulation_extensions(box)
+    return simulation_extensions(sim)
 
 
 def serve(args: argparse.Namespace) -> int:

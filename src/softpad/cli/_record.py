@@ -22,10 +22,11 @@ def open_recorder(path: str | None, box: Any, metadata: dict[str, Any], force: b
     """
     if not path:
         return None
-    from softpad.box import SimBox
+    from softpad.box import simulator_of
     from softpad.record import McapRecorder
 
-    robot_state = box.world.gripper_state if isinstance(box, SimBox) else None
+    sim = simulator_of(box)
+    robot_state = sim.world.gripper_state if sim is not None else None
     return McapRecorder(path, metadata, force=force, robot_state=robot_state)
 
 
@@ -36,9 +37,10 @@ def run_metadata(
     (the execution's, SI), seed of the box and extra facts (gripper, trial...)."""
     from dataclasses import asdict
 
-    from softpad.box import SimBox, parse_url
+    from softpad.box import parse_url, simulator_of
 
-    layout = box.world.layout.name if isinstance(box, SimBox) else "2x3"
+    sim = simulator_of(box)
+    layout = sim.world.layout.name if sim is not None else "2x3"
     options = parse_url(url)[2]
     meta: dict[str, Any] = {"command": command, "box": url, "objects": objects, "layout": layout}
     meta.update(seed=int(options["seed"]) if options.get("seed", "").isdigit() else None)

@@ -308,9 +308,9 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _in_process(box: Any) -> bool:
-    from softpad.box import SimBox
+    from softpad.box import simulator_of
 
-    return isinstance(box, SimBox)
+    return simulator_of(box) is not None
 
 
 def _robot(url: str, box: Any, mounting: str) -> Any:
@@ -381,11 +381,12 @@ def _from_installation(path: str, params: Any) -> Any:
 def _live(port: int | None, box: Any, json_mode: bool) -> Any:
     if port is None:
         return None
-    from softpad.box import SimBox
+    from softpad.box import simulator_of
     from softpad.record import FoxgloveLive
 
-    robot = box.world.gripper_state if isinstance(box, SimBox) else None
-    layout = box.world.layout if isinstance(box, SimBox) else None  # the pad's modules only
+    sim = simulator_of(box)
+    robot = sim.world.gripper_state if sim is not None else None
+    layout = sim.world.layout if sim is not None else None  # the pad's modules only
     live = FoxgloveLive(port, layout, robot_state=robot)
     say(f"foxglove: {live.url} (port {live.port})", json_mode)
     return live

@@ -191,11 +191,12 @@ class SimulatedRobot:
 def open_sim_robot(location: str, options: dict[str, str], context: Any) -> SimulatedRobot:
     """The ``sim://`` factory of :data:`softpad.control.ROBOT_REGISTRY`: the arm of the
     simulated box in ``context.box`` (:class:`softpad.box.SimBox`); no location or options."""
-    from softpad.box import SimBox
+    from softpad.box import simulator_of
 
     if location not in ("", "/") or options:
         raise InputError(f"the simulated robot is plain sim:// (no options), got {location!r}")
     box = getattr(context, "box", None)
-    if not isinstance(box, SimBox):
+    sim = simulator_of(box) if box is not None else None
+    if sim is None:
         raise InputError(f"a sim:// robot needs a simulated box (sim://), got {type(box).__name__}")
-    return SimulatedRobot(box.world)
+    return SimulatedRobot(sim.world)

@@ -6,7 +6,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from softpad.box import Box, SimBox, ZenohBox, open_box
+from softpad.box import Box, SimBox, ZenohBox, open_box, simulator_of
 from softpad.control import ExecutionParams, ExecutionResult, GraspExecution, Recorder, Robot
 from softpad.errors import InputError
 from softpad.harness._remote import RemoteRobot, has_simulation
@@ -106,7 +106,8 @@ def run_simulated(
         ``cylinder``, ``charger``); several objects lying on separate modules are planned and
         grasped one after the other. ``object-5`` when None.
     box
-        A :class:`~softpad.box.SimBox` or a ``sim://`` URL; or a ``zenoh://`` box whose daemon
+        A simulated box (a :class:`~softpad.box.SimBox`, its layers or a view of it) or a
+        ``sim://`` URL; or a ``zenoh://`` box whose daemon
         offers the simulator's world and robot (``softpad box serve --sim``).
     params
         Loop parameters.
@@ -134,16 +135,18 @@ def run_simulated(
         mounting = gripper or specs[0].gripper
         if isinstance(b, ZenohBox):  # a simulator served over the network: world and robot there
             return _run_remote(b, specs, mounting, params, recorder, parts)
-        if not isinstance(b, SimBox):
+        sim = simulator_of(b)
+        if sim is None:
             raise InputError(f"{_REMOTE_WORLD} (got a {type(b).__name__})")
-        return _run_local(b, specs, mounting, params, recorder, robot, parts)
+        return _run_local(b, sim, specs, mounting, params, recorder, robot, parts)
     finally:
         if owns:
             b.close()
 
 
 def _run_local(
-    box: SimBox,
+    box: Box,
+    sim: SimBox,
     specs: list[ObjectSpec],
     mounting: str,
     params: ExecutionParams | None,
@@ -151,7 +154,7 @@ def _run_local(
     robot: Robot | None,
     parts: dict[str, Any],
 ) -> SimulatedRun:
-    world = box.world
+    world = sim.world  # the loop reads ``box`` (the simulator in its layers)
     if isinstance(world, AnalyticWorld):
         world.gripper = SimGripper.mounting(mounting)
     arm = SimulatedRobot(world) if robot is None else robot

@@ -463,12 +463,13 @@ def _summary(result: dict[str, Any]) -> dict[str, Any]:
 def _simulation(box: Any) -> Callable[..., Any] | None:
     """``sim(op, **fields)`` calling the simulator's ``sim.setup``/``sim.place`` on ``box``
     (an in-process ``sim://`` box, or a served simulator offering them); None otherwise."""
-    from softpad.box import SimBox, ZenohBox
+    from softpad.box import ZenohBox, simulator_of
 
-    if isinstance(box, SimBox):
+    plain = simulator_of(box)
+    if plain is not None:
         from softpad.harness import simulation_extensions
 
-        ext = simulation_extensions(box)
+        ext = simulation_extensions(plain)
         return lambda op, **fields: ext[op]({"op": op, **fields})
     if isinstance(box, ZenohBox) and {"sim.setup", "sim.place"} <= set(
         box.info.get("services", [])

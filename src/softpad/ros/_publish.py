@@ -83,12 +83,10 @@ class PadPublishers:
 
     @box.setter
     def box(self, box: Any) -> None:
-        from softpad.box import BoxWrapper, SimBox
+        from softpad.box import simulator_of
 
-        self._box, inner = box, box
-        while isinstance(inner, BoxWrapper):
-            inner = inner.inner
-        self.pace = isinstance(inner, SimBox)
+        self._box = box
+        self.pace = simulator_of(box) is not None
 
     def _make_publishers(self) -> None:
         from diagnostic_msgs.msg import DiagnosticArray

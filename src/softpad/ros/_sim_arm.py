@@ -17,7 +17,7 @@ import threading
 from collections.abc import Callable
 from typing import Any
 
-from softpad.box import Box, BoxWrapper, PressureFrame, SimBox
+from softpad.box import Box, BoxWrapper, PressureFrame, simulator_of
 from softpad.errors import InputError
 
 
@@ -72,9 +72,10 @@ class SimArmNode:
         from std_msgs.msg import Float64MultiArray
 
         box = open_box(box_url)
-        assert isinstance(box, SimBox)
+        sim = simulator_of(box)
+        assert sim is not None
         self.sim = box
-        self.robot = SimulatedRobot(box.world)
+        self.robot = SimulatedRobot(sim.world)
         if lose_arm_on not in (None, "move_to", "descend", "stop", "gripper"):
             raise InputError(
                 f"lose_arm_on must be move_to, descend, stop or gripper, got {lose_arm_on!r}"
@@ -84,7 +85,7 @@ class SimArmNode:
         self._lock = threading.Lock()
         self._current = self._done = 0.0
         self._snapshot = self._take_snapshot()
-        ext = simulation_extensions(box)
+        ext = simulation_extensions(sim)
         port = port or _free_loopback_port()
         #: URL of the served box.
         self.url = f"zenoh://127.0.0.1:{port}"
