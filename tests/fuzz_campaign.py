@@ -159,6 +159,20 @@ def _arm_node(box_url: str = "sim://", *args: Any, **kwargs: Any) -> Any:
     raise _Started("the work would start here")
 
 
+#: The long FEM jobs of ``softpad.fem`` that the stubs replace (also tests/cli/test_fuzz.py).
+FEM_LONG_JOBS = (
+    "ModuleModel",
+    "inflation_sweep",
+    "design_sweep",
+    "stiffness_study",
+    "sensitive_area_study",
+    "sealed_chamber_study",
+    "fit_material",
+    "compare_models",
+    "module_characteristic",
+)
+
+
 def _stub_targets() -> list[tuple[Any, str, Any]]:
     """(object, attribute, replacement) of every stubbed long job."""
     import softpad.box
@@ -200,18 +214,7 @@ def _stub_targets() -> list[tuple[Any, str, Any]]:
         (softpad.fem._response, "module_response", _started),
         (softpad.fem.ModuleSetup, "model", _started),
     ]
-    for name in (
-        "ModuleModel",
-        "inflation_sweep",
-        "design_sweep",
-        "stiffness_study",
-        "sensitive_area_study",
-        "sealed_chamber_study",
-        "fit_material",
-        "compare_models",
-        "module_characteristic",
-    ):
-        targets.append((softpad.fem, name, _started))
+    targets.extend((softpad.fem, name, _started) for name in FEM_LONG_JOBS)
     return targets
 
 

@@ -47,6 +47,7 @@ def stubbed() -> Iterator[Path]:
     import softpad.fem
     import softpad.harness
     import softpad.sim._probe
+    from fuzz_campaign import FEM_LONG_JOBS
 
     mp = pytest.MonkeyPatch()
     mp.setattr(softpad.sim._probe, "sealed_rise_map", _started)
@@ -57,17 +58,7 @@ def stubbed() -> Iterator[Path]:
     mp.setattr(softpad.control, "inflate_and_adjust", _started)
     mp.setattr(softpad.box, "BoxDaemon", _started)
     mp.setattr(softpad.design, "design_sweep", _started)
-    for name in (
-        "ModuleModel",
-        "inflation_sweep",
-        "design_sweep",
-        "stiffness_study",
-        "sensitive_area_study",
-        "sealed_chamber_study",
-        "fit_material",
-        "compare_models",
-        "module_characteristic",
-    ):
+    for name in FEM_LONG_JOBS:
         mp.setattr(softpad.fem, name, _started)
     mp.setattr(softpad.fem.ModuleSetup, "model", _started)
     import softpad.fem._response

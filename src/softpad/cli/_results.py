@@ -123,6 +123,13 @@ _EVAL_PAIRS = (
     "--pair",
     "model-based:adaptive",
 )
+
+
+def _probe(at: str) -> tuple[str, ...]:
+    """The pad probe's command at ``at`` (modules), 0.2 N on 10 x 10 mm: the same in each size."""
+    return ("pad", "probe", "--at", at, "--force-n", "0.2", "--footprint-mm", "10,10", "--json")
+
+
 RESULTS: tuple[ResultSpec, ...] = (
     ResultSpec(
         "Validation against the thesis's observations",
@@ -175,47 +182,17 @@ RESULTS: tuple[ResultSpec, ...] = (
     ResultSpec(
         "Module sensitivity at its centre (pad probe, 0.2 N on 10 x 10 mm)",
         "README.md, docs/design.md, docs/box-and-simulator.md",
-        (
-            "pad",
-            "probe",
-            "--at",
-            "1.5,1.5",
-            "--force-n",
-            "0.2",
-            "--footprint-mm",
-            "10,10",
-            "--json",
-        ),
-        (
-            "pad",
-            "probe",
-            "--at",
-            "1.5,1.5",
-            "--force-n",
-            "0.2",
-            "--footprint-mm",
-            "10,10",
-            "--json",
-        ),
-        (
-            "pad",
-            "probe",
-            "--at",
-            "1.5,1.5",
-            "--force-n",
-            "0.2",
-            "--footprint-mm",
-            "10,10",
-            "--json",
-        ),
+        _probe("1.5,1.5"),
+        _probe("1.5,1.5"),
+        _probe("1.5,1.5"),
         _probe_lines,
     ),
     ResultSpec(
         "Module sensitivity on the line between modules 2 and 3 (pad probe)",
         "README.md, docs/box-and-simulator.md",
-        ("pad", "probe", "--at", "2,1.5", "--force-n", "0.2", "--footprint-mm", "10,10", "--json"),
-        ("pad", "probe", "--at", "2,1.5", "--force-n", "0.2", "--footprint-mm", "10,10", "--json"),
-        ("pad", "probe", "--at", "2,1.5", "--force-n", "0.2", "--footprint-mm", "10,10", "--json"),
+        _probe("2,1.5"),
+        _probe("2,1.5"),
+        _probe("2,1.5"),
         _probe_lines,
     ),
 )
@@ -239,22 +216,17 @@ def register(sub: Any) -> None:
     p.set_defaults(handler=run)
 
 
+def _git(*args: str) -> str:
+    """The standard output of ``git args``; raises where git fails or takes over 30 s."""
+    return subprocess.run(
+        ["git", *args], capture_output=True, text=True, check=True, timeout=30
+    ).stdout
+
+
 def _commit() -> str:
     try:
-        head = subprocess.run(
-            ["git", "rev-parse", "--short", "HEAD"],
-            capture_output=True,
-            text=True,
-            check=True,
-            timeout=30,
-        ).stdout.strip()
-        dirty = subprocess.run(
-            ["git", "status", "--porcelain", "--untracked-files=no"],
-            capture_output=True,
-            text=True,
-            check=True,
-            timeout=30,
-        ).stdout
+        head = _git("rev-parse", "--short", "HEAD").strip()
+        dirty = _git("status", "--porcelain", "--untracked-files=no")
     except (OSError, subprocess.SubprocessError):
         return "unknown (not a git checkout)"
     return head + (" (with uncommitted changes)" if dirty.strip() else "")
