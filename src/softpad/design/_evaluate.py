@@ -230,18 +230,10 @@ def _varied(options: TrialOptions, seed: int) -> tuple[TrialOptions, Any, dict[s
     else the options, None and no fields."""
     if not options.randomize:
         return options, None, {}
-    from dataclasses import replace
+    from softpad.trials import drawn_placement
 
-    from softpad.sim import LabVariation, draw_uncertain
-
-    lab = LabVariation.of(draw_uncertain(seed))
+    options, lab = drawn_placement(options, seed)
     v = lab.values
-    options = replace(
-        options,
-        position_sigma_m=v["placement_sigma_m"],
-        yaw_sigma_rad=v["placement_yaw_sigma_rad"],
-        sample_rate_hz=v["sample_rate_hz"],
-    )
     physics = {
         "tip_stiffness_n_m": v["pad_tip_stiffness_n_m"],
         "friction": v["fingertip_friction"],

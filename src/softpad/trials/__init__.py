@@ -21,7 +21,7 @@ from softpad.trials._compare import (
     merge_comparisons,
     wilson_interval,
 )
-from softpad.trials._config import TrialConfig, trial_execution_params
+from softpad.trials._config import TrialConfig, drawn_placement, trial_execution_params
 from softpad.trials._records import (
     FAILURE_CAUSES,
     THESIS_OVERALL_SUCCESS,
@@ -58,6 +58,7 @@ __all__ = [
     "ValidationResult",
     "calibrate",
     "compare",
+    "drawn_placement",
     "errored_records",
     "errored_trial",
     "idle_false_alarms_per_hour",

@@ -4,10 +4,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any, TypeVar
 
 from softpad.control import ExecutionParams, InflationParams
 from softpad.errors import MM_AS_M, InputError, check_range
+
+if TYPE_CHECKING:
+    from _typeshed import DataclassInstance
 
 
 @dataclass(frozen=True)
@@ -90,3 +93,25 @@ def trial_execution_params(**changes: Any) -> ExecutionParams:
     )
     base.update(changes)
     return ExecutionParams(**base)
+
+
+_Options = TypeVar("_Options", bound="DataclassInstance")
+
+
+def drawn_placement(options: _Options, seed: int) -> tuple[_Options, Any]:
+    """``options`` (a dataclass with ``position_sigma_m``, ``yaw_sigma_rad`` and
+    ``sample_rate_hz``, such as :class:`TrialConfig`) with the placement noise and sample rate
+    of the :class:`softpad.sim.LabVariation` drawn from ``seed``, and that variation."""
+    from dataclasses import replace
+
+    from softpad.sim import LabVariation, draw_uncertain
+
+    lab = LabVariation.of(draw_uncertain(seed))
+    v = lab.values
+    options = replace(
+        options,
+        position_sigma_m=v["placement_sigma_m"],
+        yaw_sigma_rad=v["placement_yaw_sigma_rad"],
+        sample_rate_hz=v["sample_rate_hz"],
+    )
+    return options, lab

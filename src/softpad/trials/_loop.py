@@ -19,7 +19,7 @@ import contextlib
 from dataclasses import dataclass
 from typing import Any
 
-from softpad.trials._config import TrialConfig
+from softpad.trials._config import TrialConfig, drawn_placement
 from softpad.trials._geometry import distance_to_object_m, half_extent_along_m
 from softpad.trials._records import TrialResult
 
@@ -218,18 +218,7 @@ def varied_lab(spec: Any, seed: int, config: TrialConfig) -> tuple[Any, TrialCon
     unknowns into the object), else ``spec``, ``config`` and None."""
     if not config.randomize:
         return spec, config, None
-    from dataclasses import replace
-
-    from softpad.sim import LabVariation, draw_uncertain
-
-    lab = LabVariation.of(draw_uncertain(seed))
-    v = lab.values
-    config = replace(
-        config,
-        position_sigma_m=v["placement_sigma_m"],
-        yaw_sigma_rad=v["placement_yaw_sigma_rad"],
-        sample_rate_hz=v["sample_rate_hz"],
-    )
+    config, lab = drawn_placement(config, seed)
     return lab.object(spec), config, lab
 
 
