@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import socket
+import time
 from collections.abc import Callable, Iterator
 from contextlib import AbstractContextManager, contextmanager
 from typing import Any
@@ -48,6 +49,21 @@ def served() -> Callable[..., AbstractContextManager[tuple[Any, str]]]:
     :class:`~softpad.box.BoxDaemon` serving ``url`` (with the simulator's services for a
     ``sim://`` box) on a free loopback port."""
     return _served
+
+
+def _until(cond: Callable[[], object], what: str, limit_s: float = 20.0) -> None:
+    end = time.monotonic() + limit_s
+    while not cond():
+        if time.monotonic() > end:
+            raise AssertionError(f"timed out waiting for {what}")
+        time.sleep(0.01)
+
+
+@pytest.fixture(scope="session")
+def until() -> Callable[..., None]:
+    """``until(cond, what, limit_s=20.0)``: poll ``cond`` every 10 ms until it is true
+    (bounded: fails naming ``what`` after ``limit_s`` seconds)."""
+    return _until
 
 
 @pytest.fixture

@@ -9,7 +9,6 @@ import os
 import signal
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -18,15 +17,6 @@ import pytest
 from softpad.box import MAX_PAYLOAD_BYTES, ControlRefused, ValveCommand, ZenohBox, open_box
 from softpad.box._link import session_config
 from softpad.cli.main import main
-
-
-def _until(cond, what: str, limit_s: float = 20.0) -> None:
-    """Poll ``cond`` (bounded: fails naming ``what`` after ``limit_s``)."""
-    end = time.monotonic() + limit_s
-    while not cond():
-        if time.monotonic() > end:
-            raise AssertionError(f"timed out waiting for {what}")
-        time.sleep(0.01)
 
 
 def test_many_monitors_receive_contiguous_sequence_numbers(served) -> None:
@@ -71,7 +61,9 @@ time.sleep(600)
 
 
 @pytest.mark.parametrize("action", ["hold", "vent"])
-def test_watchdog_closes_inflation_when_the_controller_is_killed(action: str, served) -> None:
+def test_watchdog_closes_inflation_when_the_controller_is_killed(
+    action: str, served, until
+) -> None:
     with served("sim://?seed=2", watchdog_s=0.3, watchdog_action=action) as (daemon, url):
         proc = subprocess.Popen(
             [sys.executable, "-c", _CONTROLLER, url], stdout=subprocess.PIPE, text=True
@@ -82,9 +74,9 @@ def test_watchdog_closes_inflation_when_the_controller_is_killed(action: str, se
             assert daemon.box.valves[:2] == (ValveCommand.INFLATE,) * 2
             with open_box(url) as monitor:  # mid-inflation: pressure rising
                 before = monitor.read().pressures_pa[0]
-                _until(lambda: monitor.read().pressures_pa[0] > before + 100, "inflation")
+                until(lambda: monitor.read().pressures_pa[0] > before + 100, "inflation")
             os.kill(proc.pid, signal.SIGKILL)
-            _until(lambda: daemon.controller is None, "the watchdog")
+            until(lambda: daemon.controller is None, "the watchdog")
         finally:
             proc.kill()
             proc.wait(timeout=10)
@@ -97,13 +89,13 @@ def test_watchdog_closes_inflation_when_the_controller_is_killed(action: str, se
         assert daemon.stats.watchdog_trips == 1
 
 
-def test_silent_controller_loses_control_by_heartbeat(served) -> None:
+def test_silent_controller_loses_control_by_heartbeat(served, until) -> None:
     with served(watchdog_s=0.2) as (daemon, url):
         box = open_box(url)
         assert isinstance(box, ZenohBox)
         box.set_valve(3, "inflate")
         box._beat_stop.set()  # heartbeats stop, the token stays
-        _until(lambda: daemon.controller is None, "the heartbeat watchdog")
+        until(lambda: daemon.controller is None, "the heartbeat watchdog")
         assert "no heartbeat" in daemon.last_trip["reason"]  # type: ignore[index]
         assert daemon.box.valves[2] is ValveCommand.CLOSED
         with pytest.raises(ControlRefused, match="does not control"):
@@ -111,7 +103,7 @@ def test_silent_controller_loses_control_by_heartbeat(served) -> None:
         box.close()
 
 
-def test_over_limit_inflation_is_refused_and_overpressure_vented(served) -> None:
+def test_over_limit_inflation_is_refused_and_overpressure_vented(served, until) -> None:
     # modules start at 1.1 kPa; this box's maximum is 1.2 kPa (trip 1.15 kPa)
     with served("sim://?inflated_kpa=1.1&noise=0", max_pressure_pa=1200.0) as (daemon, url):
         with open_box(url) as box:
@@ -126,7 +118,7 @@ def test_over_limit_inflation_is_refused_and_overpressure_vented(served) -> None
                 peak = max(peak, box.read().pressures_pa[0])
             else:
                 raise AssertionError("the box never refused inflation above its limit")
-            _until(lambda: daemon.stats.vents >= 1 or bool(daemon.box.safety.trips), "venting")
+            until(lambda: daemon.stats.vents >= 1 or bool(daemon.box.safety.trips), "venting")
             assert daemon.box.valves[0] is ValveCommand.DEFLATE
             peak = max(peak, *(box.read().pressures_pa[0] for _ in range(50)))
         assert peak <= 1200.0  # never above the maximum
@@ -145,7 +137,7 @@ def test_over_limit_inflation_is_refused_and_overpressure_vented(served) -> None
     ],
     ids=["not-utf8", "not-object", "nan", "unbalanced", "oversized", "bad-client"],
 )
-def test_malformed_payloads_are_counted_and_dropped(payload: bytes, served) -> None:
+def test_malformed_payloads_are_counted_and_dropped(payload: bytes, served, until) -> None:
     import zenoh
 
     with served() as (daemon, url):
@@ -158,7 +150,7 @@ def test_malformed_payloads_are_counted_and_dropped(payload: bytes, served) -> N
             session.put("softpad/box/control/heartbeat", payload)
         finally:
             session.close()
-        _until(lambda: daemon.stats.malformed >= 3, "the malformed count")
+        until(lambda: daemon.stats.malformed >= 3, "the malformed count")
         with open_box(url) as box:  # the daemon still serves
             box.read()
             box.set_valve(1, "deflate")

@@ -22,14 +22,6 @@ from softpad.box._base import PressureFrame
 from softpad.box._link import decode_request, encode_frame, encode_json, session_config
 
 
-def _until(cond, what: str, limit_s: float = 20.0) -> None:
-    end = time.monotonic() + limit_s
-    while not cond():
-        if time.monotonic() > end:
-            raise AssertionError(f"timed out waiting for {what}")
-        time.sleep(0.01)
-
-
 class _Attacker:
     """A plain zenoh client on the daemon's endpoint: queries and publishes what it likes."""
 
@@ -138,7 +130,7 @@ def test_forged_token_and_heartbeats_do_not_hold_off_the_watchdog(attack) -> Non
         assert daemon.stats.auth_failures >= 2
 
 
-def test_replayed_and_misdirected_commands_are_refused(attack) -> None:
+def test_replayed_and_misdirected_commands_are_refused(attack, until) -> None:
     with attack() as (daemon, _url, a, bad):
         assert a._sealer is not None
         sealed = a._sealer.seal(
@@ -156,7 +148,7 @@ def test_replayed_and_misdirected_commands_are_refused(attack) -> None:
         beat = a._sealer.seal("heartbeat", "control/heartbeat", {"client": a.client_id})
         bad.put("control/heartbeat", encode_json(beat))
         bad.put("control/heartbeat", encode_json(beat))  # replayed heartbeat
-        _until(lambda: daemon.stats.auth_failures >= 3, "the replayed heartbeat refused")
+        until(lambda: daemon.stats.auth_failures >= 3, "the replayed heartbeat refused")
 
 
 def daemon_log_reason(reply: dict[str, Any]) -> str:
@@ -175,7 +167,7 @@ def _forged_frames(seq: int, n: int = 8) -> list[bytes]:
     ]
 
 
-def test_forged_frames_are_ignored_by_monitors_and_the_controller(attack, caplog) -> None:
+def test_forged_frames_are_ignored_by_monitors_and_the_controller(attack, caplog, until) -> None:
     with attack("sim://?seed=4&rate_hz=200") as (daemon, url, a, bad):
         m = open_box(url)
         assert isinstance(m, ZenohBox)
@@ -186,7 +178,7 @@ def test_forged_frames_are_ignored_by_monitors_and_the_controller(attack, caplog
             )
             for _ in range(5):
                 m.read(), a.read()
-            _until(lambda: len(captured) > 3, "a real frame captured")
+            until(lambda: len(captured) > 3, "a real frame captured")
             sub.undeclare()
             for _ in range(20):
                 for data in [*_forged_frames(10**9), captured[0]]:  # forged, then a replay
@@ -203,7 +195,7 @@ def test_forged_frames_are_ignored_by_monitors_and_the_controller(attack, caplog
         assert daemon._acked <= daemon._seq  # lock-step was not switched off
 
 
-def test_a_monitor_key_cannot_forge_frames_for_the_controller(attack) -> None:
+def test_a_monitor_key_cannot_forge_frames_for_the_controller(attack, until) -> None:
     """A participant knowing the read key (anyone who asked ``info``) forges frames that a
     monitor believes, but the controller does not."""
     with attack() as (_daemon, _url, a, bad):
@@ -212,7 +204,7 @@ def test_a_monitor_key_cannot_forge_frames_for_the_controller(attack) -> None:
         before = a.forged_frames
         for _ in range(10):
             bad.put("frames", seal_frame(data, read_key, None))
-        _until(lambda: a.forged_frames >= before + 10, "the controller refusing them")
+        until(lambda: a.forged_frames >= before + 10, "the controller refusing them")
         assert all(a.read_stamped().seq < 10**6 for _ in range(20))
         assert split_frame(seal_frame(data, read_key, None))[0] == data
 
@@ -229,7 +221,9 @@ def test_deep_and_oversized_payloads_get_a_clear_reply(attack) -> None:
         assert daemon.stats.malformed >= 3
 
 
-def test_services_are_bounded_and_refused_on_a_hardware_box(attack, served, tmp_path) -> None:
+def test_services_are_bounded_and_refused_on_a_hardware_box(
+    attack, served, tmp_path, until
+) -> None:
     from softpad.box import BoxDaemon, BoxWrapper
     from softpad.errors import InputError
     from softpad.harness import simulation_extensions
@@ -240,7 +234,7 @@ def test_services_are_bounded_and_refused_on_a_hardware_box(attack, served, tmp_
             a.request("ext/sim.place", objects=["object-5"] * 300)
         with pytest.raises(InputError, match="64 characters"):
             a.request("ext/sim.place", objects=["x" * 100])
-        _until(lambda: daemon.stats.frames > frames + 10, "sampling going on")
+        until(lambda: daemon.stats.frames > frames + 10, "sampling going on")
     # a hardware box (fake IIO tree, in-memory valve lines), alone and seen through a view,
     # refuses the simulator's services; a view of a simulator is still a simulator
     sim = open_box("sim://")
@@ -278,7 +272,7 @@ def _hardware_box(root: Path):
     return HardwareBox(settings, lines=lines)
 
 
-def test_box_fault_is_logged_once_not_every_frame(free_port) -> None:
+def test_box_fault_is_logged_once_not_every_frame(free_port, until) -> None:
     from softpad.box import BoxDaemon, BoxWrapper
     from softpad.errors import HardwareFault
 
@@ -290,7 +284,7 @@ def test_box_fault_is_logged_once_not_every_frame(free_port) -> None:
     sim = open_box("sim://?rate_hz=200")
     d = BoxDaemon(Broken(sim), (f"tcp/127.0.0.1:{free_port()}",), log=lines.append)
     with d:
-        _until(lambda: d.stats.faults >= 60, "60 box faults")
+        until(lambda: d.stats.faults >= 60, "60 box faults")
     faults = [ln for ln in lines if "box fault" in ln]
     assert 1 <= len(faults) <= 2, faults
 
@@ -504,7 +498,7 @@ def test_a_script_that_never_closes_its_box_exits(served) -> None:
     assert float(done.stdout) >= 0
 
 
-def test_fuzzed_payloads_never_break_the_daemon(attack) -> None:
+def test_fuzzed_payloads_never_break_the_daemon(attack, until) -> None:
     """Hypothesis: random JSON and bytes on every key; each query is answered, nothing
     un-authenticated moves a valve, the daemon goes on sampling (bounded: 120 examples)."""
     from hypothesis import HealthCheck, given, settings
@@ -565,7 +559,7 @@ def test_fuzzed_payloads_never_break_the_daemon(attack) -> None:
         assert daemon.box.valves == valves
         assert daemon.controller == a.client_id
         frames = daemon.stats.frames
-        _until(lambda: daemon.stats.frames > frames + 5, "sampling going on")
+        until(lambda: daemon.stats.frames > frames + 5, "sampling going on")
 
 
 def test_tls_keys_on_a_tcp_endpoint_are_refused(tmp_path: Path, cli) -> None:
@@ -581,10 +575,10 @@ def test_tls_keys_on_a_tcp_endpoint_are_refused(tmp_path: Path, cli) -> None:
     assert code == 2 and "protect nothing" in err
 
 
-def test_a_controller_that_lost_control_reads_on_after_another_takes(attack) -> None:
+def test_a_controller_that_lost_control_reads_on_after_another_takes(attack, until) -> None:
     with attack(watchdog_s=0.3) as (daemon, url, a, _bad):
         a._beat_stop.set()  # frozen: the watchdog withdraws control
-        _until(lambda: daemon.controller is None, "the watchdog trip")
+        until(lambda: daemon.controller is None, "the watchdog trip")
         with open_box(url) as b:
             b.set_valve(1, "deflate")  # another client takes control
             with pytest.raises(ControlRefused, match="does not control"):
