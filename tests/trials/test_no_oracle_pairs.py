@@ -9,6 +9,12 @@ commands, its decisions (plan, contact, retry, carried objects, each grasp's out
 times must be the same too. Before issue 33 the loop's ``held``/``missed`` came from the world's
 contacts (``robot.holding()`` asked ``world.holding()``): poisoning ``holding`` changed the
 outcome events and the retries, and this test failed (checked by restoring that call).
+
+With the thesis pair, the trial's ``truth`` alone is also swapped for a different object after
+placement (formerly tests/trials/test_no_oracle.py): the pressures are the same, so the loop's
+commands, their times and the opening the robot applied must be the same too. (Before issue 10
+the robot opened its jaws to the true object's extent plus 10 mm a side, and both cases failed:
+checked by patching that rule back in.)
 """
 
 from __future__ import annotations
@@ -106,6 +112,22 @@ def test_poisoned_truth_changes_no_command(
         result.theta,
         result.attempts,
     )
+
+
+@pytest.mark.parametrize(
+    ("name", "other"),
+    [("object-1", "charger"), ("object-4", "object-6")],
+    ids=["brick-as-charger", "stack-as-long-bricks"],
+)
+def test_swapping_the_true_geometry_changes_no_command(name: str, other: str) -> None:
+    result, events = _run(name, ("thesis", "thesis"))
+    swapped, events_swapped = _run(name, ("thesis", "thesis"), truth=other)
+    assert [e for e in events if e[1] == "robot"], "the loop commanded the robot"
+    assert events_swapped == events
+    assert swapped.opening_m == result.opening_m
+    assert swapped.cog == result.cog and swapped.theta == result.theta
+    # the jaws open to the mounting's width, whatever the object
+    assert result.opening_m == pytest.approx(0.06)
 
 
 def test_the_controller_cannot_reach_the_world() -> None:
