@@ -47,6 +47,7 @@ class SimLayer(BoxWrapper):
 
     def __init__(self, inner: SimBox | SimLayer) -> None:
         super().__init__(inner)
+        self._plain: SimBox = inner if isinstance(inner, SimBox) else inner._plain
 
     def __getattr__(self, name: str) -> Any:
         if name.startswith("__") or name == "inner":
@@ -56,15 +57,15 @@ class SimLayer(BoxWrapper):
     @property
     def safety(self) -> SafetyGuard:
         """The plain box's guard: it checks the frames the outermost layer passes on."""
-        return self.inner.safety
+        return self._plain.safety
 
     @property
     def safety_limits(self) -> SafetyLimits:
-        return self.inner.safety_limits
+        return self._plain.safety_limits
 
     @safety_limits.setter
     def safety_limits(self, limits: SafetyLimits) -> None:
-        self.inner.safety_limits = limits
+        self._plain.safety_limits = limits
 
     def _read(self) -> PressureFrame:
         return self.inner._read()  # the guard checks the outermost layer's frame only
@@ -109,10 +110,6 @@ class _FaultLayer(SimLayer):
         if fault.at_s <= now:
             self._start(self._faults.due(now))
 
-    def _due(self, t_s: float) -> None:
-        if t_s >= self._faults.next_s:
-            self._start(self._faults.due(t_s))
-
     def _start(self, faults: list[Fault]) -> None:
         raise NotImplementedError
 
@@ -156,7 +153,8 @@ class SensorFaults(_FaultLayer):
 
     def _read(self) -> PressureFrame:
         frame = self.inner._read()
-        self._due(frame.t_s)
+        if frame.t_s >= self._faults.next_s:
+            self._start(self._faults.due(frame.t_s))
         if not self._bad:
             return frame
         values = frame.pressures_pa.copy()
@@ -182,12 +180,11 @@ class Unreachable(_FaultLayer):
 
     def _read(self) -> PressureFrame:
         frame = self.inner._read()
-        self._due(frame.t_s)
+        if frame.t_s >= self._faults.next_s:
+            self._start(self._faults.due(frame.t_s))
         if self.disconnected:
-            plain = simulator_of(self)
-            assert plain is not None
             for ch in self.safety.check(frame.t_s, frame.pressures_pa):
-                plain.firmware_vent(ch)
+                self._plain.firmware_vent(ch)
             raise ConnectionLost(f"the simulated box stopped answering at t = {frame.t_s:.3f} s")
         return frame
 
