@@ -36,22 +36,17 @@ def test_rosbags_reads_every_stream(recording: Path) -> None:
         assert by_topic["/softpad/plan/grasps"].msgtype == "geometry_msgs/msg/PoseArray"
         assert by_topic["/softpad/valves"].msgtype == "softpad_msgs/msg/ValveCommands"
         assert by_topic["/softpad/events"].msgtype == "softpad_msgs/msg/Event"
-        m2 = [
-            reader.deserialize(raw, c.msgtype)
-            for c, _, raw in reader.messages([by_topic["/softpad/module_2/pressure"]])
-        ]
-        plans = [
-            reader.deserialize(raw, c.msgtype)
-            for c, _, raw in reader.messages([by_topic["/softpad/plan/grasps"]])
-        ]
-        valves = [
-            reader.deserialize(raw, c.msgtype)
-            for c, _, raw in reader.messages([by_topic["/softpad/valves"]])
-        ]
-        events = [
-            reader.deserialize(raw, c.msgtype)
-            for c, _, raw in reader.messages([by_topic["/softpad/events"]])
-        ]
+
+        def messages(topic: str) -> list:
+            return [
+                reader.deserialize(raw, c.msgtype)
+                for c, _, raw in reader.messages([by_topic[topic]])
+            ]
+
+        m2 = messages("/softpad/module_2/pressure")
+        plans = messages("/softpad/plan/grasps")
+        valves = messages("/softpad/valves")
+        events = messages("/softpad/events")
     # module 2 carries object 5: inflated to p0 = 1.1 kPa (within t_adj = 30 Pa), loaded above
     # it; FluidPressure is absolute: 101.325 kPa of standard atmosphere + 1.1 kPa = 102.4 kPa
     p = np.array([m.fluid_pressure for m in m2]) - 101325.0
