@@ -128,48 +128,44 @@ def test_run_takes_thresholds_from_the_installation_file(
     assert json.loads(capsys.readouterr().out)["outcome"] == "held"
 
 
-def test_cli_check_lists_every_error_not_the_first(
-    tmp_path: Path, capsys: pytest.CaptureFixture[str]
-) -> None:
-    """Errors in two channels, the link, the thresholds and an unknown table: all five named."""
-    bad = tmp_path / "bad.toml"
-    bad.write_text(
+#: Installation files with several errors, and what ``config check`` must name of each.
+_BAD_FILES = {
+    # errors in two channels, the link, the thresholds and an unknown table: all five named
+    "across-tables": (
         "[[box.channel]]\ninflate_line = 1\ndeflate_line = 2\niio_device = 0\niio_channel = -1\n"
         "[[box.channel]]\ninflate_line = 3\niio_device = 0\niio_channel = 1\n"
         "[link]\nwatchdog_action = 'explode'\n"
         "[thresholds]\nt_g_kpa = -1\n"
-        "[nonsense]\n"
-    )
-    assert main(["config", "check", str(bad)]) == 2
-    err = capsys.readouterr().err
-    assert "5 errors" in err
-    for named in (
-        "box.channel.1.iio_channel",
-        "box.channel.2.deflate_line",
-        "link.watchdog_action",
-        "thresholds.t_g_kpa",
-        "unknown key nonsense",
-    ):
-        assert named in err, err
-
-
-def test_cli_check_lists_every_error_within_a_table(
-    tmp_path: Path, capsys: pytest.CaptureFixture[str]
-) -> None:
-    """Several bad keys in one table (and two unknown keys): each named, not only the first."""
-    bad = tmp_path / "bad.toml"
-    bad.write_text(
+        "[nonsense]\n",
+        (
+            "box.channel.1.iio_channel", "box.channel.2.deflate_line", "link.watchdog_action",
+            "thresholds.t_g_kpa", "unknown key nonsense",
+        ),
+    ),
+    # several bad keys in one table (and two unknown keys): each named, not only the first
+    "within-a-table": (
         "[box]\nsample_rate_hz = -5\nambient_pressure_kpa = 5000\n"
         "[pad]\nrows = 0\npitch_mm = 0.045\ncolour = 'red'\nshape = 1\n"
-        "[thresholds]\np0_kpa = -1\nt_o_kpa = nan\nt_g_kpa = 99\nwindow = 0\n"
-    )
+        "[thresholds]\np0_kpa = -1\nt_o_kpa = nan\nt_g_kpa = 99\nwindow = 0\n",
+        (
+            "box.sample_rate_hz", "box.ambient_pressure_kpa", "pad.rows", "pad.pitch_mm",
+            "unknown key pad.colour", "unknown key pad.shape", "thresholds.p0_kpa",
+            "thresholds.t_o_kpa", "thresholds.t_g_kpa", "thresholds.window",
+        ),
+    ),
+}  # fmt: skip
+
+
+@pytest.mark.parametrize("case", sorted(_BAD_FILES))
+def test_cli_check_lists_every_error(
+    case: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Every error of the file named, and their count."""
+    text, named = _BAD_FILES[case]
+    bad = tmp_path / "bad.toml"
+    bad.write_text(text)
     assert main(["config", "check", str(bad)]) == 2
     err = capsys.readouterr().err
-    named = (
-        "box.sample_rate_hz", "box.ambient_pressure_kpa", "pad.rows", "pad.pitch_mm",
-        "unknown key pad.colour", "unknown key pad.shape", "thresholds.p0_kpa",
-        "thresholds.t_o_kpa", "thresholds.t_g_kpa", "thresholds.window",
-    )  # fmt: skip
     assert f"{len(named)} errors" in err, err
     for key in named:
         assert key in err, err
