@@ -1,8 +1,8 @@
 """A robot adapter that logs its commands, driving the same execution.
 
 Any object with the methods of ``softpad.control.Robot`` drives the loop. This one wraps the
-simulated robot and keeps a log of every command, the way an adapter to a real arm would
-translate and forward them.
+simulated robot (a ``softpad.control.RobotWrapper``, which forwards every call) and keeps a log
+of every command, the way an adapter to a real arm would translate and forward them.
 
 Run: .venv/bin/python examples/custom_robot.py
 """
@@ -10,42 +10,34 @@ Run: .venv/bin/python examples/custom_robot.py
 from __future__ import annotations
 
 from softpad.box import SimBox
-from softpad.control import ExecutionParams, GraspExecution, Robot, RobotState, ToolPose
+from softpad.control import ExecutionParams, GraspExecution, Robot, RobotWrapper, ToolPose
 from softpad.harness import SimulatedRobot
 from softpad.sim import SimGripper, get_object
 
 
-class LoggingRobot:
-    """Forwards every command to another robot and remembers it."""
+class LoggingRobot(RobotWrapper):
+    """Forwards every command to another robot and remembers it (what is not overridden here,
+    the robot's state, motion and holding, ``RobotWrapper`` forwards unchanged)."""
 
     def __init__(self, inner: Robot) -> None:
-        self.inner = inner
+        super().__init__(inner)
         self.commands: list[str] = []
 
     def move_to(self, pose: ToolPose, speed_m_s: float) -> None:
         self.commands.append(f"move_to z={pose.z_m:.3f} m")
-        self.inner.move_to(pose, speed_m_s)
+        super().move_to(pose, speed_m_s)
 
     def descend(self, speed_m_s: float, min_z_m: float) -> None:
         self.commands.append(f"descend at {speed_m_s:g} m/s")
-        self.inner.descend(speed_m_s, min_z_m)
+        super().descend(speed_m_s, min_z_m)
 
     def stop(self) -> None:
         self.commands.append("stop")
-        self.inner.stop()
+        super().stop()
 
     def set_gripper(self, width_m: float, speed_m_s: float) -> None:
         self.commands.append(f"gripper {width_m:.3f} m")
-        self.inner.set_gripper(width_m, speed_m_s)
-
-    def is_moving(self) -> bool:
-        return self.inner.is_moving()
-
-    def state(self) -> RobotState:
-        return self.inner.state()
-
-    def holding(self) -> bool:
-        return self.inner.holding()
+        super().set_gripper(width_m, speed_m_s)
 
 
 def main() -> dict[str, object]:

@@ -442,3 +442,34 @@ def test_a_given_adjustment_grasps_the_object_already_on_the_pad() -> None:
 
     with pytest.raises(ExecutionError, match="no object"):
         again.run()
+
+
+def test_robot_wrapper_forwards_every_call_of_the_protocol() -> None:
+    """Each method of :class:`softpad.control.Robot` reaches the wrapped robot with its
+    arguments, and its answer comes back unchanged."""
+    import inspect
+
+    from softpad.control import Robot, RobotState, RobotWrapper, ToolPose
+
+    state = RobotState(0.01, 0.02, 0.03, 0.4, 0.05)
+    answers = {"is_moving": True, "state": state, "holding": False}
+    calls: list[tuple[str, tuple[object, ...]]] = []
+
+    class _Inner:
+        def __getattr__(self, name: str):
+            def call(*args: object) -> object:
+                calls.append((name, args))
+                return answers.get(name)
+
+            return call
+
+    wrapper = RobotWrapper(_Inner())  # type: ignore[arg-type]
+    assert isinstance(wrapper, Robot)
+    pose = ToolPose(0.1, 0.2, 0.3, 0.5)
+    args = {"move_to": (pose, 0.2), "descend": (0.05, 0.01), "set_gripper": (0.06, 0.1)}
+    names = [n for n, _ in inspect.getmembers(Robot, inspect.isfunction) if not n.startswith("_")]
+    assert sorted(names) == sorted([*args, "stop", *answers])
+    for name in names:
+        assert getattr(wrapper, name)(*args.get(name, ())) == answers.get(name)
+        assert calls[-1] == (name, args.get(name, ()))
+    assert len(calls) == len(names)

@@ -28,7 +28,7 @@ from softpad.control._inflation import (
     make_safe,
 )
 from softpad.control._parts import loop_parts
-from softpad.control._robot import Robot, RobotState, ToolPose
+from softpad.control._robot import Robot, RobotState, RobotWrapper, ToolPose
 from softpad.control._robots import (
     ROBOT_REGISTRY,
     RobotContext,
@@ -70,6 +70,7 @@ __all__ = [
     "RobotContext",
     "RobotFactory",
     "RobotState",
+    "RobotWrapper",
     "RunSafety",
     "SafeStateResult",
     "SampleNoise",

@@ -21,7 +21,7 @@ from softpad.control._inflation import (
     InflationParams,
     inflate_and_adjust,
 )
-from softpad.control._robot import Robot, RobotState, ToolPose
+from softpad.control._robot import Robot, RobotWrapper, ToolPose
 from softpad.control._safety import DetectedFault, RunSafety, SafeStateResult
 from softpad.errors import (
     MM_AS_M,
@@ -273,39 +273,31 @@ class _RecordingBox(BoxWrapper):
         self._recorder.event(self._clock(), "valve", channel=channel, command=command.value)
 
 
-class _RecordingRobot:
+class _RecordingRobot(RobotWrapper):
     """The execution's view of the robot: every command also becomes a recorder event."""
 
     def __init__(self, robot: Robot, recorder: Recorder, clock: Callable[[], float]) -> None:
-        self.inner, self._recorder, self._clock = robot, recorder, clock
+        super().__init__(robot)
+        self._recorder, self._clock = recorder, clock
 
     def _log(self, command: str, **data: float) -> None:
         self._recorder.event(self._clock(), "robot", command=command, **data)
 
     def move_to(self, pose: ToolPose, speed_m_s: float) -> None:
         self._log("move_to", **vars(pose), speed_m_s=speed_m_s)
-        self.inner.move_to(pose, speed_m_s)
+        super().move_to(pose, speed_m_s)
 
     def descend(self, speed_m_s: float, min_z_m: float) -> None:
         self._log("descend", speed_m_s=speed_m_s, min_z_m=min_z_m)
-        self.inner.descend(speed_m_s, min_z_m)
+        super().descend(speed_m_s, min_z_m)
 
     def stop(self) -> None:
         self._log("stop")
-        self.inner.stop()
+        super().stop()
 
     def set_gripper(self, width_m: float, speed_m_s: float) -> None:
         self._log("set_gripper", width_m=width_m, speed_m_s=speed_m_s)
-        self.inner.set_gripper(width_m, speed_m_s)
-
-    def is_moving(self) -> bool:
-        return self.inner.is_moving()
-
-    def state(self) -> RobotState:
-        return self.inner.state()
-
-    def holding(self) -> bool:
-        return self.inner.holding()
+        super().set_gripper(width_m, speed_m_s)
 
 
 #: Phases in which the robot presses the pad or an object on it, or an object is being placed on

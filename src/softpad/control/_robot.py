@@ -85,3 +85,33 @@ class Robot(Protocol):
         of their fully closed opening (and its force, where the gripper gives it). Only the
         robot's own sensing: a simulated robot does not ask the world's contacts."""
         ...
+
+
+class RobotWrapper:
+    """A :class:`Robot` that forwards every call to the robot it wraps (``inner``): subclass it
+    and override the calls to watch or change (as :class:`softpad.box.BoxWrapper` for boxes);
+    what is not overridden reaches ``inner`` unchanged."""
+
+    def __init__(self, inner: Robot) -> None:
+        self.inner = inner
+
+    def move_to(self, pose: ToolPose, speed_m_s: float) -> None:
+        self.inner.move_to(pose, speed_m_s)
+
+    def descend(self, speed_m_s: float, min_z_m: float) -> None:
+        self.inner.descend(speed_m_s, min_z_m)
+
+    def stop(self) -> None:
+        self.inner.stop()
+
+    def set_gripper(self, width_m: float, speed_m_s: float) -> None:
+        self.inner.set_gripper(width_m, speed_m_s)
+
+    def is_moving(self) -> bool:
+        return self.inner.is_moving()
+
+    def state(self) -> RobotState:
+        return self.inner.state()
+
+    def holding(self) -> bool:
+        return self.inner.holding()
