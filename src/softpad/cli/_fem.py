@@ -799,6 +799,12 @@ def _response(args: argparse.Namespace) -> int:
         if args.pressures_kpa
         else DEFAULT_RESPONSE_PRESSURES_PA
     )
+    top = max(pressures)
+    if top > thesis.MAX_PRESSURE_PA:  # before the FEM set-up, with the option's name
+        raise InputError(
+            f"--pressures-kpa: {top / 1e3:g} kPa exceeds the module's maximum "
+            f"{thesis.MAX_PRESSURE_PA / 1e3:g} kPa"
+        )
     setup = _setup(args)
     with _progress(args, "response") as progress:
         result = module_response(setup, pressures, progress)
