@@ -363,7 +363,11 @@ class ChamberBank:
         lam, p_eq = self._relaxation(p0, supply_pa)
         theta = self.relaxation_per_stretch
         lam_max = float(lam.max())
-        if lam_max * dt_s > theta:
+        # a collapsed module (below ambient, where the layer's volume no longer changes) filling
+        # up: its compliance jumps at 0 Pa, so the secant from below would overshoot (606 Pa in
+        # one 10 ms step with the disturbances' creep); sub-steps re-solve from the amount
+        collapsed = bool(np.any((p0 < 0.0) & (p_eq > p0) & (lam > 0.0)))
+        if lam_max * dt_s > theta or collapsed:
             self._substeps(dt_s, supply_pa, lam, p_eq)
             self._path = np.zeros((1, self.n_channels))
             self._path[0, : self.n_modules] = self._p_modules
