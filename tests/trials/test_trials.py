@@ -421,8 +421,10 @@ def test_a_banana_on_its_ends_is_grasped_between_them(monkeypatch: pytest.Monkey
 def test_an_end_held_carries_the_other(monkeypatch: pytest.MonkeyPatch) -> None:
     """Development seed 115, trial 4, ends grasped alone (no bridge): the first end's grasp
     holds the banana, the other end's module unloads with it, so its stale plan is dropped
-    and the trial holds. Grasping it anyway (``drop_carried`` off), the jaws come down on
-    the banana, which the release put elsewhere."""
+    and the trial holds with one grasp. Grasping it anyway (``drop_carried`` off), the stale
+    plan closes on nothing where the banana was (missed, then its retry missed): the trial
+    still counts as held, by its first grasp (issue 33's fair scoring: held at the end of a
+    hold, whichever grasp did it; before, the last grasp's outcome decided)."""
     _without_bridges(monkeypatch)
     spec = get_object("banana")
     seed = trial_seed(115, "banana", 4)
@@ -432,10 +434,12 @@ def test_an_end_held_carries_the_other(monkeypatch: pytest.MonkeyPatch) -> None:
         cfg = TrialConfig(trial_execution_params(hold_s=1.0, drop_carried=drop), **aware)
         logs[drop] = RunLog()
         results[drop], _ = run_trial(spec, 4, seed, cfg, recorder=logs[drop])
+    outcomes = {d: [f["outcome"] for _, f in logs[d].events_of("outcome")] for d in logs}
     assert results[True].success, results[True].detail
-    assert len(logs[True].events_of("carried")) == 1
-    assert not results[False].success and results[False].cause == "jaws_hit_object"
-    assert not logs[False].events_of("carried")
+    assert outcomes[True] == ["held"] and len(logs[True].events_of("carried")) == 1
+    assert results[False].success, results[False].detail
+    assert outcomes[False][0] == "held" and "held" not in outcomes[False][1:]
+    assert len(outcomes[False]) > 1 and not logs[False].events_of("carried")
 
 
 @pytest.mark.slow
