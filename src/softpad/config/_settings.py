@@ -344,11 +344,12 @@ def _box(raw: dict[str, Any]) -> BoxSettings:
     found = [
         _collect(errors, _wiring, c, f"box.channel.{i}", i, True) for i, c in enumerate(chans, 1)
     ]
-    default_ambient = thesis.AMBIENT_PRESSURE_PA / 1e3
-    rate = _number(errors, t, "sample_rate_hz", "box", float, 1000.0, 1.0, 10000.0, " Hz")
+    rate = _number(errors, t, "sample_rate_hz", "box", float, 1000.0, *SAMPLE_RATE_RANGE_HZ, " Hz")
     # the lowest and highest sea-level pressures on record, with room for a site up a mountain
+    lo_kpa, hi_kpa = (v / 1e3 for v in AMBIENT_RANGE_PA)
+    default_kpa = thesis.AMBIENT_PRESSURE_PA / 1e3
     ambient = _number(
-        errors, t, "ambient_pressure_kpa", "box", float, default_ambient, 50.0, 110.0, " kPa"
+        errors, t, "ambient_pressure_kpa", "box", float, default_kpa, lo_kpa, hi_kpa, " kPa"
     )
     _raise_all(errors)  # every channel's and key's error, not only the first
     wiring = tuple(found)
@@ -439,7 +440,7 @@ def _link(raw: dict[str, Any]) -> LinkSettings:
         tls_private_key=_get(t, "tls_private_key", "link", str, None),
         tls_root_ca=_get(t, "tls_root_ca", "link", str, None),
         watchdog_s=_range(
-            "link.watchdog_s", _get(t, "watchdog_s", "link", float, 0.5), 0.01, 60.0, " s"
+            "link.watchdog_s", _get(t, "watchdog_s", "link", float, 0.5), *WATCHDOG_RANGE_S, " s"
         ),
         watchdog_action=action,
     )

@@ -333,6 +333,7 @@ class InflationController:
             out.append(self._set(int(k), 0))
         for k in np.flatnonzero(start):
             moved = float(fast[k] - self._from[k])  # NaN (no baseline yet) compares False
+            # the noise scale (a median) only where the nominal tolerance is already exceeded
             if (
                 abs(moved) >= p.tolerance_pa
                 and t - self._since_t[k] < p.response_s
