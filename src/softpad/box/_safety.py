@@ -18,7 +18,9 @@ box daemon on real hardware all run the same checks, whatever the client does:
 from __future__ import annotations
 
 import math
+from collections import deque
 from dataclasses import dataclass, field
+from itertools import compress
 
 import numpy as np
 from numpy.typing import NDArray
@@ -110,52 +112,60 @@ class SafetyGuard:
     limits: SafetyLimits = field(default_factory=SafetyLimits)
     tripped: NDArray[np.bool_] = field(init=False)
     trips: list[tuple[float, int, str]] = field(init=False, default_factory=list)
-    _history: list[list[float]] = field(init=False, default_factory=list)
-    _times: list[float] = field(init=False, default_factory=list)
-    _lows: list[float] = field(init=False, default_factory=list)
+    _history: deque[list[float]] = field(init=False)
+    _times: deque[float] = field(init=False)
+    _lows: deque[float] = field(init=False)
     _any_tripped: bool = field(init=False, default=False)
     _trip_pa: float = field(init=False, default=0.0)
+    _free: list[bool] = field(init=False)
+    _held: list[bool] = field(init=False)
 
     def __post_init__(self) -> None:
         self.tripped = np.zeros(self.channels, dtype=bool)
+        window = self.limits.rise_window
+        self._history, self._times, self._lows = (deque(maxlen=window) for _ in range(3))
         self._trip_pa = self.limits.trip_pa  # read on every frame: not a property call
+        self._free, self._held = [True] * self.channels, [False] * self.channels
 
     def check(self, t_s: float, pressures_pa: NDArray[np.float64]) -> list[int]:
         """Update with one frame; return the 1-based channels newly tripped (to vent now)."""
         times = self._times
         if times and t_s == times[-1]:
             return []  # the same frame seen again (a wrapper sharing this guard)
-        lim = self.limits
-        p = np.asarray(pressures_pa, dtype=float)[: self.channels]
+        p = np.asarray(pressures_pa, dtype=float)
+        if p.shape[0] != self.channels:
+            p = p[: self.channels]
         values = p.tolist()
-        low, high = min(values), max(values)
-        history, lows = self._history, self._lows
-        history.append(values)
+        low = min(values)
+        lows = self._lows
+        self._history.append(values)  # the deques drop their oldest beyond rise_window
         lows.append(low)
         times.append(t_s)
-        if len(history) > lim.rise_window:
-            del history[0], lows[0], times[0]
-        # The hot path (every frame of every box): nothing tripped, every reading finite and
-        # within the sensor's range, and even the highest reading plus a bound on the largest
-        # rise of the window, (highest now - lowest then) / (frames - 1), below the trip level:
-        # nothing can trip. Plain floats: on 8 values several times faster than NumPy calls.
+        # The hot path (every frame of every box): every reading finite and within the
+        # sensor's range, no tripped channel below the release level, and even the highest
+        # reading of an untripped channel plus a bound on the largest rise of the window,
+        # (highest now - lowest then) / (frames - 1), below the trip level: nothing trips or
+        # is released. Plain floats: on 8 values several times faster than NumPy calls.
         # Otherwise the exact per-channel test decides.
-        if (
-            not self._any_tripped
-            and math.isfinite(sum(values))
-            and low > lim.sensor_min_pa
-            and high < lim.sensor_max_pa
-        ):
-            n = len(history)
-            rise = (high - lows[0]) / (n - 1) if n >= 2 and times[-1] > times[0] else 0.0
-            if high + max(rise, 0.0) <= self._trip_pa:
-                return []
-        return self._check_arrays(t_s, p, lim)
+        lim = self.limits
+        if math.isfinite(sum(values)) and low > lim.sensor_min_pa:
+            if self._any_tripped:
+                if min(compress(values, self._held)) < lim.release_pa:
+                    return self._check_arrays(t_s, values, lim)
+                high = max(compress(values, self._free), default=-math.inf)
+                top = max(values)
+            else:
+                high = top = max(values)
+            if top < lim.sensor_max_pa:
+                n = len(times)
+                rise = (high - lows[0]) / (n - 1) if n >= 2 and t_s > times[0] else 0.0
+                if high + max(rise, 0.0) <= self._trip_pa:
+                    return []
+        return self._check_arrays(t_s, values, lim)
 
-    def _check_arrays(self, t_s: float, p: NDArray[np.float64], lim: SafetyLimits) -> list[int]:
+    def _check_arrays(self, t_s: float, values: list[float], lim: SafetyLimits) -> list[int]:
         """The full per-channel test: trips, releases, invalid readings (plain floats: a loop
         over a few channels is several times faster than NumPy calls)."""
-        values = p.tolist()
         first, n = self._history[0], len(self._history)
         span = self._times[-1] - self._times[0]
         per_frame = 1.0 / (n - 1) if n >= 2 and span > 0 else 0.0
@@ -179,6 +189,8 @@ class SafetyGuard:
                 )
                 self.trips.append((t_s, k + 1, cause))
         self._any_tripped = bool(tripped.any())
+        self._held = tripped.tolist()
+        self._free = [not x for x in self._held]
         return new
 
     def allows_inflate(self, channel: int) -> bool:

@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from softpad import thesis
-from softpad.box._base import Box, PressureFrame, ValveCommand
+from softpad.box._base import Box, PressureFrame, ValveCommand, unchecked_frame
 from softpad.box._sim_faults import (
     DEFAULT_LEAK_M2,
     FAULT_KINDS,
@@ -214,7 +214,7 @@ class SimBox(Box):
         if t >= self._faults.next_s:
             self._activate_faults()
         values, supply = self._sense(self._step_physics(t, dt))
-        return PressureFrame(t, values, supply)
+        return unchecked_frame(t, values, supply)  # t is finite, values 1-D
 
     def _step_physics(self, t: float, dt: float) -> bool:
         """Step the world and the gas physics to ``t``; True when the true pressures changed."""

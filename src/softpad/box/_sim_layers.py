@@ -29,7 +29,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from softpad.box._base import Box, ConnectionLost, PressureFrame, ValveCommand
+from softpad.box._base import Box, ConnectionLost, PressureFrame, ValveCommand, unchecked_frame
 from softpad.box._safety import SafetyGuard, SafetyLimits
 from softpad.box._sim import SimBox
 from softpad.box._sim_faults import LINK_FAULTS, SENSOR_FAULTS, Fault, FaultSchedule
@@ -129,7 +129,7 @@ class SensorZeroShift(SimLayer):
         room = self.room
         if room.last_s != self._at:  # the temperature moves at the disturbances' updates
             self._shift_pa, self._at = room.sensor_shift_pa(), room.last_s
-        return PressureFrame(frame.t_s, frame.pressures_pa + self._shift_pa, frame.supply_pa)
+        return unchecked_frame(frame.t_s, frame.pressures_pa + self._shift_pa, frame.supply_pa)
 
 
 class SensorFaults(_FaultLayer):
@@ -160,7 +160,7 @@ class SensorFaults(_FaultLayer):
         values = frame.pressures_pa.copy()
         values[self._dropout] = self.lower_rail_pa
         values[self._nan] = np.nan
-        return PressureFrame(frame.t_s, values, frame.supply_pa)
+        return unchecked_frame(frame.t_s, values, frame.supply_pa)
 
 
 class Unreachable(_FaultLayer):

@@ -339,27 +339,45 @@ class TabulatedCharacteristic:
     def _along_pressure(
         self, which: str, p: NDArray[np.float64], f: NDArray[np.float64]
     ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        """Interpolate the cached load columns of a table along the pressure (1-D inputs)."""
-        p, f = self._shift(p, f)
-        cache = self._cache
-        key = (which, f.tobytes())
-        entry = cache.get(which)
+        """Interpolate the cached load columns of a table along the pressure (1-D inputs).
+
+        The same values as :meth:`_interp`, with what depends on the loads only (the columns
+        at each module's load, the pressure taken off by a load beyond the table) cached while
+        the loads stay the same, and ufuncs only (no ``np.clip``: its Python wrapper cost more
+        than the interpolation on a few modules)."""
+        key = f.tobytes()
+        entry = self._cache.get(which)
         if entry is None or entry[0] != key:
-            table = self.volume_m3_table if which == "volume" else self.height_m_table
-            j, u, _ = self._locate(self.load_n, f)
-            j1 = np.minimum(j + 1, self.load_n.size - 1)
-            cols = table[:, j] * (1 - u) + table[:, j1] * u  # (P, m) at each module's load
-            slopes = np.diff(cols, axis=0) / np.diff(self.pressure_pa)[:, None]
-            entry = cache[which] = (key, cols, slopes)
-        _, cols, slopes = entry
+            entry = self._cache[which] = self._load_columns(which, f, key)
+        _, cols, slopes, drop, k = entry
+        if drop is not None:
+            p = p - drop
         grid = self.pressure_pa
         pc = np.maximum(p, grid[0])
-        i = np.searchsorted(grid, pc, side="right") - 1
-        np.clip(i, 0, grid.size - 2, out=i)
-        k = np.arange(p.size)
+        i = np.searchsorted(grid, pc, side="right")  # >= 1: pc is at least grid[0]
+        i -= 1
+        np.minimum(i, grid.size - 2, out=i)
         slope = slopes[i, k]
         value = cols[i, k] + slope * (pc - grid[i])
         return value, np.where(p >= grid[0], slope, 0.0)
+
+    def _load_columns(
+        self, which: str, f: NDArray[np.float64], key: bytes
+    ) -> tuple[bytes, NDArray[np.float64], NDArray[np.float64], NDArray[np.float64] | None, Any]:
+        """The table's columns at each module's load ``f`` (interpolated along the load), their
+        slopes along the pressure, the pressure a load beyond the table takes off (None: none;
+        :meth:`_shift`) and the modules' indices: the cache entry of :meth:`_along_pressure`."""
+        fmax = self.load_n[-1]
+        drop = None
+        if f.size and f.max() > fmax:  # as _shift: the excess load acts as a pressure
+            drop = np.maximum(f - fmax, 0.0) / self.excess_load_area_m2
+            f = np.minimum(f, fmax)
+        table = self.volume_m3_table if which == "volume" else self.height_m_table
+        j, u, _ = self._locate(self.load_n, f)
+        j1 = np.minimum(j + 1, self.load_n.size - 1)
+        cols = table[:, j] * (1 - u) + table[:, j1] * u  # (P, m) at each module's load
+        slopes = np.diff(cols, axis=0) / np.diff(self.pressure_pa)[:, None]
+        return key, cols, slopes, drop, np.arange(f.size)
 
     def height_m(self, pressure_pa: ArrayLike, load_n: ArrayLike) -> NDArray[np.float64]:
         p = np.asarray(pressure_pa, dtype=float)

@@ -185,6 +185,7 @@ class ChamberBank:
         self._leak_m2 = np.zeros(m)
         self._leaking = False
         self._creep = np.zeros(m)  # creep volume of each membrane (Disturbances), m^3
+        self._creeping = False  # any creep volume yet (else V + creep is V: not added)
         self._flat_m3 = v0  # volume under the flat, unloaded layer, m^3
         #: Longest stretch between exact pressure solves, seconds.
         self.resolve_s = 20e-3
@@ -362,11 +363,13 @@ class ChamberBank:
         p0 = self._p_modules.copy()
         lam, p_eq = self._relaxation(p0, supply_pa)
         theta = self.relaxation_per_stretch
-        lam_max = float(lam.max())
+        lam_max = float(np.maximum.reduce(lam))
         # a collapsed module (below ambient, where the layer's volume no longer changes) filling
         # up: its compliance jumps at 0 Pa, so the secant from below would overshoot (606 Pa in
         # one 10 ms step with the disturbances' creep); sub-steps re-solve from the amount
-        collapsed = bool(np.any((p0 < 0.0) & (p_eq > p0) & (lam > 0.0)))
+        collapsed = not np.minimum.reduce(p0) >= 0.0 and bool(
+            np.any((p0 < 0.0) & (p_eq > p0) & (lam > 0.0))
+        )
         if lam_max * dt_s > theta or collapsed:
             self._substeps(dt_s, supply_pa, lam, p_eq)
             self._path = np.zeros((1, self.n_channels))
@@ -380,7 +383,8 @@ class ChamberBank:
             steps = steps[: max(1, int(theta / (lam_max * dt_s)))]
         ahead = p_eq + (p0 - p_eq) * np.exp(-lam * steps)
         if ahead.shape[0] > 1:  # C is frozen along the stretch: end it where p moved far
-            moved = np.abs(ahead[:, lam > 0] - p0[lam > 0]).max(axis=1, initial=0.0)
+            rising = lam > 0
+            moved = np.abs(ahead[:, rising] - p0[rising]).max(axis=1, initial=0.0)
             far = int(np.searchsorted(moved, self.resolve_pa, side="right"))
             ahead = ahead[: max(1, far)]
         path = np.zeros((ahead.shape[0], self.n_channels))
@@ -508,7 +512,7 @@ class ChamberBank:
             # s^2 |n''| / (2 n') < 1e-8 Pa for s < 1e-2 Pa (n' > 1e-6 m^3, |n''| < 1e-9 m^3/Pa
             # here; 0 within a segment of the tabulated characteristic): one evaluation from the
             # stretch's prediction usually suffices
-            if np.abs(step).max() < 1e-2:
+            if np.maximum.reduce(np.abs(step)) < 1e-2:
                 self._dn_dp = dn_dp  # at the last iterate, within 1e-4 Pa of the solution
                 return p
         p = start
@@ -540,7 +544,7 @@ class ChamberBank:
         else:
             v = self.characteristic.volume_m3(p, f)
             dv = self.characteristic.volume_slope_m3_pa(p, f)
-        return v + self._creep, dv
+        return (v + self._creep if self._creeping else v), dv
 
     @property
     def creep_m3(self) -> NDArray[np.float64]:
@@ -581,6 +585,7 @@ class ChamberBank:
         stretched = self.characteristic.volume_m3(p, self.loads_n) - self._flat_m3
         target = creep_fraction * np.maximum(stretched, 0.0)
         self._creep = target + (self._creep - target) * math.exp(-elapsed_s / creep_time_s)
+        self._creeping = True
         self._pressure[:m] = self._solve(p)
         self._eq_key = None
         self.solved = True

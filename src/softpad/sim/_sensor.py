@@ -111,7 +111,7 @@ class SensorBank:
         self._inv_q = 1.0 / self._q if self._q else 0.0
         self._i = block
         self._noise = np.zeros((block, n_channels))
-        self._supply_noise = np.zeros(block)
+        self._supply_noise: list[float] = [0.0] * block  # plain floats: read one per sample
         self._same = 0
         self._static: NDArray[np.float64] | None = None
         self._static_start = 0
@@ -137,7 +137,7 @@ class SensorBank:
         self._noise = noise + self.offset_pa
         self._supply_noise = (
             self.rng.normal(0.0, p.supply_noise_std_pa, b) if p.supply_noise_std_pa else np.zeros(b)
-        )
+        ).tolist()
         self._i = 0
 
     def sample(
@@ -162,15 +162,13 @@ class SensorBank:
         else:
             self._same += 1
             if self._static is not None:
-                return self._static[i - self._static_start], supply_pa + float(
-                    self._supply_noise[i]
-                )
+                return self._static[i - self._static_start], supply_pa + self._supply_noise[i]
             if self._same >= 2:
                 self._static = self._quantise(true_pa + self._noise[i:])
                 self._static.flags.writeable = False
                 self._static_start = i
-                return self._static[0], supply_pa + float(self._supply_noise[i])
-        return self._quantise(true_pa + self._noise[i]), supply_pa + float(self._supply_noise[i])
+                return self._static[0], supply_pa + self._supply_noise[i]
+        return self._quantise(true_pa + self._noise[i]), supply_pa + self._supply_noise[i]
 
     def sample_path(
         self, path: NDArray[np.float64], row: int, key: int, supply_pa: float
@@ -197,7 +195,7 @@ class SensorBank:
         self._ramp, self._ramp_key, self._ramp_start = ramp, key, i
         self._ramp_end = i + k
         self._ramp_next = i + 1
-        return ramp[0], supply_pa + float(self._supply_noise[i])
+        return ramp[0], supply_pa + self._supply_noise[i]
 
     def next_on_ramp(self, key: int, supply_pa: float) -> tuple[NDArray[np.float64], float] | None:
         """The next reading of the ramp computed by :meth:`sample_path` for ``key``, or None
@@ -211,7 +209,7 @@ class SensorBank:
         self._same = 0
         ramp = self._ramp
         assert ramp is not None
-        return ramp[i - self._ramp_start], supply_pa + float(self._supply_noise[i])
+        return ramp[i - self._ramp_start], supply_pa + self._supply_noise[i]
 
     def _quantise(self, x: NDArray[np.float64]) -> NDArray[np.float64]:
         # np.rint is what np.round(.., 0) computes (half to even), and maximum/minimum clip
