@@ -92,6 +92,40 @@ def test_hardware_box_passes_conformance_and_stamps_monotonic_frames(tmp_path: P
     box.close()
 
 
+def test_a_sample_taken_after_its_period_counts_as_missed(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The box's schedule counts a tick as missed when its sample was not taken within its
+    period: a sleep that wakes 3.5 ms late misses ticks 3..5 (tick 3's late sample and the
+    two skipped at the next read), a read 0.5 ms late misses none."""
+    from softpad.box import _hardware
+
+    now = [50.0]
+    stall = [0.0]
+
+    def sleep(s: float) -> None:
+        now[0] += s + stall[0]
+        stall[0] = 0.0
+
+    monkeypatch.setattr(_hardware.time, "monotonic", lambda: now[0])
+    monkeypatch.setattr(_hardware.time, "sleep", sleep)
+    _fake_iio(tmp_path, [1100, 1200, 1300, 50])
+    s = _settings(tmp_path)
+    box = HardwareBox(s, lines=_lines(s))
+    box.read()
+    now[0] += 0.5e-3 + 1e-3  # tick 2 read 0.5 ms late: in its period
+    box.read()
+    assert box.missed_ticks == 0
+    stall[0] = 3.5e-3  # tick 3's sleep wakes 3.5 ms late (at 6.5 ms)
+    box.read()
+    assert box.missed_ticks == 1
+    box.read()  # ticks 4 and 5 skipped, tick 6 (6 ms) read at 6.5 ms
+    assert box.missed_ticks == 3
+    assert box.read().t_s == pytest.approx(7e-3)
+    assert box.missed_ticks == 3
+    box.close()
+
+
 def test_missing_sensor_file_is_a_named_fault(tmp_path: Path) -> None:
     from softpad.errors import HardwareFault
 

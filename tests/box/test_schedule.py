@@ -20,13 +20,16 @@ class _Clock:
     def __init__(self) -> None:
         self.t = 100.0
         self.slept: list[float] = []
+        #: Added once to the next sleep: the machine stalled the sleeping thread this long.
+        self.stall = 0.0
 
     def monotonic(self) -> float:
         return self.t
 
     def sleep(self, s: float) -> None:
         self.slept.append(s)
-        self.t += s
+        self.t += s + self.stall
+        self.stall = 0.0
 
 
 @pytest.fixture
@@ -49,6 +52,25 @@ def test_deadlines_are_absolute_and_late_ticks_are_dropped(clock: _Clock) -> Non
     clock.t += 3.7e-3  # ticks 5..7 more than a period late: 2 dropped, tick 7 sampled late
     assert s.wait() == 2 and clock.t == pytest.approx(t0 + 7.7e-3)
     assert s.wait() == 0 and clock.t == pytest.approx(t0 + 8e-3)  # the grid never shifted
+
+
+def test_a_tick_sampled_after_its_period_is_dropped(clock: _Clock) -> None:
+    """A dropped tick is one whose sample was not taken within its period [t_k, t_k + 1 ms):
+    a thread that wakes 9.05 ms late samples tick 2 at 11.05 ms, so ticks 2..10 (nine) are
+    dropped, not only the eight the next wait skips."""
+    s = TickSchedule(1000.0)
+    t0 = clock.t
+    assert s.wait() == 0 and s.due_s == pytest.approx(t0 + 1e-3)
+    assert s.late(clock.t + 0.99e-3) == 0  # stamped 0.99 ms after its deadline: in its period
+    assert s.late(clock.t + 1.0e-3) == 1  # its period is over: dropped though sampled
+    clock.stall = 9.05e-3  # the next sleep wakes 9.05 ms after its deadline
+    assert s.wait() == 0 and clock.t == pytest.approx(t0 + 11.05e-3)
+    dropped = s.late(clock.t)
+    assert dropped == 1  # tick 2, sampled 9.05 ms late
+    dropped += s.wait()  # ticks 3..10 skipped; tick 11 (due 11 ms) sampled at 11.05 ms
+    assert dropped == 9 and s.due_s == pytest.approx(t0 + 11e-3)
+    assert s.late(clock.t) == 0
+    assert s.wait() == 0 and clock.t == pytest.approx(t0 + 12e-3)  # on the grid again
 
 
 def test_restart_starts_the_grid_at_now(clock: _Clock) -> None:
@@ -98,3 +120,46 @@ def test_gc_is_collected_between_ticks_and_restored() -> None:
 def test_real_time_priority_out_of_range_is_refused(priority) -> None:
     with pytest.raises(InputError, match="1 to 99"):
         set_realtime_priority(priority)
+
+
+def test_the_served_simulator_draws_its_noise_between_ticks() -> None:
+    """The daemon's between-ticks hook reaches the simulator through its layers; with it
+    called after every read (as the sampling loop does), no read draws a noise block (about
+    1.5 ms every 4096 frames, more than a tick's budget) and the frames are bitwise those
+    of a box read without it."""
+    from softpad.box import open_box, simulator_of
+    from softpad.box._daemon import _between_ticks
+
+    url = "sim://?rate_hz=1000&seed=3"
+    plain, hooked = open_box(url), open_box(url)
+    hook = _between_ticks(hooked)
+    assert hook is not None and type(hooked) is not type(simulator_of(hooked))  # layered
+    sensors = simulator_of(hooked).sensors  # type: ignore[union-attr]
+    in_read = [0]
+    draw = sensors._refill
+
+    def counted() -> None:
+        in_read[0] += 1
+        draw()
+
+    sensors._refill = counted  # type: ignore[method-assign]
+    for box in (plain, hooked):  # blocks of 64 frames, not 4096: the same logic, quicker
+        bank = simulator_of(box).sensors  # type: ignore[union-attr]
+        bank.block = bank._i = 64
+    n = 5 * 64 + 10
+    a, b = [], []
+    for k in range(n):
+        for box in (plain, hooked):  # idle, inflating, sealed: the sensors' three paths
+            if k in (100, 200):
+                box.set_valve(1, "inflate" if k == 100 else "closed")
+        a.append(plain.read())
+        b.append(hooked.read())
+        sensors._refill = draw  # type: ignore[method-assign]  # the hook's draws not counted
+        hook()
+        sensors._refill = counted  # type: ignore[method-assign]
+    assert in_read[0] == 1  # only the first block, drawn before any hook call could
+    for fa, fb in zip(a, b, strict=True):
+        assert fa.t_s == fb.t_s and fa.supply_pa == fb.supply_pa
+        np.testing.assert_array_equal(fa.pressures_pa, fb.pressures_pa)
+    plain.close()
+    hooked.close()

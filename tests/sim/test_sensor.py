@@ -41,3 +41,30 @@ def test_range_saturates_and_ideal_is_exact() -> None:
     assert bank.sample(np.array([50e3, -50e3]), 0.0)[0].tolist() == [10e3, -2e3]
     ideal = SensorBank(2, 0.01, SensorParams.ideal(), np.random.default_rng(0))
     np.testing.assert_array_equal(ideal.sample(np.array([1234.5, 0.1]), 7.0)[0], [1234.5, 0.1])
+
+
+def test_refill_between_samples_draws_the_same_readings() -> None:
+    """Drawing the next noise block ahead (refill_if_due, what a box daemon does between
+    ticks) gives bitwise the same readings as drawing it on demand, over changing, static and
+    ramping true pressures and 8 seeds; it draws only when the block is used up."""
+    params = SensorParams()
+    path = np.linspace(0.0, 900.0, 40)[:, None] * np.ones(3)
+    for seed in range(8):
+        banks = [
+            SensorBank(3, 1e-3, params, np.random.default_rng(seed), block=16) for _ in range(2)
+        ]
+        out: list[list[float]] = [[], []]
+        refills = 0
+        for k in range(200):
+            phase = (k // 25) % 3  # changing, then static, then along a ramp, repeated
+            for b, bank in enumerate(banks):
+                if phase == 0:
+                    r, sup = bank.sample(np.full(3, 100.0 + k), 5000.0, changed=True)
+                elif phase == 1:
+                    r, sup = bank.sample(np.full(3, 300.0), 5000.0, changed=False)
+                else:
+                    r, sup = bank.sample_path(path, k % 25, key=k // 25, supply_pa=5000.0)
+                out[b].extend([*r.tolist(), sup])
+            refills += banks[1].refill_if_due()
+        assert out[0] == out[1]
+        assert refills == 200 // 16  # once per used-up block, never a block early

@@ -4,7 +4,12 @@ The daemon (``softpad box serve --sim``, a 1 kHz simulated box) and each monitor
 own processes, as on a real installation. A monitor stamps every frame on arrival with the
 same monotonic clock the daemon stamped it with when sampled (one machine), so the latency is
 sample -> publish -> receive. Lost frames are gaps in the sequence numbers; dropped samples
-are ticks the daemon's 1 kHz schedule missed (``softpad box stats``).
+are ticks the daemon's 1 kHz schedule missed (``softpad box stats``: a tick whose sample was
+not taken within its period).
+
+Beside them, in the same window and at the same priority, a bare loop on the same schedule
+(no box, no link, no other thread: :data:`_FLOOR`) counts the ticks this machine drops on its
+own: what no design of the daemon (a separate process, compiled code) could recover.
 """
 
 from __future__ import annotations
@@ -44,6 +49,28 @@ print(json.dumps(rows))
 """
 
 
+_FLOOR = r"""
+import json, os, signal, sys, time
+from softpad.box._schedule import TickSchedule
+limit, priority = float(sys.argv[1]), int(sys.argv[2])
+if priority:
+    os.sched_setscheduler(0, os.SCHED_FIFO, os.sched_param(priority))
+stop = []
+signal.signal(signal.SIGTERM, lambda *_: stop.append(1))  # the window ends
+s = TickSchedule(1000.0)
+end = time.monotonic() + limit
+dropped = sampled = 0
+late = 0.0
+while not stop and time.monotonic() < end:
+    dropped += s.wait()
+    now = time.monotonic()
+    dropped += s.late(now)
+    late = max(late, now - s.due_s)
+    sampled += 1
+print(json.dumps({"ticks": sampled + dropped, "dropped": dropped, "late_max_s": late}))
+"""
+
+
 def _measure(duration_s: float) -> tuple[np.ndarray, int, int, dict]:
     from softpad.box import open_box
 
@@ -63,7 +90,7 @@ def _measure(duration_s: float) -> tuple[np.ndarray, int, int, dict]:
             f"tcp/127.0.0.1:{port}",
             "--duration-s",
             str(duration_s + 300),
-            *(["--rt-priority", str(RT_PRIORITY)] if _fifo_allowed() else []),
+            *(["--rt-priority", str(RT_PRIORITY)] if _fifo_priority() else []),
         ],
         stdout=subprocess.PIPE,
         stderr=subprocess.DEVNULL,
@@ -72,6 +99,11 @@ def _measure(duration_s: float) -> tuple[np.ndarray, int, int, dict]:
     try:
         serve.stdout.readline()  # type: ignore[union-attr]  # "serving ..."
         before = _sampling_stats(port)  # the window starts with the daemon sampling
+        floor = subprocess.Popen(  # the machine's own stalls over the same window
+            [sys.executable, "-c", _FLOOR, str(duration_s + 300), str(_fifo_priority())],
+            stdout=subprocess.PIPE,
+            text=True,
+        )
         mons = [
             subprocess.Popen(
                 [sys.executable, "-c", _MONITOR, str(port), str(duration_s)],
@@ -83,8 +115,10 @@ def _measure(duration_s: float) -> tuple[np.ndarray, int, int, dict]:
         results = [json.loads(m.communicate(timeout=duration_s + 60)[0]) for m in mons]
         with open_box(f"zenoh://127.0.0.1:{port}?timeout_s=30") as box:
             stats = box.request("stats")  # type: ignore[attr-defined]
+        floor.terminate()
         for key in ("dropped_samples", "frames"):  # within the monitors' window
             stats[key] -= before[key]
+        stats["floor"] = json.loads(floor.communicate(timeout=60)[0])
     finally:
         serve.terminate()
         serve.wait(timeout=10)
@@ -114,9 +148,14 @@ def _sampling_stats(port: int, deadline_s: float = 120.0) -> dict:
             time.sleep(0.2)
 
 
+def _fifo_priority() -> int:
+    """:data:`RT_PRIORITY` where this process may use SCHED_FIFO (root or CAP_SYS_NICE on
+    Linux; the daemon then runs at it, as its systemd unit does: docs/hardware.md), else 0."""
+    return RT_PRIORITY if _fifo_allowed() else 0
+
+
 def _fifo_allowed() -> bool:
-    """Whether this process may use SCHED_FIFO (root or CAP_SYS_NICE on Linux): the daemon
-    then runs at :data:`RT_PRIORITY`, as its systemd unit does (docs/box.md)."""
+    """Whether this process may use SCHED_FIFO (tried in a forked child)."""
     if not hasattr(os, "sched_setscheduler"):
         return False
     try:
@@ -191,6 +230,7 @@ def _schedule_results(stats: dict, load: float) -> list[BenchResult]:
         f"{stats.get('gc_pause_max_s', 0) * 1e3:.2f} ms, load {load:.1f} at the start, "
         f"SCHED_FIFO {stats.get('realtime_priority') or 'off'}"
     )
+    floor = stats.get("floor") or {}
     return [
         BenchResult(
             "box daemon at 1 kHz (sim box, 3 monitors), ticks dropped by the schedule",
@@ -207,6 +247,15 @@ def _schedule_results(stats: dict, load: float) -> list[BenchResult]:
             target="< 0.2 ms",
             met=err_ms < 0.2 and stats["frames"] > 0,
             detail=loop,
+        ),
+        BenchResult(
+            "this machine's floor: a bare 1 kHz loop beside the daemon (same window and "
+            "priority, no box, no link), ticks dropped",
+            float(floor.get("dropped", float("nan"))),
+            "ticks",
+            detail=f"of {floor.get('ticks', 0)} ticks; latest wake-up "
+            f"{floor.get('late_max_s', float('nan')) * 1e3:.2f} ms after its deadline; the "
+            "daemon cannot drop fewer than the machine stalls",
         ),
         BenchResult(
             "box daemon at 1 kHz, CPU of the daemon process (sampling thread)",

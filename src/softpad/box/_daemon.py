@@ -340,6 +340,7 @@ class BoxDaemon:
         period = 1.0 / stats.rate_hz
         paced = bool(getattr(self.box, "self_paced", False))
         schedule = TickSchedule(stats.rate_hz, self.spin_s)
+        between_ticks = _between_ticks(self.box)
         while not self._stop.is_set():
             if self._wait_for_controller():
                 schedule.restart()  # the simulated clock waited: not a missed tick
@@ -358,6 +359,10 @@ class BoxDaemon:
                 self._safe_state("hold")
                 time.sleep(period)
                 continue
+            if paced:  # the box keeps its own schedule and counts its dropped ticks
+                stats.missed_ticks = int(getattr(self.box, "missed_ticks", 0))
+            else:
+                stats.missed_ticks += schedule.late(mono)
             self._seq += 1
             try:
                 self._outbox.put_nowait(encode_frame(self._seq, mono, frame))
@@ -365,9 +370,9 @@ class BoxDaemon:
                 stats.unsent += 1
             stats.sampled(mono)
             stats.cpu.sampled_by_this_thread()
+            if between_ticks is not None:
+                between_ticks()  # the simulator's bulk work (noise blocks), off the tick
             stats.gc.collect_if_due()  # right after the tick's work, never in the middle of it
-        if paced:
-            self.stats.missed_ticks += int(getattr(self.box, "missed_ticks", 0))
 
     def _wait_for_controller(self) -> bool:
         """Lock-step: hold sampling while the controller is behind; True when it waited."""
@@ -696,6 +701,14 @@ def _simulated(box: Box) -> bool:
     from softpad.box._sim_layers import simulator_of
 
     return simulator_of(box) is not None
+
+
+def _between_ticks(box: Box) -> Callable[[], object] | None:
+    """The simulator's hook for work it can do between two ticks rather than inside a read
+    (drawing the next block of sensor noise), seen through any wrappers; None for hardware."""
+    from softpad.box._sim_layers import simulator_of
+
+    return getattr(simulator_of(box), "between_ticks", None)
 
 
 def new_client_id() -> str:

@@ -197,7 +197,9 @@ class HardwareBox(Box):
     -----
     :meth:`read` blocks until the next tick of a fixed-rate schedule on the monotonic clock
     (``t_k = t_0 + k / sample_rate_hz``); when the caller is late by whole periods the missed
-    ticks are skipped and counted in :attr:`missed_ticks`. Frame time is seconds since opening.
+    ticks are skipped and counted in :attr:`missed_ticks`, and so is a tick whose sample was
+    taken more than a period after its deadline (the thread woke late). Frame time is seconds
+    since opening.
     """
 
     self_paced = True
@@ -233,7 +235,8 @@ class HardwareBox(Box):
         self._period = 1.0 / settings.sample_rate_hz
         self._t0 = time.monotonic()
         self._tick = 0
-        #: Ticks skipped because the caller read late by more than one period.
+        #: Ticks whose sample was not taken within their period (skipped because the caller
+        #: read late, or sampled after the period: the process woke late).
         self.missed_ticks = 0
 
     @property
@@ -259,7 +262,10 @@ class HardwareBox(Box):
             late = int((now - due) / self._period)
             self.missed_ticks += late
             self._tick += late
-        t = time.monotonic() - self._t0
+        now = time.monotonic()
+        if now - self._t0 - self._tick * self._period >= self._period:
+            self.missed_ticks += 1  # woke more than a period late: sampled outside its period
+        t = now - self._t0
         pa = self._offset + self._factor * self._iio.read_raw()
         n = self.channels
         supply = float(pa[n]) if self.settings.supply is not None else math.nan

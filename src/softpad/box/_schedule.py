@@ -10,9 +10,11 @@ the automatic collector off and lets the sampling thread collect right after a t
 (when the next deadline is furthest away), timing every collection, so the stats say how long
 the longest one held the loop.
 
-A tick is *dropped* when the loop reaches it more than one period after its deadline (it is
-skipped and counted, the schedule stays on its grid); a tick reached late by less is sampled
-late and shows as period error.
+A tick is *dropped* when its sample was not taken within its period, ``[t_k, t_k + 1/rate)``:
+either the loop reached it more than a period after its deadline (it is skipped, the schedule
+stays on its grid), or its sample was stamped more than a period after the deadline (the
+thread stalled between waking and sampling: the frame is kept but the tick counts as dropped,
+:meth:`TickSchedule.late`). A tick sampled late by less shows as period error.
 """
 
 from __future__ import annotations
@@ -41,7 +43,8 @@ class TickSchedule:
 
     :meth:`wait` sleeps until the next deadline (the last ``spin_s`` of it busy-waiting, for
     sleep's wake-up latency) and returns how many ticks were dropped on the way (the loop
-    was more than a period late for them).
+    was more than a period late for them); :meth:`late` tells whether the sample of the tick
+    it returned for was taken after that tick's period (one more dropped tick).
     """
 
     def __init__(self, rate_hz: float, spin_s: float = 0.0) -> None:
@@ -55,6 +58,8 @@ class TickSchedule:
         """Start the grid at now (after a pause that was not the schedule's fault)."""
         self._t0 = time.monotonic()
         self._k = 0
+        #: Deadline of the tick :meth:`wait` last returned for, monotonic seconds.
+        self.due_s = self._t0
 
     def wait(self) -> int:
         """Block until the next deadline; the number of ticks dropped to reach it."""
@@ -67,12 +72,19 @@ class TickSchedule:
             dropped = int((now - due) / period)
             self._k += dropped
             due += dropped * period
+        self.due_s = due
         wake = due - self.spin_s
         if now < wake:
             time.sleep(wake - now)
         while time.monotonic() < due:
             pass
         return dropped
+
+    def late(self, sampled_s: float) -> int:
+        """1 when a sample stamped at ``sampled_s`` (monotonic seconds) missed the period of
+        the tick :meth:`wait` last returned for (the thread woke or ran more than a period
+        late: that tick is dropped, though its frame exists), else 0."""
+        return 1 if sampled_s - self.due_s >= self.period_s else 0
 
 
 class PeriodRing:

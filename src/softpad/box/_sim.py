@@ -207,6 +207,12 @@ class SimBox(Box):
         """Top height of every module, metres (simulation only)."""
         return self._heights.copy()
 
+    def between_ticks(self) -> None:
+        """Work that may run between two reads instead of inside one (a box daemon calls it
+        after each tick): the next block of sensor noise, drawn before it is needed (the
+        same values as drawn on demand)."""
+        self.sensors.refill_if_due()
+
     def _read(self) -> PressureFrame:
         dt = self._dt
         t = self._t + dt

@@ -140,6 +140,22 @@ class SensorBank:
         ).tolist()
         self._i = 0
 
+    def refill_if_due(self) -> bool:
+        """Draw the next noise block now if the current one is used up (True when it did).
+
+        The same draws in the same order as the next :meth:`sample` would make (nothing else
+        draws from the generator between samples), only earlier: a box daemon calls it
+        between ticks, so the block's draw (about 1.5 ms for 8 channels, every 4096 frames)
+        does not delay a sample.
+        """
+        if self._i < self.block:
+            return False
+        self._refill()
+        self._static = None
+        self._ramp = None
+        self._ramp_end = -1
+        return True
+
     def sample(
         self, true_pa: NDArray[np.float64], supply_pa: float, changed: bool = True
     ) -> tuple[NDArray[np.float64], float]:
