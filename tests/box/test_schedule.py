@@ -163,3 +163,31 @@ def test_the_served_simulator_draws_its_noise_between_ticks() -> None:
         np.testing.assert_array_equal(fa.pressures_pa, fb.pressures_pa)
     plain.close()
     hooked.close()
+
+
+def test_the_link_bench_floor_counts_every_tick_of_its_window() -> None:
+    """The bench's bare loop (the machine's floor beside the daemon) runs the schedule for its
+    time limit and accounts for every tick of the window: sampled plus dropped is the number
+    of periods elapsed; the bench turns its output into a figure beside the daemon's."""
+    import json
+    import os
+    import subprocess
+
+    from softpad.benchmarks._link import _FLOOR, _schedule_results
+
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)}
+    out = subprocess.run(
+        [sys.executable, "-c", _FLOOR, "0.3", "0"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        env=env,
+        check=True,
+    )
+    floor = json.loads(out.stdout)
+    assert 299 <= floor["ticks"] <= 300 + 1000 * floor["late_max_s"] + 2
+    assert 0 <= floor["dropped"] < floor["ticks"] and floor["late_max_s"] >= 0
+    stats = {"frames": 1000, "dropped_samples": 2, "achieved_rate_hz": 998.0, "floor": floor}
+    figures = {r.name.split(",")[0]: r for r in _schedule_results(stats, load=1.0)}
+    assert figures["this machine's floor: a bare 1 kHz loop beside the daemon (same window and "
+                   "priority"].value == floor["dropped"]  # fmt: skip

@@ -62,11 +62,13 @@ end = time.monotonic() + limit
 dropped = sampled = 0
 late = 0.0
 while not stop and time.monotonic() < end:
+    due = s.due_s + s.period_s  # the next deadline, before any tick is skipped
     dropped += s.wait()
     now = time.monotonic()
-    dropped += s.late(now)
-    late = max(late, now - s.due_s)
-    sampled += 1
+    missed = s.late(now)  # sampled, but after its period: dropped, not sampled
+    dropped += missed
+    sampled += 1 - missed
+    late = max(late, now - due)
 print(json.dumps({"ticks": sampled + dropped, "dropped": dropped, "late_max_s": late}))
 """
 
