@@ -129,6 +129,21 @@ def test_entry_points_of_an_installed_package_are_found(
         CONTACT_DETECTOR_REGISTRY.unregister("from-entry-point")
 
 
+def test_a_distribution_installed_after_a_first_look_is_found(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The entry points are read once per state of the import path (issue 38): installing into
+    a folder already on it, after the names were listed, still shows the new part."""
+    monkeypatch.syspath_prepend(str(tmp_path))
+    assert "late-entry-point" not in available_contact_detectors()
+    text = "[softpad.contact_detectors]\nlate-entry-point = softpad.sensing:ThesisContactDetector\n"
+    _dist_info(tmp_path, "softpad_test_late", text)
+    try:
+        assert "late-entry-point" in available_contact_detectors()
+    finally:
+        CONTACT_DETECTOR_REGISTRY.unregister("late-entry-point")
+
+
 def test_cusum_is_calibrated_for_the_pads_size() -> None:
     """12 modules raise the per-module threshold over 6 (more statistics, same false-alarm
     rate): the registry passes the layout through."""
