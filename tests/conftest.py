@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
+import resource
 import socket
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Generator, Iterator
 from contextlib import AbstractContextManager, contextmanager
 from typing import Any
 
@@ -15,6 +16,59 @@ def _free_port() -> int:
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
         return int(s.getsockname()[1])
+
+
+def pytest_addoption(parser: pytest.Parser) -> None:
+    parser.addoption(
+        "--cpu-durations",
+        type=int,
+        default=None,
+        metavar="N",
+        help="list the N tests that used the most CPU: user + system seconds of the test's "
+        "process (all its threads) and of the children it waited for, set-up to teardown "
+        "(wall times mislead on a shared machine; issue 38)",
+    )
+
+
+_CPU_KEY = pytest.StashKey[float]()
+_cpu_by_test: dict[str, float] = {}
+
+
+def _cpu_s() -> float:
+    own = resource.getrusage(resource.RUSAGE_SELF)
+    kids = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return own.ru_utime + own.ru_stime + kids.ru_utime + kids.ru_stime
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_protocol(item: pytest.Item) -> Generator[None, None, None]:
+    item.stash[_CPU_KEY] = _cpu_s()
+    yield
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_makereport(item: pytest.Item) -> Generator[None, Any, None]:
+    outcome = yield
+    report = outcome.get_result()
+    if report.when == "teardown" and item.config.getoption("cpu_durations") is not None:
+        report.user_properties.append(("cpu_s", _cpu_s() - item.stash[_CPU_KEY]))
+
+
+def pytest_runtest_logreport(report: pytest.TestReport) -> None:
+    for name, value in report.user_properties:
+        if name == "cpu_s" and report.when == "teardown":
+            _cpu_by_test[report.nodeid] = float(value)  # type: ignore[arg-type]
+
+
+def pytest_terminal_summary(terminalreporter: Any, config: pytest.Config) -> None:
+    n = config.getoption("cpu_durations")
+    if n is None or not _cpu_by_test:
+        return
+    terminalreporter.section("CPU seconds by test (user + sys)")
+    total = sum(_cpu_by_test.values())
+    for nodeid, cpu in sorted(_cpu_by_test.items(), key=lambda kv: -kv[1])[: n or None]:
+        terminalreporter.write_line(f"{cpu:8.2f}s  {nodeid}")
+    terminalreporter.write_line(f"{total:8.2f}s  total over {len(_cpu_by_test)} tests")
 
 
 #: Client timeout on the links to ``served`` daemons, seconds.
