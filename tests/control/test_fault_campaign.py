@@ -8,9 +8,9 @@
   seals a vented channel again (its physics watched 30 s after the close);
 * the random campaign: random kinds, channels and times.
 
-``make test`` runs the phases missed before (adjustment, valve check) and a few random seeds;
-``make test-slow`` the rest and the campaign-wide figures; ``softpad bench --only safety``
-the bigger campaigns. The simulator's true chamber pressure is checked at every frame during
+``make test`` runs the phases missed before (adjustment, valve check) at 100 Hz and a few random
+seeds; ``make test-slow`` the rest (the 1 kHz case included) and the campaign-wide figures;
+``softpad bench --only safety`` the bigger campaigns. The simulator's true chamber pressure is checked at every frame during
 each run, 30 s after it and 30 s after closing the box.
 """
 
@@ -38,8 +38,13 @@ CASES = [(k, ph, 100.0) for ph in PHASES for k in PHASE_KINDS] + [
     ("stuck:inflate", "valve_check", 1000.0)
 ]
 #: Cases run by ``make test`` (the phases where faults were missed or named only at the
-#: adjustment's timeout); the others by ``make test-slow``.
+#: adjustment's timeout), at 100 Hz; the others by ``make test-slow``. The 1 kHz case is the
+#: 100 Hz valve-check case's check on ten times the frames (16 of the suite's 480 CPU-s and
+#: its longest test, issue 38): make test-slow runs it; make test keeps faults at 1 kHz in
+#: tests/control/test_inflation.py (named within 2 s during the adjustment) and
+#: tests/box/test_safe_state_kept.py (the guard's venting kept).
 QUICK_PHASES = ("adjust", "valve_check")
+QUICK_RATE_HZ = 100.0
 SEED = 2000
 
 
@@ -62,7 +67,12 @@ def phase_runs() -> dict:
 
 @pytest.mark.parametrize(
     "case",
-    [c if c[1] in QUICK_PHASES else pytest.param(c, marks=pytest.mark.slow) for c in CASES],
+    [
+        c
+        if c[1] in QUICK_PHASES and c[2] == QUICK_RATE_HZ
+        else pytest.param(c, marks=pytest.mark.slow)
+        for c in CASES
+    ],
     ids=lambda c: f"{c[0]}-{c[1]}-{c[2]:g}Hz",
 )
 def test_fault_in_every_phase_is_detected_within_2_s_and_ends_safe(phase_runs, case) -> None:
