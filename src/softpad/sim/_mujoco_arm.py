@@ -102,8 +102,20 @@ class KinematicArm:
         """
         return self.width_setpoint / 2
 
+    def at_rest(self) -> bool:
+        """True when the hand stands at its goal and the jaw setpoint at its goal (bit for bit:
+        :meth:`move` would change nothing)."""
+        g = self.goal
+        return (
+            self._hand_speed == 0.0
+            and self.width_setpoint == g[4]
+            and self.hand.tobytes() == g[:4].tobytes()
+        )
+
     def move(self, dt: float) -> None:
         """Advance the hand along its straight line, and the yaw and jaw setpoint, by ``dt`` s."""
+        if self.at_rest():  # nothing to advance (the hold, the waits: half of a trial's steps)
+            return
         delta = self.goal[:3] - self.hand[:3]
         dist = float(np.linalg.norm(delta))
         # the arm accelerates and brakes at ARM_ACCELERATION_M_S2 (a kinematic jump to the

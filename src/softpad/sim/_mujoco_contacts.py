@@ -87,6 +87,7 @@ class ContactSensing:
         self._steps = 0
         self._gm: tuple[MujocoScene, list[int]] | None = None
         self._grip: frozenset[int] = frozenset()
+        self._elliptic = True
         self.first_touch_s: float | None = None
         self.first_touch_z_m: float | None = None
         self.tip_hit_object: str | None = None
@@ -108,10 +109,14 @@ class ContactSensing:
         equivalent loads are weighted later, all steps of a sample period in one call
         (:meth:`mean_loads`), at the pressure the period ran at.
         """
-        d, m = s.data, s.model
+        d = s.data
+        gm = self._geom_modules(s)
+        if not d.ncon:  # nothing touches anything (the hand in the air over an empty pad)
+            self._last = (_NO_MODULES, _NO_FORCES)
+            self._steps += 1
+            return
         con = d.contact
         g1, g2 = con.geom1.tolist(), con.geom2.tolist()
-        gm = self._geom_modules(s)
         grip = self._grip
         watch = self.first_touch_s is None or self.tip_hit_object is None
         on: list[int] = []
@@ -125,7 +130,7 @@ class ContactSensing:
             if watch and (a in grip or b in grip):
                 near.append(i)
         if on:
-            if m.opt.cone == self._mj.mjtCone.mjCONE_ELLIPTIC:
+            if self._elliptic:
                 addr = con.efc_address[on]
                 f = np.abs(d.efc_force[addr])
                 if addr.min() < 0:  # excluded contacts carry no force
@@ -148,6 +153,7 @@ class ContactSensing:
         if self._gm is None or self._gm[0] is not s:
             self._gm = (s, s.geom_module.tolist())
             self._grip = frozenset((*s.sole, *s.finger))
+            self._elliptic = s.model.opt.cone == self._mj.mjtCone.mjCONE_ELLIPTIC
         return self._gm[1]
 
     def _normal_force(self, s: MujocoScene, i: int) -> float:

@@ -23,6 +23,15 @@ from softpad.sim._mujoco_model import (
     loose_body_name,
 )
 
+
+def _slice(index: NDArray[np.int_]) -> slice | NDArray[np.int_]:
+    """``index`` as a slice when it is a run of consecutive addresses, else itself."""
+    i = np.asarray(index)
+    if i.size and np.array_equal(i, np.arange(i[0], i[0] + i.size)):
+        return slice(int(i[0]), int(i[0]) + int(i.size))
+    return index
+
+
 #: One body of an object: body id, qpos address, dof address, offset in the object frame (m).
 ObjectBody = tuple[int, int, int, tuple[float, float, float]]
 
@@ -80,6 +89,12 @@ class MujocoScene:
         self._index_pad(layout)
         self._index_gripper()
         self._index_objects(objects)
+        # what every step touches: MuJoCo's arrays (views, fixed for the data's life) and the
+        # module tops' and hand's addresses as slices where contiguous (the same elements)
+        self.qpos, self.qvel, self.ctrl = self.data.qpos, self.data.qvel, self.data.ctrl
+        self.qpos_spring = self.model.qpos_spring
+        self.module_q = _slice(self.module_qpos)
+        self.hand_q, self.hand_v = _slice(self.hand_qpos), _slice(self.hand_dof)
 
     def _id(self, kind: str, name: str) -> int:
         import mujoco

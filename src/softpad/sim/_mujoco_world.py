@@ -20,6 +20,7 @@ from numpy.typing import ArrayLike, NDArray
 from softpad.errors import MM_AS_M, InputError, check_finite, check_range
 from softpad.layout import PadLayout
 from softpad.sim._mujoco_arm import ARM_ACCELERATION_M_S2, KinematicArm
+from softpad.sim._mujoco_coast import HoldCoast
 from softpad.sim._mujoco_contacts import ContactSensing, GripperContacts
 from softpad.sim._mujoco_model import MujocoGripper, ObjectModel, PadPhysics, parking_position
 from softpad.sim._mujoco_scene import MujocoScene
@@ -126,6 +127,7 @@ class MujocoWorld(PadWorld):
         self._sensing = ContactSensing(n, open_w, self.response)
         self._loads = np.zeros(n)
         self._scene: MujocoScene | None = None
+        self._coast: HoldCoast | None = None
         self._build(tuple(objects))
 
     def _build(self, objects: tuple[ObjectModel, ...]) -> None:
@@ -139,6 +141,9 @@ class MujocoWorld(PadWorld):
         scene.data.ctrl[:] = self._arm.servo_ctrl()
         scene.forward()
         self._scene = scene
+        until = self._coast.until_s if self._coast is not None else None
+        self._coast = HoldCoast(np.setdiff1d(np.arange(scene.model.nv), scene.hand_dof))
+        self._coast.allow(until)
 
     @property
     def scene(self) -> MujocoScene:
@@ -213,7 +218,10 @@ class MujocoWorld(PadWorld):
             self._arm.move(chunk)
             remaining -= chunk
             self._pending_s = 0.0
-            self._mj_step(ts)
+            if self.coast.coasts(self._time_s, self._still()):
+                self._coast_step(ts)
+            else:
+                self._mj_step(ts)
         # the chamber feels the impulse of the step's contacts, not the peak of one solver
         # step: the loads of the steps in this period, averaged (see module_loads_n)
         mean = self._sensing.mean_loads()
@@ -429,28 +437,64 @@ class MujocoWorld(PadWorld):
             "cone": "elliptic",
         }
 
+    # --- coasting through a settled hold --------------------------------------------------
+    @property
+    def coast(self) -> HoldCoast:
+        """When the world coasts (:mod:`softpad.sim._mujoco_coast`); its ``coasted_steps``."""
+        assert self._coast is not None
+        return self._coast
+
+    def coast_settled_until(self, until_s: float | None) -> None:
+        """Allow the world to coast before simulated time ``until_s`` (None: never): while the
+        hand and the jaw setpoint stand still and every velocity has been steady over a
+        verification window, positions advance at those velocities without solving MuJoCo's
+        constraints, the module loads held (:mod:`softpad.sim._mujoco_coast`). A trial allows
+        it for its hold, where the object has settled in the jaws or on the pad."""
+        self.coast.allow(until_s)
+
+    def _still(self) -> bool:
+        """True when nothing the world is told to do moves: the arm at its goal, the jaw
+        setpoint at its goal, no object being lowered."""
+        return self._arm.at_rest() and not self._lowering
+
+    def _coast_step(self, ts: float) -> None:
+        """One coasted step of ``ts`` seconds: module springs, positions at constant velocity."""
+        s = self.scene
+        self._follow_heights(ts)
+        qvel = self.coast.qvel
+        assert qvel is not None
+        self._mj.mj_integratePos(s.model, s.data.qpos, qvel, ts)
+        s.data.time += ts
+
     # --- stepping -------------------------------------------------------------------------
+    def _follow_heights(self, ts: float) -> None:
+        """Module rest lengths follow the box's heights, low-passed (see step())."""
+        if self._heights_given:
+            s = self.scene
+            alpha = ts / (_HEIGHT_FILTER_S + ts)
+            spring, q = s.qpos_spring, s.module_q
+            spring[q] += alpha * (self._heights - spring[q])
+
     def _mj_step(self, ts: float) -> None:
         """One MuJoCo step of ``ts`` seconds: module springs, hand, jaws, lowering, loads."""
         s = self.scene
         m, d = s.model, s.data
-        # module rest lengths follow the box's heights (see step())
-        alpha = ts / (_HEIGHT_FILTER_S + ts)
-        if self._heights_given:
-            spring = m.qpos_spring
-            spring[s.module_qpos] += alpha * (self._heights - spring[s.module_qpos])
-        hand = self._arm.hand
-        d.qvel[s.hand_dof] = (hand - d.qpos[s.hand_qpos]) / ts
-        d.qpos[s.hand_qpos] = hand
-        d.ctrl[:] = self._arm.servo_ctrl()
+        self._follow_heights(ts)
+        hand, hq, qpos, qvel = self._arm.hand, s.hand_q, s.qpos, s.qvel
+        qvel[s.hand_v] = (hand - qpos[hq]) / ts
+        qpos[hq] = hand
+        s.ctrl[:] = self._arm.servo_ctrl()
         self._mj.mj_step(m, d)
         # the hand moved as commanded whatever pushed on it (the robot is position-controlled)
-        d.qpos[s.hand_qpos] = hand
-        for name, until in list(self._lowering.items()):
-            if self._time_s > until:
-                del self._lowering[name]
-            else:
-                for _, _, da, _ in s.obj_bodies[name]:
-                    d.qvel[da + 2] = max(d.qvel[da + 2], -_LOWER_M_S)
+        qpos[hq] = hand
+        if self._lowering:
+            for name, until in list(self._lowering.items()):
+                if self._time_s > until:
+                    del self._lowering[name]
+                else:
+                    for _, _, da, _ in s.obj_bodies[name]:
+                        qvel[da + 2] = max(qvel[da + 2], -_LOWER_M_S)
         tip_z = float(hand[2] - self.gripper.finger_length_m)
         self._sensing.update(s, self._time_s + self._pending_s, tip_z, self._arm.width_setpoint)
+        if self.coast.until_s is not None:
+            self.coast.observe(qvel, self._time_s, self._still())

@@ -52,6 +52,12 @@ class TrialConfig:
     #: placement noise, the charger's size and the can's mass distribution) from its range,
     #: per trial, seeded by the trial's seed; False: every one at its nominal value.
     randomize: bool = False
+    #: Let the MuJoCo world coast through the hold once everything in it moves at steady
+    #: velocities (the object settled in the jaws or on the pad): positions advance without
+    #: solving contacts, re-checked with real steps every 0.5 s, the hold's last second always
+    #: stepped (:mod:`softpad.sim._mujoco_coast`; docs/trials.md). False: every step solved
+    #: (the reference the equivalence tests compare with).
+    coast_settled_hold: bool = True
 
     def __post_init__(self) -> None:
         for name in ("position_sigma_m", "yaw_sigma_rad", "sample_rate_hz"):

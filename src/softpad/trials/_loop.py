@@ -28,6 +28,10 @@ _TOUCH_N = 0.2
 #: A planned COG farther than this from the object's top-view footprint lies outside it, mm
 #: (the thesis's cylinder failure had it about 10 mm outside).
 _OUTSIDE_MM = 0.5
+#: The world steps for real through the hold's last second (``TrialConfig.coast_settled_hold``),
+#: so that the outcome is read from solved contacts and a slip in the last coasting window is
+#: still simulated.
+_COAST_MARGIN_S = 1.0
 
 
 class _Placed:
@@ -68,6 +72,9 @@ class _TrialWatcher:
             seen["increments_pa"] = tuple(data.get("increments_pa", ()))
         elif phase == "approach":
             self._approach(data)
+        elif phase == "hold" and self.t.config.coast_settled_hold:
+            hold_s = self.t.config.execution.hold_s
+            world.coast_settled_until(t_s + hold_s - _COAST_MARGIN_S)
         elif phase == "lift":  # the jaws have closed: is the object between them?
             contacts = world.gripper_contacts()
             seen["between"] = min(contacts.finger_on_object_n) > _TOUCH_N
@@ -84,6 +91,7 @@ class _TrialWatcher:
                 seen["delay"] = t_s - touch
                 seen["travel"] = 1e3 * (z - world.gripper_state().z_m)
         elif kind == "outcome":  # the end of a hold: is the object carried (truth)?
+            world.coast_settled_until(None)
             seen["outcome"] = data.get("outcome")
             seen["carried"] = seen.get("carried", False) or world.holding()
         elif kind == "retry":
