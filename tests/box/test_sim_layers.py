@@ -147,3 +147,51 @@ def test_the_guard_of_a_lost_box_sees_its_sensor_faults(nan: bool) -> None:
     now = float(box.true_pressures_pa[0])
     assert now < 0.3 * held if nan else abs(now - held) < 0.05 * held
     box.close()
+
+
+def _run(url: str, shortcut: bool, monkeypatch: pytest.MonkeyPatch, seed: int) -> list:
+    """Frames, valve states, trips and errors of a seeded valve-command sequence, with faults
+    injected into the layers while it runs."""
+    with monkeypatch.context() as m:
+        if not shortcut:  # every layer's read called, as before the shortcut
+            m.setattr(SensorFaults, "_passes_through", lambda self: False)
+            m.setattr(Unreachable, "_passes_through", lambda self: False)
+        rng = np.random.default_rng(seed)
+        out: list = []
+        with open_box(url) as box:
+            for i in range(1500):
+                if i % 50 == 0:
+                    cmd = [str(rng.choice(["inflate", "closed", "deflate"])) for _ in range(8)]
+                    try:
+                        box.set_valves(cmd)
+                    except Exception as exc:  # a tripped channel refusing inflate
+                        out.append(repr(exc))
+                if i == 400:
+                    box.inject_fault(
+                        Fault("nan", channel=2, at_s=box.time_s + 30 / box.sample_rate_hz)
+                    )
+                if i == 900:
+                    box.inject_fault(Fault("disconnect", at_s=box.time_s + 50 / box.sample_rate_hz))
+                try:
+                    f = box.read()
+                    out.append((f.t_s, f.pressures_pa.tobytes(), f.supply_pa, box.valves))
+                except ConnectionLost as exc:
+                    out.append(str(exc))
+            out.append(list(box.safety.trips))
+    return out
+
+
+@pytest.mark.parametrize("seed", range(4))
+@pytest.mark.parametrize("rate", [100, 1000])
+def test_layers_passing_frames_on_are_skipped_without_a_difference(
+    seed: int, rate: int, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """While no layer has a fault, the plain box reads and checks the frames itself; the
+    frames, valve states, trips and errors are those of the read through every layer, also
+    after a sensor fault and a lost link are injected at run time (their layers act again)."""
+    url = f"sim://?seed={seed}&rate_hz={rate}&inflated_kpa=2.5"
+    fast = _run(url, True, monkeypatch, seed)
+    assert fast == _run(url, False, monkeypatch, seed)
+    assert any(isinstance(x, str) and "stopped answering" in x for x in fast)  # link lost
+    assert any(isinstance(x, tuple) and np.isnan(np.frombuffer(x[1])[1]) for x in fast)  # nan
+    assert fast[-1]  # the guard tripped channels: the comparison covers vents

@@ -117,6 +117,9 @@ class SafetyGuard:
     _lows: deque[float] = field(init=False)
     _any_tripped: bool = field(init=False, default=False)
     _trip_pa: float = field(init=False, default=0.0)
+    _release_pa: float = field(init=False, default=0.0)
+    _min_pa: float = field(init=False, default=0.0)
+    _max_pa: float = field(init=False, default=0.0)
     _free: list[bool] = field(init=False)
     _held: list[bool] = field(init=False)
 
@@ -124,7 +127,9 @@ class SafetyGuard:
         self.tripped = np.zeros(self.channels, dtype=bool)
         window = self.limits.rise_window
         self._history, self._times, self._lows = (deque(maxlen=window) for _ in range(3))
-        self._trip_pa = self.limits.trip_pa  # read on every frame: not a property call
+        lim = self.limits  # its levels read on every frame: plain attributes, not properties
+        self._trip_pa, self._release_pa = lim.trip_pa, lim.release_pa
+        self._min_pa, self._max_pa = lim.sensor_min_pa, lim.sensor_max_pa
         self._free, self._held = [True] * self.channels, [False] * self.channels
 
     def check(self, t_s: float, pressures_pa: NDArray[np.float64]) -> list[int]:
@@ -132,14 +137,17 @@ class SafetyGuard:
         times = self._times
         if times and t_s == times[-1]:
             return []  # the same frame seen again (a wrapper sharing this guard)
-        p = np.asarray(pressures_pa, dtype=float)
-        if p.shape[0] != self.channels:
-            p = p[: self.channels]
-        values = p.tolist()
-        low = min(values)
+        values = np.asarray(pressures_pa, dtype=float).tolist()
+        if len(values) != self.channels:
+            values = values[: self.channels]
+        ordered = sorted(values)  # lowest and highest at once (cheaper than min and max)
+        low, top = ordered[0], ordered[-1]
+        finite = math.isfinite(sum(values))
         lows = self._lows
         self._history.append(values)  # the deques drop their oldest beyond rise_window
-        lows.append(low)
+        # a frame with a NaN has no order: its low is NaN, which fails the rise bound below
+        # (the exact test decides) while it is the window's oldest
+        lows.append(low if finite else math.nan)
         times.append(t_s)
         # The hot path (every frame of every box): every reading finite and within the
         # sensor's range, no tripped channel below the release level, and even the highest
@@ -147,21 +155,20 @@ class SafetyGuard:
         # (highest now - lowest then) / (frames - 1), below the trip level: nothing trips or
         # is released. Plain floats: on 8 values several times faster than NumPy calls.
         # Otherwise the exact per-channel test decides.
-        lim = self.limits
-        if math.isfinite(sum(values)) and low > lim.sensor_min_pa:
-            if self._any_tripped:
-                if min(compress(values, self._held)) < lim.release_pa:
-                    return self._check_arrays(t_s, values, lim)
-                high = max(compress(values, self._free), default=-math.inf)
-                top = max(values)
-            else:
-                high = top = max(values)
-            if top < lim.sensor_max_pa:
-                n = len(times)
-                rise = (high - lows[0]) / (n - 1) if n >= 2 and t_s > times[0] else 0.0
-                if high + max(rise, 0.0) <= self._trip_pa:
-                    return []
-        return self._check_arrays(t_s, values, lim)
+        if self._any_tripped:
+            if min(compress(values, self._held)) < self._release_pa:
+                return self._check_arrays(t_s, values, self.limits)
+            high = max(compress(values, self._free), default=-math.inf)
+        else:
+            high = top
+        if finite and low > self._min_pa and top < self._max_pa:
+            # one frame in the window: t_s is its oldest time too, no rise
+            rise = (high - lows[0]) / (len(times) - 1) if t_s > times[0] else 0.0
+            if not rise <= 0.0:  # a NaN rise (a NaN low in the window) fails the test below
+                high += rise
+            if high <= self._trip_pa:
+                return []
+        return self._check_arrays(t_s, values, self.limits)
 
     def _check_arrays(self, t_s: float, values: list[float], lim: SafetyLimits) -> list[int]:
         """The full per-channel test: trips, releases, invalid readings (plain floats: a loop

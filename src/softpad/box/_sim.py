@@ -145,6 +145,9 @@ class SimBox(Box):
         self._supply_true = self.pneumatics.supply_pa
         self._faults = FaultSchedule()
         self._leaking = False
+        #: The outermost layer around this box found passing every frame on unchanged (it
+        #: then lets this box read and check the frames itself; softpad.box._sim_layers).
+        self._passed_by: object = None
 
     def _start_inflated(self, pressure_pa: float) -> None:
         """Every module at ``pressure_pa`` under the world's loads (0..5 kPa)."""

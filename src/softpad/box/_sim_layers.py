@@ -23,6 +23,7 @@ layer reads like the plain box; :func:`simulator_of` finds the plain box behind 
 
 from __future__ import annotations
 
+import math
 import time
 from typing import TYPE_CHECKING, Any
 
@@ -48,6 +49,7 @@ class SimLayer(BoxWrapper):
     def __init__(self, inner: SimBox | SimLayer) -> None:
         super().__init__(inner)
         self._plain: SimBox = inner if isinstance(inner, SimBox) else inner._plain
+        self._blocked = False
 
     def __getattr__(self, name: str) -> Any:
         if name.startswith("__") or name == "inner":
@@ -69,6 +71,29 @@ class SimLayer(BoxWrapper):
 
     def _read(self) -> PressureFrame:
         return self.inner._read()  # the guard checks the outermost layer's frame only
+
+    def read(self) -> PressureFrame:
+        """Read one frame. While every layer passes the frames on unchanged (no fault of
+        theirs waiting or acting: :meth:`_passes_through`), the plain box reads the frame and
+        checks it with its guard, the layers' guard, itself: the same frame, trips and vents
+        without a call through every layer.
+
+        Whether they do is kept on the plain box (``_passed_by``: the outermost layer found
+        passing) until a fault is injected into a layer; a layer that stops passing frames on
+        (its faults waiting or started) never passes them on again, so ``_blocked`` stays."""
+        plain = self._plain
+        if plain._passed_by is self:
+            return plain.read()
+        if self._blocked or not self._passes_through():
+            self._blocked = True
+            return super().read()
+        plain._passed_by = self
+        return plain.read()
+
+    def _passes_through(self) -> bool:
+        """Whether this layer and those within pass every frame on as it is, and will until
+        a fault is injected into one of them."""
+        return False
 
     def close_valves(self) -> None:
         if not self.closed:
@@ -103,6 +128,7 @@ class _FaultLayer(SimLayer):
         if fault.kind not in self.kinds:
             self.inner.inject_fault(fault)
             return
+        self._plain._passed_by = None  # this layer no longer passes every frame on
         if fault.channel is not None:
             self.check_channel(fault.channel)
         self._faults.add(fault)
@@ -151,6 +177,14 @@ class SensorFaults(_FaultLayer):
             (self._nan if f.kind == "nan" else self._dropout)[f.channel - 1] = True
             self._bad = True
 
+    def _passes_through(self) -> bool:
+        inner = self.inner
+        return (
+            not self._bad
+            and self._faults.next_s == math.inf
+            and (isinstance(inner, SimBox) or inner._passes_through())
+        )
+
     def _read(self) -> PressureFrame:
         frame = self.inner._read()
         if frame.t_s >= self._faults.next_s:
@@ -177,6 +211,14 @@ class Unreachable(_FaultLayer):
 
     def _start(self, faults: list[Fault]) -> None:
         self.disconnected = self.disconnected or bool(faults)
+
+    def _passes_through(self) -> bool:
+        inner = self.inner
+        return (
+            not self.disconnected
+            and self._faults.next_s == math.inf
+            and (isinstance(inner, SimBox) or inner._passes_through())
+        )
 
     def _read(self) -> PressureFrame:
         frame = self.inner._read()

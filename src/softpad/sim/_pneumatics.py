@@ -215,6 +215,7 @@ class ChamberBank:
         self._a_in = np.zeros(m)
         self._a_out = np.zeros(m)
         self._flowing = np.zeros(m, dtype=bool)
+        self._all_flowing = False
         self._leak_version = 0
         self._steps_cache: tuple[float, int, NDArray[np.float64]] = (0.0, 0, np.zeros((0, 1)))
         #: Whether the last step solved the pressures exactly (module heights are updated then).
@@ -384,7 +385,10 @@ class ChamberBank:
         ahead = p_eq + (p0 - p_eq) * np.exp(-lam * steps)
         if ahead.shape[0] > 1:  # C is frozen along the stretch: end it where p moved far
             rising = lam > 0
-            moved = np.abs(ahead[:, rising] - p0[rising]).max(axis=1, initial=0.0)
+            if rising.all():  # no channel to leave out
+                moved = np.abs(ahead - p0).max(axis=1, initial=0.0)
+            else:
+                moved = np.abs(ahead[:, rising] - p0[rising]).max(axis=1, initial=0.0)
             far = int(np.searchsorted(moved, self.resolve_pa, side="right"))
             ahead = ahead[: max(1, far)]
         path = np.zeros((ahead.shape[0], self.n_channels))
@@ -397,7 +401,8 @@ class ChamberBank:
     ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Relaxation rate ``lambda`` (1/s) of every module channel at ``p`` and the pressure
         it relaxes to (the open orifices' equilibrium; ``p`` itself where nothing is open)."""
-        p_eq = np.where(self._flowing, self._eq, p)
+        # every channel open (the equilibrium is only rebound, never written in place)
+        p_eq = self._eq if self._all_flowing else np.where(self._flowing, self._eq, p)
         d = p - p_eq
         lam_pa = self.params.laminar_pa
         flow = self._k * (self._a_in * _g(supply_pa - p, lam_pa) - self._a_out * _g(p, lam_pa))
@@ -454,6 +459,7 @@ class ChamberBank:
         self._a_in = np.where(inflate_open, par.inflate_orifice_m2, 0.0)
         self._a_out = np.where(deflate_open, par.deflate_orifice_m2, 0.0) + self._leak_m2
         self._flowing = (self._a_in > 0) | (self._a_out > 0)
+        self._all_flowing = bool(self._flowing.all())
         self._eq = equilibrium_pa(self._a_in, self._a_out, supply_pa, par.laminar_pa)
         self._eq_key = key
 
