@@ -216,6 +216,7 @@ class ChamberBank:
         self._a_out = np.zeros(m)
         self._flowing = np.zeros(m, dtype=bool)
         self._all_flowing = False
+        self._no_outflow = self._no_inflow = False  # no orifice to the atmosphere / supply
         self._leak_version = 0
         self._steps_cache: tuple[float, int, NDArray[np.float64]] = (0.0, 0, np.zeros((0, 1)))
         #: Whether the last step solved the pressures exactly (module heights are updated then).
@@ -405,7 +406,14 @@ class ChamberBank:
         p_eq = self._eq if self._all_flowing else np.where(self._flowing, self._eq, p)
         d = p - p_eq
         lam_pa = self.params.laminar_pa
-        flow = self._k * (self._a_in * _g(supply_pa - p, lam_pa) - self._a_out * _g(p, lam_pa))
+        # the flow of the open orifices; terms of areas all zero left out (they are zeros: the
+        # flow differs at most in the sign of a zero, which no rate or pressure below keeps)
+        if self._no_outflow:
+            flow = self._k * (self._a_in * _g(supply_pa - p, lam_pa))
+        elif self._no_inflow:
+            flow = self._k * -(self._a_out * _g(p, lam_pa))
+        else:
+            flow = self._k * (self._a_in * _g(supply_pa - p, lam_pa) - self._a_out * _g(p, lam_pa))
         # a channel within SETTLED_PA of its equilibrium stays there (rate 0): it does not
         # shorten the stretch however stiff it is; the secant through the root has slope <= 0
         far = np.abs(d) > SETTLED_PA
@@ -460,6 +468,7 @@ class ChamberBank:
         self._a_out = np.where(deflate_open, par.deflate_orifice_m2, 0.0) + self._leak_m2
         self._flowing = (self._a_in > 0) | (self._a_out > 0)
         self._all_flowing = bool(self._flowing.all())
+        self._no_outflow, self._no_inflow = not self._a_out.any(), not self._a_in.any()
         self._eq = equilibrium_pa(self._a_in, self._a_out, supply_pa, par.laminar_pa)
         self._eq_key = key
 
