@@ -79,6 +79,23 @@ class InflationParams(CheckedFields, what="inflation"):
     #: check's ``min_change_pa``: 7 sigma of the difference of two 10-sample means of the
     #: sensor's 8 Pa noise and 3 Pa drift, 5.6 Pa).
     min_response_pa: Positive = 40.0
+    #: An inflating channel filling at less than this fraction of the rate the other channels
+    #: showed at the same pressure (their own inflations, :class:`FillRates`) leaks or has a
+    #: stuck-open deflation valve (0.7: a stuck deflation valve leaves 0.73 of the fill at
+    #: 200 Pa, 0.53 at 600 Pa, the outflow growing as sqrt(p); sound channels filling from
+    #: ambient, 10 seeds at 100 Hz and 1 kHz with the nominal and a twice as noisy sensor,
+    #: fill at 0.77 of their neighbours at the least), judged over ``fill_window_s`` once the
+    #: rate is also ``fill_sigmas`` standard deviations of its noise below theirs.
+    fill_ratio: Positive = 0.7
+    #: Window of the fill rate, seconds.
+    fill_window_s: Positive = 0.5
+    #: Fill rates are judged from this pressure up, pascals: below it a module still unfolds
+    #: from its collapsed shape (and the sensors' 20-40 Pa offsets shift it), sound channels
+    #: filled at 0.16-1 of each other's rates below 100 Pa (the seeds above); a stuck
+    #: deflation valve leaves 0.8 of the fill there anyway.
+    fill_from_pa: Positive = 250.0
+    #: Margin of the slow-fill judgement over the rate's noise, standard deviations.
+    fill_sigmas: Positive = 6.0
     #: The safety trip acts on a reading this far below ``max_pressure_pa``, pascals (50 Pa:
     #: about six standard deviations of the sensor noise plus a few samples of the fastest
     #: rise), so that the true pressure never exceeds the maximum before the valves react.
@@ -248,6 +265,62 @@ class SampleNoise:
         return max(1.0, self.sigma_pa / self.nominal_pa)
 
 
+class FillRates:
+    """How fast each channel filled at each pressure, and the channel filling far slower now
+    than the other channels did at the same pressure (a leak or a stuck-open deflation valve
+    while it fills: it still rises, so no response window finds it, until it is sealed at p0).
+
+    Only what the controller sees: the filtered readings of channels inflating for a whole
+    window with a filter clean of older samples. Every such window gives its channel's rate
+    and mean pressure; the rate is kept per channel in ``bin_pa`` pressure bins. A channel is
+    judged against the median of the other channels' rates in its bin (at least two of them),
+    so that a lagging channel is compared at its own pressure, where the fill is slower.
+    """
+
+    def __init__(
+        self,
+        n: int,
+        window_s: float,
+        from_pa: float = 0.0,
+        bin_pa: float = 50.0,
+        top_pa: float = 1e4,
+    ) -> None:
+        self.window_s = window_s
+        self.from_pa = from_pa
+        self.bin_pa = bin_pa
+        self._rates = np.full((n, int(top_pa / bin_pa) + 1), np.nan)
+        self._hist: deque[tuple[float, NDArray[np.float64]]] = deque()
+        self._clean_from = np.full(n, np.inf)
+
+    def update(
+        self, t: float, filtered: NDArray[np.float64], clean: NDArray[np.bool_]
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]] | None:
+        """One frame: ``clean`` marks the channels inflating with a filter holding only
+        samples since their command. Returns (rate, expected rate, window mean pressure) of
+        every channel, Pa/s and Pa, NaN where not judged; None before a whole window."""
+        self._clean_from = np.where(clean, np.minimum(self._clean_from, t), np.inf)
+        self._hist.append((t, filtered.copy()))
+        while len(self._hist) > 1 and t - self._hist[1][0] >= self.window_s:
+            self._hist.popleft()
+        t0, f0 = self._hist[0]
+        if t - t0 < self.window_s:
+            return None
+        judged = (self._clean_from <= t0) & (filtered + f0 >= 2.0 * self.from_pa)
+        rate = np.where(judged, (filtered - f0) / (t - t0), np.nan)
+        mid = np.where(judged, 0.5 * (filtered + f0), np.nan)
+        last = self._rates.shape[1] - 1
+        bins = np.clip(np.nan_to_num(mid / self.bin_pa), 0, last).astype(np.int64)
+        k = np.flatnonzero(judged)
+        self._rates[k, bins[k]] = rate[k]
+        expected = np.full_like(rate, np.nan)
+        for i in k:
+            others = np.delete(self._rates[:, bins[i]], i)
+            others = others[np.isfinite(others)]
+            if others.size >= 2:
+                expected[i] = float(np.median(others))
+        return rate, expected, mid
+
+
 class InflationController:
     """Initial inflation and adjustment as a state machine stepped with every frame.
 
@@ -282,6 +355,7 @@ class InflationController:
         self._from = np.full(self.n, np.nan)  # filtered pressure once the change shows
         self._starts = np.zeros(self.n, dtype=np.int64)  # corrections started per channel
         self.noise = SampleNoise()
+        self.fill = FillRates(self.n, p.fill_window_s, p.fill_from_pa)
         self._t0: float | None = None
         self._settled: tuple[float, NDArray[np.float64]] | None = None
         self._reads: list[NDArray[np.float64]] = []
@@ -307,6 +381,7 @@ class InflationController:
         if not self._filt.full:
             return []
         self._check_response(frame.t_s, filtered, fast, supply)
+        self._check_fill(frame.t_s, filtered)
         commands = self._bang_bang(frame.t_s, filtered, fast)
         if commands:
             self._settled = None
@@ -457,6 +532,30 @@ class InflationController:
             raise MonitoredFault(DetectedFault(t, k + 1, cause, message))
         self._from[window] = level[window]  # the next window starts here
         self._since_t[window] = t
+
+    def _check_fill(self, t: float, filtered: NDArray[np.float64]) -> None:
+        """An inflating channel filling at under ``fill_ratio`` of the other channels' rate at
+        its pressure, and ``fill_sigmas`` standard deviations of the rate's noise below it
+        (the noise as measured: :class:`SampleNoise`), leaks or has a stuck deflation valve."""
+        p = self.params
+        clean = (self._valves == 1) & (self._since >= p.filter_length)
+        got = self.fill.update(t, filtered, clean)
+        if got is None:
+            return
+        rate, expected, mid = got
+        slow = rate < p.fill_ratio * expected  # NaN (not judged) compares False
+        if not slow.any():
+            return
+        sigma = math.sqrt(2.0 / p.filter_length) * self.noise.sigma_pa / p.fill_window_s
+        slow &= expected - rate > p.fill_sigmas * sigma
+        if slow.any():
+            k = int(np.argmax(slow))
+            message = (
+                f"channel {k + 1}: fills at {rate[k]:.0f} Pa/s at {mid[k] / 1e3:.2f} kPa where "
+                f"the other channels filled at {expected[k]:.0f} Pa/s at t = {t:.2f} s "
+                "(leak, stuck deflation valve?)"
+            )
+            raise MonitoredFault(DetectedFault(t, k + 1, "no_response", message))
 
     def _check_timeout(self, t: float, filtered: NDArray[np.float64]) -> None:
         p = self.params
