@@ -300,10 +300,15 @@ class _RecordingRobot(RobotWrapper):
         super().set_gripper(width_m, speed_m_s)
 
 
-#: Phases in which the robot presses the pad or an object on it, or an object is being placed on
-#: it (what wait_object waits for: its modules rise while it settles), see
+#: Phases in which an object is being placed on the pad (what wait_object waits for: its
+#: modules rise while it settles), the fingers may touch it (descend, stopped at the first
+#: contact) or the robot presses the pad or an object on it, see
 #: FaultMonitor.loads_expected.
-_LOADING_PHASES = ("wait_object", "descend", "close", "lift")
+_LOADING_PHASES = ("wait_object", "descend", "close", "lift", "release")
+#: Phases in which the robot presses the pad or an object on it for seconds: closing the jaws
+#: (an object pushed or rolled along the pad), lifting, putting the object back down (it
+#: lands, bounces and settles); FaultMonitor.robot_pressing.
+_PRESSING_PHASES = ("close", "lift", "release")
 
 
 class GraspExecution:
@@ -400,7 +405,7 @@ class GraspExecution:
     def _enter(self, phase: str, **data: Any) -> None:
         self.phase = phase
         self.safety.monitor.loads_expected = phase in _LOADING_PHASES
-        self.safety.monitor.robot_pressing = phase in _LOADING_PHASES[1:]  # descend, close, lift
+        self.safety.monitor.robot_pressing = phase in _PRESSING_PHASES
         self._phases.append((phase, self._last_t))
         self.recorder.event(self._last_t, "phase", phase=phase, **data)
 

@@ -13,6 +13,7 @@ from the simulated box's noise and drift figures (docs/box-and-simulator.md, "Sa
 
 from __future__ import annotations
 
+import bisect
 import math
 import re
 from collections import deque
@@ -100,6 +101,18 @@ class FaultThresholds(CheckedFields, what="fault threshold"):
     window_s: Positive = 0.5
     #: Consecutive rising windows needed.
     rise_windows: Count = 3
+    #: A sealed channel rising faster than ``rise_loaded_pa_s`` between each of
+    #: ``steady_windows + 1`` consecutive levels ``steady_window_s`` apart (each the mean
+    #: reading over one such window), the fastest of these rates at most ``steady_spread``
+    #: times the slowest, rises steadily: a stuck-open inflation valve, whatever the phase
+    #: (loads expected or not). A load (an object placed or dropped, settling, rocking) is a
+    #: step that dominates one or two rates, not three even ones. Judged outside the robot's
+    #: presses, over windows that may span them.
+    steady_window_s: Positive = 0.25
+    #: Consecutive rates of the steady-rise judgement.
+    steady_windows: Count = 3
+    #: The fastest of the steady rates over the slowest, at most.
+    steady_spread: Positive = 1.25
     #: Running-average length of the monitored readings, samples.
     filter_length: Count = 10
 
@@ -144,6 +157,7 @@ class FaultMonitor:
         #: object on it (wait_object, descend, close, lift): a sealed module then rises because
         #: of the load, so "rising" is judged against ``rise_loaded_pa_s`` instead.
         self.loads_expected = False
+        self._steady = _SteadyRise(self.n, self.th.steady_window_s, self.th.steady_windows)
         #: True while the robot presses the pad or an object on it (descend, close, lift): the
         #: load may rise steadily for seconds, so "rising" is not judged at all (the range and
         #: over-pressure checks still are; these phases last a few seconds).
@@ -173,7 +187,32 @@ class FaultMonitor:
             what = f"supply pressure {supply / 1e3:.2f} kPa is below {th.supply_min_pa / 1e3:g} kPa"
             return _fault(t, None, "supply_loss", what, "supply lost?")
         sealed = self._sealed_frames >= th.filter_length
+        slopes = self._steady.update(t, p, sealed)
+        if slopes is not None and not self.robot_pressing:
+            fault = self._check_steady(t, slopes)
+            if fault is not None:
+                return fault
         return self._check_trend(t, mean, sealed)
+
+    def _check_steady(
+        self, t: float, rates: tuple[NDArray[np.float64], NDArray[np.float64]]
+    ) -> DetectedFault | None:
+        """A sealed channel rising steadily (``steady_*`` thresholds); ``rates``: between the
+        windows' levels and within each window, Pa/s (NaN where not sealed throughout)."""
+        th = self.th
+        between, within = rates
+        up = (between > th.rise_loaded_pa_s).all(axis=0)  # NaN: not sealed throughout
+        up &= between.max(axis=0) <= th.steady_spread * between.min(axis=0)
+        up &= (within > 0.5 * th.rise_loaded_pa_s).all(axis=0)
+        if not up.any():
+            return None
+        k = int(np.argmax(up))
+        span = th.steady_window_s * (th.steady_windows + 1)
+        what = (
+            f"rising {np.mean(between[:, k]):.0f} Pa/s with its inflation valve closed, "
+            f"steadily for {span:g} s"
+        )
+        return _fault(t, k, "rising", what, "inflation valve stuck open?")
 
     def _check_raw(self, t: float, p: NDArray[np.float64]) -> DetectedFault | None:
         th = self.th
@@ -234,6 +273,58 @@ class FaultMonitor:
             what = f"rising {slope[k]:.0f} Pa/s with its inflation valve closed"
             return _fault(t, k, "rising", what, "inflation valve stuck open?")
         return None
+
+
+class _SteadyRise:
+    """Rises of the channels sealed throughout the last ``count + 1`` windows of ``window_s``
+    (pure bookkeeping of :class:`FaultMonitor`), from the mean raw reading of every half
+    window: the rates between consecutive windows' levels, and within each window (its
+    second half's level over its first's). A window's level averages a rocking object's
+    4 Hz swing out instead of aliasing it into a trend; a load step, however large or slow to
+    settle, raises the level of at most two windows, and leaves the windows without it flat
+    inside."""
+
+    def __init__(self, n: int, window_s: float, count: int) -> None:
+        self.window_s = window_s
+        self.count = count
+        self._t: deque[float] = deque()
+        self._sum: deque[NDArray[np.float64]] = deque()
+        self._total = np.zeros(n)
+        self._sealed_from = np.full(n, np.inf)
+
+    def update(
+        self, t: float, p: NDArray[np.float64], sealed: NDArray[np.bool_]
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]] | None:
+        """One frame's raw readings; the rates between windows (``count`` x n) and within
+        them (``count + 1`` x n), newest first, Pa/s (NaN where a channel was not sealed
+        throughout), or None before the whole span is in."""
+        self._sealed_from = np.where(sealed, np.minimum(self._sealed_from, t), np.inf)
+        if not self._t:
+            self._t.append(t - 1e-9)
+            self._sum.append(self._total.copy())
+        self._total = self._total + p
+        self._t.append(t)
+        self._sum.append(self._total.copy())
+        span = self.window_s * (self.count + 1)
+        while len(self._t) > 1 and self._t[1] <= t - span:
+            self._t.popleft()
+            self._sum.popleft()
+        if t - self._t[0] < span:
+            return None
+        half = 0.5 * self.window_s
+        edges = [bisect.bisect_right(self._t, t - j * half) - 1 for j in range(2 * self.count + 3)]
+        sums = np.array([self._sum[i] for i in edges])
+        counts = -np.diff(np.array(edges, dtype=float))  # samples in each half window
+        if counts.min() < 1.0:
+            return None
+        halves = (sums[:-1] - sums[1:]) / counts[:, None]
+        levels = 0.5 * (halves[0::2] + halves[1::2])
+        between = (levels[:-1] - levels[1:]) / self.window_s
+        within = (halves[0::2] - halves[1::2]) / half
+        old = self._sealed_from > self._t[edges[-1]]
+        between[:, old] = np.nan
+        within[:, old] = np.nan
+        return between, within
 
 
 def _fault(t: float, k: int | None, kind: str, what: str, guess: str = "") -> DetectedFault:
