@@ -118,7 +118,11 @@ class ContactSensing:
         con = d.contact
         g1, g2 = con.geom1.tolist(), con.geom2.tolist()
         grip = self._grip
-        watch = self.first_touch_s is None or self.tip_hit_object is None
+        # _watch can change a record only before the first touch, or, with the jaws open,
+        # before a jaw came down on an object (closed jaws: no first-touch work per step)
+        watch = self.first_touch_s is None or (
+            self.tip_hit_object is None and width_m >= self.open_width_m
+        )
         on: list[int] = []
         ks: list[int] = []
         near: list[int] = []  # contacts of a sole or a finger (the first-touch records)
