@@ -177,18 +177,23 @@ def _random_frames(
 
 @pytest.mark.parametrize("seed", range(40))
 def test_guard_hot_paths_decide_as_the_per_channel_rule(seed: int) -> None:
-    """The guard's shortcuts (nothing can trip; tripped channels not yet released) trip and
-    release exactly the channels, on exactly the frames, that the rule checked channel by
+    """The guard's shortcuts (nothing can trip; tripped channels not yet released), with the
+    readings' lowest and highest value found by the guard (check) or given (check_span), trip
+    and release exactly the channels, on exactly the frames, that the rule checked channel by
     channel gives (fails if a shortcut skips a frame where something changes)."""
     rng = np.random.default_rng(seed)
     channels = int(rng.integers(1, 9))
     limits = SafetyLimits(rise_window=int(rng.integers(2, 12)))
     frames = _random_frames(rng, channels, 1500)
-    guard = SafetyGuard(channels, limits)
+    guard, spans = SafetyGuard(channels, limits), SafetyGuard(channels, limits)
     expected = _reference_trips(limits, frames)
     changes = 0
     for (t, p), (new, tripped) in zip(frames, expected, strict=True):
         assert guard.check(t, p) == new, t
         assert guard.tripped.tolist() == tripped, t
+        # the simulated box's way: lowest and highest reading given (NaN with a NaN)
+        assert spans.check_span(t, p, float(np.min(p)), float(np.max(p))) == new, t
+        assert spans.tripped.tolist() == tripped, t
         changes += len(new)
+    assert spans.trips == guard.trips
     assert changes > 5  # the walks do trip channels: the test is not vacuous

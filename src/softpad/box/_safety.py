@@ -112,7 +112,7 @@ class SafetyGuard:
     limits: SafetyLimits = field(default_factory=SafetyLimits)
     tripped: NDArray[np.bool_] = field(init=False)
     trips: list[tuple[float, int, str]] = field(init=False, default_factory=list)
-    _history: deque[list[float]] = field(init=False)
+    _history: deque[list[float] | NDArray[np.float64]] = field(init=False)
     _times: deque[float] = field(init=False)
     _lows: deque[float] = field(init=False)
     _any_tripped: bool = field(init=False, default=False)
@@ -141,12 +141,37 @@ class SafetyGuard:
         if len(values) != self.channels:
             values = values[: self.channels]
         ordered = sorted(values)  # lowest and highest at once (cheaper than min and max)
-        low, top = ordered[0], ordered[-1]
         finite = math.isfinite(sum(values))
-        lows = self._lows
-        self._history.append(values)  # the deques drop their oldest beyond rise_window
+        return self._update(t_s, values, values, ordered[0], ordered[-1], finite)
+
+    def check_span(
+        self, t_s: float, row: NDArray[np.float64], low: float, high: float
+    ) -> list[int]:
+        """:meth:`check` of a frame whose readings ``row`` (one per channel, never modified
+        afterwards) have the lowest and highest value ``low`` and ``high`` (NaN when a reading
+        is NaN), computed by the caller: the same decisions, without sorting the readings (the
+        simulated box knows them for a whole block of frames at once)."""
+        times = self._times
+        if times and t_s == times[-1]:
+            return []
+        finite = math.isfinite(low) and math.isfinite(high)
+        return self._update(t_s, row, None, low, high, finite)
+
+    def _update(
+        self,
+        t_s: float,
+        row: NDArray[np.float64] | list[float],
+        values: list[float] | None,
+        low: float,
+        top: float,
+        finite: bool,
+    ) -> list[int]:
+        """Add a frame to the window and decide (``values``: ``row`` as floats, None: not yet
+        converted; ``finite``: every reading finite)."""
+        self._history.append(row)  # the deques drop their oldest beyond rise_window
         # a frame with a NaN has no order: its low is NaN, which fails the rise bound below
         # (the exact test decides) while it is the window's oldest
+        lows, times = self._lows, self._times
         lows.append(low if finite else math.nan)
         times.append(t_s)
         # The hot path (every frame of every box): every reading finite and within the
@@ -156,6 +181,8 @@ class SafetyGuard:
         # is released. Plain floats: on 8 values several times faster than NumPy calls.
         # Otherwise the exact per-channel test decides.
         if self._any_tripped:
+            if values is None:
+                values = list(row) if isinstance(row, list) else row.tolist()
             if min(compress(values, self._held)) < self._release_pa:
                 return self._check_arrays(t_s, values, self.limits)
             high = max(compress(values, self._free), default=-math.inf)
@@ -168,12 +195,16 @@ class SafetyGuard:
                 high += rise
             if high <= self._trip_pa:
                 return []
+        if values is None:
+            values = list(row) if isinstance(row, list) else row.tolist()
         return self._check_arrays(t_s, values, self.limits)
 
     def _check_arrays(self, t_s: float, values: list[float], lim: SafetyLimits) -> list[int]:
         """The full per-channel test: trips, releases, invalid readings (plain floats: a loop
         over a few channels is several times faster than NumPy calls)."""
         first, n = self._history[0], len(self._history)
+        if not isinstance(first, list):  # a row given to check_span
+            first = first.tolist()
         span = self._times[-1] - self._times[0]
         per_frame = 1.0 / (n - 1) if n >= 2 and span > 0 else 0.0
         tripped, new = self.tripped, []

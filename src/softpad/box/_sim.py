@@ -216,6 +216,21 @@ class SimBox(Box):
         same values as drawn on demand)."""
         self.sensors.refill_if_due()
 
+    def read(self) -> PressureFrame:
+        """Read one frame (:meth:`Box.read`); the guard is given the readings' lowest and
+        highest value where the sensors computed them for a block of frames at once."""
+        self._check_open()
+        frame = self._read()
+        guard = self._guard if self._guard is not None else self.safety
+        span = self.sensors.span
+        if span is not None and span[0] is frame.pressures_pa:  # not replaced by a layer
+            new = guard.check_span(frame.t_s, span[0], span[1], span[2])
+        else:
+            new = guard.check(frame.t_s, frame.pressures_pa)
+        for ch in new:
+            self._vent(ch)
+        return frame
+
     def _read(self) -> PressureFrame:
         dt = self._dt
         t = self._t + dt

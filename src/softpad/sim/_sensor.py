@@ -60,6 +60,16 @@ class SensorParams(CheckedFields, what="sensor"):
         return cls(0.0, 0.0, 1.0, 0.0, 0.0, -1e6, 1e6, 0.0)
 
 
+#: Ramps of at least this many readings get their rows' lowest and highest values computed at
+#: once (:attr:`SensorBank.span`); a shorter one costs more in the reductions than it saves.
+SPAN_ROWS = 8
+
+
+def _row_spans(block: NDArray[np.float64]) -> tuple[list[float], list[float]]:
+    """Lowest and highest value of every row of ``block`` (NaN where a row has a NaN)."""
+    return np.minimum.reduce(block, axis=1).tolist(), np.maximum.reduce(block, axis=1).tolist()
+
+
 class SensorBank:
     """Noisy readings of every channel; noise drawn in blocks from a seeded generator.
 
@@ -114,6 +124,14 @@ class SensorBank:
         self._supply_noise: list[float] = [0.0] * block  # plain floats: read one per sample
         self._same = 0
         self._static: NDArray[np.float64] | None = None
+        self._static_lo: list[float] = []
+        self._static_hi: list[float] = []
+        self._ramp_lo: list[float] | None = None
+        self._ramp_hi: list[float] = []
+        #: The last reading with its lowest and highest value (NaN when one is NaN), where
+        #: they were computed for its whole block at once (a still box, a ramp of at least
+        #: SPAN_ROWS readings); None otherwise. The box's guard takes them (no sorting).
+        self.span: tuple[NDArray[np.float64], float, float] | None = None
         self._static_start = 0
         self._ramp: NDArray[np.float64] | None = None
         self._ramp_key = -1
@@ -177,13 +195,17 @@ class SensorBank:
             self._static = None
         else:
             self._same += 1
-            if self._static is not None:
-                return self._static[i - self._static_start], supply_pa + self._supply_noise[i]
-            if self._same >= 2:
+            if self._static is None and self._same >= 2:
                 self._static = self._quantise(true_pa + self._noise[i:])
                 self._static.flags.writeable = False
                 self._static_start = i
-                return self._static[0], supply_pa + self._supply_noise[i]
+                self._static_lo, self._static_hi = _row_spans(self._static)
+            if self._static is not None:
+                j = i - self._static_start
+                row = self._static[j]
+                self.span = (row, self._static_lo[j], self._static_hi[j])
+                return row, supply_pa + self._supply_noise[i]
+        self.span = None
         return self._quantise(true_pa + self._noise[i]), supply_pa + self._supply_noise[i]
 
     def sample_path(
@@ -211,7 +233,13 @@ class SensorBank:
         self._ramp, self._ramp_key, self._ramp_start = ramp, key, i
         self._ramp_end = i + k
         self._ramp_next = i + 1
-        return ramp[0], supply_pa + self._supply_noise[i]
+        reading = ramp[0]
+        if k >= SPAN_ROWS:
+            self._ramp_lo, self._ramp_hi = _row_spans(ramp)
+            self.span = (reading, self._ramp_lo[0], self._ramp_hi[0])
+        else:  # too short a ramp to pay for the reductions
+            self._ramp_lo, self.span = None, None
+        return reading, supply_pa + self._supply_noise[i]
 
     def next_on_ramp(self, key: int, supply_pa: float) -> tuple[NDArray[np.float64], float] | None:
         """The next reading of the ramp computed by :meth:`sample_path` for ``key``, or None
@@ -225,7 +253,11 @@ class SensorBank:
         self._same = 0
         ramp = self._ramp
         assert ramp is not None
-        return ramp[i - self._ramp_start], supply_pa + self._supply_noise[i]
+        j = i - self._ramp_start
+        row = ramp[j]
+        lo = self._ramp_lo
+        self.span = None if lo is None else (row, lo[j], self._ramp_hi[j])
+        return row, supply_pa + self._supply_noise[i]
 
     def _quantise(self, x: NDArray[np.float64]) -> NDArray[np.float64]:
         # np.rint is what np.round(.., 0) computes (half to even), and maximum/minimum clip
