@@ -73,27 +73,32 @@ print(json.dumps({"ticks": sampled + dropped, "dropped": dropped, "late_max_s": 
 """
 
 
+def _serve_command(port: int, duration_s: float) -> list[str]:
+    """The command line of the served simulated box the link benchmark measures."""
+    return [
+        sys.executable,
+        "-m",
+        "softpad.cli.main",
+        "box",
+        "serve",
+        "--sim",
+        "--box",
+        "sim://?rate_hz=1000&inflated_kpa=1.1&object=banana",
+        "--listen",
+        f"tcp/127.0.0.1:{port}",
+        "--duration-s",
+        str(duration_s),
+        *(["--rt-priority", str(RT_PRIORITY)] if _fifo_priority() else []),
+    ]
+
+
 def _measure(duration_s: float) -> tuple[np.ndarray, int, int, dict]:
     from softpad.box import open_box
 
     sys.path.insert(0, "")
     port = _free_port()
     serve = subprocess.Popen(
-        [
-            sys.executable,
-            "-m",
-            "softpad.cli.main",
-            "box",
-            "serve",
-            "--sim",
-            "--box",
-            "sim://?rate_hz=1000&inflated_kpa=1.1&object=banana",
-            "--listen",
-            f"tcp/127.0.0.1:{port}",
-            "--duration-s",
-            str(duration_s + 300),
-            *(["--rt-priority", str(RT_PRIORITY)] if _fifo_priority() else []),
-        ],
+        _serve_command(port, duration_s + 300),
         stdout=subprocess.PIPE,
         stderr=subprocess.DEVNULL,
         text=True,

@@ -197,6 +197,17 @@ class ChamberBank:
         self.relaxation_per_stretch = 0.1
         #: Most sub-steps of one stiff step (then the step's last sub-step takes the rest).
         self.max_substeps = 64
+        self._init_stretch(m)
+        #: Whether the last step solved the pressures exactly (module heights are updated then).
+        self.solved = True
+        #: Number of exact solves so far (identifies the current stretch).
+        self.solve_count = 0
+        rho = self.params.air_density_kg_m3
+        self._k = self.params.gas_constant_rt * math.sqrt(2 * rho)
+
+    def _init_stretch(self, m: int) -> None:
+        """The state of the current stretch between exact solves, and the caches keyed on what
+        it depends on (valves, supply, leaks), for ``m`` modules."""
         self._dn_dp = np.ones(m)
         # the current stretch: true pressures after each of its steps (rows), the steps taken
         # and applied to _pressure/_amount, and its start (p0, n0, C) and equilibrium
@@ -219,12 +230,6 @@ class ChamberBank:
         self._no_outflow = self._no_inflow = False  # no orifice to the atmosphere / supply
         self._leak_version = 0
         self._steps_cache: tuple[float, int, NDArray[np.float64]] = (0.0, 0, np.zeros((0, 1)))
-        #: Whether the last step solved the pressures exactly (module heights are updated then).
-        self.solved = True
-        #: Number of exact solves so far (identifies the current stretch).
-        self.solve_count = 0
-        rho = self.params.air_density_kg_m3
-        self._k = self.params.gas_constant_rt * math.sqrt(2 * rho)
 
     @property
     def orifice_gain(self) -> float:
