@@ -13,7 +13,6 @@ from the simulated box's noise and drift figures (docs/box-and-simulator.md, "Sa
 
 from __future__ import annotations
 
-import bisect
 import math
 import re
 from collections import deque
@@ -146,8 +145,8 @@ class FaultMonitor:
         self.n = int(n_modules)
         self.th = thresholds or FaultThresholds()
         self.reference_pa: NDArray[np.float64] | None = None
-        self._buf: deque[NDArray[np.float64]] = deque(maxlen=self.th.filter_length)
-        self._supply: deque[float] = deque(maxlen=self.th.filter_length)
+        self._buf = _LastRows(self.th.filter_length, self.n)
+        self._supply = _LastRows(self.th.filter_length, 1)
         self._sealed_frames = np.zeros(self.n, dtype=np.int64)
         self._window_start: tuple[float, NDArray[np.float64]] | None = None
         self._rising = np.zeros(self.n, dtype=np.int64)
@@ -176,19 +175,20 @@ class FaultMonitor:
             return bad
         sealed_now = np.array([v is ValveCommand.CLOSED for v in valves[: self.n]])
         self._sealed_frames = np.where(sealed_now, self._sealed_frames + 1, 0)
-        self._buf.append(p.copy())
+        self._buf.append(p)
         self._supply.append(float(frame.supply_pa))
-        if len(self._buf) < self.th.filter_length:
+        if self._buf.count < self.th.filter_length:
             return None
-        mean = np.mean(self._buf, axis=0)
-        supply = float(np.mean(self._supply))
+        length = self.th.filter_length  # np.mean's own sum and division, without its wrapper
+        mean = np.add.reduce(self._buf.rows(), axis=0) / length
+        supply = float(np.add.reduce(self._supply.rows()[:, 0])) / length
         th = self.th
         if not supply >= th.supply_min_pa:
             what = f"supply pressure {supply / 1e3:.2f} kPa is below {th.supply_min_pa / 1e3:g} kPa"
             return _fault(t, None, "supply_loss", what, "supply lost?")
         sealed = self._sealed_frames >= th.filter_length
-        slopes = self._steady.update(t, p, sealed)
-        if slopes is not None and not self.robot_pressing:
+        slopes = self._steady.update(t, p, sealed, rates=not self.robot_pressing)
+        if slopes is not None:
             fault = self._check_steady(t, slopes)
             if fault is not None:
                 return fault
@@ -287,44 +287,86 @@ class _SteadyRise:
     def __init__(self, n: int, window_s: float, count: int) -> None:
         self.window_s = window_s
         self.count = count
-        self._t: deque[float] = deque()
-        self._sum: deque[NDArray[np.float64]] = deque()
+        self._t = np.empty(64)  # frame times, oldest at _lo, the newest at _hi - 1
+        self._sum = np.empty((64, n))  # running sums of the readings at those times
+        self._lo = self._hi = 0
         self._total = np.zeros(n)
         self._sealed_from = np.full(n, np.inf)
 
+    def _append(self, t: float) -> None:
+        if self._hi == len(self._t):  # full: move what is kept to the front, or grow
+            keep = self._hi - self._lo
+            if keep > len(self._t) // 2:
+                self._t = np.concatenate([self._t, np.empty(len(self._t))])
+                self._sum = np.concatenate([self._sum, np.empty_like(self._sum)])
+            self._t[:keep] = self._t[self._lo : self._hi]
+            self._sum[:keep] = self._sum[self._lo : self._hi]
+            self._lo, self._hi = 0, keep
+        self._t[self._hi] = t
+        self._sum[self._hi] = self._total
+        self._hi += 1
+
     def update(
-        self, t: float, p: NDArray[np.float64], sealed: NDArray[np.bool_]
+        self, t: float, p: NDArray[np.float64], sealed: NDArray[np.bool_], rates: bool = True
     ) -> tuple[NDArray[np.float64], NDArray[np.float64]] | None:
         """One frame's raw readings; the rates between windows (``count`` x n) and within
         them (``count + 1`` x n), newest first, Pa/s (NaN where a channel was not sealed
-        throughout), or None before the whole span is in."""
+        throughout), or None before the whole span is in, when no channel was sealed
+        throughout, or when ``rates`` is False (the frame only kept)."""
         self._sealed_from = np.where(sealed, np.minimum(self._sealed_from, t), np.inf)
-        if not self._t:
-            self._t.append(t - 1e-9)
-            self._sum.append(self._total.copy())
+        if self._hi == self._lo:
+            self._append(t - 1e-9)
         self._total = self._total + p
-        self._t.append(t)
-        self._sum.append(self._total.copy())
+        self._append(t)
         span = self.window_s * (self.count + 1)
-        while len(self._t) > 1 and self._t[1] <= t - span:
-            self._t.popleft()
-            self._sum.popleft()
-        if t - self._t[0] < span:
+        times = self._t
+        while self._hi - self._lo > 1 and times[self._lo + 1] <= t - span:
+            self._lo += 1
+        if not rates or t - times[self._lo] < span:
             return None
+        if self._sealed_from.min() > t - span:
+            return None  # no channel sealed throughout (see ``old`` below)
         half = 0.5 * self.window_s
-        edges = [bisect.bisect_right(self._t, t - j * half) - 1 for j in range(2 * self.count + 3)]
-        sums = np.array([self._sum[i] for i in edges])
-        counts = -np.diff(np.array(edges, dtype=float))  # samples in each half window
+        kept = times[self._lo : self._hi]
+        edges = np.searchsorted(kept, t - half * np.arange(2 * self.count + 3), side="right") - 1
+        old = self._sealed_from > kept[edges[-1]]
+        if old.all():
+            return None  # no channel sealed throughout: every rate would be NaN
+        counts = -np.diff(edges.astype(float))  # samples in each half window
         if counts.min() < 1.0:
             return None
+        sums = self._sum[self._lo + edges]
         halves = (sums[:-1] - sums[1:]) / counts[:, None]
         levels = 0.5 * (halves[0::2] + halves[1::2])
         between = (levels[:-1] - levels[1:]) / self.window_s
         within = (halves[0::2] - halves[1::2]) / half
-        old = self._sealed_from > self._t[edges[-1]]
         between[:, old] = np.nan
         within[:, old] = np.nan
         return between, within
+
+
+class _LastRows:
+    """The last ``length`` rows appended, oldest first, as one contiguous array (each row
+    written twice into a buffer of twice the length, so no copy is made to read them)."""
+
+    def __init__(self, length: int, n: int) -> None:
+        self._buf = np.zeros((2 * length, n))
+        self._length = length
+        self._next = 0
+        #: Rows appended so far, at most ``length``.
+        self.count = 0
+
+    def append(self, row: NDArray[np.float64] | float) -> None:
+        i = self._next
+        self._buf[i] = row
+        self._buf[i + self._length] = row
+        self._next = (i + 1) % self._length
+        self.count = min(self.count + 1, self._length)
+
+    def rows(self) -> NDArray[np.float64]:
+        """The rows appended, oldest first (a view: read it before the next append)."""
+        start = self._next if self.count == self._length else 0
+        return self._buf[start : start + self.count]
 
 
 def _fault(t: float, k: int | None, kind: str, what: str, guess: str = "") -> DetectedFault:
