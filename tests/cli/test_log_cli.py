@@ -67,6 +67,15 @@ def test_log_recover_a_cut_file(tmp_path, capsys) -> None:
     assert json.loads(capsys.readouterr().out)["frames"] == d["frames"]
 
 
+def test_log_recover_refuses_an_empty_out(tmp_path, capsys) -> None:
+    # found by the misuse campaign with a fresh seed (3801): '--out=' was dropped silently
+    cut = tmp_path / "cut.mcap"
+    cut.write_bytes((DATA / "banana.mcap").read_bytes()[:120_000])
+    assert main(["log", "recover", str(cut), "--out="]) == 2
+    assert "name is empty" in capsys.readouterr().err
+    assert not (tmp_path / "cut.recovered.mcap").exists()
+
+
 @pytest.mark.parametrize(
     ("argv", "message"),
     [

@@ -339,6 +339,8 @@ def recover(path: str | Path, out: str | Path | None = None, force: bool = False
     src = Path(path)
     if not src.is_file():
         raise InputError(f"recording {str(src)!r} does not exist")
+    if out is not None and not str(out).strip():
+        raise InputError("the recovered file's name is empty: give FILE.mcap, or leave --out out")
     dst = check_output(out or src.with_name(src.stem + ".recovered.mcap"), force)
     records, _ = _iter_records(src)
     schema_ids: dict[int, int] = {}
