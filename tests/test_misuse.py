@@ -58,7 +58,7 @@ def _campaign_api_cases():
     value a thousand times off accepted silently, or text and NaN taken for numbers."""
     from softpad.box import SafetyLimits, SimBox
     from softpad.config import BoxSettings, LinkSettings, Thresholds
-    from softpad.control import FaultThresholds, InflationParams
+    from softpad.control import ExecutionParams, FaultThresholds, InflationParams
     from softpad.design import TrialOptions, object_set_from_dict
     from softpad.fem import LoadPatch
     from softpad.layout import GripperSpec, PadLayout, PadPose, parse_layout
@@ -102,6 +102,13 @@ def _campaign_api_cases():
         "format_plans layout text": (lambda: format_plans([0.0] * 6, [], "2x3", 50.0), "PadLayout"),
         "object size in m": (lambda: brick(size_mm=[0.031, 0.031, 0.023]), "metres given as"),
         "object mass in kg": (lambda: brick(mass_g=0.0126), "kilograms given as"),
+        # the campaign with a fresh seed (3801)
+        "contact threshold in kPa": (
+            lambda: ExecutionParams(contact_threshold_pa=0.0917),
+            "kilopascals",
+        ),
+        "hold in ms": (lambda: ExecutionParams(hold_s=13672.0), "milliseconds"),
+        "supply minimum in kPa": (lambda: FaultThresholds(supply_min_pa=5.1), "kilopascals"),
     }
 
 
@@ -206,6 +213,13 @@ CAMPAIGN_CLI_CASES = {
     "arm node port": (["sim", "arm-node", "--port", "70000"], "--port"),
     "monitor period in ms": (["box", "monitor", "--count", "3", "--period-s", "500"], "--period-s"),
     "config names its file": (["plan", "--delta", "0,0.1,0,0,0,0", "--config", "m.toml"], "m.toml"),
+    # the campaign with a fresh seed (3801)
+    "fem stiffness in Pa": (["fem", "stiffness", "--pressures-kpa=500,1000"], "3 kPa"),
+    "fem sensitivity absolute": (["fem", "sensitivity", "--pressures-kpa=101.325,1"], "3 kPa"),
+    "zenoh timeout NaN": (
+        ["box", "read", "--count", "2", "--box", "zenoh://127.0.0.1:1?timeout_s=nan"],
+        "timeout_s",
+    ),
 }
 
 

@@ -433,6 +433,8 @@ def open_zenoh_url(location: str, options: dict[str, str]) -> ZenohBox:
             raise InputError(
                 f"zenoh:// timeout_s must be a number, got {options['timeout_s']!r}"
             ) from None
+        if not 0.0 < timeout <= 3600.0:  # NaN fails too
+            raise InputError(f"zenoh:// timeout_s must be from 0 to 3600 s, got {timeout:g}")
     protocol, auth = client_auth(client_link(options))
     if protocol == "tcp" and not _loopback(parts.hostname):
         raise InputError(

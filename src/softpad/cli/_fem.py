@@ -526,11 +526,23 @@ def _design(args: argparse.Namespace) -> int:
     return 0
 
 
+def _check_top_pressure(pressures: list[float]) -> None:
+    """Refuse study pressures above the module's maximum, before the FEM set-up, naming the
+    option (500 kPa is usually pascals given as kilopascals)."""
+    top = max(pressures)
+    if top > thesis.MAX_PRESSURE_PA:
+        raise InputError(
+            f"--pressures-kpa: {top / 1e3:g} kPa exceeds the module's maximum "
+            f"{thesis.MAX_PRESSURE_PA / 1e3:g} kPa"
+        )
+
+
 def _stiffness(args: argparse.Namespace) -> int:
     from softpad.fem import stiffness_study
 
     _check_outputs(args)
     pressures = _numbers(args.pressures_kpa, "--pressures-kpa", 1e3, positive=True)
+    _check_top_pressure(pressures)
     forces = _numbers(args.forces_n, "--forces-n", positive=True)
     if not 0 < args.radius_mm < args.width_mm / 2:
         raise InputError(
@@ -565,6 +577,7 @@ def _sensitivity(args: argparse.Namespace) -> int:
 
     _check_outputs(args)
     pressures = _numbers(args.pressures_kpa, "--pressures-kpa", 1e3, positive=True)
+    _check_top_pressure(pressures)
     result = _run_study(
         args,
         "sensitivity",
@@ -799,12 +812,7 @@ def _response(args: argparse.Namespace) -> int:
         if args.pressures_kpa
         else DEFAULT_RESPONSE_PRESSURES_PA
     )
-    top = max(pressures)
-    if top > thesis.MAX_PRESSURE_PA:  # before the FEM set-up, with the option's name
-        raise InputError(
-            f"--pressures-kpa: {top / 1e3:g} kPa exceeds the module's maximum "
-            f"{thesis.MAX_PRESSURE_PA / 1e3:g} kPa"
-        )
+    _check_top_pressure(pressures)
     setup = _setup(args)
     with _progress(args, "response") as progress:
         result = module_response(setup, pressures, progress)

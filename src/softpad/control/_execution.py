@@ -24,6 +24,7 @@ from softpad.control._inflation import (
 from softpad.control._robot import Robot, RobotWrapper, ToolPose
 from softpad.control._safety import DetectedFault, RunSafety, SafeStateResult
 from softpad.errors import (
+    KPA_AS_PA,
     MM_AS_M,
     CheckedFields,
     Count,
@@ -163,6 +164,19 @@ class ExecutionParams(CheckedFields, what="execution"):
             )
         for name in ("approach_height_m", "min_height_m", "lift_m", "landing_height_m"):
             check_range(f"execution {name}", getattr(self, name), 0.0, MAX_TRAVEL_M, "m", MM_AS_M)
+        # a contact threshold under 1 Pa (the sensor's noise is 5.5 Pa) is kilopascals given as
+        # pascals; a hold over an hour is milliseconds given as seconds
+        check_range(
+            "execution contact_threshold_pa",
+            self.contact_threshold_pa,
+            1.0,
+            1e4,
+            "Pa",
+            low_hint=KPA_AS_PA,
+        )
+        check_range(
+            "execution hold_s", self.hold_s, 0.0, 3600.0, "s", "milliseconds given as seconds?"
+        )
 
 
 @dataclass(frozen=True)

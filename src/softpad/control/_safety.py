@@ -121,6 +121,15 @@ class FaultThresholds(CheckedFields, what="fault threshold"):
         for name in ("max_pressure_pa", "sensor_max_pa"):
             v = getattr(self, name)
             check_range(f"fault threshold {name}", v, 100.0, 1e6, "Pa", low_hint=KPA_AS_PA)
+        if self.supply_min_pa != 0.0:  # 0: no supply sensor; under 100 Pa: kPa given as Pa
+            check_range(
+                "fault threshold supply_min_pa",
+                self.supply_min_pa,
+                100.0,
+                1e6,
+                "Pa",
+                low_hint=KPA_AS_PA,
+            )
 
 
 class FaultMonitor:
