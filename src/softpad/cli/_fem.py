@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 import sys
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from typing import Any
 
@@ -526,7 +526,7 @@ def _design(args: argparse.Namespace) -> int:
     return 0
 
 
-def _check_top_pressure(pressures: list[float]) -> None:
+def _check_top_pressure(pressures: Sequence[float]) -> None:
     """Refuse study pressures above the module's maximum, before the FEM set-up, naming the
     option (500 kPa is usually pascals given as kilopascals)."""
     top = max(pressures)
