@@ -63,7 +63,14 @@ def _campaign_api_cases():
     from softpad.fem import LoadPatch
     from softpad.layout import GripperSpec, PadLayout, PadPose, parse_layout
     from softpad.planning import PlannerParams, format_plans
-    from softpad.sim import ObjectPose, PadPhysics, Placement, PneumaticParams, SimGripper
+    from softpad.sim import (
+        ObjectPose,
+        PadPhysics,
+        Placement,
+        PneumaticParams,
+        SensorParams,
+        SimGripper,
+    )
 
     def brick(**change):
         obj = {"name": "brick", "mass_g": 12.6, "shape": "box", "size_mm": [31, 31, 23], **change}
@@ -109,6 +116,7 @@ def _campaign_api_cases():
         ),
         "hold in ms": (lambda: ExecutionParams(hold_s=13672.0), "milliseconds"),
         "supply minimum in kPa": (lambda: FaultThresholds(supply_min_pa=5.1), "kilopascals"),
+        "sensor drift time in ms": (lambda: SensorParams(drift_time_s=1915.6), "milliseconds"),
     }
 
 

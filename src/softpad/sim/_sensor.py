@@ -25,7 +25,16 @@ import numpy as np
 from numpy.typing import NDArray
 
 from softpad import thesis
-from softpad.errors import CheckedFields, InputError, NonNegative, Positive, check_count
+from softpad.errors import (
+    CheckedFields,
+    InputError,
+    NonNegative,
+    Positive,
+    check_count,
+    check_range,
+)
+
+MS_AS_S = "milliseconds given as seconds?"
 
 
 @dataclass(frozen=True)
@@ -53,6 +62,9 @@ class SensorParams(CheckedFields, what="sensor"):
         super().__post_init__()
         if not self.range_min_pa < self.range_max_pa:
             raise InputError("sensor range_min_pa must be below range_max_pa")
+        # the fast drift's correlation time (slow thermal zero shifts are a layer of their own):
+        # beyond ten minutes it is milliseconds given as seconds
+        check_range("sensor drift_time_s", self.drift_time_s, 0.0, 600.0, "s", MS_AS_S)
 
     @classmethod
     def ideal(cls) -> SensorParams:
