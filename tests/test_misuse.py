@@ -117,6 +117,7 @@ def _campaign_api_cases():
         "hold in ms": (lambda: ExecutionParams(hold_s=13672.0), "milliseconds"),
         "supply minimum in kPa": (lambda: FaultThresholds(supply_min_pa=5.1), "kilopascals"),
         "sensor drift time in ms": (lambda: SensorParams(drift_time_s=1915.6), "milliseconds"),
+        "tubing in ml": (lambda: PneumaticParams(tubing_volume_m3=3.14), "millilitres"),
     }
 
 

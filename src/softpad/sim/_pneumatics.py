@@ -51,7 +51,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from softpad import thesis
-from softpad.errors import KPA_AS_PA, CheckedFields, InputError, Positive, check_finite
+from softpad.errors import (
+    KPA_AS_PA,
+    CheckedFields,
+    InputError,
+    Positive,
+    check_finite,
+    check_range,
+)
 from softpad.sim._characteristic import ModuleCharacteristic
 
 #: Lowest non-zero supply pressure, pascals: a supply this low cannot lift a module off its
@@ -93,6 +100,16 @@ class PneumaticParams(CheckedFields, what="pneumatic"):
                 f"pneumatic supply_pa must be 0 (none) or >= {MIN_SUPPLY_PA:g} Pa, got "
                 f"{supply:g} Pa ({KPA_AS_PA})"
             )
+        # a channel's tubing is millilitres (thesis: 3.14 ml); a litre or more is millilitres
+        # (or cm^3) given as cubic metres
+        check_range(
+            "pneumatic tubing_volume_m3",
+            self.tubing_volume_m3,
+            0.0,
+            1e-3,
+            "m^3",
+            "millilitres given as cubic metres?",
+        )
 
     @property
     def gas_constant_rt(self) -> float:
