@@ -225,6 +225,10 @@ CAMPAIGN_CLI_CASES = {
     # the campaign with a fresh seed (3801)
     "fem stiffness in Pa": (["fem", "stiffness", "--pressures-kpa=500,1000"], "3 kPa"),
     "fem sensitivity absolute": (["fem", "sensitivity", "--pressures-kpa=101.325,1"], "3 kPa"),
+    "probe footprint in m": (
+        ["pad", "probe", "--at", "1,1", "--force-n", "0.2", "--footprint-mm=0.01,0.01"],
+        "metres given as millimetres",
+    ),
     "zenoh timeout NaN": (
         ["box", "read", "--count", "2", "--box", "zenoh://127.0.0.1:1?timeout_s=nan"],
         "timeout_s",

@@ -118,8 +118,11 @@ def _pair(text: str, flag: str, lo: float, hi: float, unit: str) -> tuple[float,
 
 def _footprint(args: argparse.Namespace) -> tuple[float, float]:
     w, length = _pair(args.footprint_mm, "--footprint-mm", 0.0, 200.0, "mm")
-    if w <= 0 or length <= 0:
-        raise InputError(f"--footprint-mm sides must be > 0 mm, got {args.footprint_mm!r}")
+    if w < 0.5 or length < 0.5:  # a fingertip's pad is millimetres: below, metres given as mm
+        raise InputError(
+            f"--footprint-mm sides must be at least 0.5 mm, got {args.footprint_mm!r} "
+            "(metres given as millimetres?)"
+        )
     return w * 1e-3, length * 1e-3
 
 
