@@ -139,6 +139,18 @@ class _FaultLayer(SimLayer):
     def _start(self, faults: list[Fault]) -> None:
         raise NotImplementedError
 
+    def _acting(self) -> bool:
+        """Whether one of this layer's faults has started."""
+        raise NotImplementedError
+
+    def _passes_through(self) -> bool:
+        inner = self.inner
+        return (
+            not self._acting()
+            and self._faults.next_s == math.inf
+            and (isinstance(inner, SimBox) or inner._passes_through())
+        )
+
 
 class SensorZeroShift(SimLayer):
     """The sensors' thermal zero shift: ``tempco x (T - T_room)`` added to every reading, the
@@ -177,13 +189,8 @@ class SensorFaults(_FaultLayer):
             (self._nan if f.kind == "nan" else self._dropout)[f.channel - 1] = True
             self._bad = True
 
-    def _passes_through(self) -> bool:
-        inner = self.inner
-        return (
-            not self._bad
-            and self._faults.next_s == math.inf
-            and (isinstance(inner, SimBox) or inner._passes_through())
-        )
+    def _acting(self) -> bool:
+        return self._bad
 
     def _read(self) -> PressureFrame:
         frame = self.inner._read()
@@ -212,13 +219,8 @@ class Unreachable(_FaultLayer):
     def _start(self, faults: list[Fault]) -> None:
         self.disconnected = self.disconnected or bool(faults)
 
-    def _passes_through(self) -> bool:
-        inner = self.inner
-        return (
-            not self.disconnected
-            and self._faults.next_s == math.inf
-            and (isinstance(inner, SimBox) or inner._passes_through())
-        )
+    def _acting(self) -> bool:
+        return self.disconnected
 
     def _read(self) -> PressureFrame:
         frame = self.inner._read()
