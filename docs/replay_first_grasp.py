@@ -53,6 +53,8 @@ def replay(trial: dict[str, Any], spec: Any, layout: PadLayout) -> tuple[str, An
     gripper = GripperSpec.from_mounting(trial["mounting"])
     planner = make_planner("model-based", gripper=gripper)
     plans = planner.plan(list(inc), detect_objects(list(inc), layout), layout)
+    if not plans:
+        return "not_found", None
     plan = max(plans, key=lambda p: sum(inc[m - 1] for m in p.modules))
     return judge(obj, _Placed(*trial["placement"]), plan, gripper, layout.pitch_m), plan
 
@@ -74,7 +76,7 @@ def main() -> None:
                 continue
             verdict, plan = replay(t, specs[t["object"]], layout)
             tally.setdefault(t["object"], []).append((verdict, t["success"]))
-            if args.v:
+            if args.v and plan is not None:
                 x, y, yaw = t["placement"]
                 print(
                     f"{t['object']:24s} {verdict:12s} held={t['success']!s:5s} plan=({plan.cog[0]:.2f}, "
