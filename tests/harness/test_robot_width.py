@@ -43,3 +43,56 @@ def test_arm_motions_keep_the_measured_width_in_range(measured_m: float, expecte
     robot.descend(0.05, 0.0)
     assert [c.width_m for c in world.commands] == [expected_m, expected_m]
     assert world.commands[0] == replace(world.commands[0], x_m=0.01, y_m=0.02, z_m=0.1)
+
+
+class _GrippingWorld(_World):
+    """Jaws closed on an object (the grip built up): once told to open they stay put for
+    ``stall`` reads while the squeeze relaxes, then open 2 mm a read."""
+
+    def __init__(self, width_m: float, stall: int) -> None:
+        super().__init__(width_m)
+        self.stall = stall
+
+    def jaws_settled(self) -> bool:
+        return True
+
+    def step(self) -> None:
+        target = self.commands[-1]
+        if self.stall > 0:
+            self.stall -= 1
+            return
+        width = min(target.width_m, self.state.width_m + 2e-3)
+        self.state = replace(self.state, width_m=width)
+        if width == target.width_m:
+            self.state = target
+
+
+@pytest.mark.parametrize("stall", [0, 1, 2, 5])
+def test_opening_jaws_move_until_open_however_long_the_grip_takes_to_relax(stall: int) -> None:
+    """An opening is done only at the commanded opening: a jaw that has not moved yet (the
+    grip relaxing) is not a jaw stopped on an object. Before, two reads without motion ended
+    the opening, and the loop lifted the arm with the object still in its jaws (dropped
+    from up to 12 cm: one module past the sensor's 10 kPa full scale, a fault after a held
+    grasp)."""
+    world = _GrippingWorld(0.0218, stall)
+    robot = SimulatedRobot(world, max_opening_m=0.06)  # type: ignore[arg-type]
+    robot.set_gripper(1.0, 0.2)
+    widths = []
+    for _ in range(100):
+        if not robot.is_moving():
+            break
+        world.step()
+        widths.append(world.state.width_m)
+    assert world.state.width_m == pytest.approx(0.06)
+    assert len(widths) >= stall + (0.06 - 0.0218) / 2e-3 - 1
+
+
+def test_closing_jaws_still_stop_on_the_object() -> None:
+    """Closing keeps its rule: jaws that stop short of the commanded width (on an object)
+    are done once they no longer move."""
+    world = _GrippingWorld(0.06, 0)
+    robot = SimulatedRobot(world, max_opening_m=0.06)  # type: ignore[arg-type]
+    robot.set_gripper(0.0, 0.05)
+    world.state = replace(world.state, width_m=0.03)  # the jaws stopped on a 30 mm object
+    moving = [robot.is_moving() for _ in range(4)]
+    assert moving[-1] is False and robot.holding()

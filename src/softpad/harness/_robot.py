@@ -25,6 +25,11 @@ MAX_SPEED_M_S = 2.0
 #: contacts' 0.1 mm penetration; an object less than 1 mm wider than the mounting's minimum
 #: reads as nothing.
 HOLD_MARGIN_M = 1e-3
+#: How close to their commanded opening the jaws must come before an opening counts as done,
+#: m. An opening is never stopped by the object just held: a jaw still on it after the grip
+#: relaxes (a step or two of no motion) is still opening, and an arm moving off then would
+#: carry the object up and drop it.
+OPENED_MARGIN_M = 0.5e-3
 
 
 def check_target(x_m: float, y_m: float, z_m: float, width_m: float) -> None:
@@ -97,6 +102,7 @@ class SimulatedRobot:
         self.max_opening_m = max_opening_m
         self._closed_width_m = closed_width_m
         self._closing = False
+        self._opening = False
         #: Opening the jaws were last commanded to close to (None: fully closed).
         self._close_to_m: float | None = None
         self.touches: list[TouchTruth] = []
@@ -119,6 +125,7 @@ class SimulatedRobot:
         check_target(target.x_m, target.y_m, target.z_m, target.width_m)
         self._target = target
         self._fresh = True
+        self._opening = False
         self.world.command_gripper(target, speed_m_s)
 
     def move_to(self, pose: ToolPose, speed_m_s: float) -> None:
@@ -147,12 +154,16 @@ class SimulatedRobot:
         self._closing = width_m < s.width_m
         self._close_to_m = width_m
         self._command(GripperState(s.x_m, s.y_m, s.z_m, s.yaw_rad, width_m), speed_m_s)
+        self._opening = width_m > s.width_m
 
     def is_moving(self) -> bool:
         s = self.world.gripper_state()
         if self._target is None or s == self._target:
             self._last = s
             return False
+        if self._opening and s.width_m < min(self._target.width_m, self.widest_m) - OPENED_MARGIN_M:
+            self._last = s  # nothing stops jaws opening: they move until they are open
+            return True
         if not self.world.jaws_settled():  # stopped on an object, the grip still building up
             self._last = s
             return True
@@ -178,6 +189,13 @@ class SimulatedRobot:
         if self._close_to_m is not None:
             goal = max(goal, self._close_to_m)
         return self._closing and width > goal + HOLD_MARGIN_M
+
+    @property
+    def widest_m(self) -> float:
+        """The widest the jaws open, m: ``max_opening_m``, or the world gripper's maximum
+        opening where that is narrower."""
+        world_max = getattr(getattr(self.world, "gripper", None), "max_width_m", math.inf)
+        return min(self.max_opening_m, float(world_max))
 
     @property
     def closed_width_m(self) -> float:
