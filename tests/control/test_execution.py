@@ -222,6 +222,59 @@ def test_a_held_object_is_put_down_before_the_jaws_open() -> None:
     }
 
 
+class _GripperSaysEmpty(SimulatedRobot):
+    """The simulated arm whose gripper always reports nothing held (jaws closed past the
+    holding margin on a can held by the fingertips), whatever the world carries."""
+
+    def holding(self) -> bool:
+        return False
+
+
+def _release_commands(log: RunLog) -> list[dict]:  # type: ignore[type-arg]
+    events = [(t, k, d) for t, k, d in log.events if k in ("phase", "robot")]
+    phase_at = {d["phase"]: i for i, (_, k, d) in enumerate(events) if k == "phase"}
+    return [d for _, k, d in events[phase_at["release"] : phase_at["valve_check"]] if k == "robot"]
+
+
+def test_an_object_the_pad_reads_in_the_air_is_put_down_whatever_the_gripper_says() -> None:
+    """The gripper reports nothing held but the world lifted the object: the pad, which read
+    the object's modules empty during the hold, has the loop put it down before the jaws open
+    (the outcome stays the gripper's). Before, the jaws opened at the lift height and the
+    object fell (a can read 4.7-10 kPa)."""
+    box = open_box("sim://?seed=11")
+    try:
+        log = RunLog()
+        robot = _GripperSaysEmpty(simulator_of(box).world)
+        r = run_simulated(["object-5"], box, FAST, log, robot=robot)
+    finally:
+        box.close()
+    assert r.to_dict()["outcome"] == "missed"
+    release = _release_commands(log)
+    assert release[0]["command"] == "move_to"
+    assert release[0]["speed_m_s"] == FAST.approach_speed_m_s
+    assert release[1]["command"] == "set_gripper" and release[1]["width_m"] == 1.0
+
+
+def test_a_miss_with_the_object_still_on_the_pad_opens_where_it_is() -> None:
+    """Jaws closed beside the object: the pad still reads it, so the jaws open where they
+    are (nothing to put down)."""
+    log = RunLog()
+    plan = GraspPlan((1, 2, 3), (1.5, 1.5), (0.5, 0.5), 0.0, "beside the object", (1, 2, 3))
+    r = run_simulated(["object-5"], "sim://?seed=11", FAST, log, planner=_FixedPlanner(plan))
+    assert r.to_dict()["outcome"] == "missed"
+    assert _release_commands(log)[0]["command"] == "set_gripper"
+
+
+class _FixedPlanner:
+    """Plans the one grasp it was given."""
+
+    def __init__(self, plan: GraspPlan) -> None:
+        self.fixed = plan
+
+    def plan(self, increments_pa, objects, layout):  # type: ignore[no-untyped-def]
+        return [self.fixed]
+
+
 class _CountingRetryPlanner:
     """A planner with a retry that counts its calls (a RetryPlanner)."""
 

@@ -22,6 +22,7 @@ class _World:
     def __init__(self, width_m: float) -> None:
         self.state = GripperState(0.0, 0.0, 0.02, 0.0, width_m)
         self.commands: list[GripperState] = []
+        self.time_s = 0.0
 
     def gripper_state(self) -> GripperState:
         return self.state
@@ -58,6 +59,7 @@ class _GrippingWorld(_World):
 
     def step(self) -> None:
         target = self.commands[-1]
+        self.time_s += 0.01  # a 100 Hz box
         if self.stall > 0:
             self.stall -= 1
             return
@@ -96,3 +98,19 @@ def test_closing_jaws_still_stop_on_the_object() -> None:
     world.state = replace(world.state, width_m=0.03)  # the jaws stopped on a 30 mm object
     moving = [robot.is_moving() for _ in range(4)]
     assert moving[-1] is False and robot.holding()
+
+
+def test_jaws_blocked_while_opening_end_the_opening_after_a_stall() -> None:
+    """A jaw held from outside (another object beside it) never reaches the opening: after
+    ``OPEN_STALL_S`` of simulated time without motion the opening counts as done, so the loop
+    is not held until its motion timeout."""
+    from softpad.harness._robot import OPEN_STALL_S
+
+    world = _GrippingWorld(0.0218, stall=10**6)  # never moves
+    robot = SimulatedRobot(world, max_opening_m=0.06)  # type: ignore[arg-type]
+    robot.set_gripper(1.0, 0.2)
+    reads = 0
+    while robot.is_moving() and reads < 1000:
+        world.step()
+        reads += 1
+    assert reads == pytest.approx(OPEN_STALL_S / 0.01, abs=2)

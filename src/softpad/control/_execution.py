@@ -580,6 +580,17 @@ class GraspExecution:
             records.append(record)
         return tuple(records)
 
+    def _went_up(self, modules: tuple[int, ...]) -> bool:
+        """Whether the pad read the object planned on ``modules`` off it during the hold,
+        whatever the gripper reports: none of those modules, nor their neighbours (where
+        closing jaws may have pushed it), in an object then. A can hanging by the fingertips
+        with the jaws closed past the holding margin is put down before the jaws open, not
+        dropped from the lift height."""
+        if self._hold_rise is None or not modules:
+            return False
+        near = set(modules).union(*(self.layout.neighbours(m) for m in modules))
+        return not self._loaded_modules(self._hold_rise).intersection(near)
+
     def _loaded_modules(self, increments: NDArray[np.float64]) -> set[int]:
         """Modules of every object the object detector finds in ``increments``."""
         return {k for obj in self.object_detector.objects(increments, self.layout) for k in obj}
@@ -605,7 +616,7 @@ class GraspExecution:
                 break
             retry = self._retry(plan, delta, "landed", stop_z, attempt)
             if retry is None:
-                outcome = self._close_lift_hold()
+                outcome = self._close_lift_hold(plan.modules)
                 retry = self._retry(plan, delta, outcome, stop_z, attempt)
             else:  # a jaw is on the object: closing would push it; up, and land again
                 outcome = "landed"
@@ -679,8 +690,9 @@ class GraspExecution:
                     f"robot: descent did not finish within {p.motion_timeout_s:g} s"
                 )
 
-    def _close_lift_hold(self) -> str:
-        """Close on the object, lift it, hold it, put it down; the grasp's outcome."""
+    def _close_lift_hold(self, modules: tuple[int, ...]) -> str:
+        """Close on the object (planned on ``modules``), lift it, hold it, put it down; the
+        grasp's outcome."""
         p = self.params
         self._enter("close")
         self._gripper(0.0, p.gripper_speed_m_s, "closing the gripper")
@@ -699,7 +711,7 @@ class GraspExecution:
         outcome = "held" if held else ("dropped" if lifted else "missed")
         self.recorder.event(self._last_t, "outcome", outcome=outcome)
         self._enter("release")
-        if held:  # put it back where it was grasped, at the approach speed, before opening
+        if held or self._went_up(modules):  # put it back where it was grasped, then open
             s = self.robot.state()
             down = replace(s.pose, z_m=s.z_m - p.lift_m)
             self._move(down, p.approach_speed_m_s, "putting the object down")

@@ -30,6 +30,10 @@ HOLD_MARGIN_M = 1e-3
 #: relaxes (a step or two of no motion) is still opening, and an arm moving off then would
 #: carry the object up and drop it.
 OPENED_MARGIN_M = 0.5e-3
+#: Simulated time an opening may go without the jaws moving before they count as blocked
+#: (an object pressing a jaw from outside) and the opening as done, s: a relaxing grip holds
+#: them still for a few milliseconds.
+OPEN_STALL_S = 0.5
 
 
 def check_target(x_m: float, y_m: float, z_m: float, width_m: float) -> None:
@@ -103,6 +107,7 @@ class SimulatedRobot:
         self._closed_width_m = closed_width_m
         self._closing = False
         self._opening = False
+        self._moved_at_s = 0.0  # world time the opening jaws last moved
         #: Opening the jaws were last commanded to close to (None: fully closed).
         self._close_to_m: float | None = None
         self.touches: list[TouchTruth] = []
@@ -155,6 +160,7 @@ class SimulatedRobot:
         self._close_to_m = width_m
         self._command(GripperState(s.x_m, s.y_m, s.z_m, s.yaw_rad, width_m), speed_m_s)
         self._opening = width_m > s.width_m
+        self._moved_at_s = self.world.time_s
 
     def is_moving(self) -> bool:
         s = self.world.gripper_state()
@@ -162,8 +168,11 @@ class SimulatedRobot:
             self._last = s
             return False
         if self._opening and s.width_m < min(self._target.width_m, self.widest_m) - OPENED_MARGIN_M:
-            self._last = s  # nothing stops jaws opening: they move until they are open
-            return True
+            if self._last is None or s.width_m != self._last.width_m:
+                self._moved_at_s = self.world.time_s
+            if self.world.time_s - self._moved_at_s < OPEN_STALL_S:
+                self._last = s  # a grip relaxing before the jaws open: still opening
+                return True
         if not self.world.jaws_settled():  # stopped on an object, the grip still building up
             self._last = s
             return True
