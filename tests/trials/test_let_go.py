@@ -2,12 +2,13 @@
 
 Before, the simulated robot reported an opening finished once the jaws had not moved for a
 read, which a grip still relaxing does; the loop then lifted the arm with the object in its
-jaws and dropped it from up to 12 cm. Gripper-aware planner and adaptive detector, randomised
-labs, toy and charger (the heaviest lopsided objects of Table 6.1) at seeds 0-7: one held
-trial in three put a module past the configured maximum or the sensor's 10 kPa full scale
-in ``release``, and the monitor ended the run in a fault after a held grasp. Now no held
-trial of them reaches the trials' configured maximum (9.5 kPa: a gripper pressing an object
-into the pad reads above the 3 kPa inflation maximum; ``trial_execution_params``).
+jaws and dropped it from up to 12 cm: on development seeds 1000-1005 (gripper-aware planner,
+adaptive detector, randomised labs) 6 of 31 held trials of six Table 6.1 objects faulted in
+``release`` at the configured maximum or the sensor's 10 kPa full scale. Here the toy and the
+charger (two heavy, lopsided objects) at seeds 0-7, same pair and labs: on the old robot a
+held toy read 10 kPa (seed 4). Now no held trial of them reaches the trials' configured
+maximum (9.5 kPa: a gripper pressing an object into the pad reads above the 3 kPa inflation
+maximum; ``trial_execution_params``).
 """
 
 from __future__ import annotations
