@@ -55,9 +55,11 @@ def module_points() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     mods = np.repeat(np.arange(LAYOUT.n_modules), GX.size)
     cols = np.array([LAYOUT.row_col(m + 1)[1] for m in mods])
     rows_up = np.array([LAYOUT.rows - 1 - LAYOUT.row_col(m + 1)[0] for m in mods])
-    return (cols + np.tile(GX, LAYOUT.n_modules)) * PITCH, (
-        rows_up + np.tile(GY, LAYOUT.n_modules)
-    ) * PITCH, mods
+    return (
+        (cols + np.tile(GX, LAYOUT.n_modules)) * PITCH,
+        (rows_up + np.tile(GY, LAYOUT.n_modules)) * PITCH,
+        mods,
+    )
 
 
 def underside_m(spec: Any, placement: tuple[float, float, float], x: np.ndarray, y: np.ndarray):
@@ -112,7 +114,7 @@ def spread(spec: Any, placement: tuple[float, float, float]) -> np.ndarray:
 def domes(spec: Any, placement: tuple[float, float, float], stiffness_n_m: float) -> np.ndarray:
     """Predicted increments (up to scale) of the object resting rigidly on the domes."""
     phys = PadPhysics()
-    x, y, mods = module_points()
+    x, y, _ = module_points()
     zb = underside_m(spec, placement, x, y)
     lx, ly = np.tile(GX, LAYOUT.n_modules) - 0.5, np.tile(GY, LAYOUT.n_modules) - 0.5
     r2 = (lx**2 + ly**2) / (phys.sensitive_side_m / 2 / PITCH) ** 2
