@@ -665,36 +665,53 @@ def check_valves(
 
     Deflates every module for ``pulse_s``, then inflates for ``pulse_s``, then closes; a module
     whose filtered pressure does not fall (then rise) by ``min_change_pa`` has a valve that does
-    not open (stuck closed, or no supply) and raises :class:`MonitoredFault`. ``read`` reads one
-    frame (the caller's, so that every frame passes its monitor) and returns the module
-    pressures; ``clock`` gives the box time of the last frame (for the fault's time stamp).
+    not open (stuck closed, or no supply) and raises :class:`MonitoredFault`. A load moving on
+    the pad during a pulse can hide a working valve's answer (a can rolling off a module as the
+    check inflated it took 200 Pa off its 220 Pa rise), so a module that did not answer is
+    pulsed once more at once, alone, with the same valve; only a valve that fails twice is a
+    fault, named ``pulse_s`` after its first failure. ``read`` reads one frame (the caller's,
+    so that every frame passes its monitor) and returns the module pressures; ``clock`` gives
+    the box time of the last frame (for the fault's time stamp).
     """
-
-    def mean_of(n: int) -> tuple[float, NDArray[np.float64]]:
-        return clock(), np.mean([read() for _ in range(n)], axis=0)
-
     for cmd, sign, what in (
         (ValveCommand.DEFLATE, -1.0, "deflation"),
         (ValveCommand.INFLATE, 1.0, "inflation"),
     ):
-        _, before = mean_of(5)
-        for ch in range(1, n_modules + 1):
-            box.set_valve(ch, cmd)
-        steps = max(1, round(pulse_s * box.sample_rate_hz) - 5)
-        for _ in range(steps):
-            read()
-        for ch in range(1, n_modules + 1):
-            box.set_valve(ch, ValveCommand.CLOSED)
-        t, after = mean_of(5)
-        dead = sign * (after - before) < min_change_pa
-        if dead.any():
-            k = int(np.argmax(dead))
+        channels = list(range(1, n_modules + 1))
+        for _ in range(2):
+            change = _pulse(box, channels, cmd, read, pulse_s)
+            dead = sign * change < min_change_pa
+            channels, change = [c for c, d in zip(channels, dead, strict=True) if d], change[dead]
+            if not channels:
+                break
+        else:
             raise MonitoredFault(
                 DetectedFault(
-                    t,
-                    k + 1,
+                    clock(),
+                    channels[0],
                     "no_response",
-                    f"channel {k + 1}: {what} valve does not act (pressure changed "
-                    f"{after[k] - before[k]:+.0f} Pa in a {pulse_s:g} s pulse; stuck closed?)",
+                    f"channel {channels[0]}: {what} valve does not act (pressure changed "
+                    f"{change[0]:+.0f} Pa in a {pulse_s:g} s pulse, twice; stuck closed?)",
                 )
             )
+
+
+def _pulse(
+    box: Box,
+    channels: list[int],
+    cmd: ValveCommand,
+    read: Callable[[], NDArray[np.float64]],
+    pulse_s: float,
+) -> NDArray[np.float64]:
+    """Open ``cmd``'s valve of ``channels`` for ``pulse_s`` and close it: the change of each
+    one's pressure (5-frame means before and after), Pa."""
+    idx = np.asarray(channels) - 1
+    before = np.mean([read() for _ in range(5)], axis=0)[idx]
+    for ch in channels:
+        box.set_valve(ch, cmd)
+    for _ in range(max(1, round(pulse_s * box.sample_rate_hz) - 5)):
+        read()
+    for ch in channels:
+        box.set_valve(ch, ValveCommand.CLOSED)
+    after = np.mean([read() for _ in range(5)], axis=0)[idx]
+    return np.asarray(after - before, dtype=float)
