@@ -234,9 +234,17 @@ def test_arm_lost_mid_approach_ends_the_run_with_the_box_safe(
     faults = [(t, d) for t, k, d in rec.events if k == "fault"]
     assert len(faults) == 1 and faults[0][1]["phase"] == "descend"
     t_fault = faults[0][0]
-    # made safe after the fault: every valve closed, and frames read, none above the maximum
+    # made safe after the fault: every inflation valve closed, and frames read, none above the
+    # maximum. A channel may be left venting: the lost arm goes on down onto the banana, and
+    # the safe state vents a channel that rises with its inflation valve closed (it cannot
+    # tell a press from a valve stuck open); such a channel is named in what it did.
     last_t, last_valves = rec.valves[-1]
-    assert last_t >= t_fault and set(last_valves) == {"closed"}
+    assert last_t >= t_fault and "inflate" not in last_valves, rec.valves[-3:]
+    (safe,) = [d for _, k, d in rec.events if k == "safe_state"]
+    assert safe["verified"], safe
+    for ch, command in enumerate(last_valves[:6], start=1):
+        named = rf"vented channel (\d+, )*{ch}\b"
+        assert command == "closed" or any(re.search(named, s) for s in safe["tried"]), safe
     after = rec.pressures_pa[rec.t_s >= t_fault, :6]
     assert len(after) and np.nanmax(after) <= 3000.0
 

@@ -462,13 +462,19 @@ class GraspExecution:
             self._make_safe(HardwareFault("interrupted"))
             raise
 
+    def _safe_frame(self, frame: PressureFrame) -> None:
+        """Record a frame read on the way to the safe state; valve commands sent then carry
+        its time."""
+        self._last_t = frame.t_s
+        self.recorder.frame(frame, "safe")
+
     def _make_safe(self, exc: HardwareFault) -> None:
         """Stop the arm (holding what it holds), record the fault, reach the verified safe state."""
         try:
             self.robot.stop()
         except HardwareFault:
             pass  # a robot behind a lost link cannot be stopped from here
-        f = self.safety.fail(exc, self._last_t, lambda fr: self.recorder.frame(fr, "safe"))
+        f = self.safety.fail(exc, self._last_t, self._safe_frame)
         self.recorder.event(
             f.t_s, "fault", message=f.message, phase=self.phase, channel=f.channel, cause=f.cause
         )
