@@ -14,7 +14,6 @@ thesis detector's sensing ratio) choose a grasp from that certain posterior, and
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import sys
 from pathlib import Path
@@ -37,7 +36,7 @@ from softpad.sim._footprint import part_outline
 from softpad.trials._loop import _Placed
 
 sys.path.insert(0, str(Path(__file__).parent))
-from replay_first_grasp import judge
+from replay_first_grasp import judge, recorded_trials
 
 
 def outline_m(spec: Any, placed: _Placed) -> np.ndarray:
@@ -87,19 +86,11 @@ def main() -> None:
     layout = PadLayout()
     specs = {s.name: s for s in select_objects(None, args.objects_file)}
     tally: dict[str, list[str]] = {}
-    for path in args.trials:
-        with open(path, encoding="utf-8") as fh:
-            trials = json.load(fh)["trials"]
-        for t in trials:
-            if t["object"] not in specs or not t["increments_pa"]:
-                continue
-            spec = specs[t["object"]]
-            obj = LabVariation.of(t["parameters"]).object(spec) if t["parameters"] else spec
-            placed, gripper = _Placed(*t["placement"]), GripperSpec.from_mounting(t["mounting"])
-            plan = oracle_plan(obj, placed, gripper, layout)
-            tally.setdefault(t["object"], []).append(
-                judge(obj, placed, plan, gripper, layout.pitch_m)
-            )
+    for t, spec in recorded_trials(args.trials, specs):
+        obj = LabVariation.of(t["parameters"]).object(spec) if t["parameters"] else spec
+        placed, gripper = _Placed(*t["placement"]), GripperSpec.from_mounting(t["mounting"])
+        plan = oracle_plan(obj, placed, gripper, layout)
+        tally.setdefault(t["object"], []).append(judge(obj, placed, plan, gripper, layout.pitch_m))
     for name, verdicts in tally.items():
         ok = sum(v == "ok" for v in verdicts)
         kinds = sorted({v.rstrip("0123456789.") for v in verdicts if v != "ok"})

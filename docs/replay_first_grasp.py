@@ -19,6 +19,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+from collections.abc import Iterator
 from typing import Any
 
 import numpy as np
@@ -59,6 +60,19 @@ def replay(trial: dict[str, Any], spec: Any, layout: PadLayout) -> tuple[str, An
     return judge(obj, _Placed(*trial["placement"]), plan, gripper, layout.pitch_m), plan
 
 
+def recorded_trials(
+    paths: list[str], specs: dict[str, Any]
+) -> Iterator[tuple[dict[str, Any], Any]]:
+    """Each recorded trial of ``paths`` whose object is in ``specs`` and was found at t_o, with
+    that object's spec."""
+    for path in paths:
+        with open(path, encoding="utf-8") as fh:
+            trials = json.load(fh)["trials"]
+        for t in trials:
+            if t["object"] in specs and t["increments_pa"]:
+                yield t, specs[t["object"]]
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("trials", nargs="+")
@@ -68,21 +82,16 @@ def main() -> None:
     layout = PadLayout()
     specs = {s.name: s for s in select_objects(None, args.objects_file)}
     tally: dict[str, list[tuple[str, bool]]] = {}
-    for path in args.trials:
-        with open(path, encoding="utf-8") as fh:
-            trials = json.load(fh)["trials"]
-        for t in trials:
-            if t["object"] not in specs or not t["increments_pa"]:
-                continue
-            verdict, plan = replay(t, specs[t["object"]], layout)
-            tally.setdefault(t["object"], []).append((verdict, t["success"]))
-            if args.v and plan is not None:
-                x, y, yaw = t["placement"]
-                print(
-                    f"{t['object']:24s} {verdict:12s} held={t['success']!s:5s} plan=({plan.cog[0]:.2f}, "
-                    f"{plan.cog[1]:.2f}, {math.degrees(plan.theta):.0f} deg) object=({x / layout.pitch_m:.2f}, "
-                    f"{y / layout.pitch_m:.2f}, {math.degrees(yaw):.0f} deg) {plan.rule}"
-                )
+    for t, spec in recorded_trials(args.trials, specs):
+        verdict, plan = replay(t, spec, layout)
+        tally.setdefault(t["object"], []).append((verdict, t["success"]))
+        if args.v and plan is not None:
+            x, y, yaw = t["placement"]
+            print(
+                f"{t['object']:24s} {verdict:12s} held={t['success']!s:5s} plan=({plan.cog[0]:.2f}, "
+                f"{plan.cog[1]:.2f}, {math.degrees(plan.theta):.0f} deg) object=({x / layout.pitch_m:.2f}, "
+                f"{y / layout.pitch_m:.2f}, {math.degrees(yaw):.0f} deg) {plan.rule}"
+            )
     for name, rows in tally.items():
         ok, held = sum(v == "ok" for v, _ in rows), sum(h for _, h in rows)
         print(f"{name:24s} first grasp ok {ok}/{len(rows)}, trials held {held}/{len(rows)}")
