@@ -31,19 +31,16 @@ from softpad.planning._model_based import (
     predicted_success,
 )
 from softpad.planning._records import GraspPlan
-from softpad.sim import LabVariation
-from softpad.sim._footprint import part_outline
-from softpad.trials._loop import _Placed
+from softpad.sim import LabVariation, Placement
+from softpad.sim._footprint import part_outline, to_pad_frame
 
 sys.path.insert(0, str(Path(__file__).parent))
 from replay_first_grasp import judge, recorded_trials
 
 
-def outline_m(spec: Any, placed: _Placed) -> np.ndarray:
+def outline_m(spec: Any, placed: Placement) -> np.ndarray:
     """Points of the object's whole outline (what the jaws meet) in the pad frame, m."""
-    pts = np.vstack([part_outline(p) for p in spec.parts])
-    c, s = math.cos(placed.yaw_rad), math.sin(placed.yaw_rad)
-    return pts @ np.array([[c, -s], [s, c]]).T + np.array([placed.x_m, placed.y_m])
+    return to_pad_frame(np.vstack([part_outline(p) for p in spec.parts]), placed)
 
 
 def smallest_rectangle(pts: np.ndarray) -> tuple[np.ndarray, tuple[float, float], float]:
@@ -61,7 +58,7 @@ def smallest_rectangle(pts: np.ndarray) -> tuple[np.ndarray, tuple[float, float]
     return best[1], best[2], best[3]
 
 
-def oracle_plan(spec: Any, placed: _Placed, gripper: GripperSpec, layout: PadLayout) -> GraspPlan:
+def oracle_plan(spec: Any, placed: Placement, gripper: GripperSpec, layout: PadLayout) -> GraspPlan:
     """The planner's choice when its posterior is the true smallest rectangle, for certain."""
     centre, halves, yaw = smallest_rectangle(outline_m(spec, placed))
     post = Posterior(
@@ -88,7 +85,7 @@ def main() -> None:
     tally: dict[str, list[str]] = {}
     for t, spec in recorded_trials(args.trials, specs):
         obj = LabVariation.of(t["parameters"]).object(spec) if t["parameters"] else spec
-        placed, gripper = _Placed(*t["placement"]), GripperSpec.from_mounting(t["mounting"])
+        placed, gripper = Placement(*t["placement"]), GripperSpec.from_mounting(t["mounting"])
         plan = oracle_plan(obj, placed, gripper, layout)
         tally.setdefault(t["object"], []).append(judge(obj, placed, plan, gripper, layout.pitch_m))
     for name, verdicts in tally.items():

@@ -34,7 +34,8 @@ import numpy as np
 from softpad.cli._trials import select_objects
 from softpad.layout import PadLayout
 from softpad.planning._model_based import packaged_pad_model
-from softpad.sim import LabVariation
+from softpad.sim import LabVariation, Placement
+from softpad.sim._footprint import to_pad_frame
 from softpad.sim._mujoco_model import GRAVITY_M_S2, PadPhysics
 
 #: Stiffness of one top carrying an object, N/m: the simulated top's slide spring
@@ -53,8 +54,8 @@ GX, GY = (a.ravel() for a in np.meshgrid(_G, _G, indexing="ij"))
 def module_points() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Pad-frame sample points (m) of every module, and each one's module (0-based)."""
     mods = np.repeat(np.arange(LAYOUT.n_modules), GX.size)
-    cols = np.array([LAYOUT.row_col(m + 1)[1] for m in mods])
-    rows_up = np.array([LAYOUT.rows - 1 - LAYOUT.row_col(m + 1)[0] for m in mods])
+    row, col = np.array([LAYOUT.row_col(m) for m in LAYOUT.modules]).T
+    cols, rows_up = col[mods], (LAYOUT.rows - 1 - row)[mods]
     return (
         (cols + np.tile(GX, LAYOUT.n_modules)) * PITCH,
         (rows_up + np.tile(GY, LAYOUT.n_modules)) * PITCH,
@@ -93,16 +94,6 @@ def _part_underside(p: Any, u: np.ndarray, v: np.ndarray) -> np.ndarray:
     return np.where(inside, p.pos_m[2] - np.sqrt(np.clip(r * r - side**2, 0, None)), np.inf)
 
 
-def centre_of_mass(spec: Any, placement: tuple[float, float, float]) -> tuple[np.ndarray, float]:
-    """The object's centre of mass in the pad frame (m) and its mass (kg)."""
-    x0, y0, yaw0 = placement
-    m = sum(p.mass_kg for p in spec.parts)
-    cx = sum(p.mass_kg * p.pos_m[0] for p in spec.parts) / m
-    cy = sum(p.mass_kg * p.pos_m[1] for p in spec.parts) / m
-    c, s = math.cos(yaw0), math.sin(yaw0)
-    return np.array([x0 + c * cx - s * cy, y0 + s * cx + c * cy]), m
-
-
 def spread(spec: Any, placement: tuple[float, float, float]) -> np.ndarray:
     """Predicted increments (up to scale) of the weight spread over the footprint."""
     x, y, mods = module_points()
@@ -126,7 +117,8 @@ def domes(spec: Any, placement: tuple[float, float, float], stiffness_n_m: float
     idx = k * GX.size + best[k]
     pts = np.column_stack([x[idx], y[idx]])
     drop = phys.dome_height_m - gap[k, best[k]]
-    com, mass = centre_of_mass(spec, placement)
+    com = to_pad_frame(np.array([spec.com_m[:2]]), Placement(*placement))[0]
+    mass = spec.mass_kg
     force = balanced(pts - com, drop, mass * GRAVITY_M_S2 / stiffness_n_m) * stiffness_n_m
     out = np.zeros(LAYOUT.n_modules)
     out[k] = force * MODEL.on_pad(pts / PITCH, LAYOUT)
