@@ -61,7 +61,8 @@ class InflationParams(CheckedFields, what="inflation"):
     #: (50 Pa/s: 6 standard deviations of the rate measured over the 0.5 s settle time from two
     #: 10-sample means of the box sensor's 8 Pa noise, 7.2 Pa/s; 8.1 Pa/s over 200 simulated
     #: adjustments. At 25 Pa/s one adjustment in a hundred named a sound channel as leaking; a
-    #: slower leak is caught by the fault monitor, 60 Pa under the reference).
+    #: slower leak is caught by the fault monitor, 60 Pa under the reference). Judged times
+    #: the measured noise's scale (:class:`SampleNoise`), like the other sealed-drift checks.
     max_drift_pa_s: Positive = 50.0
     #: Inflation needs the supply above the highest pressure the controller aims at
     #: (p0 + t_adj) by at least another t_adj, pascals (2 t_adj = 60 Pa above p0; the flow
@@ -443,7 +444,8 @@ class InflationController:
 
     def _settle(self, t: float, filtered: NDArray[np.float64]) -> list[tuple[int, ValveCommand]]:
         """Every channel sealed, its filter clean of older samples and within t_adj for
-        ``settle_s``: a channel losing more than ``max_drift_pa_s`` leaks; else the reference."""
+        ``settle_s``: a channel losing more than ``max_drift_pa_s`` (times the measured noise's
+        scale, :class:`SampleNoise`) leaks; else the reference."""
         p = self.params
         calm = (
             not self._valves.any()
@@ -462,11 +464,13 @@ class InflationController:
         if t - t_set < p.settle_s:
             return []
         rate = (filtered - p_set) / (t - t_set)
-        leaking = rate < -p.max_drift_pa_s
+        limit = p.max_drift_pa_s * self.noise.scale()  # on a noisier box, by as much more
+        leaking = rate < -limit
         if leaking.any():
             k = int(np.argmax(leaking))
             raise HardwareFault(
-                f"channel {k + 1}: loses {-rate[k] / 1e3:.3f} kPa/s with its valves closed (leak)"
+                f"channel {k + 1}: loses {-rate[k] / 1e3:.3f} kPa/s with its valves closed "
+                f"(leak; limit {limit / 1e3:.3f} kPa/s)"
             )
         self.adjusted_at_s, self.state = t, "reference"
         return [(ch, ValveCommand.CLOSED) for ch in range(1, self.n + 1)]
