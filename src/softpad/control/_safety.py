@@ -210,6 +210,11 @@ class FaultMonitor:
         windows' levels and within each window, Pa/s (NaN where not sealed throughout)."""
         th = self.th
         between, within = rates
+        shown = np.mean(between, axis=0)  # the message gives the channel's own rate
+        if self.loads_expected:
+            sealed = np.asarray(~np.isnan(between).any(axis=0), dtype=bool)
+            between = np.array([_unbalanced(r, sealed) for r in between])
+            within = np.array([_unbalanced(r, sealed) for r in within])
         up = (between > th.rise_loaded_pa_s).all(axis=0)  # NaN: not sealed throughout
         up &= between.max(axis=0) <= th.steady_spread * between.min(axis=0)
         up &= (within > 0.5 * th.rise_loaded_pa_s).all(axis=0)
@@ -218,8 +223,7 @@ class FaultMonitor:
         k = int(np.argmax(up))
         span = th.steady_window_s * (th.steady_windows + 1)
         what = (
-            f"rising {np.mean(between[:, k]):.0f} Pa/s with its inflation valve closed, "
-            f"steadily for {span:g} s"
+            f"rising {shown[k]:.0f} Pa/s with its inflation valve closed, steadily for {span:g} s"
         )
         return _fault(t, k, "rising", what, "inflation valve stuck open?")
 
@@ -272,7 +276,8 @@ class FaultMonitor:
             return None
         slope = (mean - m0) / (t - t0)
         limit = th.rise_loaded_pa_s if self.loads_expected else th.rise_pa_s
-        judged = self._sealed_window & (slope > limit)
+        rise = _unbalanced(slope, self._sealed_window) if self.loads_expected else slope
+        judged = self._sealed_window & (rise > limit)
         self._rising = np.where(judged, self._rising + 1, 0)
         self._window_start = (t, mean.copy())
         self._sealed_window = sealed.copy()
@@ -282,6 +287,15 @@ class FaultMonitor:
             what = f"rising {slope[k]:.0f} Pa/s with its inflation valve closed"
             return _fault(t, k, "rising", what, "inflation valve stuck open?")
         return None
+
+
+def _unbalanced(slope: NDArray[np.float64], sealed: NDArray[np.bool_]) -> NDArray[np.float64]:
+    """Each channel's rise, Pa/s, less the net fall of the other sealed channels over the same
+    window (while loads are expected): a load moving across the pad (an object rolling or
+    sliding onto a module) raises one module as the modules it leaves fall, while gas from a
+    stuck inflation valve raises one module without any other falling."""
+    moved = np.where(sealed, np.nan_to_num(slope), 0.0)
+    return slope + np.minimum(moved.sum() - moved, 0.0)
 
 
 class _SteadyRise:
