@@ -213,8 +213,7 @@ class FaultMonitor:
         shown = np.mean(between, axis=0)  # the message gives the channel's own rate
         if self.loads_expected:
             sealed = np.asarray(~np.isnan(between).any(axis=0), dtype=bool)
-            between = np.array([_unbalanced(r, sealed) for r in between])
-            within = np.array([_unbalanced(r, sealed) for r in within])
+            between, within = _unbalanced(between, sealed), _unbalanced(within, sealed)
         up = (between > th.rise_loaded_pa_s).all(axis=0)  # NaN: not sealed throughout
         up &= between.max(axis=0) <= th.steady_spread * between.min(axis=0)
         up &= (within > 0.5 * th.rise_loaded_pa_s).all(axis=0)
@@ -290,12 +289,13 @@ class FaultMonitor:
 
 
 def _unbalanced(slope: NDArray[np.float64], sealed: NDArray[np.bool_]) -> NDArray[np.float64]:
-    """Each channel's rise, Pa/s, less the net fall of the other sealed channels over the same
-    window (while loads are expected): a load moving across the pad (an object rolling or
-    sliding onto a module) raises one module as the modules it leaves fall, while gas from a
-    stuck inflation valve raises one module without any other falling."""
+    """Each channel's rise, Pa/s (channels along the last axis, one window a row), less the net
+    fall of the other sealed channels over the same window (while loads are expected): a load
+    moving across the pad (an object rolling or sliding onto a module) raises one module as the
+    modules it leaves fall, while gas from a stuck inflation valve raises one module without
+    any other falling."""
     moved = np.where(sealed, np.nan_to_num(slope), 0.0)
-    return slope + np.minimum(moved.sum() - moved, 0.0)
+    return slope + np.minimum(moved.sum(axis=-1, keepdims=True) - moved, 0.0)
 
 
 class _SteadyRise:
