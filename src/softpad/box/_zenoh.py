@@ -18,13 +18,7 @@ import weakref
 from typing import Any
 
 from softpad.box._auth import Sealer, split_frame, tag_ok
-from softpad.box._base import (
-    WORLD_SERVICES,
-    Box,
-    ConnectionLost,
-    PressureFrame,
-    ValveCommand,
-)
+from softpad.box._base import WORLD_SERVICES, Box, ConnectionLost, PressureFrame, ValveCommand
 from softpad.box._daemon import new_client_id
 from softpad.box._link import (
     DEFAULT_PREFIX,

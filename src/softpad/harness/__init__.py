@@ -25,6 +25,7 @@ from softpad.harness._remote import (
     SIMULATION_OPS,
     RemoteRobot,
     has_simulation,
+    served_simulation,
     simulation_extensions,
 )
 from softpad.harness._robot import SimulatedRobot, TouchTruth, open_sim_robot
@@ -47,6 +48,7 @@ __all__ = [
     "recommend_p0",
     "resolve_objects",
     "run_simulated",
+    "served_simulation",
     "simulation_extensions",
     "world_access",
 ]
