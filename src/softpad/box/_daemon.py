@@ -134,8 +134,11 @@ def _check_options(
     """InputError for a daemon option out of range, or services for a box not simulated."""
     if watchdog_action not in ("hold", "vent"):
         raise InputError(f"watchdog action must be hold or vent, got {watchdog_action!r}")
-    if not (math.isfinite(watchdog_s) and 0.01 <= watchdog_s <= 60):
-        raise InputError(f"watchdog time must be within 0.01..60 s, got {watchdog_s!r}")
+    from softpad.config import WATCHDOG_RANGE_S
+
+    lo, hi = WATCHDOG_RANGE_S  # the installation file's range (issue 49: 60 s was accepted)
+    if not (math.isfinite(watchdog_s) and lo <= watchdog_s <= hi):
+        raise InputError(f"watchdog time must be within {lo:g}..{hi:g} s, got {watchdog_s!r}")
     if rt_priority is not None and (
         isinstance(rt_priority, bool)
         or not isinstance(rt_priority, int)

@@ -139,6 +139,10 @@ class ZenohBox(Box):
         self._beat: threading.Thread | None = None
         self._beat_stop = threading.Event()
         self.last: StampedFrame | None = None
+        self._connect(auth)
+
+    def _connect(self, auth: dict[str, Any] | None) -> None:
+        """Open the session, pin the box by its ``info`` answer, subscribe to its frames."""
         config = session_config("client", connect=(self.endpoint,), **(auth or {}))
         import zenoh
 
