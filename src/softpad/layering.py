@@ -37,6 +37,10 @@ ALLOWED_IMPORTS: Mapping[str, frozenset[str]] = {
     ),
     # the ROS adapters translate; the simulated arm node uses the harness and the catalogue
     "ros": frozenset({"box", "control", "harness", "layout", "planning", "sensing", "sim"}),
+    # ROS 2: the ROS 1 node's loop with rclpy edges; the installation file's settings
+    "ros2": frozenset(
+        {"box", "config", "control", "harness", "layout", "planning", "ros", "sensing", "sim"}
+    ),
     # design sweeps evaluate pads with the FEM and simulated trials
     "design": frozenset(
         {"box", "control", "fem", "harness", "layout", "planning", "sensing", "sim", "trials"}
@@ -48,7 +52,7 @@ ALLOWED_IMPORTS: Mapping[str, frozenset[str]] = {
     # the command: every layer
     "cli": frozenset(
         {"benchmarks", "box", "config", "control", "design", "fem", "harness", "layout"}
-        | {"planning", "record", "ros", "sensing", "sim", "trials"}
+        | {"planning", "record", "ros", "ros2", "sensing", "sim", "trials"}
     ),
 }
 

@@ -290,20 +290,22 @@ MESSAGE_DEFINITIONS: dict[str, str] = {
         "string summary_json\n"
     ),
     "softpad_msgs/action/Grasp": (
-        "# Grasp one object on the pad and hold it.\n"
-        "# the object to grasp, 1-based in the plan's order; 0: the first planned\n"
-        "uint32 object\n"
+        "# Grasp the objects on the pad, one after the other, and hold each (the grasp loop).\n"
+        "# hold time, s; 0: the node's hold_s\n"
+        "float64 hold_s\n"
         "---\n"
         "# held, dropped, missed, contact_not_detected, fault, error or canceled\n"
         "string outcome\n"
+        "# why, for fault, error and canceled\n"
         "string message\n"
-        "# the grasp executed: centre of grasp on the pad, m, and direction theta, rad\n"
-        "geometry_msgs/Pose grasp\n"
+        "# the grasps tried, on the pad surface in frame softpad: COG, m; yaw = theta, rad\n"
+        "geometry_msgs/Pose[] grasps\n"
         "# the loop's summary (softpad run --json), SI units\n"
         "string summary_json\n"
         "---\n"
         "# the loop's phase as it enters it (adjust, wait_object, approach, descend, ...)\n"
         "string phase\n"
+        "# box time, s\n"
         "float64 t_s\n"
     ),
     "tf2_msgs/msg/TFMessage": "geometry_msgs/TransformStamped[] transforms\n",
