@@ -8,6 +8,7 @@ import pytest
 
 from softpad.errors import InputError
 from softpad.sim import (
+    OBJECT_UNKNOWNS,
     UNCERTAIN_PARAMETERS,
     LabVariation,
     UncertainParameter,
@@ -134,3 +135,45 @@ def test_a_randomized_trial_reports_its_draws() -> None:
     assert result.to_dict()["parameters"] == result.parameters
     plain, _ = run_trial(get_object("object-1"), seed=5, config=TrialConfig(cfg.execution))
     assert plain.parameters is None
+
+
+@pytest.mark.parametrize("name", sorted(OBJECT_UNKNOWNS))
+def test_the_catalogue_objects_are_built_at_the_nominals(name: str) -> None:
+    """The nominal lab leaves each catalogue object as it is (the fitted nominals are in
+    the catalogue), and a drawn value keeps Table 6.1's mass."""
+    spec = get_object(name)
+    same = LabVariation.of(None).object(spec)
+    for a, b in zip(spec.parts, same.parts, strict=True):
+        np.testing.assert_allclose(a.pos_m, b.pos_m, atol=2e-6)
+        assert a.mass_kg == pytest.approx(b.mass_kg, rel=1e-5)
+        assert a.yaw_rad == pytest.approx(b.yaw_rad, abs=5e-5)  # the JSON's 6 decimals
+    p = {q.name: q for q in UNCERTAIN_PARAMETERS}[OBJECT_UNKNOWNS[name]]
+    varied = LabVariation.of({p.name: p.low}).object(spec)
+    assert sum(q.mass_kg for q in varied.parts) == pytest.approx(spec.mass_kg, rel=1e-9)
+    assert varied != spec
+
+
+def test_object_unknowns_set_what_they_name() -> None:
+    """Each setting measured back from the object it builds."""
+    lab = LabVariation.of(
+        {
+            "charger_brick_mass_share": 0.7,
+            "toy_right_hand_share": 0.25,
+            "limes_pair_gap_m": 0.01,
+            "banana_sagitta_m": 0.04,
+        }
+    )
+    charger = lab.object(get_object("charger"))
+    assert charger.parts[0].mass_kg == pytest.approx(0.7 * 0.3123)
+    toy = {p.name: p.mass_kg for p in lab.object(get_object("toy")).parts}
+    assert toy["right hand"] / (toy["right hand"] + toy["left hand"]) == pytest.approx(0.25)
+    limes = [np.array(p.pos_m) for p in lab.object(get_object("limes")).parts]
+    assert np.linalg.norm(limes[1] - limes[0]) == pytest.approx(0.049 + 0.01)
+    for lower in limes[:2]:  # the third rests on both: centres one diameter apart
+        assert np.linalg.norm(limes[2] - lower) == pytest.approx(0.049)
+    banana = lab.object(get_object("banana")).parts
+    a, b = np.array(banana[0].pos_m[:2]), np.array(banana[-1].pos_m[:2])
+    u = (b - a) / np.linalg.norm(b - a)
+    rel = [np.array(p.pos_m[:2]) - a for p in banana]
+    dist = [abs(u[0] * r[1] - u[1] * r[0]) for r in rel]
+    assert max(dist) == pytest.approx(0.04)

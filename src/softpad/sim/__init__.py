@@ -48,6 +48,7 @@ from softpad.sim._response import (
 )
 from softpad.sim._sensor import SensorBank, SensorParams
 from softpad.sim._uncertain import (
+    OBJECT_UNKNOWNS,
     UNCERTAIN_PARAMETERS,
     LabVariation,
     UncertainParameter,
@@ -61,6 +62,7 @@ __all__ = [
     "DEFAULT_LINE_WIDTH_M",
     "GRAVITY_M_S2",
     "GRIPPER_MOUNTINGS",
+    "OBJECT_UNKNOWNS",
     "UNCERTAIN_PARAMETERS",
     "AnalyticCharacteristic",
     "AnalyticWorld",

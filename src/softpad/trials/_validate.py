@@ -546,14 +546,15 @@ CONSTRUCTION_PLANS = {
     "fig-6.7a": "placed centred on the 1-4 line, as the figure draws it",
     "fig-6.7b-right": "object 4 (itself placed at Table 6.1's plan) rescaled to 54 g",
 }
-#: Plan rows from which an unknown of the object was chosen (issue 45: calibration, counted
-#: apart): the seed gives the mass and the plan, not the shape or the mass distribution.
+#: Plan rows to which an unknown of the object was fitted (issue 45: calibration, counted
+#: apart; :func:`softpad.trials.fit_object_unknowns`, ``softpad calibrate --objects``): the
+#: seed gives the mass and the plan, not the shape or the mass distribution.
 CALIBRATION_PLANS = {
-    "banana": "centre of mass put on the pad's centre, Table 6.1's (1, 1); curve from YCB",
-    "toy": "shape and placement chosen from the modules this plan implies",
-    "limes": "the limes' arrangement chosen for the four modules the thesis names",
-    "cylinder": "the heavy part's end chosen from this plan's x_COG = 1.14",
-    "charger": "the brick's position and the cable's side chosen for this plan's modules",
+    "banana": "fitted: the curve (banana_sagitta_m); centre of mass on the pad's centre",
+    "toy": "fitted: the hands' mass split (toy_right_hand_share); shape from its modules",
+    "limes": "fitted: the gap of the lower two limes (limes_pair_gap_m)",
+    "cylinder": "fitted: the heavy part's position (cylinder_heavy_x_m)",
+    "charger": "fitted: the brick's share of the mass (charger_brick_mass_share)",
 }
 
 
