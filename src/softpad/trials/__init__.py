@@ -22,6 +22,7 @@ from softpad.trials._compare import (
     wilson_interval,
 )
 from softpad.trials._config import TrialConfig, drawn_placement, trial_execution_params
+from softpad.trials._object_fit import ObjectFit, fit_object_unknowns
 from softpad.trials._records import (
     FAILURE_CAUSES,
     THESIS_OVERALL_SUCCESS,
@@ -51,6 +52,7 @@ __all__ = [
     "CalibrationLoad",
     "CalibrationResult",
     "ExperimentResult",
+    "ObjectFit",
     "ObjectSummary",
     "Observation",
     "TrialConfig",
@@ -61,6 +63,7 @@ __all__ = [
     "drawn_placement",
     "errored_records",
     "errored_trial",
+    "fit_object_unknowns",
     "idle_false_alarms_per_hour",
     "merge_comparisons",
     "perturbed_placement",

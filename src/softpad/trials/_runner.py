@@ -54,7 +54,13 @@ def trial_seed(seed: int, object_name: str, trial: int) -> int:
 
 
 def perturbed_placement(spec: Any, seed: int, config: TrialConfig) -> tuple[float, float, float]:
-    """The catalogue placement of ``spec`` shifted and turned at random (normal, seeded)."""
+    """The catalogue placement of ``spec`` shifted and turned at random (normal, seeded); a
+    placement ``anywhere_on_m`` a pad: anywhere the object fits on it, drawn from ``seed``
+    (:func:`softpad.trials._geometry.anywhere_placement`)."""
+    if spec.placement.anywhere_on_m is not None:
+        from softpad.trials._geometry import anywhere_placement
+
+        return anywhere_placement(spec, seed, spec.placement.anywhere_on_m)
     rng = np.random.default_rng(seed)
     dx, dy = rng.normal(0.0, config.position_sigma_m, 2)
     dyaw = rng.normal(0.0, config.yaw_sigma_rad)
