@@ -41,8 +41,8 @@ from typing import Any, Protocol
 from softpad import thesis
 from softpad.errors import MM_AS_M, CheckedFields, InputError, Positive, check_range
 from softpad.layout import GripperSpec, PadLayout
+from softpad.sim._contact_nominals import FINGERTIP_FRICTION, PAD_TIP_STIFFNESS_N_M
 from softpad.sim._objects import PartSpec
-from softpad.sim._uncertain import FINGERTIP_FRICTION, PAD_TIP_STIFFNESS_N_M
 
 # Collision bits.
 _PAD, _OBJ, _FINGER, _SOLE = 1, 2, 4, 8
@@ -99,7 +99,7 @@ class PadPhysics(CheckedFields, what="pad"):
     #: Stiffness of the membrane under a small indenter (a fingertip), N/m. The thesis's FEM
     #: (Fig. 6.3c) computes an equivalent stiffness k = F / (h_free - h_load) for a load on a
     #: 1 cm disc; the project's FEM gives 96-187 N/m around p0 and 114 N/m at p0 under 0.5 N
-    #: (docs/fem.md; :data:`softpad.sim._uncertain.PAD_TIP_STIFFNESS_N_M`).
+    #: (docs/fem.md; :data:`softpad.sim._contact_nominals.PAD_TIP_STIFFNESS_N_M`).
     local_stiffness_n_m: Positive = PAD_TIP_STIFFNESS_N_M
     #: Sliding friction coefficient of the silicone against objects (EcoFlex is grippy), -.
     friction: Positive = 1.0
@@ -177,7 +177,7 @@ class MujocoGripper(CheckedFields, what="gripper"):
     #: Gain of the jaw position servo, N/m.
     servo_stiffness_n_m: Positive = 4000.0
     #: Friction of the finger pads on objects, -: hard plastic tips (Section 6.3), the
-    #: finger's value governs its contacts (:data:`softpad.sim._uncertain.FINGERTIP_FRICTION`).
+    #: finger's value governs its contacts (:data:`softpad.sim._contact_nominals.FINGERTIP_FRICTION`).
     friction: Positive = FINGERTIP_FRICTION
     #: Travel of the tip's compliant sole before it bottoms out on the finger, metres.
     sole_stroke_m: Positive = 25e-3
