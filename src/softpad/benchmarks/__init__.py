@@ -12,6 +12,7 @@ BENCH_MODULES = (
     "sim",
     "link",
     "board",
+    "stall",
     "detectors",
     "fem",
     "trials",

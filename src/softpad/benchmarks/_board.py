@@ -148,8 +148,6 @@ def count_instructions(ticks: int) -> dict[str, float]:
     """
     if shutil.which("valgrind") is None:
         raise RuntimeError("valgrind is not installed (apt-get install valgrind)")
-    from softpad.box._link import session_config  # noqa: F401  (zenoh present)
-
     python = sys.executable  # a venv's link to the interpreter (a shim script would be counted)
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(tmp) / "cg.out"
