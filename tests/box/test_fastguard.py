@@ -122,3 +122,14 @@ def test_a_stalled_daemon_keeps_the_true_pressure_under_3_1_kpa(stall_s: float) 
     assert r["stall_s"] >= stall_s * 0.99
     assert r["peak_pa"] <= CEILING_PA, r
     assert r["guard"]["trips"] >= 1, r
+
+
+def test_the_daemon_starts_it_and_reports_it_in_its_stats(tmp_path: Path, free_port) -> None:
+    from softpad.box import BoxDaemon
+
+    box, _ = _box(tmp_path)
+    with BoxDaemon(box, (f"tcp/127.0.0.1:{free_port()}",), max_pressure_pa=2900.0) as daemon:
+        stats = daemon._on_stats({})["compiled_guard"]
+        assert stats is not None and stats["running"] is True
+        _write(tmp_path, 1, "2899\n")  # above the trip level (2900 - 50 Pa)
+        _until(lambda: daemon._on_stats({})["compiled_guard"]["venting"][1], "the trip")

@@ -600,7 +600,13 @@ class BoxDaemon:
         return self.info()
 
     def _on_stats(self, msg: dict[str, Any]) -> dict[str, Any]:
-        return {**self.stats.to_dict(), "controller": self.controller, "seq": self._seq}
+        guard = getattr(self.box, "guard_stats", None)  # the compiled guard; None: not running
+        return {
+            **self.stats.to_dict(),
+            "controller": self.controller,
+            "seq": self._seq,
+            "compiled_guard": guard() if guard is not None else None,
+        }
 
     def _on_take(self, msg: dict[str, Any]) -> dict[str, Any]:
         c = self._client(msg)
