@@ -246,6 +246,11 @@ class HardwareBox(Box):
     ticks are skipped and counted in :attr:`missed_ticks`, and so is a tick whose sample was
     taken more than a period after its deadline (the thread woke late). Frame time is seconds
     since opening.
+
+    Line levels follow ``settings.inflate_valves`` / ``deflate_valves`` (active opens a
+    normally-closed valve, closes a normally-open one); every valve starts closed. Closing the
+    box closes every inflation valve and releases the lines as they are: a vented channel keeps
+    venting. :meth:`start_guard` runs the over-pressure guard in compiled code, off the GIL.
     """
 
     self_paced = True
