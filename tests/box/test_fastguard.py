@@ -16,7 +16,7 @@ import pytest
 
 pytest.importorskip("softpad.box._fastguard", reason="the compiled guard is not built (make ext)")
 
-from softpad.box import FileValveLines, HardwareBox
+from softpad.box import FileValveLines, HardwareBox, ValveCommand
 from softpad.config import parse_installation
 
 
@@ -133,3 +133,22 @@ def test_the_daemon_starts_it_and_reports_it_in_its_stats(tmp_path: Path, free_p
         assert stats is not None and stats["running"] is True
         _write(tmp_path, 1, "2899\n")  # above the trip level (2900 - 50 Pa)
         _until(lambda: daemon._on_stats({})["compiled_guard"]["venting"][1], "the trip")
+
+
+def test_inflating_a_channel_the_compiled_guard_vents_is_refused(tmp_path: Path) -> None:
+    """Else the two writers would take turns: the command opens inflation, the guard's next
+    tick closes it again (and for a moment both valves of the channel would be open)."""
+    from softpad.box._safety import SafetyTrip
+
+    box, lines = _box(tmp_path)
+    try:
+        box.start_guard(2950.0, 2750.0)
+        _write(tmp_path, 0, "3000\n")
+        _until(lambda: box.guard_stats()["venting"][0], "the trip")  # type: ignore[index]
+        with pytest.raises(SafetyTrip, match="compiled guard"):
+            box._apply_valve(1, ValveCommand.INFLATE)
+        assert not lines.get("/dev/gpiochip0", 0)
+        box.set_valve(2, "inflate")  # another channel: allowed
+        assert lines.get("/dev/gpiochip0", 2)
+    finally:
+        box.close()

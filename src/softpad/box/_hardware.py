@@ -343,6 +343,14 @@ class HardwareBox(Box):
         }
 
     def _apply_valve(self, channel: int, command: ValveCommand) -> None:
+        if command is ValveCommand.INFLATE and self._compiled is not None:
+            if self._compiled.stats()["venting"][channel - 1]:  # it would re-vent next tick
+                from softpad.box._safety import SafetyTrip
+
+                raise SafetyTrip(
+                    f"channel {channel} is being vented by the compiled guard (over the trip "
+                    "level): inflation refused"
+                )
         # close first, then open: never both valves of a channel open at once
         self._lines.set(self._levels(channel, False, False))
         if command is not ValveCommand.CLOSED:
