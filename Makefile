@@ -6,7 +6,7 @@ PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
 
-.PHONY: demo test test-slow bench lint typecheck venv clean ros-deps ros2-interfaces results
+.PHONY: demo test test-slow bench lint typecheck venv clean ros-deps ros2-interfaces results ext
 
 $(VENV)/.installed: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -15,6 +15,16 @@ $(VENV)/.installed: pyproject.toml
 	touch $@
 
 venv: $(VENV)/.installed
+
+# The compiled over-pressure guard (src/softpad/box/_fastguard.c, setup.py), built in place:
+# `pip install -e .` builds it too; this is for an environment installed before it existed.
+# Without a C compiler the daemon runs its guard in Python only (and says so).
+PYINFO = $(BIN)/python -c "import sysconfig as s; print(s.get_config_var('$(1)') or s.get_paths()['include'])"
+ext: venv
+	@if command -v cc >/dev/null; then \
+	    cc -O2 -std=c11 -Wall -shared -fPIC -I"$$($(call PYINFO,INCLUDEPY))" src/softpad/box/_fastguard.c \
+	        -o "src/softpad/box/_fastguard$$($(call PYINFO,EXT_SUFFIX))" -lpthread; \
+	else echo "ext: no C compiler: the compiled guard is not built (its tests are skipped)"; fi
 
 demo: venv
 	MPLBACKEND=Agg $(BIN)/softpad demo --out report --force
@@ -56,10 +66,10 @@ ros2-interfaces: venv
 # `--cpu-durations N` lists the N tests that used the most CPU (tests/conftest.py). Not
 # `--dist loadgroup`: with pytest 9 and pytest-xdist 3.8 it groups nothing (xdist renames the
 # nodeid through an attribute pytest 9 no longer reads); work shared by tests is shared inside one.
-test: lint typecheck ros-deps ros2-interfaces
+test: lint typecheck ros-deps ros2-interfaces ext
 	MPLBACKEND=Agg $(BIN)/pytest -n 2 -q -m "not slow" --durations=10
 
-test-slow: venv ros-deps ros2-interfaces
+test-slow: venv ros-deps ros2-interfaces ext
 	MPLBACKEND=Agg $(BIN)/pytest -n 2 -q -m slow --durations=10
 
 bench: venv
