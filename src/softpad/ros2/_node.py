@@ -213,7 +213,9 @@ class Ros2PadNode(PadNode):
 
     def _execute(self, goal_handle: Any) -> Any:
         """The grasp action: hand the goal to the node's loop, relay cancels, wait for it."""
+        from geometry_msgs.msg import PoseArray
         from softpad_msgs.action import Grasp
+        from std_msgs.msg import Header
 
         with self._busy:
             r = _Request("grasp", hold_s=float(goal_handle.request.hold_s))
@@ -229,8 +231,11 @@ class Ros2PadNode(PadNode):
             self.ros2.on_phase = None
         result = Grasp.Result(outcome=r.outcome, message=r.message)
         if r.result is not None:
-            result.grasps = _grasp_poses(r.result)
-            result.summary_json = json.dumps(_jsonable(r.result.to_dict()))
+            result.grasps = PoseArray(
+                header=Header(stamp=self.ros2.stamp(), frame_id=T.PAD_FRAME),
+                poses=_grasp_poses(r.result),
+            )
+            result.result_json = json.dumps(_jsonable(r.result.to_dict()))
         if r.outcome == "canceled":
             goal_handle.canceled()
         elif r.ok:
