@@ -199,3 +199,31 @@ def test_cancelling_a_grasp_ends_in_the_safe_state(node: _Node) -> None:
     assert events["safe_state"]["verified"] is True, events.get("safe_state")
     assert "canceled" in events and "fault" not in events  # a cancel is no fault of the box
     assert node.proc.poll() is None  # the node goes on watching
+
+
+@needs_ros2
+@pytest.mark.slow
+def test_run_ros2_publishes_the_run_with_the_installations_pad_pose(tmp_path: Path) -> None:
+    """``softpad run --ros2``: another process sees the run's pressures and /tf_static with
+    the installation's pad pose while the run goes on, and the run ends normally."""
+    env = {**os.environ, **loopback_environment(tmp_path)}
+    env["ROS_DOMAIN_ID"] = str(1 + (os.getpid() + 50) % 100)
+    (tmp_path / "site.toml").write_text(SITE)
+    cmd = [sys.executable, "-m", "softpad", "run", "--ros2", "--objects", "object-3",
+           "--hold-s", "2", "--config", str(tmp_path / "site.toml"), "--json"]  # fmt: skip
+    run = subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+    try:
+        r = subprocess.run(
+            [sys.executable, CLIENT, "watch", "2.0"], env=env, capture_output=True, text=True,
+            timeout=180, check=False,
+        )  # fmt: skip
+        output, _ = run.communicate(timeout=300)
+    finally:
+        if run.poll() is None:
+            run.kill()
+    assert r.returncode == 0, r.stderr[-2000:]
+    out = json.loads(r.stdout.strip().splitlines()[-1])
+    assert out["count"] > 100
+    pad = out["transforms"][0]
+    assert pad["xyz"] == pytest.approx([0.4, -0.1, 0.02])
+    assert run.returncode == 0, output[-2000:]
