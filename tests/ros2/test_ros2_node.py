@@ -250,6 +250,7 @@ def test_run_ros2_publishes_the_run_with_the_installations_pad_pose(tmp_path: Pa
     assert r.returncode == 0, r.stderr[-2000:]
     out = json.loads(r.stdout.strip().splitlines()[-1])
     assert out["count"] > 100
+    assert out["robot_poses"] > 0  # the simulated gripper's measured pose, 20 Hz
     pad = out["transforms"][0]
     assert pad["xyz"] == pytest.approx([0.4, -0.1, 0.02])
     assert run.returncode == 0, output[-2000:]
