@@ -53,11 +53,14 @@ ros-deps:
 
 # ROS 2 (rclpy wheels, in .venv through the dev extra): tf2_msgs and softpad_msgs have no wheel;
 # built once into .venv with the wheels' rosidl generators (CMake, g++; about 1 min; docs/ros.md).
+# strace: a test checks that every datagram of the ROS 2 node goes to 127.0.0.1.
 ros2-interfaces: venv
-	@if ! command -v cmake >/dev/null || ! command -v g++ >/dev/null; then \
+	@if ! command -v cmake >/dev/null || ! command -v g++ >/dev/null \
+	    || ! command -v strace >/dev/null; then \
 	    if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
 	        (apt-cache policy cmake | grep -q 'Candidate: [0-9]' || apt-get update -q) && \
-	        DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends cmake g++; \
+	        DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends \
+	            cmake g++ strace python3-dev; \
 	    fi; fi
 	@$(BIN)/python -c "import softpad_msgs.action, tf2_msgs.msg" 2>/dev/null \
 	    || $(BIN)/softpad ros2 build-interfaces \

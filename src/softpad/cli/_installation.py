@@ -70,6 +70,19 @@ def _defaults(inst: Any) -> dict[str, Any]:
     return out
 
 
+def installed_pad_pose(path: str | None) -> Any:
+    """The installation file's ``[pad.pose]`` as a :class:`~softpad.layout.PadPose` (the
+    origin without a file): where the pad stands in the robot's base frame."""
+    from softpad.layout import PadPose
+
+    if path is None:
+        return PadPose()
+    from softpad.config import load_installation
+
+    pad = load_installation(path).pad
+    return PadPose(pad.x_m, pad.y_m, pad.z_m, pad.yaw_rad)
+
+
 def apply_installation(parser: argparse.ArgumentParser, argv: Sequence[str]) -> None:
     """Make the installation file named by ``--config`` in ``argv`` the defaults of every
     command that does not read it itself (see the module docstring)."""
