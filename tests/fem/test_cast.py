@@ -147,3 +147,25 @@ def test_packaged_table_is_what_the_generator_writes() -> None:
     np.testing.assert_allclose(
         shipped.influence_m3_n[i], fresh.influence_m3_n[0], rtol=1e-5, atol=1e-15
     )
+
+
+def test_cli_writes_a_readable_table(cli, tmp_path) -> None:  # type: ignore[no-untyped-def]
+    """``softpad fem cast-response`` on the coarse mesh at one pressure: the table it writes
+    reads back, and its JSON carries the probes' figures of that table."""
+    out = tmp_path / "cast.npz"
+    argv = ["fem", "cast-response", "--mesh", "coarse", "--pressures-kpa", "1.1", "--out"]
+    code, text, _ = cli(*argv, str(out), "--no-progress", "--json")
+    assert code == 0
+    import json
+
+    data = json.loads(text)
+    table = CastPadResponse.from_file(out)
+    assert table.shape == (2, 3) and data["meta"]["wall_width_m"] == 1e-3
+    want = cast_sensitivities(table)["probes"]
+    got = data["sensitivities"]["probes"]
+    for name, v in want.items():
+        assert got[name]["min_rise_pa_n"] == pytest.approx(v["min_rise_pa_n"], rel=1e-12)
+    code, _, err = cli(*argv, str(out), "--no-progress")
+    assert code == 2 and "exists" in err
+    code, _, err = cli(*argv[:-1], str(tmp_path / "x.npz"), "--wall-mm", "0")
+    assert code == 2 and "--wall-mm" in err
