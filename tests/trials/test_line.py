@@ -46,3 +46,17 @@ def test_the_ends_meet_the_observations(end: str, bracket: dict[str, float]) -> 
         assert figures["min_detectable_mass_g"]["Duplo face 42x31 mm"] == pytest.approx(
             5.0, rel=0.005
         )
+
+
+def test_a_drawn_gain_reaches_the_trials_pad() -> None:
+    """LabVariation builds the trials' pad with the drawn gain and seam; a draw is in range."""
+    from softpad.sim import LabVariation, draw_uncertain
+
+    lab = LabVariation.of({"line_response_gain": 4.0, "seam_width_m": 0.002})
+    pad = lab.pad_response()
+    assert pad.line_gain == 4.0 and pad.seam_width_m == pytest.approx(0.002)
+    drawn = [draw_uncertain(seed)["line_response_gain"] for seed in range(200)]
+    assert min(drawn) >= LINE_GAIN_RANGE[0] and max(drawn) <= LINE_GAIN_RANGE[1]
+    # uniform over the range: about (5.95 - 3.26) / 4.95 = 54 % of draws see the can
+    share = sum(g >= 3.26 for g in drawn) / len(drawn)
+    assert 0.44 < share < 0.64
