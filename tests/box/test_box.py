@@ -11,7 +11,7 @@ from softpad.box import (
     PressureFrame,
     SimBox,
     ValveCommand,
-    backends,
+    available_box_backends,
     check_conformance,
     open_box,
 )
@@ -57,8 +57,9 @@ def test_a_box_wrapper_passes_conformance_and_closes_what_it_owns() -> None:
 
 def test_every_registered_backend_is_checked() -> None:
     """A new scheme must be added to the conformance cases (replay://, offered by softpad.record
-    through the entry point, is checked in tests/record/test_replay.py)."""
-    assert backends() == ("replay", "sim", "zenoh")
+    through the entry point, is checked in tests/record/test_replay.py; hw://, the real box on
+    fake lines, in tests/box/test_hardware.py)."""
+    assert available_box_backends() == ("sim", "zenoh", "hw", "replay")
 
 
 class _BrokenBox(Box):

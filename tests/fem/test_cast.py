@@ -154,7 +154,7 @@ def test_cli_writes_a_readable_table(cli, tmp_path) -> None:  # type: ignore[no-
     reads back, and its JSON carries the probes' figures of that table."""
     out = tmp_path / "cast.npz"
     argv = ["fem", "cast-response", "--mesh", "coarse", "--pressures-kpa", "1.1", "--out"]
-    code, text, _ = cli(*argv, str(out), "--no-progress", "--json")
+    code, text, _ = cli(*argv, str(out), "--json")
     assert code == 0
     import json
 
@@ -165,7 +165,9 @@ def test_cli_writes_a_readable_table(cli, tmp_path) -> None:  # type: ignore[no-
     got = data["sensitivities"]["probes"]
     for name, v in want.items():
         assert got[name]["min_rise_pa_n"] == pytest.approx(v["min_rise_pa_n"], rel=1e-12)
-    code, _, err = cli(*argv, str(out), "--no-progress")
+    code, _, err = cli(*argv, str(out))
     assert code == 2 and "exists" in err
+    code, _, err = cli(*argv[:-2], "9", "--out", str(tmp_path / "y.npz"))
+    assert code == 2 and "--pressures-kpa: 9 kPa" in err
     code, _, err = cli(*argv[:-1], str(tmp_path / "x.npz"), "--wall-mm", "0")
     assert code == 2 and "--wall-mm" in err

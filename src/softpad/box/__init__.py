@@ -5,9 +5,11 @@
 a :class:`ValveCommand`. The simulated box (``sim://``: the plain :class:`SimBox` in the
 layers of :func:`compose_sim_box`, found behind them by :func:`simulator_of`) is the default;
 ``zenoh://host:port[/prefix]`` (:class:`ZenohBox`) reaches a box served over zenoh by
-:class:`BoxDaemon` (``softpad box serve``) with the same interface; :class:`HardwareBox`
-drives the real Pneumaticbox (GPIO valves, IIO sensors). The hand-written ``tcp://``
-protocol of earlier versions is gone. The simulated box is imported only when used
+:class:`BoxDaemon` (``softpad box serve``) with the same interface; ``hw://FILE.toml``
+(:class:`HardwareBox`) drives the real Pneumaticbox (GPIO valves, IIO sensors) wired as the
+installation file says. Back-ends are registered in :data:`BOX_BACKENDS`
+(:func:`available_box_backends`, entry-point group ``softpad.box_backends``). The
+simulated box is imported only when used
 (``sim://`` or one of its names below): ``import softpad.box`` on the box computer loads
 neither :mod:`softpad.sim` nor :mod:`softpad.fem`.
 Every back-end must pass :func:`check_conformance`; :class:`BoxWrapper` is the base of views
@@ -37,7 +39,16 @@ from softpad.box._link import (
     encode_json,
     session_config,
 )
-from softpad.box._registry import DEFAULT_URL, backends, open_box, parse_url, register_backend
+from softpad.box._registry import (
+    BOX_BACKENDS,
+    BOX_SERVICES,
+    DEFAULT_URL,
+    available_box_backends,
+    open_box,
+    parse_url,
+    register_backend,
+    served_services,
+)
 from softpad.box._safety import RATED_MAX_PRESSURE_PA, SafetyGuard, SafetyLimits, SafetyTrip
 from softpad.box._wrapper import BoxWrapper
 from softpad.box._zenoh import ControlRefused, ZenohBox, open_zenoh_url
@@ -83,6 +94,8 @@ def __getattr__(name: str) -> Any:
 
 
 __all__ = [
+    "BOX_BACKENDS",
+    "BOX_SERVICES",
     "DEFAULT_URL",
     "FAULT_KINDS",
     "MAX_PAYLOAD_BYTES",
@@ -112,7 +125,7 @@ __all__ = [
     "ValveLines",
     "WallClock",
     "ZenohBox",
-    "backends",
+    "available_box_backends",
     "check_conformance",
     "compose_sim_box",
     "daemon_auth",
@@ -127,6 +140,7 @@ __all__ = [
     "parse_url",
     "register_backend",
     "seal_frame",
+    "served_services",
     "session_config",
     "simulator_of",
 ]

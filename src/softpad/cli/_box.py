@@ -28,7 +28,7 @@ _EPILOG = """examples:
 _SERVE_EPILOG = """examples:
   softpad box serve --sim                                   the simulator on tcp/127.0.0.1:7447
   softpad box serve --sim --port 7450 --rate-hz 500         (--port N: tcp/127.0.0.1:N)
-  softpad box serve --hardware /etc/softpad/site.toml       the real box (GPIO + IIO)
+  softpad box serve --box hw:///etc/softpad/site.toml       the real box (GPIO + IIO)
   then: softpad box monitor --box zenoh://127.0.0.1:7447
         softpad run --box zenoh://127.0.0.1:7447 --objects object-5   (with --sim)
 
@@ -158,11 +158,12 @@ def _register_serve(bsub: Any) -> None:
         "Serve a box over zenoh (frames pushed, valve commands acknowledged).",
         _SERVE_EPILOG,
         json="print the endpoints as one JSON object",
-        box_help="with --sim: the sim:// URL",
+        box_help="the box to serve: any back-end's URL (sim://, hw://FILE.toml: the real box "
+        "wired in FILE; default sim://)",
     )
-    what = s.add_mutually_exclusive_group(required=True)
+    what = s.add_mutually_exclusive_group()
     what.add_argument("--sim", action="store_true", help="serve the simulated box (--box URL)")
-    what.add_argument("--hardware", metavar="FILE.toml", help="serve the real box wired in FILE")
+    what.add_argument("--hardware", metavar="FILE.toml", help="the same as --box hw://FILE.toml")
     s.add_argument("--config", metavar="FILE.toml", help="installation file (link, thresholds)")
     s.add_argument(
         "--listen",
@@ -364,13 +365,15 @@ def stats(args: argparse.Namespace) -> int:
 
 
 def _daemon_for(args: argparse.Namespace) -> Any:
-    from softpad.box import BoxDaemon, HardwareBox, daemon_auth, open_box
+    from softpad.box import BoxDaemon, daemon_auth, open_box, parse_url, served_services
     from softpad.config import Installation, check_endpoint, check_remote_policy, load_installation
     from softpad.errors import InputError
 
     if args.rt_priority is not None and not 1 <= args.rt_priority <= 99:
         raise InputError(f"--rt-priority must be from 1 to 99, got {args.rt_priority}")
-    path = args.hardware or args.config
+    url = f"hw://{args.hardware}" if args.hardware else _sim_url(args)
+    scheme, location, _options = parse_url(url)
+    path = args.hardware or args.config or (location if scheme == "hw" else None)
     inst = load_installation(path) if path else Installation()
     link = inst.link
     listen = [check_endpoint(e, "--listen") for e in args.listen or ()]
@@ -388,9 +391,9 @@ def _daemon_for(args: argparse.Namespace) -> Any:
             "link.tls_certificate is set but no listen endpoint is tls/: TLS would protect "
             f"nothing on {', '.join(link.listen)}; listen on tls/HOST:PORT or drop the TLS keys"
         )
-    box = HardwareBox(inst.box) if args.hardware else open_box(_sim_url(args))
+    box = open_box(url)
     try:
-        services = {} if args.hardware else _simulation_services(box)
+        services = served_services(url, box)  # the simulator's world and robot for sim://
         return BoxDaemon(
             box,
             link.listen,
@@ -420,7 +423,7 @@ def _sim_url(args: argparse.Namespace) -> str:
     from softpad.box import parse_url
 
     url = str(args.box)
-    if not args.sim or not url.startswith("sim://"):
+    if not url.startswith("sim://"):
         return url
     if args.rate_hz is None and "rate_hz" in parse_url(url)[2]:
         return url
@@ -428,19 +431,6 @@ def _sim_url(args: argparse.Namespace) -> str:
     if "rate_hz" in parse_url(url)[2]:
         raise InputError("give the rate once: --rate-hz or the URL's rate_hz")
     return url + ("&" if "?" in url else "?") + f"rate_hz={rate:g}"
-
-
-def _simulation_services(box: Any) -> dict[str, Any]:
-    """A simulated box's world and robot as services, so 'softpad run' works over zenoh (the
-    simulator is imported only for a box that is not the hardware)."""
-    from softpad.box import simulator_of
-
-    sim = simulator_of(box)
-    if sim is None:
-        return {}
-    from softpad.harness import simulation_extensions
-
-    return simulation_extensions(sim)
 
 
 def serve(args: argparse.Namespace) -> int:
@@ -491,6 +481,9 @@ def inflate(args: argparse.Namespace) -> int:
             raise InputError(
                 f"--modules must be within 1..{box.channels} (channels of the box), got {args.modules}"
             )
+        take = getattr(box, "take_control", None)
+        if take is not None:  # a served box: control first, then only frames under its key
+            take()
         res = inflate_and_adjust(box, args.modules, InflationParams(target_pa=args.p0_kpa * 1e3))
     if args.json:
         emit(res.to_dict())

@@ -5,7 +5,8 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from softpad.cli._args import add_command, add_number
+from softpad import thesis
+from softpad.cli._args import add_command, add_number, number_list
 from softpad.cli._output import emit
 from softpad.cli._paths import atomic_path, check_output
 from softpad.errors import InputError
@@ -58,12 +59,10 @@ def register(fem_sub: Any) -> None:
         default="cast_pad_response.npz",
         help="output file (default ./cast_pad_response.npz)",
     )
-    p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
     p.set_defaults(handler=_cast_response)
 
 
 def _cast_response(args: argparse.Namespace) -> int:
-    from softpad.cli._fem import _check_top_pressure, _numbers, _progress
     from softpad.fem import (
         DEFAULT_RESPONSE_PRESSURES_PA,
         CastPadGeometry,
@@ -76,17 +75,11 @@ def _cast_response(args: argparse.Namespace) -> int:
     out = check_output(args.out, "--out", force=args.force, suffix=".npz")
     if out is None:
         raise InputError("--out needs a file name")
-    pressures = (
-        _numbers(args.pressures_kpa, "--pressures-kpa", 1e3, positive=True)
-        if args.pressures_kpa
-        else DEFAULT_RESPONSE_PRESSURES_PA
-    )
-    _check_top_pressure(pressures)
+    pressures = _pressures(args.pressures_kpa) or DEFAULT_RESPONSE_PRESSURES_PA
     k = float("inf") if args.foundation_mpa_per_m is None else args.foundation_mpa_per_m * 1e6
     pad = CastPadGeometry(wall_width_m=args.wall_mm * 1e-3, foundation_pa_per_m=k)
     mesh = MeshOptions(*_MESHES[args.mesh])
-    with _progress(args, "cast-response") as progress:
-        table = cast_pad_response(get_material(args.model), pad, mesh, pressures, progress)
+    table = cast_pad_response(get_material(args.model), pad, mesh, pressures)
     with atomic_path(out) as tmp:
         table.to_npz(tmp)
     p0 = min(max(1100.0, float(table.pressure_pa[0])), float(table.pressure_pa[-1]))
@@ -101,3 +94,17 @@ def _cast_response(args: argparse.Namespace) -> int:
     for name, g in figures["min_detectable_mass_g"].items():
         print(f"  minimum detectable mass, {name}: {g:.2f} g at t_o = 50 Pa")
     return 0
+
+
+def _pressures(text: str | None) -> list[float]:
+    """``--pressures-kpa`` in Pa (empty when not given); InputError names a value outside
+    (0, the module's maximum]."""
+    if not text:
+        return []
+    values = [v * 1e3 for v in number_list(text, "--pressures-kpa")]
+    for v in values:
+        if not 0.0 < v <= thesis.MAX_PRESSURE_PA:
+            raise InputError(
+                f"--pressures-kpa: {v / 1e3:g} kPa is outside 0..{thesis.MAX_PRESSURE_PA / 1e3:g} kPa"
+            )
+    return values

@@ -29,6 +29,7 @@ from softpad.control._inflation import (
     make_safe,
 )
 from softpad.control._parts import loop_parts
+from softpad.control._phases import TRANSITIONS, Phase, PhaseError, next_phase
 from softpad.control._robot import Robot, RobotState, RobotWrapper, ToolPose
 from softpad.control._robots import (
     ROBOT_REGISTRY,
@@ -54,6 +55,7 @@ __all__ = [
     "DEFAULT_TARGET_PA",
     "DEFAULT_TOLERANCE_PA",
     "ROBOT_REGISTRY",
+    "TRANSITIONS",
     "AdjustmentResult",
     "DetectedFault",
     "ExecutionError",
@@ -67,6 +69,8 @@ __all__ = [
     "InflationController",
     "InflationParams",
     "MonitoredFault",
+    "Phase",
+    "PhaseError",
     "Recorder",
     "Robot",
     "RobotContext",
@@ -84,6 +88,7 @@ __all__ = [
     "loop_parts",
     "make_robot",
     "make_safe",
+    "next_phase",
     "reach_safe_state",
     "register_robot",
 ]

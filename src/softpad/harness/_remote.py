@@ -40,7 +40,7 @@ import math
 from collections.abc import Callable
 from typing import Any
 
-from softpad.box import SimBox, ZenohBox
+from softpad.box import Box, SimBox, ZenohBox, simulator_of
 from softpad.control import RobotState, ToolPose
 from softpad.errors import HardwareFault, InputError
 from softpad.harness._robot import SimulatedRobot, TouchTruth
@@ -94,6 +94,25 @@ def simulation_extensions(box: SimBox) -> dict[str, Handler]:
         "robot.holding": lambda msg: {"holding": bool(sim.robot.holding())},
         "robot.touches": sim.touches,
     }
+
+
+def served_simulation(box: Box) -> dict[str, Handler]:
+    """The services ``softpad box serve`` offers for a ``sim://`` box (its scheme's entry of
+    :data:`softpad.box.BOX_SERVICES`): :func:`simulation_extensions` of the simulator behind
+    ``box``, none when there is none in this process.
+
+    Parameters
+    ----------
+    box
+        The box being served.
+
+    Returns
+    -------
+    dict
+        ``{op: handler}``.
+    """
+    sim = simulator_of(box)
+    return {} if sim is None else simulation_extensions(sim)
 
 
 class _SimulationService:
@@ -189,8 +208,9 @@ class _SimulationService:
 
 
 def has_simulation(box: ZenohBox) -> bool:
-    """True when the daemon of ``box`` offers every service of :data:`SIMULATION_OPS`."""
-    return set(SIMULATION_OPS) <= set(box.info.get("services", []))
+    """True when ``box`` has a simulated world behind it (:attr:`~softpad.box.Box.simulated`)
+    and its daemon also serves the simulated robot (every request of :data:`SIMULATION_OPS`)."""
+    return box.simulated and set(SIMULATION_OPS) <= set(box.info.get("services", []))
 
 
 def _floats(reply: dict[str, Any], key: str, n: int) -> list[float]:

@@ -50,7 +50,9 @@ from softpad.sim._response import (
     packaged_response_path,
 )
 from softpad.sim._sensor import SensorBank, SensorParams
+from softpad.sim._tips import TIP_TRANSITIONS, TipState, TipStateError
 from softpad.sim._uncertain import (
+    OBJECT_UNKNOWNS,
     UNCERTAIN_PARAMETERS,
     LabVariation,
     UncertainParameter,
@@ -65,8 +67,10 @@ __all__ = [
     "GRAVITY_M_S2",
     "GRIPPER_MOUNTINGS",
     "LINE_BAND_M",
+    "OBJECT_UNKNOWNS",
     "PAD_MODELS",
     "SENSITIVITY_LOADS",
+    "TIP_TRANSITIONS",
     "UNCERTAIN_PARAMETERS",
     "AnalyticCharacteristic",
     "AnalyticWorld",
@@ -93,6 +97,8 @@ __all__ = [
     "SensorParams",
     "SimGripper",
     "TabulatedCharacteristic",
+    "TipState",
+    "TipStateError",
     "UncertainParameter",
     "World",
     "catalogue_to_json",
