@@ -143,3 +143,22 @@ def test_round_trip_and_bad_files(tmp_path) -> None:
             R.reference_influence_m3_n,
             R.reference_patch_m,
         )
+
+
+@pytest.mark.parametrize("seam_mm", [0.0, 3.0], ids=["chambers-meet", "3mm-walls"])
+def test_a_seam_of_its_own_stretches_the_cast_map_onto_the_chambers(seam_mm: float) -> None:
+    """With a seam width of its own the cast map's chamber edges fall on this pad's: module 5's
+    centre reads the map's centre, its chamber edge the map's edge (bonded: under 5 % of the
+    centre), and half way the map's half way."""
+    pad = PadResponse(seam_width_m=seam_mm * 1e-3, line_gain=1.0)
+    plain = PadResponse(line_gain=1.0)
+    assert pad.chamber_side_m == pytest.approx(0.045 - seam_mm * 1e-3)
+    c = pad.module_centers_m()[4]
+    h, hp = 0.5 * pad.chamber_side_m, 0.5 * plain.chamber_side_m
+    for frac in (0.0, 0.5):
+        got = pad.influences([c + np.array([frac * h, 0.0])], 1100.0)[0, 4]
+        want = plain.influences([c + np.array([frac * hp, 0.0])], 1100.0)[0, 4]
+        assert got == pytest.approx(want, rel=1e-9)
+    edge = pad.influences([c + np.array([h, 0.0])], 1100.0)[0, 4]
+    # (with no seam the edge is the line, where the map's two chamber edges meet: +- a trace)
+    assert abs(edge) < 0.05 * pad.influences([c], 1100.0)[0, 4]
