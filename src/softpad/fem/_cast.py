@@ -431,7 +431,7 @@ def sealed_rises_pa(
 CAST_PROBES: dict[str, tuple[tuple[float, float], tuple[float, float], tuple[int, ...]]] = {
     "Duplo face 42x31 mm, module 1's centre": ((0.5, 1.5), (0.042, 0.031), (0,)),
     "10x10 mm weight, module 1's centre": ((0.5, 1.5), (0.010, 0.010), (0,)),
-    "can strip 45x25 mm on the line 1|4": ((0.5, 1.0), (-1.0, 0.025), (0, 3)),
+    "can strip, one pitch x 25 mm, on the line 1|4": ((0.5, 1.0), (-1.0, 0.025), (0, 3)),
     "10x10 mm on the line 1|2": ((1.0, 1.5), (0.010, 0.010), (0, 1)),
     "10x10 mm at the corner 1|2|4|5": ((1.0, 1.0), (0.010, 0.010), (0, 1, 3, 4)),
 }
