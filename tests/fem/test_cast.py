@@ -171,3 +171,23 @@ def test_cli_writes_a_readable_table(cli, tmp_path) -> None:  # type: ignore[no-
     assert code == 2 and "--pressures-kpa: 9 kPa" in err
     code, _, err = cli(*argv[:-1], str(tmp_path / "x.npz"), "--wall-mm", "0")
     assert code == 2 and "--wall-mm" in err
+
+
+def test_a_yielding_wall_foundation_tends_to_the_rigid_walls(coarse_table: CastPadResponse) -> None:
+    """Walls on a Winkler foundation: a stiff one (1e12 Pa/m) is the rigid walls (1 %); a soft
+    one (25 MPa/m) lets a load on the line squeeze both chambers more and one at the centre
+    less (the chambers grow more compliant)."""
+    probes = {}
+    for k in (1e12, 2.5e7):
+        table = cast_pad_response(
+            pad=CastPadGeometry(foundation_pa_per_m=k), mesh=COARSE, pressures_pa=[1100.0]
+        )
+        probes[k] = cast_sensitivities(table)["probes"]
+    rigid = cast_sensitivities(coarse_table)["probes"]
+    line, centre = "10x10 mm on the line 1|2", "10x10 mm weight, module 1's centre"
+    for name in (line, centre):
+        assert probes[1e12][name]["min_rise_pa_n"] == pytest.approx(
+            rigid[name]["min_rise_pa_n"], rel=0.01
+        )
+    assert probes[2.5e7][line]["min_rise_pa_n"] > 1.5 * rigid[line]["min_rise_pa_n"]
+    assert probes[2.5e7][centre]["min_rise_pa_n"] < rigid[centre]["min_rise_pa_n"]
