@@ -31,7 +31,8 @@ _PROBE_EPILOG = f"""examples:
 --at is in module units as in 'softpad plan' (x along the columns, y up the rows; module 1's
 centre is 0.5,1.5 on the 2x3 pad). The block's force is spread uniformly over its footprint
 (sides along x and y); what each chamber feels of it is the FEM module response
-(softpad/data/module_response.npz, 'softpad fem response'). Default box: {DEFAULT_BOX}
+(the cast pad's softpad/data/cast_pad_response.npz, 'softpad fem cast-response'; the clamped
+modules' softpad/data/module_response.npz where it does not fit). Default box: {DEFAULT_BOX}
 (the pad's physics with an ideal sensor; drop noise=0 to see the sensor too).
 """
 
@@ -87,6 +88,67 @@ def register(sub: Any) -> None:
         unit="mm",
     )
     mp.set_defaults(handler=_map)
+    _sensitivity_command(psub)
+
+
+def _sensitivity_command(psub: Any) -> None:
+    se = add_command(
+        psub,
+        "sensitivity",
+        "line, corner and centre sensitivity (Pa/N) and the minimum detectable mass",
+        "The pad's small-load sealed rise per newton for a load on a module's centre, on the "
+        "line between two modules and at the corner of four, and the minimum detectable mass "
+        "at t_o, from the FEM response the simulator uses (the cast pad by default).",
+    )
+    se.add_argument(
+        "--pad-model",
+        choices=("auto", "cast", "clamped"),
+        default="auto",
+        help="cast: one upper layer over every chamber (softpad fem cast-response); clamped: "
+        "independent modules with clamped edges (softpad fem response); auto: cast (default)",
+    )
+    add_number(
+        se,
+        "--pressure-kpa",
+        "pressure of every module, kPa (default 1.1)",
+        thesis.P0_PA / 1e3,
+        lo=0.5,
+        hi=2.8,
+        unit="kPa",
+    )
+    add_number(
+        se,
+        "--line-gain",
+        "gain on the response near the lines (uncertain input line_response_gain; default "
+        "its nominal; 1: the FEM alone)",
+        None,
+        lo=1.0,
+        hi=10.0,
+    )
+    se.set_defaults(handler=_sensitivity)
+
+
+def _sensitivity(args: argparse.Namespace) -> int:
+    from softpad.sim import PadResponse, pad_sensitivities
+
+    gain = {} if args.line_gain is None else {"line_gain": args.line_gain}
+    response = PadResponse(pad_model=args.pad_model, **gain)
+    out = pad_sensitivities(response, args.pressure_kpa * 1e3)
+    if args.json:
+        emit({"command": "pad sensitivity", **out})
+        return 0
+    say(
+        f"{out['pad_model']} pad at {args.pressure_kpa:g} kPa, line gain {out['line_gain']:g}: "
+        "sealed rise per newton (Pa/N)"
+    )
+    for name, v in out["loads"].items():
+        rises = " ".join(f"{r:6.0f}" for r in v["rise_pa_n"])
+        say(f"  {name:45s} modules 1-6: {rises}")
+    say(f"line sensitivity (can strip, least of modules 1, 4): {out['line_pa_n']:.0f} Pa/N")
+    say(f"corner sensitivity (least of modules 1, 2, 4, 5): {out['corner_pa_n']:.0f} Pa/N")
+    for name, g in out["min_detectable_mass_g"].items():
+        say(f"minimum detectable mass at t_o = 50 Pa, {name}: {g:.2f} g")
+    return 0
 
 
 def _block_options(p: argparse.ArgumentParser) -> None:

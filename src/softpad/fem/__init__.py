@@ -11,6 +11,21 @@ module characteristic (volume and height against pressure and load) and the modu
 FElupe, tensortrax, scipy and matplotlib are imported lazily inside the functions.
 """
 
+from softpad.fem._cast import (
+    DEFAULT_CAST_MESH,
+    DEFAULT_WALL_WIDTH_M,
+    CastPadGeometry,
+    CastPadModel,
+    cast_convergence,
+    cast_pad_response,
+    cast_sensitivities,
+    sealed_rises_pa,
+)
+from softpad.fem._cast_table import (
+    CAST_RESPONSE_VERSION,
+    PACKAGED_CAST_RESPONSE,
+    CastPadResponse,
+)
 from softpad.fem._chamber import (
     ATMOSPHERIC_PRESSURE_PA,
     DEFAULT_DEAD_VOLUME_M3,
@@ -82,18 +97,25 @@ from softpad.fem._verification import plate_center_deflection_m
 __all__ = [
     "ATMOSPHERIC_PRESSURE_PA",
     "BULK_TO_SHEAR",
+    "CAST_RESPONSE_VERSION",
     "CHARACTERISTIC_PATH",
+    "DEFAULT_CAST_MESH",
     "DEFAULT_DEAD_VOLUME_M3",
     "DEFAULT_MESH",
     "DEFAULT_RESPONSE_PRESSURES_PA",
     "DEFAULT_THICKNESS_M",
+    "DEFAULT_WALL_WIDTH_M",
     "DEFAULT_WIDTH_M",
     "MATERIAL_PRESETS",
     "MODEL_NAMES",
+    "PACKAGED_CAST_RESPONSE",
     "PACKAGED_RESPONSE",
     "PRESSURE_STEP_PA",
     "RESPONSE_STEP_M",
     "RESPONSE_VERSION",
+    "CastPadGeometry",
+    "CastPadModel",
+    "CastPadResponse",
     "ChamberResult",
     "ComparisonResult",
     "ConvergenceError",
@@ -113,6 +135,9 @@ __all__ = [
     "SensitivityResult",
     "SolverOptions",
     "StiffnessResult",
+    "cast_convergence",
+    "cast_pad_response",
+    "cast_sensitivities",
     "compare_models",
     "design_sweep",
     "fit_material",
@@ -127,6 +152,7 @@ __all__ = [
     "response_convergence",
     "save_figure",
     "sealed_chamber_study",
+    "sealed_rises_pa",
     "sensitive_area_study",
     "stiffness_study",
     "write_csv",

@@ -171,15 +171,11 @@ class _Trial:
 def _lab_world(lab: Any | None) -> dict[str, Any]:
     """The MuJoCo world's pad physics and response drawn by ``lab`` (none: the nominal)."""
     from softpad.layout import PadLayout
-    from softpad.sim import PadResponse
 
     if lab is None:
         return {}
     layout = PadLayout()
-    seam = lab.values["seam_width_m"]
-    return dict(
-        pad=lab.pad_physics(layout.pitch_m), response=PadResponse(layout, seam_width_m=seam)
-    )
+    return dict(pad=lab.pad_physics(layout.pitch_m), response=lab.pad_response(layout))
 
 
 def _trial_box(world: Any, seed: int, config: TrialConfig, lab: Any | None) -> Any:

@@ -475,12 +475,12 @@ def static_draws(spec: Any, draws: int, seed: int = 0, randomize: bool = False) 
 def _static_lab(seed: int, config: TrialConfig, lab: Any | None) -> tuple[Any, Any]:
     """The analytic world and the box of one static draw (nominal, or ``lab``'s values)."""
     from softpad.box import SimBox
-    from softpad.sim import AnalyticWorld, PadResponse
+    from softpad.sim import AnalyticWorld
 
     if lab is None:
         world = AnalyticWorld()
         return world, SimBox(world, seed=seed % 2**31, initial_pressure_pa=thesis.P0_PA)
-    world = AnalyticWorld(response=PadResponse(seam_width_m=lab.values["seam_width_m"]))
+    world = AnalyticWorld(response=lab.pad_response())
     box = SimBox(
         world,
         sample_rate_hz=config.sample_rate_hz,
