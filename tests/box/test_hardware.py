@@ -21,7 +21,7 @@ def _fake_iio(root: Path, counts: list[int]) -> None:
     (dev / "in_voltage_scale").write_text("0.439453125\n")
 
 
-def _settings(root: Path, n: int = 3, supply: bool = True):
+def _settings(root: Path, n: int = 3, supply: bool = True, deflate: str = "normally_closed"):
     chans = [
         {
             "gpiochip": "/dev/gpiochip9",
@@ -35,10 +35,16 @@ def _settings(root: Path, n: int = 3, supply: bool = True):
         }
         for k in range(n)
     ]
-    box: dict = {"channel": chans, "iio_root": str(root), "sample_rate_hz": 1000.0}
+    box: dict = {
+        "channel": chans,
+        "iio_root": str(root),
+        "sample_rate_hz": 1000.0,
+        "inflate_valves": "normally_closed",
+        "deflate_valves": deflate,
+    }
     if supply:
         box["supply"] = {"iio_device": 0, "iio_channel": n, "pa_per_count": 10.0}
-    return parse_installation({"box": box}).box
+    return parse_installation({"box": box, "pad": {"rows": 1, "cols": n}}).box
 
 
 def _lines(settings) -> FakeValveLines:
@@ -78,8 +84,9 @@ def test_calibration_and_valve_lines(tmp_path: Path) -> None:
             assert not (
                 step.get(("/dev/gpiochip9", 2 * ch)) and step.get(("/dev/gpiochip9", 2 * ch + 1))
             )
-    box.close()
-    assert lines.released and not any(lines.values.values())
+    box.close()  # channel 2 was venting: it keeps venting (issue 49), nothing else is open
+    assert lines.released
+    assert [k for k, on in lines.values.items() if on] == [("/dev/gpiochip9", 3)]
 
 
 def test_hardware_box_passes_conformance_and_stamps_monotonic_frames(tmp_path: Path) -> None:
@@ -177,3 +184,85 @@ def test_a_box_without_a_supply_sensor_never_trips_supply_loss(tmp_path: Path) -
         with pytest.raises(Exception, match="supply"):
             for _ in range(30):
                 safety.watch(box.read())
+
+
+def _venting_box(tmp_path: Path, deflate: str) -> tuple[HardwareBox, FakeValveLines]:
+    _fake_iio(tmp_path, [1100, 1200, 1300, 50])
+    s = _settings(tmp_path, deflate=deflate)
+    lines = _lines(s)
+    box = HardwareBox(s, lines=lines)
+    box.set_valve(1, ValveCommand.INFLATE)
+    box.set_valve(2, ValveCommand.DEFLATE)
+    return box, lines
+
+
+def test_closing_a_hardware_box_leaves_a_vented_channel_venting(tmp_path: Path) -> None:
+    """Issue 49: releasing the lines drove them inactive, which closed the normally-closed
+    deflation valve of a channel being vented (True -> False): with a stuck inflation valve
+    the module then filled with no guard running."""
+    box, lines = _venting_box(tmp_path, "normally_closed")
+    assert lines.get("/dev/gpiochip9", 3)  # channel 2's deflation valve open
+    box.close()
+    assert lines.get("/dev/gpiochip9", 3)  # still venting
+    assert not lines.get("/dev/gpiochip9", 0)  # channel 1's inflation valve closed
+
+
+def test_stopping_the_daemon_leaves_a_vented_channel_venting(tmp_path: Path) -> None:
+    from softpad.box import BoxDaemon
+    from softpad.box._auth import Sealer
+
+    _fake_iio(tmp_path, [1100, 1200, 1300, 50])
+    s = _settings(tmp_path)
+    lines = _lines(s)
+    daemon = BoxDaemon(HardwareBox(s, lines=lines))
+    sealer = Sealer(bytes.fromhex(daemon._on_take({"client": "ctl"})["key"]))
+    for ch, cmd in ((1, "inflate"), (2, "deflate")):
+        msg = sealer.seal("query", "valves", {"client": "ctl", "channel": ch, "command": cmd})
+        daemon._on_valves({**msg, "_key": "softpad/box/valves"})
+    assert lines.get("/dev/gpiochip9", 3)
+    daemon.close()
+    assert lines.released
+    assert lines.get("/dev/gpiochip9", 3) and not lines.get("/dev/gpiochip9", 0)
+
+
+def test_normally_open_deflation_valves_are_driven_active_to_close(tmp_path: Path) -> None:
+    """A normally-open deflation valve is closed with its line active and opened (venting)
+    with it inactive: the box starts with every valve closed, and a vented channel's line is
+    inactive at release, so it vents whatever the GPIO driver then does."""
+    _fake_iio(tmp_path, [1100, 1200, 1300, 50])
+    s = _settings(tmp_path, deflate="normally_open")
+    lines = _lines(s)
+    box = HardwareBox(s, lines=lines)
+    deflate_lines = [("/dev/gpiochip9", 2 * k + 1) for k in range(3)]
+    assert all(lines.values[k] for k in deflate_lines)  # all closed: lines active
+    assert box.valves == (ValveCommand.CLOSED,) * 3
+    box.set_valve(2, ValveCommand.DEFLATE)
+    assert not lines.get("/dev/gpiochip9", 3)  # open: line inactive
+    box.close()
+    assert not lines.get("/dev/gpiochip9", 3)
+
+
+@pytest.mark.parametrize(
+    ("box", "named"),
+    [
+        ({"deflate_valves": "normally_closed"}, "box.inflate_valves is missing"),
+        ({"inflate_valves": "normally_closed"}, "box.deflate_valves is missing"),
+        (
+            {"inflate_valves": "normally_open", "deflate_valves": "normally_open"},
+            "inflate_valves = 'normally_open' is refused",
+        ),
+        ({"inflate_valves": "normally_closed", "deflate_valves": "nc"}, "deflate_valves must be"),
+    ],
+    ids=["no-inflate-kind", "no-deflate-kind", "normally-open-inflation", "unknown-kind"],
+)
+def test_a_file_that_does_not_say_how_its_valves_are_built_is_refused(
+    tmp_path: Path, box: dict, named: str
+) -> None:
+    from softpad.config import ConfigError
+
+    chans = [
+        {"inflate_line": 2 * k, "deflate_line": 2 * k + 1, "iio_device": 0, "iio_channel": k}
+        for k in range(6)
+    ]
+    with pytest.raises(ConfigError, match=named):
+        parse_installation({"box": {"channel": chans, **box}})

@@ -265,7 +265,9 @@ def _hardware_box(root: Path):
          "iio_device": 0, "iio_channel": k, "pa_per_count": 0.5}
         for k in range(2)
     ]  # fmt: skip
-    settings = parse_installation({"box": {"channel": chans, "iio_root": str(root)}}).box
+    kinds = {"inflate_valves": "normally_closed", "deflate_valves": "normally_open"}
+    box = {"channel": chans, "iio_root": str(root), **kinds}
+    settings = parse_installation({"box": box, "pad": {"rows": 1, "cols": 2}}).box
     lines = FakeValveLines(
         (w.gpiochip, o) for w in settings.channels for o in (w.inflate_line, w.deflate_line)
     )

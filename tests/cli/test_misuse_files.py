@@ -118,11 +118,12 @@ def test_ctrl_c_during_trials_json_prints_what_was_finished(monkeypatch, capsys)
     import softpad.trials
     from softpad.cli.main import main
 
-    def interrupted(specs, trials, on_trial, **kwargs):
+    def interrupted(specs, trials, *args, on_trial, **kwargs):
         on_trial(_Finished())
         raise KeyboardInterrupt
 
     monkeypatch.setattr(softpad.trials, "run_experiment", interrupted)
+    monkeypatch.setattr(softpad.trials, "run_experiments", interrupted)
     assert main(["trials", "--objects", "object-5", "--trials", "3", "--json"]) == 130
     doc = json.loads(capsys.readouterr().out)
     assert doc["error"]["kind"] == "interrupted"

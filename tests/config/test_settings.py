@@ -88,6 +88,8 @@ def test_non_loopback_listen_needs_allow_remote_and_auth() -> None:
                 "allow_remote": True,
                 "user": "lab",
                 "password_file": "/etc/softpad/password",
+                "tls_certificate": "/etc/softpad/box.pem",
+                "tls_private_key": "/etc/softpad/box.key",
             }
         }
     )
@@ -139,7 +141,8 @@ _BAD_FILES = {
         "[nonsense]\n",
         (
             "box.channel.1.iio_channel", "box.channel.2.deflate_line", "link.watchdog_action",
-            "thresholds.t_g_kpa", "unknown key nonsense",
+            "thresholds.t_g_kpa", "unknown key nonsense", "box.inflate_valves is missing",
+            "box.deflate_valves is missing", "2 channels wired for a 2 x 3 pad",
         ),
     ),
     # several bad keys in one table (and two unknown keys): each named, not only the first

@@ -84,3 +84,52 @@ def test_fingertips_sit_outside_the_opening() -> None:
     np.testing.assert_allclose(a.mean(axis=0), [0.0, 0.027], atol=1e-12)
     np.testing.assert_allclose(b.mean(axis=0), [0.0, -0.027], atol=1e-12)
     np.testing.assert_allclose(np.ptp(a, axis=0), [0.01, 0.004], atol=1e-12)
+
+
+PAD_M = (0.135, 0.09)
+N_PLACEMENTS = 300
+
+
+@pytest.mark.parametrize("name", ["ycb-005-tomato-soup-can", "ycb-009-gelatin-box", "ycb-062-dice"])
+def test_anywhere_placements_fit_the_pad_away_from_its_centre(name: str) -> None:
+    """Held-out placements (issue 45): over 300 seeds every footprint stays on the pad (5 mm
+    overhang), its centre at least 10 mm from the pad's centre; yaws and positions spread
+    (yaw quartiles on both sides of 0; x spread over more than a module for the dice);
+    reproducible per seed and passed through the trials' placement."""
+    from softpad.design import example_object_set
+    from softpad.trials import TrialConfig, perturbed_placement
+    from softpad.trials._geometry import anywhere_placement, footprint_box_m
+
+    obj = next(o for o in example_object_set("ycb-dev").objects if o.name == name)
+    spec = obj.placed_on(PAD_M)
+    assert spec.placement.anywhere_on_m == PAD_M
+    poses = [perturbed_placement(spec, s, TrialConfig()) for s in range(N_PLACEMENTS)]
+    assert poses[7] == anywhere_placement(spec, 7, PAD_M)
+    centres = []
+    for x, y, yaw in poses:
+        x0, x1, y0, y1 = footprint_box_m(spec, yaw)
+        assert x + x0 >= -0.005 - 1e-9 and x + x1 <= PAD_M[0] + 0.005 + 1e-9
+        assert y + y0 >= -0.005 - 1e-9 and y + y1 <= PAD_M[1] + 0.005 + 1e-9
+        centres.append((x + (x0 + x1) / 2, y + (y0 + y1) / 2))
+    c = np.array(centres)
+    assert np.min(np.hypot(c[:, 0] - PAD_M[0] / 2, c[:, 1] - PAD_M[1] / 2)) >= 0.010 - 1e-9
+    yaws = np.array([p[2] for p in poses])
+    assert np.percentile(yaws, 25) < 0 < np.percentile(yaws, 75)
+    if name == "ycb-062-dice":
+        assert np.ptp(c[:, 0]) > 0.045
+
+
+def test_a_set_object_placed_anywhere_is_read_from_toml() -> None:
+    from softpad.design import object_set_from_dict
+
+    s = object_set_from_dict(
+        {
+            "schema": "softpad-object-set/1",
+            "object": [
+                {"name": "b", "mass_g": 50, "shape": "box", "size_mm": [30, 30, 20],
+                 "placement": "anywhere"}
+            ],
+        }
+    )  # fmt: skip
+    assert s.objects[0].placement == "anywhere"
+    assert s.objects[0].placed_on(PAD_M).placement.anywhere_on_m == PAD_M

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+from typing import Any
 
 import numpy as np
 import pytest
@@ -473,3 +474,25 @@ def test_a_resting_toy_is_not_sensed_as_a_contact_high_above_it(
     top_m = 0.04 + 8.3e-3 + 2e-3  # the toy's 40 mm on the 8.3 mm modules, 2 mm of sinking
     assert heights[fixed] and max(heights[fixed]) < top_m
     assert max(heights[default]) > 2 * top_m
+
+
+@pytest.mark.slow
+def test_worker_processes_live_across_experiments() -> None:
+    """Two experiments on two workers run in the same two processes (no start-up per seed),
+    with the results one process gives."""
+    from softpad.trials import _runner
+
+    specs = [get_object("object-2"), get_object("object-4")]
+    config = TrialConfig(trial_execution_params(hold_s=0.5))
+    first, _ = run_experiment(specs, trials=1, seed=5, workers=2, config=config)
+    assert _runner._POOL is not None
+    pids = set(_runner._POOL[1]._processes)
+    second, _ = run_experiment(specs, trials=1, seed=6, workers=2, config=config)
+    assert _runner._POOL is not None and set(_runner._POOL[1]._processes) == pids
+    alone, _ = run_experiment(specs, trials=1, seed=6, workers=1, config=config)
+
+    def strip(exp: Any) -> list[dict[str, Any]]:
+        return [{k: v for k, v in t.to_dict().items() if k != "wall_time_s"} for t in exp.trials]
+
+    assert strip(second) == strip(alone)
+    assert len(pids) == 2 and strip(first) != strip(second)

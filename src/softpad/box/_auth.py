@@ -12,8 +12,12 @@ Control is proven on every message, not claimed by a name:
   frame) (the key of the current or last controller: one that lost control by the watchdog
   still reads; zeros before anyone took control). The **read key** is drawn when the daemon starts and
   handed on ``PREFIX/info``: monitors check it. The controller checks the control tag, which
-  only the daemon and the controller can compute. A client drops a frame whose tag is wrong
-  or whose sequence number does not increase, counts it and says so (a warning).
+  only the daemon and the controller can compute, also on frames it queued before its take
+  (a frame forged with the read key before then is never read as the box's). A client drops
+  a frame whose tag is wrong, whose sequence number does not increase, or whose sequence
+  number is further ahead than the box can have sampled since the client connected (the
+  ``seq`` of ``info``, the box's rate, 2 s of slack: one forged frame far ahead cannot make
+  every real frame look replayed), counts it and says so (a warning).
 
 What this protects against, and what not (docs/hardware.md):
 
@@ -26,9 +30,11 @@ What this protects against, and what not (docs/hardware.md):
   controller): on a shared network, keep untrusted parties off the link with its own
   authentication (mutual TLS or user/password, :func:`softpad.box._link.session_config`);
 * every queryable on a key gets each query and a client believes only the box it pinned at
-  connection (its zenoh id on ``info``; two boxes answering then is refused), so an impostor's
-  queryable neither swallows commands nor fakes answers; an impostor answering *alone* while
-  the daemon is down is believed: the link's authentication keeps such a participant out.
+  connection (its zenoh id on ``info``; two boxes answering within 0.5 s then is refused), so
+  an impostor's queryable neither swallows commands nor fakes answers; a client waits only for
+  the pinned box's answer (a queryable that never answers delays nothing); an impostor
+  answering *alone* while the daemon is down is believed: the link's authentication keeps such
+  a participant out.
 """
 
 from __future__ import annotations

@@ -41,7 +41,23 @@ ENV_CONFIG, ENV_USER, ENV_PASSWORD = (
 
 def daemon_auth(link: Any) -> dict[str, Any]:
     """:func:`~softpad.box._link.session_config` keywords of the daemon for ``link``
-    (:class:`softpad.config.LinkSettings`)."""
+    (:class:`softpad.config.LinkSettings`).
+
+    Raises
+    ------
+    ConfigError
+        A password file that is missing, empty or without ``user:password`` lines, a
+        certificate or key that is not one (:func:`softpad.config.audit_link`).
+    """
+    import dataclasses
+
+    from softpad.config import audit_link
+
+    errors, _ = audit_link(dataclasses.asdict(link))
+    if errors:  # an empty password file would turn authentication off (issue 49)
+        exc = ConfigError("refusing to serve: " + "; ".join(errors))
+        exc.errors = errors  # type: ignore[attr-defined]
+        raise exc
     out: dict[str, Any] = {}
     if link.password_file is not None:
         out["dictionary_file"] = link.password_file

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import math
 import queue
+import re
 import threading
 import time
 import uuid
@@ -133,8 +134,11 @@ def _check_options(
     """InputError for a daemon option out of range, or services for a box not simulated."""
     if watchdog_action not in ("hold", "vent"):
         raise InputError(f"watchdog action must be hold or vent, got {watchdog_action!r}")
-    if not (math.isfinite(watchdog_s) and 0.01 <= watchdog_s <= 60):
-        raise InputError(f"watchdog time must be within 0.01..60 s, got {watchdog_s!r}")
+    from softpad.config import WATCHDOG_RANGE_S
+
+    lo, hi = WATCHDOG_RANGE_S  # the installation file's range (issue 49: 60 s was accepted)
+    if not (math.isfinite(watchdog_s) and lo <= watchdog_s <= hi):
+        raise InputError(f"watchdog time must be within {lo:g}..{hi:g} s, got {watchdog_s!r}")
     if rt_priority is not None and (
         isinstance(rt_priority, bool)
         or not isinstance(rt_priority, int)
@@ -522,8 +526,14 @@ class BoxDaemon:
 
     def _client(self, msg: dict[str, Any]) -> str:
         c = msg.get("client")
-        if not isinstance(c, str) or not 0 < len(c) <= 64 or "/" in c or "*" in c:
-            raise InputError(f"client must be an id string (1..64 characters), got {c!r}")
+        # ids are printed in the log and name a liveliness key: letters, digits, "_", "-", "."
+        # only (a newline or an escape code would forge log lines; a lone surrogate cannot be
+        # printed at all)
+        if not isinstance(c, str) or _CLIENT_ID.fullmatch(c) is None:
+            shown = ascii(c)[:80]
+            raise InputError(
+                f"client must be an id of 1..64 letters, digits, '_', '-' or '.', got {shown}"
+            )
         return c
 
     def _require_control(self, msg: dict[str, Any]) -> str:
@@ -569,6 +579,7 @@ class BoxDaemon:
             "services": sorted(self.services),
             "supply_sensor": bool(getattr(self.box, "supply_sensor", True)),
             "read_key": self._read_key.hex(),
+            "seq": self._seq,
             "version": f"softpad {__version__}",
         }
 
@@ -607,8 +618,8 @@ class BoxDaemon:
         }
 
     def _on_release(self, msg: dict[str, Any]) -> dict[str, Any]:
-        c = self._require_control(msg)
-        with self._lock:
+        with self._lock:  # checked under the lock: no take or trip in between
+            c = self._require_control(msg)
             self._safe_state("hold")
             self.controller = None
             self._verifier = None
@@ -638,11 +649,11 @@ class BoxDaemon:
             self._say(f"liveliness: {exc}")
 
     def _on_valves(self, msg: dict[str, Any]) -> dict[str, Any]:
-        self._require_control(msg)
         ch = msg.get("channel")
         if isinstance(ch, float) and ch.is_integer():
             ch = int(ch)
-        with self._lock:
+        with self._lock:  # checked under the lock: the watchdog cannot trip in between
+            self._require_control(msg)
             ch = self.box.check_channel(ch)  # type: ignore[arg-type]
             cmd = ValveCommand.parse(msg.get("command"))  # type: ignore[arg-type]
             if cmd is ValveCommand.INFLATE:
@@ -677,9 +688,9 @@ class BoxDaemon:
         handler = self.services.get(op)
         if handler is None:
             raise InputError(f"unknown service {op!r}; offered: {', '.join(sorted(self.services))}")
-        self._require_control({**msg, "_key": f"{self.prefix}/ext/{op}"})
         request = {k: v for k, v in msg.items() if k not in ("mac", "n", "client")}
         with self._lock:
+            self._require_control({**msg, "_key": f"{self.prefix}/ext/{op}"})
             t0 = time.monotonic()
             try:
                 return handler({**request, "op": op})
@@ -701,6 +712,10 @@ def _between_ticks(box: Box) -> Callable[[], object] | None:
     from softpad.box._sim_layers import simulator_of
 
     return getattr(simulator_of(box), "between_ticks", None)
+
+
+#: A client id: printable, no key-expression or log-line specials.
+_CLIENT_ID = re.compile(r"[A-Za-z0-9_.\-]{1,64}")
 
 
 def new_client_id() -> str:

@@ -3,8 +3,8 @@
 Two small interfaces keep the hardware replaceable in tests:
 
 * :class:`ValveLines`: set GPIO output lines. :class:`GpiodValveLines` uses libgpiod 2.x
-  (``gpiod.request_lines``, two lines per channel, all driven inactive = valves closed on
-  request); :class:`FakeValveLines` keeps the line values in memory (same interface).
+  (``gpiod.request_lines``, two lines per channel); :class:`FakeValveLines` keeps the line
+  values in memory (same interface). Releasing the lines leaves their values as they are.
 * :class:`IIOReader`: reads ``<root>/iio:deviceN/in_voltageK_raw`` (and its ``_scale``), the
   files the BeagleBone's own ADC and external SPI/I2C ADCs expose; a test points ``root`` at a
   fake tree in a temporary folder.
@@ -38,7 +38,8 @@ class ValveLines(Protocol):
         """Last value driven on a line."""
 
     def release(self) -> None:
-        """Drive every line inactive and release the lines."""
+        """Release the lines, leaving each at its last value (the box decides the final state
+        before: inflation closed, vented channels venting)."""
 
 
 class FakeValveLines:
@@ -63,8 +64,7 @@ class FakeValveLines:
         return self.values[(chip, line)]
 
     def release(self) -> None:
-        self.values = dict.fromkeys(self.values, False)
-        self.released = True
+        self.released = True  # the values stay: what the kernel does with a released output
 
 
 class GpiodValveLines:
@@ -119,13 +119,11 @@ class GpiodValveLines:
         return self._values[(chip, line)]
 
     def release(self) -> None:
-        for chip, req in list(self._requests.items()):
-            try:
-                req.set_values(
-                    dict.fromkeys((o for c, o in self._values if c == chip), self._inactive)
-                )
-            finally:
-                req.release()
+        # not driven inactive first: that closed a normally-closed deflation valve and sealed a
+        # channel being vented (issue 49). What a released line does next is the GPIO driver's
+        # business: only a normally-open deflation valve vents whatever it does.
+        for req in self._requests.values():
+            req.release()
         self._requests.clear()
 
 
@@ -229,6 +227,13 @@ class HardwareBox(Box):
         except BaseException:
             self._lines.release()
             raise
+        try:  # every valve closed, whatever it does unpowered (the state the box reports)
+            for ch in range(1, len(wiring) + 1):
+                self._lines.set(self._levels(ch, False, False))
+        except BaseException:
+            self._lines.release()
+            self._iio.close()
+            raise
         cal = [*wiring, *([settings.supply] if settings.supply else [])]
         self._offset = np.array([w.offset_pa for w in cal])
         self._factor = np.array([w.gain * w.pa_per_count for w in cal])
@@ -273,17 +278,26 @@ class HardwareBox(Box):
             supply = 0.0  # no supply sensor wired: reported as 0 (supply-loss checks off)
         return PressureFrame(t_s=t, pressures_pa=pa[:n].astype(np.float64), supply_pa=supply)
 
-    def _apply_valve(self, channel: int, command: ValveCommand) -> None:
+    def _levels(self, channel: int, inflate_open: bool, deflate_open: bool) -> dict[Any, bool]:
+        """GPIO line levels of one channel's valves: active opens a normally-closed valve and
+        closes a normally-open one (``box.inflate_valves`` / ``deflate_valves``)."""
         w = self.settings.channels[channel - 1]
-        inflate = command is ValveCommand.INFLATE
-        deflate = command is ValveCommand.DEFLATE
+        s = self.settings
+        return {
+            (w.gpiochip, w.inflate_line): inflate_open != (s.inflate_valves == "normally_open"),
+            (w.gpiochip, w.deflate_line): deflate_open != (s.deflate_valves == "normally_open"),
+        }
+
+    def _apply_valve(self, channel: int, command: ValveCommand) -> None:
         # close first, then open: never both valves of a channel open at once
-        self._lines.set({(w.gpiochip, w.inflate_line): False, (w.gpiochip, w.deflate_line): False})
-        if inflate or deflate:
-            line = w.inflate_line if inflate else w.deflate_line
-            self._lines.set({(w.gpiochip, line): True})
+        self._lines.set(self._levels(channel, False, False))
+        if command is not ValveCommand.CLOSED:
+            inflate = command is ValveCommand.INFLATE
+            self._lines.set(self._levels(channel, inflate, not inflate))
 
     def _close(self) -> None:
+        # the base closed every inflation valve; a channel being vented keeps venting: its
+        # deflation line is released as it is (issue 49: driving it inactive sealed it)
         try:
             self._lines.release()
         finally:

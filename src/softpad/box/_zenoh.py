@@ -14,6 +14,7 @@ import logging
 import math
 import queue
 import threading
+import time
 import weakref
 from typing import Any
 
@@ -32,6 +33,12 @@ from softpad.errors import HardwareFault, InputError
 
 #: Seconds to wait for a frame or a reply before the link counts as lost.
 DEFAULT_TIMEOUT_S = 5.0
+#: At connection, seconds to wait after the first box's answer for a second one (two boxes
+#: on one key prefix are refused); later queries wait only for the pinned box.
+PIN_GRACE_S = 0.5
+#: Sequence numbers ahead of what the box can have sampled are refused; seconds of frames
+#: allowed beyond that (a daemon's late ticks only make it slower than its rate).
+SEQ_SLACK_S = 2.0
 
 _log = logging.getLogger("softpad.box")
 
@@ -109,6 +116,8 @@ class ZenohBox(Box):
         #: Frames refused: a wrong tag (forged) or a sequence number not above the last.
         self.forged_frames = 0
         self._last_seq = -1
+        #: (sequence number, monotonic time) of the first frame taken: bounds later ones.
+        self._anchor: tuple[int, float] | None = None
         self._command_seen_after_s: float | None = None
         self._read_key: bytes | None = None
         self._sealer: Sealer | None = None
@@ -118,12 +127,22 @@ class ZenohBox(Box):
         self._box_zid: str | None = None
         #: Answers to this client's queries from others than the pinned box (impostors).
         self.impostor_replies = 0
-        self._queue: queue.Queue[StampedFrame] = queue.Queue(maxsize=queue_frames)
+        #: Frames with their body and control tag: checked again when read (a frame queued
+        #: before this client took control must carry the control key's tag to be read after).
+        self._queue: queue.Queue[tuple[StampedFrame, bytes, bytes]] = queue.Queue(
+            maxsize=queue_frames
+        )
+        #: Sequence number of the last frame returned by :meth:`read_stamped`.
+        self._read_seq = -1
         self._token: Any = None
         self._ack: Any = None
         self._beat: threading.Thread | None = None
         self._beat_stop = threading.Event()
         self.last: StampedFrame | None = None
+        self._connect(auth)
+
+    def _connect(self, auth: dict[str, Any] | None) -> None:
+        """Open the session, pin the box by its ``info`` answer, subscribe to its frames."""
         config = session_config("client", connect=(self.endpoint,), **(auth or {}))
         import zenoh
 
@@ -134,6 +153,9 @@ class ZenohBox(Box):
             raise ConnectionLost(f"cannot connect to the box at {self.endpoint}: {why}") from None
         try:
             self.info = self._get("info", {})
+            seq = self.info.get("seq")
+            if type(seq) is int:
+                self._anchor = (seq, time.monotonic())
             self._read_key = _hex_key(self.info.get("read_key"))
             self._sub = self._session.declare_subscriber(f"{self.prefix}/frames", self._on_frame)
         except BaseException:
@@ -159,14 +181,30 @@ class ZenohBox(Box):
         elif not tag_ok(self._read_key, body, read_tag):
             self._forged(f"frame {f.seq} without the box's read tag")
             return
+        elif not self._plausible(f.seq):
+            self._forged(f"frame {f.seq}, further ahead than the box can have sampled")
+            return
         if f.seq <= self._last_seq:
             self._forged(f"frame {f.seq} after frame {self._last_seq} (replayed)")
             return
         self._last_seq = f.seq
         try:
-            self._queue.put_nowait(f)
+            self._queue.put_nowait((f, body, control_tag))
         except queue.Full:
             self.dropped += 1
+
+    def _plausible(self, seq: int) -> bool:
+        """True when ``seq`` is no further ahead than the box can have sampled since the first
+        frame this client took (its advertised rate, 0.1 % clock drift, 2 s of slack): one
+        forged frame far ahead (2**64 - 1) would otherwise make every real frame after it
+        look replayed, for good (issue 49)."""
+        now = time.monotonic()
+        if self._anchor is None:
+            self._anchor = (seq, now)
+            return True
+        seq0, t0 = self._anchor
+        rate = float(self.info.get("sample_rate_hz", 0.0)) or 1e4
+        return seq - seq0 <= rate * (1.001 * (now - t0) + SEQ_SLACK_S)
 
     def _forged(self, what: str) -> None:
         self.forged_frames += 1
@@ -179,14 +217,25 @@ class ZenohBox(Box):
     def read_stamped(self) -> StampedFrame:
         """The next published frame with its sequence number and the daemon's time stamp."""
         self._check_open()
-        try:
-            f = self._queue.get(timeout=self.timeout_s)
-        except queue.Empty:
-            raise ConnectionLost(
-                f"no frame from the box at {self.endpoint} for {self.timeout_s:g} s"
-            ) from None
+        deadline = time.monotonic() + self.timeout_s
+        while True:
+            try:
+                f, body, control_tag = self._queue.get(
+                    timeout=max(deadline - time.monotonic(), 0.0)
+                )
+            except queue.Empty:
+                raise ConnectionLost(
+                    f"no frame from the box at {self.endpoint} for {self.timeout_s:g} s"
+                ) from None
+            sealer = self._sealer
+            if f.seq <= self._read_seq:
+                continue  # the same frame again (queued before and after a take)
+            if sealer is None or tag_ok(sealer.secret, body, control_tag):
+                break
+            if f.seq > self._take_seq + 2:  # queued before the take, not the box's
+                self._forged(f"frame {f.seq} queued before the take without the control tag")
+        self._read_seq = f.seq
         self.last = f
-        sealer = self._sealer
         if self._ack is not None and sealer is not None:  # a lock-stepped simulator waits
             msg = sealer.seal("ack", "control/ack", {"client": self.client_id, "seq": f.seq})
             self._ack.put(encode_json(msg))
@@ -225,41 +274,65 @@ class ZenohBox(Box):
         import zenoh
 
         # every queryable on the key gets the query (zenoh's default picks one: an impostor's
-        # queryable would take the daemon's commands); the answer is the pinned box's
-        replies = self._session.get(
+        # queryable would take the daemon's commands), but only the pinned box's answer is
+        # waited for: a queryable that never answers delays nothing (issue 49)
+        answers: queue.Queue[tuple[str, bytes] | None] = queue.Queue()
+        pinned = self._box_zid
+
+        def on_reply(r: Any) -> None:
+            if r.ok is None:
+                return
+            rid = r.replier_id
+            zid = str(rid.zid) if rid is not None else "?"
+            if pinned is not None and zid != pinned:  # counted even after the answer came
+                self.impostor_replies += 1
+                _log.warning("%s: ignored an answer to %s not from the box", self.address, key)
+                return
+            answers.put((zid, r.ok.payload.to_bytes()))
+
+        self._session.get(
             f"{self.prefix}/{key}",
             payload=payload,
             timeout=self.timeout_s,
             target=zenoh.QueryTarget.ALL,
             consolidation=zenoh.ConsolidationMode.NONE,
+            handler=zenoh.handlers.Callback(on_reply, lambda: answers.put(None)),
         )
-        answers: dict[str, bytes] = {}
-        for r in replies:
-            if r.ok is not None:
-                rid = r.replier_id
-                answers.setdefault(
-                    str(rid.zid) if rid is not None else "?", r.ok.payload.to_bytes()
-                )
-        if self._box_zid is None and len(answers) > 1:
-            raise HardwareFault(
-                f"{len(answers)} boxes answer {self.prefix}/{key} at {self.endpoint}: one is an "
-                "impostor or a second daemon on the same key prefix; refusing to connect"
-            )
-        if self._box_zid is None and answers:
-            self._box_zid = next(iter(answers))
-        others = len(answers) - (self._box_zid in answers)
-        if others:
-            self.impostor_replies += others
-            _log.warning(
-                "%s: ignored %d answer(s) to %s not from the box", self.address, others, key
-            )
-        data = answers.get(self._box_zid or "")
-        if data is None:
-            raise ConnectionLost(f"no box answers {self.prefix}/{key} at {self.endpoint}")
+        data = self._answer_of(key, answers)
         try:
             return decode_request(data)
         except InputError as exc:
             raise HardwareFault(f"box at {self.endpoint} answered garbage: {exc}") from None
+
+    def _answer_of(self, key: str, answers: queue.Queue[tuple[str, bytes] | None]) -> bytes:
+        """The pinned box's answer from ``answers`` (None: the query ended), waiting at most
+        the timeout. Unpinned (the first query, ``info``): the first answer pins the box;
+        a second box answering within :data:`PIN_GRACE_S` after it is refused."""
+        deadline = time.monotonic() + self.timeout_s
+        found: dict[str, bytes] = {}
+        while True:
+            left = deadline - time.monotonic()
+            if found:
+                left = min(left, PIN_GRACE_S)
+            try:
+                item = answers.get(timeout=max(left, 0.0))
+            except queue.Empty:
+                item = None
+            if item is not None and self._box_zid is not None:
+                return item[1]  # only the pinned box's answers are queued
+            if item is not None:
+                found.setdefault(*item)
+                if len(found) > 1:
+                    raise HardwareFault(
+                        f"{len(found)} boxes answer {self.prefix}/{key} at {self.endpoint}: one "
+                        "is an impostor or a second daemon on the same key prefix; refusing "
+                        "to connect"
+                    )
+                continue
+            if not found:
+                raise ConnectionLost(f"no box answers {self.prefix}/{key} at {self.endpoint}")
+            self._box_zid, data = next(iter(found.items()))
+            return data
 
     def request(self, key: str, **fields: Any) -> dict[str, Any]:
         """Send one query carrying this client's id; raise on a refusal.
@@ -314,6 +387,9 @@ class ZenohBox(Box):
         seq = reply.get("seq")
         self._take_seq = seq if type(seq) is int else 0
         self._sealer = Sealer(secret)
+        # frames are now believed by the control tag only: a frame forged with the read key
+        # before the take may have pushed the last sequence number ahead of the box's
+        self._last_seq = min(self._last_seq, self._take_seq)
         self._ack = self._session.declare_publisher(f"{self.prefix}/control/ack", express=True)
         period = float(reply.get("watchdog_s", 0.5)) / 5
         self._beat_stop.clear()
@@ -323,9 +399,11 @@ class ZenohBox(Box):
     def _heartbeats(self, period: float) -> None:
         pub = self._session.declare_publisher(f"{self.prefix}/control/heartbeat", express=True)
         sealer = self._sealer
-        while not self._beat_stop.wait(period) and sealer is not None:
+        while sealer is not None:  # the first at once: the watchdog runs from the grant
             msg = sealer.seal("heartbeat", "control/heartbeat", {"client": self.client_id})
             pub.put(encode_json(msg))
+            if self._beat_stop.wait(period):
+                break
         pub.undeclare()
 
     def release_control(self) -> None:

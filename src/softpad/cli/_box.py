@@ -481,6 +481,9 @@ def inflate(args: argparse.Namespace) -> int:
             raise InputError(
                 f"--modules must be within 1..{box.channels} (channels of the box), got {args.modules}"
             )
+        take = getattr(box, "take_control", None)
+        if take is not None:  # a served box: control first, then only frames under its key
+            take()
         res = inflate_and_adjust(box, args.modules, InflationParams(target_pa=args.p0_kpa * 1e3))
     if args.json:
         emit(res.to_dict())

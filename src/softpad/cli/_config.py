@@ -19,7 +19,9 @@ def register(sub: Any) -> None:
         csub,
         "check",
         "validate FILE and print every resolved value with its unit",
-        "Validate an installation file; a wrong value is named with its key (exit 2).",
+        "Validate an installation file: every wrong value is named with its key, and every "
+        "unreadable or wrong password file, certificate or key (exit 2); weak security "
+        "settings are warned about on stderr.",
         json="print the resolved settings as JSON",
     )
     c.add_argument("file", metavar="FILE.toml")
@@ -27,16 +29,20 @@ def register(sub: Any) -> None:
 
 
 def check(args: argparse.Namespace) -> int:
-    from softpad.config import describe, load_installation
+    import sys
 
-    inst = load_installation(args.file)
+    from softpad.config import check_installation_file, describe
+
+    inst, warnings = check_installation_file(args.file)  # every error of the file at once
     if args.json:
         import dataclasses
 
         from softpad.cli._output import emit
 
-        emit({"file": args.file, "installation": dataclasses.asdict(inst)})
+        emit({"file": args.file, "installation": dataclasses.asdict(inst), "warnings": warnings})
         return 0
+    for w in warnings:
+        print(f"softpad config: warning: {w}", file=sys.stderr)
     for line in describe(inst):
         print(line)
     print("ok")

@@ -12,7 +12,12 @@ from collections.abc import Iterator, Sequence
 from typing import Any
 
 #: Parsers that read ``--config`` themselves (another meaning or another format).
-OWN_CONFIG = ("softpad box serve", "softpad ros node", "softpad sim arm-node")
+OWN_CONFIG = (
+    "softpad box serve",
+    "softpad ros node",
+    "softpad ros2 node",
+    "softpad sim arm-node",
+)
 _HELP = "installation file (TOML): its thresholds, gripper, pad and box link are the defaults"
 
 

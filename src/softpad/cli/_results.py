@@ -54,20 +54,21 @@ class ResultSpec:
 
 
 def _validation_lines(doc: dict[str, Any]) -> list[str]:
-    c = doc["counts"]
     lines = [
-        f"{c['agree']} agree, {c['disagree']} disagree, {c['not_run']} not run "
+        f"{role}: {c['agree']} agree, {c['disagree']} disagree, {c['undecided']} undecided, "
+        f"{c['not_run']} not run"
+        for role, c in doc["counts"].items()
+    ]
+    lines += [
         f"(seeds {doc['seeds'] or 'none'}, {doc['placements']} placement draws)",
         "",
-        "| observation | thesis | predicted | interval | agrees |",
-        "|---|---|---|---|---|",
+        "| role | observation | thesis | predicted | interval | agrees |",
+        "|---|---|---|---|---|---|",
     ]
     for o in doc["observations"]:
-        mark = {True: "yes", False: "**no**", None: "not run"}[o["agrees"]]
-        p = "" if o.get("p_value") is None else f" (p = {o['p_value']:.3g})"
         lines.append(
-            f"| {o['name']} | {_text(o['thesis'])} | {_text(o['predicted'])} | "
-            f"{_text(o['interval'])} | {mark}{p} |"
+            f"| {o['role']} | {o['name']} | {_text(o['thesis'])} | {_text(o['predicted'])} | "
+            f"{_text(o['interval'])} | {o['verdict']} |"
         )
     return lines
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+from collections.abc import Callable
 from typing import Any
 
 from softpad import thesis
@@ -197,6 +198,18 @@ def run_with_progress(
     from softpad.trials import run_experiment
 
     bar = progress_bar(len(specs) * trials, show, desc=desc)
+    tick = _ticker(bar, finished)
+
+    try:
+        return run_experiment(specs, trials=trials, on_trial=tick, **kwargs)
+    finally:
+        if bar is not None:
+            bar.close()
+
+
+def _ticker(bar: Any, finished: list[dict[str, Any]] | None) -> Callable[[Any], None]:
+    """The ``on_trial`` hook: each finished trial's dict appended to ``finished`` (kept when
+    the run is interrupted), its outcome shown on the progress bar."""
 
     def tick(result: Any) -> None:
         if finished is not None:
@@ -205,11 +218,12 @@ def run_with_progress(
             bar.set_postfix_str(f"{result.object}: {'held' if result.success else result.cause}")
             bar.update(1)
 
-    try:
-        return run_experiment(specs, trials=trials, on_trial=tick, **kwargs)
-    finally:
-        if bar is not None:
-            bar.close()
+    return tick
+
+
+def _show(args: argparse.Namespace) -> bool:
+    """Whether to show a progress bar (asked for, and stderr a terminal)."""
+    return not args.no_progress and sys.stderr.isatty()
 
 
 def run(args: argparse.Namespace) -> int:
@@ -229,26 +243,11 @@ def run(args: argparse.Namespace) -> int:
     check_trial_recordings(args.record, specs, args.trials, args.force)
     from softpad.trials import ExperimentResult, errored_records
 
-    done: list[Any] = []
     finished: list[dict[str, Any]] = []
     args.partial = {"seeds": seeds, "completed_seeds": [], "finished_trials": finished}
     if getattr(args, "scheduler", None) is not None:
         return _run_on_dask(args, specs, seeds)
-    for seed in seeds:
-        exp, _ = run_with_progress(
-            specs,
-            args.trials,
-            not args.no_progress and sys.stderr.isatty(),
-            finished=finished,
-            seed=seed,
-            workers=args.workers,
-            config=_config(args),
-            record=args.record,
-        )
-        done.append(exp)
-        args.partial["completed_seeds"] = [e.seed for e in done]
-        if len(seeds) > 1:
-            say(f"seed {seed}: {exp.overall()['successes']}/{len(exp.trials)} held", args.json)
+    done = _run_here(args, specs, seeds, finished)
     pooled = ExperimentResult.pooled(done)
     say(pooled.to_text(), args.json)
     say(
@@ -258,6 +257,50 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         emit(pooled.to_dict())
     return trial_errors_exit(errored_records(pooled.trials), "trials")
+
+
+def _run_here(
+    args: argparse.Namespace, specs: list[Any], seeds: list[int], finished: list[dict[str, Any]]
+) -> list[Any]:
+    """Every seed's experiment on this machine's worker processes, all seeds' trials queued
+    at once (the workers live across the seeds); ``args.partial`` follows the finished seeds."""
+    from softpad.trials import run_experiments
+
+    done: list[Any] = []
+
+    def seed_done(exp: Any) -> None:
+        done.append(exp)
+        args.partial["completed_seeds"] = sorted(e.seed for e in done)
+        if len(seeds) > 1:
+            say(f"seed {exp.seed}: {exp.overall()['successes']}/{len(exp.trials)} held", args.json)
+
+    if args.record is not None:  # one seed (checked by run); recordings named per trial
+        exp, _ = run_with_progress(
+            specs,
+            args.trials,
+            _show(args),
+            finished=finished,
+            seed=seeds[0],
+            workers=args.workers,
+            config=_config(args),
+            record=args.record,
+        )
+        seed_done(exp)
+        return done
+    bar = progress_bar(len(specs) * args.trials * len(seeds), _show(args))
+    try:
+        return run_experiments(
+            specs,
+            args.trials,
+            seeds,
+            workers=args.workers,
+            config=_config(args),
+            on_trial=_ticker(bar, finished),
+            on_seed=seed_done,
+        )
+    finally:
+        if bar is not None:
+            bar.close()
 
 
 def _config(args: argparse.Namespace) -> Any:

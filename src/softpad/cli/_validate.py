@@ -19,8 +19,13 @@ Rows (docs/validation.md): Experiment 2 overall and per object (thesis pair), th
 causes the thesis names (seam misses of object 5 and the charger, the cylinder's COG outside,
 no jaw landings), Table 6.1's plans, Fig. 6.7's plans, the cylinder's modules, the minimum
 detectable mass at 1.1 kPa, the 12.6 g Duplo piece against t_o and the idle noise (Fig. 6.8).
-Counts are compared by Fisher's exact test (two-sided, p > 0.05 agrees); plans by the share
-of predicted plans with the thesis's theta and the COG range; the rest by the stated bound.
+Every row has a role, counted apart: validation (a test the simulator could fail),
+calibration (an object's unknown was chosen from that row), construction (true by how the
+object was built or placed). A count agrees when the 95 % Wilson intervals of the thesis and
+the prediction overlap and the prediction rests on at least ten times the thesis's trials
+(undecided when they overlap on fewer); each count states the smallest rate difference its
+test detects with 80 % power. A plan agrees when the modal plan over the draws is within
+0.1 module and 10 degrees of the thesis's. The rest by the stated bound.
 Exit 0 whatever the rows show (disagreements are results); 2 for bad input.
 """
 
@@ -50,7 +55,7 @@ def register(sub: Any) -> None:
     p.add_argument(
         "--placements",
         type=int,
-        default=40,
+        default=50,
         help="placement draws per object of the static rows (default %(default)s)",
     )
     p.add_argument(

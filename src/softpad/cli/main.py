@@ -45,6 +45,7 @@ _COMMAND_MODULES = (
     "_log",
     "_bench",
     "_ros",
+    "_ros2",
     "_completion",
 )
 

@@ -6,7 +6,9 @@ the thesis thresholds (:class:`Thresholds`) and the gripper mounting. ``softpad 
 FILE`` prints the resolved values with units. See ``examples/site.toml``.
 """
 
+from softpad.config._audit import audit_link, check_installation_file
 from softpad.config._settings import (
+    WATCHDOG_RANGE_S,
     BoxSettings,
     ChannelWiring,
     ConfigError,
@@ -20,9 +22,11 @@ from softpad.config._settings import (
     is_loopback_endpoint,
     load_installation,
     parse_installation,
+    remote_policy_errors,
 )
 
 __all__ = [
+    "WATCHDOG_RANGE_S",
     "BoxSettings",
     "ChannelWiring",
     "ConfigError",
@@ -30,10 +34,13 @@ __all__ = [
     "LinkSettings",
     "PadSettings",
     "Thresholds",
+    "audit_link",
     "check_endpoint",
+    "check_installation_file",
     "check_remote_policy",
     "describe",
     "is_loopback_endpoint",
     "load_installation",
     "parse_installation",
+    "remote_policy_errors",
 ]

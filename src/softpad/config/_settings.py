@@ -44,10 +44,11 @@ MAX_FILTER_WINDOW = 1000
 #: Configured maximum pressure, Pa: from 0.2 kPa to the thesis's ceiling.
 MAX_PRESSURE_RANGE_PA = (200.0, thesis.MAX_PRESSURE_PA)
 #: Sample rate of a hardware box, Hz; ambient (absolute) pressure of a site, Pa; the
-#: daemon's watchdog, s (the installation file's limits).
+#: daemon's watchdog, s (the installation file's limits). The watchdog: from 50 ms (its
+#: heartbeats every 10 ms) to 5 s (a controller that vanished leaves its valves that long).
 SAMPLE_RATE_RANGE_HZ = (1.0, 10_000.0)
 AMBIENT_RANGE_PA = (50e3, 110e3)
-WATCHDOG_RANGE_S = (0.01, 60.0)
+WATCHDOG_RANGE_S = (0.05, 5.0)
 
 
 class ConfigError(InputError):
@@ -80,16 +81,27 @@ class ChannelWiring:
 class BoxSettings:
     """The box's wiring: channels (1-based, in order), the supply sensor, the sampling rate,
     and the ambient pressure of the site (added to gauge readings where a message is absolute,
-    ``sensor_msgs/FluidPressure``), Pa."""
+    ``sensor_msgs/FluidPressure``), Pa; how the valves are built (what they do unpowered)."""
 
     channels: tuple[ChannelWiring, ...] = ()
     supply: ChannelWiring | None = None
     sample_rate_hz: float = 1000.0
     iio_root: str = "/sys/bus/iio/devices"
     ambient_pressure_pa: float = thesis.AMBIENT_PRESSURE_PA
+    #: How the valves are built: ``"normally_closed"`` (closed unpowered, open with the GPIO
+    #: line active) or ``"normally_open"``. Inflation valves must be normally closed.
+    inflate_valves: str = "normally_closed"
+    deflate_valves: str = "normally_closed"
 
     def __post_init__(self) -> None:
         check_range("box sample_rate_hz", self.sample_rate_hz, *SAMPLE_RATE_RANGE_HZ, "Hz")
+        for name in ("inflate_valves", "deflate_valves"):
+            if getattr(self, name) not in VALVE_KINDS:
+                raise InputError(
+                    f"box {name} must be one of {', '.join(VALVE_KINDS)}, got {getattr(self, name)!r}"
+                )
+        if self.inflate_valves != "normally_closed":
+            raise InputError("box inflate_valves must be normally_closed (a power loss fills)")
         check_range(
             "box ambient_pressure_pa",
             self.ambient_pressure_pa,
@@ -294,53 +306,158 @@ _WIRING_KEYS = {
 
 
 def _wiring(t: dict[str, Any], where: str, channel: int, valves: bool) -> ChannelWiring:
-    _unknown(t, _WIRING_KEYS, where)
+    """One channel's (or the supply's) wiring; every error of the table in one ConfigError."""
+    errors: list[str] = []
+    _try(errors, None, _unknown, t, _WIRING_KEYS, where)
     lines = []
     for key in ("inflate_line", "deflate_line"):
-        v = _get(t, key, where, int, None if valves else -1)
+        v = _try(errors, 0, _get, t, key, where, int, None if valves else -1)
         if v is None:
-            raise ConfigError(f"{where}.{key} is missing (GPIO line offset of the valve)")
-        if valves and v < 0:
-            raise ConfigError(f"{where}.{key} must be a line offset >= 0, got {v}")
-        lines.append(v)
-    dev = _get(t, "iio_device", where, int, None)
-    adc = _get(t, "iio_channel", where, int, None)
-    if dev is None or adc is None:
-        missing = "iio_device" if dev is None else "iio_channel"
-        raise ConfigError(
-            f"{where}.{missing} is missing (IIO device N / in_voltageK of the sensor)"
+            errors.append(f"{where}.{key} is missing (GPIO line offset of the valve)")
+        elif valves and v < 0:
+            errors.append(f"{where}.{key} must be a line offset >= 0, got {v}")
+        lines.append(v if v is not None else 0)
+    iio = []
+    for key in ("iio_device", "iio_channel"):
+        v = _try(errors, 0, _get, t, key, where, int, None)
+        if v is None:
+            errors.append(f"{where}.{key} is missing (IIO device N / in_voltageK of the sensor)")
+        elif v < 0:
+            errors.append(f"{where}.{key} must be >= 0, got {v}")
+        iio.append(v if v is not None else 0)
+    gain = _try(errors, 1.0, _get, t, "gain", where, float, 1.0)
+    ppc = _try(errors, 1.0, _get, t, "pa_per_count", where, float, 1.0)
+    for key, v in (("gain", gain), ("pa_per_count", ppc)):
+        if v <= 0:
+            errors.append(
+                f"{where}.{key} must be > 0, got {v:g} (zero reads nothing; a negative factor "
+                "turns a rising pressure into a falling reading and the over-pressure guard "
+                "would never trip: wire the sensor the right way round)"
+            )
+    chip = _try(errors, "/dev/gpiochip0", _get, t, "gpiochip", where, str, "/dev/gpiochip0")
+    if valves and not (chip.startswith("/dev/") and len(chip) > 5):
+        errors.append(
+            f"{where}.gpiochip must be the character device's path (/dev/gpiochipN), got {chip!r}"
         )
-    for key, v in (("iio_device", dev), ("iio_channel", adc)):
-        if v < 0:
-            raise ConfigError(f"{where}.{key} must be >= 0, got {v}")
-    gain = _get(t, "gain", where, float, 1.0)
-    ppc = _get(t, "pa_per_count", where, float, 1.0)
-    if gain == 0 or ppc == 0:
-        raise ConfigError(f"{where}: gain and pa_per_count must be non-zero, got {gain}, {ppc}")
+    offset = _try(errors, 0.0, _get, t, "offset_pa", where, float, 0.0)
+    _raise_all(errors)
     return ChannelWiring(
         channel=channel,
-        gpiochip=_get(t, "gpiochip", where, str, "/dev/gpiochip0"),
+        gpiochip=chip,
         inflate_line=lines[0],
         deflate_line=lines[1],
-        iio_device=dev,
-        iio_channel=adc,
-        offset_pa=_get(t, "offset_pa", where, float, 0.0),
+        iio_device=iio[0],
+        iio_channel=iio[1],
+        offset_pa=offset,
         gain=gain,
         pa_per_count=ppc,
     )
 
 
-def _box(raw: dict[str, Any]) -> BoxSettings:
-    t = _table(raw, "box")
-    _unknown(t, {"channel", "supply", "sample_rate_hz", "iio_root", "ambient_pressure_kpa"}, "box")
+def _wiring_conflicts(chans: list[dict[str, Any]], supply: Any) -> list[str]:
+    """One GPIO line on two valves, or one ADC input read as two sensors, from the tables as
+    written (a channel with other errors still counts; paths compared as resolved:
+    ``/dev/gpiochip1`` and ``/dev/./gpiochip1`` are one chip)."""
+    errors: list[str] = []
+    lines: dict[tuple[str, Any], str] = {}
+    inputs: dict[tuple[Any, Any], str] = {}
+    tables = [(f"box.channel.{i}", c) for i, c in enumerate(chans, 1)]
+    if isinstance(supply, dict):
+        tables.append(("box.supply", supply))
+    for name, t in tables:
+        if name != "box.supply":
+            chip = t.get("gpiochip", "/dev/gpiochip0")
+            for key in ("inflate_line", "deflate_line"):
+                line = t.get(key)
+                if not isinstance(chip, str) or not _is_int(line):
+                    continue
+                where, here = (_chip_path(chip), line), f"{name}.{key}"
+                if where in lines:
+                    errors.append(
+                        f"{here} = {line} on {chip} is already used by {lines[where]}"
+                        " (one GPIO line would drive two valves)"
+                    )
+                lines.setdefault(where, here)
+        adc = (t.get("iio_device"), t.get("iio_channel"))
+        if not (_is_int(adc[0]) and _is_int(adc[1])):
+            continue
+        if adc in inputs:
+            errors.append(
+                f"{name}: iio:device{adc[0]}/in_voltage{adc[1]} is already read by "
+                f"{inputs[adc]} (one ADC input would be two sensors)"
+            )
+        inputs.setdefault(adc, name)
+    return errors
+
+
+def _is_int(v: object) -> bool:
+    return isinstance(v, int) and not isinstance(v, bool)
+
+
+def _chip_path(path: str) -> str:
+    import os
+
+    return os.path.realpath(path)
+
+
+#: What a valve does unpowered (its GPIO line inactive): the file must say, for each kind.
+VALVE_KINDS = ("normally_closed", "normally_open")
+
+
+def _valve_kinds(errors: list[str], t: dict[str, Any], wired: bool) -> tuple[str, str]:
+    """``(inflate_valves, deflate_valves)``: how the valves are built, which the safe state
+    at a final close depends on. Required when channels are wired; an inflation valve that
+    opens unpowered is refused (a power loss would fill every module)."""
+    out = []
+    for key in ("inflate_valves", "deflate_valves"):
+        v = _try(errors, None, _get, t, key, "box", str, None)
+        if v is None:
+            if wired and f"box.{key}" not in " ".join(errors):
+                errors.append(
+                    f"box.{key} is missing: say how the valves are built, "
+                    f"{' or '.join(repr(k) for k in VALVE_KINDS)} (unpowered state); the "
+                    "safe state at a final close depends on it"
+                )
+            v = "normally_closed"
+        elif v not in VALVE_KINDS:
+            errors.append(f"box.{key} must be one of {', '.join(VALVE_KINDS)}; got {v!r}")
+            v = "normally_closed"
+        out.append(v)
+    if out[0] == "normally_open":
+        errors.append(
+            "box.inflate_valves = 'normally_open' is refused: an inflation valve that opens "
+            "unpowered fills every module on a power loss or a crash, with no guard running"
+        )
+    return out[0], out[1]
+
+
+_BOX_KEYS = {
+    "channel",
+    "supply",
+    "sample_rate_hz",
+    "iio_root",
+    "ambient_pressure_kpa",
+    "inflate_valves",
+    "deflate_valves",
+}
+
+
+def _channels(errors: list[str], t: dict[str, Any]) -> list[dict[str, Any]]:
     chans = t.get("channel", [])
     if not isinstance(chans, list) or not all(isinstance(c, dict) for c in chans):
-        raise ConfigError(
-            f"box.channel must be an array of tables ([[box.channel]]), got {chans!r}"
-        )
+        errors.append(f"box.channel must be an array of tables ([[box.channel]]), got {chans!r}")
+        return []
     if len(chans) > 64:
-        raise ConfigError(f"box.channel: at most 64 channels, got {len(chans)}")
+        errors.append(f"box.channel: at most 64 channels, got {len(chans)}")
+        return []
+    return chans
+
+
+def _box(raw: dict[str, Any]) -> BoxSettings:
+    t = _table(raw, "box")
     errors: list[str] = []
+    _try(errors, None, _unknown, t, _BOX_KEYS, "box")
+    chans = _channels(errors, t)
     found = [
         _collect(errors, _wiring, c, f"box.channel.{i}", i, True) for i, c in enumerate(chans, 1)
     ]
@@ -351,26 +468,23 @@ def _box(raw: dict[str, Any]) -> BoxSettings:
     ambient = _number(
         errors, t, "ambient_pressure_kpa", "box", float, default_kpa, lo_kpa, hi_kpa, " kPa"
     )
+    inflate_kind, deflate_kind = _valve_kinds(errors, t, bool(chans))
+    supply = None
+    if t.get("supply") is not None:
+        supply_table = _try(errors, {}, _table, t, "supply", "box")
+        supply = _collect(errors, _wiring, supply_table, "box.supply", 0, False)
+    wiring = tuple(w for w in found if w is not None)
+    errors.extend(_wiring_conflicts(chans, t.get("supply")))
+    iio_root = _try(errors, "", _get, t, "iio_root", "box", str, "/sys/bus/iio/devices")
     _raise_all(errors)  # every channel's and key's error, not only the first
-    wiring = tuple(found)
-    seen: dict[tuple[str, int], str] = {}
-    for w in wiring:
-        for key, line in (("inflate_line", w.inflate_line), ("deflate_line", w.deflate_line)):
-            here = f"box.channel.{w.channel}.{key}"
-            if (w.gpiochip, line) in seen:
-                raise ConfigError(
-                    f"{here} = {line} on {w.gpiochip} is already used by {seen[(w.gpiochip, line)]}"
-                )
-            seen[(w.gpiochip, line)] = here
-    supply = t.get("supply")
     return BoxSettings(
         channels=wiring,
-        supply=None
-        if supply is None
-        else _wiring(_table(t, "supply", "box"), "box.supply", 0, False),
+        supply=supply,
         sample_rate_hz=rate,
-        iio_root=_get(t, "iio_root", "box", str, "/sys/bus/iio/devices"),
+        iio_root=iio_root,
         ambient_pressure_pa=ambient * 1e3,
+        inflate_valves=inflate_kind,
+        deflate_valves=deflate_kind,
     )
 
 
@@ -414,63 +528,87 @@ def check_endpoint(endpoint: str, name: str) -> str:
 
 def _link(raw: dict[str, Any]) -> LinkSettings:
     t = _table(raw, "link")
-    _unknown(t, _LINK_KEYS, "link")
-    listen = tuple(_get(t, "listen", "link", list, ["tcp/127.0.0.1:7447"]))
-    connect = tuple(_get(t, "connect", "link", list, []))
-    for e in listen:
-        check_endpoint(e, "link.listen")
-    for e in connect:
-        check_endpoint(e, "link.connect")
-    action = _get(t, "watchdog_action", "link", str, "hold")
+    errors: list[str] = []
+    _try(errors, None, _unknown, t, _LINK_KEYS, "link")
+    ends = {}
+    for key, default in (("listen", ["tcp/127.0.0.1:7447"]), ("connect", [])):
+        given = _try(errors, [], _get, t, key, "link", list, default)
+        ends[key] = tuple(e for e in given if _try(errors, None, check_endpoint, e, f"link.{key}"))
+    action = _try(errors, "hold", _get, t, "watchdog_action", "link", str, "hold")
     if action not in WATCHDOG_ACTIONS:
-        raise ConfigError(f"link.watchdog_action must be one of hold, vent; got {action!r}")
-    prefix = _get(t, "key_prefix", "link", str, "softpad/box")
+        errors.append(f"link.watchdog_action must be one of hold, vent; got {action!r}")
+        action = "hold"
+    prefix = _try(errors, "softpad/box", _get, t, "key_prefix", "link", str, "softpad/box")
     if not prefix or any(c in prefix for c in "*$?#") or prefix.startswith("/"):
-        raise ConfigError(
-            f"link.key_prefix must be a plain zenoh key like softpad/box, got {prefix!r}"
-        )
+        errors.append(f"link.key_prefix must be a plain zenoh key like softpad/box, got {prefix!r}")
+        prefix = "softpad/box"
+    text = {
+        key: _try(errors, None, _get, t, key, "link", str, None)
+        for key in ("user", "password_file", "tls_certificate", "tls_private_key", "tls_root_ca")
+    }
+    for key, v in text.items():
+        if v is not None and not v.strip():
+            errors.append(f"link.{key} is empty: remove the key or give a value")
+            text[key] = None
     link = LinkSettings(
-        listen=listen,
-        connect=connect,
+        listen=ends["listen"],
+        connect=ends["connect"],
         key_prefix=prefix,
-        allow_remote=_get(t, "allow_remote", "link", bool, False),
-        user=_get(t, "user", "link", str, None),
-        password_file=_get(t, "password_file", "link", str, None),
-        tls_certificate=_get(t, "tls_certificate", "link", str, None),
-        tls_private_key=_get(t, "tls_private_key", "link", str, None),
-        tls_root_ca=_get(t, "tls_root_ca", "link", str, None),
-        watchdog_s=_range(
-            "link.watchdog_s", _get(t, "watchdog_s", "link", float, 0.5), *WATCHDOG_RANGE_S, " s"
-        ),
+        allow_remote=_try(errors, False, _get, t, "allow_remote", "link", bool, False),
+        watchdog_s=_number(errors, t, "watchdog_s", "link", float, 0.5, *WATCHDOG_RANGE_S, " s"),
         watchdog_action=action,
+        **text,
     )
-    check_remote_policy(link)
+    errors.extend(remote_policy_errors(link))
+    _raise_all(errors)
     return link
 
 
 def check_remote_policy(link: LinkSettings) -> None:
-    """Refuse a non-loopback endpoint unless ``link.allow_remote`` and auth are both set."""
+    """Raise ConfigError with every message of :func:`remote_policy_errors` (none: nothing)."""
+    _raise_all(remote_policy_errors(link))
+
+
+def remote_policy_errors(link: LinkSettings) -> list[str]:
+    """What the link's policy refuses: a non-loopback endpoint without ``allow_remote`` and
+    authentication, plain tcp beyond loopback, a ``tls/`` listener without a certificate, a
+    plain tcp listener beside mutual TLS (it would let clients in without a certificate)."""
+    errors = []
     for e in (*link.listen, *link.connect):
         if is_loopback_endpoint(e):
             continue
         if not link.allow_remote:
-            raise ConfigError(
+            errors.append(
                 f"link.listen/connect endpoint {e!r} is not on 127.0.0.1; set "
                 "link.allow_remote = true (and authentication) to use it"
             )
-        if not e.startswith("tls/"):
-            raise ConfigError(
+        elif not e.startswith("tls/"):
+            errors.append(
                 f"endpoint {e!r} is plain tcp/ beyond loopback: refused whatever else is set "
                 "(nothing on it would be encrypted); use tls/HOST:PORT"
             )
-        if not link.has_auth:
-            raise ConfigError(
+        elif not link.has_auth:
+            errors.append(
                 f"endpoint {e!r} is beyond loopback but no authentication is configured: set "
                 "link.user + link.password_file, or link.tls_certificate + "
                 "link.tls_private_key + link.tls_root_ca (mutual TLS)"
             )
     if link.tls_certificate is not None and link.tls_private_key is None:
-        raise ConfigError("link.tls_certificate needs link.tls_private_key")
+        errors.append("link.tls_certificate needs link.tls_private_key")
+    tls_listen = [e for e in link.listen if e.startswith("tls/")]
+    if tls_listen and link.tls_certificate is None:
+        errors.append(
+            f"link.listen {tls_listen[0]!r} is tls/ but link.tls_certificate is not set "
+            "(a TLS listener needs its certificate and key)"
+        )
+    mutual = link.tls_certificate is not None and link.tls_root_ca is not None
+    plain = [e for e in link.listen if e.startswith("tcp/")]
+    if mutual and tls_listen and plain and link.password_file is None:
+        errors.append(
+            f"link.listen {plain[0]!r} is plain tcp/ beside mutual TLS: a client would get in "
+            "there without a certificate; listen on tls/ endpoints only"
+        )
+    return errors
 
 
 def _pad(raw: dict[str, Any]) -> PadSettings:
@@ -505,9 +643,15 @@ def _thresholds(raw: dict[str, Any]) -> Thresholds:
     errors: list[str] = []
     _try(errors, None, _unknown, t, keys, "thresholds")
 
+    bad: set[str] = set()
+
     def kpa(key: str, default_pa: float, lo_pa: float, hi_pa: float) -> float:
         where, lo, hi = "thresholds", lo_pa / 1e3, hi_pa / 1e3
-        return float(_number(errors, t, key, where, float, default_pa / 1e3, lo, hi, " kPa")) * 1e3
+        n = len(errors)
+        v = float(_number(errors, t, key, where, float, default_pa / 1e3, lo, hi, " kPa")) * 1e3
+        if len(errors) > n:
+            bad.add(key)
+        return v
 
     values = {
         "p0_pa": kpa("p0_kpa", DEFAULT_P0_PA, *thesis.P0_RANGE_PA),
@@ -519,14 +663,32 @@ def _thresholds(raw: dict[str, Any]) -> Thresholds:
     window = _number(
         errors, t, "window", "thresholds", int, DEFAULT_FILTER_WINDOW, 1, MAX_FILTER_WINDOW
     )
+    errors.extend(_threshold_order(values, bad))
     _raise_all(errors)
-    if values["p0_pa"] + values["adjust_tolerance_pa"] >= values["max_pressure_pa"]:
-        raise ConfigError(
+    return Thresholds(filter_window=int(window), **values)
+
+
+def _threshold_order(values: dict[str, float], bad: set[str]) -> list[str]:
+    """The order the thesis's thresholds must keep (each pair judged when both parsed):
+    p0 + t_adj below the maximum; the gripper's contact threshold t_g at or above the object
+    threshold t_o (a contact must be the larger rise: Section 6.2 sets 0.09 over 0.05 kPa)."""
+    errors = []
+    if not bad & {"p0_kpa", "t_adj_kpa", "max_pressure_kpa"} and (
+        values["p0_pa"] + values["adjust_tolerance_pa"] >= values["max_pressure_pa"]
+    ):
+        errors.append(
             "thresholds.p0_kpa + t_adj_kpa "
             f"({(values['p0_pa'] + values['adjust_tolerance_pa']) / 1e3:g} kPa) "
             f"must stay below max_pressure_kpa ({values['max_pressure_pa'] / 1e3:g} kPa)"
         )
-    return Thresholds(filter_window=int(window), **values)
+    t_o, t_g = values["object_threshold_pa"], values["contact_threshold_pa"]
+    if not bad & {"t_o_kpa", "t_g_kpa"} and t_g < t_o:
+        errors.append(
+            f"thresholds.t_g_kpa ({t_g / 1e3:g} kPa) must not be below t_o_kpa "
+            f"({t_o / 1e3:g} kPa): the gripper's contact is the larger rise (thesis 0.09 "
+            "over 0.05 kPa)"
+        )
+    return errors
 
 
 def _gripper(raw: dict[str, Any]) -> str | None:
@@ -549,6 +711,22 @@ def _collect(errors: list[str], parse: Any, *args: Any) -> Any:
         return None
 
 
+def _cross_table(raw: dict[str, Any], pad: PadSettings | None) -> list[str]:
+    """Errors between tables: fewer channels wired than the pad has modules (counted from
+    the file, so a channel with errors of its own still counts)."""
+    box = raw.get("box")
+    chans = box.get("channel") if isinstance(box, dict) else None
+    if pad is None or not isinstance(chans, list) or not chans:
+        return []
+    modules = pad.rows * pad.cols
+    if len(chans) >= modules:
+        return []
+    return [
+        f"box.channel: {len(chans)} channels wired for a {pad.rows} x {pad.cols} pad "
+        f"({modules} modules): every module needs its channel"
+    ]
+
+
 def parse_installation(raw: dict[str, Any], source: str = "<dict>") -> Installation:
     """Validate a parsed TOML document into :class:`Installation`.
 
@@ -568,6 +746,7 @@ def parse_installation(raw: dict[str, Any], source: str = "<dict>") -> Installat
             ("gripper", _gripper),
         )
     }  # fmt: skip
+    errors.extend(_cross_table(raw, parts["pad"]))
     if errors:
         if len(errors) == 1:
             raise ConfigError(errors[0])
@@ -584,6 +763,16 @@ def parse_installation(raw: dict[str, Any], source: str = "<dict>") -> Installat
     )
 
 
+def read_toml(path: Path) -> dict[str, Any]:
+    """The TOML document of ``path``; ConfigError naming the file when unreadable or invalid."""
+    try:
+        return tomllib.loads(path.read_text(encoding="utf-8"))
+    except OSError as exc:
+        raise ConfigError(f"cannot read installation file {str(path)!r}: {exc.strerror}") from None
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        raise ConfigError(f"installation file {str(path)!r} is not valid TOML: {exc}") from None
+
+
 def load_installation(path: str | Path) -> Installation:
     """Read and validate an installation file (TOML).
 
@@ -593,12 +782,7 @@ def load_installation(path: str | Path) -> Installation:
         Unreadable file, TOML syntax error, unknown key or wrong value (named in the message).
     """
     p = Path(path)
-    try:
-        raw = tomllib.loads(p.read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise ConfigError(f"cannot read installation file {str(p)!r}: {exc.strerror}") from None
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
-        raise ConfigError(f"installation file {str(p)!r} is not valid TOML: {exc}") from None
+    raw = read_toml(p)
     try:
         return parse_installation(raw, str(p))
     except ConfigError as exc:  # the file named: it may be one of several

@@ -157,6 +157,8 @@ class FaultMonitor:
         self._buf = _LastRows(self.th.filter_length, self.n)
         self._supply = _LastRows(self.th.filter_length, 1)
         self._sealed_frames = np.zeros(self.n, dtype=np.int64)
+        self._valves_seen: tuple[ValveCommand, ...] | None = None
+        self._sealed_now = np.zeros(self.n, dtype=bool)
         self._window_start: tuple[float, NDArray[np.float64]] | None = None
         self._rising = np.zeros(self.n, dtype=np.int64)
         # sealed (for a whole filter length) at the start of the current window and ever since
@@ -182,8 +184,11 @@ class FaultMonitor:
         bad = self._check_raw(t, p)
         if bad is not None:
             return bad
-        sealed_now = np.array([v is ValveCommand.CLOSED for v in valves[: self.n]])
-        self._sealed_frames = np.where(sealed_now, self._sealed_frames + 1, 0)
+        key = valves if isinstance(valves, tuple) else tuple(valves)
+        if key != self._valves_seen:  # the commands change a few times a run
+            self._valves_seen = key
+            self._sealed_now = np.array([v is ValveCommand.CLOSED for v in valves[: self.n]])
+        self._sealed_frames = np.where(self._sealed_now, self._sealed_frames + 1, 0)
         self._buf.append(p)
         self._supply.append(float(frame.supply_pa))
         if self._buf.count < self.th.filter_length:
@@ -210,15 +215,18 @@ class FaultMonitor:
         windows' levels and within each window, Pa/s (NaN where not sealed throughout)."""
         th = self.th
         between, within = rates
-        shown = np.mean(between, axis=0)  # the message gives the channel's own rate
+        shown = between  # the message gives the channel's own rate (their mean, below)
         if self.loads_expected:
             sealed = np.asarray(~np.isnan(between).any(axis=0), dtype=bool)
             between, within = _unbalanced(between, sealed), _unbalanced(within, sealed)
         up = (between > th.rise_loaded_pa_s).all(axis=0)  # NaN: not sealed throughout
+        if not up.any():  # the usual frame: no channel rising at all
+            return None
         up &= between.max(axis=0) <= th.steady_spread * between.min(axis=0)
         up &= (within > 0.5 * th.rise_loaded_pa_s).all(axis=0)
         if not up.any():
             return None
+        shown = np.mean(shown, axis=0)
         k = int(np.argmax(up))
         span = th.steady_window_s * (th.steady_windows + 1)
         what = (
@@ -315,6 +323,8 @@ class _SteadyRise:
         self._lo = self._hi = 0
         self._total = np.zeros(n)
         self._sealed_from = np.full(n, np.inf)
+        # the half-window edges back from the newest frame, seconds
+        self._offsets = 0.5 * window_s * np.arange(2 * count + 3)
 
     def _append(self, t: float) -> None:
         if self._hi == len(self._t):  # full: move what is kept to the front, or grow
@@ -351,11 +361,11 @@ class _SteadyRise:
             return None  # no channel sealed throughout (see ``old`` below)
         half = 0.5 * self.window_s
         kept = times[self._lo : self._hi]
-        edges = np.searchsorted(kept, t - half * np.arange(2 * self.count + 3), side="right") - 1
+        edges = np.searchsorted(kept, t - self._offsets, side="right") - 1
         old = self._sealed_from > kept[edges[-1]]
         if old.all():
             return None  # no channel sealed throughout: every rate would be NaN
-        counts = -np.diff(edges.astype(float))  # samples in each half window
+        counts = (edges[:-1] - edges[1:]).astype(float)  # samples in each half window
         if counts.min() < 1.0:
             return None
         sums = self._sum[self._lo + edges]

@@ -23,7 +23,9 @@ Schema ``softpad-object-set/1`` (units in the key names, converted to SI on read
 
 Placements: ``"as-thesis"`` keeps the catalogue's placement relative to the pad's centre (on
 the thesis's 2 x 3 pad it is the catalogue's own), ``"centre"`` puts the object's footprint
-centre on the pad's centre, a table offsets it from there. Meshes are not read (the
+centre on the pad's centre, a table offsets it from there, ``"anywhere"`` draws a pose per
+trial from the trial's seed anywhere on the pad the object fits, its centre at least 10 mm
+from the pad's centre (held-out trials as a lab runs them; issue 45). Meshes are not read (the
 simulated worlds take primitive parts).
 """
 
@@ -57,7 +59,7 @@ class SetObject:
     #: The object (:class:`softpad.sim.ObjectSpec`); its placement is the one on the thesis's
     #: pad (``as-thesis``) or ignored.
     spec: Any
-    #: ``"as-thesis"``, ``"centre"`` or ``"offset"``.
+    #: ``"as-thesis"``, ``"centre"``, ``"offset"`` or ``"anywhere"``.
     placement: str = "as-thesis"
     #: (dx_m, dy_m, yaw_rad) of the footprint centre from the pad centre (``offset``).
     offset: tuple[float, float, float] = (0.0, 0.0, 0.0)
@@ -73,6 +75,8 @@ class SetObject:
 
         w, h = pad_size_m
         p = self.spec.placement
+        if self.placement == "anywhere":
+            return replace(self.spec, placement=Placement(w / 2, h / 2, 0.0, (w, h)))
         if self.placement == "as-thesis":
             dx, dy = (w - _THESIS_PAD_M[0]) / 2, (h - _THESIS_PAD_M[1]) / 2
             return replace(self.spec, placement=Placement(p.x_m + dx, p.y_m + dy, p.yaw_rad))
@@ -215,9 +219,9 @@ def _set_object(entry: Any, index: int) -> SetObject:
             math.radians(_number(placement, "yaw_deg", name, 0.0)),
         )
         return SetObject(spec, "offset", offset)
-    if placement not in ("as-thesis", "centre"):
+    if placement not in ("as-thesis", "centre", "anywhere"):
         raise InputError(
-            f"object {name!r}: placement must be 'as-thesis', 'centre' or a table "
+            f"object {name!r}: placement must be 'as-thesis', 'centre', 'anywhere' or a table "
             f"{{dx_mm, dy_mm, yaw_deg}}, got {placement!r}"
         )
     return SetObject(spec, str(placement))

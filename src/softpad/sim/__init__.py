@@ -49,6 +49,7 @@ from softpad.sim._response import (
 from softpad.sim._sensor import SensorBank, SensorParams
 from softpad.sim._tips import TIP_TRANSITIONS, TipState, TipStateError
 from softpad.sim._uncertain import (
+    OBJECT_UNKNOWNS,
     UNCERTAIN_PARAMETERS,
     LabVariation,
     UncertainParameter,
@@ -62,6 +63,7 @@ __all__ = [
     "DEFAULT_LINE_WIDTH_M",
     "GRAVITY_M_S2",
     "GRIPPER_MOUNTINGS",
+    "OBJECT_UNKNOWNS",
     "TIP_TRANSITIONS",
     "UNCERTAIN_PARAMETERS",
     "AnalyticCharacteristic",

@@ -269,8 +269,11 @@ class TabulatedCharacteristic:
         if grid.size == 1:
             z = np.zeros(x.shape, dtype=np.intp)
             return z, np.zeros(x.shape), np.zeros(x.shape)
-        xc = np.maximum(x, grid[0]) if extrapolate_above else np.clip(x, grid[0], grid[-1])
-        i = np.clip(np.searchsorted(grid, xc, side="right") - 1, 0, grid.size - 2)
+        # np.clip's values without its Python wrapper (the gas solver's hot path)
+        xc = np.maximum(x, grid[0])
+        if not extrapolate_above:
+            xc = np.minimum(xc, grid[-1])
+        i = np.minimum(np.maximum(np.searchsorted(grid, xc, side="right") - 1, 0), grid.size - 2)
         width = grid[i + 1] - grid[i]
         t = (xc - grid[i]) / width
         inside = (x >= grid[0]) & ((x <= grid[-1]) | extrapolate_above)

@@ -41,6 +41,7 @@ from typing import Any, Protocol
 from softpad import thesis
 from softpad.errors import MM_AS_M, CheckedFields, InputError, Positive, check_range
 from softpad.layout import GripperSpec, PadLayout
+from softpad.sim._contact_nominals import FINGERTIP_FRICTION, PAD_TIP_STIFFNESS_N_M
 from softpad.sim._objects import PartSpec
 
 # Collision bits.
@@ -97,9 +98,9 @@ class PadPhysics(CheckedFields, what="pad"):
     dome_height_m: float = 4e-3
     #: Stiffness of the membrane under a small indenter (a fingertip), N/m. The thesis's FEM
     #: (Fig. 6.3c) computes an equivalent stiffness k = F / (h_free - h_load) for a load on a
-    #: 1 cm disc; a 0.5 N load at 1 kPa flattens most of the 8-9 mm dome, i.e. k of order
-    #: 50-100 N/m; we take 80 N/m.
-    local_stiffness_n_m: Positive = 80.0
+    #: 1 cm disc; the project's FEM gives 96-187 N/m around p0 and 114 N/m at p0 under 0.5 N
+    #: (docs/fem.md; :data:`softpad.sim._contact_nominals.PAD_TIP_STIFFNESS_N_M`).
+    local_stiffness_n_m: Positive = PAD_TIP_STIFFNESS_N_M
     #: Sliding friction coefficient of the silicone against objects (EcoFlex is grippy), -.
     friction: Positive = 1.0
 
@@ -175,8 +176,9 @@ class MujocoGripper(CheckedFields, what="gripper"):
     grip_force_n: Positive = 20.0
     #: Gain of the jaw position servo, N/m.
     servo_stiffness_n_m: Positive = 4000.0
-    #: Friction of the finger pads on objects, -.
-    friction: Positive = 0.8
+    #: Friction of the finger pads on objects, -: hard plastic tips (Section 6.3), the
+    #: finger's value governs its contacts (:data:`softpad.sim._contact_nominals.FINGERTIP_FRICTION`).
+    friction: Positive = FINGERTIP_FRICTION
     #: Travel of the tip's compliant sole before it bottoms out on the finger, metres.
     sole_stroke_m: Positive = 25e-3
 
@@ -450,7 +452,7 @@ def _hand_xml(pad: PadPhysics, gripper: MujocoGripper) -> str:
             f'range="{gripper.min_width_m / 2 - 1e-3:.9g} {open_half + 1e-3:.9g}" limited="true"/>'
             f'<geom name="finger_{side}" type="box" pos="{sign * t / 2:.9g} 0 {-finger_l / 2:.9g}" '
             f'size="{t / 2:.9g} {w / 2:.9g} {finger_l / 2:.9g}" mass="0.05" '
-            f'rgba="0.2 0.2 0.25 1" friction="{gripper.friction:g} 0.02 0.001" '
+            f'rgba="0.2 0.2 0.25 1" friction="{gripper.friction:g} 0.02 0.001" priority="1" '
             f'contype="{_FINGER}" conaffinity="0" condim="6"/>'
             f'<body name="sole_{side}" pos="{sign * t / 2:.9g} 0 {-finger_l:.9g}">'
             f'<joint name="sole_{side}_z" type="slide" axis="0 0 1" '

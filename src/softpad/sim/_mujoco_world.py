@@ -141,6 +141,7 @@ class MujocoWorld(PadWorld):
         scene.data.ctrl[:] = self._arm.servo_ctrl()
         scene.forward()
         self._scene = scene
+        self._step_s = float(scene.model.opt.timestep)
         until = self._coast.until_s if self._coast is not None else None
         self._coast = HoldCoast(np.setdiff1d(np.arange(scene.model.nv), scene.hand_dof))
         self._coast.allow(until)
@@ -207,9 +208,10 @@ class MujocoWorld(PadWorld):
                 raise InputError(
                     f"module heights must be {self._layout.n_modules} finite values, got {h!r}"
                 )
-            self._heights = np.clip(h, 0.0, 0.03)
+            # np.clip's values without its Python wrapper (h is finite here)
+            self._heights = np.minimum(np.maximum(h, 0.0), 0.03)
             self._heights_given = True
-        ts = self.timestep_s
+        ts = self._step_s
         # the hand moves continuously (the robot sees it move on every sample, whatever the
         # sample period); MuJoCo steps each time a whole time step has elapsed
         remaining = dt

@@ -141,6 +141,10 @@ class Placement:
     y_m: float
     #: Rotation about the pad's z axis, radians.
     yaw_rad: float = 0.0
+    #: (width, height) of the pad, metres, when the object goes anywhere on it that it fits,
+    #: drawn per trial from the trial's seed (held-out trials; issue 45); None: at the pose
+    #: above (which then only marks the pad's centre).
+    anywhere_on_m: tuple[float, float] | None = None
 
     def __post_init__(self) -> None:
         from softpad.layout import POSE_LIMIT_M
@@ -150,6 +154,9 @@ class Placement:
                 f"placement {n}", getattr(self, n), -POSE_LIMIT_M, POSE_LIMIT_M, "m", MM_AS_M
             )
         check_finite("placement yaw_rad", self.yaw_rad)
+        if self.anywhere_on_m is not None:
+            for v in self.anywhere_on_m:
+                check_range("placement anywhere_on_m", v, 1e-3, POSE_LIMIT_M, "m", MM_AS_M)
 
 
 @dataclass(frozen=True)
@@ -223,6 +230,8 @@ class ObjectSpec:
             "y_m": self.placement.y_m,
             "yaw_rad": self.placement.yaw_rad,
         }
+        if self.placement.anywhere_on_m is not None:
+            d["placement"]["anywhere_on_m"] = list(self.placement.anywhere_on_m)
         d["parts"] = [p.to_dict() for p in self.parts]
         d.update(self.extra)
         return d

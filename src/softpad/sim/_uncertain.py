@@ -3,9 +3,9 @@
 This is the one list of the simulated lab's assumptions (issue 33). Each
 :class:`UncertainParameter` names the value the simulator uses by default (``nominal``, the
 library's default today, so a run without ``--randomize`` is unchanged), the range the value
-may really take (``low`` .. ``high``) and where that range comes from (``source``). Where the
-nominal lies outside its sourced range the entry says so (``note``): the range is the evidence,
-the nominal a model choice still to be settled against it.
+may really take (``low`` .. ``high``) and where that range comes from (``source``). Every
+nominal lies inside its own sourced range (issue 45; ``tests/sim/test_uncertain.py`` fails
+when one leaves): the range is the evidence, the nominal a point within it.
 
 :func:`draw_uncertain` draws every parameter uniformly within its range from a seed (the trial
 seed: reproducible, independent between trials); :class:`LabVariation` turns a set of values
@@ -25,8 +25,10 @@ import numpy as np
 
 from softpad import thesis
 from softpad.errors import InputError
+from softpad.sim._contact_nominals import FINGERTIP_FRICTION, PAD_TIP_STIFFNESS_N_M
 
 __all__ = [
+    "OBJECT_UNKNOWNS",
     "UNCERTAIN_PARAMETERS",
     "LabVariation",
     "UncertainParameter",
@@ -77,24 +79,29 @@ def _p(
 UNCERTAIN_PARAMETERS: tuple[UncertainParameter, ...] = (
     _p(
         "pad_tip_stiffness_n_m",
-        80.0,
+        PAD_TIP_STIFFNESS_N_M,
         96.0,
         187.0,
         "the project's FEM, softpad fem stiffness (docs/fem.md, Fig. 6.3c): k = F / (h_free - "
         "h_load) for 0.2-0.8 N on a 10 mm disc at 0.96-1.42 kPa around p0 = 1.1 kPa",
         "MuJoCo PadPhysics.local_stiffness_n_m (the dome under a fingertip)",
-        "nominal 80 N/m (the MuJoCo default) lies below the FEM range; the analytic world "
-        "uses 125 N/m",
+        "nominal: the same FEM at p0 = 1.1 kPa and the middle force 0.5 N, interpolated "
+        "between 0.096 N/mm (0.96 kPa) and 0.154 N/mm (1.42 kPa); the analytic world's "
+        "125 N/m lies inside the range too",
     ),
     _p(
         "fingertip_friction",
-        0.8,
+        FINGERTIP_FRICTION,
         0.3,
-        0.8,
-        "the thesis calls the Sawyer's tips hard (Section 6.3); hard plastic on plastic, "
-        "fruit skin and tinplate: 0.3-0.5 in friction tables; 0.8 (rubber-like) as the upper end",
-        "MuJoCo MujocoGripper.friction (finger pads on objects)",
-        "nominal 0.8 is the range's upper end (a rubber-like tip)",
+        0.7,
+        "the thesis calls the tips rigid, without soft parts (Section 6.3), and names no "
+        "material; hard thermoplastics' static friction: cast nylon 6 0.32, polycarbonate "
+        "0.52, Noryl 0.67 (Shackelford and Alexander, CRC Materials Science and Engineering "
+        "Handbook, 3rd ed., 2001, Table 399, from the CRC Handbook of Materials Science and "
+        "ASM's Engineered Materials Handbook vol. 2)",
+        "MuJoCo MujocoGripper.friction (finger pads on objects; the finger's friction governs "
+        "the contact)",
+        "nominal: polycarbonate's 0.52 rounded to 0.5, a hard plastic tip",
     ),
     _p(
         "pad_friction",
@@ -178,14 +185,68 @@ UNCERTAIN_PARAMETERS: tuple[UncertainParameter, ...] = (
     ),
     _p(
         "cylinder_heavy_x_m",
-        -0.0515,
+        -0.01804,
         -0.0515,
         -0.015,
         "the seed says only 'a heavy small part in one side' of the can (Section 6.3); from "
         "against the end cap to 15 mm left of the middle",
         "catalogue cylinder: position of its heavy part along the can's axis",
+        "nominal: fitted to Table 6.1's cylinder plan (softpad calibrate --objects)",
+    ),
+    _p(
+        "charger_brick_mass_share",
+        0.875,
+        0.6,
+        0.9,
+        "the seed gives the charger's total only (312.3 g, Table 6.1); a 300 g laptop "
+        "adapter's mains cord and DC cable with their plugs weigh 30-120 g (our reading of "
+        "common 45-90 W adapters): the brick carries 0.6-0.9 of the mass",
+        "catalogue charger: the brick's share of the mass (the cable coil and the plug keep "
+        "their ratio)",
+        "nominal: fitted to Table 6.1's charger plan (softpad calibrate --objects)",
+    ),
+    _p(
+        "limes_pair_gap_m",
+        0.0,
+        0.0,
+        0.02,
+        "the seed says only 'limes' on modules 2, 4, 5, 6 (Section 6.3) and gives no "
+        "arrangement; three 49 mm limes in a net: the lower two touching (0 mm) to 20 mm "
+        "apart in a loose net, the third nested on them",
+        "catalogue limes: the gap between the two lower limes (the third rests on both)",
+        "nominal: fitted to Table 6.1's limes plan (softpad calibrate --objects)",
+    ),
+    _p(
+        "toy_right_hand_share",
+        0.7,
+        0.2,
+        0.8,
+        "the seed gives the toy's mass only (131.6 g, Table 6.1), not its shape; the hands of "
+        "a V-shaped toy carry from a fifth to four fifths of their joint mass on the right",
+        "catalogue toy: the right hand's share of the two hands' mass",
+        "nominal: fitted to Table 6.1's toy plan (softpad calibrate --objects)",
+    ),
+    _p(
+        "banana_sagitta_m",
+        0.0225,
+        0.015,
+        0.045,
+        "the catalogue's banana is one YCB specimen (011, sagitta 27 mm from the chord "
+        "through its ends); bananas of 180-200 mm vary in curvature: 15-45 mm",
+        "catalogue banana: the largest distance of its spine from the chord through its ends",
+        "nominal: fitted to Table 6.1's banana plan (softpad calibrate --objects)",
     ),
 )
+
+#: The uncertain inputs that shape one object of the catalogue, by object: only these are
+#: fitted to the thesis's plan of that object (``softpad calibrate --objects``).
+OBJECT_UNKNOWNS = {
+    "cylinder": "cylinder_heavy_x_m",
+    "charger": "charger_brick_mass_share",
+    "limes": "limes_pair_gap_m",
+    "toy": "toy_right_hand_share",
+    "banana": "banana_sagitta_m",
+}
 
 _BY_NAME = {p.name: p for p in UNCERTAIN_PARAMETERS}
 
@@ -216,13 +277,14 @@ class LabVariation:
 
     @classmethod
     def of(cls, values: dict[str, float] | None) -> LabVariation:
-        """Checked: known names, each value within its range (or at its nominal)."""
+        """Checked: known names, each value within its range (every nominal lies inside its
+        own range, so the nominal lab passes too)."""
         merged = nominal_uncertain()
         for name, v in (values or {}).items():
             p = _BY_NAME.get(name)
             if p is None:
                 raise InputError(f"unknown uncertain parameter {name!r}")
-            ok = math.isfinite(v) and (p.low <= v <= p.high or v == p.nominal)
+            ok = math.isfinite(v) and p.low <= v <= p.high
             if not ok:
                 raise InputError(
                     f"uncertain parameter {name} must be within {p.low:g}..{p.high:g}, got {v!r}"
@@ -265,12 +327,22 @@ class LabVariation:
         return PneumaticParams(tubing_volume_m3=self.values["tubing_volume_m3"])
 
     def object(self, spec: Any) -> Any:
-        """``spec`` with the size or mass distribution the seed does not give (charger,
-        cylinder); any other object unchanged."""
+        """``spec`` with the size, shape or mass distribution the seed does not give
+        (charger, cylinder, limes, toy, banana); any other object unchanged. Every setting
+        but the charger's scale sets an absolute value, so the catalogue's objects, built at
+        the nominals, come back unchanged from the nominal lab."""
+        v = self.values
         if spec.name == "charger":
-            return _charger(spec, self.values["charger_brick_scale"])
+            spec = _charger_mass(spec, v["charger_brick_mass_share"])
+            return _charger(spec, v["charger_brick_scale"])
         if spec.name == "cylinder":
-            return _cylinder(spec, self.values["cylinder_heavy_x_m"])
+            return _cylinder(spec, v["cylinder_heavy_x_m"])
+        if spec.name == "limes":
+            return _limes(spec, v["limes_pair_gap_m"])
+        if spec.name == "toy":
+            return _toy(spec, v["toy_right_hand_share"])
+        if spec.name == "banana":
+            return _banana(spec, v["banana_sagitta_m"])
         return spec
 
     def to_dict(self) -> dict[str, float]:
@@ -300,3 +372,56 @@ def _cylinder(spec: Any, heavy_x_m: float) -> Any:
         if p.name == "heavy part":
             parts[i] = replace(p, pos_m=(heavy_x_m, p.pos_m[1], p.pos_m[2]))
     return replace(spec, parts=tuple(parts))
+
+
+def _rescaled(parts: list[Any], names: set[str], total: float) -> list[Any]:
+    """``parts`` with the masses of those named ``names`` scaled to sum to ``total``."""
+    now = sum(p.mass_kg for p in parts if p.name in names)
+    return [replace(p, mass_kg=p.mass_kg * total / now) if p.name in names else p for p in parts]
+
+
+def _charger_mass(spec: Any, share: float) -> Any:
+    """The charger with ``share`` of its mass in the brick (the first part)."""
+    parts = list(spec.parts)
+    rest = {p.name for p in parts[1:]}
+    parts = _rescaled(parts, {parts[0].name}, share * spec.mass_kg)
+    return replace(spec, parts=tuple(_rescaled(parts, rest, (1 - share) * spec.mass_kg)))
+
+
+def _toy(spec: Any, right_share: float) -> Any:
+    """The toy with ``right_share`` of its two hands' mass in the right hand."""
+    parts = list(spec.parts)
+    hands = sum(p.mass_kg for p in parts if p.name in ("left hand", "right hand"))
+    parts = _rescaled(parts, {"right hand"}, right_share * hands)
+    return replace(spec, parts=tuple(_rescaled(parts, {"left hand"}, (1 - right_share) * hands)))
+
+
+def _limes(spec: Any, gap_m: float) -> Any:
+    """The limes with the lower two ``gap_m`` apart, the third resting on both, the three
+    placed about the pair's midpoint as the catalogue's are."""
+    parts = list(spec.parts)
+    r = parts[0].radius_m
+    half = r + gap_m / 2
+    rise = math.sqrt(max((2 * r) ** 2 - half**2, 0.0))
+    xy = ((-half, 0.0), (half, 0.0), (0.0, rise))
+    out = [replace(p, pos_m=(x, y, p.pos_m[2])) for p, (x, y) in zip(parts, xy, strict=True)]
+    return replace(spec, parts=tuple(out))
+
+
+def _banana(spec: Any, sagitta_m: float) -> Any:
+    """The banana with its spine's largest distance from the chord through its end
+    stretches set to ``sagitta_m``: every stretch's distance from the chord and the tangent
+    of its angle to the chord scaled alike (lengths kept)."""
+    parts = list(spec.parts)
+    a, b = np.array(parts[0].pos_m[:2]), np.array(parts[-1].pos_m[:2])
+    u = (b - a) / np.linalg.norm(b - a)
+    n = np.array([-u[1], u[0]])
+    off = [float(n @ (np.array(p.pos_m[:2]) - a)) for p in parts]
+    k = sagitta_m / max(abs(d) for d in off)
+    chord = math.atan2(u[1], u[0])
+    out = []
+    for p, d in zip(parts, off, strict=True):
+        x, y = np.array(p.pos_m[:2]) + (k - 1.0) * d * n
+        yaw = chord + math.atan(k * math.tan(p.yaw_rad - chord))
+        out.append(replace(p, pos_m=(float(x), float(y), p.pos_m[2]), yaw_rad=yaw))
+    return replace(spec, parts=tuple(out))

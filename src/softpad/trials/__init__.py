@@ -22,6 +22,7 @@ from softpad.trials._compare import (
     wilson_interval,
 )
 from softpad.trials._config import TrialConfig, drawn_placement, trial_execution_params
+from softpad.trials._object_fit import ObjectFit, fit_object_unknowns
 from softpad.trials._records import (
     FAILURE_CAUSES,
     THESIS_OVERALL_SUCCESS,
@@ -36,6 +37,7 @@ from softpad.trials._runner import (
     errored_trial,
     perturbed_placement,
     run_experiment,
+    run_experiments,
     run_trial,
     trial_recording_path,
     trial_seed,
@@ -51,6 +53,7 @@ __all__ = [
     "CalibrationLoad",
     "CalibrationResult",
     "ExperimentResult",
+    "ObjectFit",
     "ObjectSummary",
     "Observation",
     "TrialConfig",
@@ -61,12 +64,14 @@ __all__ = [
     "drawn_placement",
     "errored_records",
     "errored_trial",
+    "fit_object_unknowns",
     "idle_false_alarms_per_hour",
     "merge_comparisons",
     "perturbed_placement",
     "protocol_loads",
     "record_calibration",
     "run_experiment",
+    "run_experiments",
     "run_trial",
     "simulated_session",
     "trial_execution_params",

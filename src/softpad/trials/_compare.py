@@ -14,7 +14,7 @@ import softpad
 from softpad.errors import InputError
 from softpad.trials._config import TrialConfig
 from softpad.trials._records import TrialResult, errored_records
-from softpad.trials._runner import run_experiment
+from softpad.trials._runner import run_experiments
 from softpad.trials._stats import wilson_interval
 
 #: The pairs ``softpad compare`` runs by default: the thesis's and the best found here.
@@ -106,10 +106,10 @@ def compare(
         cfg = replace(config, planner=planner, detector=detector)
         results: list[TrialResult] = []
         trial_seeds: list[int] = []  # the experiment seed of each result
-        for seed in seeds:
-            exp, _ = run_experiment(specs, trials, seed, workers, cfg, on_trial)
+        # every seed's trials queued at once on the same workers
+        for exp in run_experiments(specs, trials, list(seeds), workers, cfg, on_trial):
             results += exp.trials
-            trial_seeds += [seed] * len(exp.trials)
+            trial_seeds += [exp.seed] * len(exp.trials)
         by_object = {s.name: [t for t in results if t.object == s.name] for s in specs}
         combos.append(
             {

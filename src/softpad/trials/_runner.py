@@ -14,6 +14,8 @@ number of workers.
 
 from __future__ import annotations
 
+import atexit
+import contextlib
 import math
 import os
 import time
@@ -21,6 +23,7 @@ import traceback
 import zlib
 from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures.process import BrokenProcessPool
 from dataclasses import replace
 from pathlib import Path
 from typing import Any
@@ -54,7 +57,13 @@ def trial_seed(seed: int, object_name: str, trial: int) -> int:
 
 
 def perturbed_placement(spec: Any, seed: int, config: TrialConfig) -> tuple[float, float, float]:
-    """The catalogue placement of ``spec`` shifted and turned at random (normal, seeded)."""
+    """The catalogue placement of ``spec`` shifted and turned at random (normal, seeded); a
+    placement ``anywhere_on_m`` a pad: anywhere the object fits on it, drawn from ``seed``
+    (:func:`softpad.trials._geometry.anywhere_placement`)."""
+    if spec.placement.anywhere_on_m is not None:
+        from softpad.trials._geometry import anywhere_placement
+
+        return anywhere_placement(spec, seed, spec.placement.anywhere_on_m)
     rng = np.random.default_rng(seed)
     dx, dy = rng.normal(0.0, config.position_sigma_m, 2)
     dyaw = rng.normal(0.0, config.yaw_sigma_rad)
@@ -197,13 +206,86 @@ def run_experiment(
     tasks = _experiment_tasks(specs, trials, seed, config, trace_object, record)
     workers = _worker_count(workers, len(tasks))
     t0 = time.perf_counter()
-    results, trace = _run_tasks(tasks, workers, on_trial)
-    ordered = tuple(results[(spec.name, k)] for spec in specs for k in range(trials))
-    exp = ExperimentResult(
-        trials=ordered,
+    results: list[Any] = [None] * len(tasks)
+    trace: list[Any] = []
+
+    def done(i: int, res: TrialResult, tr: Any | None) -> None:
+        results[i] = res
+        if tr is not None:
+            trace.append(tr)
+        if on_trial:
+            on_trial(res)
+
+    _run_tasks(tasks, workers, done)
+    exp = _experiment(specs, seed, config, results, workers, time.perf_counter() - t0)
+    return exp, trace[0] if trace else None
+
+
+def run_experiments(
+    specs: Sequence[Any],
+    trials: int,
+    seeds: Sequence[int],
+    workers: int | None = None,
+    config: TrialConfig | None = None,
+    on_trial: Callable[[TrialResult], None] | None = None,
+    on_seed: Callable[[ExperimentResult], None] | None = None,
+) -> list[ExperimentResult]:
+    """:func:`run_experiment` for every seed of ``seeds``, all their trials queued at once on
+    the same workers (the next seed's trials start while the last of the one before still
+    run: both cores stay busy to the end of the campaign); the same results as one
+    :func:`run_experiment` per seed.
+
+    ``on_seed`` is called with each seed's experiment as soon as all its trials have finished;
+    each experiment's ``wall_time_s`` is the campaign's wall time over the seeds (their sum is
+    the campaign's).
+    """
+    if not isinstance(trials, int) or not 1 <= trials <= 1000:
+        raise InputError(f"trials per object must be an integer from 1 to 1000, got {trials!r}")
+    if not specs:
+        raise InputError("no objects to try")
+    config = config or TrialConfig()
+    per_seed = [_experiment_tasks(specs, trials, s, config, None, None) for s in seeds]
+    tasks = [t for ts in per_seed for t in ts]
+    workers = _worker_count(workers, len(tasks))
+    n = len(specs) * trials
+    results: list[Any] = [None] * len(tasks)
+    left = [n] * len(seeds)
+    exps: list[Any] = [None] * len(seeds)
+    t0 = time.perf_counter()
+
+    def done(i: int, res: TrialResult, tr: Any | None) -> None:
+        results[i] = res
+        if on_trial:
+            on_trial(res)
+        j = i // n
+        left[j] -= 1
+        if left[j] == 0:
+            wall = (time.perf_counter() - t0) / len(seeds)
+            exps[j] = _experiment(
+                specs, seeds[j], config, results[j * n : (j + 1) * n], workers, wall
+            )
+            if on_seed:
+                on_seed(exps[j])
+
+    _run_tasks(tasks, workers, done)
+    wall = (time.perf_counter() - t0) / max(len(seeds), 1)
+    return [replace(e, wall_time_s=wall) for e in exps]
+
+
+def _experiment(
+    specs: Sequence[Any],
+    seed: int,
+    config: TrialConfig,
+    results: list[TrialResult],
+    workers: int,
+    wall_s: float,
+) -> ExperimentResult:
+    """The experiment of ``seed`` from its trials' results (object by object, in task order)."""
+    return ExperimentResult(
+        trials=tuple(results),
         seed=seed,
         masses_g={s.name: s.mass_kg * 1e3 for s in specs},
-        wall_time_s=time.perf_counter() - t0,
+        wall_time_s=wall_s,
         workers=workers,
         seeds=(seed,),
         placement_noise={
@@ -211,7 +293,6 @@ def run_experiment(
             "yaw_sigma_deg": round(math.degrees(config.yaw_sigma_rad), 6),
         },
     )
-    return exp, trace
 
 
 def _experiment_tasks(
@@ -247,26 +328,47 @@ def _worker_count(workers: int | None, n_tasks: int) -> int:
 
 
 def _run_tasks(
-    tasks: list[Any], workers: int, on_trial: Callable[[TrialResult], None] | None
-) -> tuple[dict[tuple[str, int], TrialResult], Any | None]:
-    """Run ``tasks`` in this process (one worker) or a process pool; the results by (object,
-    trial) and the recorded trace, if any. ``on_trial`` sees each result as it completes."""
-    results: dict[tuple[str, int], TrialResult] = {}
-    trace: Any | None = None
+    tasks: list[Any], workers: int, done: Callable[[int, TrialResult, Any | None], None]
+) -> None:
+    """Run ``tasks`` in this process (one worker) or on the shared pool; ``done`` sees each
+    task's index, result and recorded trace as it completes."""
     if workers == 1:
-        for task in tasks:
-            res, tr = _worker(task)
-            results[(res.object, res.trial)] = res
-            trace = trace or tr
-            if on_trial:
-                on_trial(res)
-        return results, trace
-    with ProcessPoolExecutor(max_workers=workers) as pool:
-        futures = [pool.submit(_worker, task) for task in tasks]
+        for i, task in enumerate(tasks):
+            done(i, *_worker(task))
+        return
+    pool = _shared_pool(workers)
+    try:
+        futures = {pool.submit(_worker, task): i for i, task in enumerate(tasks)}
         for fut in as_completed(futures):
-            res, tr = fut.result()
-            results[(res.object, res.trial)] = res
-            trace = trace or tr
-            if on_trial:
-                on_trial(res)
-    return results, trace
+            done(futures[fut], *fut.result())
+    except BaseException:  # Ctrl-C, a broken pool, a failing hook: no worker left running
+        _close_shared_pool(cancel=True)
+        raise
+
+
+#: The worker processes of this process's experiments, and their count: they live across
+#: seeds, pairs and arms (``softpad trials --seeds 0-9``, ``compare``, ``validate``), so that a
+#: campaign pays the start-up (interpreter, imports: about a second a process) once.
+_POOL: tuple[int, ProcessPoolExecutor] | None = None
+
+
+def _shared_pool(workers: int) -> ProcessPoolExecutor:
+    """A pool of ``workers`` processes, the one of the last experiment when it has as many."""
+    global _POOL
+    if _POOL is not None and _POOL[0] == workers:
+        return _POOL[1]
+    _close_shared_pool()
+    _POOL = (workers, ProcessPoolExecutor(max_workers=workers))
+    return _POOL[1]
+
+
+def _close_shared_pool(cancel: bool = False) -> None:
+    """Shut the shared pool down (``cancel``: drop its queued trials, do not wait)."""
+    global _POOL
+    pool, _POOL = _POOL, None
+    if pool is not None:
+        with contextlib.suppress(BrokenProcessPool):
+            pool[1].shutdown(wait=not cancel, cancel_futures=cancel)
+
+
+atexit.register(_close_shared_pool)

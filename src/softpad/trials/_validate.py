@@ -14,6 +14,13 @@ whether they agree by a stated test or tolerance. The rows are of two costs:
   the plans and the cylinder's modules (the same simulator as the success rates).
 
 Nothing here is tuned to the thesis's outcomes: the thesis's values are only compared with.
+Each row has a *role* (issue 45): ``"validation"`` (a test the simulator could fail),
+``"calibration"`` (an unknown of the model was chosen from this row) or ``"construction"``
+(true by how the object was built or placed); the roles are counted apart. A count row agrees
+when the 95 % Wilson intervals of the thesis and the prediction overlap and the prediction
+rests on at least :data:`MIN_TRIALS_RATIO` times the thesis's trials, and states the smallest
+difference its test detects (:func:`detectable_difference`); a plan row agrees when the modal
+plan lies within :data:`COG_TOLERANCE_UNITS` and :data:`THETA_TOLERANCE_RAD` of the thesis's.
 :func:`validate` returns a :class:`ValidationResult` (``to_dict`` for ``softpad validate
 --json``, ``to_text`` for the table of docs/validation.md).
 """
@@ -23,6 +30,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, fields, replace
+from functools import lru_cache
 from typing import Any
 
 import numpy as np
@@ -32,16 +40,25 @@ from softpad.errors import InputError
 from softpad.trials._config import TrialConfig
 from softpad.trials._records import THESIS_TABLE_6_1, TrialResult
 
-#: Significance level of every Fisher's exact test here (two-sided).
+#: Significance level of the Fisher's exact test reported beside each count (two-sided); the
+#: count rows' agreement is by interval overlap (:func:`rate_row`).
 ALPHA = 0.05
-#: A thesis COG agrees with the predicted plans when it lies within their 2.5-97.5 % range,
-#: each coordinate widened by this much, module units (the thesis prints two decimals and
-#: reads one representative trial; 0.05 units = 2.25 mm).
-COG_TOLERANCE_UNITS = 0.05
-#: A thesis direction of grasp agrees when at least this share of the predicted plans has it.
-THETA_MIN_SHARE = 0.05
-#: Placement draws of the static rows by default.
-DEFAULT_PLACEMENTS = 40
+#: A count row agrees only when the prediction rests on at least this many times the thesis's
+#: trials (issue 45): below, overlapping intervals say more about the sample than the model.
+MIN_TRIALS_RATIO = 10
+#: Power at which a count row's smallest detectable difference is stated.
+POWER = 0.8
+#: The modal plan's COG agrees when within this distance of the thesis's, module units
+#: (0.1 units = 4.5 mm, a tenth of a module; the thesis prints two decimals of one trial).
+COG_TOLERANCE_UNITS = 0.1
+#: The modal plan's direction agrees when within this angle of the thesis's (modulo pi), rad.
+#: The thesis's 2x3 rules plan in steps of 45 degrees, so 10 degrees tells them apart.
+THETA_TOLERANCE_RAD = math.radians(10.0)
+#: Placement draws of the static rows by default (ten times the thesis's five trials).
+DEFAULT_PLACEMENTS = 50
+#: The roles of a row: a test the model could fail, a row an unknown was chosen from, a row
+#: true by how the object was built.
+ROLES = ("validation", "calibration", "construction")
 #: The thesis's "around 6 g" (Section 6.1) read as 5-7 g (its one significant figure).
 THESIS_MIN_MASS_G = (5.0, 7.0)
 #: Footprints for the minimum detectable mass, metres: the seed does not say what mass was
@@ -86,12 +103,29 @@ class Observation:
     method: str = "static"
     #: The model's assumptions for this row, and why a disagreement is as it is when known.
     note: str = ""
+    #: "validation", "calibration" or "construction" (:data:`ROLES`).
+    role: str = "validation"
+    #: The thesis's 95 % interval (count rows), or None.
+    thesis_interval: Any = None
+    #: Count rows: the smallest differences of the rate below and above the thesis's that the
+    #: row's test detects at :data:`POWER` (:func:`detectable_difference`); else None.
+    detectable: tuple[float, float] | None = None
+
+    @property
+    def verdict(self) -> str:
+        """ "agree", "disagree", "undecided" (run, but too few samples to agree) or "not run"."""
+        if self.agrees is not None:
+            return "agree" if self.agrees else "disagree"
+        return "not run" if self.predicted is None else "undecided"
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict."""
         d = {f.name: getattr(self, f.name) for f in fields(self)}
+        d["verdict"] = self.verdict
         if self.p_value is not None:
             d["p_value"] = float(f"{self.p_value:.4g}")
+        if self.detectable is not None:
+            d["detectable"] = [round(v, 4) if math.isfinite(v) else None for v in self.detectable]
         return d
 
 
@@ -108,14 +142,16 @@ class ValidationResult:
     #: Per-trial records of the trial rows (``to_dict`` of each).
     trials: tuple[dict[str, Any], ...] = field(default=(), repr=False)
 
-    def counts(self) -> dict[str, int]:
-        """Rows that agree, disagree and were not run."""
-        obs = self.observations
-        return {
-            "agree": sum(o.agrees is True for o in obs),
-            "disagree": sum(o.agrees is False for o in obs),
-            "not_run": sum(o.agrees is None for o in obs),
-        }
+    def counts(self) -> dict[str, dict[str, int]]:
+        """Per role, the rows that agree, disagree, are undecided and were not run."""
+        out = {}
+        for role in ROLES:
+            v = [o.verdict for o in self.observations if o.role == role]
+            out[role] = {
+                k.replace(" ", "_"): v.count(k)
+                for k in ("agree", "disagree", "undecided", "not run")
+            }
+        return out
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict (``softpad validate --json``)."""
@@ -130,20 +166,32 @@ class ValidationResult:
         }
 
     def to_text(self) -> str:
-        """The table as Markdown (docs/validation.md)."""
-        head = "| observation | source | thesis | predicted | interval | agrees | test |"
-        lines = [head, "|---|---|---|---|---|---|---|"]
-        for o in self.observations:
-            mark = {True: "yes", False: "**no**", None: "not run"}[o.agrees]
-            p = "" if o.p_value is None else f" (p = {o.p_value:.3g})"
+        """The table as Markdown (docs/validation.md), rows grouped by role."""
+        head = (
+            "| role | observation | source | thesis | predicted | interval | agrees | "
+            "detects | test |"
+        )
+        lines = [head, "|---|---|---|---|---|---|---|---|---|"]
+        marks = {"agree": "yes", "disagree": "**no**", "undecided": "undecided"}
+        for role in ROLES:
+            for o in (o for o in self.observations if o.role == role):
+                thesis_text = _fmt(o.thesis)
+                if o.thesis_interval is not None:
+                    thesis_text += f" {_fmt(o.thesis_interval)}"
+                lines.append(
+                    f"| {role} | {o.name} | {o.source} | {thesis_text} | {_fmt(o.predicted)} | "
+                    f"{_fmt(o.interval)} | {marks.get(o.verdict, o.verdict)} | "
+                    f"{_detect_text(o)} | {o.test} |"
+                )
+        lines.append("")
+        for role, c in self.counts().items():
             lines.append(
-                f"| {o.name} | {o.source} | {_fmt(o.thesis)} | {_fmt(o.predicted)} | "
-                f"{_fmt(o.interval)} | {mark}{p} | {o.test} |"
+                f"{role}: {c['agree']} agree, {c['disagree']} disagree, {c['undecided']} "
+                f"undecided, {c['not_run']} not run"
             )
-        c = self.counts()
         lines.append(
-            f"\n{c['agree']} agree, {c['disagree']} disagree, {c['not_run']} not run "
-            f"(seeds {_seed_text(self.seeds)}, {self.placements} placement draws)"
+            f"(seeds {_seed_text(self.seeds)}, {self.placements} placement draws"
+            f"{', randomized' if self.randomize else ''})"
         )
         return "\n".join(lines)
 
@@ -156,6 +204,14 @@ def _fmt(v: Any) -> str:
     if isinstance(v, list | tuple):
         return "(" + ", ".join(_fmt(x) for x in v) + ")"
     return str(v)
+
+
+def _detect_text(o: Observation) -> str:
+    """The smallest detectable difference as the table shows it."""
+    if o.detectable is None:
+        return "-"
+    down, up = (f"{v * 100:.0f}" if math.isfinite(v) else "none" for v in o.detectable)
+    return f"-{down}/+{up} pts"
 
 
 def _seed_text(seeds: Sequence[int]) -> str:
@@ -179,36 +235,121 @@ def fisher_agreement(k_sim: int, n_sim: int, k_thesis: int, n_thesis: int) -> fl
     return float(fisher_exact(table, alternative="two-sided").pvalue)
 
 
+@lru_cache(maxsize=64)
+def wilson_bounds(n: int, z: float = 1.959963984540054) -> tuple[np.ndarray, np.ndarray]:
+    """95 % Wilson score interval of every count ``0..n`` of ``n`` trials (vectorised; the
+    same interval as :func:`softpad.trials.wilson_interval`, unrounded).
+
+    ``centre = (k + z^2/2) / (n + z^2)``, ``half = z / (n + z^2) sqrt(k (n - k) / n + z^2 / 4)``.
+    """
+    k = np.arange(n + 1, dtype=float)
+    den = n + z * z
+    centre = (k + z * z / 2) / den
+    half = z / den * np.sqrt(k * (n - k) / n + z * z / 4)
+    return np.clip(centre - half, 0.0, 1.0), np.clip(centre + half, 0.0, 1.0)
+
+
+def _overlap(k_a: int, n_a: int, k_b: int, n_b: int) -> bool:
+    """The 95 % Wilson intervals of ``k_a / n_a`` and ``k_b / n_b`` overlap."""
+    lo_a, hi_a = (float(v[k_a]) for v in wilson_bounds(n_a))
+    lo_b, hi_b = (float(v[k_b]) for v in wilson_bounds(n_b))
+    return lo_a <= hi_b and lo_b <= hi_a
+
+
+def separation_power(p_thesis: float, n_thesis: int, p_sim: float, n_sim: int) -> float:
+    """Probability that the two 95 % Wilson intervals do not overlap (the count row's test
+    says "disagree") when the thesis's count is Binomial(``n_thesis``, ``p_thesis``) and the
+    simulator's Binomial(``n_sim``, ``p_sim``): exact, summed over both counts."""
+    from scipy.stats import binom
+
+    lo_t, hi_t = wilson_bounds(n_thesis)
+    lo_s, hi_s = wilson_bounds(n_sim)
+    apart = (hi_s[None, :] < lo_t[:, None]) | (lo_s[None, :] > hi_t[:, None])
+    w_t = binom.pmf(np.arange(n_thesis + 1), n_thesis, p_thesis)
+    w_s = binom.pmf(np.arange(n_sim + 1), n_sim, p_sim)
+    return float(w_t @ apart.astype(float) @ w_s)
+
+
+def detectable_difference(
+    k_thesis: int, n_thesis: int, n_sim: int, power: float = POWER
+) -> tuple[float, float]:
+    """Smallest differences of the simulator's true rate below and above the thesis's
+    observed rate ``k_thesis / n_thesis`` that the interval-overlap test detects with
+    probability ``power`` (:func:`separation_power`: both counts binomial, the thesis's rate
+    taken as its true one); ``inf`` where no rate on that side reaches ``power``. Bisection to
+    0.001 on the rate (the power grows with the difference)."""
+    p0 = k_thesis / n_thesis
+    out = []
+    for sign, room in ((-1.0, p0), (1.0, 1.0 - p0)):
+        if room <= 0 or separation_power(p0, n_thesis, p0 + sign * room, n_sim) < power:
+            out.append(math.inf)
+            continue
+        lo, hi = 0.0, room
+        while hi - lo > 1e-3:
+            mid = (lo + hi) / 2
+            if separation_power(p0, n_thesis, p0 + sign * mid, n_sim) >= power:
+                hi = mid
+            else:
+                lo = mid
+        out.append(hi)
+    return out[0], out[1]
+
+
 def rate_row(
     name: str, source: str, k_sim: int, n_sim: int, k_thesis: int, n_thesis: int, note: str = ""
 ) -> Observation:
-    """A row comparing a count of the simulator's with the thesis's (Fisher's exact test)."""
+    """A row comparing a count of the simulator's with the thesis's.
+
+    Agreement (issue 45): the two 95 % Wilson intervals overlap AND ``n_sim`` is at least
+    :data:`MIN_TRIALS_RATIO` times ``n_thesis``; intervals apart: disagreement; overlapping on
+    fewer trials: undecided (``agrees`` None with a prediction). ``detectable``: the smallest
+    rate difference the test detects at :data:`POWER` (:func:`detectable_difference`).
+    Fisher's exact p-value is reported beside it, not used.
+    """
     from softpad.trials._stats import wilson_interval
 
+    test = (
+        f"95 % Wilson intervals overlap on >= {MIN_TRIALS_RATIO}x the thesis's {n_thesis} "
+        f"trials (detects: {POWER:.0%} power, exact binomial)"
+    )
+    thesis_ci = list(wilson_interval(k_thesis, n_thesis))
     if n_sim == 0:
         return Observation(
-            name, source, f"{k_thesis}/{n_thesis}", None, None, None, "Fisher's exact", note=note
+            name,
+            source,
+            f"{k_thesis}/{n_thesis}",
+            None,
+            None,
+            None,
+            test,
+            note=note,
+            thesis_interval=thesis_ci,
         )
-    p = fisher_agreement(k_sim, n_sim, k_thesis, n_thesis)
+    overlap = _overlap(k_sim, n_sim, k_thesis, n_thesis)
+    enough = n_sim >= MIN_TRIALS_RATIO * n_thesis
+    agrees = (True if enough else None) if overlap else False
+    extra = "" if enough or not overlap else f"undecided: {n_sim} < {MIN_TRIALS_RATIO} x {n_thesis}"
     return Observation(
         name=name,
         source=source,
         thesis=f"{k_thesis}/{n_thesis}",
         predicted=f"{k_sim}/{n_sim}",
         interval=list(wilson_interval(k_sim, n_sim)),
-        agrees=p > ALPHA,
-        test=f"Fisher's exact, two-sided, p > {ALPHA:g}",
-        p_value=p,
+        agrees=agrees,
+        test=test,
+        p_value=fisher_agreement(k_sim, n_sim, k_thesis, n_thesis),
         n=n_sim,
         method="trials",
-        note=note,
+        note="; ".join(x for x in (extra, note) if x),
+        thesis_interval=thesis_ci,
+        detectable=detectable_difference(k_thesis, n_thesis, n_sim),
     )
 
 
-def _same_theta(a: float, b: float) -> bool:
-    """Directions of grasp equal modulo pi (a parallel-jaw grasp is symmetric)."""
+def _angle_apart(a: float, b: float) -> float:
+    """Angle between two directions of grasp modulo pi (a parallel-jaw grasp is symmetric)."""
     d = (a - b) % math.pi
-    return min(d, math.pi - d) < 1e-3
+    return min(d, math.pi - d)
 
 
 def plan_row(
@@ -218,70 +359,67 @@ def plan_row(
     plans: Sequence[tuple[float, float, float] | None],
     method: str,
     note: str = "",
+    role: str = "validation",
 ) -> Observation:
-    """A row comparing a representative plan of the thesis with the predicted plans.
+    """A row comparing a representative plan of the thesis with the modal predicted plan.
 
-    Agreement: the thesis's theta is planned in at least :data:`THETA_MIN_SHARE` of the draws
-    and its COG lies within the 2.5-97.5 % range of those draws' COGs, widened by
-    :data:`COG_TOLERANCE_UNITS`. Predicted: the most frequent theta and the median COG of its
-    plans; interval: the COG range of the thesis-theta plans (of the modal theta if none).
+    The modal plan: the direction of grasp shared (within :data:`THETA_TOLERANCE_RAD`) by the
+    most plans, and the median COG of the plans with it. Agreement: the modal direction within
+    :data:`THETA_TOLERANCE_RAD` of the thesis's and its COG within
+    :data:`COG_TOLERANCE_UNITS` (Euclidean) of the thesis's. Interval: the 2.5-97.5 % range
+    of the modal plans' COGs (shown, not used).
     """
     test = (
-        f"thesis theta in >= {THETA_MIN_SHARE:.0%} of plans and its COG within their "
-        f"2.5-97.5 % range +- {COG_TOLERANCE_UNITS} units"
+        f"modal plan: direction within {math.degrees(THETA_TOLERANCE_RAD):.0f} deg and COG "
+        f"within {COG_TOLERANCE_UNITS} module of the thesis's"
     )
     made = [p for p in plans if p is not None]
-    if not made:
-        return Observation(
-            name,
-            source,
-            list(thesis_plan),
-            "no plan",
-            None,
-            False,
-            test,
-            n=len(plans),
-            method=method,
-            note=note,
-        )
-    share = sum(_same_theta(p[2], thesis_plan[2]) for p in made) / len(plans)
-    modal, lo, hi, med = _cog_spread(made, thesis_plan[2])
-    inside = bool(
-        np.all(np.asarray(thesis_plan[:2]) >= lo - COG_TOLERANCE_UNITS)
-        and np.all(np.asarray(thesis_plan[:2]) <= hi + COG_TOLERANCE_UNITS)
-    )
-    share_text = f"thesis theta in {share:.0%} of plans"
-    return Observation(
+    row = Observation(
         name=name,
         source=source,
         thesis=[round(v, 4) for v in thesis_plan],
+        predicted="no plan",
+        interval=None,
+        agrees=False,
+        test=test,
+        n=len(plans),
+        method=method,
+        note=note,
+        role=role,
+    )
+    if not made:
+        return row
+    modal, lo, hi, med, share = _modal_plan(made)
+    off_cog = float(np.hypot(*(np.asarray(med) - np.asarray(thesis_plan[:2]))))
+    off_theta = _angle_apart(modal, thesis_plan[2])
+    text = (
+        f"modal direction in {share / len(plans):.0%} of draws; COG {off_cog:.3f} module and "
+        f"direction {math.degrees(off_theta):.0f} deg from the thesis's"
+    )
+    return replace(
+        row,
         predicted=[round(float(med[0]), 3), round(float(med[1]), 3), round(modal, 4)],
         interval=[
             [round(float(lo[0]), 3), round(float(hi[0]), 3)],
             [round(float(lo[1]), 3), round(float(hi[1]), 3)],
         ],
-        agrees=share >= THETA_MIN_SHARE and inside,
-        test=test,
-        n=len(plans),
-        method=method,
-        note=f"{share_text}; {note}" if note else share_text,
+        agrees=off_theta <= THETA_TOLERANCE_RAD and off_cog <= COG_TOLERANCE_UNITS,
+        note=f"{text}; {note}" if note else text,
     )
 
 
-def _cog_spread(
-    made: list[tuple[float, float, float]], thesis_theta: float
-) -> tuple[float, np.ndarray, np.ndarray, np.ndarray]:
-    """The modal theta of the plans ``made``; the 2.5 and 97.5 % COG percentiles of the plans
-    with the thesis's theta (of the modal theta if none); the median COG of the modal plans."""
+def _modal_plan(
+    made: list[tuple[float, float, float]],
+) -> tuple[float, np.ndarray, np.ndarray, np.ndarray, int]:
+    """The modal direction of the plans ``made`` (the one with the most plans within
+    :data:`THETA_TOLERANCE_RAD`, ties to the first), the 2.5 and 97.5 % percentiles and the
+    median of those plans' COGs, and how many they are."""
     thetas = [p[2] for p in made]
-    modal = max(thetas, key=lambda t: sum(_same_theta(t, u) for u in thetas))
-    pick = [p for p in made if _same_theta(p[2], thesis_theta)] or [
-        p for p in made if _same_theta(p[2], modal)
-    ]
-    cogs = np.array([p[:2] for p in pick])
+    near = [sum(_angle_apart(t, u) <= THETA_TOLERANCE_RAD for u in thetas) for t in thetas]
+    modal = thetas[int(np.argmax(near))]
+    cogs = np.array([p[:2] for p in made if _angle_apart(p[2], modal) <= THETA_TOLERANCE_RAD])
     lo, hi = np.percentile(cogs, 2.5, axis=0), np.percentile(cogs, 97.5, axis=0)
-    med = np.median(np.array([p[:2] for p in made if _same_theta(p[2], modal)]), axis=0)
-    return modal, lo, hi, med
+    return modal, lo, hi, np.median(cogs, axis=0), len(cogs)
 
 
 # --- static rows: the analytic world behind a noisy box ---------------------------------------
@@ -398,6 +536,37 @@ def fig_6_7_objects() -> dict[str, tuple[Any, tuple[float, float, float], str]]:
     }
 
 
+#: Plan rows true by construction (issue 45): the object is placed, or built, so that its
+#: centre of gravity is where the thesis's plan is; the planner's PCOM then finds it.
+CONSTRUCTION_PLANS = {
+    **{
+        f"object-{i}": "placed with its centre of gravity at Table 6.1's plan (catalogue)"
+        for i in range(1, 7)
+    },
+    "fig-6.7a": "placed centred on the 1-4 line, as the figure draws it",
+    "fig-6.7b-right": "object 4 (itself placed at Table 6.1's plan) rescaled to 54 g",
+}
+#: Plan rows to which an unknown of the object was fitted (issue 45: calibration, counted
+#: apart; :func:`softpad.trials.fit_object_unknowns`, ``softpad calibrate --objects``): the
+#: seed gives the mass and the plan, not the shape or the mass distribution.
+CALIBRATION_PLANS = {
+    "banana": "fitted: the curve (banana_sagitta_m); centre of mass on the pad's centre",
+    "toy": "fitted: the hands' mass split (toy_right_hand_share); shape from its modules",
+    "limes": "fitted: the gap of the lower two limes (limes_pair_gap_m)",
+    "cylinder": "fitted: the heavy part's position (cylinder_heavy_x_m)",
+    "charger": "fitted: the brick's share of the mass (charger_brick_mass_share)",
+}
+
+
+def plan_role(name: str) -> tuple[str, str]:
+    """The role of the plan row of object ``name`` and why."""
+    if name in CONSTRUCTION_PLANS:
+        return "construction", CONSTRUCTION_PLANS[name]
+    if name in CALIBRATION_PLANS:
+        return "calibration", CALIBRATION_PLANS[name]
+    return "validation", ""
+
+
 def static_plan_rows(draws: int, seed: int, randomize: bool = False) -> list[Observation]:
     """Table 6.1's and Fig. 6.7's plans from the analytic world's draws."""
     from softpad.sim import get_object
@@ -405,10 +574,14 @@ def static_plan_rows(draws: int, seed: int, randomize: bool = False) -> list[Obs
     rows = []
     for name, (_, plan, _) in THESIS_TABLE_6_1.items():
         got = [d.plan for d in static_draws(get_object(name), draws, seed, randomize)]
-        rows.append(plan_row(f"Table 6.1 plan: {name}", "Table 6.1", plan, got, "static"))
+        role, why = plan_role(name)
+        rows.append(
+            plan_row(f"Table 6.1 plan: {name}", "Table 6.1", plan, got, "static", why, role)
+        )
     for title, (spec, plan, note) in fig_6_7_objects().items():
         got = [d.plan for d in static_draws(spec, draws, seed, randomize)]
-        rows.append(plan_row(title, "Fig. 6.7", plan, got, "static", note))
+        role, why = plan_role(spec.name)
+        rows.append(plan_row(title, "Fig. 6.7", plan, got, "static", f"{note}; {why}", role))
     return rows
 
 
@@ -589,7 +762,10 @@ def trial_plan_rows(trials: Sequence[TrialResult]) -> list[Observation]:
             for t in trials
             if t.object == name
         ]
-        rows.append(plan_row(f"Table 6.1 plan: {name}", "Table 6.1", plan, got, "trials"))
+        role, why = plan_role(name)
+        rows.append(
+            plan_row(f"Table 6.1 plan: {name}", "Table 6.1", plan, got, "trials", why, role)
+        )
     return rows
 
 
