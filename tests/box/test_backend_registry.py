@@ -22,9 +22,14 @@ from softpad.harness import SIMULATION_OPS
 from softpad.registry import Registry
 
 SITE = """
+[pad]
+rows = 1
+cols = 2
 [box]
 iio_root = "{root}"
 sample_rate_hz = 1000.0
+inflate_valves = "normally_closed"
+deflate_valves = "normally_closed"
 [[box.channel]]
 gpiochip = "/dev/gpiochip9"
 inflate_line = 0

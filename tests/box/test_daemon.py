@@ -14,8 +14,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from softpad.box import MAX_PAYLOAD_BYTES, ControlRefused, ValveCommand, ZenohBox, open_box
+from softpad.box import ControlRefused, ValveCommand, ZenohBox, open_box
 from softpad.box._link import session_config
+from softpad.box.wire import MAX_PAYLOAD_BYTES
 from softpad.cli.main import main
 
 

@@ -74,7 +74,7 @@ def test_objects_file_errors_are_clear(cli, tmp_path, command) -> None:
 def test_the_evaluation_set_is_what_its_script_generates(tmp_path) -> None:
     import runpy
 
-    script = Path(__file__).parents[2] / "docs" / "make_eval_objects.py"
+    script = Path(__file__).parents[2] / "examples" / "make_eval_objects.py"
     runpy.run_path(str(script), run_name="not_main")["main"](str(tmp_path))
     for half in ("ycb-dev", "ycb-eval"):
         generated = (tmp_path / f"{half}.toml").read_text(encoding="utf-8")

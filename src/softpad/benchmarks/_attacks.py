@@ -39,7 +39,8 @@ class _Scene:
     def __init__(self) -> None:
         import zenoh
 
-        from softpad.box import BoxDaemon, ZenohBox, open_box, session_config
+        from softpad.box import BoxDaemon, ZenohBox, open_box
+        from softpad.box.wire import session_config
         from softpad.harness import simulation_extensions
 
         port = _free_port()
@@ -73,7 +74,7 @@ class _Scene:
         inflate_and_adjust(self.ctl, 6, InflationParams(target_pa=1100.0))
 
     def ask(self, key: str, payload: bytes) -> dict[str, Any]:
-        from softpad.box import decode_request
+        from softpad.box.wire import decode_request
 
         for r in self.bad.get(f"softpad/box/{key}", payload=payload, timeout=5.0):
             if r.ok is not None:
@@ -91,7 +92,7 @@ class _Scene:
 
 
 def _forged_commands(s: _Scene) -> tuple[float, str]:
-    from softpad.box import encode_json
+    from softpad.box.wire import encode_json
 
     cid = s.ctl.client_id
     ok = 0
@@ -105,7 +106,7 @@ def _forged_commands(s: _Scene) -> tuple[float, str]:
 
 
 def _forged_release_take(s: _Scene) -> tuple[float, str]:
-    from softpad.box import encode_json
+    from softpad.box.wire import encode_json
 
     cid = s.ctl.client_id
     ok = sum(
@@ -120,7 +121,7 @@ def _forged_release_take(s: _Scene) -> tuple[float, str]:
 def _frozen_controller(s: _Scene) -> tuple[float, str]:
     """Controller inflating then frozen; attacker holds a token in its name and sends
     forged heartbeats. Figure: seconds from its last authentic heartbeat to the trip."""
-    from softpad.box import encode_json
+    from softpad.box.wire import encode_json
 
     for ch in range(1, 7):
         s.ctl.set_valve(ch, "inflate")
@@ -140,7 +141,8 @@ def _frozen_controller(s: _Scene) -> tuple[float, str]:
 
 
 def _forged_frames(s: _Scene) -> tuple[float, str]:
-    from softpad.box import PressureFrame, encode_frame, seal_frame
+    from softpad.box import PressureFrame
+    from softpad.box.wire import encode_frame, seal_frame
 
     s.ctl.take_control()
     bad = PressureFrame(0.0, np.full(8, np.nan), 1e4)
@@ -158,7 +160,7 @@ def _forged_frames(s: _Scene) -> tuple[float, str]:
 
 
 def _replayed_commands(s: _Scene) -> tuple[float, str]:
-    from softpad.box import encode_json
+    from softpad.box.wire import encode_json
 
     sealer = s.ctl._sealer
     if sealer is None:
@@ -193,7 +195,8 @@ def _service_flood(s: _Scene) -> tuple[float, str]:
 def _impostor(s: _Scene) -> tuple[float, str]:
     """An impostor queryable on ``valves`` acknowledges everything: the controller's
     commands must still reach the box. Figure: commands that did not reach it."""
-    from softpad.box import ValveCommand, encode_json
+    from softpad.box import ValveCommand
+    from softpad.box.wire import encode_json
 
     fake = encode_json({"ok": True, "valves": ["closed"] * 8})
     q = s.bad.declare_queryable("softpad/box/valves", lambda q: q.reply(q.key_expr, fake))

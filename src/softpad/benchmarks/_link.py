@@ -32,8 +32,7 @@ RT_PRIORITY = 10
 _MONITOR = r"""
 import json, sys, time, threading
 import zenoh
-from softpad.box._auth import split_frame
-from softpad.box._link import decode_frame, session_config
+from softpad.box.wire import decode_frame, session_config, split_frame
 port, duration = int(sys.argv[1]), float(sys.argv[2])
 rows = []
 def on(sample):

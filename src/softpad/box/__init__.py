@@ -12,13 +12,13 @@ installation file says. Back-ends are registered in :data:`BOX_BACKENDS`
 simulated box is imported only when used
 (``sim://`` or one of its names below): ``import softpad.box`` on the box computer loads
 neither :mod:`softpad.sim` nor :mod:`softpad.fem`.
+The link's wire format is :mod:`softpad.box.wire` (for tools that speak it directly).
 Every back-end must pass :func:`check_conformance`; :class:`BoxWrapper` is the base of views
 that add something around a box (a hook around reads, an event per valve command).
 """
 
 from typing import TYPE_CHECKING, Any
 
-from softpad.box._auth import seal_frame
 from softpad.box._base import Box, ConnectionLost, PressureFrame, ValveCommand
 from softpad.box._conformance import ConformanceError, check_conformance
 from softpad.box._credentials import daemon_auth
@@ -31,15 +31,7 @@ from softpad.box._hardware import (
     IIOReader,
     ValveLines,
 )
-from softpad.box._link import (
-    MAX_PAYLOAD_BYTES,
-    StampedFrame,
-    decode_frame,
-    decode_request,
-    encode_frame,
-    encode_json,
-    session_config,
-)
+from softpad.box._link import StampedFrame
 from softpad.box._registry import (
     BOX_BACKENDS,
     BOX_SERVICES,
@@ -99,7 +91,6 @@ __all__ = [
     "BOX_SERVICES",
     "DEFAULT_URL",
     "FAULT_KINDS",
-    "MAX_PAYLOAD_BYTES",
     "RATED_MAX_PRESSURE_PA",
     "Box",
     "BoxDaemon",
@@ -131,18 +122,12 @@ __all__ = [
     "check_conformance",
     "compose_sim_box",
     "daemon_auth",
-    "decode_frame",
-    "decode_request",
-    "encode_frame",
-    "encode_json",
     "guard_box",
     "open_box",
     "open_sim_url",
     "open_zenoh_url",
     "parse_url",
     "register_backend",
-    "seal_frame",
     "served_services",
-    "session_config",
     "simulator_of",
 ]

@@ -101,7 +101,13 @@ def served_services(url: str, box: Box) -> dict[str, Any]:
 
 
 def parse_url(url: str) -> tuple[str, str, dict[str, str]]:
-    """Split a box URL into (scheme, location, options); InputError on a malformed one."""
+    """Split a box URL into (scheme, location, options); InputError on a malformed one.
+
+    Parameters
+    ----------
+    url
+        ``scheme://location?key=value&...``.
+    """
     if not isinstance(url, str) or "://" not in url:
         raise InputError(f"box URL must look like 'scheme://...' (e.g. sim://?seed=1), got {url!r}")
     try:

@@ -273,7 +273,15 @@ class WallClock(SimLayer):
 def compose_sim_box(box: SimBox, realtime: bool = False) -> SimLayer:
     """The layers of ``sim://`` around the plain ``box``, in their order (module docstring):
     the zero shift when ``box`` has slow disturbances, the sensor faults, the lost link, and
-    the wall clock when ``realtime``. Faults of every kind can then be injected."""
+    the wall clock when ``realtime``. Faults of every kind can then be injected.
+
+    Parameters
+    ----------
+    box
+        The plain simulated box.
+    realtime
+        Pace the frames on the wall clock.
+    """
     layer: SimBox | SimLayer = box
     if box.disturbances is not None:
         layer = SensorZeroShift(layer, box.disturbances)
@@ -283,7 +291,19 @@ def compose_sim_box(box: SimBox, realtime: bool = False) -> SimLayer:
 
 def simulator_of(box: Box) -> SimBox | None:
     """The plain simulated box behind ``box`` and any :class:`~softpad.box.BoxWrapper` views
-    or layers around it (None for a box that is not simulated)."""
+    or layers around it, in this process.
+
+    Parameters
+    ----------
+    box
+        Any box.
+
+    Returns
+    -------
+    SimBox or None
+        None for a box with no simulator in this process (:attr:`Box.simulated` answers
+        whether a simulated world stands behind a box at all, served ones included).
+    """
     while isinstance(box, BoxWrapper):
         box = box.inner
     return box if isinstance(box, SimBox) else None

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 import sys
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from typing import Any
 
@@ -58,12 +58,12 @@ faces fixed, follower pressure on the lower face, nearly incompressible hyperela
 of thesis Table 7.1)."""
 
 _PRESSURES_KPA = "0.5,0.96,1.42,1.88,2.34,2.8"
-#: Limits of the module's layer thickness and width, of a mass and of a footprint's side, in
-#: the options' units: outside them a value is a unit mix-up more likely than a design.
+#: The options' limits of the module's layer thickness and width and of a mass, in their
+#: units: :mod:`softpad.fem`'s ranges (THICKNESS_RANGE_M, ...; a test keeps them alike), not
+#: imported here so that building the parser loads no FEM.
 THICKNESS_RANGE_MM = (0.1, 20.0)
 WIDTH_RANGE_MM = (5.0, 500.0)
 MASS_RANGE_G = (0.1, 10_000.0)
-MIN_FOOTPRINT_MM = 0.5
 
 
 def _add_study(fem_sub: Any, name: str, help: str, model: bool = True) -> argparse.ArgumentParser:
@@ -497,19 +497,14 @@ def _sweep(args: argparse.Namespace) -> int:
 
 
 def _design(args: argparse.Namespace) -> int:
-    from softpad.fem import ModuleSetup, design_sweep
+    from softpad.fem import ModuleSetup, check_design_values, design_sweep
 
     _check_outputs(args)
     defaults = {"thickness": "1,1.5,2,2.5,3", "width": "35,40,45,50,55"}
     values = _numbers(
         args.values_mm or defaults[args.parameter], "--values-mm", 1e-3, positive=True
     )
-    lo, hi = {"thickness": THICKNESS_RANGE_MM, "width": WIDTH_RANGE_MM}[args.parameter]
-    for v in values:
-        if not lo <= v * 1e3 <= hi:
-            raise InputError(
-                f"--values-mm: a {args.parameter} of {v * 1e3:g} mm is outside {lo:g}..{hi:g} mm"
-            )
+    check_design_values(args.parameter, values, "--values-mm")
     geometry, mesh = _geometry(args), _mesh(args)
     result = _run_study(
         args,
@@ -529,23 +524,12 @@ def _design(args: argparse.Namespace) -> int:
     return 0
 
 
-def _check_top_pressure(pressures: Sequence[float]) -> None:
-    """Refuse study pressures above the module's maximum, before the FEM set-up, naming the
-    option (500 kPa is usually pascals given as kilopascals)."""
-    top = max(pressures)
-    if top > thesis.MAX_PRESSURE_PA:
-        raise InputError(
-            f"--pressures-kpa: {top / 1e3:g} kPa exceeds the module's maximum "
-            f"{thesis.MAX_PRESSURE_PA / 1e3:g} kPa"
-        )
-
-
 def _stiffness(args: argparse.Namespace) -> int:
-    from softpad.fem import stiffness_study
+    from softpad.fem import check_study_pressures, stiffness_study
 
     _check_outputs(args)
     pressures = _numbers(args.pressures_kpa, "--pressures-kpa", 1e3, positive=True)
-    _check_top_pressure(pressures)
+    check_study_pressures(pressures, "--pressures-kpa")
     forces = _numbers(args.forces_n, "--forces-n", positive=True)
     if not 0 < args.radius_mm < args.width_mm / 2:
         raise InputError(
@@ -576,11 +560,11 @@ def _stiffness(args: argparse.Namespace) -> int:
 
 
 def _sensitivity(args: argparse.Namespace) -> int:
-    from softpad.fem import sensitive_area_study
+    from softpad.fem import check_study_pressures, sensitive_area_study
 
     _check_outputs(args)
     pressures = _numbers(args.pressures_kpa, "--pressures-kpa", 1e3, positive=True)
-    _check_top_pressure(pressures)
+    check_study_pressures(pressures, "--pressures-kpa")
     result = _run_study(
         args,
         "sensitivity",
@@ -617,58 +601,27 @@ def _sensitivity(args: argparse.Namespace) -> int:
     return 0
 
 
-def _footprint(text: str, width_mm: float) -> Any:
-    """``WxH`` or ``dD`` in mm as a LoadPatch, no side wider than the module."""
-    patch = _parse_footprint(text)
-    if max(patch.size_x_m, patch.size_y_m or 0.0) * 1e3 > width_mm:
-        raise InputError(
-            f"--footprint-mm {text!r} is wider than the module ({width_mm:g} mm): "
-            "a load wider than the module rests on its frame"
-        )
-    return patch
-
-
-def _parse_footprint(text: str) -> Any:
-    from softpad.fem import LoadPatch
-
-    t = text.strip().lower()
-    parts = [t[1:]] if t.startswith("d") else t.split("x")
-    if len(parts) != (1 if t.startswith("d") else 2) or any("," in s for s in parts):
-        raise InputError(f"--footprint-mm must be WxH or dD in mm, got {text!r}")
-    sides = [_numbers(s, "--footprint-mm", 1e-3, positive=True)[0] for s in parts]
-    for side in sides:
-        if side < MIN_FOOTPRINT_MM * 1e-3:
-            raise InputError(
-                f"--footprint-mm {text!r}: a side of {side * 1e3:g} mm is under "
-                f"{MIN_FOOTPRINT_MM:g} mm (metres given as millimetres?)"
-            )
-    if t.startswith("d"):
-        return LoadPatch("disc", sides[0], sides[0])
-    return LoadPatch("rectangle", sides[0], sides[1])
-
-
 def _chamber(args: argparse.Namespace) -> int:
-    from softpad.fem import sealed_chamber_study
+    from softpad.fem import (
+        check_masses,
+        detection_threshold_pa,
+        parse_footprint,
+        sealed_chamber_study,
+    )
 
     _check_outputs(args)
     masses = _numbers(args.masses_g, "--masses-g", 1e-3, positive=True)
-    for m in masses:
-        if not MASS_RANGE_G[0] <= m * 1e3 <= MASS_RANGE_G[1]:
-            raise InputError(
-                f"--masses-g: {m * 1e3:g} g is outside {MASS_RANGE_G[0]:g}..{MASS_RANGE_G[1]:g} g"
-                + (" (kilograms given as grams?)" if m * 1e3 < MASS_RANGE_G[0] else "")
-            )
+    check_masses(masses, "--masses-g")
     if args.pressure_kpa <= 0:
         raise InputError(f"--pressure-kpa must be > 0 kPa, got {args.pressure_kpa:g}")
-    threshold = args.threshold_kpa * 1e3
-    source = "--threshold-kpa"
-    if args.noise_kpa is not None:
-        threshold = args.n_sigma * args.noise_kpa * 1e3
-        source = "--n-sigma x --noise-kpa"
-    if threshold <= 0:
-        raise InputError(
-            f"detection threshold ({source}) must be > 0 kPa, got {threshold * 1e-3:g} kPa"
-        )
+    noise = None if args.noise_kpa is None else args.noise_kpa * 1e3
+    threshold, _ = detection_threshold_pa(
+        args.threshold_kpa * 1e3,
+        noise,
+        args.n_sigma,
+        ("--threshold-kpa", "--n-sigma x --noise-kpa"),
+    )
+    footprint = parse_footprint(args.footprint_mm, args.width_mm * 1e-3, "--footprint-mm")
     result = _run_study(
         args,
         "chamber",
@@ -676,7 +629,7 @@ def _chamber(args: argparse.Namespace) -> int:
         _setup(args),
         args.pressure_kpa * 1e3,
         masses,
-        footprint=_footprint(args.footprint_mm, args.width_mm),
+        footprint=footprint,
         dead_volume_m3=args.dead_volume_ml * 1e-6,
     )
     if args.csv:
@@ -781,7 +734,7 @@ def _characteristic(args: argparse.Namespace) -> int:
         _save_figure(result.plot(), args.png)
     if args.csv:
         with atomic_path(args.csv) as tmp:
-            _characteristic_csv(result, str(tmp))
+            result.to_csv(tmp)
     if args.json:
         emit({"path": str(out), **result.to_dict()})
         return 0
@@ -792,19 +745,10 @@ def _characteristic(args: argparse.Namespace) -> int:
     return 0
 
 
-def _characteristic_csv(result: Any, path: str) -> None:
-    from softpad.fem import write_csv
-
-    rows = []
-    for i, p in enumerate(result.pressure_pa):
-        for j, f in enumerate(result.load_n):
-            rows.append([p * 1e-3, f, result.volume_m3[i, j] * 1e6, result.height_m[i, j] * 1e3])
-    write_csv(path, ["pressure_kpa", "load_n", "volume_ml", "height_mm"], rows)
-
-
 def _response(args: argparse.Namespace) -> int:
     from softpad.fem import (
         DEFAULT_RESPONSE_PRESSURES_PA,
+        check_study_pressures,
         module_response,
         response_convergence,
     )
@@ -815,7 +759,7 @@ def _response(args: argparse.Namespace) -> int:
         if args.pressures_kpa
         else DEFAULT_RESPONSE_PRESSURES_PA
     )
-    _check_top_pressure(pressures)
+    check_study_pressures(pressures, "--pressures-kpa")
     setup = _setup(args)
     with _progress(args, "response") as progress:
         result = module_response(setup, pressures, progress)

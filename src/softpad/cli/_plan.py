@@ -3,8 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import csv
-import io
 import sys
 from pathlib import Path
 from typing import Any
@@ -13,7 +11,7 @@ from softpad import thesis
 from softpad.cli._args import Renamed, add_command, add_number, kpa_list
 from softpad.cli._output import emit, say
 from softpad.cli._paths import atomic_path, check_output
-from softpad.errors import InputError, parse_json
+from softpad.errors import InputError
 
 _EPILOG = """examples:
   softpad plan --delta 0,0.124,0.078,0.109,0,0          banana on modules 2, 3, 4
@@ -91,8 +89,10 @@ def register(sub: Any) -> None:
     p.set_defaults(handler=run)
 
 
-def _read_frame(path: str) -> tuple[list[float], list[float] | None]:
-    """Read a frame file; returns (values_pa, reference_pa or None)."""
+def _read_frame(path: str) -> Any:
+    """The readings of a frame file (``-``: stdin), :class:`softpad.sensing.PadReadings`."""
+    from softpad.sensing import parse_readings
+
     if path == "-":
         text = sys.stdin.read()
     else:
@@ -104,101 +104,7 @@ def _read_frame(path: str) -> tuple[list[float], list[float] | None]:
             raise InputError(
                 f"frame file {path!r} is not text (CSV or JSON expected; a binary file?)"
             ) from None
-    stripped = text.strip()
-    if not stripped:
-        raise InputError(f"frame file {path!r} is empty")
-    if stripped.startswith("{"):
-        data = parse_json(stripped, f"frame file {path!r}")
-        if not isinstance(data, dict):
-            raise InputError(f"frame file {path!r} must hold a JSON object")
-        keys = [k for k in ("delta_kpa", "pressures_kpa", "reference_kpa") if k in data]
-        if "delta_kpa" in keys and len(keys) > 1:
-            raise InputError(
-                f"frame file {path!r} gives both delta_kpa and {keys[1]}: give one of "
-                "delta_kpa, or pressures_kpa with reference_kpa"
-            )
-        if "delta_kpa" in data:
-            return _numbers(data["delta_kpa"], "delta_kpa"), None
-        if "pressures_kpa" in data and "reference_kpa" in data:
-            return _numbers(data["pressures_kpa"], "pressures_kpa"), _numbers(
-                data["reference_kpa"], "reference_kpa"
-            )
-        raise InputError(
-            f"frame file {path!r} needs key delta_kpa, or pressures_kpa and reference_kpa"
-        )
-    return _csv_frame(path, stripped)
-
-
-def _csv_frame(path: str, stripped: str) -> tuple[list[float], list[float] | None]:
-    """A CSV frame file's (values_pa, reference_pa or None)."""
-    try:  # newline="" semantics: a lone \r ends a line as \n does
-        rows = [
-            r for r in csv.reader(io.StringIO(stripped, newline=None)) if any(c.strip() for c in r)
-        ]
-    except csv.Error as exc:
-        raise InputError(f"frame file {path!r} is not valid CSV: {exc}") from None
-    if not rows:
-        raise InputError(f"frame file {path!r} has no values (CSV or JSON expected)")
-    header = [c.strip().lower() for c in rows[0]]
-    if all(_is_number(c) for c in header):
-        if len(rows) != 1:
-            raise InputError(
-                f"frame file {path!r}: without a header give one line of increments in kPa"
-            )
-        return kpa_list(",".join(rows[0]), "frame"), None
-    body = rows[1:]
-    if not body:
-        raise InputError(f"frame file {path!r} has a header but no data rows")
-
-    def column(name: str) -> list[float]:
-        i = header.index(name)
-        try:
-            return kpa_list(",".join(r[i] for r in body), name)
-        except IndexError:
-            raise InputError(f"frame file {path!r}: a row has no {name} column") from None
-
-    if "delta_kpa" in header:
-        if "pressure_kpa" in header or "reference_kpa" in header:
-            raise InputError(
-                f"frame file {path!r}: header names delta_kpa and pressures; give one of them"
-            )
-        return column("delta_kpa"), None
-    if "pressure_kpa" in header and "reference_kpa" in header:
-        return column("pressure_kpa"), column("reference_kpa")
-    raise InputError(
-        f"frame file {path!r}: header must name delta_kpa, or pressure_kpa and reference_kpa; "
-        f"got {', '.join(header)}"
-    )
-
-
-def _is_number(s: str) -> bool:
-    try:
-        float(s)
-    except ValueError:
-        return False
-    return True
-
-
-def _numbers(values: Any, key: str) -> list[float]:
-    if not isinstance(values, list):
-        raise InputError(f"{key} must be a list of numbers in kPa, got {type(values).__name__}")
-    return kpa_list(",".join(str(v) for v in values), key)
-
-
-def _check_increment_range(delta_pa: list[float], source: str) -> None:
-    """A module's pressure cannot fall below ambient, so its increment is at least -p0, and p0
-    is at most 2.8 kPa (thesis Section 6.2); above, the sensor's 10 kPa full scale bounds it."""
-    from softpad.sensing import SENSOR_FULL_SCALE_PA
-
-    lo = -thesis.P0_RANGE_PA[1]
-    for k, d in enumerate(delta_pa, 1):
-        if not lo <= d <= SENSOR_FULL_SCALE_PA:
-            hint = ": were pascals given as kPa?" if d > SENSOR_FULL_SCALE_PA else ""
-            raise InputError(
-                f"{source}: increment of module {k} is {d / 1e3:g} kPa, outside "
-                f"{lo / 1e3:g} to {SENSOR_FULL_SCALE_PA / 1e3:g} kPa (a module cannot fall "
-                f"below ambient, nor read above the sensor's full scale){hint}"
-            )
+    return parse_readings(text, f"frame file {path!r}")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -211,8 +117,8 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(f"--layout {args.layout!r}: {exc}") from None
     _check_planner(args.planner, args.gripper)
     png = check_output(args.png, "--png", force=args.force, suffix=".png")
-    source, values, reference = _readings(args)
-    delta = _increments(values, reference, layout, source)
+    source, readings = _readings(args)
+    delta = readings.increments_pa(layout, source)
     params = PlannerParams(
         object_threshold_pa=args.threshold_kpa * 1e3, safety_shift=args.safety_shift
     )
@@ -229,51 +135,29 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _readings(args: argparse.Namespace) -> tuple[str, list[float], list[float] | None]:
-    """Where the readings come from (for messages), the values and the reference (None for
-    increments), pascals."""
+def _readings(args: argparse.Namespace) -> tuple[str, Any]:
+    """Where the readings come from (for messages) and the readings
+    (:class:`softpad.sensing.PadReadings`, pascals)."""
+    from softpad.sensing import PadReadings
+
     if args.reference is not None and args.pressures is None:
         source = "--delta" if args.delta is not None else f"--frame {args.frame!r}"
         raise InputError(f"--reference goes with --pressures only, not with {source}")
     if args.delta is not None:
-        return "--delta", kpa_list(args.delta, "--delta"), None
+        return "--delta", PadReadings(tuple(kpa_list(args.delta, "--delta")))
     if args.pressures is not None:
         if args.reference is None:
             raise InputError("--pressures needs --reference (the pressures saved after inflation)")
-        pressures = kpa_list(args.pressures, "--pressures")
-        return "--pressures/--reference", pressures, kpa_list(args.reference, "--reference")
+        pressures = tuple(kpa_list(args.pressures, "--pressures"))
+        reference = tuple(kpa_list(args.reference, "--reference"))
+        return "--pressures/--reference", PadReadings(pressures, reference)
     try:
-        values, reference = _read_frame(args.frame)
+        readings = _read_frame(args.frame)
     except InputError as exc:
         if repr(args.frame) in str(exc):
             raise
         raise InputError(f"frame file {args.frame!r}: {exc}") from None
-    return f"--frame {args.frame!r}", values, reference
-
-
-def _increments(
-    values: list[float], reference: list[float] | None, layout: Any, source: str
-) -> list[float]:
-    """The increments of every module, pascals, checked against the pad's module count."""
-    from softpad.sensing import increments
-
-    n = layout.n_modules
-    if reference is None:
-        if len(values) != n:
-            raise InputError(
-                f"{source}: a {layout.name} pad needs {n} increments (modules 1..{n}), "
-                f"got {len(values)}"
-            )
-        _check_increment_range(values, source)
-        return values
-    _check_readings(values, "pressures")
-    _check_readings(reference, "reference")
-    if len(values) != n or len(reference) != n:
-        raise InputError(
-            f"--pressures/--reference: a {layout.name} pad needs {n} pressures "
-            f"and {n} reference values, got {len(values)} and {len(reference)}"
-        )
-    return list(increments(values, reference))
+    return f"--frame {args.frame!r}", readings
 
 
 def _planner_help() -> str:
@@ -306,17 +190,6 @@ def _plans(args: argparse.Namespace, delta: list[float], layout: Any, params: An
         return plan_grasps(delta, layout, params)
     planner = make_planner(args.planner, layout=layout, gripper=gripper, params=params)
     return planner.plan(delta, detect_objects(delta, layout, params.object_threshold_pa), layout)
-
-
-def _check_readings(values_pa: list[float], what: str) -> None:
-    """Readings within the sensor range (-2..10 kPa), else a message suggesting Pa given as kPa."""
-    for i, v in enumerate(values_pa, 1):
-        if not -2e3 <= v <= 10e3:
-            hint = ": pascals given as kPa?" if v > 10e3 else ""
-            raise InputError(
-                f"--{what}: module {i} reads {v / 1e3:g} kPa, outside the sensor range "
-                f"-2..10 kPa{hint}"
-            )
 
 
 def _save_plot(path: Path, delta: list[float], plans: Any, layout: Any, json_mode: bool) -> None:

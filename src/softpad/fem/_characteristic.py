@@ -33,7 +33,7 @@ from softpad import thesis
 from softpad.errors import InputError, check_finite
 from softpad.fem._geometry import LoadPatch
 from softpad.fem._model import ModuleModel, ModuleSetup, ProgressCallback
-from softpad.fem._results import label_axes, new_axes
+from softpad.fem._results import label_axes, new_axes, write_csv
 
 #: Path of the characteristic shipped with the package.
 CHARACTERISTIC_PATH = Path(str(resources.files("softpad") / "data" / "module_characteristic.npz"))
@@ -159,6 +159,15 @@ class ModuleCharacteristic:
             "height_mm": (np.asarray(self.height_m) * 1e3).tolist(),
             "meta": self.meta,
         }
+
+    def to_csv(self, path: str | Path) -> Path:
+        """One row per pressure and load: ``pressure_kpa, load_n, volume_ml, height_mm``."""
+        rows = [
+            [p * 1e-3, f, self.volume_m3[i, j] * 1e6, self.height_m[i, j] * 1e3]
+            for i, p in enumerate(self.pressure_pa)
+            for j, f in enumerate(self.load_n)
+        ]
+        return write_csv(path, ["pressure_kpa", "load_n", "volume_ml", "height_mm"], rows)
 
     def plot(self, ax: Any = None) -> Any:
         """Plot volume (mL) against pressure (kPa), one line per load."""

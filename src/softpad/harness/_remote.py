@@ -80,6 +80,16 @@ def simulation_extensions(box: SimBox) -> dict[str, Handler]:
     """Protocol extensions exposing ``box``'s world and a :class:`SimulatedRobot` on it.
 
     Pass them to :class:`~softpad.box.BoxDaemon` (``services=``).
+
+    Parameters
+    ----------
+    box
+        The plain simulated box being served.
+
+    Returns
+    -------
+    dict
+        ``{op: handler}`` for every request of :data:`SIMULATION_OPS`.
     """
     sim = _SimulationService(box)
     return {
@@ -209,7 +219,13 @@ class _SimulationService:
 
 def has_simulation(box: ZenohBox) -> bool:
     """True when ``box`` has a simulated world behind it (:attr:`~softpad.box.Box.simulated`)
-    and its daemon also serves the simulated robot (every request of :data:`SIMULATION_OPS`)."""
+    and its daemon also serves the simulated robot (every request of :data:`SIMULATION_OPS`).
+
+    Parameters
+    ----------
+    box
+        An open ``zenoh://`` box.
+    """
     return box.simulated and set(SIMULATION_OPS) <= set(box.info.get("services", []))
 
 

@@ -217,7 +217,15 @@ class SimulatedRobot:
 
 def open_sim_robot(location: str, options: dict[str, str], context: Any) -> SimulatedRobot:
     """The ``sim://`` factory of :data:`softpad.control.ROBOT_REGISTRY`: the arm of the
-    simulated box in ``context.box`` (:class:`softpad.box.SimBox`); no location or options."""
+    simulated box in ``context.box`` (:class:`softpad.box.SimBox`).
+
+    Parameters
+    ----------
+    location, options
+        The robot URL's location and options: none are taken.
+    context
+        A :class:`softpad.control.RobotContext` whose ``box`` is simulated in this process.
+    """
     from softpad.box import simulator_of
 
     if location not in ("", "/") or options:

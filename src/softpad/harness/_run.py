@@ -21,7 +21,18 @@ _REMOTE_WORLD = (
 
 
 def resolve_objects(names: Sequence[str] | None) -> list[ObjectSpec]:
-    """Catalogue objects by name (``object-5`` when None); InputError lists the known names."""
+    """Catalogue objects by name; InputError lists the known names.
+
+    Parameters
+    ----------
+    names
+        Catalogue names, each at most once; ``object-5`` when None.
+
+    Returns
+    -------
+    list of ObjectSpec
+        The objects, in the order given.
+    """
     if isinstance(names, str):
         raise InputError(
             f"objects must be a list of names, got the string {names!r}: use [{names!r}]"

@@ -47,6 +47,13 @@ from softpad.sensing._objects import (
     measured_change,
     outline_objects,
 )
+from softpad.sensing._readings import (
+    READING_RANGE_PA,
+    PadReadings,
+    check_increment_range,
+    check_reading_range,
+    parse_readings,
+)
 from softpad.sensing._registry import (
     CONTACT_DETECTOR_REGISTRY,
     OBJECT_DETECTOR_REGISTRY,
@@ -70,6 +77,7 @@ __all__ = [
     "DEFAULT_OBJECT_THRESHOLD_PA",
     "DEFAULT_OUTLINE_THRESHOLD_PA",
     "OBJECT_DETECTOR_REGISTRY",
+    "READING_RANGE_PA",
     "SENSOR_FULL_SCALE_PA",
     "SMALLEST_PLAUSIBLE_INCREMENT_PA",
     "AdaptiveCusumDetector",
@@ -83,6 +91,7 @@ __all__ = [
     "LatchingContactDetector",
     "ObjectDetector",
     "ObjectDetectorFactory",
+    "PadReadings",
     "RunningAverage",
     "ThesisContactDetector",
     "ThesisObjectDetector",
@@ -92,7 +101,9 @@ __all__ = [
     "calibrate_adaptive",
     "calibrate_cusum",
     "capture_reference",
+    "check_increment_range",
     "check_increments",
+    "check_reading_range",
     "check_threshold",
     "count_alarms",
     "cusum_for_rate",
@@ -106,6 +117,7 @@ __all__ = [
     "make_object_detector",
     "measured_change",
     "outline_objects",
+    "parse_readings",
     "register_contact_detector",
     "register_object_detector",
     "sensing_ratio",

@@ -1,6 +1,6 @@
 """Generator of softpad/data/objects.json: the thesis's Table 6.1 objects from independent specs.
 
-    python docs/make_objects.py src/softpad/data/objects.json
+    python examples/make_objects.py src/softpad/data/objects.json
 
 Every number below comes from a named source, never from a trial or a wished-for plan:
 
@@ -235,7 +235,7 @@ obj(
 )
 
 
-def seg(name, p0, p1, r):  # noqa: D103
+def seg(name, p0, p1, r):
     dx, dy = p1[0] - p0[0], p1[1] - p0[1]
     return lying_cylinder(
         name, r, math.hypot(dx, dy), (p0[0] + p1[0]) / 2, (p0[1] + p1[1]) / 2, math.atan2(dy, dx)
@@ -379,12 +379,20 @@ obj(
     "cable and plug on module 6; one density.",
 )
 
-if __name__ == "__main__":
+
+def main(out: str | None = None) -> list[dict]:
+    """Validate every object, write the catalogue to ``out`` (when given), print the parts'
+    masses; return the objects."""
     for d in OBJECTS:
         object_from_dict(d)  # validates
-    if len(sys.argv) > 1:
-        with open(sys.argv[1], "w", encoding="utf-8") as f:
+    if out is not None:
+        with open(out, "w", encoding="utf-8") as f:
             json.dump({"schema": CATALOGUE_SCHEMA, "objects": OBJECTS}, f, indent=1)
             f.write("\n")
     for d in OBJECTS:
         print(d["name"], [(p["name"], p["mass_kg"]) for p in d["parts"]])
+    return OBJECTS
+
+
+if __name__ == "__main__":
+    main(sys.argv[1] if len(sys.argv) > 1 else None)
