@@ -75,7 +75,7 @@ class TrialOptions:
         )
         check_range("trial options yaw_sigma_rad", self.yaw_sigma_rad, 0.0, math.pi, "rad")
         check_range("trial options sample_rate_hz", self.sample_rate_hz, 1.0, 100_000.0, "Hz")
-        from softpad.trials._config import check_mounting_choice
+        from softpad.trials import check_mounting_choice
 
         check_mounting_choice(self.mounting, "trial options mounting")
 
@@ -191,7 +191,7 @@ def _mounting(
     from softpad.box import SimBox
     from softpad.planning import choose_mounting
     from softpad.sim import AnalyticWorld, SensorParams
-    from softpad.trials._survey import read_increments
+    from softpad.trials import read_increments
 
     world = AnalyticWorld(design.layout)
     box = SimBox(

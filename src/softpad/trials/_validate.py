@@ -798,16 +798,14 @@ def validate(
     on_trial
         Called with every finished trial.
     mounting
-        The trials' gripper mounting (:attr:`TrialConfig.mounting`): None, Table 6.1's per
-        object (Section 6.3); ``"auto"``, chosen from the pad's reading; or one for all.
+        The trials' mounting (:attr:`TrialConfig.mounting`; None: Table 6.1's per object).
     """
     if not isinstance(placements, int) or not 2 <= placements <= 10_000:
         raise InputError(f"placements must be an integer from 2 to 10000, got {placements!r}")
     if not isinstance(trials, int) or not 1 <= trials <= 1000:
         raise InputError(f"trials per object must be an integer from 1 to 1000, got {trials!r}")
     results = run_trial_rows(seeds, trials, workers, randomize, on_trial, mounting) if seeds else []
-    rows: list[Observation] = []
-    rows += experiment_rows(results)
+    rows = experiment_rows(results)
     if results:
         rows += trial_plan_rows(results)
         rows += static_plan_rows(placements, seed, randomize)[len(THESIS_TABLE_6_1) :]
