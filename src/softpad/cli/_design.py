@@ -189,6 +189,8 @@ def run(args: argparse.Namespace) -> int:
         design_sweep,
     )
 
+    if args.gripper is not None and args.mounting is not None:
+        raise InputError("give --gripper (one mounting for the set) or --mounting, not both")
     object_set = _object_set(args)
     designs = _designs(args)
     _check_on_pads(object_set, designs)
