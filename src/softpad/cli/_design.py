@@ -151,6 +151,8 @@ def _outputs(args: argparse.Namespace) -> dict[str, Any]:
 def _object_set(args: argparse.Namespace) -> Any:
     from softpad.design import example_object_set, load_object_set
 
+    if args.gripper is not None and args.mounting is not None:
+        raise InputError("give --gripper (one mounting for the set) or --mounting, not both")
     if args.objects:
         s = load_object_set(args.objects)
     else:
@@ -189,8 +191,6 @@ def run(args: argparse.Namespace) -> int:
         design_sweep,
     )
 
-    if args.gripper is not None and args.mounting is not None:
-        raise InputError("give --gripper (one mounting for the set) or --mounting, not both")
     object_set = _object_set(args)
     designs = _designs(args)
     _check_on_pads(object_set, designs)
