@@ -12,7 +12,7 @@ from softpad import thesis
 from softpad.cli._args import add_command, int_ranges, name_list
 from softpad.cli._output import emit, say
 from softpad.cli._run import add_part_options
-from softpad.cli._trials import add_randomize_option
+from softpad.cli._trials import add_mounting_option, add_randomize_option
 from softpad.errors import InputError
 
 _EPILOG = """examples:
@@ -88,6 +88,7 @@ def register(sub: Any) -> None:
         help=f"hold time in s (default {thesis.HOLD_S:g}; --quick 2)",
     )
     add_randomize_option(p)
+    add_mounting_option(p, "the object set's: each object's, or its one gripper")
     add_part_options(p)
     p.add_argument(
         "--scheduler", metavar="tcp://127.0.0.1:PORT", help="a running Dask scheduler on loopback"
@@ -150,6 +151,8 @@ def _outputs(args: argparse.Namespace) -> dict[str, Any]:
 def _object_set(args: argparse.Namespace) -> Any:
     from softpad.design import example_object_set, load_object_set
 
+    if args.gripper is not None and args.mounting is not None:
+        raise InputError("give --gripper (one mounting for the set) or --mounting, not both")
     if args.objects:
         s = load_object_set(args.objects)
     else:
@@ -200,7 +203,14 @@ def run(args: argparse.Namespace) -> int:
     hold_s = args.hold_s if args.hold_s is not None else (2.0 if args.quick else thesis.HOLD_S)
     if not (math.isfinite(hold_s) and 0 <= hold_s <= 60):
         raise InputError(f"--hold-s must be from 0 to 60 s, got {hold_s!r}")
-    options = TrialOptions(trials, args.planner, args.detector, hold_s, randomize=args.randomize)
+    options = TrialOptions(
+        trials,
+        args.planner,
+        args.detector,
+        hold_s,
+        randomize=args.randomize,
+        mounting=args.mounting,
+    )
     if args.scheduler is not None:
         check_scheduler_address(args.scheduler)
     if args.workers is not None and not 1 <= args.workers <= 256:

@@ -50,6 +50,7 @@ def register(sub: Any) -> None:
     add_trial_options(p)
     add_part_options(p)
     add_randomize_option(p)
+    add_mounting_option(p, "each object's own: Table 6.1's per Section 6.3, an object set's")
     p.add_argument(
         "--scheduler",
         metavar="tcp://127.0.0.1:PORT|local",
@@ -72,6 +73,19 @@ def add_randomize_option(p: Any) -> None:
         "seam, sample rate, noise, tubing, placement, unknown object sizes) from its sourced "
         "range per trial, seeded by the trial seed; --json carries the drawn values per trial "
         "(list: softpad.sim.UNCERTAIN_PARAMETERS, docs/trials.md)",
+    )
+
+
+def add_mounting_option(p: Any, default_text: str = "each object's own") -> None:
+    """``--mounting``: the gripper's mounting, or ``auto`` (chosen from the pad's reading)."""
+    p.add_argument(
+        "--mounting",
+        choices=("auto", "10/4", "6/2", "4/0"),
+        default=None,
+        help="gripper mounting (max/min width, cm) for every object; auto: chosen per trial "
+        "from the pad's reading of the placed object (the smallest that opens beyond the "
+        "object's estimated width along the planned grasp; no width oracle), as a lab runs "
+        f"held-out objects (default: {default_text})",
     )
 
 
@@ -309,7 +323,11 @@ def _config(args: argparse.Namespace) -> Any:
 
     execution = trial_execution_params(hold_s=args.hold_s)
     return TrialConfig(
-        execution, planner=args.planner, detector=args.detector, randomize=args.randomize
+        execution,
+        planner=args.planner,
+        detector=args.detector,
+        randomize=args.randomize,
+        mounting=args.mounting,
     )
 
 

@@ -25,6 +25,7 @@ from softpad.planning._model_based import (
     PadModel,
     table_bytes,
 )
+from softpad.planning._mounting import ALL_MOUNTINGS, choose_mounting
 from softpad.planning._params import DEFAULT_SAFETY_SHIFT, PlannerParams
 from softpad.planning._pcom import pcom
 from softpad.planning._plan import Planner, RetryPlanner, ThesisPlanner, plan_grasps
@@ -41,6 +42,7 @@ from softpad.planning._registry import (
 from softpad.planning._render import ascii_pad, format_plans, plot_plans
 
 __all__ = [
+    "ALL_MOUNTINGS",
     "DEFAULT_SAFETY_SHIFT",
     "DEFAULT_SEAM_WIDTH_M",
     "FIG_6_7",
@@ -65,6 +67,7 @@ __all__ = [
     "available_planners",
     "bridge_pairs",
     "centred_on_load",
+    "choose_mounting",
     "format_plans",
     "landing_side",
     "load_axis",

@@ -21,7 +21,12 @@ from softpad.trials._compare import (
     merge_comparisons,
     wilson_interval,
 )
-from softpad.trials._config import TrialConfig, drawn_placement, trial_execution_params
+from softpad.trials._config import (
+    TrialConfig,
+    check_mounting_choice,
+    drawn_placement,
+    trial_execution_params,
+)
 from softpad.trials._object_fit import ObjectFit, fit_object_unknowns
 from softpad.trials._records import (
     FAILURE_CAUSES,
@@ -42,6 +47,7 @@ from softpad.trials._runner import (
     trial_recording_path,
     trial_seed,
 )
+from softpad.trials._survey import pad_reading, read_increments
 from softpad.trials._validate import Observation, ValidationResult, validate
 
 __all__ = [
@@ -60,6 +66,7 @@ __all__ = [
     "TrialResult",
     "ValidationResult",
     "calibrate",
+    "check_mounting_choice",
     "compare",
     "drawn_placement",
     "errored_records",
@@ -67,8 +74,10 @@ __all__ = [
     "fit_object_unknowns",
     "idle_false_alarms_per_hour",
     "merge_comparisons",
+    "pad_reading",
     "perturbed_placement",
     "protocol_loads",
+    "read_increments",
     "record_calibration",
     "run_experiment",
     "run_experiments",
