@@ -216,12 +216,15 @@ class FaultMonitor:
         th = self.th
         between, within = rates
         shown = between  # the message gives the channel's own rate (their mean, below)
+        sealed = None
         if self.loads_expected:
             sealed = np.asarray(~np.isnan(between).any(axis=0), dtype=bool)
-            between, within = _unbalanced(between, sealed), _unbalanced(within, sealed)
+            between = _unbalanced(between, sealed)
         up = (between > th.rise_loaded_pa_s).all(axis=0)  # NaN: not sealed throughout
         if not up.any():  # the usual frame: no channel rising at all
             return None
+        if sealed is not None:
+            within = _unbalanced(within, sealed)
         up &= between.max(axis=0) <= th.steady_spread * between.min(axis=0)
         up &= (within > 0.5 * th.rise_loaded_pa_s).all(axis=0)
         if not up.any():
@@ -236,7 +239,7 @@ class FaultMonitor:
 
     def _check_raw(self, t: float, p: NDArray[np.float64]) -> DetectedFault | None:
         th = self.th
-        lo, hi = p.min(), p.max()
+        lo, hi = np.minimum.reduce(p), np.maximum.reduce(p)  # p.min(), p.max() unwrapped
         if th.floor_pa <= lo and hi <= th.max_pressure_pa - th.trip_margin_pa:
             return None  # NaN fails both comparisons, so the usual case is one pass
         for k in range(self.n):
