@@ -305,7 +305,10 @@ def _unbalanced(slope: NDArray[np.float64], sealed: NDArray[np.bool_]) -> NDArra
     moving across the pad (an object rolling or sliding onto a module) raises one module as the
     modules it leaves fall, while gas from a stuck inflation valve raises one module without
     any other falling."""
-    moved = np.where(sealed, np.nan_to_num(slope), 0.0)
+    clean = np.where(np.isnan(slope), 0.0, slope)  # np.nan_to_num's values, less its cost
+    if np.isinf(clean).any():
+        clean = np.nan_to_num(slope)
+    moved = np.where(sealed, clean, 0.0)
     return slope + np.minimum(moved.sum(axis=-1, keepdims=True) - moved, 0.0)
 
 
