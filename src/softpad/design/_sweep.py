@@ -123,8 +123,7 @@ def run_sweep(
     scheduler
         ``tcp://127.0.0.1:PORT`` of a running Dask scheduler; None starts a local cluster.
     workers
-        Worker processes of the local cluster (default: the CPUs); 1 runs the tasks in this
-        process, without a cluster.
+        Worker processes of the local cluster (default: the CPUs; 1: in this process).
     cache
         Where finished tasks are kept (None: nothing kept).
     progress
