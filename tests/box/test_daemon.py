@@ -191,6 +191,7 @@ def test_cli_read_json_and_stats(capsys: pytest.CaptureFixture[str], served) -> 
         assert "dropped" in text and " p99 " in text and "cpu       daemon" in text
 
 
+@pytest.mark.slow  # a served 1 kHz simulator in real time: 20 CPU s, the suite's second costliest
 def test_served_simulator_holds_object_5_while_two_monitors_watch(
     capsys: pytest.CaptureFixture[str], free_port
 ) -> None:

@@ -18,6 +18,7 @@ BENCH_MODULES = (
     "trials",
     "safety",
     "design",
+    "speed",
 )
 
 __all__ = ["BENCH_MODULES", "BenchResult", "median_time_s"]

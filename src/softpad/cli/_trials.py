@@ -278,8 +278,6 @@ def _run_here(
 ) -> list[Any]:
     """Every seed's experiment on this machine's worker processes, all seeds' trials queued
     at once (the workers live across the seeds); ``args.partial`` follows the finished seeds."""
-    from softpad.trials import run_experiments
-
     done: list[Any] = []
 
     def seed_done(exp: Any) -> None:
@@ -301,17 +299,33 @@ def _run_here(
         )
         seed_done(exp)
         return done
-    bar = progress_bar(len(specs) * args.trials * len(seeds), _show(args))
+    return run_seeds_with_progress(
+        specs,
+        args.trials,
+        seeds,
+        _show(args),
+        finished,
+        workers=args.workers,
+        config=_config(args),
+        on_seed=seed_done,
+    )
+
+
+def run_seeds_with_progress(
+    specs: list[Any],
+    trials: int,
+    seeds: list[int],
+    show: bool,
+    finished: list[dict[str, Any]] | None = None,
+    **kwargs: Any,
+) -> list[Any]:
+    """``run_experiments`` (every seed's trials queued at once on the same workers) with the
+    progress bar of :func:`run_with_progress` over all the seeds' trials."""
+    from softpad.trials import run_experiments
+
+    bar = progress_bar(len(specs) * trials * len(seeds), show)
     try:
-        return run_experiments(
-            specs,
-            args.trials,
-            seeds,
-            workers=args.workers,
-            config=_config(args),
-            on_trial=_ticker(bar, finished),
-            on_seed=seed_done,
-        )
+        return run_experiments(specs, trials, seeds, on_trial=_ticker(bar, finished), **kwargs)
     finally:
         if bar is not None:
             bar.close()
