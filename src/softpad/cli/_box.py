@@ -16,7 +16,7 @@ from softpad.cli._args import (
     bounded_int,
     finite_float,
 )
-from softpad.cli._output import emit
+from softpad.cli._output import emit, say
 from softpad.errors import InputError
 
 _EPILOG = """examples:
@@ -41,7 +41,9 @@ installation file; otherwise the daemon refuses to start. Ctrl-C or SIGTERM stop
 
 
 _MONITOR_EPILOG = """examples:
-  softpad box monitor --foxglove                         the simulated box, ws://127.0.0.1:8765
+  softpad box monitor                                    the served box (box serve), plain lines
+  softpad box monitor --box sim:// --count 500           a simulated box of its own, real time
+  softpad box monitor --foxglove                         the served box, ws://127.0.0.1:8765
   softpad box monitor --foxglove --port 0 --box 'sim://?object=banana&inflated_kpa=1.1'
   then in Foxglove: Open connection -> Foxglove WebSocket -> ws://127.0.0.1:8765
   (docs/foxglove-layout.json: a pressure plot per module and the pad picture)
@@ -66,7 +68,13 @@ module pressures and the supply (gauge, kPa), frames per second, latency p50/p99
 daemon's sample to this monitor; a served box on this machine) and frames lost on the way. On a
 terminal the line refreshes in place under a header; into a pipe or a file each period is a
 plain line; --json prints one JSON object per period. With --foxglove the frames are served to
-Foxglove viewers. A monitor never commands valves."""
+Foxglove viewers. A monitor never commands valves. Without --box it watches the installation's
+link (zenoh://127.0.0.1:7447, or the link of --config FILE) and fails within seconds, naming
+the link, when nothing serves there; a simulated box (--box sim://) runs paced at real time
+unless its URL says realtime=0."""
+
+#: The box a monitor watches without --box or --config: the box daemon's default link.
+LINK_DEFAULT = "zenoh://127.0.0.1:7447"
 
 #: Fields of ``box read --json`` (one object per frame) and ``box monitor --json`` (per period).
 READ_FIELDS = ("seq", "t_s", "pressures_kpa", "supply_kpa")
@@ -105,6 +113,9 @@ def register(sub: Any) -> None:
         _MONITOR_EPILOG,
         json=f"JSON lines, one per period: {', '.join(MONITOR_FIELDS)} (kPa, ms); with "
         "--foxglove: the viewer URL",
+        box=LINK_DEFAULT,
+        box_help=f"box URL (default: the installation's link, {LINK_DEFAULT}; --config FILE "
+        "for another; sim:// for a simulated box of its own, paced at real time)",
     )
     m.add_argument("--foxglove", action="store_true", help="serve to Foxglove (WebSocket)")
     m.add_argument(
@@ -125,7 +136,7 @@ def register(sub: Any) -> None:
         "sampling figures of a served box: achieved rate, jitter, dropped samples",
         "Ask a box daemon for its sampling statistics.",
         json="print one JSON object",
-        box="zenoh://127.0.0.1:7447",
+        box=LINK_DEFAULT,
     )
     _register_serve(bsub)
     i = _action(
@@ -210,6 +221,31 @@ def _register_serve(bsub: Any) -> None:
     )
 
 
+def paced(url: str) -> str:
+    """``url``, with a simulated box paced at real time (``realtime=1``) unless the URL says
+    otherwise (``sim://?realtime=0``: as fast as it computes)."""
+    from softpad.box import parse_url
+
+    if not url.startswith("sim://") or "realtime" in parse_url(url)[2]:
+        return url
+    return url + ("&" if "?" in url else "?") + "realtime=1"
+
+
+def describe_box(url: str) -> str:
+    """Which box a command talks to, for its first line."""
+    if url.startswith("sim://"):
+        pace = "as fast as it computes" if "realtime=0" in url else "paced at real time"
+        return f"the simulated box {url} ({pace}; sim://?realtime=0 for unpaced)"
+    if url.startswith("zenoh://"):
+        return f"the served box at {url}"
+    return f"the box {url}"
+
+
+def _first_line(command: str, url: str, json_mode: bool, tail: str = "") -> None:
+    """The first line of a command that talks to a box: which box (stderr under --json)."""
+    say(f"softpad box {command}: {describe_box(url)}{tail}", json_mode)
+
+
 def _stamped(box: Any, i: int) -> tuple[int, Any]:
     """(seq, frame): the daemon's sequence number for a served box, else the frame index."""
     from softpad.box import ZenohBox
@@ -228,7 +264,9 @@ def read(args: argparse.Namespace) -> int:
         raise InputError(f"--count must be >= 0 (0: endless), got {args.count}")
     if args.every < 1:
         raise InputError(f"--every must be >= 1, got {args.every}")
-    with open_box(args.box) as box:
+    url = paced(args.box)
+    with open_box(url) as box:
+        _first_line("read", url, args.json)
         args.partial = {"frames": 0}
         if not args.json:
             head = "    t_s  " + " ".join(f"{'ch' + str(k + 1):>8s}" for k in range(box.channels))
@@ -250,7 +288,6 @@ def read(args: argparse.Namespace) -> int:
 def monitor(args: argparse.Namespace) -> int:
     import time
 
-    from softpad.box import open_box
     from softpad.errors import InputError
     from softpad.layout import parse_layout
 
@@ -259,7 +296,9 @@ def monitor(args: argparse.Namespace) -> int:
     layout = parse_layout(args.layout)
     if args.foxglove:
         return _monitor_foxglove(args, layout)
-    with open_box(args.box) as box:
+    url = paced(args.box)
+    with _open_watched(url) as box:
+        _first_line("monitor", url, args.json, " (read-only); Ctrl-C stops")
         n = min(layout.n_modules, box.channels)
         terminal = sys.stdout.isatty() and not args.json
         if not args.json:
@@ -278,11 +317,24 @@ def monitor(args: argparse.Namespace) -> int:
                     rate = (i - i0) / max(now - t0, 1e-9)
                     _monitor_line(args.json, terminal, seq, f, n, rate, lat, lost)
                     lat, t0, i0 = [], now, i
-        except KeyboardInterrupt:
-            pass
-        if terminal:
-            print()
+        finally:  # Ctrl-C too (exit 130): end the line refreshed in place
+            if terminal:
+                print()
     return 0
+
+
+def _open_watched(url: str) -> Any:
+    """The box a monitor watches; when nothing serves at a zenoh:// link, the error says how
+    to serve one or to watch a simulated box instead."""
+    from softpad.box import ConnectionLost, open_box
+
+    try:
+        return open_box(url)
+    except ConnectionLost as exc:
+        raise ConnectionLost(
+            f"{exc} (is a box served there? 'softpad box serve --sim' serves the simulator; "
+            "--box sim:// watches a simulated box of this command's own)"
+        ) from None
 
 
 def _timed(box: Any, i: int) -> tuple[int, Any, float | None]:
@@ -334,6 +386,7 @@ def stats(args: argparse.Namespace) -> int:
     with open_box(args.box) as box:
         if not isinstance(box, ZenohBox):
             raise InputError(f"--box must be a served box (zenoh://HOST:PORT), got {args.box!r}")
+        _first_line("stats", args.box, args.json)
         d = box.request("stats")
     d.pop("ok", None)
     if args.json:
@@ -402,11 +455,18 @@ def _daemon_for(args: argparse.Namespace) -> Any:
             lockstep_frames=2 if services and not args.realtime else None,
             rt_priority=args.rt_priority,
             auth=daemon_auth(link),
-            log=lambda text: print(f"softpad box serve: {text}", file=sys.stderr, flush=True),
+            log=_daemon_log,
         )
     except BaseException:
         box.close()
         raise
+
+
+def _daemon_log(text: str) -> None:
+    """The daemon's messages on stderr, but its start line: the command's first line says
+    what is served, in words (the daemon names the outermost layer of the box's classes)."""
+    if not text.startswith("serving "):
+        print(f"softpad box serve: {text}", file=sys.stderr, flush=True)
 
 
 #: Frame rate of ``box serve --sim`` unless the URL or --rate-hz says otherwise, Hz (the
@@ -444,41 +504,29 @@ def _simulation_services(box: Any) -> dict[str, Any]:
 
 
 def serve(args: argparse.Namespace) -> int:
-    import signal
-    import threading
-
     daemon = _daemon_for(args)
-
-    def _terminate(signum: int, frame: object) -> None:
-        raise KeyboardInterrupt  # SIGTERM (systemd) stops like Ctrl-C
-
-    main_thread = threading.current_thread() is threading.main_thread()
-    previous = signal.signal(signal.SIGTERM, _terminate) if main_thread else None
+    what = _served(args)
     try:
         with daemon:
             if args.json:
-                emit(
-                    {
-                        "serving": type(daemon.box).__name__,
-                        "listen": list(daemon.listen),
-                        "key_prefix": daemon.prefix,
-                    }
-                )
+                emit({"serving": what, "listen": list(daemon.listen), "key_prefix": daemon.prefix})
             else:
                 print(
-                    f"serving {type(daemon.box).__name__} on {', '.join(daemon.listen)} "
+                    f"softpad box serve: serving {what} on {', '.join(daemon.listen)} "
                     f"(key {daemon.prefix}); Ctrl-C stops",
                     flush=True,
                 )
-            try:
-                daemon.wait(args.duration_s)
-            except KeyboardInterrupt:
-                pass
+            daemon.wait(args.duration_s)
+    finally:  # Ctrl-C (exit 130) and SIGTERM (143) too: the daemon closed the valves
         print("softpad box serve: stopped; valves closed", file=sys.stderr)
-    finally:
-        if main_thread:
-            signal.signal(signal.SIGTERM, previous)
     return 0
+
+
+def _served(args: argparse.Namespace) -> str:
+    """What ``box serve`` serves, in words: the simulated box and its URL, or the hardware."""
+    if args.hardware:
+        return f"the hardware box wired in {args.hardware}"
+    return f"the simulated box {_sim_url(args)}"
 
 
 def inflate(args: argparse.Namespace) -> int:
@@ -487,6 +535,7 @@ def inflate(args: argparse.Namespace) -> int:
     from softpad.errors import InputError
 
     with open_box(args.box) as box:
+        _first_line("inflate", args.box, args.json)
         if not 1 <= args.modules <= box.channels:
             raise InputError(
                 f"--modules must be within 1..{box.channels} (channels of the box), got {args.modules}"
@@ -508,18 +557,18 @@ def _monitor_foxglove(args: argparse.Namespace, layout: Any) -> int:
     import sys
     import time
 
-    from softpad.box import open_box
     from softpad.errors import InputError
     from softpad.record import FoxgloveLive
 
     if not 0 <= args.port <= 65535:
         raise InputError(f"--port must be within 0..65535, got {args.port}")
-    with open_box(args.box) as box, FoxgloveLive(args.port, layout) as live:
+    with _open_watched(args.box) as box, FoxgloveLive(args.port, layout) as live:
         if args.json:
             emit({"foxglove": live.url, "port": live.port, "serving": args.box})
         else:
             print(
-                f"foxglove: {live.url} (port {live.port}); serving {args.box}; Ctrl-C stops",
+                f"softpad box monitor: {describe_box(args.box)} to Foxglove at {live.url} "
+                f"(port {live.port}); Ctrl-C stops",
                 flush=True,
             )
         wall0 = t0 = None
@@ -534,6 +583,6 @@ def _monitor_foxglove(args: argparse.Namespace, layout: Any) -> int:
                     time.sleep(delay)
                 live.frame(f, "monitor")
                 i += 1
-        except KeyboardInterrupt:
+        finally:  # Ctrl-C too (exit 130)
             print("softpad box monitor: stopped", file=sys.stderr)
     return 0
