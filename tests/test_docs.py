@@ -197,8 +197,10 @@ def _free_port() -> int:
 
 def _start_roscore(env: dict[str, str]) -> subprocess.Popen[bytes]:
     """A ROS 1 master on a free loopback port (ROS_MASTER_URI in ``env`` updated), ready."""
-    if shutil.which("roscore") is None:
-        pytest.skip("the block needs a roscore: ROS 1 not installed (make ros-deps)")
+    from softpad.ros import rospy_available
+
+    if shutil.which("roscore") is None or not rospy_available():
+        pytest.skip("the block needs a roscore and rospy: ROS 1 not installed (make ros-deps)")
     port = _free_port()
     env["ROS_MASTER_URI"] = f"http://127.0.0.1:{port}"
     proc = subprocess.Popen(
