@@ -71,7 +71,7 @@ __pids=(); __names=()
 __serve() {  # __serve N COMMAND: start COMMAND, wait for its first line
     local fifo=".server$1.fifo" line fd
     rm -f "$fifo"; mkfifo "$fifo"
-    eval "$2" > "$fifo" 2>&1 &
+    eval "exec $2" > "$fifo" 2>&1 &  # exec: the signal's exit code is the server's own
     __pids+=($!); __names+=("$2")
     exec {fd}< "$fifo"
     if ! IFS= read -r -t 60 -u "$fd" line; then
@@ -84,6 +84,11 @@ __stop() {  # Ctrl-C's signal to every server; softpad's must exit 130 (docs/cli
     local status=$? i code
     for i in "${!__pids[@]}"; do
         kill -INT -- "-${__pids[$i]}" 2>/dev/null || true
+        for _ in $(seq 600); do  # 60 s at most, then it is killed and fails the block
+            kill -0 "${__pids[$i]}" 2>/dev/null || break
+            sleep 0.1
+        done
+        kill -KILL -- "-${__pids[$i]}" 2>/dev/null || true
         code=0; wait "${__pids[$i]}" || code=$?
         case "${__names[$i]}" in
             softpad*|.venv/bin/softpad*|*/softpad\ *)
@@ -189,6 +194,14 @@ def environment(folder: Path) -> dict[str, str]:
     return env
 
 
+def _default_sigint() -> None:
+    """In the child: SIGINT's default disposition (a shell started ignoring it, as a test run in
+    the background starts, could not stop its servers with it)."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def _free_port() -> int:
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
@@ -251,6 +264,7 @@ def run_block(block: Block, folder: Path, env: dict[str, str]) -> str:
     try:
         proc = subprocess.run(
             ["bash", "block.sh"],
+            preexec_fn=_default_sigint,
             cwd=folder,
             env=env,
             capture_output=True,

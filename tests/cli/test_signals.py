@@ -29,6 +29,12 @@ SIGNALS = [
 ]
 
 
+def default_sigint() -> None:
+    """In the child: Ctrl-C's default disposition, which a test run started in the background
+    of a shell script ignores (and a process that starts ignoring SIGINT keeps ignoring it)."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 class Command:
     """A ``softpad`` command in its own process, its stdout read line by line."""
 
@@ -39,6 +45,7 @@ class Command:
             stderr=subprocess.PIPE,
             text=True,
             env=env,
+            preexec_fn=default_sigint,
         )
         self.lines: queue.Queue[str | None] = queue.Queue()
         threading.Thread(target=self._read, daemon=True).start()
@@ -141,13 +148,21 @@ def test_box_monitor_fails_naming_the_link_when_nothing_serves(free_port, tmp_pa
     assert "Traceback" not in done.stderr
 
 
-def test_a_simulated_box_is_paced_at_real_time_unless_asked() -> None:
-    from softpad.cli._box import paced
+def test_a_simulated_box_is_paced_at_real_time_unless_asked(capsys) -> None:
+    """51 frames of the 100 Hz simulated box span 0.5 s of box time: read paced, they take at
+    least that long on the wall clock (a lower bound: pacing, not speed); realtime=0 is not
+    paced (before the fix a monitor ran its private simulator at about 270,000 frames/s)."""
+    import time
 
-    assert paced("sim://") == "sim://?realtime=1"
-    assert paced("sim://?object=banana") == "sim://?object=banana&realtime=1"
-    assert paced("sim://?realtime=0") == "sim://?realtime=0"
-    assert paced("zenoh://127.0.0.1:7447") == "zenoh://127.0.0.1:7447"
+    from softpad.cli._box import Pacer
+    from softpad.cli.main import main
+
+    t0 = time.monotonic()
+    assert main(["box", "read", "--count", "51", "--box", "sim://?noise=0"]) == 0
+    assert time.monotonic() - t0 >= 0.5
+    assert "paced at real time" in capsys.readouterr().out.splitlines()[0]
+    assert not Pacer("sim://?realtime=0").on and not Pacer("zenoh://127.0.0.1:7447").on
+    assert Pacer("sim://?object=banana").on
 
 
 @pytest.mark.parametrize(("signum", "code"), SIGNALS)

@@ -25,6 +25,14 @@ _EPILOG = """examples:
   softpad box read --box zenoh://127.0.0.1:7447 --count 100 --json     a served box (monitor)
 """
 
+_GROUP_EPILOG = """examples:
+  softpad box read --count 5                             frames of a simulated box (kPa)
+  softpad box serve --sim                                the box daemon: the simulator on zenoh
+  softpad box monitor                                    watch the served box (127.0.0.1:7447)
+  softpad box stats                                      its achieved rate, jitter, drops
+  softpad box inflate --box zenoh://127.0.0.1:7447       inflate and adjust every module to p0
+"""
+
 _SERVE_EPILOG = """examples:
   softpad box serve --sim                                   the simulator on tcp/127.0.0.1:7447
   softpad box serve --sim --port 7450 --rate-hz 500         (--port N: tcp/127.0.0.1:N)
@@ -76,6 +84,11 @@ unless its URL says realtime=0."""
 #: The box a monitor watches without --box or --config: the box daemon's default link.
 LINK_DEFAULT = "zenoh://127.0.0.1:7447"
 
+_MONITOR_BOX_HELP = (
+    f"box URL (default: the installation's link, {LINK_DEFAULT}; --config FILE for another; "
+    "sim:// for a simulated box of its own, paced at real time)"
+)
+
 #: Fields of ``box read --json`` (one object per frame) and ``box monitor --json`` (per period).
 READ_FIELDS = ("seq", "t_s", "pressures_kpa", "supply_kpa")
 MONITOR_FIELDS = (
@@ -92,8 +105,9 @@ def register(sub: Any) -> None:
     bsub = add_group(
         sub,
         "box",
-        "talk to a pneumatic box: read, monitor, serve (zenoh daemon), inflate",
-        "Pneumatic box utilities.",
+        "talk to a pneumatic box: read, monitor, stats, serve (zenoh daemon), inflate",
+        "Pneumatic box utilities. Every action says on its first line which box it talks to.",
+        _GROUP_EPILOG,
     )
     r = _action(
         bsub,
@@ -114,8 +128,7 @@ def register(sub: Any) -> None:
         json=f"JSON lines, one per period: {', '.join(MONITOR_FIELDS)} (kPa, ms); with "
         "--foxglove: the viewer URL",
         box=LINK_DEFAULT,
-        box_help=f"box URL (default: the installation's link, {LINK_DEFAULT}; --config FILE "
-        "for another; sim:// for a simulated box of its own, paced at real time)",
+        box_help=_MONITOR_BOX_HELP,
     )
     m.add_argument("--foxglove", action="store_true", help="serve to Foxglove (WebSocket)")
     m.add_argument(
@@ -221,39 +234,64 @@ def _register_serve(bsub: Any) -> None:
     )
 
 
-def paced(url: str) -> str:
-    """``url``, with a simulated box paced at real time (``realtime=1``) unless the URL says
-    otherwise (``sim://?realtime=0``: as fast as it computes)."""
-    from softpad.box import parse_url
+class Pacer:
+    """Keeps a simulated box opened by this command at real time: each frame waits until the
+    wall clock reaches its box time. A served box is paced by its daemon; ``sim://?realtime=0``
+    asks for no pacing (as fast as the simulator computes).
 
-    if not url.startswith("sim://") or "realtime" in parse_url(url)[2]:
-        return url
-    return url + ("&" if "?" in url else "?") + "realtime=1"
+    Parameters
+    ----------
+    url
+        The box's URL.
+    """
+
+    def __init__(self, url: str) -> None:
+        from softpad.box import parse_url
+
+        self.on = url.startswith("sim://") and parse_url(url)[2].get("realtime") != "0"
+        self._start: tuple[float, float] | None = None  # (wall s, box s) of the first frame
+
+    def wait(self, t_s: float) -> None:
+        """Wait until the wall clock reaches box time ``t_s`` (s) after the first frame."""
+        import time
+
+        if not self.on:
+            return
+        if self._start is None:
+            self._start = (time.monotonic(), t_s)
+        delay = self._start[0] + (t_s - self._start[1]) - time.monotonic()
+        if delay > 0:
+            time.sleep(delay)
 
 
-def describe_box(url: str) -> str:
-    """Which box a command talks to, for its first line."""
+def describe_box(url: str, paced: bool | None = None) -> str:
+    """Which box a command talks to, for its first line (``paced``: whether the command keeps
+    a simulated box at real time; None says nothing of it)."""
     if url.startswith("sim://"):
-        pace = "as fast as it computes" if "realtime=0" in url else "paced at real time"
-        return f"the simulated box {url} ({pace}; sim://?realtime=0 for unpaced)"
+        pace = {True: " (paced at real time; sim://?realtime=0: unpaced)", False: " (unpaced)"}
+        return f"the simulated box {url}{pace.get(paced, '')}"
     if url.startswith("zenoh://"):
         return f"the served box at {url}"
     return f"the box {url}"
 
 
-def _first_line(command: str, url: str, json_mode: bool, tail: str = "") -> None:
+def _first_line(
+    command: str, url: str, json_mode: bool, tail: str = "", paced: bool | None = None
+) -> None:
     """The first line of a command that talks to a box: which box (stderr under --json)."""
-    say(f"softpad box {command}: {describe_box(url)}{tail}", json_mode)
+    say(f"softpad box {command}: {describe_box(url, paced)}{tail}", json_mode)
 
 
-def _stamped(box: Any, i: int) -> tuple[int, Any]:
+def _stamped(box: Any, i: int, pacer: Pacer) -> tuple[int, Any]:
     """(seq, frame): the daemon's sequence number for a served box, else the frame index."""
     from softpad.box import ZenohBox
 
     if isinstance(box, ZenohBox):
         s = box.read_stamped()
         return s.seq, s.frame
-    return i + 1, box.read()
+    f = box.read()
+    pacer.wait(f.t_s)
+    return i + 1, f
 
 
 def read(args: argparse.Namespace) -> int:
@@ -264,16 +302,16 @@ def read(args: argparse.Namespace) -> int:
         raise InputError(f"--count must be >= 0 (0: endless), got {args.count}")
     if args.every < 1:
         raise InputError(f"--every must be >= 1, got {args.every}")
-    url = paced(args.box)
-    with open_box(url) as box:
-        _first_line("read", url, args.json)
+    pacer = Pacer(args.box)
+    with open_box(args.box) as box:
+        _first_line("read", args.box, args.json, paced=pacer.on)
         args.partial = {"frames": 0}
         if not args.json:
             head = "    t_s  " + " ".join(f"{'ch' + str(k + 1):>8s}" for k in range(box.channels))
             print(head + "  supply   (kPa)")
         i = 0
         while args.count == 0 or i < args.count:
-            seq, f = _stamped(box, i)
+            seq, f = _stamped(box, i, pacer)
             if i % args.every == 0:
                 if args.json:
                     emit({"seq": seq, **f.to_dict()})
@@ -296,9 +334,10 @@ def monitor(args: argparse.Namespace) -> int:
     layout = parse_layout(args.layout)
     if args.foxglove:
         return _monitor_foxglove(args, layout)
-    url = paced(args.box)
-    with _open_watched(url) as box:
-        _first_line("monitor", url, args.json, " (read-only); Ctrl-C stops")
+    pacer = Pacer(args.box)
+    with _open_watched(args.box) as box:
+        tail = " (read-only); Ctrl-C stops"
+        _first_line("monitor", args.box, args.json, tail, paced=pacer.on)
         n = min(layout.n_modules, box.channels)
         terminal = sys.stdout.isatty() and not args.json
         if not args.json:
@@ -307,7 +346,7 @@ def monitor(args: argparse.Namespace) -> int:
         i, lost, last, lat, t0, i0 = 0, 0, None, [], time.monotonic(), 0
         try:
             while args.count == 0 or i < args.count:
-                seq, f, latency_s = _timed(box, i)
+                seq, f, latency_s = _timed(box, i, pacer)
                 lost += 0 if last is None else max(0, seq - last - 1)
                 last, i = seq, i + 1
                 if latency_s is not None:
@@ -337,7 +376,7 @@ def _open_watched(url: str) -> Any:
         ) from None
 
 
-def _timed(box: Any, i: int) -> tuple[int, Any, float | None]:
+def _timed(box: Any, i: int, pacer: Pacer) -> tuple[int, Any, float | None]:
     """(seq, frame, latency s): the latency from the daemon's sample to now for a served box
     (its monotonic clock is this machine's on loopback), None for a box opened here."""
     import time
@@ -347,7 +386,9 @@ def _timed(box: Any, i: int) -> tuple[int, Any, float | None]:
     if isinstance(box, ZenohBox):
         s = box.read_stamped()
         return s.seq, s.frame, time.monotonic() - s.mono_s
-    return i + 1, box.read(), None
+    f = box.read()
+    pacer.wait(f.t_s)
+    return i + 1, f, None
 
 
 def _monitor_header(n: int) -> str:

@@ -63,6 +63,9 @@ def register(sub: Any) -> None:
         "pad",
         "press a block on the simulated pad: module pressure rises (FEM response)",
         "Probe the simulated pad with a rigid flat block.",
+        "examples:\n"
+        "  softpad pad probe --at 1.5,1.5 --force-n 0.2 --footprint-mm 10,10   rise, kPa and kPa/N\n"
+        "  softpad pad map --force-n 0.1236 --footprint-mm 42,31 --png map.png  the brick anywhere\n",
     )
     pr = add_command(
         psub,

@@ -61,6 +61,7 @@ EXIT_CODES_HELP = """exit codes (the same for every command):
   2  bad input: usage, values, files (nothing was started)
   3  hardware or link fault (the box was put in a safe state)
   4  internal error: a bug; the message says where to report it (--debug shows the traceback)
+  130, 143  stopped by Ctrl-C (SIGINT) or SIGTERM, after the same clean-up
 
 --json (every command): stdout carries one JSON object with "schema_version" and the result,
 or {"schema_version": 1, "error": {"kind", "message", ...what was gathered before}}; streaming

@@ -1,4 +1,4 @@
-"""Grasp execution: the closed loop of the seed's Section 6.2.2, assembled from parts.
+"""Grasp execution: the closed loop of the thesis's Section 6.2.2, assembled from parts.
 
 :class:`GraspExecution` drives a :class:`~softpad.box.Box` and a :class:`Robot` and takes its
 planner, object detector, contact detector and recorder as arguments (the thesis's by default).
@@ -326,7 +326,7 @@ _PRESSING_PHASES = ("close", "lift", "release")
 
 
 class GraspExecution:
-    """The closed loop of the seed's Section 6.2.2, assembled from parts.
+    """The closed loop of the thesis's Section 6.2.2, assembled from parts.
 
     Phases (each logged with its start time through the recorder)::
 

@@ -1,4 +1,4 @@
-"""Every simulator input that neither the seed nor a datasheet fixes: nominal value, range, source.
+"""Every simulator input that neither the thesis nor a datasheet fixes: nominal value, range, source.
 
 This is the one list of the simulated lab's assumptions (issue 33). Each
 :class:`UncertainParameter` names the value the simulator uses by default (``nominal``, the
@@ -10,7 +10,7 @@ the nominal a model choice still to be settled against it.
 :func:`draw_uncertain` draws every parameter uniformly within its range from a seed (the trial
 seed: reproducible, independent between trials); :class:`LabVariation` turns a set of values
 into the simulated lab's pieces (MuJoCo pad and gripper physics, box sample rate, sensor noise,
-tubing, placement noise, the objects whose size or mass distribution the seed does not give).
+tubing, placement noise, the objects whose size or mass distribution the thesis does not give).
 ``softpad trials|compare|design --randomize`` draw them per trial and report them in ``--json``.
 """
 
@@ -102,7 +102,7 @@ UNCERTAIN_PARAMETERS: tuple[UncertainParameter, ...] = (
         0.6,
         1.2,
         "silicone elastomer (EcoFlex 00-30, tacky) on plastics and skins: 0.6-1.2 in friction "
-        "tables; the seed gives none",
+        "tables; the thesis gives none",
         "MuJoCo PadPhysics.friction",
     ),
     _p(
@@ -110,7 +110,7 @@ UNCERTAIN_PARAMETERS: tuple[UncertainParameter, ...] = (
         20.0,
         10.0,
         35.0,
-        "the seed gives no grip force; the Rethink electric parallel gripper's force is set in "
+        "the thesis gives no grip force; the Rethink electric parallel gripper's force is set in "
         "software up to its limit (a few tens of newtons); 10 N: set gently for fruit",
         "MuJoCo MujocoGripper.grip_force_n (each jaw's servo force limit)",
     ),
@@ -119,7 +119,7 @@ UNCERTAIN_PARAMETERS: tuple[UncertainParameter, ...] = (
         thesis.SEAM_WIDTH_M,
         0.0,
         3e-3,
-        "the mould's grid walls (seed Fig. 6.2a) whose thickness the seed does not give; "
+        "the mould's grid walls (thesis Fig. 6.2a) whose thickness the thesis does not give; "
         "0 mm: chambers meet (45 mm acetate on a 45 mm pitch); 3 mm: a thick printed wall",
         "the insensitive bonded strip between chambers (PadResponse) and the MuJoCo domes' side",
     ),
@@ -128,7 +128,7 @@ UNCERTAIN_PARAMETERS: tuple[UncertainParameter, ...] = (
         100.0,
         50.0,
         200.0,
-        "the seed gives no read rate of the Pneumaticbox; 50-200 Hz spans the rates of "
+        "the thesis gives no read rate of the Pneumaticbox; 50-200 Hz spans the rates of "
         "serial-read pressure boxes of its kind",
         "SimBox sample rate (the 10-sample filters follow it)",
     ),
@@ -137,7 +137,7 @@ UNCERTAIN_PARAMETERS: tuple[UncertainParameter, ...] = (
         1.0,
         0.5,
         2.0,
-        "noise visible in the seed's Fig. 6.8 (a few pascals to tens of pascals); factor on "
+        "noise visible in the thesis's Fig. 6.8 (a few pascals to tens of pascals); factor on "
         "SensorParams' white noise (8 Pa), drift (3 Pa) and offsets (20 Pa)",
         "SimBox sensor noise",
     ),
@@ -146,7 +146,7 @@ UNCERTAIN_PARAMETERS: tuple[UncertainParameter, ...] = (
         thesis.TUBING_VOLUME_M3,
         math.pi * 0.8e-3**2 * 0.5,
         math.pi * 1.6e-3**2 * 1.5,
-        "the seed names the tube (SPX-60 FB Versilon) but not bore or length: 1.6-3.2 mm bore, "
+        "the thesis names the tube (SPX-60 FB Versilon) but not bore or length: 1.6-3.2 mm bore, "
         "0.5-1.5 m",
         "PneumaticParams.tubing_volume_m3 (dead volume of every channel)",
     ),
@@ -172,7 +172,7 @@ UNCERTAIN_PARAMETERS: tuple[UncertainParameter, ...] = (
         1.0,
         0.85,
         1.15,
-        "the seed gives the charger's mass only (312.3 g, Table 6.1); laptop bricks of that "
+        "the thesis gives the charger's mass only (312.3 g, Table 6.1); laptop bricks of that "
         "mass measure 65-90 x 45-65 mm: factor on the 75 x 55 mm footprint",
         "catalogue charger: brick length and width (cable and plug move with its end)",
     ),
@@ -181,7 +181,7 @@ UNCERTAIN_PARAMETERS: tuple[UncertainParameter, ...] = (
         -0.0515,
         -0.0515,
         -0.015,
-        "the seed says only 'a heavy small part in one side' of the can (Section 6.3); from "
+        "the thesis says only 'a heavy small part in one side' of the can (Section 6.3); from "
         "against the end cap to 15 mm left of the middle",
         "catalogue cylinder: position of its heavy part along the can's axis",
     ),
@@ -265,7 +265,7 @@ class LabVariation:
         return PneumaticParams(tubing_volume_m3=self.values["tubing_volume_m3"])
 
     def object(self, spec: Any) -> Any:
-        """``spec`` with the size or mass distribution the seed does not give (charger,
+        """``spec`` with the size or mass distribution the thesis does not give (charger,
         cylinder); any other object unchanged."""
         if spec.name == "charger":
             return _charger(spec, self.values["charger_brick_scale"])
