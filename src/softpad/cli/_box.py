@@ -269,7 +269,7 @@ def describe_box(url: str, paced: bool | None = None) -> str:
     a simulated box at real time; None says nothing of it)."""
     if url.startswith("sim://"):
         pace = {True: " (paced at real time; sim://?realtime=0: unpaced)", False: " (unpaced)"}
-        return f"the simulated box {url}{pace.get(paced, '')}"
+        return f"the simulated box {url}{'' if paced is None else pace[paced]}"
     if url.startswith("zenoh://"):
         return f"the served box at {url}"
     return f"the box {url}"
