@@ -49,6 +49,33 @@ def test_probe_text_lists_every_module(cli) -> None:
     assert float(rows[1][1]) > thesis.OBJECT_THRESHOLD_PA / 1e3  # the 12.6 g brick is seen
 
 
+def test_probe_reports_the_rise_per_newton_beside_the_rise(cli) -> None:
+    """Issue 51: kPa/N (the figure README.md quotes) is printed, each column named in the
+    header and explained in --help; it is the rise over the block's force."""
+    argv = ("pad", "probe", "--at", "1.5,1.5", "--force-n", "0.2", "--footprint-mm", "10,10")
+    code, out, _ = cli(*argv)
+    assert code == 0
+    header = next(line.split() for line in out.splitlines() if line.startswith("module"))
+    assert header == ["module", "delta_kPa", "delta_kPa/N", "FEM_kPa", "FEM_kPa/N"]
+    rows = [
+        [float(v) for v in line.split()] for line in out.splitlines() if line.strip()[:1].isdigit()
+    ]
+    for _, rise, per_n, fem, fem_per_n in rows:
+        assert per_n == pytest.approx(rise / 0.2, abs=1e-3)  # 3 decimals printed
+        assert fem_per_n == pytest.approx(fem / 0.2, abs=1e-3)
+    code, out, _ = cli(*argv, "--json")
+    data = json.loads(out)
+    np.testing.assert_allclose(
+        data["delta_kpa_per_n"], np.array(data["delta_kpa"]) / 0.2, atol=1e-5
+    )
+    np.testing.assert_allclose(
+        data["fem_delta_kpa_per_n"], np.array(data["fem_delta_kpa"]) / 0.2, atol=1e-5
+    )
+    code, out, _ = cli("pad", "probe", "--help")
+    for column in header[1:]:
+        assert f"  {column}  " in out  # each column explained
+
+
 @pytest.mark.parametrize(
     ("argv", "names"),
     [

@@ -234,6 +234,9 @@ def run(args: argparse.Namespace) -> int:
         if bar is not None:
             bar.close()
     _write(result, outputs)
+    if result.meta["cached"]:  # first: what was not computed now, where it came from
+        result.meta["cache_dir"] = str(cache.root)
+        say(cached_line(result.meta["cached"], result.meta["computed"], cache.root), args.json)
     say(result.to_text(), args.json)
     say(
         f"({result.meta['computed']} tasks computed, {result.meta['cached']} cached, "
@@ -243,6 +246,15 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         emit(result.to_dict())
     return 0
+
+
+def cached_line(cached: int, computed: int, root: Path | None) -> str:
+    """The first line of a design run answered, in part or whole, from the cache."""
+    share = "all" if not computed else f"{cached} of {cached + computed}"
+    return (
+        f"softpad design: {share} tasks answered from the cache {root} (results of an "
+        "earlier run of this code); --no-cache computes everything"
+    )
 
 
 def _cache_dir(text: str | None) -> Path:

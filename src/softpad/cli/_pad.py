@@ -47,8 +47,15 @@ t_g (90 Pa).
 
 
 _PROBE_DESCRIPTION = """\
-Press a rigid flat block on the simulated pad and print every module's pressure rise (kPa,
-mean of 10 reads after minus before)."""
+Press a rigid flat block on the simulated pad and print, for every module:
+  delta_kPa    its pressure rise on the simulated box: mean of 10 reads after the block was
+               put down minus the mean of 10 before, kPa;
+  delta_kPa/N  that rise per newton of the block's force (--force-n): the module's
+               sensitivity at that point, kPa/N (README.md and docs/results.md quote it);
+  FEM_kPa      the rise the FEM module response predicts for this block, linear in the
+               force (the sealed chamber's squeeze per newton), kPa;
+  FEM_kPa/N    that prediction per newton, kPa/N.
+--json carries the same as delta_kpa, delta_kpa_per_n, fem_delta_kpa, fem_delta_kpa_per_n."""
 
 
 def register(sub: Any) -> None:
@@ -57,6 +64,9 @@ def register(sub: Any) -> None:
         "pad",
         "press a block on the simulated pad: module pressure rises (FEM response)",
         "Probe the simulated pad with a rigid flat block.",
+        "examples:\n"
+        "  softpad pad probe --at 1.5,1.5 --force-n 0.2 --footprint-mm 10,10   rise, kPa and kPa/N\n"
+        "  softpad pad map --force-n 0.1236 --footprint-mm 42,31 --png map.png  the brick anywhere\n",
     )
     pr = add_command(
         psub,
@@ -220,6 +230,8 @@ def _probe(args: argparse.Namespace) -> int:
         "reference_kpa": [round(v / 1e3, 6) for v in result.reference_pa],
         "delta_kpa": [round(v / 1e3, 6) for v in result.delta_pa],
         "fem_delta_kpa": [round(v / 1e3, 6) for v in result.fem_delta_pa],
+        "delta_kpa_per_n": [round(v / 1e3 / args.force_n, 6) for v in result.delta_pa],
+        "fem_delta_kpa_per_n": [round(v / 1e3 / args.force_n, 6) for v in result.fem_delta_pa],
     }
     if args.json:
         emit(out)
@@ -228,9 +240,10 @@ def _probe(args: argparse.Namespace) -> int:
         f"block {size[0] * 1e3:g} x {size[1] * 1e3:g} mm, {args.force_n:g} N at ({x:g}, {y:g}) "
         f"module units on {args.box}"
     )
-    say("module  delta_kPa  FEM_kPa")
+    say("module  delta_kPa  delta_kPa/N  FEM_kPa  FEM_kPa/N")
+    per_n = 1e3 * args.force_n  # Pa -> kPa/N
     for k, (d, f) in enumerate(zip(result.delta_pa, result.fem_delta_pa, strict=True), 1):
-        say(f"{k:6d}  {d / 1e3:9.4f}  {f / 1e3:7.4f}")
+        say(f"{k:6d}  {d / 1e3:9.4f}  {d / per_n:11.3f}  {f / 1e3:7.4f}  {f / per_n:9.3f}")
     return 0
 
 

@@ -26,12 +26,25 @@ Own a simulated box and its world; serve the box on zenoh://127.0.0.1:PORT and t
 zenoh://127.0.0.1:PORT' runs the loop with the arm in ROS. {_NETWORK}"""
 
 
+_ROS_EPILOG = """examples:
+  softpad ros node --box sim:// --place object-5                 the pad as a ROS node
+  softpad ros node --box sim:// --robot sim:// --place object-5  ... that grasps on request
+  rosservice call /softpad/grasp
+"""
+
+_SIM_EPILOG = """examples:
+  softpad sim arm-node --port 5757        simulated arm on ROS + a served sim box
+  softpad run --robot ros1:// --box zenoh://127.0.0.1:5757 --objects object-5
+"""
+
+
 def register(sub: Any) -> None:
     rsub = add_group(
         sub,
         "ros",
         "ROS 1 node of the pad (rospy; docs/ros.md)",
         f"ROS 1 adapters of SoftPad. {_NETWORK}",
+        _ROS_EPILOG,
         metavar="COMMAND",
     )
     node = add_command(
@@ -60,7 +73,19 @@ def register(sub: Any) -> None:
     )
     node.set_defaults(handler=run_node)
 
-    ssub = add_group(sub, "sim", "simulated devices for ROS (docs/ros.md)", metavar="COMMAND")
+    _register_sim(sub)
+
+
+def _register_sim(sub: Any) -> None:
+    """``softpad sim arm-node``."""
+    ssub = add_group(
+        sub,
+        "sim",
+        "simulated devices for ROS (docs/ros.md)",
+        "Simulated devices that a ROS 1 system talks to like real ones.",
+        _SIM_EPILOG,
+        metavar="COMMAND",
+    )
     arm = add_command(
         ssub,
         "arm-node",

@@ -29,13 +29,13 @@ _EPILOG = """examples:
   softpad run --box 'sim://?seed=3&rate_hz=200' --objects charger --json
   softpad run --objects object-5 --p0-kpa 1.5 --contact-threshold-kpa 0.12 --window 5
 
-objects: object-1 .. object-6, banana, toy, limes, cylinder, charger (seed, Table 6.1)
+objects: object-1 .. object-6, banana, toy, limes, cylinder, charger (thesis, Table 6.1)
 exit code: 0 every grasp held, 1 a grasp not held, 2 bad input, 3 hardware or link fault
 """
 
 
 _DESCRIPTION = """\
-Run the whole grasp loop of the seed's Section 6.2 once on the simulated box: inflate every
+Run the whole grasp loop of the thesis's Section 6.2 once on the simulated box: inflate every
 module to p0 and save the reference, place the object(s) of the thesis set, plan the grasp
 from the pressure increments, move over the centre of grasp, descend at the approach speed
 until the pad senses the fingers (running average of 10 samples above t_g), close, lift,
@@ -198,9 +198,9 @@ def loop_parts(args: argparse.Namespace, box: Any, params: Any, mounting: str) -
 
 
 def add_thesis_params(p: argparse.ArgumentParser) -> None:
-    """The seed's loop parameters (Section 6.2) as options with their physical ranges."""
+    """The thesis's loop parameters (Section 6.2) as options with their physical ranges."""
 
-    g = p.add_argument_group("loop parameters (seed, Section 6.2)")
+    g = p.add_argument_group("loop parameters (thesis, Section 6.2)")
     add_p0_option(g)
     for flag, default_pa, meaning in (
         (
@@ -281,6 +281,8 @@ def run(args: argparse.Namespace) -> int:
     if args.config:
         params = _from_installation(args.config, params)
     with open_box(args.box) as box:
+        if not args.json:  # first: which box (the JSON's stderr is the error line alone)
+            print(f"softpad run: {', '.join(names)} on {args.box}", flush=True)
         meta = run_metadata(
             "run", box, args.box, names, params, gripper=gripper,
             planner=args.planner, contact_detector=args.detector,
@@ -351,7 +353,6 @@ def _report(args: Any, log: Any, result: Any, names: list[str], png: Any, record
             d["error"] = {"kind": "failed", "message": f"grasp not held: {result.outcome}"}
         emit(d)
     else:
-        print(f"softpad run: {', '.join(names)} on {args.box}")
         for line in _timeline(log, result):
             print("  " + line)
         print(f"outcome: {result.outcome}")

@@ -1,4 +1,4 @@
-"""Grasp execution: the closed loop of the seed's Section 6.2.2, assembled from parts.
+"""Grasp execution: the closed loop of the thesis's Section 6.2.2, assembled from parts.
 
 :class:`GraspExecution` drives a :class:`~softpad.box.Box` and a :class:`Robot` and takes its
 planner, object detector, contact detector and recorder as arguments (the thesis's by default).
@@ -316,7 +316,7 @@ class _RecordingRobot(RobotWrapper):
 
 
 class GraspExecution:
-    """The closed loop of the seed's Section 6.2.2, assembled from parts.
+    """The closed loop of the thesis's Section 6.2.2, assembled from parts.
 
     Phases (:class:`~softpad.control.Phase`, each logged with its start time through the
     recorder; the transitions allowed are :data:`~softpad.control.TRANSITIONS`)::

@@ -1,4 +1,4 @@
-"""Initial inflation and adjustment of every module (seed, Section 6.2.1.1), and the safe state.
+"""Initial inflation and adjustment of every module (thesis, Section 6.2.1.1), and the safe state.
 
 Every module is brought to the same pressure p0 within t_adj, then the reference pressures are
 saved as the mean of 10 reads. The controller is a per-channel bang-bang with hysteresis: a channel

@@ -142,9 +142,9 @@ def run_sweep(
     missing = [t for t in tasks if t.key not in done]
     missing = list({t.key: t for t in missing}.values())  # FEM shared by designs: once
     n_cached = len({t.key for t in tasks}) - len(missing)
-    used = 0
-    if missing:
-        used = _compute(job, missing, done, scheduler, workers, n_cached)
+    used = _compute(job, missing, done, scheduler, workers, n_cached) if missing else 0
+    if not missing and scheduler is not None:  # the cache answered; the scheduler must too
+        used = _reach(scheduler)
     responses = {d.name: done[fem_keys[d.name]] for d in designs}
     trials = {
         d.name: [
@@ -193,6 +193,14 @@ def _with_baseline(designs: Sequence[PadDesign]) -> list[PadDesign]:
     if len(set(names)) != len(names):
         raise InputError(f"design names must be unique, got {names}")
     return out
+
+
+def _reach(scheduler: str) -> int:
+    """Connect to ``scheduler`` (an :class:`InputError` when nothing answers); its workers."""
+    from softpad.design._dask import dask_client
+
+    with dask_client(scheduler, None) as client:
+        return len(client.scheduler_info().get("workers", {})) or 1
 
 
 def _compute(

@@ -1,4 +1,4 @@
-"""Grasp planning from pressure increments (seed, Section 6.2.1).
+"""Grasp planning from pressure increments (thesis, Section 6.2.1).
 
 ``plan_grasps`` finds the objects (modules above t_o, 8-connected groups), computes each one's
 pressure-based centre of mass (PCOM, Eq. 6.1) and a top grasp (centre of grasp COG and

@@ -63,11 +63,13 @@ def format_plans(
         raise InputError(
             f"a {layout.name} pad needs {layout.n_modules} increments, got {np.size(delta_pa)}"
         )
+    pad = ascii_pad(delta_pa, layout, plans)
+    both = ", * = PCOM and centre of grasp in one character" if "*" in pad else ""
     lines = [
         f"SoftPad {layout.name}, pitch {layout.pitch_m * 1e3:g} mm, "
         f"object threshold t_o = {threshold_pa / 1e3:.3f} kPa",
-        "increments (kPa), P = PCOM, G = centre of grasp:",
-        ascii_pad(delta_pa, layout, plans),
+        f"module number and increment (kPa), P = PCOM, G = centre of grasp{both}:",
+        pad,
     ]
     if not plans:
         lines.append("no object detected (no module above t_o)")

@@ -60,7 +60,7 @@ if TYPE_CHECKING:  # the methods of RecordedRun call these (no import circle)
 
 
 def plot_traces(run: RecordedRun, path: str | Path | None = None, title: str | None = None) -> Any:
-    """Pressure of every module against box time, phases as shaded bands (cf. seed Fig. 6.8).
+    """Pressure of every module against box time, phases as shaded bands (cf. thesis Fig. 6.8).
 
     One legend entry per module and one per phase (so a phase too short to name inside its band
     is still named); wide bands are also named inside the plot; contact, missed contact and
@@ -176,7 +176,7 @@ def _grasp_plans(plans: list[dict[str, Any]]) -> list[Any]:
 
 def plot_pad(run: RecordedRun, path: str | Path | None = None) -> Any:
     """The pad from above: recorded increments as a heat map, each object's PCOM, COG and the
-    fingertips of its planned grasp (cf. seed Fig. 6.10), titled with the outcome.
+    fingertips of its planned grasp (cf. thesis Fig. 6.10), titled with the outcome.
 
     Returns
     -------

@@ -23,7 +23,7 @@ class TrialConfig:
     #: trial's travel motions and a fault limit near the sensor's full scale).
     execution: ExecutionParams = field(default_factory=lambda: trial_execution_params())
     #: Standard deviation of the random shift of the object's placement in x and y, metres:
-    #: 3 mm. The seed says the objects were placed by hand, "randomly ... similarly to
+    #: 3 mm. The thesis says the objects were placed by hand, "randomly ... similarly to
     #: Fig. 6.10" (Section 6.3), and gives no spread; 3 mm is about what placing an object by
     #: eye on a marked spot achieves, a tenth of a Duplo brick's width. With 3 mm and 3 deg,
     #: 95 % of placements lie within 7 mm and 6 deg of the nominal one.

@@ -1,4 +1,4 @@
-"""Grasp trials of the thesis's Experiment 2 (seed, Section 6.3) in the MuJoCo world.
+"""Grasp trials of the thesis's Experiment 2 (thesis, Section 6.3) in the MuJoCo world.
 
 One trial: a fresh MuJoCo world behind the simulated box (``sim://`` physics: chamber gas,
 valves, sensor noise), the pad inflated to p0 and its reference saved, the object placed with a
