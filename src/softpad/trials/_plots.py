@@ -64,8 +64,18 @@ def draw_grasp(
         f"{math.degrees(trial.theta):.0f}°"
     )
     ax.set_title(f"{trial.object}: {plan}\ntrial {trial.trial + 1}: {verdict}", fontsize=8)
+    _pad_axes(ax, layout)
+
+
+def _pad_axes(ax: Any, layout: PadLayout) -> None:
+    """Millimetre axes around the pad, with ticks and faint lines at every module boundary."""
+    p = layout.pitch_m * 1e3
     ax.set_xlim(-20, layout.cols * p + 20)
     ax.set_ylim(-20, layout.rows * p + 20)
+    ax.set_xticks([c * p for c in range(layout.cols + 1)])
+    ax.set_yticks([r * p for r in range(layout.rows + 1)])
+    ax.grid(True, color="0.6", lw=0.6)
+    ax.set_axisbelow(False)
     ax.set_aspect("equal")
     ax.set_xlabel("x (mm)", fontsize=8)
     ax.set_ylabel("y (mm)", fontsize=8)
