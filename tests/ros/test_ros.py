@@ -110,7 +110,12 @@ def procs(master: dict[str, str], tmp_path: Path) -> Iterator[_Procs]:
 
 
 def _echo(procs: _Procs, topic: str) -> str:
-    r = procs.run("rostopic", "echo", "-n", "1", topic, timeout_s=20)
+    """One message of ``topic`` as ``rostopic echo`` prints it; "" when none came in 30 s (a
+    topic not advertised yet: callers wait on it with their own deadline)."""
+    try:
+        r = procs.run("rostopic", "echo", "-n", "1", topic, timeout_s=30)
+    except subprocess.TimeoutExpired:
+        return ""
     return r.stdout
 
 
@@ -341,10 +346,8 @@ def test_grasp_service_runs_the_loop_and_publishes_plan_contact_and_outcome(
     grasp loop of ``softpad run`` on its box, from its reference, with its registered parts;
     object 5 (placed by the node, planned by its watch) is held, and the topics show the
     loop's phases, the contact, the plan and the outcome the service answers with."""
-    config = tmp_path / "pad.json"
-    config.write_text(json.dumps({"hold_s": 1.0}))
     node, log = procs.start(
-        "node", SOFTPAD, "ros", "node", "--config", str(config), "--box", "sim://",
+        "node", SOFTPAD, "ros", "node", "--hold-s", "1", "--box", "sim://",
         "--robot", "sim://", "--place", "object-5", "--planner", "model-based",
         "--detector", "cusum",
     )  # fmt: skip
@@ -393,10 +396,8 @@ def test_grasp_service_drives_the_arm_node_through_ros(procs: _Procs, tmp_path: 
     the simulated arm over ROS (its commands in the arm node's log); held, with the contact
     and the outcome on the topics."""
     arm, arm_log, url = _arm(procs)
-    config = tmp_path / "pad.json"
-    config.write_text(json.dumps({"hold_s": 1.0}))
     node, log = procs.start(
-        "node", SOFTPAD, "ros", "node", "--config", str(config), "--box", url,
+        "node", SOFTPAD, "ros", "node", "--hold-s", "1", "--box", url,
         "--robot", "ros1://", "--place", "object-5",
     )  # fmt: skip
     logs = _watch(procs, *_LOOP_TOPICS)

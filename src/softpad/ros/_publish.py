@@ -14,7 +14,7 @@ import json
 import math
 import time
 import warnings
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
@@ -28,6 +28,9 @@ PHASE_TOPIC = "/softpad/phase"
 #: The end of each grasp loop (std_msgs/String, latched): JSON, ``softpad run --json``'s object
 #: (``outcome``, ``objects``, ``grasps``, ``phases``, ...), or ``{"outcome": "fault", ...}``.
 OUTCOME_TOPIC = "/softpad/outcome"
+#: Every event of the node's watch and of the grasp loop (``softpad_msgs/Event``: ``kind`` and
+#: its data as JSON, SI units), as recordings hold them on the same topic.
+EVENT_TOPIC = "/softpad/events"
 #: Wall time between two diagnostics messages, seconds.
 DIAGNOSTICS_PERIOD_S = 1.0
 
@@ -109,6 +112,9 @@ class PadPublishers:
             warnings.simplefilter("ignore", SyntaxWarning)
             # synchronous: the end of a run reaches its subscribers before the process ends
             self.pub_outcome = pub(OUTCOME_TOPIC, String, queue_size=None, latch=True)
+        from softpad.ros._msgs import ensure_messages
+
+        self.pub_events = pub(EVENT_TOPIC, ensure_messages().Event, queue_size=100)
         self.pub_diag = pub("/diagnostics", DiagnosticArray, queue_size=5)
         self.pub_tf = pub("/tf_static", TFMessage, queue_size=1, latch=True)
 
@@ -168,6 +174,18 @@ class PadPublishers:
 
         self.pub_phase.publish(String(name))
 
+    def event(self, t_s: float, kind: str, data: dict[str, Any]) -> None:
+        """One event on :data:`EVENT_TOPIC`: ``kind`` and ``data`` as JSON (non-finite numbers
+        as null), stamped now, in the pad frame; ``t_s`` (box time, s) joins the data."""
+        from softpad.ros._messages import PAD_FRAME
+        from softpad.ros._msgs import ensure_messages
+
+        msg = ensure_messages().Event(
+            kind=kind, data_json=json.dumps(_jsonable(dict(data, t_s=t_s)))
+        )
+        msg.header.stamp, msg.header.frame_id = self.rospy.Time.now(), PAD_FRAME
+        self.pub_events.publish(msg)
+
     def outcome(self, summary: dict[str, Any]) -> None:
         """The end of a grasp loop, as JSON (non-finite numbers as null)."""
         from std_msgs.msg import String
@@ -223,6 +241,16 @@ def _jsonable(value: Any) -> Any:
     return value
 
 
+class GraspCancelled(KeyboardInterrupt):
+    """A grasp cancelled through the grasp action, raised from :meth:`LoopPublisher.frame`.
+
+    :class:`~softpad.control.GraspExecution` answers it as it answers Ctrl-C: it stops the
+    arm, reaches the box's verified safe state (inflation valves closed, channels vented) and
+    re-raises it. Hence a :class:`KeyboardInterrupt`: the loop knows no ROS and needs no
+    second way of being stopped.
+    """
+
+
 #: Phases that end a sensed contact (the fingers leave the pad or go elsewhere).
 _UNTOUCHED = ("approach", "release", "valve_check", "done")
 
@@ -242,19 +270,30 @@ class LoopPublisher:
         self.publishers = publishers
         self.touching = False
         self._plans: list[dict[str, Any]] = []
+        #: Called with each phase and its box time, s (the grasp action's feedback).
+        self.on_phase: Callable[[str, float], None] | None = None
+        #: True when the loop is to stop (the grasp action's cancel): :class:`GraspCancelled`.
+        self.cancel_requested: Callable[[], bool] | None = None
 
     def frame(self, frame: PressureFrame, phase: str) -> None:
         self.publishers.frame(frame)
         self.publishers.contact(self.touching)
+        # not while the loop goes to its safe state: that is what the cancel asks for
+        if phase != "safe" and self.cancel_requested is not None and self.cancel_requested():
+            self.cancel_requested = None
+            raise GraspCancelled(f"grasp cancelled in phase {phase!r}")
 
     def event(self, t_s: float, kind: str, **data: Any) -> None:
         pubs = self.publishers
+        pubs.event(t_s, kind, data)
         if kind == "phase":
             if data["phase"] in _UNTOUCHED:
                 self.touching = False
             if data["phase"] == "approach":
                 self._approach(data)
             pubs.phase(str(data["phase"]))
+            if self.on_phase is not None:
+                self.on_phase(str(data["phase"]), t_s)
         elif kind == "plan":
             self._plans = [dict(p) for p in data["objects"]]
             pubs.plans(self._plans)
@@ -283,6 +322,12 @@ class LoopPublisher:
     def error(self, message: str) -> None:
         """Publish that the loop could not go on (no object in time, nothing to grasp)."""
         self.publishers.outcome({"outcome": "error", "message": message})
+
+    def cancelled(self, message: str) -> None:
+        """Publish a loop cancelled on request and now in the safe state: the link is healthy
+        again (the loop reported the stop as its fault ``interrupted``)."""
+        self.publishers.fault = None
+        self.publishers.outcome({"outcome": "cancelled", "message": message})
 
 
 def watch_loop(
