@@ -6,7 +6,7 @@ PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
 
-.PHONY: demo test test-slow bench lint typecheck venv clean ros-deps results
+.PHONY: demo test test-slow bench lint typecheck venv clean ros-deps ros2-interfaces results
 
 $(VENV)/.installed: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -44,13 +44,28 @@ ros-deps:
 	    DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends $(ROS_APT); \
 	else echo "ros-deps: ROS 1 not installed and not root: ROS tests will be skipped"; fi
 
+# ROS 2 (rclpy wheels, in .venv through the dev extra): tf2_msgs and softpad_msgs have no wheel;
+# built once into .venv with the wheels' rosidl generators (CMake, g++; about 1 min; docs/ros.md).
+# strace: a test checks that every datagram of the ROS 2 node goes to 127.0.0.1.
+ros2-interfaces: venv
+	@if ! command -v cmake >/dev/null || ! command -v g++ >/dev/null \
+	    || ! command -v strace >/dev/null; then \
+	    if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
+	        (apt-cache policy cmake | grep -q 'Candidate: [0-9]' || apt-get update -q) && \
+	        DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends \
+	            cmake g++ strace; \
+	    fi; fi
+	@$(BIN)/python -c "import softpad_msgs.action, tf2_msgs.msg" 2>/dev/null \
+	    || $(BIN)/softpad ros2 build-interfaces \
+	    || echo "ros2-interfaces: not built: ROS 2 tests will be skipped with the reason"
+
 # `--cpu-durations N` lists the N tests that used the most CPU (tests/conftest.py). Not
 # `--dist loadgroup`: with pytest 9 and pytest-xdist 3.8 it groups nothing (xdist renames the
 # nodeid through an attribute pytest 9 no longer reads); work shared by tests is shared inside one.
-test: lint typecheck ros-deps
+test: lint typecheck ros-deps ros2-interfaces
 	MPLBACKEND=Agg $(BIN)/pytest -n 2 -q -m "not slow" --durations=10
 
-test-slow: venv ros-deps
+test-slow: venv ros-deps ros2-interfaces
 	MPLBACKEND=Agg $(BIN)/pytest -n 2 -q -m slow --durations=10
 
 bench: venv

@@ -20,6 +20,10 @@ from numpy.typing import NDArray
 from softpad.box._safety import SafetyGuard, SafetyLimits
 from softpad.errors import HardwareFault, InputError
 
+#: Requests a box with a simulated world behind it answers (``ext/OP`` of a served box):
+#: set up the gripper mounting (reply: the pad's layout) and place catalogue objects.
+WORLD_SERVICES = ("sim.setup", "sim.place")
+
 
 class ConnectionLost(HardwareFault):
     """The box stopped answering (network down, box powered off)."""
@@ -165,6 +169,14 @@ class Box(ABC):
         """True when the box measures its supply pressure (a box without one reports 0 Pa,
         and supply-loss checks must not judge it)."""
         return True
+
+    @property
+    def simulated(self) -> bool:
+        """True when a simulated world stands behind this box: a simulator in this process
+        (``sim://``, any view of it) or one served with the world's requests
+        (:data:`WORLD_SERVICES`). The one answer to "is this box simulated?"; a real box
+        answers False."""
+        return False
 
     @property
     def closed(self) -> bool:

@@ -141,7 +141,7 @@ def _check_options(
         or not 1 <= rt_priority <= 99
     ):
         raise InputError(f"real-time priority must be an integer from 1 to 99, got {rt_priority!r}")
-    if services and not _simulated(box):
+    if services and not box.simulated:
         raise InputError(
             f"services ({', '.join(sorted(services))}) are for a simulated box only, "
             f"not {type(box).__name__}"
@@ -693,14 +693,6 @@ class _Refused(SoftPadError):
     def __init__(self, kind: str, message: str) -> None:
         super().__init__(message)
         self.kind = kind
-
-
-def _simulated(box: Box) -> bool:
-    """True for a simulated box (the only kind that may offer services), seen through any
-    :class:`~softpad.box.BoxWrapper` views around it (hooks, fault injection)."""
-    from softpad.box._sim_layers import simulator_of
-
-    return simulator_of(box) is not None
 
 
 def _between_ticks(box: Box) -> Callable[[], object] | None:

@@ -196,6 +196,10 @@ class SimBox(Box):
         return self._rate
 
     @property
+    def simulated(self) -> bool:
+        return True
+
+    @property
     def time_s(self) -> float:
         """Virtual time of the last frame, seconds."""
         return self._t

@@ -39,6 +39,10 @@ class BoxWrapper(Box):
         return self.inner.supply_sensor
 
     @property
+    def simulated(self) -> bool:
+        return self.inner.simulated
+
+    @property
     def command_seen_after_s(self) -> float | None:
         return self.inner.command_seen_after_s
 

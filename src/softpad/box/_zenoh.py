@@ -18,7 +18,13 @@ import weakref
 from typing import Any
 
 from softpad.box._auth import Sealer, split_frame, tag_ok
-from softpad.box._base import Box, ConnectionLost, PressureFrame, ValveCommand
+from softpad.box._base import (
+    WORLD_SERVICES,
+    Box,
+    ConnectionLost,
+    PressureFrame,
+    ValveCommand,
+)
 from softpad.box._daemon import new_client_id
 from softpad.box._link import (
     DEFAULT_PREFIX,
@@ -206,6 +212,12 @@ class ZenohBox(Box):
     def supply_sensor(self) -> bool:
         """Whether the served box measures its supply, from its ``info``."""
         return self.info.get("supply_sensor") is not False
+
+    @property
+    def simulated(self) -> bool:
+        """Whether the served box offers the simulated world's requests
+        (:data:`~softpad.box._base.WORLD_SERVICES`), from its ``info``."""
+        return set(WORLD_SERVICES) <= set(self.info.get("services", []))
 
     def _read(self) -> PressureFrame:
         return self.read_stamped().frame

@@ -12,6 +12,10 @@ from typing import Any
 from softpad.errors import InputError
 
 
+class UsageError(InputError):
+    """The command line does not parse (unknown option, missing value)."""
+
+
 def number_list(text: str, flag: str, scale: float = 1.0, positive: bool = False) -> list[float]:
     """Parse ``"1,1.5,2"`` into floats times ``scale``, naming the flag and the bad item on error."""
     items = [s.strip() for s in str(text).split(",")]
@@ -209,8 +213,6 @@ def add_group(sub: Any, name: str, *texts: str | None, metavar: str = "ACTION") 
 
 def _missing(parser: argparse.ArgumentParser, actions: Any, args: argparse.Namespace) -> int:
     """Handler of a group called without its sub-command (see :func:`add_group`)."""
-    from softpad.cli.main import UsageError
-
     parser.print_help(sys.stderr)
     names = list(actions.choices)
     listing = ", ".join(names[:-1]) + (" or " if len(names) > 1 else "") + names[-1]

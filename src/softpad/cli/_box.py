@@ -509,12 +509,14 @@ def _monitor_foxglove(args: argparse.Namespace, layout: Any) -> int:
     import time
 
     from softpad.box import open_box
+    from softpad.cli._installation import installed_pad_pose
     from softpad.errors import InputError
     from softpad.record import FoxgloveLive
 
     if not 0 <= args.port <= 65535:
         raise InputError(f"--port must be within 0..65535, got {args.port}")
-    with open_box(args.box) as box, FoxgloveLive(args.port, layout) as live:
+    pad = installed_pad_pose(getattr(args, "config", None))  # the installation's [pad.pose]
+    with open_box(args.box) as box, FoxgloveLive(args.port, layout, pad=pad) as live:
         if args.json:
             emit({"foxglove": live.url, "port": live.port, "serving": args.box})
         else:

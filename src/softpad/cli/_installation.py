@@ -12,7 +12,12 @@ from collections.abc import Iterator, Sequence
 from typing import Any
 
 #: Parsers that read ``--config`` themselves (another meaning or another format).
-OWN_CONFIG = ("softpad box serve", "softpad ros node", "softpad sim arm-node")
+OWN_CONFIG = (
+    "softpad box serve",
+    "softpad ros node",
+    "softpad ros2 node",
+    "softpad sim arm-node",
+)
 _HELP = "installation file (TOML): its thresholds, gripper, pad and box link are the defaults"
 
 
@@ -63,6 +68,19 @@ def _defaults(inst: Any) -> dict[str, Any]:
         if link.user is not None or link.tls_root_ca is not None:  # the link's credentials
             out["box"] += f"?config={inst.source}"
     return out
+
+
+def installed_pad_pose(path: str | None) -> Any:
+    """The installation file's ``[pad.pose]`` as a :class:`~softpad.layout.PadPose` (the
+    origin without a file): where the pad stands in the robot's base frame."""
+    from softpad.layout import PadPose
+
+    if path is None:
+        return PadPose()
+    from softpad.config import load_installation
+
+    pad = load_installation(path).pad
+    return PadPose(pad.x_m, pad.y_m, pad.z_m, pad.yaw_rad)
 
 
 def apply_installation(parser: argparse.ArgumentParser, argv: Sequence[str]) -> None:

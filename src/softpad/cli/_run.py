@@ -16,6 +16,7 @@ from softpad.cli._args import (
     add_number,
     add_p0_option,
 )
+from softpad.cli._installation import installed_pad_pose
 from softpad.cli._output import emit, say
 from softpad.cli._paths import atomic_path, check_output
 from softpad.cli._record import add_record_option, open_recorder, run_metadata
@@ -87,8 +88,14 @@ def register(sub: Any) -> None:
         "--ros",
         action="store_true",
         help="publish the run on ROS 1 while it runs, as 'softpad ros node' does (pressures, "
-        "/softpad/phase, /softpad/grasps, /softpad/contact, /softpad/outcome, /diagnostics; "
+        "/softpad/phase, /softpad/plan/grasps, /softpad/contact, /softpad/outcome, /diagnostics; "
         "a simulated box paced to the wall clock; ROS_MASTER_URI on loopback; docs/ros.md)",
+    )
+    p.add_argument(
+        "--ros2",
+        action="store_true",
+        help="publish the run on ROS 2 while it runs, as 'softpad ros2 node' does (the table's "
+        "topics, /diagnostics, /tf_static; loopback only; docs/ros.md)",
     )
     p.add_argument(
         "--foxglove",
@@ -277,11 +284,15 @@ def run(args: argparse.Namespace) -> int:
             from softpad.config import load_installation
 
             meta["ambient_pressure_pa"] = load_installation(args.config).box.ambient_pressure_pa
-        recorder = open_recorder(str(record_path) if record_path else None, box, meta, args.force)
-        live = _live(args.foxglove, box, args.json)
-        ros = _ros_watch(args.ros, box, args.box)
+        pad = installed_pad_pose(args.config)  # where the pad stands: /tf_static everywhere
+        recorder = open_recorder(
+            str(record_path) if record_path else None, box, meta, args.force, pad=pad
+        )
+        live = _live(args.foxglove, box, args.json, pad)
+        ros = _ros_watch(args.ros, box, args.box, pad)
+        ros2 = _ros2_watch(args.ros2, box, args.box, pad)
         try:
-            tee = Tee(log, recorder, live, ros)
+            tee = Tee(log, recorder, live, ros, ros2)
             parts = loop_parts(args, box, params, gripper or resolve_objects(names)[0].gripper)
             if args.robot.partition("://")[0].lower() == "sim" or _in_process(box):
                 robot = _robot(args.robot, box, gripper or resolve_objects(names)[0].gripper)
@@ -290,14 +301,16 @@ def run(args: argparse.Namespace) -> int:
                 from softpad.cli._ros import run_with_robot_url
 
                 result = run_with_robot_url(args, names, box, tee, params, **parts)
-            if ros is not None:
-                ros.finish(result.result)
+            for r in (ros, ros2):
+                if r is not None:
+                    r.finish(result.result)
         except HardwareFault as exc:
             return _report_fault(args, log, names, exc)
         except SoftPadError as exc:
             exc.partial = {"objects": names, "events": _events(log), "frames": len(log)}
-            if ros is not None:
-                ros.error(str(exc))
+            for r in (ros, ros2):
+                if r is not None:
+                    r.error(str(exc))
             raise
         finally:  # whatever happened, what was recorded is kept
             for r in (recorder, live):
@@ -378,7 +391,7 @@ def _from_installation(path: str, params: Any) -> Any:
     return dataclasses.replace(params, inflation=inflation)
 
 
-def _live(port: int | None, box: Any, json_mode: bool) -> Any:
+def _live(port: int | None, box: Any, json_mode: bool, pad: Any = None) -> Any:
     if port is None:
         return None
     from softpad.box import simulator_of
@@ -387,18 +400,27 @@ def _live(port: int | None, box: Any, json_mode: bool) -> Any:
     sim = simulator_of(box)
     robot = sim.world.gripper_state if sim is not None else None
     layout = sim.world.layout if sim is not None else None  # the pad's modules only
-    live = FoxgloveLive(port, layout, robot_state=robot)
+    live = FoxgloveLive(port, layout, robot_state=robot, pad=pad)
     say(f"foxglove: {live.url} (port {live.port})", json_mode)
     return live
 
 
-def _ros_watch(enabled: bool, box: Any, url: str) -> Any:
+def _ros_watch(enabled: bool, box: Any, url: str, pad: Any = None) -> Any:
     """``--ros``: the publisher of :mod:`softpad.ros` the run reports to, else None."""
     if not enabled:
         return None
     from softpad.ros import watch_loop
 
-    return watch_loop(box_layout(box), box, url)
+    return watch_loop(box_layout(box), box, url, pad=pad)
+
+
+def _ros2_watch(enabled: bool, box: Any, url: str, pad: Any = None) -> Any:
+    """``--ros2``: the publisher of :mod:`softpad.ros2` the run reports to, else None."""
+    if not enabled:
+        return None
+    from softpad.ros2 import watch_loop2
+
+    return watch_loop2(box_layout(box), box, url, pad=pad)
 
 
 def _report_fault(args: argparse.Namespace, log: Any, names: list[str], exc: Exception) -> int:

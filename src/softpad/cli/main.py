@@ -18,10 +18,10 @@ from collections.abc import Sequence
 from typing import Any, NoReturn
 
 from softpad import __version__
+from softpad.cli._args import UsageError, plain_float, plain_int
 from softpad.cli._installation import add_config_options, apply_installation
 from softpad.errors import (
     EXIT_INPUT,
-    InputError,
     SoftPadError,
     exit_code_for,
 )
@@ -45,6 +45,7 @@ _COMMAND_MODULES = (
     "_log",
     "_bench",
     "_ros",
+    "_ros2",
     "_completion",
 )
 
@@ -68,16 +69,10 @@ to stderr.
 """
 
 
-class UsageError(InputError):
-    """The command line does not parse (unknown option, missing value)."""
-
-
 class _Parser(argparse.ArgumentParser):
     """ArgumentParser without prefix abbreviations whose usage errors raise :class:`UsageError`."""
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
-        from softpad.cli._args import plain_float, plain_int
-
         kwargs["allow_abbrev"] = False
         super().__init__(*args, **kwargs)
         # type=int and type=float take plain ASCII numbers only (not 1_0, ٣ or １)

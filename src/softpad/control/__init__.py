@@ -29,6 +29,7 @@ from softpad.control._inflation import (
     make_safe,
 )
 from softpad.control._parts import loop_parts
+from softpad.control._phases import TRANSITIONS, Phase, PhaseError, next_phase
 from softpad.control._robot import Robot, RobotState, RobotWrapper, ToolPose
 from softpad.control._robots import (
     ROBOT_REGISTRY,
@@ -48,12 +49,14 @@ from softpad.control._safety import (
     check_valves,
     reach_safe_state,
 )
+from softpad.control._watch import ObjectWatch, plan_from_reads
 
 __all__ = [
     "DEFAULT_MAX_PRESSURE_PA",
     "DEFAULT_TARGET_PA",
     "DEFAULT_TOLERANCE_PA",
     "ROBOT_REGISTRY",
+    "TRANSITIONS",
     "AdjustmentResult",
     "DetectedFault",
     "ExecutionError",
@@ -67,6 +70,9 @@ __all__ = [
     "InflationController",
     "InflationParams",
     "MonitoredFault",
+    "ObjectWatch",
+    "Phase",
+    "PhaseError",
     "Recorder",
     "Robot",
     "RobotContext",
@@ -84,6 +90,8 @@ __all__ = [
     "loop_parts",
     "make_robot",
     "make_safe",
+    "next_phase",
+    "plan_from_reads",
     "reach_safe_state",
     "register_robot",
 ]

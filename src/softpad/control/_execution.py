@@ -21,8 +21,10 @@ from softpad.control._inflation import (
     InflationParams,
     inflate_and_adjust,
 )
+from softpad.control._phases import LOADING_PHASES, PRESSING_PHASES, Phase, next_phase
 from softpad.control._robot import Robot, RobotWrapper, ToolPose
 from softpad.control._safety import DetectedFault, RunSafety, SafeStateResult
+from softpad.control._watch import ObjectWatch, plan_from_reads
 from softpad.errors import (
     KPA_AS_PA,
     MM_AS_M,
@@ -40,7 +42,6 @@ from softpad.planning import GraspPlan, Planner, PlannerParams, RetryPlanner, Th
 from softpad.sensing import (
     ContactDetector,
     ObjectDetector,
-    RunningAverage,
     ThesisContactDetector,
     ThesisObjectDetector,
     measured_change,
@@ -314,21 +315,11 @@ class _RecordingRobot(RobotWrapper):
         super().set_gripper(width_m, speed_m_s)
 
 
-#: Phases in which an object is being placed on the pad (what wait_object waits for: its
-#: modules rise while it settles), the fingers may touch it (descend, stopped at the first
-#: contact) or the robot presses the pad or an object on it, see
-#: FaultMonitor.loads_expected.
-_LOADING_PHASES = ("wait_object", "descend", "close", "lift", "release")
-#: Phases in which the robot presses the pad or an object on it for seconds: closing the jaws
-#: (an object pushed or rolled along the pad), lifting, putting the object back down (it
-#: lands, bounces and settles); FaultMonitor.robot_pressing.
-_PRESSING_PHASES = ("close", "lift", "release")
-
-
 class GraspExecution:
     """The closed loop of the seed's Section 6.2.2, assembled from parts.
 
-    Phases (each logged with its start time through the recorder)::
+    Phases (:class:`~softpad.control.Phase`, each logged with its start time through the
+    recorder; the transitions allowed are :data:`~softpad.control.TRANSITIONS`)::
 
         adjust -> reference -> wait_object -> plan -> for each object:
             approach (over the COG) -> descend -> close -> lift -> hold -> release
@@ -405,7 +396,9 @@ class GraspExecution:
             )
         self.box = _RecordingBox(box, self.recorder, lambda: self._last_t)
         self.robot = _RecordingRobot(robot, self.recorder, lambda: self._last_t)
-        self.phase = "idle"
+        #: The phase the loop is in (:class:`~softpad.control.Phase`, a transition of
+        #: :data:`~softpad.control.TRANSITIONS` at a time).
+        self.phase = Phase.IDLE
         self._phases: list[tuple[str, float]] = []
         self._last_t = 0.0
         self._landing_rise = np.zeros(self.n)
@@ -416,17 +409,18 @@ class GraspExecution:
         self.safety = RunSafety(self.box, self.n, infl.max_pressure_pa, infl.trip_margin_pa)
 
     # --- plumbing -------------------------------------------------------------------
-    def _enter(self, phase: str, **data: Any) -> None:
-        self.phase = phase
-        self.safety.monitor.loads_expected = phase in _LOADING_PHASES
-        self.safety.monitor.robot_pressing = phase in _PRESSING_PHASES
-        self._phases.append((phase, self._last_t))
-        self.recorder.event(self._last_t, "phase", phase=phase, **data)
+    def _enter(self, phase: Phase, **data: Any) -> None:
+        """Go on to ``phase`` (PhaseError for a transition the table does not hold)."""
+        self.phase = phase = next_phase(self.phase, phase)
+        self.safety.monitor.loads_expected = phase in LOADING_PHASES
+        self.safety.monitor.robot_pressing = phase in PRESSING_PHASES
+        self._phases.append((phase.value, self._last_t))
+        self.recorder.event(self._last_t, "phase", phase=phase.value, **data)
 
     def _read(self) -> NDArray[np.float64]:
         frame = self.box.read()
         self._last_t = frame.t_s
-        self.recorder.frame(frame, self.phase)
+        self.recorder.frame(frame, self.phase.value)
         return self.safety.watch(frame)
 
     def _wait_motion(self, what: str) -> None:
@@ -458,7 +452,7 @@ class GraspExecution:
             self._make_safe(exc)
             raise
         except KeyboardInterrupt:  # a user's Ctrl-C must not leave valves open
-            self.recorder.event(self._last_t, "interrupted", phase=self.phase)
+            self.recorder.event(self._last_t, "interrupted", phase=self.phase.value)
             self._make_safe(HardwareFault("interrupted"))
             raise
 
@@ -476,7 +470,12 @@ class GraspExecution:
             pass  # a robot behind a lost link cannot be stopped from here
         f = self.safety.fail(exc, self._last_t, self._safe_frame)
         self.recorder.event(
-            f.t_s, "fault", message=f.message, phase=self.phase, channel=f.channel, cause=f.cause
+            f.t_s,
+            "fault",
+            message=f.message,
+            phase=self.phase.value,
+            channel=f.channel,
+            cause=f.cause,
         )
         s = self.safety.safe_state
         if s is not None:
@@ -491,15 +490,16 @@ class GraspExecution:
         self._reference = adj.reference_pa
         if self.adjusted is not None:
             self._read()  # box time now: the phases start from it
-        self._enter("wait_object")
+        self._enter(Phase.WAIT_OBJECT)
         if self.place_objects is not None:
             self.place_objects()
         seen_at = self._wait_for_object(adj.reference_pa)
 
-        self._enter("plan")
-        delta = measured_change(self._mean_reads(p.planning_reads) - adj.reference_pa)
-        objects = self.object_detector.objects(delta, self.layout)
-        plans = tuple(self.planner.plan(delta, objects, self.layout))
+        self._enter(Phase.PLAN)
+        reads = [self._read() for _ in range(p.planning_reads)]
+        delta, plans = plan_from_reads(
+            reads, adj.reference_pa, self.object_detector, self.planner, self.layout
+        )
         self.recorder.event(
             self._last_t,
             "plan",
@@ -509,9 +509,9 @@ class GraspExecution:
         if not plans:
             raise ExecutionError("the object disappeared before planning: no module above t_o")
         grasps = self._grasp_all(plans, delta)
-        self._enter("valve_check")
+        self._enter(Phase.VALVE_CHECK)
         self.safety.check_valves(self._read)
-        self._enter("done")
+        self._enter(Phase.DONE)
         faults = tuple(self.safety.faults)
         return ExecutionResult(
             self.layout, adj, seen_at, delta, plans, grasps, tuple(self._phases), faults
@@ -521,7 +521,7 @@ class GraspExecution:
         """Inflate and adjust, save the reference; or take the owner's (``adjusted``)."""
         if self.adjusted is not None:
             return self.adjusted
-        self._enter("adjust")
+        self._enter(Phase.ADJUST)
         adj = inflate_and_adjust(
             self.box,
             self.n,
@@ -537,32 +537,30 @@ class GraspExecution:
 
     def _on_adjust_frame(self, frame: PressureFrame) -> None:
         self._last_t = frame.t_s
-        self.recorder.frame(frame, self.phase)
+        self.recorder.frame(frame, self.phase.value)
         self.safety.watch(frame)
 
     def _on_adjusted(self, t_s: float) -> None:
         self.recorder.event(t_s, "adjusted", target_pa=self.params.inflation.target_pa)
-        self._enter("reference")
+        self._enter(Phase.REFERENCE)
 
     def _wait_for_object(self, reference: NDArray[np.float64]) -> float:
-        """Watch the filtered increments until an object has lain still for the settle time."""
+        """Watch the filtered increments until an object has lain still for the settle time
+        (:class:`~softpad.control.ObjectWatch`, which a watching node uses too)."""
         p = self.params
-        filt = RunningAverage(p.filter_length)
+        watch = ObjectWatch(
+            reference, self.object_detector, self.layout, p.filter_length, p.object_settle_s
+        )
         t0 = self._last_t
-        seen_at: float | None = None
         while True:
-            d = filt.update(self._read() - reference)
-            if seen_at is not None:
-                if self._last_t - seen_at >= p.object_settle_s:
-                    return seen_at
-                continue
-            full = filt.full
-            objects = self.object_detector.objects(measured_change(d), self.layout) if full else []
-            if objects:
-                seen_at = self._last_t
-                modules = sorted(k for obj in objects for k in obj)
-                self.recorder.event(seen_at, "object_seen", modules=modules)
-            elif self._last_t - t0 > p.object_wait_s:
+            state = watch.update(self._read(), self._last_t)
+            if state == "settled":
+                assert watch.seen_at is not None
+                return watch.seen_at
+            if state == "seen":
+                modules = sorted(k for obj in watch.objects for k in obj)
+                self.recorder.event(self._last_t, "object_seen", modules=modules)
+            elif watch.seen_at is None and self._last_t - t0 > p.object_wait_s:
                 raise ExecutionError(f"no object placed on the pad within {p.object_wait_s:g} s")
 
     def _grasp_all(
@@ -610,7 +608,7 @@ class GraspExecution:
             x, y = plan.cog_m(self.layout)
             above = ToolPose(x, y, p.approach_height_m, plan.theta)
             self._enter(
-                "approach", modules=list(plan.modules), cog=list(plan.cog), theta=plan.theta
+                Phase.APPROACH, modules=list(plan.modules), cog=list(plan.cog), theta=plan.theta
             )
             self._gripper(1.0, p.travel_speed_m_s, "opening the gripper")  # clamped to the mounting
             self._move(above, p.travel_speed_m_s, "moving over the centre of grasp")
@@ -676,7 +674,7 @@ class GraspExecution:
         p = self.params
         reference = self._mean_reads(p.pre_descent_reads)
         self.contact_detector.reset(reference)
-        self._enter("descend")
+        self._enter(Phase.DESCEND)
         self.robot.descend(p.approach_speed_m_s, p.min_height_m)
         t0 = self._last_t
         while True:
@@ -700,13 +698,13 @@ class GraspExecution:
         """Close on the object (planned on ``modules``), lift it, hold it, put it down; the
         grasp's outcome."""
         p = self.params
-        self._enter("close")
+        self._enter(Phase.CLOSE)
         self._gripper(0.0, p.gripper_speed_m_s, "closing the gripper")
-        self._enter("lift")
+        self._enter(Phase.LIFT)
         s = self.robot.state()
         self._move(replace(s.pose, z_m=s.z_m + p.lift_m), p.travel_speed_m_s, "lifting")
         lifted = self.robot.holding()
-        self._enter("hold")
+        self._enter(Phase.HOLD)
         t_hold = self._last_t
         last: deque[NDArray[np.float64]] = deque(maxlen=p.planning_reads)
         while self._last_t - t_hold < p.hold_s:
@@ -716,7 +714,7 @@ class GraspExecution:
         held = self.robot.holding()
         outcome = "held" if held else ("dropped" if lifted else "missed")
         self.recorder.event(self._last_t, "outcome", outcome=outcome)
-        self._enter("release")
+        self._enter(Phase.RELEASE)
         if held or self._went_up(modules):  # put it back where it was grasped, then open
             s = self.robot.state()
             down = replace(s.pose, z_m=s.z_m - p.lift_m)

@@ -189,7 +189,8 @@ def _trial_loop(
 ) -> Any:
     """The closed loop of one trial: inflation to the design's p0, the named planner and
     contact detector on the design's layout and the analytic world's gripper."""
-    from softpad.control import GraspExecution, InflationParams
+    from softpad.control import InflationParams
+    from softpad.harness import build_loop
     from softpad.planning import planner_for
     from softpad.sensing import make_contact_detector
     from softpad.trials import trial_execution_params
@@ -204,15 +205,15 @@ def _trial_loop(
     planner = planner_for(
         options.planner, geometry, params.planner, detector, box.sample_rate_hz, layout
     )
-    return GraspExecution(
+    return build_loop(
         box,
         robot,
-        layout,
-        params,
+        params=params,
+        layout=layout,
         planner=planner,
         contact_detector=detector,
         place_objects=place_objects,
-    )
+    ).execution
 
 
 def _contact_delay_s(result: Any, robot: Any) -> float | None:

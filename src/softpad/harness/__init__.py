@@ -1,6 +1,7 @@
 """The simulated lab: a robot on the simulated world, runs of the loop, ground truth.
 
 The control layer knows nothing of the simulator; this package joins them.
+:func:`build_loop` is the one place the grasp loop is assembled, for every entry point.
 :class:`SimulatedRobot` implements :class:`softpad.control.Robot` on a
 :class:`softpad.sim.World` and logs each descent's first fingertip touch (ground truth, used
 only to score a run); :func:`run_simulated` runs the loop with catalogue objects, in-process or
@@ -8,6 +9,13 @@ against a simulator served over ``zenoh://`` (:class:`RemoteRobot`,
 :func:`simulation_extensions`).
 """
 
+from softpad.harness._assembly import (
+    BuiltLoop,
+    WorldAccess,
+    build_loop,
+    execution_params,
+    world_access,
+)
 from softpad.harness._inflation_study import (
     InflationPoint,
     inflation_study,
@@ -24,11 +32,15 @@ from softpad.harness._run import SimulatedRun, resolve_objects, run_simulated
 
 __all__ = [
     "SIMULATION_OPS",
+    "BuiltLoop",
     "InflationPoint",
     "RemoteRobot",
     "SimulatedRobot",
     "SimulatedRun",
     "TouchTruth",
+    "WorldAccess",
+    "build_loop",
+    "execution_params",
     "has_simulation",
     "inflation_study",
     "open_sim_robot",
@@ -36,4 +48,5 @@ __all__ = [
     "resolve_objects",
     "run_simulated",
     "simulation_extensions",
+    "world_access",
 ]

@@ -189,8 +189,9 @@ class _SimulationService:
 
 
 def has_simulation(box: ZenohBox) -> bool:
-    """True when the daemon of ``box`` offers every service of :data:`SIMULATION_OPS`."""
-    return set(SIMULATION_OPS) <= set(box.info.get("services", []))
+    """True when ``box`` has a simulated world behind it (:attr:`~softpad.box.Box.simulated`)
+    and its daemon also serves the simulated robot (every request of :data:`SIMULATION_OPS`)."""
+    return box.simulated and set(SIMULATION_OPS) <= set(box.info.get("services", []))
 
 
 def _floats(reply: dict[str, Any], key: str, n: int) -> list[float]:

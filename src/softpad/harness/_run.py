@@ -6,12 +6,12 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from softpad.box import Box, SimBox, ZenohBox, open_box, simulator_of
-from softpad.control import ExecutionParams, ExecutionResult, GraspExecution, Recorder, Robot
+from softpad.box import Box, open_box
+from softpad.control import ExecutionParams, ExecutionResult, Recorder, Robot
 from softpad.errors import InputError
-from softpad.harness._remote import RemoteRobot, has_simulation
-from softpad.harness._robot import SimulatedRobot, TouchTruth
-from softpad.sim import AnalyticWorld, ObjectSpec, SimGripper, get_object, object_names
+from softpad.harness._assembly import build_loop
+from softpad.harness._robot import TouchTruth
+from softpad.sim import ObjectSpec, get_object, object_names
 
 _REMOTE_WORLD = (
     "the simulated loop places objects and moves the gripper in a simulator's world: use a "
@@ -132,69 +132,20 @@ def run_simulated(
     owns = isinstance(box, str)
     b = open_box(box) if isinstance(box, str) else box
     try:
-        mounting = gripper or specs[0].gripper
-        if isinstance(b, ZenohBox):  # a simulator served over the network: world and robot there
-            return _run_remote(b, specs, mounting, params, recorder, parts)
-        sim = simulator_of(b)
-        if sim is None:
+        if not b.simulated:
             raise InputError(f"{_REMOTE_WORLD} (got a {type(b).__name__})")
-        return _run_local(b, sim, specs, mounting, params, recorder, robot, parts)
+        with build_loop(
+            b, robot, params=params, objects=[s.name for s in specs], recorder=recorder,
+            gripper=gripper or specs[0].gripper, **parts,
+        ) as loop:  # fmt: skip
+            result = loop.run()
+            touches = loop.touches()
+        if touches is None:  # an arm without ground truth
+            touches = tuple(TouchTruth(None, None) for _ in result.grasps)
+        return SimulatedRun(result, touches)
     finally:
         if owns:
             b.close()
-
-
-def _run_local(
-    box: Box,
-    sim: SimBox,
-    specs: list[ObjectSpec],
-    mounting: str,
-    params: ExecutionParams | None,
-    recorder: Recorder | None,
-    robot: Robot | None,
-    parts: dict[str, Any],
-) -> SimulatedRun:
-    world = sim.world  # the loop reads ``box`` (the simulator in its layers)
-    if isinstance(world, AnalyticWorld):
-        world.gripper = SimGripper.mounting(mounting)
-    arm = SimulatedRobot(world) if robot is None else robot
-
-    def place() -> None:
-        for s in specs:
-            world.place_object(s)
-
-    loop = GraspExecution(
-        box, arm, world.layout, params, recorder=recorder, place_objects=place, **parts
-    )
-    result = loop.run()
-    if isinstance(arm, SimulatedRobot):
-        return SimulatedRun(result, tuple(arm.touches))
-    return SimulatedRun(result, tuple(TouchTruth(None, None) for _ in result.grasps))
-
-
-def _run_remote(
-    box: ZenohBox,
-    specs: list[ObjectSpec],
-    mounting: str,
-    params: ExecutionParams | None,
-    recorder: Recorder | None,
-    parts: dict[str, Any],
-) -> SimulatedRun:
-    if not has_simulation(box):
-        raise InputError(_REMOTE_WORLD)
-    remote = RemoteRobot(box, mounting)
-    names = [s.name for s in specs]
-    loop = GraspExecution(
-        box,
-        remote,
-        remote.layout,
-        params,
-        recorder=recorder,
-        place_objects=lambda: remote.place(names),
-        **parts,
-    )
-    result = loop.run()
-    return SimulatedRun(result, tuple(remote.touches()))
 
 
 __all__ = ["SimulatedRun", "object_names", "resolve_objects", "run_simulated"]

@@ -5,12 +5,14 @@ from __future__ import annotations
 import csv
 import json
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from softpad.errors import InputError
-from softpad.record._read import RecordedRun
+
+if TYPE_CHECKING:  # the methods of RecordedRun call these (no import circle)
+    from softpad.record._read import RecordedRun
 
 
 def table(run: RecordedRun) -> dict[str, list[Any]]:

@@ -7,11 +7,12 @@ switches the global matplotlib backend or opens a window.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from softpad.record._read import RecordedRun
+if TYPE_CHECKING:  # the methods of RecordedRun call these (no import circle)
+    from softpad.record._read import RecordedRun
 
 #: Colours of the phases' bands: ColorBrewer's qualitative "Set3" (twelve light colours made
 #: to be told apart), one per phase in the loop's order, the safe state in its red.
@@ -68,6 +69,10 @@ def _modules(run: RecordedRun) -> int:
         return run.channels
     used = np.flatnonzero(np.nanmax(run.pressures_pa, axis=0) > 200.0)
     return int(np.max(used)) + 1 if used.size else run.channels
+
+
+if TYPE_CHECKING:  # the methods of RecordedRun call these (no import circle)
+    from softpad.record._read import RecordedRun
 
 
 def plot_traces(run: RecordedRun, path: str | Path | None = None, title: str | None = None) -> Any:

@@ -3,12 +3,12 @@
 The node owns the box (the one controller): it inflates and adjusts every module
 (:func:`softpad.control.inflate_and_adjust`), keeps the reference, reads every frame and
 publishes it, and plans on the filtered increments once the objects on the pad have settled
-(and on request). Its ``~grasp`` service runs :class:`softpad.control.GraspExecution`, the loop
-of ``softpad run``, once on that box from that reference with the ``robot`` of its config, and
+(and on request). Its ``~grasp`` service runs the loop of ``softpad run``
+(:func:`softpad.harness.build_loop`) once on that box from that reference with the ``robot`` of its config, and
 publishes what the loop does as it runs (:class:`softpad.ros._publish.LoopPublisher`). Its parts
 are the registered ones ``softpad run`` uses, by name (``planner``, ``detector``: the object
 detector, planner and contact detector of :mod:`softpad.sensing` and :mod:`softpad.planning`'s
-registries, made for the box's rate and the pad; :func:`softpad.control.loop_parts` for a
+registries, made for the box's rate and the pad; :func:`softpad.harness.build_loop` for a
 grasp). Topics, services and parameters: docs/ros.md.
 """
 
@@ -354,7 +354,7 @@ class PadNode:
     def _place_later(self) -> None:
         self.place_at = None
         if self.config.place:
-            if _simulation(self.box) is None:
+            if not self.box.simulated:
                 raise InputError(
                     "place= puts catalogue objects on a simulated box only (sim://, or a "
                     "served simulator such as softpad sim arm-node's)"
@@ -380,10 +380,12 @@ class PadNode:
                 self._serve(self._requests.get())
 
     def _place(self) -> None:
-        sim = _simulation(self.box)
-        assert sim is not None
-        sim("sim.setup", gripper=self._mounting())
-        sim("sim.place", objects=list(self.config.place))
+        from softpad.harness import world_access
+
+        world = world_access(self.box)
+        assert world is not None
+        world.setup(self._mounting())
+        world.place(list(self.config.place))
         self.place_at = None
 
     def _mounting(self) -> str:
@@ -498,10 +500,9 @@ class PadNode:
         )
 
     def _grasp(self, hold_s: float | None = None) -> Any:
-        """Run :class:`~softpad.control.GraspExecution` once on the node's box, from its
+        """Run the loop (:func:`softpad.harness.build_loop`) once on the node's box, from its
         reference, with the registered parts and the ``robot``; published as it runs."""
-        from softpad.control import GraspExecution, loop_parts, make_robot
-        from softpad.layout import GripperSpec
+        from softpad.harness import build_loop
 
         c = self.config
         if not c.robot:
@@ -509,27 +510,14 @@ class PadNode:
                 "grasp: the node has no robot; set 'robot' (a robot URL: sim:// on a sim:// "
                 "box, ros1:// with an arm node) in its config, ~robot or --robot"
             )
-        mounting = self._mounting()
-        sim = _simulation(self.box)
-        if sim is not None:
-            sim("sim.setup", gripper=mounting)  # the simulated gripper of this mounting
-        spec = GripperSpec.from_mounting(mounting)
-        params = self._execution_params(hold_s)
-        rate = float(self.box.sample_rate_hz)
-        parts = loop_parts(c.planner, c.detector, rate, self.layout, spec, params)
-        robot = make_robot(c.robot, box=self.box, layout=self.layout, gripper=spec)
         # objects configured but not yet down: the loop puts them there when it waits
         place = self._place if self.place_at is not None else None
-        try:
-            loop = GraspExecution(
-                self.box, robot, self.layout, params, recorder=self.loop_publisher,
-                place_objects=place, adjusted=self.adjustment, **parts,
-            )  # fmt: skip
+        with build_loop(
+            self.box, c.robot, params=self._execution_params(hold_s), planner=c.planner,
+            contact_detector=c.detector, gripper=self._mounting(), layout=self.layout,
+            recorder=self.loop_publisher, place_objects=place, adjusted=self.adjustment,
+        ) as loop:  # fmt: skip
             result = loop.run()
-        finally:
-            close = getattr(robot, "close", None)
-            if close is not None:
-                close()
         self.loop_publisher.finish(result)
         return result
 
@@ -555,24 +543,6 @@ def _jsonable_result(result: dict[str, Any]) -> dict[str, Any]:
 def _summary(result: dict[str, Any]) -> dict[str, Any]:
     """The ``~grasp`` answer: outcome, objects and grasps of the loop's result."""
     return {k: result[k] for k in ("outcome", "objects", "grasps")}
-
-
-def _simulation(box: Any) -> Callable[..., Any] | None:
-    """``sim(op, **fields)`` calling the simulator's ``sim.setup``/``sim.place`` on ``box``
-    (an in-process ``sim://`` box, or a served simulator offering them); None otherwise."""
-    from softpad.box import ZenohBox, simulator_of
-
-    plain = simulator_of(box)
-    if plain is not None:
-        from softpad.harness import simulation_extensions
-
-        ext = simulation_extensions(plain)
-        return lambda op, **fields: ext[op]({"op": op, **fields})
-    if isinstance(box, ZenohBox) and {"sim.setup", "sim.place"} <= set(
-        box.info.get("services", [])
-    ):
-        return lambda op, **fields: box.request("ext/" + op, **fields)
-    return None
 
 
 def _pa(values: Any) -> str:

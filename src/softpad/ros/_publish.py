@@ -331,17 +331,23 @@ class LoopPublisher:
 
 
 def watch_loop(
-    layout: PadLayout, box: Any, box_url: str, node_name: str = "softpad_run"
+    layout: PadLayout,
+    box: Any,
+    box_url: str,
+    node_name: str = "softpad_run",
+    pad: PadPose | None = None,
+    base_frame: str = "base",
 ) -> LoopPublisher:
     """A :class:`LoopPublisher` for a grasp loop run by this process (``softpad run
     --ros``): this process becomes the ROS node ``node_name`` (anonymous) unless it is one,
-    and publishes the pad's topics, the static transforms with the pad at the base frame's
-    origin. InputError when no ROS master answers."""
+    and publishes the pad's topics, the static transforms with the pad at ``pad`` in
+    ``base_frame`` (the installation's ``[pad.pose]``; None: the origin). InputError when no
+    ROS master answers."""
     from softpad.ros._rospy_path import require_master
 
     rospy = require_master()
     init_node(rospy, node_name)
     pubs = PadPublishers(rospy, layout, box_url)
     pubs.box = box
-    pubs.static_frames(PadPose(), "base")
+    pubs.static_frames(pad or PadPose(), base_frame)
     return LoopPublisher(pubs)

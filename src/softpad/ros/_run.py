@@ -18,8 +18,8 @@ def run_with_robot(
     gripper: str | None = None,
     **parts: Any,
 ) -> Any:
-    """Run :class:`softpad.control.GraspExecution` once on ``box`` with ``robot``; ``parts``
-    (``planner``, ``object_detector``, ``contact_detector``) replace the thesis's.
+    """Run the loop (:func:`softpad.harness.build_loop`) once on ``box`` with ``robot``;
+    ``parts`` (``planner``, ``object_detector``, ``contact_detector``) replace the thesis's.
 
     When the box is a simulator served over ``zenoh://`` (``softpad sim arm-node`` or
     ``softpad box serve --sim``), the gripper mounting is set up and the catalogue
@@ -32,38 +32,22 @@ def run_with_robot(
         The timeline and outcome. A fault (box or arm lost) raises
         :class:`~softpad.errors.HardwareFault` after the box was made safe.
     """
-    from softpad.box import ZenohBox, open_box
-    from softpad.control import GraspExecution
-    from softpad.harness import resolve_objects
-    from softpad.layout import PadLayout
+    from softpad.box import open_box
+    from softpad.harness import build_loop, resolve_objects
 
-    specs = resolve_objects(objects)
-    names = [s.name for s in specs]
-    layout, place = PadLayout(), None
+    names = [s.name for s in resolve_objects(objects)]
     owned = isinstance(box, str)
     b = open_box(box) if isinstance(box, str) else box
     try:
-        if isinstance(b, ZenohBox) and {"sim.setup", "sim.place"} <= set(
-            b.info.get("services", [])
-        ):
-            served = b
-            served.take_control()  # only the controller may call the services
-            mounting = gripper or specs[0].gripper
-            rows, cols, pitch = served.request("ext/sim.setup", gripper=mounting)["layout"]
-            layout = PadLayout(int(rows), int(cols), float(pitch))
-
-            def place() -> None:
-                served.request("ext/sim.place", objects=names)
-
-        loop = GraspExecution(
-            b, robot, layout, params, recorder=recorder, place_objects=place, **parts
-        )
-        try:
-            return loop.run()
-        except HardwareFault as exc:
-            # same exception (its safe state and faults kept), the phase named in the message
-            exc.args = (f"run stopped in phase {loop.phase!r}: {exc}", *exc.args[1:])
-            raise
+        with build_loop(
+            b, robot, params=params, recorder=recorder, objects=names, gripper=gripper, **parts
+        ) as loop:
+            try:
+                return loop.run()
+            except HardwareFault as exc:
+                # same exception (its safe state and faults kept), the phase named in the message
+                exc.args = (f"run stopped in phase {loop.phase!r}: {exc}", *exc.args[1:])
+                raise
     finally:
         if owned:
             b.close()

@@ -47,6 +47,7 @@ from softpad.sim._response import (
     packaged_response_path,
 )
 from softpad.sim._sensor import SensorBank, SensorParams
+from softpad.sim._tips import TIP_TRANSITIONS, TipState, TipStateError
 from softpad.sim._uncertain import (
     UNCERTAIN_PARAMETERS,
     LabVariation,
@@ -61,6 +62,7 @@ __all__ = [
     "DEFAULT_LINE_WIDTH_M",
     "GRAVITY_M_S2",
     "GRIPPER_MOUNTINGS",
+    "TIP_TRANSITIONS",
     "UNCERTAIN_PARAMETERS",
     "AnalyticCharacteristic",
     "AnalyticWorld",
@@ -87,6 +89,8 @@ __all__ = [
     "SensorParams",
     "SimGripper",
     "TabulatedCharacteristic",
+    "TipState",
+    "TipStateError",
     "UncertainParameter",
     "World",
     "catalogue_to_json",

@@ -31,6 +31,7 @@ from softpad.sim._footprint import (
 )
 from softpad.sim._objects import ObjectSpec, Placement
 from softpad.sim._response import ModuleResponse, PadResponse, operating_pressure
+from softpad.sim._tips import TipState, next_tip_state
 from softpad.sim._world import GripperState, PadWorld
 
 #: Opening ranges of the thesis's gripper mountings, (max, min) width in metres (Section 6.3).
@@ -127,9 +128,21 @@ class _Placed:
 
 @dataclass
 class _Tip:
-    touch_z_m: float | None = None  # surface height where the tip first touched
+    state: TipState = TipState.FREE  # softpad.sim._tips: free, on the pad, on an object
+    touch_z_m: float | None = None  # surface height where the tip touched (None: free)
     prev_z_m: float = math.inf  # tip height at the previous evaluation
     on_object: _Placed | None = None  # the object the tip landed on (None: the pad)
+
+    def land(self, surface_z_m: float, on_object: _Placed | None) -> None:
+        """Touch down on a module's top (``on_object`` None) or an object's."""
+        on = TipState.ON_PAD if on_object is None else TipState.ON_OBJECT
+        self.state = next_tip_state(self.state, on)
+        self.touch_z_m, self.on_object = surface_z_m, on_object
+
+    def leave(self) -> None:
+        """Rise above where it touched."""
+        self.state = next_tip_state(self.state, TipState.FREE)
+        self.touch_z_m, self.on_object = None, None
 
 
 class AnalyticWorld(PadWorld):
@@ -455,8 +468,7 @@ class AnalyticWorld(PadWorld):
                 crossed = tip.prev_z_m > surface_z >= st.z_m
                 tip.prev_z_m = st.z_m
                 if crossed and (obj is not None or frac.any()):
-                    tip.touch_z_m = surface_z
-                    tip.on_object = obj
+                    tip.land(surface_z, obj)
                     if self.first_touch_s is None:
                         self.first_touch_s = self._time_s
                         self.first_touch_z_m = st.z_m
@@ -464,7 +476,7 @@ class AnalyticWorld(PadWorld):
                 continue
             pen = tip.touch_z_m - st.z_m
             if pen <= 0:
-                tip.touch_z_m = None
+                tip.leave()
                 continue
             force = g.tip_stiffness_n_m * pen
             # what the tip landed on carries its force while it slides (closing jaws)
@@ -474,6 +486,11 @@ class AnalyticWorld(PadWorld):
                 loads += force * frac
         self._tip_loads = loads
         self._dirty = True
+
+    @property
+    def tip_states(self) -> tuple[TipState, ...]:
+        """Contact state of each fingertip (:class:`~softpad.sim.TipState`; ground truth)."""
+        return tuple(t.state for t in self._tips)
 
     def reset_touch(self) -> None:
         """Forget the first-touch record (call before a new descent)."""

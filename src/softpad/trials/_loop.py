@@ -239,8 +239,9 @@ def execute_trial(
 ) -> tuple[TrialResult, Any | None]:
     """Run one trial; see :func:`softpad.trials.run_trial`. Returns the result and the run's
     :class:`softpad.record.RunLog` when ``config.record_trace``."""
-    from softpad.control import ExecutionError, GraspExecution
+    from softpad.control import ExecutionError
     from softpad.errors import HardwareFault
+    from softpad.harness import build_loop
     from softpad.record import RunLog, Tee
     from softpad.sensing import make_contact_detector
 
@@ -251,16 +252,16 @@ def execute_trial(
     mcap = _trial_recorder(t, seed)
     watcher = _TrialWatcher(t, Tee(log, mcap, o.recorder))
     detector = make_contact_detector(config.detector, t.box.sample_rate_hz, t.world.layout)
-    execution = GraspExecution(
+    execution = build_loop(
         t.box,
         t.robot,
-        t.world.layout,
-        config.execution,
+        params=config.execution,
+        layout=t.world.layout,
         planner=_FixedPlanner(o.plan) if o.plan is not None else t.planner(detector),
         contact_detector=detector,
         recorder=watcher,
         place_objects=t.place,
-    )
+    ).execution
     base: dict[str, Any] = dict(
         object=spec.name,
         trial=0,

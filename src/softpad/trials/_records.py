@@ -181,7 +181,7 @@ class ObjectSummary:
     @property
     def success_interval(self) -> tuple[float, float]:
         """95 % Wilson score interval of the success rate."""
-        from softpad.trials._compare import wilson_interval
+        from softpad.trials._stats import wilson_interval
 
         return wilson_interval(self.successes, self.trials)
 
@@ -344,7 +344,7 @@ class ExperimentResult:
 
     def overall(self) -> dict[str, Any]:
         """Trials, successes, their 95 % Wilson interval and failures by cause, all objects."""
-        from softpad.trials._compare import wilson_interval
+        from softpad.trials._stats import wilson_interval
 
         n, k = len(self.trials), sum(t.success for t in self.trials)
         return {

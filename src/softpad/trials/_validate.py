@@ -183,7 +183,7 @@ def rate_row(
     name: str, source: str, k_sim: int, n_sim: int, k_thesis: int, n_thesis: int, note: str = ""
 ) -> Observation:
     """A row comparing a count of the simulator's with the thesis's (Fisher's exact test)."""
-    from softpad.trials._compare import wilson_interval
+    from softpad.trials._stats import wilson_interval
 
     if n_sim == 0:
         return Observation(
