@@ -5,7 +5,6 @@ names, and the installation file read into the node's settings (no roscore neede
 from __future__ import annotations
 
 import math
-import re
 import shutil
 import subprocess
 import xml.etree.ElementTree as ET
@@ -69,18 +68,17 @@ def test_check_urdf_reads_the_pad(layout: str, tmp_path: Path) -> None:
     assert f"root Link: softpad has {n} child(ren)" in r.stdout
 
 
-def test_event_definition_matches_the_recordings() -> None:
-    """The ROS 1 Event has the recordings' fields (ROS 2's softpad_msgs/msg/Event): a bag or a
-    live topic and a recording carry the same thing."""
-    from softpad.record._schemas import OWN_TYPES
+def test_message_files_are_the_topic_tables_definitions() -> None:
+    """softpad_msgs' .msg and .action files are the table's definitions (softpad.topics,
+    which the ROS 2 package and the recordings use), character for character."""
+    from softpad.topics import MESSAGE_DEFINITIONS
 
-    def fields(text: str) -> list[tuple[str, str]]:
-        lines = [ln.split("#")[0].split() for ln in text.splitlines()]
-        return [(t.split("/")[-1], n) for t, n in (ln for ln in lines if ln)]
-
-    for name in ("Event", "ValveCommands"):
-        ros1 = (PACKAGES / "softpad_msgs" / "msg" / f"{name}.msg").read_text()
-        assert fields(ros1) == fields(OWN_TYPES[f"softpad_msgs/msg/{name}"]), name
+    own = {k: v for k, v in MESSAGE_DEFINITIONS.items() if k.startswith("softpad_msgs/")}
+    assert len(own) == 4
+    for full, text in own.items():
+        _, kind, name = full.split("/")
+        ext = "action" if kind == "action" else "msg"
+        assert (PACKAGES / "softpad_msgs" / ext / f"{name}.{ext}").read_text() == text, full
 
 
 def test_action_expands_as_genaction_does() -> None:
@@ -123,11 +121,12 @@ def test_launch_and_rviz_files_name_what_the_node_publishes() -> None:
     rviz = yaml.safe_load((pkg / "rviz" / "softpad.rviz").read_text())
     displays = rviz["Visualization Manager"]["Displays"]
     topics = {d["Topic"] for d in displays if "Topic" in d}
-    assert topics == {"/softpad/objects", "/softpad/grasps"}
+    assert topics == {"/softpad/plan/objects", "/softpad/plan/grasps"}
     assert rviz["Visualization Manager"]["Global Options"]["Fixed Frame"] == "base"
-    publishers = (ROOT / "src" / "softpad" / "ros" / "_publish.py").read_text()
-    for topic in topics:
-        assert re.search(rf'pub\("{re.escape(topic)}"', publishers), topic
+    from softpad.topics import topics_for
+
+    published = topics_for("ros1", 6)
+    assert all(published[t] == "geometry_msgs/msg/PoseArray" for t in topics)
 
 
 def test_installation_file_gives_the_node_settings_in_si(tmp_path: Path) -> None:

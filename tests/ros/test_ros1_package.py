@@ -133,7 +133,7 @@ def test_grasp_action_holds_object_5_with_phase_feedback_and_events_echo_live(
 
 
 def test_cancelled_grasp_goal_ends_in_the_safe_state(procs: _Procs) -> None:
-    """A goal cancelled during the descent: PREEMPTED, outcome ``cancelled``; the loop's safe
+    """A goal cancelled during the descent: PREEMPTED, outcome ``canceled``; the loop's safe
     state verified (its ``safe_state`` event), every inflation valve closed on /diagnostics,
     the node in phase ``safe`` until ``~inflate`` resumes the watch."""
     env = _ros_env(procs)
@@ -144,7 +144,7 @@ def test_cancelled_grasp_goal_ends_in_the_safe_state(procs: _Procs) -> None:
     procs.env = env
     logs = _watch(procs, "/softpad/events", "/diagnostics")
     out = _client(procs, env, "descend", 1.0)
-    assert out["state"] == 2 and out["outcome"] == "cancelled", out  # actionlib PREEMPTED
+    assert out["state"] == 2 and out["outcome"] == "canceled", out  # actionlib PREEMPTED
     assert "safe state" in out["message"]
     assert node.poll() is None, log.read_text()
     events = _wait(
@@ -182,6 +182,19 @@ def test_launch_file_starts_the_node_with_the_installation(procs: _Procs, tmp_pa
     assert procs.run("rosparam", "get", "/softpad/hold_s").stdout.strip() == "2.5"
     nodes = procs.run("rosnode", "list").stdout.split()
     assert "/softpad" in nodes, nodes
+    # exactly the table's ros1 topics, with their types (the action's own aside)
+    import rosgraph
+
+    from softpad.topics import ros1_type, topics_for
+
+    master = rosgraph.Master("/softpad_test", master_uri=procs.env["ROS_MASTER_URI"])
+    publishers, _, _ = master.getSystemState()
+    types = dict(master.getTopicTypes())
+    ours = {
+        t: types[t] for t, nodes in publishers
+        if "/softpad" in nodes and not t.startswith(("/softpad/grasp/", "/rosout"))
+    }  # fmt: skip
+    assert ours == {n: ros1_type(t) for n, t in topics_for("ros1", 6).items()}
 
 
 def test_ros_env_generates_messages_other_interpreters_import(procs: _Procs) -> None:

@@ -194,6 +194,10 @@ class PadNode:
         ROS node name.
     """
 
+    #: True after a cancelled grasp: the box stays in its safe state, the watch paused, until
+    #: ``~inflate`` adjusts the pad again.
+    safe_hold = False
+
     def __init__(self, config: NodeConfig, name: str = "softpad") -> None:
         from softpad.ros._publish import LoopPublisher, PadPublishers
         from softpad.ros._rospy_path import require_master
@@ -216,8 +220,6 @@ class PadNode:
         self.loop_publisher = LoopPublisher(self.pubs)
         self._make_services()
         self._make_action()
-        #: True after a cancelled grasp: the box stays in its safe state, the watch paused,
-        #: until ``~inflate`` adjusts the pad again.
         self.safe_hold = False
         self.reference_pa: NDArray[np.float64] | None = None
         self.plans: list[Any] = []
@@ -279,7 +281,7 @@ class PadNode:
             result.grasps = m.pose_array(self.rospy.Time.now(), m.grasp_poses(r.result["objects"]))
             result.result_json = json.dumps(r.result)
         if r.cancelled:
-            result.outcome = "cancelled"
+            result.outcome = "canceled"
             action.set_preempted(result, r.message)
         elif r.ok:
             action.set_succeeded(result, result.outcome)
@@ -469,10 +471,14 @@ class PadNode:
     def _serve_grasp(self, r: _Request) -> None:
         """One grasp for the service or the action; a cancel leaves the box safe and the watch
         paused (:attr:`safe_hold`)."""
+        from softpad.box import simulator_of
         from softpad.ros._publish import GraspCancelled
 
         lp = self.loop_publisher
         lp.on_phase, lp.cancel_requested = r.on_phase, r.cancel_requested
+        sim = simulator_of(self.box)
+        if sim is not None:  # the simulated arm's measured pose, as recordings take it
+            self.pubs.robot_state = sim.world.gripper_state
         try:
             r.result = _jsonable_result(self._grasp(r.hold_s).to_dict())
             r.message = json.dumps(_summary(r.result))
@@ -482,6 +488,7 @@ class PadNode:
             self.safe_hold = True
         finally:
             lp.on_phase = lp.cancel_requested = None
+            self.pubs.robot_state = None
             self._phase("safe" if self.safe_hold else "watch")
 
     def _capture_reference(self) -> None:
