@@ -36,6 +36,17 @@ def test_a_recording_places_the_pad_where_the_installation_says(tmp_path: Path) 
     out = tmp_path / "run.mcap"
     argv = ["run", "--objects", "object-5", "--hold-s", "0.5", "--config", str(site)]
     assert main([*argv, "--record", str(out), "--json"]) in (0, 1)
+    # the recording holds exactly the table's names and types (softpad.topics)
+    from mcap.reader import make_reader
+
+    from softpad.topics import topics_for
+
+    with out.open("rb") as f:
+        summary = make_reader(f).get_summary()
+    assert summary is not None
+    schemas = {s.id: s.name for s in summary.schemas.values()}
+    channels = {c.topic: schemas[c.schema_id] for c in summary.channels.values()}
+    assert channels == topics_for("recording", 6)
     (msg,) = _tf_static(out)
     pad = msg.transforms[0]  # type: ignore[attr-defined]
     assert (pad.header.frame_id, pad.child_frame_id) == ("base", "softpad")

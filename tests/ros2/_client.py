@@ -79,15 +79,23 @@ def watch(node: Any, seconds: float) -> dict[str, Any]:
 
 
 def grasp(node: Any, cancel_at: str | None, timeout_s: float) -> dict[str, Any]:
+    from geometry_msgs.msg import PoseArray
     from rclpy.action import ActionClient
+    from rclpy.qos import DurabilityPolicy, QoSProfile
     from softpad_msgs.action import Grasp
     from softpad_msgs.msg import Event
 
     events: list[Any] = []
     node.create_subscription(Event, "/softpad/events", events.append, 100)
+    plans: list[Any] = []
+    latched = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL)
+    node.create_subscription(PoseArray, "/softpad/plan/grasps", plans.append, latched)
     client = ActionClient(node, Grasp, "/softpad/grasp")
     if not client.wait_for_server(timeout_sec=60.0):
         return {"error": "no action server"}
+    # the node's watch plans the object once it lies still: its plan before any grasp
+    _spin_until(node, lambda: any(p.poses for p in plans), 120.0)
+    watched = [[q.position.x, q.position.y] for p in plans if p.poses for q in p.poses][:1]
     phases: list[str] = []
     state: dict[str, Any] = {}
 
@@ -115,6 +123,7 @@ def grasp(node: Any, cancel_at: str | None, timeout_s: float) -> dict[str, Any]:
         "grasps_frame": r.result.grasps.header.frame_id,
         "result": json.loads(r.result.result_json) if r.result.result_json else None,
         "phases": phases,
+        "watch_plan": watched,
         "events": [[e.kind, json.loads(e.data_json)] for e in events],
     }
 

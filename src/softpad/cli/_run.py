@@ -84,6 +84,12 @@ def register(sub: Any) -> None:
     p.add_argument("--png", metavar="FILE.png", help="draw the pressure traces with the phases")
     p.add_argument("--plot", action=Renamed, new="--png FILE.png")
     add_record_option(p)
+    _add_watch_options(p)
+    p.set_defaults(handler=run)
+
+
+def _add_watch_options(p: argparse.ArgumentParser) -> None:
+    """``--ros``, ``--ros2`` and ``--foxglove``: who watches the run while it runs."""
     p.add_argument(
         "--ros",
         action="store_true",
@@ -103,7 +109,6 @@ def register(sub: Any) -> None:
         metavar="PORT",
         help="serve the run live to Foxglove on ws://127.0.0.1:PORT (0: a free port)",
     )
-    p.set_defaults(handler=run)
 
 
 def _add_attempt_options(p: argparse.ArgumentParser) -> None:

@@ -18,6 +18,7 @@ import json
 import math
 import queue
 import threading
+from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -58,7 +59,8 @@ class NodeConfig:
     object_threshold_pa, contact_threshold_pa
         t_o and t_g, pascals (thesis: 50 and 90).
     settle_s
-        A changed set of objects is planned after it has stayed the same this long, seconds.
+        An object is planned after it has lain still this long, seconds (the grasp loop's
+        ``object_settle_s``, which the node's grasps use too; default the loop's, 1 s).
     place
         Simulation only: catalogue objects put on a ``sim://`` box ``place_after_s`` after the
         reference (for demonstrations and tests; a person places them on a real pad).
@@ -86,7 +88,7 @@ class NodeConfig:
     base_frame: str = "base"
     object_threshold_pa: float = thesis.OBJECT_THRESHOLD_PA
     contact_threshold_pa: float = thesis.CONTACT_THRESHOLD_PA
-    settle_s: float = 0.5
+    settle_s: float = 1.0
     place: tuple[str, ...] = ()
     place_after_s: float = 1.0
     ambient_pressure_pa: float = thesis.AMBIENT_PRESSURE_PA
@@ -318,22 +320,20 @@ class PadNode:
             self.rospy.signal_shutdown("softpad ros node ended")
 
     def _make_parts(self) -> None:
-        """The object detector, contact detector and planner from the registries, for the
-        box's sample rate and the pad (as ``softpad run`` makes them)."""
-        from softpad.planning import PlannerParams, planner_for
-        from softpad.sensing import make_contact_detector, make_object_detector
+        """The loop's parts, made as the grasp loop makes them for this node's settings: the
+        registered planner and contact detector for the box's rate, the pad and the gripper
+        (:func:`softpad.control.loop_parts`), and the loop's object detector (the thesis's t_o
+        on the filtered increments): the watch plans what a grasp would."""
+        from softpad.control import loop_parts
+        from softpad.layout import GripperSpec
+        from softpad.sensing import ThesisObjectDetector
 
         c, rate = self.config, float(self.box.sample_rate_hz)
-        thresholds = {
-            "contact_threshold_pa": c.contact_threshold_pa,
-            "object_threshold_pa": c.object_threshold_pa,
-        }
-        self.object_detector = make_object_detector("thesis", rate, self.layout, **thresholds)
-        self.contact_detector = make_contact_detector(c.detector, rate, self.layout, **thresholds)
-        params = PlannerParams(object_threshold_pa=c.object_threshold_pa)
-        self.planner = planner_for(
-            c.planner, None, params, self.contact_detector, rate, self.layout
-        )
+        self.params = self._execution_params()
+        spec = GripperSpec.from_mounting(self._mounting())
+        parts = loop_parts(c.planner, c.detector, rate, self.layout, spec, self.params)
+        self.planner, self.contact_detector = parts["planner"], parts["contact_detector"]
+        self.object_detector = ThesisObjectDetector(self.params.planner.object_threshold_pa)
 
     def _adjust(self) -> None:
         from softpad.control import inflate_and_adjust
@@ -343,15 +343,24 @@ class PadNode:
         self._set_reference(self.adjustment.reference_pa)
 
     def _set_reference(self, reference_pa: NDArray[np.float64]) -> None:
-        from softpad.sensing import RunningAverage
-
         self.reference_pa = np.asarray(reference_pa, dtype=float)
-        self.increments = RunningAverage(thesis.FILTER_WINDOW)
         self.contact_ref: NDArray[np.float64] | None = None
-        self._filtered = np.zeros(self.n)
-        self.groups: list[tuple[int, ...]] = []
-        self.changed_at = self.planned_at = -math.inf
+        self._recent: deque[NDArray[np.float64]] = deque(maxlen=self.params.planning_reads)
+        self._arm_watch()
         self._publish_plans([])
+
+    def _arm_watch(self) -> None:
+        """Watch for objects afresh, as the loop's ``wait_object`` does."""
+        from softpad.control import ObjectWatch
+
+        assert self.reference_pa is not None
+        p = self.params
+        self.watch = ObjectWatch(
+            self.reference_pa, self.object_detector, self.layout, p.filter_length,
+            p.object_settle_s,
+        )  # fmt: skip
+        self._plan_reads: list[NDArray[np.float64]] | None = None
+        self._planned: list[tuple[int, ...]] | None = None
 
     def _place_later(self) -> None:
         self.place_at = None
@@ -402,30 +411,50 @@ class PadNode:
 
     # --- per frame ------------------------------------------------------------------------
     def _track(self, p: NDArray[np.float64]) -> None:
-        """Objects from the filtered increments; plan once a changed set has settled; contact."""
-        assert self.reference_pa is not None
-        d = self.increments.update(np.nan_to_num(p - self.reference_pa))
-        self._filtered = d
-        groups = self.object_detector.objects(d, self.layout)
-        now = self.pubs.last_t
-        if groups != self.groups:
-            self.groups, self.changed_at = groups, now
-        elif self.changed_at > self.planned_at and now - self.changed_at >= self.config.settle_s:
-            self._plan(d)
+        """The loop's object watch on every frame (:class:`softpad.control.ObjectWatch`):
+        once an object has settled, the loop's planning reads and planning step
+        (:func:`softpad.control.plan_from_reads`); after a plan, a changed set of objects
+        arms the watch again; and the contact detector."""
+        p = np.nan_to_num(p)
+        self._recent.append(p)
+        if self._plan_reads is not None:  # settled: the reads the loop plans from
+            self._plan_reads.append(p)
+            if len(self._plan_reads) == self.params.planning_reads:
+                self._plan(self._plan_reads)
+        else:
+            state = self.watch.update(p, self.pubs.last_t)
+            if self._planned is None and state == "settled":
+                self._plan_reads = []
+            elif self._planned is not None and self._objects_now() != self._planned:
+                self._arm_watch()  # objects came, went or moved: watch and plan again
+                if not self._objects_now():
+                    self._publish_plans([])
         contact = False
         if self.contact_ref is not None:
             contact = bool(self.contact_detector.update(p))
         self.pubs.contact(contact)
 
-    def _plan(self, increments_pa: NDArray[np.float64]) -> list[Any]:
-        objects = self.object_detector.objects(increments_pa, self.layout)
-        plans = self.planner.plan(increments_pa, objects, self.layout)
-        self.planned_at = self.pubs.last_t
+    def _objects_now(self) -> list[tuple[int, ...]]:
+        """Objects in the watch's filtered increments now, sorted."""
+        return sorted(tuple(o) for o in self.object_detector.objects(self.watch.filtered(),
+                                                                     self.layout))  # fmt: skip
+
+    def _plan(self, reads: Any = None) -> list[Any]:
+        """Plan from ``reads`` (default: the last frames, as many as the loop's planning
+        reads) with the loop's planning step, publish, and re-arm the contact detector."""
+        from softpad.control import plan_from_reads
+
         assert self.reference_pa is not None
-        self.contact_ref = self.reference_pa + increments_pa  # the pad with the objects on it
+        reads = list(self._recent if reads is None else reads)
+        delta, plans = plan_from_reads(
+            reads, self.reference_pa, self.object_detector, self.planner, self.layout
+        )
+        self._plan_reads = None
+        self._planned = sorted(tuple(pl.modules) for pl in plans)
+        self.contact_ref = self.reference_pa + delta  # the pad with the objects on it
         self.contact_detector.reset(self.contact_ref)
-        self._publish_plans(plans)
-        return plans
+        self._publish_plans(list(plans))
+        return list(plans)
 
     def _publish_plans(self, plans: list[Any]) -> None:
         self.plans = plans
@@ -455,7 +484,7 @@ class PadNode:
             elif r.name == "grasp":
                 self._serve_grasp(r)
             else:
-                plans = self._plan(self._filtered)
+                plans = self._plan()
                 r.message = json.dumps([p.to_dict(self.layout) for p in plans])
             r.ok = True
         except (InputError, ExecutionError) as exc:
@@ -537,6 +566,7 @@ class PadNode:
             planner=PlannerParams(object_threshold_pa=c.object_threshold_pa),
             contact_threshold_pa=c.contact_threshold_pa,
             hold_s=c.hold_s if hold_s is None else hold_s,
+            object_settle_s=c.settle_s,
         )
 
 
