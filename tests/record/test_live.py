@@ -128,9 +128,9 @@ def test_live_view_advertises_typed_schemas_and_the_recordings_plan_topics() -> 
         plan = {"modules": [1, 2], "pcom": [1.0, 1.5], "cog": [1.0, 1.5], "theta": 0.5,
                 "cog_m": [0.045, 0.0675], "rule": "n2"}  # fmt: skip
         live.event(0.6, "plan", objects=[plan], increments_pa=[60.0] * 6)
-        topics = {"/softpad/events", "/softpad/plan", "/softpad/robot/pose"}
-        topics |= {"/softpad/plan/grasps", "/softpad/plan/objects"}
-        channels = asyncio.run(_advertised(live.url, topics))
+        from softpad.topics import topics_for
+
+        channels = asyncio.run(_advertised(live.url, set(topics_for("live", 6))))
     finally:
         live.close()
     events = json.loads(channels["/softpad/events"]["schema"])
@@ -143,3 +143,7 @@ def test_live_view_advertises_typed_schemas_and_the_recordings_plan_topics() -> 
     assert channels["/softpad/robot/pose"]["schemaName"] == "foxglove.PoseInFrame"
     for topic in ("/softpad/plan/grasps", "/softpad/plan/objects"):
         assert channels[topic]["schemaName"] == "foxglove.PosesInFrame", topic
+    # exactly the topic table's live names and schema names (softpad.topics)
+    from softpad.topics import topics_for
+
+    assert {t: c["schemaName"] for t, c in channels.items()} == topics_for("live", 6)
