@@ -193,7 +193,7 @@ def test_the_loop_publisher_translates_the_loops_report() -> None:
 
 def test_a_retry_republishes_the_grasp_under_way() -> None:
     """An ``approach`` to another grasp of a planned object (a retry) republishes
-    /softpad/grasps with it (COG in metres from the pad's pitch); the planned grasp's own
+    /softpad/plan/grasps with it (COG in metres from the pad's pitch); the planned grasp's own
     approach publishes nothing more."""
     from softpad.layout import PadLayout
     from softpad.ros import LoopPublisher

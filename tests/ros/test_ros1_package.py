@@ -17,7 +17,7 @@ import subprocess
 from pathlib import Path
 
 import pytest
-from test_ros import SOFTPAD, _messages, _Procs, _wait, _watch, master, procs  # noqa: F401
+from test_ros import SOFTPAD, _echo, _messages, _Procs, _wait, _watch, master, procs  # noqa: F401
 
 from softpad.ros import rospy_available
 
@@ -107,8 +107,7 @@ def test_grasp_action_holds_object_5_with_phase_feedback_and_events_echo_live(
     )  # fmt: skip
     procs.env = env  # rostopic echo below decodes softpad_msgs/Event with the generated modules
     logs = _watch(procs, "/softpad/events", "/tf_static")
-    _wait(lambda: "position" in procs.run("rostopic", "echo", "-n", "1", "/softpad/grasps").stdout,
-          90.0, "object 5 planned")  # fmt: skip
+    _wait(lambda: "position" in _echo(procs, "/softpad/plan/grasps"), 90.0, "object 5 planned")
     out = _client(procs, env, "-", 1.0)
     assert node.poll() is None, log.read_text()
     assert out["state"] == 3 and out["outcome"] == "held", out  # actionlib SUCCEEDED

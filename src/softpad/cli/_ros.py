@@ -14,8 +14,9 @@ ROS_HOSTNAME=localhost (loopback only)."""
 
 _NODE_DESCRIPTION = f"""\
 Open the box, inflate and adjust every module, save the reference, then publish every frame
-(/softpad/module_K/pressure, /softpad/pressures), the objects and grasps (/softpad/objects,
-/softpad/grasps), /softpad/contact, /diagnostics and the static transforms; services
+(/softpad/module_K/pressure, /softpad/pressures, /softpad/supply/pressure), the objects and
+grasps (/softpad/plan/objects, /softpad/plan/grasps), /softpad/contact, /softpad/events,
+/diagnostics and the static transforms (the topic table's ros1 rows); services
 ~inflate, ~capture_reference, ~plan and ~grasp (the grasp loop of 'softpad run' once, on this
 box, with the --robot; its phase and outcome on /softpad/phase and /softpad/outcome), and the
 grasp action ~grasp (softpad_msgs/GraspAction: the phases as feedback, a cancel ends in the

@@ -301,7 +301,7 @@ class LoopPublisher:
 
     Every frame: the pressures and ``/softpad/contact`` (true from the loop's ``contact``
     event until the grasp's ``release``, or the next ``approach`` after a landing). Each phase
-    on :data:`PHASE_TOPIC`; the plan on ``/softpad/objects`` and ``/softpad/grasps``, the
+    on :data:`PHASE_TOPIC`; the plan on ``/softpad/plan/objects`` and ``/softpad/plan/grasps``, the
     latter again when an ``approach`` tries another grasp of an object (a retry); a fault as
     the link's ERROR and on :data:`OUTCOME_TOPIC`, where :meth:`finish` puts the loop's result
     and :meth:`error` a loop that could not go on.
