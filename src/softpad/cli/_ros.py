@@ -123,7 +123,7 @@ def _register_tools(rsub: Any) -> None:
         "Grasp action) and print the exports that put them on PYTHONPATH and SoftPad's ROS "
         "packages (softpad_msgs, softpad_ros: launch files, URDF, rviz) on ROS_PACKAGE_PATH.",
         'example:\n  eval "$(softpad ros env)"; rostopic echo /softpad/events',
-        json=None,
+        json="print the two directories as JSON (PYTHONPATH, ROS_PACKAGE_PATH)",
     )
     env.set_defaults(handler=run_env)
     urdf = add_command(
@@ -132,7 +132,7 @@ def _register_tools(rsub: Any) -> None:
         "URDF of the pad: one link per module, the frames of /tf_static",
         "Print (or write with --out) the pad's URDF: link softpad and softpad_module_K on "
         "fixed joints at the module centres (check_urdf reads it).",
-        json=None,
+        json="print the URDF (or the file written) as JSON",
         force=True,
     )
     urdf.add_argument("--layout", default="2x3", help="pad layout RxC (default %(default)s)")
@@ -142,8 +142,12 @@ def _register_tools(rsub: Any) -> None:
 
 
 def run_env(args: argparse.Namespace) -> int:
-    from softpad.ros import shell_environment
+    from softpad.ros import generate_messages, ros_packages_dir, shell_environment
 
+    if args.json:
+        dirs = {"PYTHONPATH": str(generate_messages()), "ROS_PACKAGE_PATH": str(ros_packages_dir())}
+        print(json.dumps(dirs))
+        return 0
     print(shell_environment(), end="")
     return 0
 
@@ -159,13 +163,13 @@ def run_urdf(args: argparse.Namespace) -> int:
         raise InputError(f"--pitch-mm must be within 1 to 1000 mm, got {args.pitch_mm:g}")
     text = pad_urdf(parse_layout(args.layout, args.pitch_mm / 1e3))
     if args.out is None:
-        print(text, end="")
+        print(json.dumps({"urdf": text}) if args.json else text, end="\n" if args.json else "")
         return 0
     out = Path(args.out)
     if out.exists() and not args.force:
         raise InputError(f"{str(out)!r} exists; refusing to overwrite it (add --force)")
     out.write_text(text)
-    print(f"softpad ros urdf: {out}")
+    print(json.dumps({"file": str(out)}) if args.json else f"softpad ros urdf: {out}")
     return 0
 
 
