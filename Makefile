@@ -53,7 +53,7 @@ ros2-interfaces: venv
 	    if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
 	        (apt-cache policy cmake | grep -q 'Candidate: [0-9]' || apt-get update -q) && \
 	        DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends \
-	            cmake g++ strace; \
+	            cmake g++ strace python3-dev; \
 	    fi; fi
 	@$(BIN)/python -c "import softpad_msgs.action, tf2_msgs.msg" 2>/dev/null \
 	    || $(BIN)/softpad ros2 build-interfaces \

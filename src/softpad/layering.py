@@ -37,10 +37,8 @@ ALLOWED_IMPORTS: Mapping[str, frozenset[str]] = {
     ),
     # the ROS adapters translate; the simulated arm node uses the harness and the catalogue
     "ros": frozenset({"box", "control", "harness", "layout", "planning", "sensing", "sim"}),
-    # ROS 2: the ROS 1 node's loop with rclpy edges; the installation file's settings
-    "ros2": frozenset(
-        {"box", "config", "control", "harness", "layout", "planning", "ros", "sensing", "sim"}
-    ),
+    # ROS 2: the ROS 1 node's loop with rclpy edges
+    "ros2": frozenset({"box", "control", "harness", "layout", "planning", "ros", "sensing", "sim"}),
     # design sweeps evaluate pads with the FEM and simulated trials
     "design": frozenset(
         {"box", "control", "fem", "harness", "layout", "planning", "sensing", "sim", "trials"}

@@ -36,6 +36,7 @@ def _stamp(msg: Any) -> float:
 
 def watch(node: Any, seconds: float) -> dict[str, Any]:
     from diagnostic_msgs.msg import DiagnosticArray
+    from geometry_msgs.msg import PoseStamped
     from rclpy.qos import DurabilityPolicy, QoSProfile
     from sensor_msgs.msg import FluidPressure
     from tf2_msgs.msg import TFMessage
@@ -44,6 +45,8 @@ def watch(node: Any, seconds: float) -> dict[str, Any]:
     supply: list[Any] = []
     diagnostics: list[Any] = []
     tf: list[Any] = []
+    poses: list[Any] = []
+    node.create_subscription(PoseStamped, "/softpad/robot/pose", poses.append, 50)
     node.create_subscription(FluidPressure, "/softpad/module_1/pressure", pressures.append, 200)
     node.create_subscription(FluidPressure, "/softpad/supply/pressure", supply.append, 200)
     node.create_subscription(DiagnosticArray, "/diagnostics", diagnostics.append, 10)
@@ -75,6 +78,7 @@ def watch(node: Any, seconds: float) -> dict[str, Any]:
         "levels": {s.name: int.from_bytes(s.level, "little") for d in diagnostics[-1:] for s in
                    d.status},
         "transforms": transforms,
+        "robot_poses": len(poses),
     }  # fmt: skip
 
 

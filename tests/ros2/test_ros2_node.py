@@ -9,6 +9,7 @@ Skipped only where the rclpy wheels or the locally built interfaces are missing.
 
 from __future__ import annotations
 
+import itertools
 import json
 import math
 import os
@@ -40,6 +41,15 @@ needs_ros2 = pytest.mark.skipif(
     "make ros2-interfaces (tf2_msgs, softpad_msgs)",
 )
 CLIENT = str(Path(__file__).with_name("_client.py"))
+_DOMAINS = itertools.count()
+
+
+def _domain() -> str:
+    """A ROS domain of its own for each node of this process (1..100): no test's node, still
+    stopping, answers another test's client."""
+    return str(1 + (os.getpid() * 7 + next(_DOMAINS)) % 100)
+
+
 SITE = """
 [pad]
 rows = 2
@@ -79,7 +89,7 @@ class _Node:
 
     def __init__(self, tmp: Path, *args: str, trace: Path | None = None) -> None:
         self.env = {**os.environ, **loopback_environment(tmp)}
-        self.env["ROS_DOMAIN_ID"] = str(1 + os.getpid() % 100)  # this test's own domain
+        self.env["ROS_DOMAIN_ID"] = _domain()  # this node's own domain
         (tmp / "site.toml").write_text(SITE)
         self.log = tmp / "node.log"
         cmd = [sys.executable, "-m", "softpad", "ros2", "node", "--config",
@@ -88,8 +98,9 @@ class _Node:
             cmd = ["strace", "-f", "-qq", "-e", "trace=sendto,sendmsg,sendmmsg", "-o",
                    str(trace), *cmd]  # fmt: skip
         self.proc = subprocess.Popen(
-            cmd, env=self.env, stdout=self.log.open("wb"), stderr=subprocess.STDOUT
-        )
+            cmd, env=self.env, stdout=self.log.open("wb"), stderr=subprocess.STDOUT,
+            start_new_session=True,  # its own group: strace's child is stopped with it
+        )  # fmt: skip
 
     def client(self, mode: str, seconds: float, timeout_s: float) -> dict[str, object]:
         r = subprocess.run(
@@ -102,13 +113,20 @@ class _Node:
         return out
 
     def close(self) -> None:
-        if self.proc.poll() is None:
-            self.proc.send_signal(signal.SIGINT)
-            try:
-                self.proc.wait(20)
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
-                self.proc.wait(10)
+        """SIGINT to the node's process group (the node and a tracing strace), then SIGKILL."""
+        group = os.getpgid(self.proc.pid) if self.proc.poll() is None else None
+        if group is None:
+            return
+        os.killpg(group, signal.SIGINT)
+        try:
+            self.proc.wait(20)
+        except subprocess.TimeoutExpired:
+            pass
+        try:
+            os.killpg(group, signal.SIGKILL)  # whatever is left of the group
+        except ProcessLookupError:
+            pass
+        self.proc.wait(10)
 
 
 @pytest.fixture
@@ -215,7 +233,7 @@ def test_run_ros2_publishes_the_run_with_the_installations_pad_pose(tmp_path: Pa
     """``softpad run --ros2``: another process sees the run's pressures and /tf_static with
     the installation's pad pose while the run goes on, and the run ends normally."""
     env = {**os.environ, **loopback_environment(tmp_path)}
-    env["ROS_DOMAIN_ID"] = str(1 + (os.getpid() + 50) % 100)
+    env["ROS_DOMAIN_ID"] = _domain()
     (tmp_path / "site.toml").write_text(SITE)
     cmd = [sys.executable, "-m", "softpad", "run", "--ros2", "--objects", "object-3",
            "--hold-s", "2", "--config", str(tmp_path / "site.toml"), "--json"]  # fmt: skip
@@ -232,6 +250,7 @@ def test_run_ros2_publishes_the_run_with_the_installations_pad_pose(tmp_path: Pa
     assert r.returncode == 0, r.stderr[-2000:]
     out = json.loads(r.stdout.strip().splitlines()[-1])
     assert out["count"] > 100
+    assert out["robot_poses"] > 0  # the simulated gripper's measured pose, 20 Hz
     pad = out["transforms"][0]
     assert pad["xyz"] == pytest.approx([0.4, -0.1, 0.02])
     assert run.returncode == 0, output[-2000:]

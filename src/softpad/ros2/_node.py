@@ -336,6 +336,7 @@ def watch_loop2(
     and this process publishes the table's ``ros2`` topics, with ``/tf_static`` placing the pad
     at ``pad`` (a :class:`~softpad.layout.PadPose`, the installation's ``[pad.pose]``; None:
     the origin) in ``base_frame``."""
+    from softpad.box import simulator_of
     from softpad.layout import PadPose
     from softpad.ros2._interfaces import apply_loopback_environment, ensure_rclpy
 
@@ -348,5 +349,8 @@ def watch_loop2(
     node = rclpy.create_node(node_name)
     pubs = Ros2Publishers(node, layout, box_url)
     pubs.box = box
+    sim = simulator_of(box)
+    if sim is not None:  # the simulated gripper's measured pose, as recordings take it
+        pubs.robot_state = sim.world.gripper_state
     pubs.static_frames(pad or PadPose(), base_frame)
     return Ros2RunPublisher(pubs)
