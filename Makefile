@@ -38,12 +38,15 @@ typecheck: venv
 
 # Debian's ROS 1 packages for the ROS node and its tests (docs/ros.md); installed only when missing,
 # and only as root (elsewhere the ROS tests are skipped with the reason).
-# python3-rosbag reads the ROS 1 bags of 'softpad log export --rosbag1' back in a test.
+# python3-rosbag reads the ROS 1 bags of 'softpad log export --rosbag1' back in a test;
+# python3-actionlib serves the grasp action; check_urdf (liburdfdom-tools) reads the pad's URDF.
 ROS_APT := ros-core python3-rospy python3-std-msgs python3-geometry-msgs python3-sensor-msgs \
-	python3-diagnostic-msgs python3-std-srvs python3-tf2-msgs python3-rostopic python3-rosbag
+	python3-diagnostic-msgs python3-std-srvs python3-tf2-msgs python3-rostopic python3-rosbag \
+	python3-actionlib python3-actionlib-msgs liburdfdom-tools
 ros-deps:
 	@if command -v roscore >/dev/null && [ -f /usr/lib/python3/dist-packages/rospy/__init__.py ] \
 	    && [ -d /usr/lib/python3/dist-packages/tf2_msgs ] \
+	    && [ -d /usr/lib/python3/dist-packages/actionlib ] && command -v check_urdf >/dev/null \
 	    && [ -f /usr/lib/python3/dist-packages/rosbag/__init__.py ]; then :; \
 	elif [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
 	    echo "ros-deps: running as root: installing Debian's ROS 1 packages with apt-get: $(ROS_APT)"; \

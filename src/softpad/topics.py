@@ -173,6 +173,7 @@ TOPICS: tuple[Topic, ...] = (
     Topic(
         EVENT_TOPIC, "softpad_msgs/msg/Event", "on event", EVENTS, _ALL,
         "every event of the loop: kind and data (JSON, SI units)",
+        live_type="softpad.Event",  # the data as a JSON object, not a string: Foxglove plots it
     ),
     Topic(
         PLAN_TOPIC, "geometry_msgs/msg/PoseArray", "on plan", LATCHED, _ALL,

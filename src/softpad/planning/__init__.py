@@ -39,7 +39,7 @@ from softpad.planning._registry import (
     planner_for,
     register_planner,
 )
-from softpad.planning._render import ascii_pad, format_plans, plot_plans
+from softpad.planning._render import ascii_pad, format_plans, plan_legend_handles, plot_plans
 
 __all__ = [
     "ALL_MOUNTINGS",
@@ -75,6 +75,7 @@ __all__ = [
     "object_extent_m",
     "pcom",
     "plan_grasps",
+    "plan_legend_handles",
     "planner_for",
     "plot_plans",
     "pressed_share",

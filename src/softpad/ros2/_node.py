@@ -73,8 +73,7 @@ class Ros2LoopPublisher(LoopPublisher):
             self.ros2.event(t_s, "canceled", data)
             self.ros2.outcome({"outcome": "canceled", "t_s": t_s, **data})
             return
-        super().event(t_s, kind, **data)
-        self.ros2.event(t_s, kind, data)
+        super().event(t_s, kind, **data)  # every event also on /softpad/events
 
 
 class _Running:
