@@ -22,7 +22,9 @@ _DESCRIPTION = """\
 Run Experiment 2 (MuJoCo trials) for each planner/detector pair over the given seeds and
 print per-pair and per-object success with 95 % Wilson intervals, failures by cause,
 detection delay and finger travel (median, p95) and the detector's false alarms per hour on
-an idle pad with noise and drift."""
+an idle pad with noise and drift; then each pair against every earlier one: Fisher's exact
+test on the pooled trials beside tests with the object as the unit (a paired sign-flip test
+over objects and a seeded cluster bootstrap interval of the difference)."""
 
 
 def register(sub: Any) -> None:
@@ -184,7 +186,28 @@ def _table(d: dict[str, Any]) -> str:
             f"{_pct(c['success'])} | {_pct(lo)} .. {_pct(hi)} | {delay} | {travel} | "
             f"{c['false_alarms_per_hour']:g} | {c['failures'] or '-'} |"
         )
-    return "\n".join(lines)
+    return "\n".join(lines + _contrast_table(d.get("contrasts", [])))
+
+
+def _contrast_table(contrasts: list[dict[str, Any]]) -> list[str]:
+    """Each pair against an earlier one: trials as independent, then objects as the unit."""
+    if not contrasts:
+        return []
+    lines = [
+        "",
+        "| B against A | difference | trial-level p (Fisher) | objects better / worse "
+        "| object-level p (sign-flip) | cluster bootstrap 95 % |",
+        "|---|---:|---:|---|---:|---|",
+    ]
+    for c in contrasts:
+        lo, hi = c["object_interval"]
+        lines.append(
+            f"| {c['b']} against {c['a']} | {100 * c['difference']:+.1f} points | "
+            f"{c['trial_p_value']:.3g} | {c['objects_better']} / {c['objects_worse']} "
+            f"of {c['objects']} | {c['object_p_value']:.3g} | "
+            f"{100 * lo:+.1f} .. {100 * hi:+.1f} points |"
+        )
+    return lines
 
 
 def _plot(d: dict[str, Any], path: str) -> None:
