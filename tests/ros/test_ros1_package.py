@@ -13,6 +13,7 @@ import json
 import math
 import os
 import shutil
+import signal
 import subprocess
 from pathlib import Path
 
@@ -194,6 +195,11 @@ def test_launch_file_starts_the_node_with_the_installation(procs: _Procs, tmp_pa
         if "/softpad" in nodes and not t.startswith(("/softpad/grasp/", "/rosout"))
     }  # fmt: skip
     assert ours == {n: ros1_type(t) for n, t in topics_for("ros1", 6).items()}
+    # interrupted, roslaunch stops the node before it ends itself (none left behind: the
+    # fixture's 5 s before SIGKILL once orphaned a node still shutting down)
+    launch.send_signal(signal.SIGINT)
+    assert launch.wait(60) is not None
+    assert "/softpad" not in procs.run("rosnode", "list").stdout.split()
 
 
 def test_ros_env_generates_messages_other_interpreters_import(procs: _Procs) -> None:
