@@ -268,7 +268,7 @@ class FaultMonitor:
         ref = self.reference_pa
         if ref is not None:
             low = sealed & (mean < ref - th.fall_pa)
-            if low.any():
+            if np.logical_or.reduce(low):  # low.any() without its wrapper (every frame)
                 k = int(np.argmax(low))
                 what = (
                     f"{mean[k] / 1e3:.3f} kPa with its valves closed, "
@@ -276,7 +276,7 @@ class FaultMonitor:
                 )
                 return _fault(t, k, "falling", what, "leak or deflation valve stuck open?")
         self._sealed_window &= sealed
-        if self._window_start is None or not sealed.any() or self.robot_pressing:
+        if self._window_start is None or not np.logical_or.reduce(sealed) or self.robot_pressing:
             self._window_start = (t, mean.copy())
             self._sealed_window = sealed.copy()
             self._rising[:] = 0
@@ -363,24 +363,26 @@ class _SteadyRise:
             self._lo += 1
         if not rates or t - times[self._lo] < span:
             return None
-        if self._sealed_from.min() > t - span:
+        # ufunc reductions: the values of .min() and .all(), without their Python wrappers
+        if np.minimum.reduce(self._sealed_from) > t - span:
             return None  # no channel sealed throughout (see ``old`` below)
         half = 0.5 * self.window_s
         kept = times[self._lo : self._hi]
         edges = np.searchsorted(kept, t - self._offsets, side="right") - 1
         old = self._sealed_from > kept[edges[-1]]
-        if old.all():
+        if np.logical_and.reduce(old):
             return None  # no channel sealed throughout: every rate would be NaN
         counts = (edges[:-1] - edges[1:]).astype(float)  # samples in each half window
-        if counts.min() < 1.0:
+        if np.minimum.reduce(counts) < 1.0:
             return None
         sums = self._sum[self._lo + edges]
         halves = (sums[:-1] - sums[1:]) / counts[:, None]
         levels = 0.5 * (halves[0::2] + halves[1::2])
         between = (levels[:-1] - levels[1:]) / self.window_s
         within = (halves[0::2] - halves[1::2]) / half
-        between[:, old] = np.nan
-        within[:, old] = np.nan
+        if np.logical_or.reduce(old):
+            between[:, old] = np.nan
+            within[:, old] = np.nan
         return between, within
 
 
