@@ -58,8 +58,11 @@ def test_full_loop_on_object_5() -> None:
 
 def test_two_separate_objects_are_grasped_one_after_the_other() -> None:
     # seed 4: the second object's fingertip touch is marginal on some seeds (seeds 6 and 8 miss it
-    # before and after the exact gas integrator, seed 5 after it); this test is about the order
-    r = run_simulated(["object-1", "object-4"], "sim://?seed=4", FAST, gripper="6/2")
+    # before and after the exact gas integrator, seed 5 after it); this test is about the order.
+    # The clamped modules: on the cast pad (issue 45) the 6/2 jaws' tips land near object 4's
+    # module borders, where the cast layer's response is 10-20 % lower, and the second touch is
+    # missed on 8 of seeds 0-9 (held on 3 and 7): a prediction of the cast pad, not of the order
+    r = run_simulated(["object-1", "object-4"], "sim://?seed=4&pad=clamped", FAST, gripper="6/2")
     assert [p.modules for p in r.result.plans] == [(1, 4), (3, 6)]
     assert [g.outcome for g in r.result.grasps] == ["held", "held"]
     assert r.result.grasps[0].detected_at_s < r.result.grasps[1].detected_at_s
@@ -349,7 +352,9 @@ class _SplittingPlanner:
 def _split_run(objects: list[str], params: ExecutionParams, planner: object):  # type: ignore[no-untyped-def]
     log = RunLog()
     # seed 4: see test_two_separate_objects_are_grasped_one_after_the_other
-    r = run_simulated(objects, "sim://?seed=4", params, log, gripper="6/2", planner=planner)
+    r = run_simulated(
+        objects, "sim://?seed=4&pad=clamped", params, log, gripper="6/2", planner=planner
+    )
     return r.result, log
 
 

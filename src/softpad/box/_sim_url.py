@@ -14,6 +14,7 @@ from softpad.sim import (
     AnalyticWorld,
     DisturbanceParams,
     ModuleCharacteristic,
+    PadResponse,
     PneumaticParams,
     SensorParams,
     SimGripper,
@@ -28,6 +29,8 @@ _SIM_OPTIONS = {
     "layout": "pad layout RxC (2x3)",
     "pitch_mm": "module pitch in mm (45)",
     "realtime": "1 to pace reads to the wall clock (0)",
+    "pad": "the pad's FEM response: cast (the pad as cast, one upper layer; the "
+    "default where its table fits the layout) or clamped (independent modules, clamped edges)",
     "inflated_kpa": "start with every module at this pressure (0: deflated)",
     "supply_kpa": "regulated supply pressure (10)",
     "noise": "0 for an ideal noise-free sensor (1)",
@@ -74,7 +77,11 @@ def _world(options: dict[str, str]) -> AnalyticWorld:
     if "pitch_mm" in options:
         layout = PadLayout(layout.rows, layout.cols, _num(options, "pitch_mm", 45.0) / 1e3)
     gripper = SimGripper.mounting(options.get("gripper", "10/4"))
-    world = AnalyticWorld(layout, gripper)
+    pad = options.get("pad")
+    if pad not in (None, "cast", "clamped"):
+        raise InputError(f"sim:// option pad={pad!r} must be 'cast' or 'clamped'")
+    response = None if pad is None else PadResponse(layout, pad_model=pad)
+    world = AnalyticWorld(layout, gripper, response=response)
     if "object" in options:
         world.place_object(get_object(options["object"]))
     return world
