@@ -21,6 +21,7 @@ from softpad.trials._compare import (
     merge_comparisons,
     wilson_interval,
 )
+from softpad.trials._compare_report import comparison_table, parse_pairs, plot_comparison
 from softpad.trials._config import TrialConfig, drawn_placement, trial_execution_params
 from softpad.trials._object_fit import ObjectFit, fit_object_unknowns
 from softpad.trials._records import (
@@ -61,13 +62,16 @@ __all__ = [
     "ValidationResult",
     "calibrate",
     "compare",
+    "comparison_table",
     "drawn_placement",
     "errored_records",
     "errored_trial",
     "fit_object_unknowns",
     "idle_false_alarms_per_hour",
     "merge_comparisons",
+    "parse_pairs",
     "perturbed_placement",
+    "plot_comparison",
     "protocol_loads",
     "record_calibration",
     "run_experiment",
