@@ -157,29 +157,6 @@ def _object_set(args: argparse.Namespace) -> Any:
     return s.with_gripper(args.gripper)
 
 
-def _check_on_pads(object_set: Any, designs: list[Any]) -> None:
-    """Every object's footprint centre lies on every design's pad, before any work."""
-    from softpad.design import footprint_centre_m
-
-    for d in designs:
-        w, h = d.cols * d.pitch_m, d.rows * d.pitch_m
-        for obj in object_set.objects:
-            try:
-                p = obj.placed_on((w, h)).placement
-            except InputError as exc:  # metres away: beyond any placement
-                raise InputError(
-                    f"object {obj.name!r} would lie off the {d.rows}x{d.cols} pad of "
-                    f"{w * 1e3:.0f} x {h * 1e3:.0f} mm: {exc}"
-                ) from None
-            cx, cy = footprint_centre_m(obj.spec.parts, p.yaw_rad)
-            x, y = p.x_m + cx, p.y_m + cy
-            if not (0.0 <= x <= w and 0.0 <= y <= h):
-                raise InputError(
-                    f"object {obj.name!r} would lie at ({x * 1e3:.0f}, {y * 1e3:.0f}) mm, off "
-                    f"the {d.rows}x{d.cols} pad of {w * 1e3:.0f} x {h * 1e3:.0f} mm"
-                )
-
-
 def run(args: argparse.Namespace) -> int:
     from softpad.design import (
         ResultCache,
@@ -190,7 +167,7 @@ def run(args: argparse.Namespace) -> int:
 
     object_set = _object_set(args)
     designs = _designs(args)
-    _check_on_pads(object_set, designs)
+    object_set.check_on_pads(designs)
     seeds = int_ranges(args.seeds, "--seeds", lo=0, hi=2**32 - 1)
     if len(seeds) > 100:
         raise InputError(f"--seeds names {len(seeds)} seeds; at most 100")
