@@ -6,7 +6,7 @@ PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
 
-.PHONY: demo test test-slow bench lint typecheck venv clean ros-deps ros2-interfaces results
+.PHONY: demo test test-slow bench lint typecheck venv clean ros-deps ros2-interfaces results ext
 
 $(VENV)/.installed: pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -15,6 +15,16 @@ $(VENV)/.installed: pyproject.toml
 	touch $@
 
 venv: $(VENV)/.installed
+
+# The compiled over-pressure guard (src/softpad/box/_fastguard.c, setup.py), built in place:
+# `pip install -e .` builds it too; this is for an environment installed before it existed.
+# Without a C compiler the daemon runs its guard in Python only (and says so).
+PYINFO = $(BIN)/python -c "import sysconfig as s; print(s.get_config_var('$(1)') or s.get_paths()['include'])"
+ext: venv
+	@if command -v cc >/dev/null; then \
+	    cc -O2 -std=c11 -Wall -shared -fPIC -I"$$($(call PYINFO,INCLUDEPY))" src/softpad/box/_fastguard.c \
+	        -o "src/softpad/box/_fastguard$$($(call PYINFO,EXT_SUFFIX))" -lpthread; \
+	else echo "ext: no C compiler: the compiled guard is not built (its tests are skipped)"; fi
 
 demo: venv
 	MPLBACKEND=Agg $(BIN)/softpad demo --out report --force
@@ -28,12 +38,15 @@ typecheck: venv
 
 # Debian's ROS 1 packages for the ROS node and its tests (docs/ros.md); installed only when missing,
 # and only as root (elsewhere the ROS tests are skipped with the reason).
-# python3-rosbag reads the ROS 1 bags of 'softpad log export --rosbag1' back in a test.
+# python3-rosbag reads the ROS 1 bags of 'softpad log export --rosbag1' back in a test;
+# python3-actionlib serves the grasp action; check_urdf (liburdfdom-tools) reads the pad's URDF.
 ROS_APT := ros-core python3-rospy python3-std-msgs python3-geometry-msgs python3-sensor-msgs \
-	python3-diagnostic-msgs python3-std-srvs python3-tf2-msgs python3-rostopic python3-rosbag
+	python3-diagnostic-msgs python3-std-srvs python3-tf2-msgs python3-rostopic python3-rosbag \
+	python3-actionlib python3-actionlib-msgs liburdfdom-tools
 ros-deps:
 	@if command -v roscore >/dev/null && [ -f /usr/lib/python3/dist-packages/rospy/__init__.py ] \
 	    && [ -d /usr/lib/python3/dist-packages/tf2_msgs ] \
+	    && [ -d /usr/lib/python3/dist-packages/actionlib ] && command -v check_urdf >/dev/null \
 	    && [ -f /usr/lib/python3/dist-packages/rosbag/__init__.py ]; then :; \
 	elif [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
 	    echo "ros-deps: running as root: installing Debian's ROS 1 packages with apt-get: $(ROS_APT)"; \
@@ -43,11 +56,14 @@ ros-deps:
 
 # ROS 2 (rclpy wheels, in .venv through the dev extra): tf2_msgs and softpad_msgs have no wheel;
 # built once into .venv with the wheels' rosidl generators (CMake, g++; about 1 min; docs/ros.md).
+# strace: a test checks that every datagram of the ROS 2 node goes to 127.0.0.1.
 ros2-interfaces: venv
-	@if ! command -v cmake >/dev/null || ! command -v g++ >/dev/null; then \
+	@if ! command -v cmake >/dev/null || ! command -v g++ >/dev/null \
+	    || ! command -v strace >/dev/null; then \
 	    if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
 	        (apt-cache policy cmake | grep -q 'Candidate: [0-9]' || apt-get update -q) && \
-	        DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends cmake g++; \
+	        DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends \
+	            cmake g++ strace python3-dev; \
 	    fi; fi
 	@$(BIN)/python -c "import softpad_msgs.action, tf2_msgs.msg" 2>/dev/null \
 	    || $(BIN)/softpad ros2 build-interfaces \
@@ -56,10 +72,10 @@ ros2-interfaces: venv
 # `--cpu-durations N` lists the N tests that used the most CPU (tests/conftest.py). Not
 # `--dist loadgroup`: with pytest 9 and pytest-xdist 3.8 it groups nothing (xdist renames the
 # nodeid through an attribute pytest 9 no longer reads); work shared by tests is shared inside one.
-test: lint typecheck ros-deps ros2-interfaces
+test: lint typecheck ros-deps ros2-interfaces ext
 	MPLBACKEND=Agg $(BIN)/pytest -n 2 -q -m "not slow" --durations=10
 
-test-slow: venv ros-deps ros2-interfaces
+test-slow: venv ros-deps ros2-interfaces ext
 	MPLBACKEND=Agg $(BIN)/pytest -n 2 -q -m slow --durations=10
 
 bench: venv

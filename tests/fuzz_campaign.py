@@ -195,6 +195,7 @@ def _stub_targets() -> list[tuple[Any, str, Any]]:
     targets: list[tuple[Any, str, Any]] = [
         (softpad.harness, "run_simulated", _started),
         (softpad.cli._trials, "run_with_progress", _started),
+        (softpad.cli._trials, "run_seeds_with_progress", _started),
         (softpad.cli._demo, "_reference_plans", _started),
         (softpad.cli._results, "run_result", _started),
         (softpad.cli._box, "_monitor_foxglove", _started),

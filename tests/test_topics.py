@@ -22,7 +22,8 @@ def test_every_output_gets_its_module_topics_once_per_module(output: str) -> Non
     assert [n for n in got if "/module_" in n] == [
         f"/softpad/module_{k}/pressure" for k in range(1, 7)
     ]
-    assert T.TF_STATIC_TOPIC in got and got[T.TF_STATIC_TOPIC] == "tf2_msgs/msg/TFMessage"
+    tf = "foxglove.FrameTransforms" if output == "live" else "tf2_msgs/msg/TFMessage"
+    assert got[T.TF_STATIC_TOPIC] == tf
 
 
 def test_what_each_output_carries() -> None:
@@ -30,10 +31,12 @@ def test_what_each_output_carries() -> None:
     ros = T.topics_for("ros2", 6)
     for name in (T.PLAN_TOPIC, T.OBJECT_TOPIC, T.SUPPLY_TOPIC, T.ROBOT_POSE_TOPIC, T.EVENT_TOPIC):
         assert name in ros
-        assert name in T.topics_for("recording", 6)
+        assert T.topics_for("recording", 6)[name] == ros[name]
         assert name in T.topics_for("live", 6)
     assert T.topics_for("ros1", 6) == ros
-    assert "/softpad/grasps" not in ros and "/softpad/plan" not in T.topics_for("live", 6)
+    assert "/softpad/grasps" not in ros and "/softpad/plan" not in ros
+    assert T.topics_for("live", 6)[T.PLAN_TOPIC] == "foxglove.PosesInFrame"
+    assert T.OUTCOME_TOPIC not in T.topics_for("recording", 6)
     assert T.PAD_TOPIC in T.topics_for("live", 6) and T.PAD_TOPIC not in ros
 
 

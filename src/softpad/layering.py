@@ -37,17 +37,16 @@ ALLOWED_IMPORTS: Mapping[str, frozenset[str]] = {
     ),
     # the ROS adapters translate; the simulated arm node uses the harness and the catalogue
     "ros": frozenset({"box", "control", "harness", "layout", "planning", "sensing", "sim"}),
-    # ROS 2: the ROS 1 node's loop with rclpy edges; the installation file's settings
-    "ros2": frozenset(
-        {"box", "config", "control", "harness", "layout", "planning", "ros", "sensing", "sim"}
-    ),
+    # ROS 2: the ROS 1 node's loop with rclpy edges
+    "ros2": frozenset({"box", "control", "harness", "layout", "planning", "ros", "sensing", "sim"}),
     # design sweeps evaluate pads with the FEM and simulated trials
     "design": frozenset(
         {"box", "control", "fem", "harness", "layout", "planning", "sensing", "sim", "trials"}
     ),
+    # the board benchmarks build a hardware box from an installation table
     "benchmarks": frozenset(
         {"box", "control", "design", "fem", "harness", "layout", "planning", "sensing", "sim"}
-        | {"trials"}
+        | {"trials", "config"}
     ),
     # the command: every layer
     "cli": frozenset(

@@ -1,8 +1,8 @@
-"""The seed's numbers, in SI units, each with the section of the thesis it comes from.
+"""The thesis's numbers, in SI units, each with the section of the thesis it comes from.
 
 This module is the one home of the thesis's parameters: every default elsewhere in the library
-refers to a name here. Where the seed gives no number, the comment says where the value comes
-from. The seed is the PhD thesis in the project's shared folder, chapters 6 and 7.
+refers to a name here. Where the thesis gives no number, the comment says where the value comes
+from. The source is the PhD thesis in the project's shared folder, chapters 6 and 7.
 """
 
 from __future__ import annotations
@@ -28,10 +28,10 @@ LAYER_THICKNESS_M = 0.0015
 #: thickness of the mould's grid walls (Fig. 6.2a) is not given.
 SEAM_WIDTH_M = MODULE_PITCH_M - CHAMBER_SIDE_M
 #: Air left under a flat (uninflated) layer, in the acetate channel and the tube inlet, m^3.
-#: Not in the seed; 0.2 mL (a 45 x 45 mm sheet leaves a gap of about 0.1 mm). Shared by the
+#: Not in the thesis; 0.2 mL (a 45 x 45 mm sheet leaves a gap of about 0.1 mm). Shared by the
 #: FEM's chamber and the simulator.
 CHAMBER_GAP_VOLUME_M3 = 0.2e-6
-#: Dead volume of one channel's tubing, m^3. The seed names the tube (Section 6.1.1: SPX-60 FB
+#: Dead volume of one channel's tubing, m^3. The thesis names the tube (Section 6.1.1: SPX-60 FB
 #: Versilon silicone tubing) but not its bore or length; 1 m of 2 mm bore (3.14 mL). Shared by
 #: the FEM's sealed chamber and the simulator's pneumatics.
 TUBING_VOLUME_M3 = math.pi * 1.0e-3**2 * 1.0
@@ -51,10 +51,10 @@ MAX_PRESSURE_PA = 3000.0
 
 # --- Sensing (Sections 6.2.1.2, 6.2.2, 6.3) --------------------------------------------------
 #: Ambient (atmospheric) pressure added to the box's gauge readings where a message needs an
-#: absolute pressure (``sensor_msgs/FluidPressure``), Pa. Not in the seed: the ISO 2533 standard
+#: absolute pressure (``sensor_msgs/FluidPressure``), Pa. Not in the thesis: the ISO 2533 standard
 #: atmosphere at sea level; an installation sets its own (``box.ambient_pressure_kpa``).
 AMBIENT_PRESSURE_PA = 101325.0
-#: White noise of one pressure sample, Pa rms. Not in the seed (it says only that the data "look
+#: White noise of one pressure sample, Pa rms. Not in the thesis (it says only that the data "look
 #: noisy mostly because of the pressure sensors performance", Fig. 6.8); the simulator's sensor
 #: model (softpad.sim, docs/box-and-simulator.md) uses it.
 SENSOR_NOISE_STD_PA = 8.0
@@ -92,7 +92,7 @@ GRIPPER_MOUNTINGS_M: dict[str, tuple[float, float]] = {
     "6/2": (0.06, 0.02),
     "4/0": (0.04, 0.0),
 }
-#: Fingertip size across the closing direction, m. The seed gives no number, only that the tips
+#: Fingertip size across the closing direction, m. The thesis gives no number, only that the tips
 #: were "very small for the chosen gripper" (Section 6.3). 16 mm is the Rethink Robotics
 #: electric parallel gripper's basic hard tip (the Sawyer's standard tip): collision box
 #: 16 x 6.5 x 37 mm in RethinkRobotics/intera_common,
@@ -101,7 +101,7 @@ FINGERTIP_WIDTH_M = 0.016
 #: Fingertip size along the closing direction, m: 6.5 mm, the same basic hard tip (source above).
 FINGERTIP_THICKNESS_M = 0.0065
 
-#: Closing speed of the gripper's opening, m/s (each jaw moves at half of it). Not in the seed;
+#: Closing speed of the gripper's opening, m/s (each jaw moves at half of it). Not in the thesis;
 #: chosen equal to the approach speed so that the jaws meet an object no harder than the
 #: fingers meet the pad.
 JAW_SPEED_M_S = APPROACH_SPEED_M_S

@@ -49,6 +49,8 @@ PHASE_TOPIC = "/softpad/phase"
 EVENT_TOPIC = "/softpad/events"
 PLAN_TOPIC = "/softpad/plan/grasps"
 OBJECT_TOPIC = "/softpad/plan/objects"
+#: The live view's plan event (JSON schema ``softpad.Plan``; Foxglove only).
+PLAN_DETAIL_TOPIC = "/softpad/plan"
 OUTCOME_TOPIC = "/softpad/outcome"
 VALVE_TOPIC = "/softpad/valves"
 ROBOT_POSE_TOPIC = "/softpad/robot/pose"
@@ -116,6 +118,9 @@ class Topic:
         What it holds, with units.
     rate_hz
         The nominal rate, Hz, where it has one; ``None`` for the box's rate or event-driven.
+    live_type
+        The schema the live view (Foxglove) gives it where that is not ``type``
+        (``foxglove.PosesInFrame``, ...); None: ``type`` (a JSON schema of the same shape).
     """
 
     name: str
@@ -125,6 +130,7 @@ class Topic:
     outputs: frozenset[str]
     content: str
     rate_hz: float | None = None
+    live_type: str | None = None
 
     @property
     def per_module(self) -> bool:
@@ -140,7 +146,6 @@ class Topic:
 
 _ALL = frozenset(OUTPUTS)
 _ROS = frozenset({"ros1", "ros2"})
-_RUN = frozenset({"ros1", "ros2", "recording"})
 
 #: The topic table.
 TOPICS: tuple[Topic, ...] = (
@@ -168,19 +173,26 @@ TOPICS: tuple[Topic, ...] = (
     Topic(
         EVENT_TOPIC, "softpad_msgs/msg/Event", "on event", EVENTS, _ALL,
         "every event of the loop: kind and data (JSON, SI units)",
+        live_type="softpad.Event",  # the data as a JSON object, not a string: Foxglove plots it
     ),
     Topic(
         PLAN_TOPIC, "geometry_msgs/msg/PoseArray", "on plan", LATCHED, _ALL,
         "one grasp per object: position = COG on the pad surface, yaw = theta (the jaws' "
-        "closing direction), m and rad, frame softpad",
+        "closing direction), m and rad, frame softpad", live_type="foxglove.PosesInFrame",
     ),
     Topic(
         OBJECT_TOPIC, "geometry_msgs/msg/PoseArray", "on plan", LATCHED, _ALL,
         "one pose per object at its PCOM on the pad surface, m, frame softpad",
+        live_type="foxglove.PosesInFrame",
     ),
     Topic(
-        OUTCOME_TOPIC, "softpad_msgs/msg/Outcome", "once per grasp loop", LATCHED, _RUN,
-        "the end of a grasp loop: outcome, message, the summary as JSON",
+        PLAN_DETAIL_TOPIC, "softpad.Plan", "on plan", Qos(depth=1), frozenset({"live"}),
+        "the loop's plan event as JSON: every object's modules, PCOM, COG, theta, rule",
+    ),
+    Topic(
+        OUTCOME_TOPIC, "softpad_msgs/msg/Outcome", "once per grasp loop", LATCHED, _ROS,
+        "the end of a grasp loop: outcome, message, the summary as JSON (recordings: the "
+        "events)",
     ),
     Topic(
         VALVE_TOPIC, "softpad_msgs/msg/ValveCommands", "on command", EVENTS,
@@ -189,6 +201,7 @@ TOPICS: tuple[Topic, ...] = (
     Topic(
         ROBOT_POSE_TOPIC, "geometry_msgs/msg/PoseStamped", "20 Hz while a robot moves",
         STREAM, _ALL, "the gripper's measured pose, m and rad, frame softpad", rate_hz=20.0,
+        live_type="foxglove.PoseInFrame",
     ),
     Topic(
         ROBOT_COMMAND_TOPIC, "geometry_msgs/msg/PoseStamped", "on command", EVENTS,
@@ -201,6 +214,7 @@ TOPICS: tuple[Topic, ...] = (
     Topic(
         TF_STATIC_TOPIC, "tf2_msgs/msg/TFMessage", "once (latched)", LATCHED, _ALL,
         "base -> softpad (the installation's pad pose) -> softpad_module_K",
+        live_type="foxglove.FrameTransforms",
     ),
     Topic(
         PAD_TOPIC, "foxglove.SceneUpdate", "10 Hz", Qos(depth=1), frozenset({"live"}),
@@ -221,11 +235,17 @@ def topic(name: str) -> Topic:
 
 
 def topics_for(output: str, n_modules: int) -> dict[str, str]:
-    """Every topic name ``output`` publishes on a pad of ``n_modules`` modules -> its ROS 2
-    type (ValueError for an unknown output)."""
+    """Every topic name ``output`` publishes on a pad of ``n_modules`` modules -> its type: the
+    ROS 2 type, or for ``"live"`` the Foxglove schema where it differs (``live_type``);
+    ValueError for an unknown output."""
     if output not in OUTPUTS:
         raise ValueError(f"unknown output {output!r}; known: {', '.join(OUTPUTS)}")
-    return {n: t.type for t in TOPICS if output in t.outputs for n in t.names(n_modules)}
+    out = {}
+    for t in TOPICS:
+        if output in t.outputs:
+            kind = t.live_type if output == "live" and t.live_type else t.type
+            out.update({n: kind for n in t.names(n_modules)})
+    return out
 
 
 def module_topic(k: int) -> str:
@@ -299,9 +319,9 @@ MESSAGE_DEFINITIONS: dict[str, str] = {
         "# why, for fault, error and canceled\n"
         "string message\n"
         "# the grasps tried, on the pad surface in frame softpad: COG, m; yaw = theta, rad\n"
-        "geometry_msgs/Pose[] grasps\n"
+        "geometry_msgs/PoseArray grasps\n"
         "# the loop's summary (softpad run --json), SI units\n"
-        "string summary_json\n"
+        "string result_json\n"
         "---\n"
         "# the loop's phase as it enters it (adjust, wait_object, approach, descend, ...)\n"
         "string phase\n"
@@ -319,7 +339,8 @@ def markdown_table() -> str:
     )
     rows = [
         f"| `{t.name.replace(MODULE, 'K')}` | `{t.type}` | {t.rate} | {t.qos} | "
-        f"{', '.join(o for o in OUTPUTS if o in t.outputs)} | {t.content} |"
+        f"{', '.join(o for o in OUTPUTS if o in t.outputs)} | {t.content}"
+        f"{f' (live view: `{t.live_type}`)' if t.live_type else ''} |"
         for t in TOPICS
     ]
     return "\n".join([head, *rows])
@@ -327,8 +348,10 @@ def markdown_table() -> str:
 
 __all__ = [
     "BASE_FRAME",
+    "BEGIN",
     "CONTACT_TOPIC",
     "DIAGNOSTICS_TOPIC",
+    "END",
     "EVENTS",
     "EVENT_TOPIC",
     "GAUGE_LABEL",
@@ -345,6 +368,7 @@ __all__ = [
     "PAD_FRAME",
     "PAD_TOPIC",
     "PHASE_TOPIC",
+    "PLAN_DETAIL_TOPIC",
     "PLAN_TOPIC",
     "ROBOT_COMMAND_TOPIC",
     "ROBOT_POSE_TOPIC",
@@ -363,8 +387,32 @@ __all__ = [
     "static_frames",
     "topic",
     "topics_for",
+    "write_table",
 ]
 
-if __name__ == "__main__":
-    print(markdown_table())
+#: The markers around the printed table in a Markdown file (docs/ros.md).
+BEGIN = "<!-- topic table: generated by python -m softpad.topics; do not edit -->"
+END = "<!-- end of topic table -->"
+
+
+def write_table(path: str) -> bool:
+    """Replace the table between :data:`BEGIN` and :data:`END` in ``path``; True if it
+    changed."""
+    from pathlib import Path
+
+    f = Path(path)
+    text = f.read_text(encoding="utf-8")
+    start, stop = text.index(BEGIN) + len(BEGIN), text.index(END)
+    new = f"{text[:start]}\n{markdown_table()}\n{text[stop:]}"
+    if new != text:
+        f.write_text(new, encoding="utf-8")
+    return new != text
+
+
+if __name__ == "__main__":  # python -m softpad.topics [--write FILE.md ...]
+    if sys.argv[1:2] == ["--write"]:
+        for name in sys.argv[2:]:
+            print(f"{name}: {'updated' if write_table(name) else 'up to date'}")
+    else:
+        print(markdown_table())
     sys.exit(0)

@@ -166,7 +166,8 @@ def test_non_loopback_listen_without_auth_is_refused(
     site.write_text('[link]\nlisten = ["tls/192.168.7.2:7447"]\nallow_remote = true\n')
     assert main(["box", "serve", "--sim", "--config", str(site)]) == 2
     err = capsys.readouterr().err
-    assert "no authentication" in err and err.count("\n") == 1
+    # every error of the file at once (issue 49): no authentication, no certificate
+    assert "no authentication" in err and "tls_certificate is not set" in err
 
 
 def test_cli_read_json_and_stats(capsys: pytest.CaptureFixture[str], served) -> None:
@@ -190,6 +191,7 @@ def test_cli_read_json_and_stats(capsys: pytest.CaptureFixture[str], served) -> 
         assert "dropped" in text and " p99 " in text and "cpu       daemon" in text
 
 
+@pytest.mark.slow  # a served 1 kHz simulator in real time: 20 CPU s, the suite's second costliest
 def test_served_simulator_holds_object_5_while_two_monitors_watch(
     capsys: pytest.CaptureFixture[str], free_port
 ) -> None:

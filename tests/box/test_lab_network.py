@@ -90,9 +90,34 @@ def test_one_frame_far_ahead_does_not_blind_a_monitor(served, until) -> None:
             s.close()
 
 
-def test_box_inflate_over_zenoh_takes_control_first(served, cli) -> None:
+def test_box_inflate_over_zenoh_works_while_frames_far_ahead_are_forged(served, cli) -> None:
+    """The issue saw ``box inflate`` read as a monitor first and end with exit 3 ("no frame for
+    5 s"): a frame numbered 2**64 - 1 accepted before the take makes every real frame look
+    replayed. It now takes control first and refuses such forgeries (read key from ``info``,
+    sent every 10 ms). A regression check: on the code before, this run also passed (the take
+    came before any forgery was accepted); the blinding itself is
+    test_one_frame_far_ahead_does_not_blind_a_monitor."""
     with served("sim://?seed=4&rate_hz=200") as (_daemon, url):
-        code, out, err = cli("box", "inflate", "--box", url, "--modules", "2")
+        s = _session(url)
+        stop = threading.Event()
+        try:
+            with open_box(url) as spy:
+                assert isinstance(spy, ZenohBox)
+                forged = _forge(spy, 2**64 - 1, 777.0)
+
+            def flood() -> None:
+                while not stop.wait(0.01):
+                    s.put("softpad/box/frames", forged)
+
+            t = threading.Thread(target=flood, daemon=True)
+            t.start()
+            code, out, err = cli(
+                "box", "inflate", "--box", url.replace("timeout_s=60", "timeout_s=5"),
+                "--modules", "2",
+            )  # fmt: skip
+        finally:
+            stop.set()
+            s.close()
     assert code == 0, err
     assert "reference (kPa)" in out
 

@@ -43,7 +43,7 @@ def test_box_read_json_prints_the_documented_fields(capsys) -> None:
 
 def test_box_monitor_json_prints_the_documented_fields(capsys) -> None:
     fields = _documented(_help(capsys, "box", "monitor"), "JSON lines, one per period:")
-    argv = ["box", "monitor", "--count", "30", "--period-s", "0.1", "--json"]
+    argv = ["box", "monitor", "--box", "sim://", "--count", "30", "--period-s", "0.1", "--json"]
     assert main(argv) == 0
     lines = _json_lines(capsys.readouterr().out)
     assert [d["seq"] for d in lines] == [10, 20, 30]  # one object per period, no text

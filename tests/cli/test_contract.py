@@ -248,7 +248,7 @@ def test_every_parser_refuses_abbreviations_and_offers_json() -> None:
         ),
         ("log", "info, plot, export or recover"),
         ("pad", "probe or map"),
-        ("ros", "node"),
+        ("ros", "node, env or urdf"),
         ("sim", "arm-node"),
     ],
     ids=lambda v: v.split(",")[0],

@@ -53,6 +53,7 @@ def stubbed() -> Iterator[Path]:
     mp.setattr(softpad.sim._probe, "sealed_rise_map", _started)
     mp.setattr(softpad.harness, "run_simulated", _started)
     mp.setattr(softpad.cli._trials, "run_with_progress", _started)
+    mp.setattr(softpad.cli._trials, "run_seeds_with_progress", _started)
     mp.setattr(softpad.cli._demo, "_reference_plans", _started)
     mp.setattr(softpad.cli._bench, "importlib", types.SimpleNamespace(import_module=_started))
     mp.setattr(softpad.control, "inflate_and_adjust", _started)

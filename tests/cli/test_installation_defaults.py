@@ -31,7 +31,7 @@ def test_the_file_sets_the_default_and_the_command_line_wins(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
     site = tmp_path / "site.toml"
-    site.write_text("[thresholds]\nt_o_kpa = 0.1\n")
+    site.write_text("[thresholds]\nt_o_kpa = 0.1\nt_g_kpa = 0.15\n")  # t_g never below t_o
     assert _plan(capsys) == [[2, 3, 4]]  # the seed's t_o = 0.05 kPa
     assert _plan(capsys, "--config", str(site)) == [[2, 4]]  # 0.078 < 0.1: module 3 is out
     assert _plan(capsys, "--config", str(site), "--threshold-kpa", "0.05") == [[2, 3, 4]]

@@ -87,8 +87,9 @@ def test_a_hardware_fault_is_one_line_and_exit_3(capsys) -> None:
 def test_box_read_streams_frames(capsys) -> None:
     assert main(["box", "read", "--count", "3", "--box", "sim://?inflated_kpa=1.1&noise=0"]) == 0
     lines = capsys.readouterr().out.splitlines()
-    assert len(lines) == 4 and "ch8" in lines[0]
-    assert lines[1].split()[1] == "1.1000"
+    assert lines[0].startswith("softpad box read: the simulated box sim://")  # which box first
+    assert len(lines) == 5 and "ch8" in lines[1]
+    assert lines[2].split()[1] == "1.1000"
 
 
 def test_box_read_json(capsys) -> None:

@@ -319,3 +319,22 @@ def test_frames_on_their_way_are_not_the_commands_effect(seen_after: bool) -> No
         assert faults == []
     else:
         assert len(faults) >= 5 and all("does not rise while inflating" in f for f in faults)
+
+
+@pytest.mark.parametrize("n", [2, 3, 6, 8, 9])
+def test_median_of_the_other_channels_is_numpys_bit_for_bit(n: int) -> None:
+    """The fill check's expected rate: np.median of the other channels' finite rates, the
+    same bits on plain floats (NaN and inf rates left out; fewer than two: NaN)."""
+    from softpad.control._inflation import _median_of_others
+
+    rng = np.random.default_rng(n)
+    for _ in range(200):
+        col = rng.normal(300.0, 80.0, n)
+        col[rng.random(n) < 0.3] = np.nan
+        col[rng.random(n) < 0.05] = np.inf
+        for i in range(n):
+            others = np.delete(col, i)
+            others = others[np.isfinite(others)]
+            want = float(np.median(others)) if others.size >= 2 else math.nan
+            got = _median_of_others(col.tolist(), i)
+            assert (math.isnan(want) and math.isnan(got)) or got == want

@@ -92,3 +92,18 @@ def test_trials_run_on_another_grid(response: dict) -> None:
 def test_bad_options(changes: dict, named: str) -> None:
     with pytest.raises(InputError, match=named):
         TrialOptions(**changes)
+
+
+def test_mounting_auto_in_design_trials(response: dict) -> None:
+    """``TrialOptions(mounting="auto")`` picks the mounting from the design pad's reading
+    (the limes span the bottom row: 10/4; object 1 on the 3-6 line: 6/2); a named one is
+    used for every object; the record says which."""
+    opts = TrialOptions(hold_s=0.2, mounting="auto")
+    rows = run_design_trials(THESIS_DESIGN, response, _set("limes", "object-1"), 0, opts)
+    assert [r["mounting"] for r in rows] == ["10/4", "6/2"]
+    fixed = TrialOptions(hold_s=0.2, mounting="4/0")
+    assert (
+        run_design_trials(THESIS_DESIGN, response, _set("limes"), 0, fixed)[0]["mounting"] == "4/0"
+    )
+    with pytest.raises(InputError, match="mounting must be"):
+        TrialOptions(mounting="big")

@@ -27,7 +27,9 @@ def _delay(name: str, seed: int, rate_hz: int, detector: str) -> float:
     return math.inf if delay is None else delay  # never detected
 
 
-@pytest.mark.parametrize("rate_hz", [100, 1000])
+# the 1 kHz case (24 closed loops at ten times the frames: the costliest test of the suite)
+# runs in make test-slow
+@pytest.mark.parametrize("rate_hz", [100, pytest.param(1000, marks=pytest.mark.slow)])
 def test_cusums_detect_contact_sooner_than_the_thesis_detector(rate_hz: int) -> None:
     """4 objects x 2 seeds: each CUSUM detects every touch, never later than the thesis's
     average (which misses a fingertip on object-1, seed 2, at 100 Hz) and never before the

@@ -87,6 +87,7 @@ with rosbag.Bag(sys.argv[1]) as bag:
     m5 = [(t.to_sec(), m) for _, m, t in bag.read_messages(topics=["/softpad/module_5/pressure"])]
     tf = [m for _, m, _ in bag.read_messages(topics=["/tf_static"])][0].transforms
     latched = [c.header.get("latching") == b"1" for c in bag._get_connections(topics=["/tf_static"])]
+    events = [m.header.seq for _, m, _ in bag.read_messages(topics=["/softpad/events"])]
 p = sorted(m.fluid_pressure for _, m in m5[len(m5) // 4 : len(m5) // 2])
 stamps = [m.header.stamp.to_sec() for _, m in m5]
 print(json.dumps({
@@ -99,6 +100,7 @@ print(json.dumps({
     "first_stamp_s": stamps[0],
     "type": m5[0][1]._type,
     "tf_static_latched": latched,
+    "seq": {"module_5": [m.header.seq for _, m in m5], "events": events},
 }))
 """
 
@@ -109,6 +111,25 @@ def _debian_rosbag() -> str | None:
         return None
     probe = subprocess.run([python, "-c", "import rosbag"], capture_output=True, check=False)
     return python if probe.returncode == 0 else None
+
+
+def test_mcap_offers_tf_static_latched(recording: Path) -> None:
+    """The recording itself (no export): its /tf_static channel carries rosbag2's
+    ``offered_qos_profiles`` metadata, transient-local depth 1, which ``ros2 bag play`` reads
+    to republish it latched; the other channels offer nothing."""
+    from mcap.reader import make_reader
+    from rosbags.highlevel import AnyReader
+
+    with recording.open("rb") as f:
+        channels = {c.topic: c for c in make_reader(f).get_summary().channels.values()}  # type: ignore[union-attr]
+    assert "offered_qos_profiles" in channels["/tf_static"].metadata
+    assert [t for t, c in channels.items() if c.metadata] == ["/tf_static"]
+    with AnyReader([recording]) as reader:
+        by_topic = {c.topic: c for c in reader.connections}
+        (qos,) = by_topic["/tf_static"].ext.offered_qos_profiles
+    assert (qos.durability.name, qos.reliability.name, qos.depth) == (
+        "TRANSIENT_LOCAL", "RELIABLE", 1,
+    )  # fmt: skip
 
 
 def test_rosbag1_reads_back_with_debians_rosbag(recording: Path, tmp_path: Path) -> None:
@@ -129,6 +150,9 @@ def test_rosbag1_reads_back_with_debians_rosbag(recording: Path, tmp_path: Path)
     summary = json.loads(done.stdout)
     assert summary["type"] == "sensor_msgs/FluidPressure"
     assert summary["tf_static_latched"] == [True]  # rosbag play latches it
+    # each topic's headers numbered as rospy's publisher numbers them: 1, 2, 3, ...
+    for topic, seq in summary["seq"].items():
+        assert len(seq) > 10 and seq == list(range(1, len(seq) + 1)), topic
     _check(summary, load_recording(recording).duration_s)
 
 

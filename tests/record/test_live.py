@@ -97,3 +97,53 @@ def test_monitor_without_foxglove_prints_plain_lines_into_a_pipe(capsys) -> None
     assert [int(line.split()[0]) for line in lines] == [5, 10, 15, 20]  # 100 Hz, 0.05 s
     assert all(len(line.split()) == len(header.split()) for line in lines)
     assert [line.split()[-1] for line in lines] == ["0"] * 4
+
+
+async def _advertised(url: str, topics: set[str]) -> dict[str, dict]:
+    """The channels a new client is advertised, once ``topics`` are among them."""
+    from websockets.asyncio.client import connect
+
+    async with connect(url, subprotocols=["foxglove.websocket.v1"], open_timeout=30) as ws:
+        channels: dict[str, dict] = {}
+        while not topics <= set(channels):
+            msg = json.loads(await asyncio.wait_for(ws.recv(), 30))
+            if msg["op"] == "advertise":
+                channels.update({c["topic"]: c for c in msg["channels"]})
+        return channels
+
+
+def test_live_view_advertises_typed_schemas_and_the_recordings_plan_topics() -> None:
+    """Events, the plan and the robot pose are advertised with schemas that name their fields
+    (not ``{"type": "object"}``); the plan also as the recordings' /softpad/plan/grasps and
+    /softpad/plan/objects, and the robot pose, in Foxglove's pose types the 3D panel draws."""
+    from types import SimpleNamespace
+
+    from softpad.box import PressureFrame
+    from softpad.record import FoxgloveLive
+
+    state = SimpleNamespace(x_m=0.05, y_m=0.04, z_m=0.1, yaw_rad=0.3)
+    live = FoxgloveLive(port=0, robot_state=lambda: state)
+    try:
+        live.frame(PressureFrame(t_s=0.5, pressures_pa=np.full(8, 1100.0), supply_pa=0.0), "plan")
+        plan = {"modules": [1, 2], "pcom": [1.0, 1.5], "cog": [1.0, 1.5], "theta": 0.5,
+                "cog_m": [0.045, 0.0675], "rule": "n2"}  # fmt: skip
+        live.event(0.6, "plan", objects=[plan], increments_pa=[60.0] * 6)
+        from softpad.topics import topics_for
+
+        channels = asyncio.run(_advertised(live.url, set(topics_for("live", 6))))
+    finally:
+        live.close()
+    events = json.loads(channels["/softpad/events"]["schema"])
+    assert set(events["properties"]) == {"stamp", "kind", "data"}
+    assert events["properties"]["stamp"]["required"] == ["sec", "nanosec"]
+    planned = json.loads(channels["/softpad/plan"]["schema"])
+    item = planned["properties"]["data"]["properties"]["objects"]["items"]
+    assert {"modules", "pcom", "cog", "cog_m", "theta", "rule"} <= set(item["properties"])
+    assert "rad" in item["properties"]["theta"]["description"]
+    assert channels["/softpad/robot/pose"]["schemaName"] == "foxglove.PoseInFrame"
+    for topic in ("/softpad/plan/grasps", "/softpad/plan/objects"):
+        assert channels[topic]["schemaName"] == "foxglove.PosesInFrame", topic
+    # exactly the topic table's live names and schema names (softpad.topics)
+    from softpad.topics import topics_for
+
+    assert {t: c["schemaName"] for t, c in channels.items()} == topics_for("live", 6)

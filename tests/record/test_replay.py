@@ -113,23 +113,31 @@ def test_replay_cli_json_and_text(capsys) -> None:
 
 
 def test_foxglove_layout_plots_the_recorded_topics(tmp_path: Path) -> None:
-    """docs/foxglove-layout.json plots topics and follows a frame that a recording (and the
-    live view) has: the gauge array's six modules and the supply, the pad frame of /tf_static."""
+    """docs/foxglove-layout.json reads only topics a recording holds (the live view publishes
+    them too): the gauge array's six modules and the supply, the events, and in its 3D panel
+    /tf_static, the planned grasps and objects and the robot's pose; it follows the pad frame."""
     from rosbags.highlevel import AnyReader
 
     from softpad.cli.main import main
     from softpad.record._live import PAD_TOPIC
 
     layout = json.loads((DATA.parents[1] / "docs" / "foxglove-layout.json").read_text())
-    paths = [p["value"] for cfg in layout["configById"].values() for p in cfg.get("paths", [])]
+    configs = layout["configById"].values()
+    paths = [p["value"] for cfg in configs for p in cfg.get("paths", [])]
     assert sorted(paths) == [f"/softpad/pressures.data[{k}]" for k in range(7)]
     pad = layout["configById"]["3D!softpadpad"]
-    assert set(pad["topics"]) == {PAD_TOPIC, "/tf_static"}
+    read = {p.split(".")[0] for p in paths} | set(pad["topics"])
+    read |= {cfg["topicPath"] for cfg in configs if "topicPath" in cfg}
+    assert PAD_TOPIC not in read  # the live view's picture: recordings do not hold it
     path = tmp_path / "run.mcap"
     assert main(["run", "--hold-s", "0.5", "--record", str(path), "--box", "sim://?seed=3"]) == 0
     with AnyReader([path]) as reader:
         by_topic = {c.topic: c for c in reader.connections}
-        assert {"/softpad/pressures", "/tf_static"} <= set(by_topic)
+        # every topic the layout reads is in the recording, and the 3D panel's are ones it draws
+        assert read <= set(by_topic), read - set(by_topic)
+        drawn = {"tf2_msgs/msg/TFMessage", "geometry_msgs/msg/PoseArray"}
+        drawn.add("geometry_msgs/msg/PoseStamped")
+        assert {by_topic[t].msgtype for t in pad["topics"]} <= drawn
         c = by_topic["/softpad/pressures"]
         _, _, raw = next(iter(reader.messages([c])))
         assert len(reader.deserialize(raw, c.msgtype).data) == 7  # six modules + the supply

@@ -193,7 +193,7 @@ def test_the_loop_publisher_translates_the_loops_report() -> None:
 
 def test_a_retry_republishes_the_grasp_under_way() -> None:
     """An ``approach`` to another grasp of a planned object (a retry) republishes
-    /softpad/grasps with it (COG in metres from the pad's pitch); the planned grasp's own
+    /softpad/plan/grasps with it (COG in metres from the pad's pitch); the planned grasp's own
     approach publishes nothing more."""
     from softpad.layout import PadLayout
     from softpad.ros import LoopPublisher
@@ -203,9 +203,13 @@ def test_a_retry_republishes_the_grasp_under_way() -> None:
 
         def __init__(self) -> None:
             self.published: list[list[dict[str, object]]] = []
+            self.events: list[str] = []
 
         def phase(self, name: str) -> None:
             pass
+
+        def event(self, t_s: float, kind: str, data: dict[str, object]) -> None:
+            self.events.append(kind)
 
         def plans(self, plans: list[dict[str, object]]) -> None:
             self.published.append([dict(p) for p in plans])
@@ -223,6 +227,7 @@ def test_a_retry_republishes_the_grasp_under_way() -> None:
     assert again["theta"] == 1.0 and again["cog"] == [1.2, 1.5]
     assert again["cog_m"] == pytest.approx([1.2 * 0.045, 1.5 * 0.045], abs=1e-12)
     assert again["pcom"] == [1.0, 1.5]  # the object is where it was
+    assert topics.events == ["plan", "phase", "phase"]  # every event on /softpad/events
 
 
 def test_only_an_in_process_simulator_is_paced() -> None:

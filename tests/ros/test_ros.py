@@ -79,6 +79,13 @@ def master(tmp_path_factory: pytest.TempPathFactory, free_port) -> Iterator[dict
         ROS_HOME=str(tmp_path_factory.mktemp("ros_home")),
         MPLBACKEND="Agg",
     )
+    # softpad ros env: the ROS tools decode SoftPad's own messages (events, the outcome)
+    from softpad.ros import generate_messages, ros_packages_dir
+
+    env["PYTHONPATH"] = os.pathsep.join(
+        p for p in (str(generate_messages()), env.get("PYTHONPATH", "")) if p
+    )
+    env["ROS_PACKAGE_PATH"] = str(ros_packages_dir())
     core = subprocess.Popen(
         ["roscore", "-p", str(port)], env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
     )
@@ -110,7 +117,12 @@ def procs(master: dict[str, str], tmp_path: Path) -> Iterator[_Procs]:
 
 
 def _echo(procs: _Procs, topic: str) -> str:
-    r = procs.run("rostopic", "echo", "-n", "1", topic, timeout_s=20)
+    """One message of ``topic`` as ``rostopic echo`` prints it; "" when none came in 30 s (a
+    topic not advertised yet: callers wait on it with their own deadline)."""
+    try:
+        r = procs.run("rostopic", "echo", "-n", "1", topic, timeout_s=30)
+    except subprocess.TimeoutExpired:
+        return ""
     return r.stdout
 
 
@@ -125,10 +137,10 @@ def test_node_publishes_pressures_diagnostics_and_the_plan(procs: _Procs) -> Non
 
     def grasps() -> str:
         assert node.poll() is None, log.read_text()
-        text = _echo(procs, "/softpad/grasps")
+        text = _echo(procs, "/softpad/plan/grasps")
         return text if "position" in text else ""
 
-    text = _wait(grasps, 60.0, "a grasp on /softpad/grasps")
+    text = _wait(grasps, 60.0, "a grasp on /softpad/plan/grasps")
     assert 'frame_id: "softpad"' in text
     x, y, z = _floats(text, "x")[0], _floats(text, "y")[0], _floats(text, "z")
     yaw = 2.0 * math.atan2(z[1], _floats(text, "w")[0])
@@ -176,10 +188,10 @@ def test_node_plans_with_the_registered_parts_by_name(procs: _Procs) -> None:
 
     def settled() -> str:  # the node planned the settled object by itself
         assert node.poll() is None, log.read_text()
-        text = _echo(procs, "/softpad/grasps")
+        text = _echo(procs, "/softpad/plan/grasps")
         return text if "position" in text else ""
 
-    _wait(settled, 90.0, "object 5 planned on /softpad/grasps")
+    _wait(settled, 90.0, "object 5 planned on /softpad/plan/grasps")
     r = procs.run("rosservice", "call", "/softpad/plan")
     assert "success: True" in r.stdout and "model-based" in r.stdout, r.stdout + r.stderr
     assert "[1, 2, 3]" in r.stdout
@@ -309,12 +321,12 @@ def _messages(log: Path) -> list[dict]:  # type: ignore[type-arg]
 
 def _outcome(logs: dict[str, Path]) -> dict:  # type: ignore[type-arg]
     outcomes = _wait(lambda: _messages(logs["/softpad/outcome"]), 30.0, "/softpad/outcome")
-    return json.loads(outcomes[-1]["data"])  # type: ignore[no-any-return]
+    return json.loads(outcomes[-1]["summary_json"])  # type: ignore[no-any-return]
 
 
 def _check_loop_topics(logs: dict[str, Path], outcome: dict) -> None:  # type: ignore[type-arg]
     """The loop's phases in order on /softpad/phase, contact seen on /softpad/contact while
-    it held the fingers on the pad, and its plan on /softpad/grasps."""
+    it held the fingers on the pad, and its plan on /softpad/plan/grasps."""
     phases = [m["data"] for m in _messages(logs["/softpad/phase"])]
     loop = ["plan", "approach", "descend", "close", "lift", "hold", "release", "done"]
     assert [p for p in phases if p in loop] == loop, phases
@@ -323,7 +335,7 @@ def _check_loop_topics(logs: dict[str, Path], outcome: dict) -> None:  # type: i
     (plan,) = outcome["objects"]
     poses = [
         (p["position"]["x"], p["position"]["y"])
-        for m in _messages(logs["/softpad/grasps"])
+        for m in _messages(logs["/softpad/plan/grasps"])
         for p in m["poses"]
     ]
     assert any(
@@ -331,7 +343,7 @@ def _check_loop_topics(logs: dict[str, Path], outcome: dict) -> None:  # type: i
     ), (poses, plan)
 
 
-_LOOP_TOPICS = ("/softpad/phase", "/softpad/contact", "/softpad/outcome", "/softpad/grasps")
+_LOOP_TOPICS = ("/softpad/phase", "/softpad/contact", "/softpad/outcome", "/softpad/plan/grasps")
 
 
 def test_grasp_service_runs_the_loop_and_publishes_plan_contact_and_outcome(
@@ -341,16 +353,14 @@ def test_grasp_service_runs_the_loop_and_publishes_plan_contact_and_outcome(
     grasp loop of ``softpad run`` on its box, from its reference, with its registered parts;
     object 5 (placed by the node, planned by its watch) is held, and the topics show the
     loop's phases, the contact, the plan and the outcome the service answers with."""
-    config = tmp_path / "pad.json"
-    config.write_text(json.dumps({"hold_s": 1.0}))
     node, log = procs.start(
-        "node", SOFTPAD, "ros", "node", "--config", str(config), "--box", "sim://",
+        "node", SOFTPAD, "ros", "node", "--hold-s", "1", "--box", "sim://",
         "--robot", "sim://", "--place", "object-5", "--planner", "model-based",
         "--detector", "cusum",
     )  # fmt: skip
     logs = _watch(procs, *_LOOP_TOPICS)
     _wait(lambda: "watch" in logs["/softpad/phase"].read_text(), 60.0, "the node's watch")
-    _wait(lambda: "position" in logs["/softpad/grasps"].read_text(), 60.0, "object 5 planned")
+    _wait(lambda: "position" in logs["/softpad/plan/grasps"].read_text(), 60.0, "object 5 planned")
     r = procs.run("rosservice", "call", "/softpad/grasp", timeout_s=180)
     assert node.poll() is None, log.read_text()
     assert "success: True" in r.stdout, r.stdout + r.stderr
@@ -393,14 +403,12 @@ def test_grasp_service_drives_the_arm_node_through_ros(procs: _Procs, tmp_path: 
     the simulated arm over ROS (its commands in the arm node's log); held, with the contact
     and the outcome on the topics."""
     arm, arm_log, url = _arm(procs)
-    config = tmp_path / "pad.json"
-    config.write_text(json.dumps({"hold_s": 1.0}))
     node, log = procs.start(
-        "node", SOFTPAD, "ros", "node", "--config", str(config), "--box", url,
+        "node", SOFTPAD, "ros", "node", "--hold-s", "1", "--box", url,
         "--robot", "ros1://", "--place", "object-5",
     )  # fmt: skip
     logs = _watch(procs, *_LOOP_TOPICS)
-    _wait(lambda: "position" in logs["/softpad/grasps"].read_text(), 90.0, "object 5 planned")
+    _wait(lambda: "position" in logs["/softpad/plan/grasps"].read_text(), 90.0, "object 5 planned")
     r = procs.run("rosservice", "call", "/softpad/grasp", timeout_s=180)
     assert node.poll() is None and arm.poll() is None, log.read_text() + arm_log.read_text()
     assert "success: True" in r.stdout, r.stdout + r.stderr
@@ -421,7 +429,9 @@ def test_arm_lost_during_a_grasp_from_ros_publishes_the_fault(
         "node", SOFTPAD, "ros", "node", "--box", url, "--robot", "ros1://", "--place", "banana"
     )
     logs = _watch(procs, *_LOOP_TOPICS, "/diagnostics")
-    _wait(lambda: "position" in logs["/softpad/grasps"].read_text(), 90.0, "the banana planned")
+    _wait(
+        lambda: "position" in logs["/softpad/plan/grasps"].read_text(), 90.0, "the banana planned"
+    )
     procs.run("rosservice", "call", "/softpad/grasp", timeout_s=180)  # may end with the node
     outcome = _outcome(logs)
     assert outcome["outcome"] == "fault" and outcome["phase"] == "descend", outcome

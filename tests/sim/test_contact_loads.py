@@ -40,11 +40,8 @@ def _reference_loads(sensing: ContactSensing, scene) -> tuple[np.ndarray, np.nda
         return np.zeros(n), np.zeros(n)
     k, f = np.array(ks), np.array(fs)
     plain = np.bincount(k, weights=f, minlength=n).astype(float)
-    r = sensing.response.response
-    local = (np.array(pts) - sensing._centres[k]) / sensing.response.scale
-    p = sensing.pressure_pa
-    f = f * r.influence(local, p) / r.reference_influence(p)
-    return np.bincount(k, weights=f, minlength=n).astype(float), plain
+    shares = sensing.response.point_factors(k, np.array(pts), sensing.pressure_pa)
+    return (f[:, None] * shares).sum(axis=0), plain
 
 
 @pytest.mark.parametrize("name", ["charger", "banana"])

@@ -53,12 +53,13 @@ def test_resting_brick_loads_only_its_module_weighted_by_the_response(module: in
     np.testing.assert_allclose(forces, expected, rtol=0.01, atol=1e-4)
     # the brick rests on the dome's apex: each newton there squeezes the chamber as much as
     # s(0) / s_ref newtons on the characteristic's 30 mm patch (FEM response, within 10 mm)
-    r, p = world.response.response, world.operating_pressure_pa
-    top = r.influence([(0.0, 0.0)], p)[0] / r.reference_influence(p)
-    edge = r.influence([(0.010, 0.0)], p)[0] / r.reference_influence(p)
-    ratio = loads[module - 1] / forces[module - 1]
+    r, p, k = world.response, world.operating_pressure_pa, module - 1
+    top = r.factors([(x, y)], p)[0, k]
+    edge = min(r.factors([(x + 0.010, y), (x - 0.010, y)], p)[:, k])
+    ratio = loads[k] / forces[k]
     assert edge <= ratio <= top + 1e-9
-    np.testing.assert_allclose(np.delete(loads, module - 1), 0.0, atol=1e-6)
+    # the cast layer passes a central load to the neighbours by under 1 %
+    assert np.abs(np.delete(loads, k)).max() < 0.01 * loads[k]
 
 
 def test_a_one_step_contact_peak_reaches_the_chamber_as_its_share_of_the_period() -> None:
@@ -66,7 +67,7 @@ def test_a_one_step_contact_peak_reaches_the_chamber_as_its_share_of_the_period(
     steps at 100 Hz): a contact force that one solver step puts on module 1 (40 N, as when
     jaws close on an object) counts a fifth, not in full as the last step's force would.
     Two identical worlds, one with the extra contact in the period's last step: the samples
-    differ by the fifth of its equivalent load on module 1 only."""
+    differ by the fifth of its equivalent loads (module 1's; a trace on its neighbours)."""
     loads = []
     for spike in (False, True):
         world = MujocoWorld(objects=(brick(),))
@@ -87,9 +88,10 @@ def test_a_one_step_contact_peak_reaches_the_chamber_as_its_share_of_the_period(
         world.step(0.01)
         assert len(steps) == 5
         loads.append(world.module_loads_n())
-    r, p = sensing.response.response, sensing.pressure_pa
-    share = 40.0 * r.influence(np.zeros((1, 2)), p)[0] / r.reference_influence(p) / 5
-    np.testing.assert_allclose(loads[1] - loads[0], [share, 0, 0, 0, 0, 0], rtol=1e-9, atol=1e-12)
+    r, p = sensing.response, sensing.pressure_pa
+    share = 40.0 * r.point_factors([0], sensing._centres[:1], p)[0] / 5  # every module's
+    np.testing.assert_allclose(loads[1] - loads[0], share, rtol=1e-9, atol=1e-12)
+    assert share[0] > 100 * np.delete(share, 0).max()  # module 1's, a trace on the others
     assert loads[0][1] == pytest.approx(0.0126 * GRAVITY_M_S2, rel=0.5)  # the brick on module 2
 
 

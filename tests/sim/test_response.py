@@ -7,6 +7,7 @@ import pytest
 
 from softpad import thesis
 from softpad.errors import InputError
+from softpad.fem import DEFAULT_WALL_WIDTH_M
 from softpad.layout import PadLayout
 from softpad.sim import ModuleResponse, PadResponse, default_response
 from softpad.sim._response import operating_pressure, rect_points
@@ -61,24 +62,50 @@ def test_pad_locates_points_in_module_order() -> None:
     np.testing.assert_allclose(local, 1e-3)
     idx, _ = pad.locate([(-0.001, 0.02), (0.2, 0.02)])
     np.testing.assert_array_equal(idx, -1)
-    assert pad.seam_width_m == pytest.approx(thesis.SEAM_WIDTH_M)
+    # the cast pad's grid wall (1 mm on its 46 mm pitch, scaled to 45 mm); the clamped
+    # modules meet at their edges (thesis.SEAM_WIDTH_M)
+    assert pad.seam_width_m == pytest.approx(DEFAULT_WALL_WIDTH_M * 45 / 46)
+    assert PadResponse(pad_model="clamped").seam_width_m == pytest.approx(thesis.SEAM_WIDTH_M)
 
 
 def test_equivalent_load_of_the_reference_patch_is_the_load_itself() -> None:
-    pad = PadResponse()
+    """The clamped pad: a load on the characteristic's central patch is its own equivalent
+    load, on its own module only."""
+    pad = PadResponse(pad_model="clamped")
     c = pad.module_centers_m()[4]
     for p in (500.0, 1100.0, 2800.0):
         eq = pad.rect_equivalent_loads(c, R.reference_patch_m, 1.0, p)
         np.testing.assert_allclose(eq, np.eye(6)[4], atol=1e-9)
 
 
+@pytest.mark.parametrize("pressure_pa", [500.0, 1100.0, 2800.0])
+def test_cast_equivalent_loads_raise_the_chamber_as_the_cast_fem(pressure_pa: float) -> None:
+    """The cast pad: the equivalent load on the clamped characteristic's patch raises a sealed
+    chamber (at its small-load slope) as much as the load does on the cast FEM's chamber
+    alone (1e-4: the patch sampled in the pad's and the model's frames), and a central load passes under 0.5 % to the neighbours."""
+    pad = PadResponse(line_gain=1.0)
+    c = pad.module_centers_m()[4]
+    eq = pad.rect_equivalent_loads(c, R.reference_patch_m, 1.0, pressure_pa)
+    slope_cl = R.sealed_rise_per_newton(pressure_pa) * R.reference_influence(pressure_pa)
+    cast = pad.cast
+    assert cast is not None
+    pts = rect_points(c * cast.pitch_m / PadLayout().pitch_m, R.reference_patch_m * 46 / 45)
+    s = cast.influence(pts, pressure_pa)[:, 4].mean()
+    gas = (
+        cast.volumes(pressure_pa)[4] + thesis.CHAMBER_GAP_VOLUME_M3 + thesis.TUBING_VOLUME_M3
+    ) / (101325.0 + pressure_pa)
+    rise_cast = s / (cast.compliance(pressure_pa)[4, 4] + gas)
+    assert eq[4] * slope_cl == pytest.approx(rise_cast, rel=1e-4)
+    assert np.abs(np.delete(eq, 4)).max() < 5e-3 * eq[4]
+
+
 def test_a_pad_of_another_pitch_scales_the_response() -> None:
     pad = PadResponse(PadLayout(3, 3, 0.030))
     assert pad.chamber_side_m == pytest.approx(0.030)
     c = pad.module_centers_m()[4]
-    big = PadResponse().rect_equivalent_loads(
-        PadResponse().module_centers_m()[4], (0.015, 0.015), 1.0, 1100.0
-    )
+    assert pad.pad_model == "clamped"  # no cast response for 3 x 3
+    clamped = PadResponse(pad_model="clamped")
+    big = clamped.rect_equivalent_loads(clamped.module_centers_m()[4], (0.015, 0.015), 1.0, 1100.0)
     small = pad.rect_equivalent_loads(c, (0.010, 0.010), 1.0, 1100.0)
     assert small[4] == pytest.approx(big[4], rel=1e-2)
 
@@ -116,3 +143,22 @@ def test_round_trip_and_bad_files(tmp_path) -> None:
             R.reference_influence_m3_n,
             R.reference_patch_m,
         )
+
+
+@pytest.mark.parametrize("seam_mm", [0.0, 3.0], ids=["chambers-meet", "3mm-walls"])
+def test_a_seam_of_its_own_stretches_the_cast_map_onto_the_chambers(seam_mm: float) -> None:
+    """With a seam width of its own the cast map's chamber edges fall on this pad's: module 5's
+    centre reads the map's centre, its chamber edge the map's edge (bonded: under 5 % of the
+    centre), and half way the map's half way."""
+    pad = PadResponse(seam_width_m=seam_mm * 1e-3, line_gain=1.0)
+    plain = PadResponse(line_gain=1.0)
+    assert pad.chamber_side_m == pytest.approx(0.045 - seam_mm * 1e-3)
+    c = pad.module_centers_m()[4]
+    h, hp = 0.5 * pad.chamber_side_m, 0.5 * plain.chamber_side_m
+    for frac in (0.0, 0.5):
+        got = pad.influences([c + np.array([frac * h, 0.0])], 1100.0)[0, 4]
+        want = plain.influences([c + np.array([frac * hp, 0.0])], 1100.0)[0, 4]
+        assert got == pytest.approx(want, rel=1e-9)
+    edge = pad.influences([c + np.array([h, 0.0])], 1100.0)[0, 4]
+    # (with no seam the edge is the line, where the map's two chamber edges meet: +- a trace)
+    assert abs(edge) < 0.05 * pad.influences([c], 1100.0)[0, 4]

@@ -496,3 +496,28 @@ def test_worker_processes_live_across_experiments() -> None:
 
     assert strip(second) == strip(alone)
     assert len(pids) == 2 and strip(first) != strip(second)
+
+
+def test_mounting_auto_is_chosen_from_the_pads_reading() -> None:
+    """``TrialConfig(mounting="auto")``: the trial runs with the mounting the pad's reading
+    of the placed object chooses (the limes: 10/4, object 1: 6/2 as in Section 6.3), and
+    records it; a named mounting is used as it is; a bad one is refused."""
+    from softpad.errors import InputError
+    from softpad.planning import choose_mounting
+    from softpad.sim import get_object
+    from softpad.trials import TrialConfig, perturbed_placement, run_trial, trial_execution_params
+    from softpad.trials._loop import configured_mounting
+    from softpad.trials._survey import pad_reading
+
+    cfg = TrialConfig(trial_execution_params(hold_s=0.2), mounting="auto")
+    for name, expected in (("limes", "10/4"), ("object-1", "6/2")):
+        spec = get_object(name)
+        at = perturbed_placement(spec, 3, cfg)
+        chosen = configured_mounting(spec, at, 3, cfg, None)
+        assert chosen == choose_mounting(pad_reading(spec, at, 3, cfg, None)) == expected
+    result, _ = run_trial(get_object("object-1"), seed=3, config=cfg)
+    assert result.mounting == "6/2"
+    fixed = TrialConfig(trial_execution_params(hold_s=0.2), mounting="4/0")
+    assert configured_mounting(get_object("limes"), (0.07, 0.02, 0.0), 3, fixed, None) == "4/0"
+    with pytest.raises(InputError, match="mounting must be 'auto' or one of"):
+        TrialConfig(mounting="7/3")

@@ -25,6 +25,7 @@ from softpad.box._credentials import daemon_auth
 from softpad.box._daemon import BoxDaemon, guard_box
 from softpad.box._hardware import (
     FakeValveLines,
+    FileValveLines,
     GpiodValveLines,
     HardwareBox,
     IIOReader,
@@ -99,6 +100,7 @@ __all__ = [
     "ControlRefused",
     "FakeValveLines",
     "Fault",
+    "FileValveLines",
     "GpiodValveLines",
     "HardwareBox",
     "IIOReader",

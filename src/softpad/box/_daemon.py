@@ -290,6 +290,7 @@ class BoxDaemon:
                 f"{p}/control/holder/*", self._on_liveliness, history=True
             )
         )
+        self._start_compiled_guard()
         self.stats.gc.start()  # start-up's objects never scanned again; collections between ticks
         self._sender = threading.Thread(target=self._send_loop, name="softpad-sender", daemon=True)
         self._sender.start()
@@ -299,6 +300,18 @@ class BoxDaemon:
         self._thread.start()
         self._say(f"serving {type(self.box).__name__} on {', '.join(self.listen)} key {p}")
         return self
+
+    def _start_compiled_guard(self) -> None:
+        """A hardware box's over-pressure guard in compiled code, off the interpreter lock
+        (issue 49: a stall of this process no longer holds the guard up); the guard below
+        keeps running too."""
+        start = getattr(self.box, "start_guard", None)
+        if start is None:
+            return
+        if start(self.trip_pa, self.trip_pa - 200.0):
+            self._say(f"compiled guard: venting above {self.trip_pa:.0f} Pa, off the GIL")
+        else:
+            self._say("compiled guard not available: the over-pressure guard runs in Python only")
 
     def wait(self, timeout_s: float | None = None) -> bool:
         """Block until :meth:`stop` (True) or ``timeout_s`` passed (False)."""
@@ -587,7 +600,13 @@ class BoxDaemon:
         return self.info()
 
     def _on_stats(self, msg: dict[str, Any]) -> dict[str, Any]:
-        return {**self.stats.to_dict(), "controller": self.controller, "seq": self._seq}
+        guard = getattr(self.box, "guard_stats", None)  # the compiled guard; None: not running
+        return {
+            **self.stats.to_dict(),
+            "controller": self.controller,
+            "seq": self._seq,
+            "compiled_guard": guard() if guard is not None else None,
+        }
 
     def _on_take(self, msg: dict[str, Any]) -> dict[str, Any]:
         c = self._client(msg)

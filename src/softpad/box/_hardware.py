@@ -17,6 +17,7 @@ rate on the monotonic clock.
 from __future__ import annotations
 
 import math
+import os
 import time
 from collections.abc import Iterable
 from pathlib import Path
@@ -65,6 +66,47 @@ class FakeValveLines:
 
     def release(self) -> None:
         self.released = True  # the values stay: what the kernel does with a released output
+
+
+class FileValveLines:
+    """:class:`ValveLines` in a file, one byte per line (0 inactive, 1 active), shared with
+    other processes: the fake GPIO a wall-clock hardware simulation reads its valves from, and
+    the compiled guard writes to (:meth:`native`).
+
+    Parameters
+    ----------
+    path
+        The file (created or truncated, every line inactive).
+    lines
+        (chip path, offset) of every line, in the order of their bytes.
+    """
+
+    def __init__(self, path: str | Path, lines: Iterable[tuple[str, int]]) -> None:
+        self.path = Path(path)
+        self.index = {key: k for k, key in enumerate(dict.fromkeys(lines))}
+        self.path.write_bytes(bytes(len(self.index)))
+        self._fd = os.open(self.path, os.O_RDWR | os.O_CLOEXEC)
+        self.released = False
+
+    def set(self, values: dict[tuple[str, int], bool]) -> None:
+        if self.released:
+            raise HardwareFault("GPIO lines already released")
+        for key, on in values.items():
+            if key not in self.index:
+                raise InputError(f"GPIO line {key[1]} of {key[0]} was not requested")
+            os.pwrite(self._fd, b"\x01" if on else b"\x00", self.index[key])
+
+    def get(self, chip: str, line: int) -> bool:
+        return os.pread(self._fd, 1, self.index[(chip, line)]) == b"\x01"
+
+    def native(self, chip: str, line: int) -> tuple[int, int, int]:
+        """``(kind, fd, index)`` of a line for the compiled guard (kind 0: a shared file)."""
+        return 0, self._fd, self.index[(chip, line)]
+
+    def release(self) -> None:
+        if not self.released:
+            self.released = True  # the values stay, as with GPIO lines
+            os.close(self._fd)
 
 
 class GpiodValveLines:
@@ -117,6 +159,12 @@ class GpiodValveLines:
 
     def get(self, chip: str, line: int) -> bool:
         return self._values[(chip, line)]
+
+    def native(self, chip: str, line: int) -> tuple[int, int, int]:
+        """``(kind, fd, index)`` of a line for the compiled guard: kind 1, the line request's
+        file descriptor and the line's index in it (GPIO_V2_LINE_SET_VALUES_IOCTL)."""
+        req = self._requests[chip]
+        return 1, int(req.fd), list(req.offsets).index(line)
 
     def release(self) -> None:
         # not driven inactive first: that closed a normally-closed deflation valve and sealed a
@@ -198,6 +246,11 @@ class HardwareBox(Box):
     ticks are skipped and counted in :attr:`missed_ticks`, and so is a tick whose sample was
     taken more than a period after its deadline (the thread woke late). Frame time is seconds
     since opening.
+
+    Line levels follow ``settings.inflate_valves`` / ``deflate_valves`` (active opens a
+    normally-closed valve, closes a normally-open one); every valve starts closed. Closing the
+    box closes every inflation valve and releases the lines as they are: a vented channel keeps
+    venting. :meth:`start_guard` runs the over-pressure guard in compiled code, off the GIL.
     """
 
     self_paced = True
@@ -237,6 +290,7 @@ class HardwareBox(Box):
         cal = [*wiring, *([settings.supply] if settings.supply else [])]
         self._offset = np.array([w.offset_pa for w in cal])
         self._factor = np.array([w.gain * w.pa_per_count for w in cal])
+        self._compiled: Any = None
         self._period = 1.0 / settings.sample_rate_hz
         self._t0 = time.monotonic()
         self._tick = 0
@@ -289,13 +343,68 @@ class HardwareBox(Box):
         }
 
     def _apply_valve(self, channel: int, command: ValveCommand) -> None:
+        if command is ValveCommand.INFLATE and self._compiled is not None:
+            if self._compiled.stats()["venting"][channel - 1]:  # it would re-vent next tick
+                from softpad.box._safety import SafetyTrip
+
+                raise SafetyTrip(
+                    f"channel {channel} is being vented by the compiled guard (over the trip "
+                    "level): inflation refused"
+                )
         # close first, then open: never both valves of a channel open at once
         self._lines.set(self._levels(channel, False, False))
         if command is not ValveCommand.CLOSED:
             inflate = command is ValveCommand.INFLATE
             self._lines.set(self._levels(channel, inflate, not inflate))
 
+    def start_guard(self, trip_pa: float, release_pa: float) -> bool:
+        """Run the over-pressure guard in compiled code on its own thread, without the
+        interpreter lock (:mod:`softpad.box._fastguard`): every period it reads each channel's
+        IIO file and vents a channel above ``trip_pa`` (pascals) until it reads below
+        ``release_pa``, whatever the Python side is doing. False (nothing started) when the
+        extension is not built or the valve lines give no file descriptors (in-memory fakes).
+        """
+        try:
+            from softpad.box._fastguard import Guard
+        except ImportError:
+            return False
+        native = getattr(self._lines, "native", None)
+        if native is None or self._compiled is not None:
+            return self._compiled is not None
+        s = self.settings
+        root = Path(s.iio_root)
+        wiring = s.channels
+        lines = [
+            (
+                (*native(w.gpiochip, w.inflate_line), int(s.inflate_valves == "normally_open")),
+                (*native(w.gpiochip, w.deflate_line), int(s.deflate_valves != "normally_open")),
+            )
+            for w in wiring
+        ]
+        self._compiled = Guard(
+            [
+                str(root / f"iio:device{w.iio_device}" / f"in_voltage{w.iio_channel}_raw")
+                for w in wiring
+            ],
+            [w.offset_pa for w in wiring],
+            [w.gain * w.pa_per_count for w in wiring],
+            [inflate for inflate, _ in lines],
+            [deflate for _, deflate in lines],
+            float(trip_pa),
+            float(release_pa),
+            float(s.sample_rate_hz),
+        )
+        self._compiled.start()
+        return True
+
+    def guard_stats(self) -> dict[str, Any] | None:
+        """The compiled guard's ticks, trips, missed ticks, bad reads and venting channels;
+        None when it does not run."""
+        return None if self._compiled is None else dict(self._compiled.stats())
+
     def _close(self) -> None:
+        if self._compiled is not None:  # before the lines are released
+            self._compiled.stop()
         # the base closed every inflation valve; a channel being vented keeps venting: its
         # deflation line is released as it is (issue 49: driving it inactive sealed it)
         try:

@@ -243,7 +243,7 @@ def add_integer(p: Any, flag: str, help: str, default: int, lo: int, hi: int) ->
 
 
 def add_p0_option(p: Any) -> None:
-    """``--p0-kpa``: the pressure every module is inflated to (p0, seed Section 6.2.1.1)."""
+    """``--p0-kpa``: the pressure every module is inflated to (p0, thesis Section 6.2.1.1)."""
     from softpad import thesis
 
     add_number(

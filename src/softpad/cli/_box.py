@@ -16,13 +16,21 @@ from softpad.cli._args import (
     bounded_int,
     finite_float,
 )
-from softpad.cli._output import emit
+from softpad.cli._output import emit, say
 from softpad.errors import InputError
 
 _EPILOG = """examples:
   softpad box read --count 5
   softpad box read --box 'sim://?inflated_kpa=1.1&object=banana' --count 3 --json
   softpad box read --box zenoh://127.0.0.1:7447 --count 100 --json     a served box (monitor)
+"""
+
+_GROUP_EPILOG = """examples:
+  softpad box read --count 5                             frames of a simulated box (kPa)
+  softpad box serve --sim                                the box daemon: the simulator on zenoh
+  softpad box monitor                                    watch the served box (127.0.0.1:7447)
+  softpad box stats                                      its achieved rate, jitter, drops
+  softpad box inflate --box zenoh://127.0.0.1:7447       inflate and adjust every module to p0
 """
 
 _SERVE_EPILOG = """examples:
@@ -41,7 +49,9 @@ installation file; otherwise the daemon refuses to start. Ctrl-C or SIGTERM stop
 
 
 _MONITOR_EPILOG = """examples:
-  softpad box monitor --foxglove                         the simulated box, ws://127.0.0.1:8765
+  softpad box monitor                                    the served box (box serve), plain lines
+  softpad box monitor --box sim:// --count 500           a simulated box of its own, real time
+  softpad box monitor --foxglove                         the served box, ws://127.0.0.1:8765
   softpad box monitor --foxglove --port 0 --box 'sim://?object=banana&inflated_kpa=1.1'
   then in Foxglove: Open connection -> Foxglove WebSocket -> ws://127.0.0.1:8765
   (docs/foxglove-layout.json: a pressure plot per module and the pad picture)
@@ -66,7 +76,18 @@ module pressures and the supply (gauge, kPa), frames per second, latency p50/p99
 daemon's sample to this monitor; a served box on this machine) and frames lost on the way. On a
 terminal the line refreshes in place under a header; into a pipe or a file each period is a
 plain line; --json prints one JSON object per period. With --foxglove the frames are served to
-Foxglove viewers. A monitor never commands valves."""
+Foxglove viewers. A monitor never commands valves. Without --box it watches the installation's
+link (zenoh://127.0.0.1:7447, or the link of --config FILE) and fails within seconds, naming
+the link, when nothing serves there; a simulated box (--box sim://) runs paced at real time
+unless its URL says realtime=0."""
+
+#: The box a monitor watches without --box or --config: the box daemon's default link.
+LINK_DEFAULT = "zenoh://127.0.0.1:7447"
+
+_MONITOR_BOX_HELP = (
+    f"box URL (default: the installation's link, {LINK_DEFAULT}; --config FILE for another; "
+    "sim:// for a simulated box of its own, paced at real time)"
+)
 
 #: Fields of ``box read --json`` (one object per frame) and ``box monitor --json`` (per period).
 READ_FIELDS = ("seq", "t_s", "pressures_kpa", "supply_kpa")
@@ -84,8 +105,9 @@ def register(sub: Any) -> None:
     bsub = add_group(
         sub,
         "box",
-        "talk to a pneumatic box: read, monitor, serve (zenoh daemon), inflate",
-        "Pneumatic box utilities.",
+        "talk to a pneumatic box: read, monitor, stats, serve (zenoh daemon), inflate",
+        "Pneumatic box utilities. Every action says on its first line which box it talks to.",
+        _GROUP_EPILOG,
     )
     r = _action(
         bsub,
@@ -105,6 +127,8 @@ def register(sub: Any) -> None:
         _MONITOR_EPILOG,
         json=f"JSON lines, one per period: {', '.join(MONITOR_FIELDS)} (kPa, ms); with "
         "--foxglove: the viewer URL",
+        box=LINK_DEFAULT,
+        box_help=_MONITOR_BOX_HELP,
     )
     m.add_argument("--foxglove", action="store_true", help="serve to Foxglove (WebSocket)")
     m.add_argument(
@@ -125,7 +149,7 @@ def register(sub: Any) -> None:
         "sampling figures of a served box: achieved rate, jitter, dropped samples",
         "Ask a box daemon for its sampling statistics.",
         json="print one JSON object",
-        box="zenoh://127.0.0.1:7447",
+        box=LINK_DEFAULT,
     )
     _register_serve(bsub)
     i = _action(
@@ -211,14 +235,64 @@ def _register_serve(bsub: Any) -> None:
     )
 
 
-def _stamped(box: Any, i: int) -> tuple[int, Any]:
+class Pacer:
+    """Keeps a simulated box opened by this command at real time: each frame waits until the
+    wall clock reaches its box time. A served box is paced by its daemon; ``sim://?realtime=0``
+    asks for no pacing (as fast as the simulator computes).
+
+    Parameters
+    ----------
+    url
+        The box's URL.
+    """
+
+    def __init__(self, url: str) -> None:
+        from softpad.box import parse_url
+
+        self.on = url.startswith("sim://") and parse_url(url)[2].get("realtime") != "0"
+        self._start: tuple[float, float] | None = None  # (wall s, box s) of the first frame
+
+    def wait(self, t_s: float) -> None:
+        """Wait until the wall clock reaches box time ``t_s`` (s) after the first frame."""
+        import time
+
+        if not self.on:
+            return
+        if self._start is None:
+            self._start = (time.monotonic(), t_s)
+        delay = self._start[0] + (t_s - self._start[1]) - time.monotonic()
+        if delay > 0:
+            time.sleep(delay)
+
+
+def describe_box(url: str, paced: bool | None = None) -> str:
+    """Which box a command talks to, for its first line (``paced``: whether the command keeps
+    a simulated box at real time; None says nothing of it)."""
+    if url.startswith("sim://"):
+        pace = {True: " (paced at real time; sim://?realtime=0: unpaced)", False: " (unpaced)"}
+        return f"the simulated box {url}{'' if paced is None else pace[paced]}"
+    if url.startswith("zenoh://"):
+        return f"the served box at {url}"
+    return f"the box {url}"
+
+
+def _first_line(
+    command: str, url: str, json_mode: bool, tail: str = "", paced: bool | None = None
+) -> None:
+    """The first line of a command that talks to a box: which box (stderr under --json)."""
+    say(f"softpad box {command}: {describe_box(url, paced)}{tail}", json_mode)
+
+
+def _stamped(box: Any, i: int, pacer: Pacer) -> tuple[int, Any]:
     """(seq, frame): the daemon's sequence number for a served box, else the frame index."""
     from softpad.box import ZenohBox
 
     if isinstance(box, ZenohBox):
         s = box.read_stamped()
         return s.seq, s.frame
-    return i + 1, box.read()
+    f = box.read()
+    pacer.wait(f.t_s)
+    return i + 1, f
 
 
 def read(args: argparse.Namespace) -> int:
@@ -229,14 +303,16 @@ def read(args: argparse.Namespace) -> int:
         raise InputError(f"--count must be >= 0 (0: endless), got {args.count}")
     if args.every < 1:
         raise InputError(f"--every must be >= 1, got {args.every}")
+    pacer = Pacer(args.box)
     with open_box(args.box) as box:
+        _first_line("read", args.box, args.json, paced=pacer.on)
         args.partial = {"frames": 0}
         if not args.json:
             head = "    t_s  " + " ".join(f"{'ch' + str(k + 1):>8s}" for k in range(box.channels))
             print(head + "  supply   (kPa)")
         i = 0
         while args.count == 0 or i < args.count:
-            seq, f = _stamped(box, i)
+            seq, f = _stamped(box, i, pacer)
             if i % args.every == 0:
                 if args.json:
                     emit({"seq": seq, **f.to_dict()})
@@ -251,7 +327,6 @@ def read(args: argparse.Namespace) -> int:
 def monitor(args: argparse.Namespace) -> int:
     import time
 
-    from softpad.box import open_box
     from softpad.errors import InputError
     from softpad.layout import parse_layout
 
@@ -260,7 +335,10 @@ def monitor(args: argparse.Namespace) -> int:
     layout = parse_layout(args.layout)
     if args.foxglove:
         return _monitor_foxglove(args, layout)
-    with open_box(args.box) as box:
+    pacer = Pacer(args.box)
+    with _open_watched(args.box) as box:
+        tail = " (read-only); Ctrl-C stops"
+        _first_line("monitor", args.box, args.json, tail, paced=pacer.on)
         n = min(layout.n_modules, box.channels)
         terminal = sys.stdout.isatty() and not args.json
         if not args.json:
@@ -269,7 +347,7 @@ def monitor(args: argparse.Namespace) -> int:
         i, lost, last, lat, t0, i0 = 0, 0, None, [], time.monotonic(), 0
         try:
             while args.count == 0 or i < args.count:
-                seq, f, latency_s = _timed(box, i)
+                seq, f, latency_s = _timed(box, i, pacer)
                 lost += 0 if last is None else max(0, seq - last - 1)
                 last, i = seq, i + 1
                 if latency_s is not None:
@@ -279,14 +357,27 @@ def monitor(args: argparse.Namespace) -> int:
                     rate = (i - i0) / max(now - t0, 1e-9)
                     _monitor_line(args.json, terminal, seq, f, n, rate, lat, lost)
                     lat, t0, i0 = [], now, i
-        except KeyboardInterrupt:
-            pass
-        if terminal:
-            print()
+        finally:  # Ctrl-C too (exit 130): end the line refreshed in place
+            if terminal:
+                print()
     return 0
 
 
-def _timed(box: Any, i: int) -> tuple[int, Any, float | None]:
+def _open_watched(url: str) -> Any:
+    """The box a monitor watches; when nothing serves at a zenoh:// link, the error says how
+    to serve one or to watch a simulated box instead."""
+    from softpad.box import ConnectionLost, open_box
+
+    try:
+        return open_box(url)
+    except ConnectionLost as exc:
+        raise ConnectionLost(
+            f"{exc} (is a box served there? 'softpad box serve --sim' serves the simulator; "
+            "--box sim:// watches a simulated box of this command's own)"
+        ) from None
+
+
+def _timed(box: Any, i: int, pacer: Pacer) -> tuple[int, Any, float | None]:
     """(seq, frame, latency s): the latency from the daemon's sample to now for a served box
     (its monotonic clock is this machine's on loopback), None for a box opened here."""
     import time
@@ -296,7 +387,9 @@ def _timed(box: Any, i: int) -> tuple[int, Any, float | None]:
     if isinstance(box, ZenohBox):
         s = box.read_stamped()
         return s.seq, s.frame, time.monotonic() - s.mono_s
-    return i + 1, box.read(), None
+    f = box.read()
+    pacer.wait(f.t_s)
+    return i + 1, f, None
 
 
 def _monitor_header(n: int) -> str:
@@ -335,6 +428,7 @@ def stats(args: argparse.Namespace) -> int:
     with open_box(args.box) as box:
         if not isinstance(box, ZenohBox):
             raise InputError(f"--box must be a served box (zenoh://HOST:PORT), got {args.box!r}")
+        _first_line("stats", args.box, args.json)
         d = box.request("stats")
     d.pop("ok", None)
     if args.json:
@@ -405,11 +499,18 @@ def _daemon_for(args: argparse.Namespace) -> Any:
             lockstep_frames=2 if services and not args.realtime else None,
             rt_priority=args.rt_priority,
             auth=daemon_auth(link),
-            log=lambda text: print(f"softpad box serve: {text}", file=sys.stderr, flush=True),
+            log=_daemon_log,
         )
     except BaseException:
         box.close()
         raise
+
+
+def _daemon_log(text: str) -> None:
+    """The daemon's messages on stderr, but its start line: the command's first line says
+    what is served, in words (the daemon names the outermost layer of the box's classes)."""
+    if not text.startswith("serving "):
+        print(f"softpad box serve: {text}", file=sys.stderr, flush=True)
 
 
 #: Frame rate of ``box serve --sim`` unless the URL or --rate-hz says otherwise, Hz (the
@@ -434,41 +535,29 @@ def _sim_url(args: argparse.Namespace) -> str:
 
 
 def serve(args: argparse.Namespace) -> int:
-    import signal
-    import threading
-
     daemon = _daemon_for(args)
-
-    def _terminate(signum: int, frame: object) -> None:
-        raise KeyboardInterrupt  # SIGTERM (systemd) stops like Ctrl-C
-
-    main_thread = threading.current_thread() is threading.main_thread()
-    previous = signal.signal(signal.SIGTERM, _terminate) if main_thread else None
+    what = _served(args)
     try:
         with daemon:
             if args.json:
-                emit(
-                    {
-                        "serving": type(daemon.box).__name__,
-                        "listen": list(daemon.listen),
-                        "key_prefix": daemon.prefix,
-                    }
-                )
+                emit({"serving": what, "listen": list(daemon.listen), "key_prefix": daemon.prefix})
             else:
                 print(
-                    f"serving {type(daemon.box).__name__} on {', '.join(daemon.listen)} "
+                    f"softpad box serve: serving {what} on {', '.join(daemon.listen)} "
                     f"(key {daemon.prefix}); Ctrl-C stops",
                     flush=True,
                 )
-            try:
-                daemon.wait(args.duration_s)
-            except KeyboardInterrupt:
-                pass
+            daemon.wait(args.duration_s)
+    finally:  # Ctrl-C (exit 130) and SIGTERM (143) too: the daemon closed the valves
         print("softpad box serve: stopped; valves closed", file=sys.stderr)
-    finally:
-        if main_thread:
-            signal.signal(signal.SIGTERM, previous)
     return 0
+
+
+def _served(args: argparse.Namespace) -> str:
+    """What ``box serve`` serves, in words: the simulated box and its URL, or the hardware."""
+    if args.hardware:
+        return f"the hardware box wired in {args.hardware}"
+    return f"the simulated box {_sim_url(args)}"
 
 
 def inflate(args: argparse.Namespace) -> int:
@@ -477,6 +566,7 @@ def inflate(args: argparse.Namespace) -> int:
     from softpad.errors import InputError
 
     with open_box(args.box) as box:
+        _first_line("inflate", args.box, args.json)
         if not 1 <= args.modules <= box.channels:
             raise InputError(
                 f"--modules must be within 1..{box.channels} (channels of the box), got {args.modules}"
@@ -501,18 +591,20 @@ def _monitor_foxglove(args: argparse.Namespace, layout: Any) -> int:
     import sys
     import time
 
-    from softpad.box import open_box
+    from softpad.cli._installation import installed_pad_pose
     from softpad.errors import InputError
     from softpad.record import FoxgloveLive
 
     if not 0 <= args.port <= 65535:
         raise InputError(f"--port must be within 0..65535, got {args.port}")
-    with open_box(args.box) as box, FoxgloveLive(args.port, layout) as live:
+    pad = installed_pad_pose(getattr(args, "config", None))  # the installation's [pad.pose]
+    with _open_watched(args.box) as box, FoxgloveLive(args.port, layout, pad=pad) as live:
         if args.json:
             emit({"foxglove": live.url, "port": live.port, "serving": args.box})
         else:
             print(
-                f"foxglove: {live.url} (port {live.port}); serving {args.box}; Ctrl-C stops",
+                f"softpad box monitor: {describe_box(args.box)} to Foxglove at {live.url} "
+                f"(port {live.port}); Ctrl-C stops",
                 flush=True,
             )
         wall0 = t0 = None
@@ -527,6 +619,6 @@ def _monitor_foxglove(args: argparse.Namespace, layout: Any) -> int:
                     time.sleep(delay)
                 live.frame(f, "monitor")
                 i += 1
-        except KeyboardInterrupt:
+        finally:  # Ctrl-C too (exit 130)
             print("softpad box monitor: stopped", file=sys.stderr)
     return 0

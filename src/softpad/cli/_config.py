@@ -14,6 +14,8 @@ def register(sub: Any) -> None:
         "config",
         "installation file (TOML): check it and print the resolved values",
         "Installation file utilities (see examples/site.toml, docs/hardware.md).",
+        "examples:\n  softpad config check examples/site.toml      every resolved value with its unit\n"
+        "  softpad run --config examples/site.toml       the file's values as the defaults\n",
     )
     c = add_command(
         csub,

@@ -126,36 +126,35 @@ def _pi(theta: float) -> str:
 
 def _plot_all(path: Path, results: list[Any], layout: Any) -> None:
     """Every reference case on one figure: one colour scale (the largest increment of all
-    cases), one colour bar and one legend for all panels, axes in module units."""
+    cases), one colour bar and one legend for all panels, axes in millimetres with the module
+    grid; labels sized to read when the figure is printed a page wide (7 in)."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     import numpy as np
 
-    from softpad.planning import plot_plans
+    from softpad.planning import plan_legend_handles, plot_plans
 
     n = len(results)
     cols = 4
     rows = math.ceil(n / cols)
     vmax = max(float(np.max(case.delta_pa)) for case, _ in results) / 1e3
-    fig, axes = plt.subplots(rows, cols, figsize=(3.9 * cols, 2.7 * rows), squeeze=False)
+    width = 3.9 * cols
+    pt = 6.5 * width / 7.0  # 6.5 pt once printed 7 in wide
+    fig, axes = plt.subplots(rows, cols, figsize=(width, 3.0 * rows), squeeze=False)
     for ax, (case, plan) in zip(axes.flat, results, strict=False):
         plot_plans(
             case.delta_pa, [plan], layout, ax=ax, title=f"{case.name} ({case.weight_g:g} g)",
-            vmax_kpa=vmax, legend=False, colorbar=False,
+            vmax_kpa=vmax, legend=False, colorbar=False, font_pt=pt,
         )  # fmt: skip
-        pitch_mm = layout.pitch_m * 1e3
-        ax.set_xlabel(f"x (module units, 1 = {pitch_mm:g} mm)", fontsize=8)
-        ax.set_ylabel("y (module units)", fontsize=8)
     for ax in list(axes.flat)[n:]:
         ax.axis("off")
-    handles, labels = axes.flat[0].get_legend_handles_labels()
-    handles.append(matplotlib.patches.Patch(color="k", label="fingertips"))
-    fig.legend(handles, [*labels, "fingertips"], loc="lower right", fontsize=9, frameon=False)
+    fig.legend(handles=plan_legend_handles(), loc="lower right", fontsize=pt, frameon=False)
     fig.tight_layout(rect=(0, 0, 0.92, 1))
     image = axes.flat[0].images[0]
     bar = fig.colorbar(image, ax=axes.ravel().tolist(), fraction=0.02, pad=0.01)
-    bar.set_label("pressure increment dP (kPa), one scale for all panels")
+    bar.set_label("pressure increment dP (kPa), one scale for all panels", fontsize=pt)
+    bar.ax.tick_params(labelsize=pt)
     fig.savefig(path, dpi=110)
     plt.close(fig)

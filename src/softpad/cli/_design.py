@@ -12,7 +12,7 @@ from softpad import thesis
 from softpad.cli._args import add_command, int_ranges, name_list
 from softpad.cli._output import emit, say
 from softpad.cli._run import add_part_options
-from softpad.cli._trials import add_randomize_option
+from softpad.cli._trials import add_mounting_option, add_randomize_option
 from softpad.errors import InputError
 
 _EPILOG = """examples:
@@ -88,6 +88,7 @@ def register(sub: Any) -> None:
         help=f"hold time in s (default {thesis.HOLD_S:g}; --quick 2)",
     )
     add_randomize_option(p)
+    add_mounting_option(p, "the object set's: each object's, or its one gripper")
     add_part_options(p)
     p.add_argument(
         "--scheduler", metavar="tcp://127.0.0.1:PORT", help="a running Dask scheduler on loopback"
@@ -150,6 +151,8 @@ def _outputs(args: argparse.Namespace) -> dict[str, Any]:
 def _object_set(args: argparse.Namespace) -> Any:
     from softpad.design import example_object_set, load_object_set
 
+    if args.gripper is not None and args.mounting is not None:
+        raise InputError("give --gripper (one mounting for the set) or --mounting, not both")
     if args.objects:
         s = load_object_set(args.objects)
     else:
@@ -158,12 +161,7 @@ def _object_set(args: argparse.Namespace) -> Any:
 
 
 def run(args: argparse.Namespace) -> int:
-    from softpad.design import (
-        ResultCache,
-        TrialOptions,
-        check_scheduler_address,
-        design_sweep,
-    )
+    from softpad.design import ResultCache, check_scheduler_address, design_sweep
 
     object_set = _object_set(args)
     designs = _designs(args)
@@ -171,13 +169,7 @@ def run(args: argparse.Namespace) -> int:
     seeds = int_ranges(args.seeds, "--seeds", lo=0, hi=2**32 - 1)
     if len(seeds) > 100:
         raise InputError(f"--seeds names {len(seeds)} seeds; at most 100")
-    trials = args.trials if args.trials is not None else (1 if args.quick else 5)
-    if not 1 <= trials <= 100:
-        raise InputError(f"--trials must be from 1 to 100, got {trials}")
-    hold_s = args.hold_s if args.hold_s is not None else (2.0 if args.quick else thesis.HOLD_S)
-    if not (math.isfinite(hold_s) and 0 <= hold_s <= 60):
-        raise InputError(f"--hold-s must be from 0 to 60 s, got {hold_s!r}")
-    options = TrialOptions(trials, args.planner, args.detector, hold_s, randomize=args.randomize)
+    options = _trial_options(args)
     if args.scheduler is not None:
         check_scheduler_address(args.scheduler)
     if args.workers is not None and not 1 <= args.workers <= 256:
@@ -201,6 +193,9 @@ def run(args: argparse.Namespace) -> int:
         if bar is not None:
             bar.close()
     _write(result, outputs)
+    if result.meta["cached"]:  # first: what was not computed now, where it came from
+        result.meta["cache_dir"] = str(cache.root)
+        say(cached_line(result.meta["cached"], result.meta["computed"], cache.root), args.json)
     say(result.to_text(), args.json)
     say(
         f"({result.meta['computed']} tasks computed, {result.meta['cached']} cached, "
@@ -210,6 +205,32 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         emit(result.to_dict())
     return 0
+
+
+def _trial_options(args: argparse.Namespace) -> Any:
+    """The trials of each design and object: --trials, --hold-s (the quick run's defaults
+    with --quick), the parts, --randomize and --mounting."""
+    from softpad.design import TrialOptions
+
+    trials = args.trials if args.trials is not None else (1 if args.quick else 5)
+    if not 1 <= trials <= 100:
+        raise InputError(f"--trials must be from 1 to 100, got {trials}")
+    hold_s = args.hold_s if args.hold_s is not None else (2.0 if args.quick else thesis.HOLD_S)
+    if not (math.isfinite(hold_s) and 0 <= hold_s <= 60):
+        raise InputError(f"--hold-s must be from 0 to 60 s, got {hold_s!r}")
+    return TrialOptions(
+        trials, args.planner, args.detector, hold_s, randomize=args.randomize,
+        mounting=args.mounting,
+    )  # fmt: skip
+
+
+def cached_line(cached: int, computed: int, root: Path | None) -> str:
+    """The first line of a design run answered, in part or whole, from the cache."""
+    share = "all" if not computed else f"{cached} of {cached + computed}"
+    return (
+        f"softpad design: {share} tasks answered from the cache {root} (results of an "
+        "earlier run of this code); --no-cache computes everything"
+    )
 
 
 def _cache_dir(text: str | None) -> Path:

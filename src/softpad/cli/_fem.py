@@ -153,6 +153,9 @@ def register(sub: Any) -> None:
         add(fem_sub)
     for add in (_chamber_study, _fit_studies, _table_studies):
         add(fem_sub)
+    from softpad.cli._fem_cast import register as register_cast
+
+    register_cast(fem_sub)
 
 
 def _sweep_study(fem_sub: Any) -> None:

@@ -1,7 +1,7 @@
 """``--config FILE.toml`` on every command: the installation file's values become the defaults.
 
 Options given on the command line still win: the file only replaces the built-in defaults
-(the seed's values) of the options it has a value for. The box daemon (``box serve``) reads
+(the thesis's values) of the options it has a value for. The box daemon (``box serve``) reads
 the file itself (wiring, link), and the ROS commands take their own JSON configuration.
 """
 
@@ -18,7 +18,6 @@ OWN_CONFIG = (
     "softpad ros2 node",
     "softpad sim arm-node",
 )
-_HELP = "installation file (TOML): its thresholds, gripper, pad and box link are the defaults"
 
 
 def leaf_parsers(parser: argparse.ArgumentParser) -> Iterator[argparse.ArgumentParser]:
@@ -31,11 +30,30 @@ def leaf_parsers(parser: argparse.ArgumentParser) -> Iterator[argparse.ArgumentP
             yield from leaf_parsers(child)
 
 
+#: Options whose defaults an installation file sets (destinations; see :func:`_defaults`).
+SET_BY_FILE = (
+    "box", "p0_kpa", "object_threshold_kpa", "threshold_kpa", "contact_threshold_kpa", "window",
+    "layout", "pitch_mm", "gripper",
+)  # fmt: skip
+
+
 def add_config_options(parser: argparse.ArgumentParser) -> None:
-    """Give every command without one a ``--config FILE.toml`` option."""
+    """Give every command without one a ``--config FILE.toml`` option, whose help names the
+    command's options the file sets (or says that it sets none of them)."""
     for p in leaf_parsers(parser):
         if p.prog != "softpad" and "--config" not in p._option_string_actions:
-            p.add_argument("--config", metavar="FILE.toml", help=_HELP)
+            p.add_argument("--config", metavar="FILE.toml", help=config_help(p))
+
+
+def config_help(p: argparse.ArgumentParser) -> str:
+    """The help of ``--config`` on the command ``p``."""
+    flags = [a.option_strings[-1] for a in p._actions if a.dest in SET_BY_FILE and a.option_strings]
+    if not flags:
+        return (
+            "installation file (TOML): accepted by every command; this one takes nothing "
+            "from it (none of its options has an installation default)"
+        )
+    return f"installation file (TOML): its values become the defaults of {', '.join(flags)}"
 
 
 def config_path(argv: Sequence[str]) -> str | None:
@@ -68,6 +86,19 @@ def _defaults(inst: Any) -> dict[str, Any]:
         if link.user is not None or link.tls_root_ca is not None:  # the link's credentials
             out["box"] += f"?config={inst.source}"
     return out
+
+
+def installed_pad_pose(path: str | None) -> Any:
+    """The installation file's ``[pad.pose]`` as a :class:`~softpad.layout.PadPose` (the
+    origin without a file): where the pad stands in the robot's base frame."""
+    from softpad.layout import PadPose
+
+    if path is None:
+        return PadPose()
+    from softpad.config import load_installation
+
+    pad = load_installation(path).pad
+    return PadPose(pad.x_m, pad.y_m, pad.z_m, pad.yaw_rad)
 
 
 def apply_installation(parser: argparse.ArgumentParser, argv: Sequence[str]) -> None:

@@ -31,7 +31,8 @@ _PROBE_EPILOG = f"""examples:
 --at is in module units as in 'softpad plan' (x along the columns, y up the rows; module 1's
 centre is 0.5,1.5 on the 2x3 pad). The block's force is spread uniformly over its footprint
 (sides along x and y); what each chamber feels of it is the FEM module response
-(softpad/data/module_response.npz, 'softpad fem response'). Default box: {DEFAULT_BOX}
+(the cast pad's softpad/data/cast_pad_response.npz, 'softpad fem cast-response'; the clamped
+modules' softpad/data/module_response.npz where it does not fit). Default box: {DEFAULT_BOX}
 (the pad's physics with an ideal sensor; drop noise=0 to see the sensor too).
 """
 
@@ -46,8 +47,15 @@ t_g (90 Pa).
 
 
 _PROBE_DESCRIPTION = """\
-Press a rigid flat block on the simulated pad and print every module's pressure rise (kPa,
-mean of 10 reads after minus before)."""
+Press a rigid flat block on the simulated pad and print, for every module:
+  delta_kPa    its pressure rise on the simulated box: mean of 10 reads after the block was
+               put down minus the mean of 10 before, kPa;
+  delta_kPa/N  that rise per newton of the block's force (--force-n): the module's
+               sensitivity at that point, kPa/N (README.md and docs/results.md quote it);
+  FEM_kPa      the rise the FEM module response predicts for this block, linear in the
+               force (the sealed chamber's squeeze per newton), kPa;
+  FEM_kPa/N    that prediction per newton, kPa/N.
+--json carries the same as delta_kpa, delta_kpa_per_n, fem_delta_kpa, fem_delta_kpa_per_n."""
 
 
 def register(sub: Any) -> None:
@@ -56,6 +64,9 @@ def register(sub: Any) -> None:
         "pad",
         "press a block on the simulated pad: module pressure rises (FEM response)",
         "Probe the simulated pad with a rigid flat block.",
+        "examples:\n"
+        "  softpad pad probe --at 1.5,1.5 --force-n 0.2 --footprint-mm 10,10   rise, kPa and kPa/N\n"
+        "  softpad pad map --force-n 0.1236 --footprint-mm 42,31 --png map.png  the brick anywhere\n",
     )
     pr = add_command(
         psub,
@@ -87,6 +98,67 @@ def register(sub: Any) -> None:
         unit="mm",
     )
     mp.set_defaults(handler=_map)
+    _sensitivity_command(psub)
+
+
+def _sensitivity_command(psub: Any) -> None:
+    se = add_command(
+        psub,
+        "sensitivity",
+        "line, corner and centre sensitivity (Pa/N) and the minimum detectable mass",
+        "The pad's small-load sealed rise per newton for a load on a module's centre, on the "
+        "line between two modules and at the corner of four, and the minimum detectable mass "
+        "at t_o, from the FEM response the simulator uses (the cast pad by default).",
+    )
+    se.add_argument(
+        "--pad-model",
+        choices=("auto", "cast", "clamped"),
+        default="auto",
+        help="cast: one upper layer over every chamber (softpad fem cast-response); clamped: "
+        "independent modules with clamped edges (softpad fem response); auto: cast (default)",
+    )
+    add_number(
+        se,
+        "--pressure-kpa",
+        "pressure of every module, kPa (default 1.1)",
+        thesis.P0_PA / 1e3,
+        lo=0.5,
+        hi=2.8,
+        unit="kPa",
+    )
+    add_number(
+        se,
+        "--line-gain",
+        "gain on the response near the lines (uncertain input line_response_gain; default "
+        "its nominal; 1: the FEM alone)",
+        None,
+        lo=1.0,
+        hi=10.0,
+    )
+    se.set_defaults(handler=_sensitivity)
+
+
+def _sensitivity(args: argparse.Namespace) -> int:
+    from softpad.sim import PadResponse, pad_sensitivities
+
+    gain = {} if args.line_gain is None else {"line_gain": args.line_gain}
+    response = PadResponse(pad_model=args.pad_model, **gain)
+    out = pad_sensitivities(response, args.pressure_kpa * 1e3)
+    if args.json:
+        emit({"command": "pad sensitivity", **out})
+        return 0
+    say(
+        f"{out['pad_model']} pad at {args.pressure_kpa:g} kPa, line gain {out['line_gain']:g}: "
+        "sealed rise per newton (Pa/N)"
+    )
+    for name, v in out["loads"].items():
+        rises = " ".join(f"{r:6.0f}" for r in v["rise_pa_n"])
+        say(f"  {name:45s} modules 1-6: {rises}")
+    say(f"line sensitivity (can strip, least of modules 1, 4): {out['line_pa_n']:.0f} Pa/N")
+    say(f"corner sensitivity (least of modules 1, 2, 4, 5): {out['corner_pa_n']:.0f} Pa/N")
+    for name, g in out["min_detectable_mass_g"].items():
+        say(f"minimum detectable mass at t_o = 50 Pa, {name}: {g:.2f} g")
+    return 0
 
 
 def _block_options(p: argparse.ArgumentParser) -> None:
@@ -158,6 +230,8 @@ def _probe(args: argparse.Namespace) -> int:
         "reference_kpa": [round(v / 1e3, 6) for v in result.reference_pa],
         "delta_kpa": [round(v / 1e3, 6) for v in result.delta_pa],
         "fem_delta_kpa": [round(v / 1e3, 6) for v in result.fem_delta_pa],
+        "delta_kpa_per_n": [round(v / 1e3 / args.force_n, 6) for v in result.delta_pa],
+        "fem_delta_kpa_per_n": [round(v / 1e3 / args.force_n, 6) for v in result.fem_delta_pa],
     }
     if args.json:
         emit(out)
@@ -166,9 +240,10 @@ def _probe(args: argparse.Namespace) -> int:
         f"block {size[0] * 1e3:g} x {size[1] * 1e3:g} mm, {args.force_n:g} N at ({x:g}, {y:g}) "
         f"module units on {args.box}"
     )
-    say("module  delta_kPa  FEM_kPa")
+    say("module  delta_kPa  delta_kPa/N  FEM_kPa  FEM_kPa/N")
+    per_n = 1e3 * args.force_n  # Pa -> kPa/N
     for k, (d, f) in enumerate(zip(result.delta_pa, result.fem_delta_pa, strict=True), 1):
-        say(f"{k:6d}  {d / 1e3:9.4f}  {f / 1e3:7.4f}")
+        say(f"{k:6d}  {d / 1e3:9.4f}  {d / per_n:11.3f}  {f / 1e3:7.4f}  {f / per_n:9.3f}")
     return 0
 
 

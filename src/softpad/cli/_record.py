@@ -14,8 +14,11 @@ def add_record_option(p: Any, per_trial: bool = False) -> None:
     p.add_argument("--force", action="store_true", help="overwrite an existing --record file")
 
 
-def open_recorder(path: str | None, box: Any, metadata: dict[str, Any], force: bool) -> Any:
-    """A :class:`softpad.record.McapRecorder` for ``path`` watching ``box`` (None without a path).
+def open_recorder(
+    path: str | None, box: Any, metadata: dict[str, Any], force: bool, pad: Any = None
+) -> Any:
+    """A :class:`softpad.record.McapRecorder` for ``path`` watching ``box`` (None without a path),
+    the pad at ``pad`` in the base frame (a :class:`~softpad.layout.PadPose`; None: the origin).
 
     Valve and robot commands come from the execution's events; on a simulated box the
     gripper's measured pose is recorded too (from the simulator's world).
@@ -27,7 +30,7 @@ def open_recorder(path: str | None, box: Any, metadata: dict[str, Any], force: b
 
     sim = simulator_of(box)
     robot_state = sim.world.gripper_state if sim is not None else None
-    return McapRecorder(path, metadata, force=force, robot_state=robot_state)
+    return McapRecorder(path, metadata, force=force, robot_state=robot_state, pad=pad)
 
 
 def run_metadata(

@@ -16,6 +16,7 @@ from softpad.cli._args import (
     add_number,
     add_p0_option,
 )
+from softpad.cli._installation import installed_pad_pose
 from softpad.cli._output import emit, say
 from softpad.cli._paths import atomic_path, check_output
 from softpad.cli._record import add_record_option, open_recorder, run_metadata
@@ -28,13 +29,13 @@ _EPILOG = """examples:
   softpad run --box 'sim://?seed=3&rate_hz=200' --objects charger --json
   softpad run --objects object-5 --p0-kpa 1.5 --contact-threshold-kpa 0.12 --window 5
 
-objects: object-1 .. object-6, banana, toy, limes, cylinder, charger (seed, Table 6.1)
+objects: object-1 .. object-6, banana, toy, limes, cylinder, charger (thesis, Table 6.1)
 exit code: 0 every grasp held, 1 a grasp not held, 2 bad input, 3 hardware or link fault
 """
 
 
 _DESCRIPTION = """\
-Run the whole grasp loop of the seed's Section 6.2 once on the simulated box: inflate every
+Run the whole grasp loop of the thesis's Section 6.2 once on the simulated box: inflate every
 module to p0 and save the reference, place the object(s) of the thesis set, plan the grasp
 from the pressure increments, move over the centre of grasp, descend at the approach speed
 until the pad senses the fingers (running average of 10 samples above t_g), close, lift,
@@ -83,12 +84,24 @@ def register(sub: Any) -> None:
     p.add_argument("--png", metavar="FILE.png", help="draw the pressure traces with the phases")
     p.add_argument("--plot", action=Renamed, new="--png FILE.png")
     add_record_option(p)
+    _add_watch_options(p)
+    p.set_defaults(handler=run)
+
+
+def _add_watch_options(p: argparse.ArgumentParser) -> None:
+    """``--ros``, ``--ros2`` and ``--foxglove``: who watches the run while it runs."""
     p.add_argument(
         "--ros",
         action="store_true",
         help="publish the run on ROS 1 while it runs, as 'softpad ros node' does (pressures, "
-        "/softpad/phase, /softpad/grasps, /softpad/contact, /softpad/outcome, /diagnostics; "
+        "/softpad/phase, /softpad/plan/grasps, /softpad/contact, /softpad/outcome, /diagnostics; "
         "a simulated box paced to the wall clock; ROS_MASTER_URI on loopback; docs/ros.md)",
+    )
+    p.add_argument(
+        "--ros2",
+        action="store_true",
+        help="publish the run on ROS 2 while it runs, as 'softpad ros2 node' does (the table's "
+        "topics, /diagnostics, /tf_static; loopback only; docs/ros.md)",
     )
     p.add_argument(
         "--foxglove",
@@ -96,7 +109,6 @@ def register(sub: Any) -> None:
         metavar="PORT",
         help="serve the run live to Foxglove on ws://127.0.0.1:PORT (0: a free port)",
     )
-    p.set_defaults(handler=run)
 
 
 def _add_attempt_options(p: argparse.ArgumentParser) -> None:
@@ -186,9 +198,9 @@ def loop_parts(args: argparse.Namespace, box: Any, params: Any, mounting: str) -
 
 
 def add_thesis_params(p: argparse.ArgumentParser) -> None:
-    """The seed's loop parameters (Section 6.2) as options with their physical ranges."""
+    """The thesis's loop parameters (Section 6.2) as options with their physical ranges."""
 
-    g = p.add_argument_group("loop parameters (seed, Section 6.2)")
+    g = p.add_argument_group("loop parameters (thesis, Section 6.2)")
     add_p0_option(g)
     for flag, default_pa, meaning in (
         (
@@ -269,19 +281,22 @@ def run(args: argparse.Namespace) -> int:
     if args.config:
         params = _from_installation(args.config, params)
     with open_box(args.box) as box:
+        if not args.json:  # first: which box (the JSON's stderr is the error line alone)
+            print(f"softpad run: {', '.join(names)} on {args.box}", flush=True)
         meta = run_metadata(
             "run", box, args.box, names, params, gripper=gripper,
             planner=args.planner, contact_detector=args.detector,
         )  # fmt: skip
-        if args.config:  # FluidPressure is absolute: the site's ambient pressure
-            from softpad.config import load_installation
-
-            meta["ambient_pressure_pa"] = load_installation(args.config).box.ambient_pressure_pa
-        recorder = open_recorder(str(record_path) if record_path else None, box, meta, args.force)
-        live = _live(args.foxglove, box, args.json)
-        ros = _ros_watch(args.ros, box, args.box)
+        _add_ambient(meta, args.config)
+        pad = installed_pad_pose(args.config)  # where the pad stands: /tf_static everywhere
+        recorder = open_recorder(
+            str(record_path) if record_path else None, box, meta, args.force, pad=pad
+        )
+        live = _live(args.foxglove, box, args.json, pad)
+        ros = _ros_watch(args.ros, box, args.box, pad)
+        ros2 = _ros2_watch(args.ros2, box, args.box, pad)
         try:
-            tee = Tee(log, recorder, live, ros)
+            tee = Tee(log, recorder, live, ros, ros2)
             parts = loop_parts(args, box, params, gripper or resolve_objects(names)[0].gripper)
             if args.robot.partition("://")[0].lower() == "sim" or _in_process(box):
                 robot = _robot(args.robot, box, gripper or resolve_objects(names)[0].gripper)
@@ -290,14 +305,16 @@ def run(args: argparse.Namespace) -> int:
                 from softpad.cli._ros import run_with_robot_url
 
                 result = run_with_robot_url(args, names, box, tee, params, **parts)
-            if ros is not None:
-                ros.finish(result.result)
+            for r in (ros, ros2):
+                if r is not None:
+                    r.finish(result.result)
         except HardwareFault as exc:
             return _report_fault(args, log, names, exc)
         except SoftPadError as exc:
             exc.partial = {"objects": names, "events": _events(log), "frames": len(log)}
-            if ros is not None:
-                ros.error(str(exc))
+            for r in (ros, ros2):
+                if r is not None:
+                    r.error(str(exc))
             raise
         finally:  # whatever happened, what was recorded is kept
             for r in (recorder, live):
@@ -305,6 +322,14 @@ def run(args: argparse.Namespace) -> int:
                     r.close()
             _save_png(log, png_path, names)
     return _report(args, log, result, names, png_path, record_path)
+
+
+def _add_ambient(meta: dict[str, Any], config: str | None) -> None:
+    """FluidPressure is absolute: the site's ambient pressure from the installation file."""
+    if config:
+        from softpad.config import load_installation
+
+        meta["ambient_pressure_pa"] = load_installation(config).box.ambient_pressure_pa
 
 
 def _in_process(box: Any) -> bool:
@@ -333,7 +358,6 @@ def _report(args: Any, log: Any, result: Any, names: list[str], png: Any, record
             d["error"] = {"kind": "failed", "message": f"grasp not held: {result.outcome}"}
         emit(d)
     else:
-        print(f"softpad run: {', '.join(names)} on {args.box}")
         for line in _timeline(log, result):
             print("  " + line)
         print(f"outcome: {result.outcome}")
@@ -378,7 +402,7 @@ def _from_installation(path: str, params: Any) -> Any:
     return dataclasses.replace(params, inflation=inflation)
 
 
-def _live(port: int | None, box: Any, json_mode: bool) -> Any:
+def _live(port: int | None, box: Any, json_mode: bool, pad: Any = None) -> Any:
     if port is None:
         return None
     from softpad.box import simulator_of
@@ -387,18 +411,27 @@ def _live(port: int | None, box: Any, json_mode: bool) -> Any:
     sim = simulator_of(box)
     robot = sim.world.gripper_state if sim is not None else None
     layout = sim.world.layout if sim is not None else None  # the pad's modules only
-    live = FoxgloveLive(port, layout, robot_state=robot)
+    live = FoxgloveLive(port, layout, robot_state=robot, pad=pad)
     say(f"foxglove: {live.url} (port {live.port})", json_mode)
     return live
 
 
-def _ros_watch(enabled: bool, box: Any, url: str) -> Any:
+def _ros_watch(enabled: bool, box: Any, url: str, pad: Any = None) -> Any:
     """``--ros``: the publisher of :mod:`softpad.ros` the run reports to, else None."""
     if not enabled:
         return None
     from softpad.ros import watch_loop
 
-    return watch_loop(box_layout(box), box, url)
+    return watch_loop(box_layout(box), box, url, pad=pad)
+
+
+def _ros2_watch(enabled: bool, box: Any, url: str, pad: Any = None) -> Any:
+    """``--ros2``: the publisher of :mod:`softpad.ros2` the run reports to, else None."""
+    if not enabled:
+        return None
+    from softpad.ros2 import watch_loop2
+
+    return watch_loop2(box_layout(box), box, url, pad=pad)
 
 
 def _report_fault(args: argparse.Namespace, log: Any, names: list[str], exc: Exception) -> int:

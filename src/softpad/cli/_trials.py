@@ -50,6 +50,7 @@ def register(sub: Any) -> None:
     add_trial_options(p)
     add_part_options(p)
     add_randomize_option(p)
+    add_mounting_option(p, "each object's own: Table 6.1's per Section 6.3, an object set's")
     p.add_argument(
         "--scheduler",
         metavar="tcp://127.0.0.1:PORT|local",
@@ -72,6 +73,19 @@ def add_randomize_option(p: Any) -> None:
         "seam, sample rate, noise, tubing, placement, unknown object sizes) from its sourced "
         "range per trial, seeded by the trial seed; --json carries the drawn values per trial "
         "(list: softpad.sim.UNCERTAIN_PARAMETERS, docs/trials.md)",
+    )
+
+
+def add_mounting_option(p: Any, default_text: str = "each object's own") -> None:
+    """``--mounting``: the gripper's mounting, or ``auto`` (chosen from the pad's reading)."""
+    p.add_argument(
+        "--mounting",
+        choices=("auto", "10/4", "6/2", "4/0"),
+        default=None,
+        help="gripper mounting (max/min width, cm) for every object; auto: chosen per trial "
+        "from the pad's reading of the placed object (the smallest that opens beyond the "
+        "object's estimated width along the planned grasp; no width oracle), as a lab runs "
+        f"held-out objects (default: {default_text})",
     )
 
 
@@ -264,8 +278,6 @@ def _run_here(
 ) -> list[Any]:
     """Every seed's experiment on this machine's worker processes, all seeds' trials queued
     at once (the workers live across the seeds); ``args.partial`` follows the finished seeds."""
-    from softpad.trials import run_experiments
-
     done: list[Any] = []
 
     def seed_done(exp: Any) -> None:
@@ -287,17 +299,33 @@ def _run_here(
         )
         seed_done(exp)
         return done
-    bar = progress_bar(len(specs) * args.trials * len(seeds), _show(args))
+    return run_seeds_with_progress(
+        specs,
+        args.trials,
+        seeds,
+        _show(args),
+        finished,
+        workers=args.workers,
+        config=_config(args),
+        on_seed=seed_done,
+    )
+
+
+def run_seeds_with_progress(
+    specs: list[Any],
+    trials: int,
+    seeds: list[int],
+    show: bool,
+    finished: list[dict[str, Any]] | None = None,
+    **kwargs: Any,
+) -> list[Any]:
+    """``run_experiments`` (every seed's trials queued at once on the same workers) with the
+    progress bar of :func:`run_with_progress` over all the seeds' trials."""
+    from softpad.trials import run_experiments
+
+    bar = progress_bar(len(specs) * trials * len(seeds), show)
     try:
-        return run_experiments(
-            specs,
-            args.trials,
-            seeds,
-            workers=args.workers,
-            config=_config(args),
-            on_trial=_ticker(bar, finished),
-            on_seed=seed_done,
-        )
+        return run_experiments(specs, trials, seeds, on_trial=_ticker(bar, finished), **kwargs)
     finally:
         if bar is not None:
             bar.close()
@@ -309,7 +337,11 @@ def _config(args: argparse.Namespace) -> Any:
 
     execution = trial_execution_params(hold_s=args.hold_s)
     return TrialConfig(
-        execution, planner=args.planner, detector=args.detector, randomize=args.randomize
+        execution,
+        planner=args.planner,
+        detector=args.detector,
+        randomize=args.randomize,
+        mounting=args.mounting,
     )
 
 

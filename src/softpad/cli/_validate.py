@@ -8,6 +8,7 @@ from typing import Any
 
 from softpad.cli._args import add_command, int_ranges
 from softpad.cli._output import emit, say
+from softpad.cli._trials import add_mounting_option
 from softpad.errors import InputError
 
 _EPILOG = """examples:
@@ -63,6 +64,7 @@ def register(sub: Any) -> None:
         action="store_true",
         help="draw the uncertain parameters per trial from their ranges (seeded)",
     )
+    add_mounting_option(p, "Table 6.1's per-object mounting, Section 6.3")
     p.add_argument("--workers", type=int, default=None, help="worker processes (default: all CPUs)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
     p.set_defaults(handler=run)
@@ -87,6 +89,7 @@ def run(args: argparse.Namespace) -> int:
             workers=args.workers,
             randomize=args.randomize,
             placements=args.placements,
+            mounting=args.mounting,
             on_trial=(lambda r: bar.update(1)) if bar is not None else None,
         )
     finally:

@@ -20,6 +20,7 @@ from typing import Any, NoReturn
 from softpad import __version__
 from softpad.cli._args import UsageError, plain_float, plain_int
 from softpad.cli._installation import add_config_options, apply_installation
+from softpad.cli._signals import Terminated, exit_code_of_interrupt, sigterm_stops
 from softpad.errors import (
     EXIT_INPUT,
     SoftPadError,
@@ -61,6 +62,7 @@ EXIT_CODES_HELP = """exit codes (the same for every command):
   2  bad input: usage, values, files (nothing was started)
   3  hardware or link fault (the box was put in a safe state)
   4  internal error: a bug; the message says where to report it (--debug shows the traceback)
+  130, 143  stopped by Ctrl-C (SIGINT) or SIGTERM, after the same clean-up
 
 --json (every command): stdout carries one JSON object with "schema_version" and the result,
 or {"schema_version": 1, "error": {"kind", "message", ...what was gathered before}}; streaming
@@ -134,18 +136,20 @@ def main(argv: Sequence[str] | None = None) -> int:
             if json_mode:
                 raise UsageError("a COMMAND is required (see softpad --help)")
             return EXIT_USAGE
-        return int(args.handler(args) or 0)
-    except KeyboardInterrupt:
-        print(f"softpad {name}: interrupted", file=sys.stderr)
+        with sigterm_stops():
+            return int(args.handler(args) or 0)
+    except KeyboardInterrupt as exc:  # Ctrl-C: 130; SIGTERM: 143 (docs/cli.md)
+        stopped = "terminated" if isinstance(exc, Terminated) else "interrupted"
+        print(f"softpad {name}: {stopped}", file=sys.stderr)
         if json_mode:  # what was finished before Ctrl-C, as the one JSON object on stdout
             from softpad.cli._output import emit, error_object
 
             emit(
                 error_object(
-                    "interrupted", "interrupted by the user", getattr(args, "partial", None)
+                    "interrupted", f"{stopped} by a signal", getattr(args, "partial", None)
                 )
             )
-        return 130
+        return exit_code_of_interrupt(exc)
     except BrokenPipeError:
         return 0
     except Exception as exc:  # every error: one line, the exit code of its class

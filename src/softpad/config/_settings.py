@@ -17,7 +17,7 @@ from typing import Any
 from softpad import thesis
 from softpad.errors import KPA_AS_PA, MM_AS_M, MS_AS_S, InputError, check_count, check_range
 
-#: Thesis defaults (seed, Section 6.2, from :mod:`softpad.thesis`), pascals / samples / metres.
+#: Thesis defaults (thesis, Section 6.2, from :mod:`softpad.thesis`), pascals / samples / metres.
 DEFAULT_P0_PA = thesis.P0_PA
 DEFAULT_ADJUST_TOLERANCE_PA = thesis.ADJUST_TOLERANCE_PA
 DEFAULT_OBJECT_THRESHOLD_PA = thesis.OBJECT_THRESHOLD_PA

@@ -49,6 +49,7 @@ from softpad.control._safety import (
     check_valves,
     reach_safe_state,
 )
+from softpad.control._watch import ObjectWatch, plan_from_reads
 
 __all__ = [
     "DEFAULT_MAX_PRESSURE_PA",
@@ -69,6 +70,7 @@ __all__ = [
     "InflationController",
     "InflationParams",
     "MonitoredFault",
+    "ObjectWatch",
     "Phase",
     "PhaseError",
     "Recorder",
@@ -89,6 +91,7 @@ __all__ = [
     "make_robot",
     "make_safe",
     "next_phase",
+    "plan_from_reads",
     "reach_safe_state",
     "register_robot",
 ]

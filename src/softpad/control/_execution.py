@@ -1,4 +1,4 @@
-"""Grasp execution: the closed loop of the seed's Section 6.2.2, assembled from parts.
+"""Grasp execution: the closed loop of the thesis's Section 6.2.2, assembled from parts.
 
 :class:`GraspExecution` drives a :class:`~softpad.box.Box` and a :class:`Robot` and takes its
 planner, object detector, contact detector and recorder as arguments (the thesis's by default).
@@ -24,6 +24,7 @@ from softpad.control._inflation import (
 from softpad.control._phases import LOADING_PHASES, PRESSING_PHASES, Phase, next_phase
 from softpad.control._robot import Robot, RobotWrapper, ToolPose
 from softpad.control._safety import DetectedFault, RunSafety, SafeStateResult
+from softpad.control._watch import ObjectWatch, plan_from_reads
 from softpad.errors import (
     KPA_AS_PA,
     MM_AS_M,
@@ -41,7 +42,6 @@ from softpad.planning import GraspPlan, Planner, PlannerParams, RetryPlanner, Th
 from softpad.sensing import (
     ContactDetector,
     ObjectDetector,
-    RunningAverage,
     ThesisContactDetector,
     ThesisObjectDetector,
     measured_change,
@@ -316,7 +316,7 @@ class _RecordingRobot(RobotWrapper):
 
 
 class GraspExecution:
-    """The closed loop of the seed's Section 6.2.2, assembled from parts.
+    """The closed loop of the thesis's Section 6.2.2, assembled from parts.
 
     Phases (:class:`~softpad.control.Phase`, each logged with its start time through the
     recorder; the transitions allowed are :data:`~softpad.control.TRANSITIONS`)::
@@ -496,9 +496,10 @@ class GraspExecution:
         seen_at = self._wait_for_object(adj.reference_pa)
 
         self._enter(Phase.PLAN)
-        delta = measured_change(self._mean_reads(p.planning_reads) - adj.reference_pa)
-        objects = self.object_detector.objects(delta, self.layout)
-        plans = tuple(self.planner.plan(delta, objects, self.layout))
+        reads = [self._read() for _ in range(p.planning_reads)]
+        delta, plans = plan_from_reads(
+            reads, adj.reference_pa, self.object_detector, self.planner, self.layout
+        )
         self.recorder.event(
             self._last_t,
             "plan",
@@ -544,24 +545,22 @@ class GraspExecution:
         self._enter(Phase.REFERENCE)
 
     def _wait_for_object(self, reference: NDArray[np.float64]) -> float:
-        """Watch the filtered increments until an object has lain still for the settle time."""
+        """Watch the filtered increments until an object has lain still for the settle time
+        (:class:`~softpad.control.ObjectWatch`, which a watching node uses too)."""
         p = self.params
-        filt = RunningAverage(p.filter_length)
+        watch = ObjectWatch(
+            reference, self.object_detector, self.layout, p.filter_length, p.object_settle_s
+        )
         t0 = self._last_t
-        seen_at: float | None = None
         while True:
-            d = filt.update(self._read() - reference)
-            if seen_at is not None:
-                if self._last_t - seen_at >= p.object_settle_s:
-                    return seen_at
-                continue
-            full = filt.full
-            objects = self.object_detector.objects(measured_change(d), self.layout) if full else []
-            if objects:
-                seen_at = self._last_t
-                modules = sorted(k for obj in objects for k in obj)
-                self.recorder.event(seen_at, "object_seen", modules=modules)
-            elif self._last_t - t0 > p.object_wait_s:
+            state = watch.update(self._read(), self._last_t)
+            if state == "settled":
+                assert watch.seen_at is not None
+                return watch.seen_at
+            if state == "seen":
+                modules = sorted(k for obj in watch.objects for k in obj)
+                self.recorder.event(self._last_t, "object_seen", modules=modules)
+            elif watch.seen_at is None and self._last_t - t0 > p.object_wait_s:
                 raise ExecutionError(f"no object placed on the pad within {p.object_wait_s:g} s")
 
     def _grasp_all(

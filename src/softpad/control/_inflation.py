@@ -1,4 +1,4 @@
-"""Initial inflation and adjustment of every module (seed, Section 6.2.1.1), and the safe state.
+"""Initial inflation and adjustment of every module (thesis, Section 6.2.1.1), and the safe state.
 
 Every module is brought to the same pressure p0 within t_adj, then the reference pressures are
 saved as the mean of 10 reads. The controller is a per-channel bang-bang with hysteresis: a channel
@@ -314,12 +314,21 @@ class FillRates:
         k = np.flatnonzero(judged)
         self._rates[k, bins[k]] = rate[k]
         expected = np.full_like(rate, np.nan)
-        for i in k:
-            others = np.delete(self._rates[:, bins[i]], i)
-            others = others[np.isfinite(others)]
-            if others.size >= 2:
-                expected[i] = float(np.median(others))
+        for i in k.tolist():
+            expected[i] = _median_of_others(self._rates[:, bins[i]].tolist(), i)
         return rate, expected, mid
+
+
+def _median_of_others(column: list[float], i: int) -> float:
+    """The median of the finite values of ``column`` but its ``i``-th, NaN when fewer than
+    two: np.median's value (the middle one, or the mean of the middle two, ``(a + b) / 2``)
+    on plain floats (a few channels: a NumPy call per channel cost more than the sort)."""
+    others = sorted(v for j, v in enumerate(column) if j != i and math.isfinite(v))
+    n = len(others)
+    if n < 2:
+        return math.nan
+    half = n // 2
+    return others[half] if n % 2 else (others[half - 1] + others[half]) / 2
 
 
 class InflationController:

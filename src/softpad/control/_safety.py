@@ -216,12 +216,15 @@ class FaultMonitor:
         th = self.th
         between, within = rates
         shown = between  # the message gives the channel's own rate (their mean, below)
+        sealed = None
         if self.loads_expected:
             sealed = np.asarray(~np.isnan(between).any(axis=0), dtype=bool)
-            between, within = _unbalanced(between, sealed), _unbalanced(within, sealed)
+            between = _unbalanced(between, sealed)
         up = (between > th.rise_loaded_pa_s).all(axis=0)  # NaN: not sealed throughout
         if not up.any():  # the usual frame: no channel rising at all
             return None
+        if sealed is not None:
+            within = _unbalanced(within, sealed)
         up &= between.max(axis=0) <= th.steady_spread * between.min(axis=0)
         up &= (within > 0.5 * th.rise_loaded_pa_s).all(axis=0)
         if not up.any():
@@ -236,7 +239,7 @@ class FaultMonitor:
 
     def _check_raw(self, t: float, p: NDArray[np.float64]) -> DetectedFault | None:
         th = self.th
-        lo, hi = p.min(), p.max()
+        lo, hi = np.minimum.reduce(p), np.maximum.reduce(p)  # p.min(), p.max() unwrapped
         if th.floor_pa <= lo and hi <= th.max_pressure_pa - th.trip_margin_pa:
             return None  # NaN fails both comparisons, so the usual case is one pass
         for k in range(self.n):
@@ -302,7 +305,10 @@ def _unbalanced(slope: NDArray[np.float64], sealed: NDArray[np.bool_]) -> NDArra
     moving across the pad (an object rolling or sliding onto a module) raises one module as the
     modules it leaves fall, while gas from a stuck inflation valve raises one module without
     any other falling."""
-    moved = np.where(sealed, np.nan_to_num(slope), 0.0)
+    clean = np.where(np.isnan(slope), 0.0, slope)  # np.nan_to_num's values, less its cost
+    if np.isinf(clean).any():
+        clean = np.nan_to_num(slope)
+    moved = np.where(sealed, clean, 0.0)
     return slope + np.minimum(moved.sum(axis=-1, keepdims=True) - moved, 0.0)
 
 

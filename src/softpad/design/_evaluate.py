@@ -49,6 +49,10 @@ class TrialOptions:
     #: world's gripper, sample rate, sensor noise, placement noise, the charger's and the
     #: can's unknowns; the design's own FEM pad keeps its seam and tubing.
     randomize: bool = False
+    #: The gripper's mounting: None, each object's (the set's); ``"auto"``, chosen from the
+    #: pad's reading of the placed object (:func:`softpad.planning.choose_mounting`); or one
+    #: of ``"10/4"``, ``"6/2"``, ``"4/0"`` for every object.
+    mounting: str | None = None
 
     def __post_init__(self) -> None:
         from softpad.planning import PLANNER_REGISTRY
@@ -71,6 +75,9 @@ class TrialOptions:
         )
         check_range("trial options yaw_sigma_rad", self.yaw_sigma_rad, 0.0, math.pi, "rad")
         check_range("trial options sample_rate_hz", self.sample_rate_hz, 1.0, 100_000.0, "Hz")
+        from softpad.trials import check_mounting_choice
+
+        check_mounting_choice(self.mounting, "trial options mounting")
 
     def to_dict(self) -> dict[str, Any]:
         """The options (SI), part of every cache key."""
@@ -130,19 +137,22 @@ def _one_trial(
 
     s = trial_seed(seed, obj.name, k)
     options, lab, physics = _varied(options, s)
-    world = AnalyticWorld(design.layout, SimGripper.mounting(object_set.mounting(obj), **physics))
     spec = obj.placed_on((design.cols * design.pitch_m, design.rows * design.pitch_m))
     spec = spec if lab is None else lab.object(spec)
     noise = TrialConfig(
         position_sigma_m=options.position_sigma_m, yaw_sigma_rad=options.yaw_sigma_rad
     )
     placement = Placement(*perturbed_placement(spec, s, noise))
+    mounting = _mounting(
+        design, characteristic, object_set.mounting(obj), spec, placement, s, options, lab
+    )
+    world = AnalyticWorld(design.layout, SimGripper.mounting(mounting, **physics))
     box = _trial_box(design, world, characteristic, s, options, lab)
     robot = SimulatedRobot(world)
     loop = _trial_loop(
         design, world, box, robot, options, lambda: world.place_object(spec, placement)
     )
-    record: dict[str, Any] = {"object": obj.name, "trial": k, "seed": seed}
+    record: dict[str, Any] = {"object": obj.name, "trial": k, "seed": seed, "mounting": mounting}
     if lab is not None:
         record["parameters"] = lab.to_dict()
     with box:
@@ -159,6 +169,44 @@ def _one_trial(
         "contact_delay_s": _contact_delay_s(result, robot),
         "sim_time_s": box.time_s,
     }
+
+
+def _mounting(
+    design: Any,
+    characteristic: Any,
+    own: str,
+    spec: Any,
+    placement: Any,
+    seed: int,
+    options: TrialOptions,
+    lab: Any,
+) -> str:
+    """The trial's mounting: the object's own (``options.mounting`` None), the one named, or
+    (``"auto"``) the one chosen from the design pad's reading of the placed object
+    (:func:`softpad.planning.choose_mounting`), read on a separate world and box at p0."""
+    if options.mounting is None:
+        return own
+    if options.mounting != "auto":
+        return str(options.mounting)
+    from softpad.box import SimBox
+    from softpad.planning import choose_mounting
+    from softpad.sim import AnalyticWorld, SensorParams
+    from softpad.trials import read_increments
+
+    world = AnalyticWorld(design.layout)
+    box = SimBox(
+        world,
+        channels=max(8, design.layout.n_modules),
+        sample_rate_hz=options.sample_rate_hz,
+        seed=seed % (2**31),
+        characteristic=characteristic,
+        sensor=(SensorParams() if lab is None else lab.sensor())
+        if options.noise
+        else SensorParams.ideal(),
+        initial_pressure_pa=design.p0_pa,
+    )
+    p = (placement.x_m, placement.y_m, placement.yaw_rad)
+    return choose_mounting(read_increments(world, box, spec, p), design.layout)
 
 
 def _trial_box(

@@ -17,7 +17,8 @@ Schema ``softpad-object-set/1`` (units in the key names, converted to SI on read
     name = "brick"
     mass_g = 12.6
     shape = "box"               # "box": size_mm = [lx, ly, lz]
-    size_mm = [42, 31, 23]      # "cylinder": diameter_mm, length_mm (lying along x)
+    size_mm = [42, 31, 23]      # "cylinder": diameter_mm, length_mm (lying along x;
+                                # standing = true: on an end face); "sphere": diameter_mm
     placement = { dx_mm = 0, dy_mm = 0, yaw_deg = 0 }   # centre's offset from the pad's centre
     gripper = "6/2"
 
@@ -45,7 +46,7 @@ from softpad.errors import InputError
 #: Schema tag of an object-set file.
 OBJECT_SET_SCHEMA = "softpad-object-set/1"
 #: Object sets shipped with the package (``--example NAME``).
-EXAMPLE_SETS = ("thesis-set", "blocks", "ycb-dev", "ycb-eval")
+EXAMPLE_SETS = ("thesis-set", "blocks", "ycb-dev", "ycb-eval", "datasheet-eval")
 _MOUNTINGS = ("10/4", "6/2", "4/0")
 _THESIS_PAD_M = (
     thesis.PROTOTYPE_COLS * thesis.MODULE_PITCH_M,
@@ -299,11 +300,21 @@ def _primitive_spec(name: str, entry: dict[str, Any]) -> Any:
     elif shape == "cylinder":
         r = _length_m(entry, "diameter_mm", name) * 0.5
         length = _length_m(entry, "length_mm", name)
+        standing = entry.get("standing", False)
+        if not isinstance(standing, bool):
+            raise InputError(f"object {name!r}: standing must be true or false, got {standing!r}")
+        # lying along x, or standing on an end face (a puck, a can upright)
+        axis, z = ("z", length / 2) if standing else ("x", r)
         part = PartSpec(
-            "cylinder", mass, (0.0, 0.0, r), radius_m=r, length_m=length, axis="x", name=name
+            "cylinder", mass, (0.0, 0.0, z), radius_m=r, length_m=length, axis=axis, name=name
         )
+    elif shape == "sphere":
+        r = _length_m(entry, "diameter_mm", name) * 0.5
+        part = PartSpec("sphere", mass, (0.0, 0.0, r), radius_m=r, name=name)
     else:
-        raise InputError(f"object {name!r}: shape must be 'box' or 'cylinder', got {shape!r}")
+        raise InputError(
+            f"object {name!r}: shape must be 'box', 'cylinder' or 'sphere', got {shape!r}"
+        )
     return ObjectSpec(
         name, mass, (part,), Placement(0.0, 0.0), gripper=entry.get("gripper", "10/4")
     )

@@ -123,7 +123,7 @@ def run_sweep(
     scheduler
         ``tcp://127.0.0.1:PORT`` of a running Dask scheduler; None starts a local cluster.
     workers
-        Worker processes of the local cluster (default: the CPUs).
+        Worker processes of the local cluster (default: the CPUs; 1: in this process).
     cache
         Where finished tasks are kept (None: nothing kept).
     progress
@@ -142,9 +142,9 @@ def run_sweep(
     missing = [t for t in tasks if t.key not in done]
     missing = list({t.key: t for t in missing}.values())  # FEM shared by designs: once
     n_cached = len({t.key for t in tasks}) - len(missing)
-    used = 0
-    if missing:
-        used = _compute(job, missing, done, scheduler, workers, n_cached)
+    used = _compute(job, missing, done, scheduler, workers, n_cached) if missing else 0
+    if not missing and scheduler is not None:  # the cache answered; the scheduler must too
+        used = _reach(scheduler)
     responses = {d.name: done[fem_keys[d.name]] for d in designs}
     trials = {
         d.name: [
@@ -195,6 +195,14 @@ def _with_baseline(designs: Sequence[PadDesign]) -> list[PadDesign]:
     return out
 
 
+def _reach(scheduler: str) -> int:
+    """Connect to ``scheduler`` (an :class:`InputError` when nothing answers); its workers."""
+    from softpad.design._dask import dask_client
+
+    with dask_client(scheduler, None) as client:
+        return len(client.scheduler_info().get("workers", {})) or 1
+
+
 def _compute(
     job: _SweepJob,
     missing: list[SweepTask],
@@ -208,7 +216,9 @@ def _compute(
     from softpad.design._dask import dask_client, has_dask
 
     total = len(missing) + n_cached
-    if scheduler is None and not has_dask():
+    # one worker and no scheduler: this process is that worker (a cluster of one would only
+    # add its start-up, seconds); without Dask installed, likewise
+    if scheduler is None and (workers == 1 or not has_dask()):
         _compute_here(job, missing, done, n_cached)
         return 1
     with dask_client(scheduler, workers) as client:
@@ -258,7 +268,7 @@ def _compute(
 def _compute_here(
     job: _SweepJob, missing: list[SweepTask], done: dict[str, Any], n_cached: int
 ) -> None:
-    """The missing tasks in this process, FEM first (Dask not installed)."""
+    """The missing tasks in this process, FEM first (one worker, or Dask not installed)."""
     count, total = n_cached, len(missing) + n_cached
     for t in sorted(missing, key=lambda t: t.kind != "fem"):
         if t.kind == "fem":
@@ -269,7 +279,8 @@ def _compute_here(
         job.keep(done, t, result)
         count += 1
         if job.progress is not None:
-            job.progress(count, total, f"{t.kind} {t.design.name}")
+            seed = "" if t.seed is None else f" seed {t.seed}"
+            job.progress(count, total, f"{t.kind} {t.design.name}{seed}")
 
 
 def design_sweep(

@@ -1,6 +1,6 @@
 """Inflation matched to the approach: detection delay and finger force against p0 and speed.
 
-For each inflation pressure p0 (the seed's usable 0.5 to 2.8 kPa) and approach speed, the loop
+For each inflation pressure p0 (the thesis's usable 0.5 to 2.8 kPa) and approach speed, the loop
 runs on the simulated box (analytic world) and the ground truth gives the detection delay, the
 fingertip travel into the pad and the force the fingers press on the pad at detection (the
 modules' load then, less the object's resting load). :func:`recommend_p0` picks the p0 that
@@ -102,12 +102,12 @@ def inflation_study(
     rate_hz: float = 1000.0,
     obj: str = "object-5",
 ) -> list[InflationPoint]:
-    """Every (p0, speed) point of the grid (p0 within the seed's usable 0.5 to 2.8 kPa), with
+    """Every (p0, speed) point of the grid (p0 within the thesis's usable 0.5 to 2.8 kPa), with
     the best contact detector (the adaptive CUSUM) by default."""
     for p in pressures_pa:
         if not 500.0 <= p <= 2800.0:
             raise InputError(
-                f"p0 must be within 0.5 to 2.8 kPa (seed, Section 6.2.1.1), got {p / 1e3:g} kPa"
+                f"p0 must be within 0.5 to 2.8 kPa (thesis, Section 6.2.1.1), got {p / 1e3:g} kPa"
             )
     return [
         inflation_point(p, v, seeds, detector, rate_hz, obj)

@@ -21,7 +21,7 @@ MAX_COMMAND_WIDTH_M = 1.0
 MAX_SPEED_M_S = 2.0
 #: Jaws that stopped this much short of their fully closed opening hold something, metres: the
 #: gripper's own report (the Sawyer's electric gripper tells "gripping" from its position and
-#: force, seed Section 6.3). 1 mm: 100 steps of the 10 um encoder and ten times the
+#: force, thesis Section 6.3). 1 mm: 100 steps of the 10 um encoder and ten times the
 #: contacts' 0.1 mm penetration; an object less than 1 mm wider than the mounting's minimum
 #: reads as nothing.
 HOLD_MARGIN_M = 1e-3

@@ -12,7 +12,7 @@ from numpy.typing import NDArray
 from softpad import thesis
 from softpad.errors import MM_AS_M, InputError, LayoutError, check_finite
 
-#: Module pitch of the thesis prototype: 45 mm square modules (seed, Section 6.1.1).
+#: Module pitch of the thesis prototype: 45 mm square modules (thesis, Section 6.1.1).
 DEFAULT_PITCH_M = thesis.MODULE_PITCH_M
 
 _LAYOUT_RE = re.compile(r"^\s*(\d+)\s*[xX]\s*(\d+)\s*$")

@@ -1,4 +1,4 @@
-"""Parallel-jaw gripper geometry (seed, Section 6.3)."""
+"""Parallel-jaw gripper geometry (thesis, Section 6.3)."""
 
 from __future__ import annotations
 
@@ -28,9 +28,9 @@ class GripperSpec:
     ----------
     max_width_m, min_width_m
         Largest and smallest distance between the fingertips' inner faces, metres
-        (seed, Section 6.3: the three mountings 10/4, 6/2 or 4/0 cm).
+        (thesis, Section 6.3: the three mountings 10/4, 6/2 or 4/0 cm).
     finger_length_m
-        Finger length, metres (seed, Section 6.3: 9.5 cm).
+        Finger length, metres (thesis, Section 6.3: 9.5 cm).
     tip_width_m
         Size of a fingertip across the closing direction, metres: 16 mm, the Sawyer electric
         gripper's basic hard tip (:data:`softpad.thesis.FINGERTIP_WIDTH_M` names the source; the

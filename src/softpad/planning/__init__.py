@@ -1,4 +1,4 @@
-"""Grasp planning from pressure increments (seed, Section 6.2.1).
+"""Grasp planning from pressure increments (thesis, Section 6.2.1).
 
 ``plan_grasps`` finds the objects (modules above t_o, 8-connected groups), computes each one's
 pressure-based centre of mass (PCOM, Eq. 6.1) and a top grasp (centre of grasp COG and
@@ -25,6 +25,7 @@ from softpad.planning._model_based import (
     PadModel,
     table_bytes,
 )
+from softpad.planning._mounting import ALL_MOUNTINGS, choose_mounting
 from softpad.planning._params import DEFAULT_SAFETY_SHIFT, PlannerParams
 from softpad.planning._pcom import pcom
 from softpad.planning._plan import Planner, RetryPlanner, ThesisPlanner, plan_grasps
@@ -38,9 +39,10 @@ from softpad.planning._registry import (
     planner_for,
     register_planner,
 )
-from softpad.planning._render import ascii_pad, format_plans, plot_plans
+from softpad.planning._render import ascii_pad, format_plans, plan_legend_handles, plot_plans
 
 __all__ = [
+    "ALL_MOUNTINGS",
     "DEFAULT_SAFETY_SHIFT",
     "DEFAULT_SEAM_WIDTH_M",
     "FIG_6_7",
@@ -65,6 +67,7 @@ __all__ = [
     "available_planners",
     "bridge_pairs",
     "centred_on_load",
+    "choose_mounting",
     "format_plans",
     "landing_side",
     "load_axis",
@@ -72,6 +75,7 @@ __all__ = [
     "object_extent_m",
     "pcom",
     "plan_grasps",
+    "plan_legend_handles",
     "planner_for",
     "plot_plans",
     "pressed_share",

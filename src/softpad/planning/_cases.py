@@ -41,7 +41,7 @@ def _d(**modules: float) -> tuple[float, ...]:
 
 PI = math.pi
 
-#: Table 6.1 of the seed: one representative planned grasp per object.
+#: Table 6.1 of the thesis: one representative planned grasp per object.
 TABLE_6_1: tuple[PlanCase, ...] = (
     PlanCase("object-1", _d(m3=62, m6=62), (2.5, 1.0), 0.0, "n2-vertical", "Table 6.1", 23.8),
     PlanCase(
@@ -108,7 +108,7 @@ TABLE_6_1: tuple[PlanCase, ...] = (
     ),
 )
 
-#: Fig. 6.7 of the seed: objects on modules 1 and 4.
+#: Fig. 6.7 of the thesis: objects on modules 1 and 4.
 FIG_6_7: tuple[PlanCase, ...] = (
     PlanCase("fig6.7a", _d(m1=92, m4=108), (0.5, 0.96), 0.0, "n2-vertical", "Fig. 6.7a", 38.0),
     PlanCase("fig6.7b-left", _d(m1=136, m4=64), (0.5, 1.18), 0.0, "n2-vertical", "Fig. 6.7b left"),

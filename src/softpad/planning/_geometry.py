@@ -8,7 +8,7 @@ import math
 def theta_perpendicular(dx: float, dy: float) -> float:
     """Direction of grasp perpendicular to an object axis (dx, dy), in (-pi/2, pi/2].
 
-    The jaws close perpendicular to the object's major axis (seed, Section 6.2.1.3, N = 2).
+    The jaws close perpendicular to the object's major axis (thesis, Section 6.2.1.3, N = 2).
     Axes along the grid and its diagonals return the exact constants 0, pi/2 and +-pi/4.
     """
     if dx < 0 or (dx == 0 and dy < 0):

@@ -1,4 +1,4 @@
-"""Pressure-based centre of mass (PCOM), Eq. (6.1) of the seed."""
+"""Pressure-based centre of mass (PCOM), Eq. (6.1) of the thesis."""
 
 from __future__ import annotations
 

@@ -63,11 +63,13 @@ def format_plans(
         raise InputError(
             f"a {layout.name} pad needs {layout.n_modules} increments, got {np.size(delta_pa)}"
         )
+    pad = ascii_pad(delta_pa, layout, plans)
+    both = ", * = PCOM and centre of grasp in one character" if "*" in pad else ""
     lines = [
         f"SoftPad {layout.name}, pitch {layout.pitch_m * 1e3:g} mm, "
         f"object threshold t_o = {threshold_pa / 1e3:.3f} kPa",
-        "increments (kPa), P = PCOM, G = centre of grasp:",
-        ascii_pad(delta_pa, layout, plans),
+        f"module number and increment (kPa), P = PCOM, G = centre of grasp{both}:",
+        pad,
     ]
     if not plans:
         lines.append("no object detected (no module above t_o)")
@@ -88,6 +90,10 @@ def format_plans(
     return "\n".join(lines)
 
 
+#: Font size of the pad pictures' labels, points (the figure's own size).
+PAD_FONT_PT = 9.0
+
+
 def plot_plans(
     delta_pa: ArrayLike,
     plans: Sequence[GraspPlan],
@@ -98,12 +104,17 @@ def plot_plans(
     vmax_kpa: float | None = None,
     legend: bool = True,
     colorbar: bool = True,
+    font_pt: float = PAD_FONT_PT,
 ) -> Any:
     """Draw the pad, the increments as a heat map, PCOM, COG and the two fingertips (Fig. 6.10).
 
-    Returns the matplotlib Axes. Module units on both axes. ``vmax_kpa`` fixes the top of the
-    colour scale (several panels on one scale; default this panel's largest increment);
-    ``legend`` and ``colorbar`` may be left to the caller (one for a whole figure).
+    Returns the matplotlib Axes. Both axes in millimetres of the pad frame (origin at the pad's
+    bottom-left corner), the module grid drawn at every pitch and each module numbered; the
+    fingertips are the jaws' two pads at the approach opening (the gripper's largest width),
+    across the centre of grasp along theta, as the legend says. ``vmax_kpa`` fixes the top of
+    the colour scale (several panels on one scale; default this panel's largest increment);
+    ``legend`` and ``colorbar`` may be left to the caller (one for a whole figure);
+    ``font_pt`` is the size of every label, points.
     """
     import matplotlib.pyplot as plt
 
@@ -111,24 +122,40 @@ def plot_plans(
     d = np.asarray(delta_pa, dtype=float) / 1e3
     if ax is None:
         _, ax = plt.subplots(figsize=(1.6 * layout.cols + 1.4, 1.6 * layout.rows + 0.6))
-    _draw_increments(ax, d, layout, vmax_kpa, colorbar)
+    _draw_increments(ax, d, layout, vmax_kpa, colorbar, font_pt)
     for plan in plans:
         _draw_plan(ax, plan, layout, gripper)
-    handles, labels = ax.get_legend_handles_labels()
-    uniq = dict(zip(labels, handles, strict=False))
-    if uniq and legend:  # outside the pad, so that it covers no module
+    if plans and legend:  # outside the pad, so that it covers no module
         ax.legend(
-            uniq.values(), uniq.keys(), loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=7,
-            frameon=False,
+            handles=plan_legend_handles(), loc="upper left", bbox_to_anchor=(1.0, 1.0),
+            fontsize=font_pt, frameon=False, borderaxespad=0.2,
         )  # fmt: skip
-    ax.set_xlim(-0.3, layout.cols + 0.3)
-    ax.set_ylim(-0.3, layout.rows + 0.3)
+    pitch_mm = layout.pitch_m * 1e3
+    margin = 0.3 * pitch_mm
+    ax.set_xlim(-margin, layout.cols * pitch_mm + margin)
+    ax.set_ylim(-margin, layout.rows * pitch_mm + margin)
+    ax.set_xticks(np.arange(layout.cols + 1) * pitch_mm)
+    ax.set_yticks(np.arange(layout.rows + 1) * pitch_mm)
+    ax.tick_params(labelsize=font_pt)
     ax.set_aspect("equal")
-    ax.set_xlabel("x (module units)")
-    ax.set_ylabel("y (module units)")
+    ax.set_xlabel("x (mm)", fontsize=font_pt)
+    ax.set_ylabel("y (mm)", fontsize=font_pt)
     if title:
-        ax.set_title(title, fontsize=9)
+        ax.set_title(title, fontsize=font_pt)
     return ax
+
+
+def plan_legend_handles(one_line: bool = False) -> list[Any]:
+    """Legend entries of :func:`plot_plans`' marks: PCOM, COG and the fingertips (their label
+    on ``one_line`` or two)."""
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    return [
+        Line2D([], [], ls="", marker="o", color="tab:blue", ms=6, label="PCOM"),
+        Line2D([], [], ls="", marker="x", color="k", ms=8, mew=2, label="COG"),
+        Patch(color="k", label="fingertips," + (" " if one_line else "\n") + "jaws open"),
+    ]
 
 
 def _draw_increments(
@@ -137,48 +164,51 @@ def _draw_increments(
     layout: PadLayout,
     vmax_kpa: float | None = None,
     colorbar: bool = True,
+    font_pt: float = PAD_FONT_PT,
 ) -> None:
-    """Heat map of the increments (kPa) over the modules, module numbers and module edges."""
+    """Heat map of the increments (kPa) over the modules, module numbers and the module grid
+    (millimetres)."""
     d = d_kpa
     grid = np.zeros((layout.rows, layout.cols))
     for m in layout.modules:
         r, c = layout.row_col(m)
         grid[layout.rows - 1 - r, c] = d[m - 1]
     vmax = vmax_kpa if vmax_kpa is not None else max(float(np.max(np.abs(d))), 1e-6)
+    p = layout.pitch_m * 1e3
     im = ax.imshow(
         grid,
         origin="lower",
-        extent=(0, layout.cols, 0, layout.rows),
+        extent=(0, layout.cols * p, 0, layout.rows * p),
         cmap="RdPu",
         vmin=0,
         vmax=vmax,
     )
     if colorbar:
-        ax.figure.colorbar(im, ax=ax, label="dP (kPa)", fraction=0.04)
+        bar = ax.figure.colorbar(im, ax=ax, fraction=0.04, pad=0.02)
+        bar.set_label("dP (kPa)", fontsize=font_pt)
+        bar.ax.tick_params(labelsize=font_pt)
     for m in layout.modules:
         x, y = layout.center(m)
-        ax.text(x - 0.45, y + 0.33, str(m), fontsize=8, color="0.3")
+        ax.text((x - 0.45) * p, (y + 0.28) * p, str(m), fontsize=font_pt, color="0.3")
     for k in range(layout.cols + 1):
-        ax.axvline(k, color="0.5", lw=1.5)
+        ax.axvline(k * p, color="0.5", lw=1.2)
     for k in range(layout.rows + 1):
-        ax.axhline(k, color="0.5", lw=1.5)
+        ax.axhline(k * p, color="0.5", lw=1.2)
 
 
 def _draw_plan(ax: Any, plan: GraspPlan, layout: PadLayout, gripper: GripperSpec) -> None:
-    """PCOM, COG and the two fingertips of ``plan``."""
+    """PCOM, COG and the two fingertips of ``plan``, millimetres."""
     from matplotlib.patches import Rectangle
 
-    p_units = gripper.tip_thickness_m / layout.pitch_m
-    w_units = gripper.tip_width_m / layout.pitch_m
-    ax.plot(*plan.pcom, "o", color="tab:blue", ms=6, label="PCOM")
-    ax.plot(*plan.cog, "x", color="k", ms=9, mew=2, label="COG")
-    centre_m = plan.cog_m(layout)
-    for tip in gripper.fingertip_centres(centre_m, plan.theta):
-        tx, ty = layout.to_units(tip)
+    mm = layout.pitch_m * 1e3  # per module unit
+    thick, width = gripper.tip_thickness_m * 1e3, gripper.tip_width_m * 1e3
+    ax.plot(plan.pcom[0] * mm, plan.pcom[1] * mm, "o", color="tab:blue", ms=6, label="PCOM")
+    ax.plot(plan.cog[0] * mm, plan.cog[1] * mm, "x", color="k", ms=8, mew=2, label="COG")
+    for tx, ty in gripper.fingertip_centres(plan.cog_m(layout), plan.theta):
         rect = Rectangle(
-            (tx - p_units / 2, ty - w_units / 2),
-            p_units,
-            w_units,
+            (tx * 1e3 - thick / 2, ty * 1e3 - width / 2),
+            thick,
+            width,
             angle=math.degrees(plan.theta),
             rotation_point="center",
             color="k",

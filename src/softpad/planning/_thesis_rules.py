@@ -1,4 +1,4 @@
-"""The thesis's grasp-planning rules (seed, Section 6.2.1.3 and Fig. 6.5).
+"""The thesis's grasp-planning rules (thesis, Section 6.2.1.3 and Fig. 6.5).
 
 Every rule works in module units on the pad frame of DESIGN.md. The rules are written for the
 2 x 3 prototype, and generalised to any R x C pad where the thesis suggests how (rectangles
@@ -233,7 +233,7 @@ def _three(obj: _Object, mods: tuple[int, ...], c_s: float) -> _Grasp:
 
 
 def _corner_shaped(obj: _Object, mods: tuple[int, ...], corner: int, c_s: float) -> _Grasp:
-    """L-shaped object (seed, Fig. 6.4d-(2)(3)).
+    """L-shaped object (thesis, Fig. 6.4d-(2)(3)).
 
     PCOM strictly inside a side module: project it on that side module's axis (the line
     through the side and corner centres). Otherwise (corner module, a boundary, or outside the
@@ -297,7 +297,7 @@ def diagonal_linked_plan(
 def _diagonal_linked(
     obj: _Object, mods: tuple[int, ...], corner: int, c_s: float, side: int | None = None
 ) -> _Grasp:
-    """Three modules with a diagonal link (seed, Fig. 6.4d-(4)(5)).
+    """Three modules with a diagonal link (thesis, Fig. 6.4d-(4)(5)).
 
     The bisector through the corner module is taken perpendicular to the pad's long side of
     the object's bounding box ("vertical" on the 2 x 3 pad). The PCOM is projected on the axis
@@ -335,7 +335,7 @@ def _diagonal_linked(
 
 
 def _five_on_2x3(obj: _Object, mods: tuple[int, ...], c_s: float) -> _Grasp:
-    """N = 5 on the 2 x 3 pad (seed, Fig. 6.4f): a horseshoe, or a 2 x 2 square plus one."""
+    """N = 5 on the 2 x 3 pad (thesis, Fig. 6.4f): a horseshoe, or a 2 x 2 square plus one."""
     layout = obj.layout
     (missing,) = [m for m in layout.modules if m not in mods]
     p = obj.pcom

@@ -2,9 +2,9 @@
 
 Every message of the MCAP file is copied with its recorded clock (``log_time``), so the bag
 plays back at the run's real speed: into rosbag2 unchanged (CDR, the embedded ROS 2 message
-definitions, ``/tf_static`` offered as transient-local, i.e. latched), into a ROS 1 bag converted
-to ROS 1 serialisation by ``rosbags``' converter (``std_msgs/Header`` gains its ``seq``;
-``/tf_static`` latched), readable by ``rosbag play`` and Debian's ``python3-rosbag``.
+definitions, ``/tf_static`` offered as transient-local, i.e. latched, as the MCAP's channel
+says), into a ROS 1 bag converted to ROS 1 serialisation by ``rosbags``' converter
+(``std_msgs/Header`` gains its ``seq``, counting up per topic; ``/tf_static`` latched), readable by ``rosbag play`` and Debian's ``python3-rosbag``.
 """
 
 from __future__ import annotations
@@ -34,6 +34,22 @@ def _latched_qos() -> Any:
     )  # fmt: skip
 
 
+def latched_qos_yaml() -> str:
+    """``offered_qos_profiles`` of a latched topic as rosbag2 stores it in a channel's metadata
+    (YAML, metadata version 9's names: ``keep_last``, ``transient_local``, ...): what a
+    ROS 2 player reads to republish ``/tf_static`` latched."""
+    from io import StringIO
+
+    from rosbags.rosbag2.metadata import dump_qos_v9
+    from ruamel.yaml import YAML
+
+    stream = StringIO()
+    yaml = YAML(typ="safe")
+    yaml.default_flow_style = False
+    yaml.dump(dump_qos_v9([_latched_qos()]), stream)
+    return stream.getvalue().strip()
+
+
 def _refuse_existing(out: Path, force: bool) -> None:
     if out.exists() and not force:
         raise InputError(f"{str(out)!r} exists; refusing to overwrite it (add --force)")
@@ -59,7 +75,9 @@ def to_rosbag2(recording: str | Path, out: str | Path, force: bool = False) -> P
     with AnyReader([src]) as reader, Writer(dst, version=9) as writer:
         conns = {}
         for c in reader.connections:
-            qos = [_latched_qos()] if c.topic == TF_STATIC_TOPIC else []
+            qos = list(getattr(c.ext, "offered_qos_profiles", []))
+            if c.topic == TF_STATIC_TOPIC and not qos:  # recorded before the MCAP carried it
+                qos = [_latched_qos()]
             conns[c.id] = writer.add_connection(
                 c.topic, c.msgtype, typestore=reader.typestore, offered_qos_profiles=qos
             )
@@ -72,7 +90,8 @@ def to_rosbag1(recording: str | Path, out: str | Path, force: bool = False) -> P
     """Write ``recording`` as the ROS 1 bag ``out`` (``.bag``): ``rosbags``' converter turns
     each message into ROS 1 serialisation against ROS Noetic's types (``std_msgs/Header``
     gains ``seq``; the project's two types are carried over), then copied once more to mark
-    ``/tf_static`` latched (the converter writes no latching flag); ``rosbag play`` and
+    ``/tf_static`` latched (the converter writes no latching flag) and to number each topic's
+    headers 1, 2, 3, ... (it leaves every ``seq`` 0); ``rosbag play`` and
     Debian's ``rosbag`` Python package read it."""
     import contextlib
     import io
@@ -97,16 +116,37 @@ def to_rosbag1(recording: str | Path, out: str | Path, force: bool = False) -> P
     return dst
 
 
+def _starts_with_header(msgdef: str) -> bool:
+    """Whether a ROS 1 message definition's first field is a ``std_msgs/Header``."""
+    for line in msgdef.splitlines():
+        words = line.split("#", 1)[0].split()
+        if words:
+            return words[0] in ("Header", "std_msgs/Header")
+    return False
+
+
 def _latch_tf_static(src: Path, dst: Path) -> None:
-    """Copy the ROS 1 bag ``src`` to ``dst`` message for message, ``/tf_static`` latched."""
+    """Copy the ROS 1 bag ``src`` to ``dst`` message for message, ``/tf_static`` latched, and
+    the ``seq`` of each topic's headers counting 1, 2, 3, ... as rospy's publisher numbers
+    them (the converter leaves every ``seq`` 0). ``seq`` is the first field of a message that
+    starts with a header: its first 4 bytes, little-endian."""
+    import struct
+
     from rosbags.rosbag1 import Reader, Writer
 
     with Reader(src) as reader, Writer(dst) as writer:
-        conns = {}
+        conns, seq = {}, {}
         for c in reader.connections:
             conns[c.id] = writer.add_connection(
                 c.topic, c.msgtype, msgdef=c.msgdef.data, md5sum=c.digest, callerid="/softpad",
                 latching=1 if c.topic == TF_STATIC_TOPIC else None,
             )  # fmt: skip
+            if _starts_with_header(c.msgdef.data):
+                seq[c.id] = 0
         for c, t_ns, raw in reader.messages():
+            if c.id in seq:
+                seq[c.id] += 1
+                numbered = bytearray(raw)
+                struct.pack_into("<I", numbered, 0, seq[c.id])
+                raw = bytes(numbered)
             writer.write(conns[c.id], t_ns, raw)

@@ -7,8 +7,13 @@
   ``sensor_msgs/msg/FluidPressure`` (``header.stamp.sec/nanosec`` on the recorded clock,
   ``fluid_pressure`` absolute in Pa, ``variance``), as in recordings;
 - ``/softpad/pressures``: the gauge readings, Pa (modules, then the supply);
-- ``/softpad/supply/pressure``; ``/softpad/events`` (kind + data, SI); ``/softpad/plan``;
-  ``/softpad/robot/pose`` (when a robot state source is given);
+- ``/softpad/supply/pressure``; ``/softpad/events`` (kind + data, SI); ``/softpad/plan`` (the
+  plan event: each object's modules, PCOM, COG, theta, rule), each with a JSON schema naming
+  its fields and units;
+- ``/softpad/plan/grasps`` and ``/softpad/plan/objects`` (``foxglove.PosesInFrame`` in the pad
+  frame: COG with yaw = theta, PCOM) and ``/softpad/robot/pose`` (``foxglove.PoseInFrame``, when
+  a robot state source is given): the topics a recording holds under those names (as ROS 2
+  ``PoseArray``/``PoseStamped``), so docs/foxglove-layout.json's 3D panel draws both alike;
 - ``/tf_static``: ``foxglove.FrameTransforms`` base -> softpad -> softpad_module_K;
 - ``/softpad/pad``: a ``foxglove.SceneUpdate`` picture of the pad, one box per module whose
   height follows its pressure, and the planned centre of grasp.
@@ -39,7 +44,9 @@ from softpad.record._schemas import (
     EVENT_TOPIC,
     GAUGE_LABEL,
     GAUGE_TOPIC,
+    OBJECT_TOPIC,
     PAD_FRAME,
+    PLAN_TOPIC,
     ROBOT_POSE_TOPIC,
     SUPPLY_TOPIC,
     TF_STATIC_TOPIC,
@@ -87,7 +94,69 @@ _GAUGE_SCHEMA = {
         "data": {"type": "array", "items": {"type": "number"}, "description": "gauge, Pa"},
     },
 }
-_ANY_SCHEMA = {"type": "object"}
+_STAMP_SCHEMA = {
+    "type": "object",
+    "description": "box time on the recorded clock (UNIX)",
+    "properties": {"sec": {"type": "integer"}, "nanosec": {"type": "integer"}},
+    "required": ["sec", "nanosec"],
+}
+_XY = {"type": "array", "items": {"type": "number"}, "minItems": 2, "maxItems": 2}
+#: One object's plan, as :meth:`softpad.planning.GraspPlan.to_dict` gives it.
+_OBJECT_SCHEMA = {
+    "type": "object",
+    "properties": {
+        "modules": {"type": "array", "items": {"type": "integer"}, "description": "1-based"},
+        "pcom": {**_XY, "description": "pressure centre of mass, module units"},
+        "cog": {**_XY, "description": "centre of grasp, module units"},
+        "cog_m": {**_XY, "description": "centre of grasp in the pad frame, m"},
+        "theta": {"type": "number", "description": "closing direction from the pad's x, rad"},
+        "rule": {"type": "string", "description": "the planner's rule"},
+        "tentative": {"type": "boolean"},
+    },
+    "required": ["modules", "pcom", "cog", "theta"],
+}
+_EVENT_SCHEMA = {
+    "type": "object",
+    "title": "softpad.Event",
+    "description": "one event of the run (softpad_msgs/msg/Event in recordings)",
+    "properties": {
+        "stamp": _STAMP_SCHEMA,
+        "kind": {
+            "type": "string",
+            "description": "phase, adjusted, reference, object_seen, plan, contact, "
+            "no_contact, valve, robot, outcome, fault, safe_state, ...",
+        },
+        "data": {
+            "type": "object",
+            "description": "the event's data, SI units (Pa, m, rad, s); fields by kind",
+            "additionalProperties": True,
+        },
+    },
+    "required": ["stamp", "kind", "data"],
+}
+_PLAN_SCHEMA = {
+    "type": "object",
+    "title": "softpad.Plan",
+    "description": "the loop's plan event: every object's grasp, in grasp order",
+    "properties": {
+        "stamp": _STAMP_SCHEMA,
+        "kind": {"type": "string", "const": "plan"},
+        "data": {
+            "type": "object",
+            "properties": {
+                "objects": {"type": "array", "items": _OBJECT_SCHEMA},
+                "increments_pa": {
+                    "type": "array",
+                    "items": {"type": "number"},
+                    "description": "filtered increments dP_i the plan used, Pa",
+                },
+            },
+            "required": ["objects"],
+            "additionalProperties": True,
+        },
+    },
+    "required": ["stamp", "kind", "data"],
+}
 
 
 def _stamp(ns: int) -> dict[str, int]:
@@ -228,7 +297,7 @@ class FoxgloveLive(ClosedOnExit):
         """``ws://127.0.0.1:PORT``: what to open in Foxglove."""
         return f"ws://{HOST}:{self.port}"
 
-    def _channel(self, topic: str, schema: dict[str, Any] = _ANY_SCHEMA) -> Any:
+    def _channel(self, topic: str, schema: dict[str, Any]) -> Any:
         ch = self._channels.get(topic)
         if ch is None:
             ch = self._channels[topic] = self._fg.Channel(topic, schema=schema, context=self._ctx)
@@ -267,8 +336,11 @@ class FoxgloveLive(ClosedOnExit):
         self._channel(GAUGE_TOPIC, _GAUGE_SCHEMA).log(array, log_time=now)
         if self._robot_state is not None:
             s = self._robot_state()
-            pose = {"x_m": s.x_m, "y_m": s.y_m, "z_m": s.z_m, "yaw_rad": s.yaw_rad, "phase": phase}
-            self._channel(ROBOT_POSE_TOPIC).log({"stamp": stamp, **pose}, log_time=now)
+            pose = self._fg.messages.PoseInFrame(
+                timestamp=self._fg_stamp(stamp), frame_id=PAD_FRAME,
+                pose=self._fg_pose(s.x_m, s.y_m, s.z_m, s.yaw_rad),
+            )  # fmt: skip
+            self._typed(ROBOT_POSE_TOPIC, "PoseInFrameChannel").log(pose, log_time=now)
         if (now * 1e-9) - self._last_pad >= PAD_PERIOD_S:
             self._last_pad = now * 1e-9
             self._pad_picture(frame, now)
@@ -281,12 +353,49 @@ class FoxgloveLive(ClosedOnExit):
             return
         now = time.time_ns()
         data = jsonable(data)
-        msg = {"stamp": self._stamp(t_s), "kind": kind, "data": data}
-        self._channel(EVENT_TOPIC).log(msg, log_time=now)
+        stamp = self._stamp(t_s)
+        msg = {"stamp": stamp, "kind": kind, "data": data}
+        self._channel(EVENT_TOPIC, _EVENT_SCHEMA).log(msg, log_time=now)
         if kind == "plan":
-            self._channel(LIVE_PLAN_TOPIC).log(msg, log_time=now)
+            self._channel(LIVE_PLAN_TOPIC, _PLAN_SCHEMA).log(msg, log_time=now)
             objects = data.get("objects") or []
             self._cog = tuple(objects[0]["cog_m"]) if objects else None
+            self._plan_poses(stamp, objects, now)
+
+    def _fg_stamp(self, stamp: dict[str, int]) -> Any:
+        return self._fg.messages.Timestamp(stamp["sec"], stamp["nanosec"])
+
+    def _fg_pose(self, x: float, y: float, z: float, yaw: float) -> Any:
+        from foxglove.messages import Pose, Quaternion, Vector3
+
+        q = Quaternion(x=0, y=0, z=math.sin(yaw / 2), w=math.cos(yaw / 2))
+        return Pose(position=Vector3(x=x, y=y, z=z), orientation=q)
+
+    def _typed(self, topic: str, channel_class: str) -> Any:
+        """The SDK's typed channel ``channel_class`` (``foxglove.channels``) of ``topic``."""
+        ch = self._channels.get(topic)
+        if ch is None:
+            import foxglove.channels
+
+            kind = getattr(foxglove.channels, channel_class)
+            ch = self._channels[topic] = kind(topic, context=self._ctx)
+        return ch
+
+    def _plan_poses(self, stamp: dict[str, int], objects: list[Any], now_ns: int) -> None:
+        """The plan as a recording holds it: grasps (COG, yaw = theta) and objects (PCOM) in
+        the pad frame, here as ``foxglove.PosesInFrame``."""
+        pitch = self.layout.pitch_m
+        grasps = [
+            self._fg_pose(o["cog_m"][0], o["cog_m"][1], 0.0, float(o["theta"])) for o in objects
+        ]
+        pcoms = [
+            self._fg_pose(o["pcom"][0] * pitch, o["pcom"][1] * pitch, 0.0, 0.0) for o in objects
+        ]
+        for topic, poses in ((PLAN_TOPIC, grasps), (OBJECT_TOPIC, pcoms)):
+            msg = self._fg.messages.PosesInFrame(
+                timestamp=self._fg_stamp(stamp), frame_id=PAD_FRAME, poses=poses
+            )
+            self._typed(topic, "PosesInFrameChannel").log(msg, log_time=now_ns)
 
     def _pad_picture(self, frame: PressureFrame, now_ns: int) -> None:
         from foxglove.messages import (

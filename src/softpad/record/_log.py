@@ -118,7 +118,7 @@ class RunLog:
 
     # --- plotting -------------------------------------------------------------------
     def plot(self, path: str | Path | None = None, title: str | None = None) -> Any:
-        """Pressure traces of every module with the phases shaded, like the seed's Fig. 6.8
+        """Pressure traces of every module with the phases shaded, like the thesis's Fig. 6.8
         (:func:`softpad.record.plot_traces`; never switches the matplotlib backend).
 
         Returns

@@ -211,7 +211,21 @@ class McapRecorder(ClosedOnExit):
                 }
             )
         tf = {"transforms": transforms}
+        self._latched_channel(S.TF_STATIC_TOPIC, "tf2_msgs/msg/TFMessage")
         self._write(S.TF_STATIC_TOPIC, "tf2_msgs/msg/TFMessage", tf, t_s)
+
+    def _latched_channel(self, topic: str, datatype: str) -> None:
+        """Register ``topic``'s channel with the QoS of a latched topic in its metadata
+        (``offered_qos_profiles``, as rosbag2 writes it), so ``ros2 bag play`` republishes it
+        transient-local and a late subscriber still gets it."""
+        from softpad.record._bags import latched_qos_yaml
+
+        ids = self._writer._channel_ids  # mcap_ros2's Writer registers channels on first use
+        if topic not in ids:
+            ids[topic] = self._writer._writer.register_channel(
+                topic=topic, message_encoding="cdr", schema_id=self._schema(datatype).id,
+                metadata={"offered_qos_profiles": latched_qos_yaml()},
+            )  # fmt: skip
 
     def _write(self, topic: str, datatype: str, message: dict[str, Any], t_s: float) -> None:
         if self.closed:

@@ -14,21 +14,37 @@ import numpy as np
 if TYPE_CHECKING:  # the methods of RecordedRun call these (no import circle)
     from softpad.record._read import RecordedRun
 
-#: Colours of the phases' bands.
+#: Colours of the phases' bands: ColorBrewer's qualitative "Set3" (twelve light colours made
+#: to be told apart), one per phase in the loop's order, the safe state in its red.
 PHASE_COLOURS = {
-    "adjust": "#e4e4e4",
-    "reference": "#c8c8c8",
-    "wait_object": "#e8f0ff",
-    "plan": "#cfe0ff",
-    "approach": "#fff3d6",
-    "descend": "#ffe0b3",
-    "close": "#ffc9c9",
-    "lift": "#e2f5e2",
-    "hold": "#d0f0d0",
-    "release": "#f0e6ff",
-    "valve_check": "#f2f2e0",
-    "safe": "#ffb3b3",
+    "adjust": "#d9d9d9",
+    "reference": "#8dd3c7",
+    "wait_object": "#ffffb3",
+    "plan": "#bebada",
+    "approach": "#80b1d3",
+    "descend": "#fdb462",
+    "close": "#fccde5",
+    "lift": "#b3de69",
+    "hold": "#ccebc5",
+    "release": "#bc80bd",
+    "valve_check": "#ffed6f",
+    "safe": "#fb8072",
 }
+
+#: Opacity of the phases' bands over white (the traces stay the figure's darkest marks).
+BAND_ALPHA = 0.7
+
+#: Width a figure is printed at in a paper's column, inches, and the smallest font size it
+#: may then show, points: every label of these figures is sized to read at that width.
+COLUMN_WIDTH_IN = 3.5
+SMALLEST_PRINTED_PT = 6.5
+
+
+def font_pt(fig_width_in: float, printed_pt: float = SMALLEST_PRINTED_PT) -> float:
+    """The font size, points, that prints at ``printed_pt`` when a figure ``fig_width_in``
+    wide is scaled to :data:`COLUMN_WIDTH_IN`."""
+    return printed_pt * fig_width_in / COLUMN_WIDTH_IN
+
 
 #: A rise above the hold's level, Pa, during ``release`` that is marked as the object landing.
 LANDING_MARK_PA = 90.0
@@ -60,12 +76,14 @@ if TYPE_CHECKING:  # the methods of RecordedRun call these (no import circle)
 
 
 def plot_traces(run: RecordedRun, path: str | Path | None = None, title: str | None = None) -> Any:
-    """Pressure of every module against box time, phases as shaded bands (cf. seed Fig. 6.8).
+    """Pressure of every module against box time, phases as shaded bands (cf. thesis Fig. 6.8).
 
-    One legend entry per module and one per phase (so a phase too short to name inside its band
-    is still named); wide bands are also named inside the plot; contact, missed contact and
-    faults are vertical lines; the rise of a module while the held object is put back down
-    (``release``: down at the approach speed, then the jaws open) is marked as its landing.
+    Every phase has its own colour (:data:`PHASE_COLOURS`) and is named in a legend below the
+    plot, in the order the run went through it (so a phase too short to see is still named);
+    modules and the contact, missed contact and faults (vertical lines) in a second legend; the
+    rise of a module while the held object is put back down (``release``: down at the approach
+    speed, then the jaws open) is marked as its landing, the note inside the plot below the
+    peak, clear of the title. Labels read at a column's width (:data:`COLUMN_WIDTH_IN`).
 
     Parameters
     ----------
@@ -82,62 +100,54 @@ def plot_traces(run: RecordedRun, path: str | Path | None = None, title: str | N
     """
     from matplotlib.figure import Figure
 
-    fig = Figure(figsize=(10, 4.8), layout="constrained")
+    width = 7.0
+    pt = font_pt(width)
+    fig = Figure(figsize=(width, 6.2), layout="constrained")
     ax = fig.add_subplot()
     n = _modules(run)
     for ph, t0, t1 in run.phase_spans():
-        ax.axvspan(t0, t1, color=PHASE_COLOURS.get(ph, "#f5f5f5"), lw=0)
-        if t1 - t0 > 0.02 * max(run.duration_s, 1e-9):  # name the bands wide enough to read
-            ax.text(
-                (t0 + t1) / 2,
-                0.99,
-                ph.replace("_", " "),
-                transform=ax.get_xaxis_transform(),
-                rotation=90,
-                va="top",
-                ha="center",
-                fontsize=7,
-                color="0.35",
-            )
+        ax.axvspan(t0, t1, color=PHASE_COLOURS.get(ph, "#f5f5f5"), alpha=BAND_ALPHA, lw=0)
     for k in range(n):
         ax.plot(run.t_s, run.pressures_pa[:, k] / 1e3, lw=0.9, label=f"module {k + 1}")
     for kind, colour in MARKED_EVENTS.items():
         for i, (t, _) in enumerate(run.events_of(kind)):
             ax.axvline(
-                t, color=colour, ls="--", lw=0.8, label=kind.replace("_", " ") if i == 0 else None
+                t, color=colour, ls="--", lw=1.0, label=kind.replace("_", " ") if i == 0 else None
             )
-    _mark_landing(ax, run, n)
-    ax.set_xlabel("box time (s)")
-    ax.set_ylabel("gauge pressure (kPa)")
+    _mark_landing(ax, run, n, pt)
+    ax.set_xlabel("box time (s)", fontsize=pt)
+    ax.set_ylabel("gauge pressure (kPa)", fontsize=pt)
+    ax.tick_params(labelsize=pt)
     ax.set_xlim(float(run.t_s[0]), float(run.t_s[-1])) if len(run) else None
     objects = ", ".join(run.metadata.get("objects") or []) or str(run.path.name)
-    ax.set_title(title or f"{objects}: module pressures, phases shaded (outcome {run.outcome})")
-    modules = ax.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=8, frameon=False)
-    ax.add_artist(modules)
-    _phase_legend(ax, run)
+    ax.set_title(title or f"{objects}: outcome {run.outcome}", fontsize=pt)
+    _legend(fig, ax, run, pt)
     if path is not None:
-        fig.savefig(path, dpi=120)
+        fig.savefig(path, dpi=150)
     return fig
 
 
-def _phase_legend(ax: Any, run: RecordedRun) -> None:
-    """A legend naming every phase's colour, in the order the run went through them."""
+def _legend(fig: Any, ax: Any, run: RecordedRun, pt: float) -> None:
+    """One legend below the plot: the modules and marked events, then every phase's colour in
+    the order the run went through them."""
     from matplotlib.patches import Patch
 
+    handles, labels = ax.get_legend_handles_labels()
     seen = list(dict.fromkeys(ph for ph, t0, t1 in run.phase_spans() if t1 > t0))
-    handles = [
-        Patch(color=PHASE_COLOURS.get(ph, "#f5f5f5"), label=ph.replace("_", " ")) for ph in seen
-    ]
-    if handles:
-        ax.legend(
-            handles=handles, title="phases", loc="lower left", bbox_to_anchor=(1.0, 0.0),
-            fontsize=8, title_fontsize=8, frameon=False,
-        )  # fmt: skip
+    for ph in seen:
+        handles.append(Patch(color=PHASE_COLOURS.get(ph, "#f5f5f5"), alpha=BAND_ALPHA))
+        labels.append(ph.replace("_", " "))
+    fig.legend(
+        handles, labels, loc="outside lower center", ncols=4, fontsize=pt, frameon=False,
+        columnspacing=1.0, handlelength=1.2, handletextpad=0.4,
+        title="modules, events (dashed) and phases (bands)", title_fontsize=pt,
+    )  # fmt: skip
 
 
-def _mark_landing(ax: Any, run: RecordedRun, n: int) -> None:
+def _mark_landing(ax: Any, run: RecordedRun, n: int, pt: float) -> None:
     """Mark the largest rise above the hold's level during ``release``: the held object landing
-    on the pad as it is put back down (its weight and the arm's push), before the jaws open."""
+    on the pad as it is put back down (its weight and the arm's push), before the jaws open.
+    The note sits left of and below the peak, inside the axes (never on the title)."""
     spans = {ph: (t0, t1) for ph, t0, t1 in run.phase_spans()}
     if "release" not in spans or "hold" not in spans or not len(run):
         return
@@ -152,8 +162,10 @@ def _mark_landing(ax: Any, run: RecordedRun, n: int) -> None:
     i, k = np.unravel_index(np.nanargmax(rise), rise.shape)
     t, p = float(run.t_s[release][i]), float(run.pressures_pa[release][i, k]) / 1e3
     ax.annotate(
-        f"object put back down:\nmodule {k + 1} rises as it lands", xy=(t, p), xytext=(-40, 22),
-        textcoords="offset points", ha="right", fontsize=8, arrowprops={"arrowstyle": "->", "lw": 0.8},
+        f"object put back down:\nmodule {k + 1} rises as it lands", xy=(t, p),
+        xytext=(-12, -2), textcoords="offset fontsize", ha="right", va="top", fontsize=pt,
+        arrowprops={"arrowstyle": "->", "lw": 0.8},
+        bbox={"boxstyle": "round,pad=0.2", "fc": "white", "ec": "none", "alpha": 0.8},
     )  # fmt: skip
 
 
@@ -176,7 +188,8 @@ def _grasp_plans(plans: list[dict[str, Any]]) -> list[Any]:
 
 def plot_pad(run: RecordedRun, path: str | Path | None = None) -> Any:
     """The pad from above: recorded increments as a heat map, each object's PCOM, COG and the
-    fingertips of its planned grasp (cf. seed Fig. 6.10), titled with the outcome.
+    fingertips of its planned grasp (cf. thesis Fig. 6.10), titled with the outcome; millimetres
+    of the pad frame, the module grid drawn, labels readable at a column's width.
 
     Returns
     -------
@@ -185,7 +198,7 @@ def plot_pad(run: RecordedRun, path: str | Path | None = None) -> Any:
     from matplotlib.figure import Figure
 
     from softpad.layout import parse_layout
-    from softpad.planning import plot_plans
+    from softpad.planning import plan_legend_handles, plot_plans
 
     layout = parse_layout(str(run.metadata.get("layout", "2x3")))
     plan_events = run.events_of("plan")
@@ -194,13 +207,21 @@ def plot_pad(run: RecordedRun, path: str | Path | None = None) -> Any:
         delta = np.asarray(data["increments_pa"], dtype=float)
     else:
         delta = 1e3 * np.asarray(data.get("increments_kpa", [0.0] * layout.n_modules), dtype=float)
-    fig = Figure(figsize=(1.6 * layout.cols + 2.2, 1.6 * layout.rows + 1.0), layout="constrained")
+    width = 4.6
+    height = width * (layout.rows + 0.6) / (layout.cols + 1.6) + 0.5
+    fig = Figure(figsize=(width, height), layout="constrained")
     ax = fig.add_subplot()
     objects = ", ".join(run.metadata.get("objects") or [])
-    plot_plans(delta, _grasp_plans(run.plans()), layout, ax=ax, title=f"{objects}: {run.outcome}")
-    pitch_mm = layout.pitch_m * 1e3 if hasattr(layout, "pitch_m") else 45.0
-    ax.set_xlabel(f"x (module units, 1 = {pitch_mm:g} mm)")
-    ax.set_ylabel(f"y (module units, 1 = {pitch_mm:g} mm)")
+    pt = font_pt(width)
+    plot_plans(
+        delta, _grasp_plans(run.plans()), layout, ax=ax, title=f"{objects}: {run.outcome}",
+        font_pt=pt, legend=False,
+    )  # fmt: skip
+    # below the pad, in the layout (an axes legend beside it pushed the y label off the page)
+    fig.legend(
+        handles=plan_legend_handles(one_line=True), loc="outside lower center", ncols=3,
+        fontsize=pt, frameon=False, columnspacing=1.2,
+    )  # fmt: skip
     if path is not None:
-        fig.savefig(path, dpi=120)
+        fig.savefig(path, dpi=200)
     return fig

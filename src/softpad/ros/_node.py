@@ -18,6 +18,7 @@ import json
 import math
 import queue
 import threading
+from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -32,7 +33,7 @@ from softpad.layout import PadLayout, PadPose
 
 #: Keys of the installation file and ROS parameters (``~name``) of the node.
 CONFIG_KEYS = (
-    "box", "layout", "pad_x_m", "pad_y_m", "pad_z_m", "pad_yaw_rad", "base_frame",
+    "box", "layout", "pitch_m", "pad_x_m", "pad_y_m", "pad_z_m", "pad_yaw_rad", "base_frame",
     "object_threshold_pa", "contact_threshold_pa", "settle_s", "place", "place_after_s",
     "ambient_pressure_pa", "planner", "detector", "robot", "gripper", "hold_s",
 )  # fmt: skip
@@ -48,6 +49,8 @@ class NodeConfig:
         Box URL (``sim://``, ``zenoh://127.0.0.1:PORT``, ...).
     layout
         Pad layout ``RxC``.
+    pitch_m
+        Module pitch, metres (the installation's ``pad.pitch_mm``; thesis 45 mm).
     pad
         Pose of the pad frame in the robot base frame (static transform ``base_frame`` ->
         ``softpad``).
@@ -56,7 +59,8 @@ class NodeConfig:
     object_threshold_pa, contact_threshold_pa
         t_o and t_g, pascals (thesis: 50 and 90).
     settle_s
-        A changed set of objects is planned after it has stayed the same this long, seconds.
+        An object is planned after it has lain still this long, seconds (the grasp loop's
+        ``object_settle_s``, which the node's grasps use too; default the loop's, 1 s).
     place
         Simulation only: catalogue objects put on a ``sim://`` box ``place_after_s`` after the
         reference (for demonstrations and tests; a person places them on a real pad).
@@ -79,11 +83,12 @@ class NodeConfig:
 
     box: str = "sim://"
     layout: str = "2x3"
+    pitch_m: float = thesis.MODULE_PITCH_M
     pad: PadPose = field(default_factory=PadPose)
     base_frame: str = "base"
     object_threshold_pa: float = thesis.OBJECT_THRESHOLD_PA
     contact_threshold_pa: float = thesis.CONTACT_THRESHOLD_PA
-    settle_s: float = 0.5
+    settle_s: float = 1.0
     place: tuple[str, ...] = ()
     place_after_s: float = 1.0
     ambient_pressure_pa: float = thesis.AMBIENT_PRESSURE_PA
@@ -104,7 +109,7 @@ class NodeConfig:
         out = replace(self, pad=replace(self.pad, **pad))
         for k in (
             "object_threshold_pa", "contact_threshold_pa", "settle_s", "place_after_s",
-            "ambient_pressure_pa", "hold_s",
+            "ambient_pressure_pa", "hold_s", "pitch_m",
         ):  # fmt: skip
             if k in values:
                 v = _finite(k, values[k])
@@ -162,12 +167,22 @@ def load_config(path: str | Path | None) -> NodeConfig:
 
 @dataclass
 class _Request:
-    """A service call handed to the node's loop (the box is used from one thread only)."""
+    """A service call or action goal handed to the node's loop (the box is used from one
+    thread only)."""
 
     name: str
     done: threading.Event = field(default_factory=threading.Event)
     ok: bool = False
     message: str = ""
+    #: A grasp's hold time, s (None: the config's ``hold_s``).
+    hold_s: float | None = None
+    #: A grasp's phases as they come, with their box time (the action's feedback).
+    on_phase: Callable[[str, float], None] | None = None
+    #: Whether the grasp is to stop (the action's cancel).
+    cancel_requested: Callable[[], bool] | None = None
+    #: The grasp loop's result (``softpad run --json``'s object) once it ran.
+    result: dict[str, Any] | None = None
+    cancelled: bool = False
 
 
 class PadNode:
@@ -181,6 +196,10 @@ class PadNode:
         ROS node name.
     """
 
+    #: True after a cancelled grasp: the box stays in its safe state, the watch paused, until
+    #: ``~inflate`` adjusts the pad again.
+    safe_hold = False
+
     def __init__(self, config: NodeConfig, name: str = "softpad") -> None:
         from softpad.ros._publish import LoopPublisher, PadPublishers
         from softpad.ros._rospy_path import require_master
@@ -193,7 +212,7 @@ class PadNode:
         self.config = config.updated(params)
         from softpad.layout import parse_layout
 
-        self.layout: PadLayout = parse_layout(self.config.layout)
+        self.layout: PadLayout = parse_layout(self.config.layout, self.config.pitch_m)
         self.n = self.layout.n_modules
         self._requests: queue.Queue[_Request] = queue.Queue()
         self.pubs = PadPublishers(
@@ -202,6 +221,8 @@ class PadNode:
         #: Publishes the grasp loops the ``~grasp`` service runs.
         self.loop_publisher = LoopPublisher(self.pubs)
         self._make_services()
+        self._make_action()
+        self.safe_hold = False
         self.reference_pa: NDArray[np.float64] | None = None
         self.plans: list[Any] = []
 
@@ -227,47 +248,92 @@ class PadNode:
             for n in ("inflate", "capture_reference", "plan", "grasp")
         ]
 
+    def _make_action(self) -> None:
+        """The grasp action ``~grasp`` (``softpad_msgs/GraspAction``, actionlib): the loop of
+        the ``~grasp`` service with its phases as feedback, its outcome and plans as the
+        result, and a cancel that ends in the box's safe state."""
+        import actionlib
+
+        from softpad.ros._msgs import ensure_messages
+
+        self.msgs = ensure_messages()
+        self.action = actionlib.SimpleActionServer(
+            "~grasp", self.msgs.GraspAction, execute_cb=self._execute_goal, auto_start=False
+        )
+        self.action.start()
+
+    def _execute_goal(self, goal: Any) -> None:
+        """Run one goal of the grasp action through the node's loop (actionlib's thread)."""
+        from softpad.ros import _messages as m
+
+        action, msgs = self.action, self.msgs
+        r = _Request(
+            "grasp", hold_s=goal.hold_s if goal.hold_s > 0 else None,
+            on_phase=lambda phase, t: action.publish_feedback(msgs.GraspFeedback(phase, t)),
+            cancel_requested=action.is_preempt_requested,
+        )  # fmt: skip
+        self._requests.put(r)
+        while not r.done.wait(0.5):
+            if self.rospy.is_shutdown():
+                action.set_aborted(text="the node shut down")
+                return
+        result = msgs.GraspResult(message="" if r.ok and not r.cancelled else r.message)
+        if r.result is not None:
+            result.outcome = str(r.result["outcome"])
+            result.grasps = m.pose_array(self.rospy.Time.now(), m.grasp_poses(r.result["objects"]))
+            result.result_json = json.dumps(r.result)
+        if r.cancelled:
+            result.outcome = "canceled"
+            action.set_preempted(result, r.message)
+        elif r.ok:
+            action.set_succeeded(result, result.outcome)
+        else:
+            result.outcome = result.outcome or "error"
+            action.set_aborted(result, r.message)
+
     # --- the loop -------------------------------------------------------------------------
     def run(self, max_frames: int | None = None) -> None:
         """Open the box, adjust, then publish every frame until ROS shuts down.
 
         On a hardware fault the diagnostics say ERROR, the box is made safe and the fault
-        propagates (the command exits non-zero).
+        propagates (the command exits non-zero). However it ends, ROS is shut down in this
+        process (actionlib's goal thread is not a daemon: it would keep the process alive).
         """
         from softpad.box import open_box
         from softpad.control import DEFAULT_MAX_PRESSURE_PA, make_safe
 
         self.pubs.static_frames(self.config.pad, self.config.base_frame)
-        with open_box(self.config.box) as box:
-            self.box = self.pubs.box = box
-            try:
-                self._make_parts()
-                self._adjust()
-                self._place_later()
-                self._loop(max_frames)
-            except HardwareFault as exc:
-                self.pubs.fault = str(exc)
-                self.pubs.diagnostics()
-                make_safe(box, self.n, DEFAULT_MAX_PRESSURE_PA)
-                raise
+        try:
+            with open_box(self.config.box) as box:
+                self.box = self.pubs.box = box
+                try:
+                    self._make_parts()
+                    self._adjust()
+                    self._place_later()
+                    self._loop(max_frames)
+                except HardwareFault as exc:
+                    self.pubs.fault = str(exc)
+                    self.pubs.diagnostics()
+                    make_safe(box, self.n, DEFAULT_MAX_PRESSURE_PA)
+                    raise
+        finally:
+            self.rospy.signal_shutdown("softpad ros node ended")
 
     def _make_parts(self) -> None:
-        """The object detector, contact detector and planner from the registries, for the
-        box's sample rate and the pad (as ``softpad run`` makes them)."""
-        from softpad.planning import PlannerParams, planner_for
-        from softpad.sensing import make_contact_detector, make_object_detector
+        """The loop's parts, made as the grasp loop makes them for this node's settings: the
+        registered planner and contact detector for the box's rate, the pad and the gripper
+        (:func:`softpad.control.loop_parts`), and the loop's object detector (the thesis's t_o
+        on the filtered increments): the watch plans what a grasp would."""
+        from softpad.control import loop_parts
+        from softpad.layout import GripperSpec
+        from softpad.sensing import ThesisObjectDetector
 
         c, rate = self.config, float(self.box.sample_rate_hz)
-        thresholds = {
-            "contact_threshold_pa": c.contact_threshold_pa,
-            "object_threshold_pa": c.object_threshold_pa,
-        }
-        self.object_detector = make_object_detector("thesis", rate, self.layout, **thresholds)
-        self.contact_detector = make_contact_detector(c.detector, rate, self.layout, **thresholds)
-        params = PlannerParams(object_threshold_pa=c.object_threshold_pa)
-        self.planner = planner_for(
-            c.planner, None, params, self.contact_detector, rate, self.layout
-        )
+        self.params = self._execution_params()
+        spec = GripperSpec.from_mounting(self._mounting())
+        parts = loop_parts(c.planner, c.detector, rate, self.layout, spec, self.params)
+        self.planner, self.contact_detector = parts["planner"], parts["contact_detector"]
+        self.object_detector = ThesisObjectDetector(self.params.planner.object_threshold_pa)
 
     def _adjust(self) -> None:
         from softpad.control import inflate_and_adjust
@@ -277,15 +343,24 @@ class PadNode:
         self._set_reference(self.adjustment.reference_pa)
 
     def _set_reference(self, reference_pa: NDArray[np.float64]) -> None:
-        from softpad.sensing import RunningAverage
-
         self.reference_pa = np.asarray(reference_pa, dtype=float)
-        self.increments = RunningAverage(thesis.FILTER_WINDOW)
         self.contact_ref: NDArray[np.float64] | None = None
-        self._filtered = np.zeros(self.n)
-        self.groups: list[tuple[int, ...]] = []
-        self.changed_at = self.planned_at = -math.inf
+        self._recent: deque[NDArray[np.float64]] = deque(maxlen=self.params.planning_reads)
+        self._arm_watch()
         self._publish_plans([])
+
+    def _arm_watch(self) -> None:
+        """Watch for objects afresh, as the loop's ``wait_object`` does."""
+        from softpad.control import ObjectWatch
+
+        assert self.reference_pa is not None
+        p = self.params
+        self.watch = ObjectWatch(
+            self.reference_pa, self.object_detector, self.layout, p.filter_length,
+            p.object_settle_s,
+        )  # fmt: skip
+        self._plan_reads: list[NDArray[np.float64]] | None = None
+        self._planned: list[tuple[int, ...]] | None = None
 
     def _place_later(self) -> None:
         self.place_at = None
@@ -300,14 +375,16 @@ class PadNode:
     def _loop(self, max_frames: int | None) -> None:
         from softpad.control import DEFAULT_MAX_PRESSURE_PA, check_frame
 
-        self.pubs.phase("watch")
+        self._phase("watch")
         while not self.rospy.is_shutdown() and (
             max_frames is None or self.pubs.frames < max_frames
         ):
             frame = self.box.read()
             self.pubs.frame(frame)
             # NaN, dropout or over the maximum: HardwareFault (diagnostics ERROR, box made safe)
-            self._track(check_frame(frame, self.n, DEFAULT_MAX_PRESSURE_PA))
+            checked = check_frame(frame, self.n, DEFAULT_MAX_PRESSURE_PA)
+            if not self.safe_hold:  # a vented pad after a cancel: nothing to watch
+                self._track(checked)
             if self.place_at is not None and frame.t_s >= self.place_at:
                 self._place()
             while not self._requests.empty():
@@ -334,34 +411,61 @@ class PadNode:
 
     # --- per frame ------------------------------------------------------------------------
     def _track(self, p: NDArray[np.float64]) -> None:
-        """Objects from the filtered increments; plan once a changed set has settled; contact."""
-        assert self.reference_pa is not None
-        d = self.increments.update(np.nan_to_num(p - self.reference_pa))
-        self._filtered = d
-        groups = self.object_detector.objects(d, self.layout)
-        now = self.pubs.last_t
-        if groups != self.groups:
-            self.groups, self.changed_at = groups, now
-        elif self.changed_at > self.planned_at and now - self.changed_at >= self.config.settle_s:
-            self._plan(d)
+        """The loop's object watch on every frame (:class:`softpad.control.ObjectWatch`):
+        once an object has settled, the loop's planning reads and planning step
+        (:func:`softpad.control.plan_from_reads`); after a plan, a changed set of objects
+        arms the watch again; and the contact detector."""
+        p = np.nan_to_num(p)
+        self._recent.append(p)
+        if self._plan_reads is not None:  # settled: the reads the loop plans from
+            self._plan_reads.append(p)
+            if len(self._plan_reads) == self.params.planning_reads:
+                self._plan(self._plan_reads)
+        else:
+            state = self.watch.update(p, self.pubs.last_t)
+            if self._planned is None and state == "settled":
+                self._plan_reads = []
+            elif self._planned is not None and self._objects_now() != self._planned:
+                self._arm_watch()  # objects came, went or moved: watch and plan again
+                if not self._objects_now():
+                    self._publish_plans([])
         contact = False
         if self.contact_ref is not None:
             contact = bool(self.contact_detector.update(p))
         self.pubs.contact(contact)
 
-    def _plan(self, increments_pa: NDArray[np.float64]) -> list[Any]:
-        objects = self.object_detector.objects(increments_pa, self.layout)
-        plans = self.planner.plan(increments_pa, objects, self.layout)
-        self.planned_at = self.pubs.last_t
+    def _objects_now(self) -> list[tuple[int, ...]]:
+        """Objects in the watch's filtered increments now, sorted."""
+        return sorted(tuple(o) for o in self.object_detector.objects(self.watch.filtered(),
+                                                                     self.layout))  # fmt: skip
+
+    def _plan(self, reads: Any = None) -> list[Any]:
+        """Plan from ``reads`` (default: the last frames, as many as the loop's planning
+        reads) with the loop's planning step, publish, and re-arm the contact detector."""
+        from softpad.control import plan_from_reads
+
         assert self.reference_pa is not None
-        self.contact_ref = self.reference_pa + increments_pa  # the pad with the objects on it
+        reads = list(self._recent if reads is None else reads)
+        delta, plans = plan_from_reads(
+            reads, self.reference_pa, self.object_detector, self.planner, self.layout
+        )
+        self._plan_reads = None
+        self._planned = sorted(tuple(pl.modules) for pl in plans)
+        self.contact_ref = self.reference_pa + delta  # the pad with the objects on it
         self.contact_detector.reset(self.contact_ref)
-        self._publish_plans(plans)
-        return plans
+        self._publish_plans(list(plans))
+        return list(plans)
 
     def _publish_plans(self, plans: list[Any]) -> None:
         self.plans = plans
-        self.pubs.plans([p.to_dict(self.layout) for p in plans])
+        objects = [p.to_dict(self.layout) for p in plans]
+        self.pubs.plans(objects)
+        self.pubs.event(self.pubs.last_t, "plan", {"objects": objects, "source": "watch"})
+
+    def _phase(self, name: str) -> None:
+        """The node's own phase (``watch``, ``safe``) on the phase topic and as an event."""
+        self.pubs.phase(name)
+        self.pubs.event(self.pubs.last_t, "phase", {"phase": name})
 
     # --- services -------------------------------------------------------------------------
     def _serve(self, r: _Request) -> None:
@@ -370,18 +474,17 @@ class PadNode:
         try:
             if r.name == "inflate":
                 self._adjust()
+                self.safe_hold = False
+                self._phase("watch")
                 assert self.reference_pa is not None
                 r.message = "adjusted; reference (Pa): " + _pa(self.reference_pa)
             elif r.name == "capture_reference":
                 self._capture_reference()
                 r.message = "reference (Pa): " + _pa(self.reference_pa)
             elif r.name == "grasp":
-                try:
-                    r.message = json.dumps(_summary(self._grasp().to_dict()))
-                finally:
-                    self.pubs.phase("watch")
+                self._serve_grasp(r)
             else:
-                plans = self._plan(self._filtered)
+                plans = self._plan()
                 r.message = json.dumps([p.to_dict(self.layout) for p in plans])
             r.ok = True
         except (InputError, ExecutionError) as exc:
@@ -393,6 +496,29 @@ class PadNode:
             raise
         finally:
             r.done.set()
+
+    def _serve_grasp(self, r: _Request) -> None:
+        """One grasp for the service or the action; a cancel leaves the box safe and the watch
+        paused (:attr:`safe_hold`)."""
+        from softpad.box import simulator_of
+        from softpad.ros._publish import GraspCancelled
+
+        lp = self.loop_publisher
+        lp.on_phase, lp.cancel_requested = r.on_phase, r.cancel_requested
+        sim = simulator_of(self.box)
+        if sim is not None:  # the simulated arm's measured pose, as recordings take it
+            self.pubs.robot_state = sim.world.gripper_state
+        try:
+            r.result = _jsonable_result(self._grasp(r.hold_s).to_dict())
+            r.message = json.dumps(_summary(r.result))
+        except GraspCancelled as exc:
+            r.cancelled, r.message = True, f"{exc}; the box is in its safe state (~inflate resumes)"
+            lp.cancelled(r.message)
+            self.safe_hold = True
+        finally:
+            lp.on_phase = lp.cancel_requested = None
+            self.pubs.robot_state = None
+            self._phase("safe" if self.safe_hold else "watch")
 
     def _capture_reference(self) -> None:
         """Reference := mean of 10 reads now (pad empty); grasps start from it too."""
@@ -409,7 +535,7 @@ class PadNode:
             self.adjustment, reference_pa=self.reference_pa, reference_at_s=self.pubs.last_t
         )
 
-    def _grasp(self) -> Any:
+    def _grasp(self, hold_s: float | None = None) -> Any:
         """Run the loop (:func:`softpad.harness.build_loop`) once on the node's box, from its
         reference, with the registered parts and the ``robot``; published as it runs."""
         from softpad.harness import build_loop
@@ -423,7 +549,7 @@ class PadNode:
         # objects configured but not yet down: the loop puts them there when it waits
         place = self._place if self.place_at is not None else None
         with build_loop(
-            self.box, c.robot, params=self._execution_params(), planner=c.planner,
+            self.box, c.robot, params=self._execution_params(hold_s), planner=c.planner,
             contact_detector=c.detector, gripper=self._mounting(), layout=self.layout,
             recorder=self.loop_publisher, place_objects=place, adjusted=self.adjustment,
         ) as loop:  # fmt: skip
@@ -431,7 +557,7 @@ class PadNode:
         self.loop_publisher.finish(result)
         return result
 
-    def _execution_params(self) -> Any:
+    def _execution_params(self, hold_s: float | None = None) -> Any:
         from softpad.control import ExecutionParams
         from softpad.planning import PlannerParams
 
@@ -439,8 +565,16 @@ class PadNode:
         return ExecutionParams(
             planner=PlannerParams(object_threshold_pa=c.object_threshold_pa),
             contact_threshold_pa=c.contact_threshold_pa,
-            hold_s=c.hold_s,
+            hold_s=c.hold_s if hold_s is None else hold_s,
+            object_settle_s=c.settle_s,
         )
+
+
+def _jsonable_result(result: dict[str, Any]) -> dict[str, Any]:
+    """``result`` with non-finite numbers as None (JSON has none)."""
+    from softpad.ros._publish import _jsonable
+
+    return _jsonable(result)  # type: ignore[no-any-return]
 
 
 def _summary(result: dict[str, Any]) -> dict[str, Any]:

@@ -4,10 +4,12 @@ Debian's ``python3-rospy`` and the message packages install into the system Pyth
 ``dist-packages`` (``/usr/lib/python3/dist-packages``), which the project's virtual
 environment (often made from another Python 3.11 build) does not see. Appending that whole
 directory to ``sys.path`` would also expose the system's other packages (numpy, matplotlib,
-... when installed) wherever the environment lacks them. Instead :func:`ensure_rospy` appends
-one import finder to ``sys.meta_path`` that resolves only the top-level names of
-:data:`ROS_MODULES` (rospy, its pure-Python dependencies and the message packages) from that
-directory, and only when the environment does not provide them itself (the finder is last).
+... when installed) wherever the environment lacks them. Instead :func:`ensure_rospy` adds
+import finders to ``sys.meta_path`` that resolve only named top-level modules from that
+directory: ROS 1's own (:data:`ROS1_OWN_MODULES`: rospy and the message packages) before
+anything else, since ROS 2's wheels install message packages of the same names that rospy
+cannot use; rospy's pure-Python dependencies (``yaml``, ...) only when the environment does
+not provide them itself (that finder is last). One process speaks ROS 1 or ROS 2, not both.
 """
 
 from __future__ import annotations
@@ -24,13 +26,22 @@ from softpad.errors import InputError
 #: Where Debian installs ROS 1 Python packages (override with SOFTPAD_ROS_DIST_PACKAGES).
 DIST_PACKAGES = "/usr/lib/python3/dist-packages"
 
-#: Top-level modules taken from :data:`DIST_PACKAGES`: rospy, its dependencies, the messages.
-ROS_MODULES = frozenset(
+#: ROS 1's own top-level modules, always taken from :data:`DIST_PACKAGES`: rospy and the
+#: message packages. ROS 2's wheels (``softpad[ros2]``) install packages of the same names
+#: (``std_msgs``, ``geometry_msgs``, ...) that rospy cannot use, so these come first.
+ROS1_OWN_MODULES = frozenset(
     {
         "rospy", "rosgraph", "roslib", "rospkg", "genpy", "genmsg", "catkin", "catkin_pkg",
         "rosgraph_msgs", "std_msgs", "std_srvs", "geometry_msgs", "sensor_msgs",
-        "diagnostic_msgs", "tf2_msgs", "actionlib_msgs", "roscpp", "rostopic", "rosmsg",
-        "rosservice", "rosnode", "rosbag", "roslz4", "rosparam", "rosmaster",
+        "diagnostic_msgs", "tf2_msgs", "actionlib", "actionlib_msgs", "roscpp", "rostopic",
+        "rosmsg", "rosservice", "rosnode", "rosbag", "roslz4", "rosparam", "rosmaster",
+    }
+)  # fmt: skip
+
+#: Top-level modules taken from :data:`DIST_PACKAGES`: rospy, its dependencies, the messages.
+#: The dependencies (``yaml``, ...) only when the environment lacks them.
+ROS_MODULES = ROS1_OWN_MODULES | frozenset(
+    {
         "yaml", "_yaml", "netifaces", "distro", "dateutil", "docutils", "pyparsing",
         "defusedxml", "six", "gnupg", "Cryptodome",
     }
@@ -39,15 +50,15 @@ ROS_MODULES = frozenset(
 INSTALL_HINT = (
     "ROS 1 is not installed: run (as root) 'apt-get install -y ros-core python3-rospy "
     "python3-std-msgs python3-geometry-msgs python3-sensor-msgs python3-diagnostic-msgs "
-    "python3-std-srvs python3-tf2-msgs python3-rostopic' or 'make ros-deps'"
+    "python3-std-srvs python3-tf2-msgs python3-rostopic python3-actionlib' or 'make ros-deps'"
 )
 
 
 class _RosFinder(importlib.abc.MetaPathFinder):
     """Import finder that resolves only :data:`ROS_MODULES` from one directory."""
 
-    def __init__(self, directory: str) -> None:
-        self.directory = directory
+    def __init__(self, directory: str, names: frozenset[str] = ROS_MODULES) -> None:
+        self.directory, self.names = directory, names
 
     def find_spec(
         self,
@@ -55,13 +66,38 @@ class _RosFinder(importlib.abc.MetaPathFinder):
         path: Sequence[str] | None,
         target: ModuleType | None = None,
     ) -> importlib.machinery.ModuleSpec | None:
-        if path is not None or fullname not in ROS_MODULES:
+        if path is not None or fullname not in self.names:
             return None  # sub-modules are found through their package's __path__
         return importlib.machinery.PathFinder.find_spec(fullname, [self.directory])
 
 
-def _installed_finder() -> _RosFinder | None:
-    return next((f for f in sys.meta_path if isinstance(f, _RosFinder)), None)
+def _installed_finder(directory: str | None = None) -> _RosFinder | None:
+    """The ROS finder of ``directory`` (any, when None) on ``sys.meta_path``."""
+    return next(
+        (
+            f
+            for f in sys.meta_path
+            if isinstance(f, _RosFinder) and directory in (None, f.directory)
+        ),
+        None,
+    )
+
+
+def prefer_modules(directory: str, names: frozenset[str]) -> None:
+    """Resolve the top-level modules ``names`` from ``directory`` before anything else in this
+    process (e.g. the generated ROS 1 ``softpad_msgs`` before ROS 2's package of that name).
+
+    Raises
+    ------
+    InputError
+        When one of them was already imported from elsewhere.
+    """
+    if not any(
+        isinstance(f, _RosFinder) and f.directory == directory and f.names == names
+        for f in sys.meta_path
+    ):
+        sys.meta_path.insert(0, _RosFinder(directory, names))
+    _refuse_ros2_messages(directory, names)
 
 
 def ensure_rospy() -> ModuleType:
@@ -73,13 +109,27 @@ def ensure_rospy() -> ModuleType:
         When rospy cannot be imported, with the command that installs it.
     """
     directory = os.environ.get("SOFTPAD_ROS_DIST_PACKAGES", DIST_PACKAGES)
-    if _installed_finder() is None and os.path.isdir(directory):
-        sys.meta_path.append(_RosFinder(directory))
+    if _installed_finder(directory) is None and os.path.isdir(directory):
+        sys.meta_path.insert(0, _RosFinder(directory, ROS1_OWN_MODULES))  # before ROS 2's
+        sys.meta_path.append(_RosFinder(directory, ROS_MODULES))
+    _refuse_ros2_messages(directory)
     try:
         import rospy
     except ImportError as exc:
         raise InputError(f"{INSTALL_HINT} ({exc})") from None
     return rospy
+
+
+def _refuse_ros2_messages(directory: str, names: frozenset[str] = ROS1_OWN_MODULES) -> None:
+    """InputError when this process already imported a ROS 2 namesake of a ROS 1 module."""
+    for name in sorted(names):
+        module = sys.modules.get(name)
+        origin = getattr(module, "__file__", None) or ""
+        if module is not None and not os.path.abspath(origin).startswith(directory):
+            raise InputError(
+                f"this process already imported {name} from {origin!r} (ROS 2?); ROS 1 and "
+                "ROS 2 cannot share one process: run the ROS 1 command in its own"
+            )
 
 
 def rospy_available() -> bool:

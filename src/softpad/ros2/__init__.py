@@ -21,7 +21,14 @@ from softpad.ros2._interfaces import (
     rclpy_available,
     write_packages,
 )
-from softpad.ros2._node import GraspCanceled, Ros2LoopPublisher, Ros2PadNode, declare_parameters
+from softpad.ros2._node import (
+    GraspCanceled,
+    Ros2LoopPublisher,
+    Ros2PadNode,
+    Ros2RunPublisher,
+    declare_parameters,
+    watch_loop2,
+)
 from softpad.ros2._publish import Ros2Publishers, message_class, qos_profile
 
 __all__ = [
@@ -31,6 +38,7 @@ __all__ = [
     "Ros2LoopPublisher",
     "Ros2PadNode",
     "Ros2Publishers",
+    "Ros2RunPublisher",
     "apply_loopback_environment",
     "build_interfaces",
     "declare_parameters",
@@ -41,5 +49,6 @@ __all__ = [
     "message_class",
     "qos_profile",
     "rclpy_available",
+    "watch_loop2",
     "write_packages",
 ]

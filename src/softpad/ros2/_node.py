@@ -73,8 +73,7 @@ class Ros2LoopPublisher(LoopPublisher):
             self.ros2.event(t_s, "canceled", data)
             self.ros2.outcome({"outcome": "canceled", "t_s": t_s, **data})
             return
-        super().event(t_s, kind, **data)
-        self.ros2.event(t_s, kind, data)
+        super().event(t_s, kind, **data)  # every event also on /softpad/events
 
 
 class _Running:
@@ -213,7 +212,9 @@ class Ros2PadNode(PadNode):
 
     def _execute(self, goal_handle: Any) -> Any:
         """The grasp action: hand the goal to the node's loop, relay cancels, wait for it."""
+        from geometry_msgs.msg import PoseArray
         from softpad_msgs.action import Grasp
+        from std_msgs.msg import Header
 
         with self._busy:
             r = _Request("grasp", hold_s=float(goal_handle.request.hold_s))
@@ -229,8 +230,11 @@ class Ros2PadNode(PadNode):
             self.ros2.on_phase = None
         result = Grasp.Result(outcome=r.outcome, message=r.message)
         if r.result is not None:
-            result.grasps = _grasp_poses(r.result)
-            result.summary_json = json.dumps(_jsonable(r.result.to_dict()))
+            result.grasps = PoseArray(
+                header=Header(stamp=self.ros2.stamp(), frame_id=T.PAD_FRAME),
+                poses=_grasp_poses(r.result),
+            )
+            result.result_json = json.dumps(_jsonable(r.result.to_dict()))
         if r.outcome == "canceled":
             goal_handle.canceled()
         elif r.ok:
@@ -299,3 +303,54 @@ def _grasp_poses(result: Any) -> list[Any]:
 
     plans = [g.plan.to_dict(result.layout) for g in result.grasps]
     return [_pose(p["cog_m"][0], p["cog_m"][1], 0.0, float(p["theta"])) for p in plans]
+
+
+class Ros2RunPublisher(Ros2LoopPublisher):
+    """The publisher of ``softpad run --ros2``: :class:`Ros2LoopPublisher` on a node of its own;
+    the end of the run (:meth:`finish`, :meth:`error`) waits until the subscribers have
+    acknowledged the outcome (at most :attr:`ACK_S`), so a run that exits does not lose it."""
+
+    #: Longest wait for the outcome's acknowledgements, seconds.
+    ACK_S = 2.0
+
+    def _flush(self) -> None:
+        from rclpy.duration import Duration
+
+        self.ros2.pub[T.OUTCOME_TOPIC].wait_for_all_acked(Duration(seconds=self.ACK_S))
+
+    def finish(self, result: Any) -> None:
+        super().finish(result)
+        self._flush()
+
+    def error(self, message: str) -> None:
+        super().error(message)
+        self._flush()
+
+
+def watch_loop2(
+    layout: Any, box: Any, box_url: str, pad: Any = None, base_frame: str = T.BASE_FRAME,
+    node_name: str = "softpad_run",
+) -> Ros2RunPublisher:  # fmt: skip
+    """A :class:`Ros2RunPublisher` for a grasp loop run by this process (``softpad run
+    --ros2``): rclpy is started on loopback (:func:`~softpad.ros2.apply_loopback_environment`)
+    and this process publishes the table's ``ros2`` topics, with ``/tf_static`` placing the pad
+    at ``pad`` (a :class:`~softpad.layout.PadPose`, the installation's ``[pad.pose]``; None:
+    the origin) in ``base_frame``."""
+    from softpad.box import simulator_of
+    from softpad.layout import PadPose
+    from softpad.ros2._interfaces import apply_loopback_environment, ensure_rclpy
+
+    ensure_rclpy()
+    apply_loopback_environment()
+    import rclpy
+
+    if not rclpy.ok():
+        rclpy.init(args=["softpad"])
+    node = rclpy.create_node(node_name)
+    pubs = Ros2Publishers(node, layout, box_url)
+    pubs.box = box
+    sim = simulator_of(box)
+    if sim is not None:  # the simulated gripper's measured pose, as recordings take it
+        pubs.robot_state = sim.world.gripper_state
+    pubs.static_frames(pad or PadPose(), base_frame)
+    return Ros2RunPublisher(pubs)

@@ -2,7 +2,7 @@
 
 Pure functions and small state classes; every pressure is a gauge pressure in pascals.
 Thesis symbols (values in :mod:`softpad.thesis`): t_o (object threshold), t_g (contact threshold),
-running average of 10 samples, reference = mean of 10 reads (seed, Sections 6.2.1.1 and 6.3).
+running average of 10 samples, reference = mean of 10 reads (thesis, Sections 6.2.1.1 and 6.3).
 """
 
 from softpad.sensing._adaptive import (

@@ -89,7 +89,7 @@ class LatchingContactDetector:
 
 
 class ThesisContactDetector(LatchingContactDetector):
-    """The thesis's contact detector (seed, Section 6.2.2).
+    """The thesis's contact detector (thesis, Section 6.2.2).
 
     Contact is declared on the first frame where the running average (``window`` samples) of
     any module's increment over its reference exceeds ``threshold_pa`` (t_g). The filter starts

@@ -10,9 +10,9 @@ from numpy.typing import ArrayLike, NDArray
 from softpad import thesis
 from softpad.errors import InputError
 
-#: Length of the running-average filter of the thesis (seed, Section 6.3).
+#: Length of the running-average filter of the thesis (thesis, Section 6.3).
 DEFAULT_FILTER_LENGTH = thesis.FILTER_WINDOW
-#: Number of reads averaged into the reference (seed, Fig. 6.8 caption).
+#: Number of reads averaged into the reference (thesis, Fig. 6.8 caption).
 DEFAULT_REFERENCE_READS = thesis.REFERENCE_READS
 
 

@@ -145,7 +145,7 @@ def detect_objects(
     """Modules touched by objects, grouped into separate objects.
 
     A module is touched when its increment is strictly above ``threshold_pa`` (t_o). Touched
-    modules that are not 8-connected belong to different objects (seed, Section 6.2.1.3:
+    modules that are not 8-connected belong to different objects (thesis, Section 6.2.1.3:
     bridge-shaped objects are not handled).
 
     Returns

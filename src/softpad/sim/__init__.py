@@ -38,10 +38,13 @@ from softpad.sim._objects import (
     object_names,
 )
 from softpad.sim._pneumatics import ChamberBank, PneumaticParams
-from softpad.sim._probe import probe_box, sealed_rise_map
+from softpad.sim._probe import SENSITIVITY_LOADS, pad_sensitivities, probe_box, sealed_rise_map
 from softpad.sim._response import (
+    LINE_BAND_M,
+    PAD_MODELS,
     ModuleResponse,
     PadResponse,
+    default_cast_response,
     default_response,
     operating_pressure,
     packaged_response_path,
@@ -63,7 +66,10 @@ __all__ = [
     "DEFAULT_LINE_WIDTH_M",
     "GRAVITY_M_S2",
     "GRIPPER_MOUNTINGS",
+    "LINE_BAND_M",
     "OBJECT_UNKNOWNS",
+    "PAD_MODELS",
+    "SENSITIVITY_LOADS",
     "TIP_TRANSITIONS",
     "UNCERTAIN_PARAMETERS",
     "AnalyticCharacteristic",
@@ -96,6 +102,7 @@ __all__ = [
     "UncertainParameter",
     "World",
     "catalogue_to_json",
+    "default_cast_response",
     "default_characteristic",
     "default_response",
     "draw_uncertain",
@@ -108,6 +115,7 @@ __all__ = [
     "operating_pressure",
     "packaged_response_path",
     "packaged_table_path",
+    "pad_sensitivities",
     "parse_mounting",
     "probe_box",
     "sealed_rise_map",

@@ -1,7 +1,7 @@
 """The analytic world: objects loading modules through their footprints, a kinematic gripper.
 
 Implements :class:`~softpad.sim.World` without a physics engine (see ``_footprint.py`` for the
-load model). The gripper is a kinematic parallel jaw (seed, Section 6.3: 9.5 cm fingers,
+load model). The gripper is a kinematic parallel jaw (thesis, Section 6.3: 9.5 cm fingers,
 opening ranges 10/4, 6/2 and 4/0 cm) whose two rectangular fingertips load the modules under
 them once they touch the pad: the force of a fingertip is ``k_tip * penetration``. What a
 module senses of any force (objects, fingertips, a probe) is its *equivalent load*, weighted by

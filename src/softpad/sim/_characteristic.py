@@ -8,7 +8,7 @@ chapter 7, or an analytic fit) and the gas physics of the simulated box:
 
 for gauge pressure ``p`` (Pa) and a vertical external load ``F`` (N) spread over the module.
 A sealed module under a load settles where the amount of air is unchanged, which is how an
-object's weight becomes a pressure increment (seed, Section 6.2.1).
+object's weight becomes a pressure increment (thesis, Section 6.2.1).
 
 Two implementations: :class:`AnalyticCharacteristic` (documented fit, default when no table
 is packaged) and :class:`TabulatedCharacteristic` (bilinear interpolation of a table, e.g. the

@@ -4,7 +4,7 @@ Model (documented in docs/box-and-simulator.md):
 
 * The pad surface is a grid of square modules of side ``pitch_m``; between modules (and along
   the pad's border) runs a non-sensitive line of width ``line_width_m``, the bonded seam between
-  chambers (0 by default: the seed's 45 mm chambers at a 45 mm pitch). The square of a module is
+  chambers (0 by default: the thesis's 45 mm chambers at a 45 mm pitch). The square of a module is
   the module square shrunk by half a line on every side. How much a load on it squeezes the
   chamber is the FEM response (``_response.py``), applied by the worlds.
 * A rigid object rests on the pad, which acts as a uniform elastic (Winkler) foundation under
@@ -35,7 +35,7 @@ from softpad.sim._response import PadResponse
 #: Standard gravity, m/s^2.
 GRAVITY_M_S2 = 9.80665
 #: Width of the non-sensitive line between modules, metres: the bonded seam between chambers
-#: (:data:`softpad.thesis.SEAM_WIDTH_M`, 0 mm within the seed's figures).
+#: (:data:`softpad.thesis.SEAM_WIDTH_M`, 0 mm within the thesis's figures).
 DEFAULT_LINE_WIDTH_M = thesis.SEAM_WIDTH_M
 #: Sampling step of footprints, metres.
 DEFAULT_SAMPLE_STEP_M = 0.5e-3

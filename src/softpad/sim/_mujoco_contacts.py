@@ -221,13 +221,17 @@ class ContactSensing:
             return
         ks = np.concatenate([p[0] for p in pending])
         f = np.concatenate([p[1] for p in pending])
-        if self.response is not None and self._centres is not None:
-            r = self.response.response
-            pts = np.concatenate([p[2] for p in pending])
-            p = self._pending_pressure
-            local = (pts - self._centres[ks]) / self.response.scale
-            f = f * r.influence(local, p) / r.reference_influence(p)
         total, start = self._flushed, 0
+        if self.response is not None and self._centres is not None:
+            # every module's share of each contact (the cast pad's layer spreads a load on a
+            # module top to its neighbours)
+            pts = np.concatenate([p[2] for p in pending])
+            shares = self.response.point_factors(ks, pts, self._pending_pressure) * f[:, None]
+            for step in pending:
+                stop = start + step[0].size
+                total += shares[start:stop].sum(axis=0)
+                start = stop
+            return
         for step in pending:
             stop = start + step[0].size
             total += np.bincount(ks[start:stop], weights=f[start:stop], minlength=self._n)

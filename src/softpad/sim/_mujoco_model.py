@@ -5,7 +5,7 @@ change the pad, the gripper or the objects without touching a file. Everything i
 frame of DESIGN.md (origin at the bottom-left corner of the pad on the rigid base surface, x to
 the right, y up the columns, z up), SI units.
 
-What is modelled (seed, Sections 6.1-6.3)
+What is modelled (thesis, Sections 6.1-6.3)
 -----------------------------------------
 * **Pad.** A rigid base; on it one *module top* per module: a thin box whose side is the
   module's chamber, carried by a body on a vertical slide joint whose spring holds it at the

@@ -1,6 +1,6 @@
 """Gas physics of the box channels: chamber + tubing, valves, supply, leaks.
 
-Each channel (seed, Section 6.1.1: one inflation valve, one deflation valve, one differential
+Each channel (thesis, Section 6.1.1: one inflation valve, one deflation valve, one differential
 pressure sensor per channel, one shared supply) is modelled as an isothermal ideal gas in the
 module's chamber plus a tubing dead volume. The state is the amount of air expressed as
 ``n = (p_atm + p) (V(p, F) + V_t)`` (Pa m^3, proportional to moles at constant temperature),

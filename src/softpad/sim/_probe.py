@@ -139,3 +139,78 @@ def sealed_rise_map(
     closed = np.zeros(flat.size, dtype=bool)
     bank.step(1e-3, closed, closed, flat, 0.0, False, same_load=False)
     return (bank.pressure_pa - pressure_pa).reshape(loads.shape)
+
+
+#: Loads of :func:`pad_sensitivities` on the 2 x 3 pad: name -> (centre in module units, block
+#: sides in metres (-1: one pitch), modules read (0-based)). The can's strip: the thesis's can
+#: (50 mm across) astride the line between the rows, wrapped over 25 mm
+#: (``softpad.trials._validate.cylinder_line_budget``).
+SENSITIVITY_LOADS: dict[str, tuple[tuple[float, float], tuple[float, float], tuple[int, ...]]] = {
+    "centre: Duplo face 42x31 mm on module 1": ((0.5, 1.5), (0.042, 0.031), (0,)),
+    "centre: 10x10 mm weight on module 1": ((0.5, 1.5), (0.010, 0.010), (0,)),
+    "line: can strip 45x25 mm on the line 1|4": ((0.5, 1.0), (-1.0, 0.025), (0, 3)),
+    "line: 10x10 mm on the line 1|2": ((1.0, 1.5), (0.010, 0.010), (0, 1)),
+    "corner: 10x10 mm at the corner 1|2|4|5": ((1.0, 1.0), (0.010, 0.010), (0, 1, 3, 4)),
+}
+
+
+def pad_sensitivities(
+    response: PadResponse | None = None,
+    pressure_pa: float = thesis.P0_PA,
+    threshold_pa: float = thesis.OBJECT_THRESHOLD_PA,
+    tubing_volume_m3: float = thesis.TUBING_VOLUME_M3,
+) -> dict[str, Any]:
+    """The pad's small-load sensitivities as the simulator has them (the FEM's sealed rise,
+    :meth:`PadResponse.sealed_rise_pa`): every module's rise per newton for the loads of
+    :data:`SENSITIVITY_LOADS` and the minimum detectable masses at ``threshold_pa`` (t_o).
+
+    Parameters
+    ----------
+    response
+        The pad's response (default: the packaged one, the cast pad where it fits).
+    pressure_pa
+        Pressure of every module when the valves closed, Pa.
+    threshold_pa
+        Detection threshold t_o, Pa.
+    tubing_volume_m3
+        Tubing per channel, m^3.
+
+    Returns
+    -------
+    dict
+        ``pad_model``, ``pressure_pa``, ``loads``: {name: {"rise_pa_n": every module,
+        "read_on": 1-based modules, "min_rise_pa_n"}}, ``line_pa_n``, ``corner_pa_n`` (the
+        can strip's and the corner block's least-raised module read), ``min_detectable_mass_g``:
+        {footprint: g}.
+    """
+    r = response or PadResponse()
+    lay = r.layout
+    if (lay.rows, lay.cols) != (2, 3):
+        raise InputError(f"the sensitivity loads are laid out for the 2 x 3 pad, not {lay}")
+    loads: dict[str, Any] = {}
+    for name, (at, size, read_on) in SENSITIVITY_LOADS.items():
+        side = tuple(lay.pitch_m if v < 0 else v for v in size)
+        centre = (at[0] * lay.pitch_m, at[1] * lay.pitch_m)
+        eq = r.rect_equivalent_loads(centre, side, 1.0, pressure_pa)
+        rise = r.sealed_rise_pa(eq, pressure_pa, tubing_volume_m3=tubing_volume_m3)
+        loads[name] = {
+            "rise_pa_n": [float(v) for v in rise],
+            "read_on": [k + 1 for k in read_on],
+            "min_rise_pa_n": float(min(rise[k] for k in read_on)),
+        }
+    g = 9.80665
+    names = list(SENSITIVITY_LOADS)
+    return {
+        "pad_model": r.pad_model,
+        "line_gain": r.line_gain,
+        "pressure_pa": float(pressure_pa),
+        "loads": loads,
+        "line_pa_n": loads[names[2]]["min_rise_pa_n"],
+        "corner_pa_n": loads[names[4]]["min_rise_pa_n"],
+        "min_detectable_mass_g": {
+            name.split(": ")[1].split(" on ")[0]: threshold_pa
+            / (g * loads[name]["min_rise_pa_n"])
+            * 1e3
+            for name in names[:2]
+        },
+    }

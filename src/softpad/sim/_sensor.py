@@ -1,6 +1,6 @@
 """Pressure-sensor model: offset, white noise, slow drift, quantisation, range.
 
-Defaults are chosen so that traces look like the seed's Fig. 6.8 ("data look noisy mostly
+Defaults are chosen so that traces look like the thesis's Fig. 6.8 ("data look noisy mostly
 because of the pressure sensors performance") while the thesis thresholds keep their meaning
 (docs/box-and-simulator.md gives the numbers):
 

@@ -1,4 +1,4 @@
-"""Every simulator input that neither the seed nor a datasheet fixes: nominal value, range, source.
+"""Every simulator input that neither the thesis nor a datasheet fixes: nominal value, range, source.
 
 This is the one list of the simulated lab's assumptions (issue 33). Each
 :class:`UncertainParameter` names the value the simulator uses by default (``nominal``, the
@@ -10,7 +10,7 @@ when one leaves): the range is the evidence, the nominal a point within it.
 :func:`draw_uncertain` draws every parameter uniformly within its range from a seed (the trial
 seed: reproducible, independent between trials); :class:`LabVariation` turns a set of values
 into the simulated lab's pieces (MuJoCo pad and gripper physics, box sample rate, sensor noise,
-tubing, placement noise, the objects whose size or mass distribution the seed does not give).
+tubing, placement noise, the objects whose size or mass distribution the thesis does not give).
 ``softpad trials|compare|design --randomize`` draw them per trial and report them in ``--json``.
 """
 
@@ -26,6 +26,7 @@ import numpy as np
 from softpad import thesis
 from softpad.errors import InputError
 from softpad.sim._contact_nominals import FINGERTIP_FRICTION, PAD_TIP_STIFFNESS_N_M
+from softpad.sim._response import LINE_GAIN_RANGE
 
 __all__ = [
     "OBJECT_UNKNOWNS",
@@ -109,7 +110,7 @@ UNCERTAIN_PARAMETERS: tuple[UncertainParameter, ...] = (
         0.6,
         1.2,
         "silicone elastomer (EcoFlex 00-30, tacky) on plastics and skins: 0.6-1.2 in friction "
-        "tables; the seed gives none",
+        "tables; the thesis gives none",
         "MuJoCo PadPhysics.friction",
     ),
     _p(
@@ -117,7 +118,7 @@ UNCERTAIN_PARAMETERS: tuple[UncertainParameter, ...] = (
         20.0,
         10.0,
         35.0,
-        "the seed gives no grip force; the Rethink electric parallel gripper's force is set in "
+        "the thesis gives no grip force; the Rethink electric parallel gripper's force is set in "
         "software up to its limit (a few tens of newtons); 10 N: set gently for fruit",
         "MuJoCo MujocoGripper.grip_force_n (each jaw's servo force limit)",
     ),
@@ -126,7 +127,7 @@ UNCERTAIN_PARAMETERS: tuple[UncertainParameter, ...] = (
         thesis.SEAM_WIDTH_M,
         0.0,
         3e-3,
-        "the mould's grid walls (seed Fig. 6.2a) whose thickness the seed does not give; "
+        "the mould's grid walls (thesis Fig. 6.2a) whose thickness the thesis does not give; "
         "0 mm: chambers meet (45 mm acetate on a 45 mm pitch); 3 mm: a thick printed wall",
         "the insensitive bonded strip between chambers (PadResponse) and the MuJoCo domes' side",
     ),
@@ -135,7 +136,7 @@ UNCERTAIN_PARAMETERS: tuple[UncertainParameter, ...] = (
         100.0,
         50.0,
         200.0,
-        "the seed gives no read rate of the Pneumaticbox; 50-200 Hz spans the rates of "
+        "the thesis gives no read rate of the Pneumaticbox; 50-200 Hz spans the rates of "
         "serial-read pressure boxes of its kind",
         "SimBox sample rate (the 10-sample filters follow it)",
     ),
@@ -144,7 +145,7 @@ UNCERTAIN_PARAMETERS: tuple[UncertainParameter, ...] = (
         1.0,
         0.5,
         2.0,
-        "noise visible in the seed's Fig. 6.8 (a few pascals to tens of pascals); factor on "
+        "noise visible in the thesis's Fig. 6.8 (a few pascals to tens of pascals); factor on "
         "SensorParams' white noise (8 Pa), drift (3 Pa) and offsets (20 Pa)",
         "SimBox sensor noise",
     ),
@@ -153,7 +154,7 @@ UNCERTAIN_PARAMETERS: tuple[UncertainParameter, ...] = (
         thesis.TUBING_VOLUME_M3,
         math.pi * 0.8e-3**2 * 0.5,
         math.pi * 1.6e-3**2 * 1.5,
-        "the seed names the tube (SPX-60 FB Versilon) but not bore or length: 1.6-3.2 mm bore, "
+        "the thesis names the tube (SPX-60 FB Versilon) but not bore or length: 1.6-3.2 mm bore, "
         "0.5-1.5 m",
         "PneumaticParams.tubing_volume_m3 (dead volume of every channel)",
     ),
@@ -179,7 +180,7 @@ UNCERTAIN_PARAMETERS: tuple[UncertainParameter, ...] = (
         1.0,
         0.85,
         1.15,
-        "the seed gives the charger's mass only (312.3 g, Table 6.1); laptop bricks of that "
+        "the thesis gives the charger's mass only (312.3 g, Table 6.1); laptop bricks of that "
         "mass measure 65-90 x 45-65 mm: factor on the 75 x 55 mm footprint",
         "catalogue charger: brick length and width (cable and plug move with its end)",
     ),
@@ -188,7 +189,7 @@ UNCERTAIN_PARAMETERS: tuple[UncertainParameter, ...] = (
         -0.01804,
         -0.0515,
         -0.015,
-        "the seed says only 'a heavy small part in one side' of the can (Section 6.3); from "
+        "the thesis says only 'a heavy small part in one side' of the can (Section 6.3); from "
         "against the end cap to 15 mm left of the middle",
         "catalogue cylinder: position of its heavy part along the can's axis",
         "nominal: fitted to Table 6.1's cylinder plan (softpad calibrate --objects)",
@@ -198,7 +199,7 @@ UNCERTAIN_PARAMETERS: tuple[UncertainParameter, ...] = (
         0.875,
         0.6,
         0.9,
-        "the seed gives the charger's total only (312.3 g, Table 6.1); a 300 g laptop "
+        "the thesis gives the charger's total only (312.3 g, Table 6.1); a 300 g laptop "
         "adapter's mains cord and DC cable with their plugs weigh 30-120 g (our reading of "
         "common 45-90 W adapters): the brick carries 0.6-0.9 of the mass",
         "catalogue charger: the brick's share of the mass (the cable coil and the plug keep "
@@ -210,7 +211,7 @@ UNCERTAIN_PARAMETERS: tuple[UncertainParameter, ...] = (
         0.0,
         0.0,
         0.02,
-        "the seed says only 'limes' on modules 2, 4, 5, 6 (Section 6.3) and gives no "
+        "the thesis says only 'limes' on modules 2, 4, 5, 6 (Section 6.3) and gives no "
         "arrangement; three 49 mm limes in a net: the lower two touching (0 mm) to 20 mm "
         "apart in a loose net, the third nested on them",
         "catalogue limes: the gap between the two lower limes (the third rests on both)",
@@ -221,7 +222,7 @@ UNCERTAIN_PARAMETERS: tuple[UncertainParameter, ...] = (
         0.7,
         0.2,
         0.8,
-        "the seed gives the toy's mass only (131.6 g, Table 6.1), not its shape; the hands of "
+        "the thesis gives the toy's mass only (131.6 g, Table 6.1), not its shape; the hands of "
         "a V-shaped toy carry from a fifth to four fifths of their joint mass on the right",
         "catalogue toy: the right hand's share of the two hands' mass",
         "nominal: fitted to Table 6.1's toy plan (softpad calibrate --objects)",
@@ -235,6 +236,19 @@ UNCERTAIN_PARAMETERS: tuple[UncertainParameter, ...] = (
         "through its ends); bananas of 180-200 mm vary in curvature: 15-45 mm",
         "catalogue banana: the largest distance of its spine from the chord through its ends",
         "nominal: fitted to Table 6.1's banana plan (softpad calibrate --objects)",
+    ),
+    # issue 45: appended last, so the draws of every parameter above stay as they were
+    _p(
+        "line_response_gain",
+        LINE_GAIN_RANGE[2],
+        LINE_GAIN_RANGE[0],
+        LINE_GAIN_RANGE[1],
+        "the cast-pad FEM (gain 1, the nominal: 135 Pa/N astride a line, a 9.8 g Duplo face) "
+        "falls short of the thesis; the range reaches what its own observations bracket "
+        "(softpad.trials._line.line_gain_bracket): the can seen on six modules (Section 6.3, "
+        "line rise >= 269 Pa/N) from 3.26 on, up to a 5 g minimum detectable mass on the Duplo "
+        "face ('around 6 g', Section 6.1) at 5.95",
+        "PadResponse line_gain: every chamber's response within 12.5 mm of its border",
     ),
 )
 
@@ -303,6 +317,15 @@ class LabVariation:
             sensitive_side_m=layout_pitch_m - v["seam_width_m"],
         )
 
+    def pad_response(self, layout: Any = None) -> Any:
+        """The pad's FEM response with the seam and the line gain."""
+        from softpad.sim._response import PadResponse
+
+        v = self.values
+        return PadResponse(
+            layout, seam_width_m=v["seam_width_m"], line_gain=v["line_response_gain"]
+        )
+
     def gripper_physics(self) -> dict[str, float]:
         """The MuJoCo gripper's contact fields (:meth:`MujocoGripper.from_spec` ``physics``)."""
         v = self.values
@@ -327,7 +350,7 @@ class LabVariation:
         return PneumaticParams(tubing_volume_m3=self.values["tubing_volume_m3"])
 
     def object(self, spec: Any) -> Any:
-        """``spec`` with the size, shape or mass distribution the seed does not give
+        """``spec`` with the size, shape or mass distribution the thesis does not give
         (charger, cylinder, limes, toy, banana); any other object unchanged. Every setting
         but the charger's scale sets an absolute value, so the catalogue's objects, built at
         the nominals, come back unchanged from the nominal lab."""

@@ -22,7 +22,12 @@ from softpad.trials._compare import (
     wilson_interval,
 )
 from softpad.trials._compare_report import comparison_table, parse_pairs, plot_comparison
-from softpad.trials._config import TrialConfig, drawn_placement, trial_execution_params
+from softpad.trials._config import (
+    TrialConfig,
+    check_mounting_choice,
+    drawn_placement,
+    trial_execution_params,
+)
 from softpad.trials._object_fit import ObjectFit, fit_object_unknowns
 from softpad.trials._records import (
     FAILURE_CAUSES,
@@ -43,6 +48,7 @@ from softpad.trials._runner import (
     trial_recording_path,
     trial_seed,
 )
+from softpad.trials._survey import pad_reading, read_increments
 from softpad.trials._validate import Observation, ValidationResult, validate
 
 __all__ = [
@@ -61,6 +67,7 @@ __all__ = [
     "TrialResult",
     "ValidationResult",
     "calibrate",
+    "check_mounting_choice",
     "compare",
     "comparison_table",
     "drawn_placement",
@@ -69,10 +76,12 @@ __all__ = [
     "fit_object_unknowns",
     "idle_false_alarms_per_hour",
     "merge_comparisons",
+    "pad_reading",
     "parse_pairs",
     "perturbed_placement",
     "plot_comparison",
     "protocol_loads",
+    "read_increments",
     "record_calibration",
     "run_experiment",
     "run_experiments",

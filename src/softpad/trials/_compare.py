@@ -12,6 +12,7 @@ import numpy as np
 
 import softpad
 from softpad.errors import InputError
+from softpad.trials._clustered import contrasts
 from softpad.trials._config import TrialConfig
 from softpad.trials._records import TrialResult, errored_records
 from softpad.trials._runner import run_experiments
@@ -94,9 +95,9 @@ def compare(
 
     Returns the ``softpad compare --json`` document: ``combinations``, each with ``planner``,
     ``detector``, overall ``success``, ``success_interval``, delays, finger travel,
-    ``false_alarms_per_hour`` (idle pad, ``idle_hours`` at 100 Hz), ``objects``,
-    ``failed_trials`` (object, trial number, experiment seed and cause of each) and
-    ``errored`` (the records of trials that raised: counted as failed, cause ``trial_error``).
+    ``false_alarms_per_hour`` (idle pad, ``idle_hours`` at 100 Hz), ``objects``, ``failed_trials``
+    (object, trial, seed, cause) and ``errored`` (trials that raised); ``contrasts``: each pair
+    against every earlier one, trials and objects as the unit (``trials._clustered.contrast``).
     """
     if not seeds:
         raise InputError("compare needs at least one seed")
@@ -139,7 +140,18 @@ def compare(
                 "errored": errored_records(results),
             }
         )
-    return {"schema_version": softpad.SCHEMA_VERSION, "seeds": list(seeds), "combinations": combos}
+    return _document(list(seeds), combos)
+
+
+def _document(seeds: list[int], combos: list[dict[str, Any]]) -> dict[str, Any]:
+    """The comparison document: its pairs and every pair against each one listed before it
+    (``contrasts``: trial-level and object-clustered tests, softpad.trials._clustered)."""
+    return {
+        "schema_version": softpad.SCHEMA_VERSION,
+        "seeds": seeds,
+        "combinations": combos,
+        "contrasts": contrasts(combos),
+    }
 
 
 def merge_comparisons(documents: Sequence[tuple[str, Any]]) -> dict[str, Any]:
@@ -169,7 +181,8 @@ def merge_comparisons(documents: Sequence[tuple[str, Any]]) -> dict[str, Any]:
                 f"{name}: seeds {_span(doc_seeds)} differ from the first's {_span(seeds)}"
             )
         combos += doc_combos
-    return {"schema_version": softpad.SCHEMA_VERSION, "seeds": seeds, "combinations": combos}
+    assert seeds is not None  # at least one document
+    return _document(seeds, combos)
 
 
 def _comparison_parts(name: str, doc: Any) -> tuple[list[int], list[dict[str, Any]]]:
@@ -204,9 +217,12 @@ def _comparison_parts(name: str, doc: Any) -> tuple[list[int], list[dict[str, An
         if not isinstance(c, dict) or any(k not in c for k in keys):
             raise InputError(f"{name}: every combination needs {', '.join(keys)}")
         if not isinstance(c["objects"], list) or not all(
-            isinstance(o, dict) and "name" in o and "success" in o for o in c["objects"]
+            isinstance(o, dict) and all(k in o for k in ("name", "success", "successes", "trials"))
+            for o in c["objects"]
         ):
-            raise InputError(f"{name}: every object of a combination needs name and success")
+            raise InputError(
+                f"{name}: every object of a combination needs name, success, successes and trials"
+            )
     return seeds, combos
 
 

@@ -48,7 +48,8 @@ def _pct(x: float | None) -> str:
 
 def comparison_table(comparison: dict[str, Any]) -> str:
     """One Markdown row per pair: success with its 95 % interval, contact delay, finger
-    travel, false alarms per hour and failures.
+    travel, false alarms per hour and failures; then, when the comparison has them, each
+    pair against an earlier one (trial-level and object-level tests).
 
     Parameters
     ----------
@@ -78,7 +79,28 @@ def comparison_table(comparison: dict[str, Any]) -> str:
             f"{_pct(c['success'])} | {_pct(lo)} .. {_pct(hi)} | {delay} | {travel} | "
             f"{c['false_alarms_per_hour']:g} | {c['failures'] or '-'} |"
         )
-    return "\n".join(lines)
+    return "\n".join(lines + _contrast_table(comparison.get("contrasts", [])))
+
+
+def _contrast_table(contrasts: list[dict[str, Any]]) -> list[str]:
+    """Each pair against an earlier one: trials as independent, then objects as the unit."""
+    if not contrasts:
+        return []
+    lines = [
+        "",
+        "| B against A | difference | trial-level p (Fisher) | objects better / worse "
+        "| object-level p (sign-flip) | cluster bootstrap 95 % |",
+        "|---|---:|---:|---|---:|---|",
+    ]
+    for c in contrasts:
+        lo, hi = c["object_interval"]
+        lines.append(
+            f"| {c['b']} against {c['a']} | {100 * c['difference']:+.1f} points | "
+            f"{c['trial_p_value']:.3g} | {c['objects_better']} / {c['objects_worse']} "
+            f"of {c['objects']} | {c['object_p_value']:.3g} | "
+            f"{100 * lo:+.1f} .. {100 * hi:+.1f} points |"
+        )
+    return lines
 
 
 def plot_comparison(comparison: dict[str, Any]) -> Any:

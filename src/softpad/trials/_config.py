@@ -23,7 +23,7 @@ class TrialConfig:
     #: trial's travel motions and a fault limit near the sensor's full scale).
     execution: ExecutionParams = field(default_factory=lambda: trial_execution_params())
     #: Standard deviation of the random shift of the object's placement in x and y, metres:
-    #: 3 mm. The seed says the objects were placed by hand, "randomly ... similarly to
+    #: 3 mm. The thesis says the objects were placed by hand, "randomly ... similarly to
     #: Fig. 6.10" (Section 6.3), and gives no spread; 3 mm is about what placing an object by
     #: eye on a marked spot achieves, a tenth of a Duplo brick's width. With 3 mm and 3 deg,
     #: 95 % of placements lie within 7 mm and 6 deg of the nominal one.
@@ -58,6 +58,12 @@ class TrialConfig:
     #: stepped (:mod:`softpad.sim._mujoco_coast`; docs/trials.md). False: every step solved
     #: (the reference the equivalence tests compare with).
     coast_settled_hold: bool = True
+    #: The gripper's mounting: None, each object's own (the thesis's per-object choice,
+    #: Section 6.3, for Table 6.1); ``"auto"``, chosen from the pad's reading of the placed
+    #: object among every installed mounting (:func:`softpad.planning.choose_mounting`; issue
+    #: 45: no width oracle on held-out objects); or one of ``"10/4"``, ``"6/2"``, ``"4/0"``
+    #: for every object.
+    mounting: str | None = None
 
     def __post_init__(self) -> None:
         for name in ("position_sigma_m", "yaw_sigma_rad", "sample_rate_hz"):
@@ -81,6 +87,18 @@ class TrialConfig:
         CONTACT_DETECTOR_REGISTRY.factory(self.detector)
         if self.sample_rate_hz <= 0:
             raise InputError("trial sample_rate_hz must be > 0 Hz")
+        check_mounting_choice(self.mounting, "trial mounting")
+
+
+def check_mounting_choice(mounting: str | None, what: str) -> None:
+    """InputError unless ``mounting`` is None, ``"auto"`` or a thesis mounting."""
+    from softpad import thesis
+
+    if mounting is not None and mounting != "auto" and mounting not in thesis.GRIPPER_MOUNTINGS_M:
+        raise InputError(
+            f"{what} must be 'auto' or one of {', '.join(thesis.GRIPPER_MOUNTINGS_M)}, "
+            f"got {mounting!r}"
+        )
 
 
 def trial_execution_params(**changes: Any) -> ExecutionParams:

@@ -171,15 +171,11 @@ class _Trial:
 def _lab_world(lab: Any | None) -> dict[str, Any]:
     """The MuJoCo world's pad physics and response drawn by ``lab`` (none: the nominal)."""
     from softpad.layout import PadLayout
-    from softpad.sim import PadResponse
 
     if lab is None:
         return {}
     layout = PadLayout()
-    seam = lab.values["seam_width_m"]
-    return dict(
-        pad=lab.pad_physics(layout.pitch_m), response=PadResponse(layout, seam_width_m=seam)
-    )
+    return dict(pad=lab.pad_physics(layout.pitch_m), response=lab.pad_response(layout))
 
 
 def _trial_box(world: Any, seed: int, config: TrialConfig, lab: Any | None) -> Any:
@@ -230,6 +226,19 @@ def varied_lab(spec: Any, seed: int, config: TrialConfig) -> tuple[Any, TrialCon
     return lab.object(spec), config, lab
 
 
+def configured_mounting(
+    spec: Any, placement: tuple[float, float, float], seed: int, config: TrialConfig, lab: Any
+) -> str | None:
+    """The mounting ``config.mounting`` asks for: the one chosen from the pad's reading of the
+    placed object (``"auto"``, :func:`softpad.trials._survey.surveyed_mounting`), the one
+    named, or None (the object's own)."""
+    if config.mounting == "auto":
+        from softpad.trials._survey import surveyed_mounting
+
+        return surveyed_mounting(spec, placement, seed, config, lab)
+    return config.mounting
+
+
 def execute_trial(
     spec: Any,
     placement: tuple[float, float, float],
@@ -247,7 +256,8 @@ def execute_trial(
 
     o = overrides or TrialOverrides()
     spec, config, lab = varied_lab(spec, seed, config)
-    t = _Trial(spec, placement, seed, config, o.opening_m, o.mounting, o.truth, o.gripper, lab)
+    mounting = o.mounting or configured_mounting(spec, placement, seed, config, lab)
+    t = _Trial(spec, placement, seed, config, o.opening_m, mounting, o.truth, o.gripper, lab)
     log = RunLog({"object": spec.name, "seed": seed}) if config.record_trace else None
     mcap = _trial_recorder(t, seed)
     watcher = _TrialWatcher(t, Tee(log, mcap, o.recorder))

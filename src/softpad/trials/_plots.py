@@ -10,6 +10,11 @@ from softpad.layout import PadLayout
 from softpad.trials._geometry import fingertip_rectangles_m, object_outlines_m
 from softpad.trials._records import ExperimentResult, TrialResult
 
+#: Width the report's figures are printed at (a page, two columns), inches, and the smallest
+#: font size they may then show, points: :func:`plot_grasps` sizes its labels to read there.
+PAGE_WIDTH_IN = 7.0
+SMALLEST_PRINTED_PT = 6.5
+
 
 def draw_grasp(
     ax: Any,
@@ -19,11 +24,13 @@ def draw_grasp(
     tip_thickness_m: float,
     tip_width_m: float,
     line_width_m: float,
+    font_pt: float = 8.0,
 ) -> None:
     """Draw one trial on ``ax``: modules, object outline, planned fingertips (black), COG.
 
-    Lengths on the axes are millimetres in the pad frame; the title gives the planned COG in
-    millimetres and the direction of grasp in degrees, and this trial's outcome.
+    Lengths on the axes are millimetres in the pad frame, the module grid drawn; the title
+    gives the object and trial, the planned COG in millimetres and the direction of grasp in
+    degrees, and this trial's outcome, each on its own line; every label ``font_pt`` points.
     """
     from matplotlib.patches import Polygon, Rectangle
 
@@ -37,7 +44,10 @@ def draw_grasp(
                 (cx - side / 2, cy - side / 2), side, side, facecolor=colour, edgecolor="none"
             )
         )
-        ax.text(cx - side / 2 + 2, cy + side / 2 - 8, str(k), fontsize=8, color="#7a5060")
+        ax.text(
+            cx - side / 2 + 2, cy + side / 2 - 2, str(k), fontsize=font_pt, color="#7a5060",
+            va="top",
+        )  # fmt: skip
     x, y, yaw = trial.placement
 
     class _P:
@@ -63,13 +73,23 @@ def draw_grasp(
         else f"COG ({trial.cog[0] * p:.0f}, {trial.cog[1] * p:.0f}) mm, "
         f"{math.degrees(trial.theta):.0f}°"
     )
-    ax.set_title(f"{trial.object}: {plan}\ntrial {trial.trial + 1}: {verdict}", fontsize=8)
+    ax.set_title(f"{trial.object}, trial {trial.trial + 1}\n{plan}\n{verdict}", fontsize=font_pt)
+    _pad_axes(ax, layout, font_pt)
+
+
+def _pad_axes(ax: Any, layout: PadLayout, font_pt: float = 8.0) -> None:
+    """Millimetre axes around the pad, with ticks and faint lines at every module boundary."""
+    p = layout.pitch_m * 1e3
     ax.set_xlim(-20, layout.cols * p + 20)
     ax.set_ylim(-20, layout.rows * p + 20)
+    ax.set_xticks([c * p for c in range(layout.cols + 1)])
+    ax.set_yticks([r * p for r in range(layout.rows + 1)])
+    ax.grid(True, color="0.6", lw=0.6)
+    ax.set_axisbelow(False)
     ax.set_aspect("equal")
-    ax.set_xlabel("x (mm)", fontsize=8)
-    ax.set_ylabel("y (mm)", fontsize=8)
-    ax.tick_params(labelsize=7)
+    ax.set_xlabel("x (mm)", fontsize=font_pt)
+    ax.set_ylabel("y (mm)", fontsize=font_pt)
+    ax.tick_params(labelsize=font_pt)
 
 
 def plot_grasps(
@@ -81,7 +101,7 @@ def plot_grasps(
     tip_width_m: float | None = None,
     line_width_m: float | None = None,
     trial_index: int = 0,
-) -> None:
+) -> Any:
     """Save a figure with the planned grasp of trial ``trial_index`` of every object (Fig. 6.10)
     beside a bar chart of every object's successes over all its trials (Wilson intervals).
 
@@ -92,7 +112,7 @@ def plot_grasps(
     specs
         Catalogue objects by name.
     path
-        Output image file.
+        Output image file; empty: the figure is returned open (pyplot's), not saved.
     layout
         Pad geometry.
     tip_thickness_m, tip_width_m
@@ -103,35 +123,49 @@ def plot_grasps(
         pad's (pitch less the dome's side, 5 mm).
     trial_index
         Which trial of each object to draw.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure (closed once saved). Every label is sized to print at
+        :data:`SMALLEST_PRINTED_PT` or more when the figure is printed :data:`PAGE_WIDTH_IN` wide.
     """
     layout = layout or PadLayout()
-    tip_thickness_m, tip_width_m, line_width_m = _sizes(
-        layout, tip_thickness_m, tip_width_m, line_width_m
+    sizes = _sizes(layout, tip_thickness_m, tip_width_m, line_width_m)
+    names = result.object_names
+    fig, grid, cols, pt = _grasps_figure(len(names))
+    for i, name in enumerate(names):
+        ax = fig.add_subplot(grid[i // cols, i % cols])
+        _grasp_panel(ax, result, name, specs[name], layout, sizes, trial_index, pt)
+    success_chart(fig.add_subplot(grid[:, cols:]), result, pt)
+    fig.suptitle(
+        f"Planned grasp of trial {trial_index + 1} of each object (black: fingertips at the "
+        "approach opening; pink: modules above t_o),\nand every trial's outcome (right)",
+        fontsize=pt,
     )
+    fig.tight_layout()
+    if path:
+        import matplotlib.pyplot as plt
+
+        fig.savefig(path, dpi=150)
+        plt.close(fig)
+    return fig
+
+
+def _grasps_figure(n: int) -> tuple[Any, Any, int, float]:
+    """The figure of :func:`plot_grasps` for ``n`` objects: the figure, its grid, the panels
+    per row and the label size (pt) that prints readable a page wide."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    names = result.object_names
-    n = len(names)
     cols = min(4, n)
     rows = math.ceil(n / cols)
-    fig = plt.figure(figsize=(3.3 * cols + 4.6, 3.0 * rows + 0.6))
-    grid = fig.add_gridspec(rows, cols + 2)
-    sizes = (tip_thickness_m, tip_width_m, line_width_m)
-    for i, name in enumerate(names):
-        ax = fig.add_subplot(grid[i // cols, i % cols])
-        _grasp_panel(ax, result, name, specs[name], layout, sizes, trial_index)
-    success_chart(fig.add_subplot(grid[:, cols:]), result)
-    fig.suptitle(
-        f"Planned grasp of trial {trial_index + 1} of each object (black: fingertips at the "
-        "approach opening; pink: modules above t_o), and every trial's outcome (right)",
-        fontsize=10,
-    )
-    fig.tight_layout()
-    fig.savefig(path, dpi=150)
-    plt.close(fig)
+    width = 3.3 * cols + 4.6
+    pt = SMALLEST_PRINTED_PT * width / PAGE_WIDTH_IN  # readable once printed a page wide
+    fig = plt.figure(figsize=(width, 3.9 * rows + 1.0))
+    return fig, fig.add_gridspec(rows, cols + 2), cols, pt
 
 
 def _grasp_panel(
@@ -142,15 +176,14 @@ def _grasp_panel(
     layout: PadLayout,
     sizes: tuple[float, float, float],
     trial_index: int,
+    font_pt: float = 8.0,
 ) -> None:
     """Trial ``trial_index`` of object ``name`` (its last when it has fewer) drawn by
-    :func:`draw_grasp` with ``sizes`` (tip thickness, tip width, line width, metres), the
-    title ending with how many of all its trials held."""
+    :func:`draw_grasp` with ``sizes`` (tip thickness, tip width, line width, metres); how many
+    of all its trials held is the bar chart's."""
     trials = [t for t in result.trials if t.object == name]
     trial = trials[min(trial_index, len(trials) - 1)]
-    draw_grasp(ax, spec, trial, layout, *sizes)
-    held = sum(t.success for t in trials)
-    ax.set_title(f"{ax.get_title()} ({held}/{len(trials)} held in all)", fontsize=8)
+    draw_grasp(ax, spec, trial, layout, *sizes, font_pt=font_pt)
 
 
 def wilson_interval(held: int, trials: int, confidence: float = 0.95) -> tuple[float, float]:
@@ -161,9 +194,10 @@ def wilson_interval(held: int, trials: int, confidence: float = 0.95) -> tuple[f
     return float(ci.low), float(ci.high)
 
 
-def success_chart(ax: Any, result: ExperimentResult) -> None:
+def success_chart(ax: Any, result: ExperimentResult, font_pt: float = 8.0) -> None:
     """Horizontal bars: each object's share of trials held, with its 95 % Wilson interval and
-    the count (every trial of every object, not only the one drawn on the pad)."""
+    the count (every trial of every object, not only the one drawn on the pad); labels
+    ``font_pt`` points."""
     names = result.object_names
     for i, name in enumerate(names):
         outcomes = [t.success for t in result.trials if t.object == name]
@@ -171,15 +205,15 @@ def success_chart(ax: Any, result: ExperimentResult) -> None:
         lo, hi = wilson_interval(k, n)
         ax.barh(i, k / n, color="#7fb27f" if k == n else "#e0a060", height=0.6)
         ax.errorbar(k / n, i, xerr=[[k / n - lo], [hi - k / n]], color="k", capsize=3, lw=1)
-        ax.text(1.03, i, f"{k}/{n}", va="center", fontsize=8)
-    ax.set_yticks(range(len(names)), names, fontsize=8)
+        ax.text(1.03, i, f"{k}/{n}", va="center", fontsize=font_pt)
+    ax.set_yticks(range(len(names)), names, fontsize=font_pt)
     ax.invert_yaxis()
     ax.set_xlim(0, 1.15)
     ax.set_xticks([0, 0.25, 0.5, 0.75, 1.0])
-    ax.tick_params(axis="x", labelsize=8)
-    ax.set_xlabel("share of trials held (bar), 95 % Wilson interval (line)", fontsize=8)
+    ax.tick_params(axis="x", labelsize=font_pt)
+    ax.set_xlabel("share of trials held (bar),\n95 % Wilson interval (line)", fontsize=font_pt)
     total = sum(t.success for t in result.trials)
-    ax.set_title(f"every trial: {total}/{len(result.trials)} held", fontsize=9)
+    ax.set_title(f"every trial: {total}/{len(result.trials)} held", fontsize=font_pt)
 
 
 def _sizes(

@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 #: The thesis's Table 6.1: weight (g), representative planned grasp (x_COG, y_COG, theta) in
-#: module units and radians, successes out of 5 (seed, Section 6.3).
+#: module units and radians, successes out of 5 (thesis, Section 6.3).
 THESIS_TABLE_6_1: dict[str, tuple[float, tuple[float, float, float], int]] = {
     "object-1": (23.8, (2.5, 1.0, 0.0), 5),
     "object-2": (25.3, (1.04, 0.96, math.pi / 4), 5),

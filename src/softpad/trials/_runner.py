@@ -1,4 +1,4 @@
-"""Grasp trials of the thesis's Experiment 2 (seed, Section 6.3) in the MuJoCo world.
+"""Grasp trials of the thesis's Experiment 2 (thesis, Section 6.3) in the MuJoCo world.
 
 One trial: a fresh MuJoCo world behind the simulated box (``sim://`` physics: chamber gas,
 valves, sensor noise), the pad inflated to p0 and its reference saved, the object placed with a
@@ -235,9 +235,19 @@ def run_experiments(
     run: both cores stay busy to the end of the campaign); the same results as one
     :func:`run_experiment` per seed.
 
-    ``on_seed`` is called with each seed's experiment as soon as all its trials have finished;
-    each experiment's ``wall_time_s`` is the campaign's wall time over the seeds (their sum is
-    the campaign's).
+    Parameters
+    ----------
+    specs, trials, workers, config, on_trial
+        As in :func:`run_experiment`.
+    seeds
+        Experiment seeds, one experiment each.
+    on_seed
+        Called with each seed's experiment as soon as all its trials have finished.
+
+    Returns
+    -------
+    The experiments in the order of ``seeds``; each one's ``wall_time_s`` is the campaign's
+    wall time over the number of seeds (their sum is the campaign's).
     """
     if not isinstance(trials, int) or not 1 <= trials <= 1000:
         raise InputError(f"trials per object must be an integer from 1 to 1000, got {trials!r}")

@@ -139,6 +139,8 @@ class ValidationResult:
     trials_per_object: int = 5
     placements: int = DEFAULT_PLACEMENTS
     randomize: bool = False
+    #: The trials' mounting rule (None: Table 6.1's per object).
+    mounting: str | None = None
     #: Per-trial records of the trial rows (``to_dict`` of each).
     trials: tuple[dict[str, Any], ...] = field(default=(), repr=False)
 
@@ -160,6 +162,7 @@ class ValidationResult:
             "trials_per_object": self.trials_per_object,
             "placements": self.placements,
             "randomize": self.randomize,
+            "mounting": self.mounting or "per object (Table 6.1)",
             "counts": self.counts(),
             "observations": [o.to_dict() for o in self.observations],
             "trials": list(self.trials),
@@ -448,48 +451,21 @@ def static_draws(spec: Any, draws: int, seed: int = 0, randomize: bool = False) 
     and the can's unknowns).
     """
     from softpad.planning import plan_grasps
-    from softpad.sim import Placement
     from softpad.trials._loop import varied_lab
     from softpad.trials._runner import perturbed_placement, trial_seed
+    from softpad.trials._survey import pad_reading
 
     out = []
     for k in range(draws):
         s = trial_seed(seed, spec.name, k)
         obj, config, lab = varied_lab(spec, s, TrialConfig(randomize=randomize))
-        world, box = _static_lab(s, config, lab)
-        n = world.layout.n_modules
-        box.read_many(int(box.sample_rate_hz))
-        reads = thesis.REFERENCE_READS
-        ref = np.mean([f.pressures_pa[:n] for f in box.read_many(reads)], axis=0)
-        world.place_object(obj, Placement(*perturbed_placement(obj, s, config)))
-        box.read_many(int(box.sample_rate_hz))
-        inc = np.mean([f.pressures_pa[:n] for f in box.read_many(reads)], axis=0) - ref
+        inc = pad_reading(obj, perturbed_placement(obj, s, config), s, config, lab)
         plans = plan_grasps(inc)
         best = max(plans, key=lambda p: sum(inc[m - 1] for m in p.modules), default=None)
         plan = None if best is None else (best.cog[0], best.cog[1], best.theta)
         above = tuple(i + 1 for i, v in enumerate(inc) if v > thesis.OBJECT_THRESHOLD_PA)
         out.append(StaticDraw(tuple(float(v) for v in inc), above, plan))
     return out
-
-
-def _static_lab(seed: int, config: TrialConfig, lab: Any | None) -> tuple[Any, Any]:
-    """The analytic world and the box of one static draw (nominal, or ``lab``'s values)."""
-    from softpad.box import SimBox
-    from softpad.sim import AnalyticWorld, PadResponse
-
-    if lab is None:
-        world = AnalyticWorld()
-        return world, SimBox(world, seed=seed % 2**31, initial_pressure_pa=thesis.P0_PA)
-    world = AnalyticWorld(response=PadResponse(seam_width_m=lab.values["seam_width_m"]))
-    box = SimBox(
-        world,
-        sample_rate_hz=config.sample_rate_hz,
-        seed=seed % 2**31,
-        sensor=lab.sensor(),
-        pneumatics=lab.pneumatics(),
-        initial_pressure_pa=thesis.P0_PA,
-    )
-    return world, box
 
 
 def fig_6_7_objects() -> dict[str, tuple[Any, tuple[float, float, float], str]]:
@@ -775,12 +751,14 @@ def run_trial_rows(
     workers: int | None,
     randomize: bool,
     on_trial: Callable[[TrialResult], None] | None = None,
+    mounting: str | None = None,
 ) -> list[TrialResult]:
-    """Experiment 2 with the thesis's planner and detector over ``seeds``."""
+    """Experiment 2 with the thesis's planner and detector over ``seeds`` (``mounting``:
+    :attr:`TrialConfig.mounting`)."""
     from softpad.sim import get_object
     from softpad.trials._runner import run_experiment
 
-    config = TrialConfig(randomize=randomize)
+    config = TrialConfig(randomize=randomize, mounting=mounting)
     specs = [get_object(n) for n in THESIS_TABLE_6_1]
     out: list[TrialResult] = []
     for seed in seeds:
@@ -797,6 +775,7 @@ def validate(
     placements: int = DEFAULT_PLACEMENTS,
     seed: int = 0,
     on_trial: Callable[[TrialResult], None] | None = None,
+    mounting: str | None = None,
 ) -> ValidationResult:
     """Every observation of the thesis's chapter 6 the simulator can predict, one row each.
 
@@ -816,14 +795,17 @@ def validate(
         Placement draws per object of the static rows.
     seed
         Seed of the static rows' draws.
+    on_trial
+        Called with every finished trial.
+    mounting
+        The trials' mounting (:attr:`TrialConfig.mounting`; None: Table 6.1's per object).
     """
     if not isinstance(placements, int) or not 2 <= placements <= 10_000:
         raise InputError(f"placements must be an integer from 2 to 10000, got {placements!r}")
     if not isinstance(trials, int) or not 1 <= trials <= 1000:
         raise InputError(f"trials per object must be an integer from 1 to 1000, got {trials!r}")
-    results = run_trial_rows(seeds, trials, workers, randomize, on_trial) if seeds else []
-    rows: list[Observation] = []
-    rows += experiment_rows(results)
+    results = run_trial_rows(seeds, trials, workers, randomize, on_trial, mounting) if seeds else []
+    rows = experiment_rows(results)
     if results:
         rows += trial_plan_rows(results)
         rows += static_plan_rows(placements, seed, randomize)[len(THESIS_TABLE_6_1) :]
@@ -842,6 +824,7 @@ def validate(
         trials_per_object=trials,
         placements=placements,
         randomize=randomize,
+        mounting=mounting,
         trials=tuple(t.to_dict() for t in results),
     )
 

@@ -1,0 +1,190 @@
+"""The cast pad's response table: every chamber's ``s_k = -dV_k/dF`` of a point force anywhere
+on the pad's top face, with the chambers' volumes and compliance matrix, over a range of
+pressures.
+
+Written by ``softpad fem cast-response`` (:func:`softpad.fem.cast_pad_response`), read by the
+simulator (:class:`softpad.sim.PadResponse`); NumPy only.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from softpad.errors import InputError
+
+#: Name of the packaged cast-pad response file.
+PACKAGED_CAST_RESPONSE = "cast_pad_response.npz"
+#: Version of the file layout.
+CAST_RESPONSE_VERSION = 1
+_ARRAYS = (
+    "pressure_pa",
+    "x_axis_m",
+    "y_axis_m",
+    "influence_m3_n",
+    "volume_m3",
+    "compliance_m3_pa",
+    "centers_m",
+)
+
+
+@dataclass(frozen=True)
+class CastPadResponse:
+    """FEM response of every chamber of a cast pad to vertical loads anywhere on its top.
+
+    Parameters
+    ----------
+    pressure_pa
+        Increasing pressures (every chamber alike), shape (P,), Pa.
+    x_axis_m, y_axis_m
+        Top-face node coordinates in the pad frame (origin at the bottom-left corner), (Nx,),
+        (Ny,), m.
+    influence_m3_n
+        ``s_k = -dV_k/dF`` of a downward point force at node (i, j), shape (P, K, Nx, Ny),
+        m^3/N (``dw/dp_k`` there, by reciprocity).
+    volume_m3
+        Air under the layer of each chamber, (P, K), m^3.
+    compliance_m3_pa
+        ``dV_k/dp_l``, (P, K, K), m^3/Pa.
+    centers_m
+        Chamber centres in the pad frame, thesis numbering, (K, 2), m.
+    meta
+        Provenance (model, mesh, pad: rows, cols, chamber_side_m, wall_width_m, ...).
+    """
+
+    pressure_pa: NDArray[np.float64]
+    x_axis_m: NDArray[np.float64]
+    y_axis_m: NDArray[np.float64]
+    influence_m3_n: NDArray[np.float64]
+    volume_m3: NDArray[np.float64]
+    compliance_m3_pa: NDArray[np.float64]
+    centers_m: NDArray[np.float64]
+    meta: dict[str, Any] = field(default_factory=dict)
+    _cache: dict[Any, Any] = field(default_factory=dict, init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "_cache", {})
+        arrays = {k: np.asarray(getattr(self, k), float) for k in _ARRAYS}
+        p, ax, ay = arrays["pressure_pa"], arrays["x_axis_m"], arrays["y_axis_m"]
+        if p.ndim != 1 or p.size < 1 or (p.size > 1 and not (np.diff(p) > 0).all()):
+            raise InputError("cast response pressure_pa must be increasing values")
+        for name, a in (("x_axis_m", ax), ("y_axis_m", ay)):
+            if a.ndim != 1 or a.size < 2 or not (np.diff(a) > 0).all():
+                raise InputError(f"cast response {name} must be increasing node coordinates")
+        k = arrays["centers_m"].shape[0]
+        shapes = {
+            "influence_m3_n": (p.size, k, ax.size, ay.size),
+            "volume_m3": (p.size, k),
+            "compliance_m3_pa": (p.size, k, k),
+            "centers_m": (k, 2),
+        }
+        for name, shape in shapes.items():
+            a = arrays[name]
+            if a.shape != shape or not np.isfinite(a).all():
+                raise InputError(
+                    f"cast response {name} must be finite with shape {shape}, got {a.shape}"
+                )
+        for name, a in arrays.items():
+            object.__setattr__(self, name, a)
+
+    # --- file ---------------------------------------------------------------------------------
+    @classmethod
+    def from_file(cls, path: str | Path) -> CastPadResponse:
+        """Read a cast response ``.npz``; InputError names what is missing or wrong."""
+        p = Path(path)
+        try:
+            with np.load(p, allow_pickle=False) as z:
+                missing = [k for k in _ARRAYS if k not in z]
+                if missing:
+                    raise InputError(f"cast pad response {str(p)!r} lacks array(s) {missing}")
+                arrays = {k: np.array(z[k], dtype=float) for k in _ARRAYS}
+                meta = json.loads(str(z["meta"][()])) if "meta" in z else {}
+        except InputError:
+            raise
+        except FileNotFoundError:
+            raise InputError(f"cast pad response file {str(p)!r} does not exist") from None
+        except (OSError, ValueError, EOFError) as exc:
+            raise InputError(
+                f"cast pad response {str(p)!r} is not a readable .npz: {exc}"
+            ) from None
+        return cls(**arrays, meta=meta)
+
+    def to_npz(self, path: str | Path) -> Path:
+        """Write the table (the arrays plus ``meta`` as a JSON string)."""
+        p = Path(path)
+        arrays = {k: getattr(self, k) for k in _ARRAYS}
+        np.savez_compressed(p, **arrays, meta=np.array(json.dumps(self.meta, sort_keys=True)))
+        return p
+
+    # --- evaluation ---------------------------------------------------------------------------
+    @property
+    def n_chambers(self) -> int:
+        """Number of chambers K."""
+        return int(self.centers_m.shape[0])
+
+    @property
+    def pitch_m(self) -> float:
+        """Chamber pitch of the model, m."""
+        return float(self.meta.get("chamber_side_m", 0.045)) + self.wall_width_m
+
+    @property
+    def wall_width_m(self) -> float:
+        """Width of the grid's walls of the model, m."""
+        return float(self.meta.get("wall_width_m", 0.0))
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        """(rows, cols) of the model's pad."""
+        return int(self.meta.get("rows", 0)), int(self.meta.get("cols", 0))
+
+    def _weights(self, pressure_pa: float) -> tuple[int, int, float]:
+        p = self.pressure_pa
+        if p.size == 1:
+            return 0, 0, 0.0
+        x = min(max(float(pressure_pa), p[0]), p[-1])
+        i = min(int(np.searchsorted(p, x, side="right")) - 1, p.size - 2)
+        return i, i + 1, (x - p[i]) / (p[i + 1] - p[i])
+
+    def along_pressure(self, values: NDArray[np.float64], pressure_pa: float) -> Any:
+        """``values`` (leading axis: the table's pressures) at ``pressure_pa``, linear and
+        clamped to the table's range."""
+        i, j, t = self._weights(pressure_pa)
+        return values[i] * (1 - t) + values[j] * t
+
+    def influence(self, points_m: ArrayLike, pressure_pa: float) -> NDArray[np.float64]:
+        """``s_k`` of a point force at pad-frame points (n, 2), (n, K), m^3/N: bilinear between
+        the nodes, linear in pressure; zero off the pad."""
+        pts = np.asarray(points_m, dtype=float).reshape(-1, 2)
+        key = round(float(pressure_pa), 3)
+        table = self._cache.get(key)
+        if table is None:
+            table = self._cache[key] = np.asarray(
+                self.along_pressure(self.influence_m3_n, float(pressure_pa))
+            )
+        ax, ay = self.x_axis_m, self.y_axis_m
+        i = np.clip(np.searchsorted(ax, pts[:, 0], side="right") - 1, 0, ax.size - 2)
+        j = np.clip(np.searchsorted(ay, pts[:, 1], side="right") - 1, 0, ay.size - 2)
+        tx = np.clip((pts[:, 0] - ax[i]) / (ax[i + 1] - ax[i]), 0.0, 1.0)[:, None]
+        ty = np.clip((pts[:, 1] - ay[j]) / (ay[j + 1] - ay[j]), 0.0, 1.0)[:, None]
+        v = (
+            table[:, i, j].T * (1 - tx) * (1 - ty)
+            + table[:, i + 1, j].T * tx * (1 - ty)
+            + table[:, i, j + 1].T * (1 - tx) * ty
+            + table[:, i + 1, j + 1].T * tx * ty
+        )
+        on = (pts[:, 0] >= ax[0]) & (pts[:, 0] <= ax[-1]) & (pts[:, 1] >= ay[0])
+        on &= pts[:, 1] <= ay[-1]
+        return np.where(on[:, None], v, 0.0)
+
+    def compliance(self, pressure_pa: float) -> NDArray[np.float64]:
+        """``dV_k/dp_l`` at ``pressure_pa``, (K, K), m^3/Pa."""
+        return np.asarray(self.along_pressure(self.compliance_m3_pa, pressure_pa))
+
+    def volumes(self, pressure_pa: float) -> NDArray[np.float64]:
+        """Air under the layer of each chamber at ``pressure_pa``, (K,), m^3."""
+        return np.asarray(self.along_pressure(self.volume_m3, pressure_pa))
