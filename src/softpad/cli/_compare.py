@@ -22,13 +22,11 @@ _DESCRIPTION = """\
 Run Experiment 2 (MuJoCo trials) for each planner/detector pair over the given seeds and
 print per-pair and per-object success with 95 % Wilson intervals, failures by cause,
 detection delay and finger travel (median, p95) and the detector's false alarms per hour on
-an idle pad with noise and drift; then each pair against every earlier one: Fisher's exact
-test on the pooled trials beside tests with the object as the unit (a paired sign-flip test
-over objects and a seeded cluster bootstrap interval of the difference)."""
+an idle pad with noise and drift."""
 
 
 def register(sub: Any) -> None:
-    from softpad.cli._trials import add_mounting_option, add_randomize_option, add_trial_options
+    from softpad.cli._trials import add_randomize_option, add_trial_options
     from softpad.planning import available_planners
     from softpad.sensing import available_contact_detectors
 
@@ -42,7 +40,6 @@ def register(sub: Any) -> None:
     )
     add_trial_options(p, seeds="0-9")
     add_randomize_option(p)
-    add_mounting_option(p, "each object's own: Table 6.1's per Section 6.3, an object set's")
     p.add_argument(
         "--pair",
         action="append",
@@ -64,32 +61,12 @@ def register(sub: Any) -> None:
     p.set_defaults(handler=run)
 
 
-def parse_pairs(pairs: list[str] | None) -> list[tuple[str, str]]:
-    from softpad.planning import available_planners
-    from softpad.sensing import available_contact_detectors
-    from softpad.trials import DEFAULT_PAIRS
-
-    if not pairs:
-        return list(DEFAULT_PAIRS)
-    out = []
-    for text in pairs:
-        planner, _, detector = text.partition(":")
-        planners, detectors = available_planners(), available_contact_detectors()
-        if planner not in planners or detector not in detectors:
-            raise InputError(
-                f"--pair must be PLANNER:DETECTOR with PLANNER in {', '.join(planners)} and "
-                f"DETECTOR in {', '.join(detectors)}, got {text!r}"
-            )
-        out.append((planner, detector))
-    return out
-
-
 def run(args: argparse.Namespace) -> int:
     import math
 
     from softpad.cli._paths import check_output
     from softpad.cli._trials import check_counts, select_objects
-    from softpad.trials import TrialConfig, compare
+    from softpad.trials import TrialConfig, compare, parse_pairs
 
     check_output(args.png, "--png", force=args.force, suffix=".png")  # before hours of trials
     if args.merge:
@@ -108,7 +85,7 @@ def run(args: argparse.Namespace) -> int:
             trials=args.trials,
             workers=args.workers,
             idle_hours=args.idle_hours,
-            config=TrialConfig(randomize=args.randomize, mounting=args.mounting),
+            config=TrialConfig(randomize=args.randomize),
             on_trial=(lambda _: bar.update(1)) if bar else None,
         )
     finally:
@@ -140,14 +117,16 @@ def _merged(args: argparse.Namespace) -> dict[str, Any]:
 
 def _show(d: dict[str, Any], args: argparse.Namespace) -> int:
     """Draw, then print the comparison as JSON or as a table."""
+    from softpad.trials import comparison_table, plot_comparison
+
     if args.png:
-        _plot(d, args.png)
+        plot_comparison(d).savefig(args.png, dpi=120)
     if args.json:
         from softpad.cli._output import emit
 
         emit(d)
     else:
-        print(_table(d))
+        print(comparison_table(d))
     from softpad.cli._trials import trial_errors_exit
 
     return trial_errors_exit(
@@ -159,78 +138,3 @@ def _bar(total: int, enabled: bool) -> Any:
     from softpad.cli._trials import progress_bar
 
     return progress_bar(total, enabled and sys.stderr.isatty(), desc="compare")
-
-
-def _pct(x: float | None) -> str:
-    return "-" if x is None else f"{100 * x:.1f} %"
-
-
-def _table(d: dict[str, Any]) -> str:
-    lines = [
-        f"seeds {d['seeds'][0]}..{d['seeds'][-1]} ({len(d['seeds'])})",
-        "| planner | detector | success | 95 % interval | delay median / p95 (ms) "
-        "| travel median (mm) | false alarms/h | failures |",
-        "|---|---|---:|---|---|---:|---:|---|",
-    ]
-    for c in d["combinations"]:
-        lo, hi = c["success_interval"]
-        dm, dp = c["delay_s_median"], c["delay_s_p95"]
-        delay = "-" if dm is None else f"{1e3 * dm:.0f} / {1e3 * dp:.0f}"
-        travel = (
-            "-"
-            if c["finger_travel_m_median"] is None
-            else f"{1e3 * c['finger_travel_m_median']:.2f}"
-        )
-        lines.append(
-            f"| {c['planner']} | {c['detector']} | {c['successes']}/{c['trials']} = "
-            f"{_pct(c['success'])} | {_pct(lo)} .. {_pct(hi)} | {delay} | {travel} | "
-            f"{c['false_alarms_per_hour']:g} | {c['failures'] or '-'} |"
-        )
-    return "\n".join(lines + _contrast_table(d.get("contrasts", [])))
-
-
-def _contrast_table(contrasts: list[dict[str, Any]]) -> list[str]:
-    """Each pair against an earlier one: trials as independent, then objects as the unit."""
-    if not contrasts:
-        return []
-    lines = [
-        "",
-        "| B against A | difference | trial-level p (Fisher) | objects better / worse "
-        "| object-level p (sign-flip) | cluster bootstrap 95 % |",
-        "|---|---:|---:|---|---:|---|",
-    ]
-    for c in contrasts:
-        lo, hi = c["object_interval"]
-        lines.append(
-            f"| {c['b']} against {c['a']} | {100 * c['difference']:+.1f} points | "
-            f"{c['trial_p_value']:.3g} | {c['objects_better']} / {c['objects_worse']} "
-            f"of {c['objects']} | {c['object_p_value']:.3g} | "
-            f"{100 * lo:+.1f} .. {100 * hi:+.1f} points |"
-        )
-    return lines
-
-
-def _plot(d: dict[str, Any], path: str) -> None:
-    import matplotlib.pyplot as plt
-
-    combos = d["combinations"]
-    names = [o["name"] for o in combos[0]["objects"]]
-    fig, ax = plt.subplots(figsize=(11, 4))
-    width = 0.8 / len(combos)
-    for i, c in enumerate(combos):
-        rates = [o["success"] for o in c["objects"]]
-        # the bars' whiskers: each object's 95 % Wilson interval
-        lo = [r - o["success_interval"][0] for r, o in zip(rates, c["objects"], strict=True)]
-        hi = [o["success_interval"][1] - r for r, o in zip(rates, c["objects"], strict=True)]
-        xs = [k + i * width for k in range(len(names))]
-        label = f"{c['planner']} + {c['detector']}: {_pct(c['success'])} overall"
-        ax.bar(xs, rates, width, yerr=[lo, hi], capsize=2, label=label)
-    ax.set_xticks([k + 0.4 - width / 2 for k in range(len(names))], names, rotation=30)
-    ax.set_ylabel("success rate (95 % interval)")
-    ax.set_ylim(0, 1.05)
-    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize="small")
-    trials = combos[0]["trials"]
-    ax.set_title(f"Experiment 2 over {len(d['seeds'])} seeds ({trials} trials a pair)")
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)

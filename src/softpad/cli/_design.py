@@ -160,57 +160,16 @@ def _object_set(args: argparse.Namespace) -> Any:
     return s.with_gripper(args.gripper)
 
 
-def _check_on_pads(object_set: Any, designs: list[Any]) -> None:
-    """Every object's footprint centre lies on every design's pad, before any work."""
-    from softpad.design import footprint_centre_m
-
-    for d in designs:
-        w, h = d.cols * d.pitch_m, d.rows * d.pitch_m
-        for obj in object_set.objects:
-            try:
-                p = obj.placed_on((w, h)).placement
-            except InputError as exc:  # metres away: beyond any placement
-                raise InputError(
-                    f"object {obj.name!r} would lie off the {d.rows}x{d.cols} pad of "
-                    f"{w * 1e3:.0f} x {h * 1e3:.0f} mm: {exc}"
-                ) from None
-            cx, cy = footprint_centre_m(obj.spec.parts, p.yaw_rad)
-            x, y = p.x_m + cx, p.y_m + cy
-            if not (0.0 <= x <= w and 0.0 <= y <= h):
-                raise InputError(
-                    f"object {obj.name!r} would lie at ({x * 1e3:.0f}, {y * 1e3:.0f}) mm, off "
-                    f"the {d.rows}x{d.cols} pad of {w * 1e3:.0f} x {h * 1e3:.0f} mm"
-                )
-
-
 def run(args: argparse.Namespace) -> int:
-    from softpad.design import (
-        ResultCache,
-        TrialOptions,
-        check_scheduler_address,
-        design_sweep,
-    )
+    from softpad.design import ResultCache, check_scheduler_address, design_sweep
 
     object_set = _object_set(args)
     designs = _designs(args)
-    _check_on_pads(object_set, designs)
+    object_set.check_on_pads(designs)
     seeds = int_ranges(args.seeds, "--seeds", lo=0, hi=2**32 - 1)
     if len(seeds) > 100:
         raise InputError(f"--seeds names {len(seeds)} seeds; at most 100")
-    trials = args.trials if args.trials is not None else (1 if args.quick else 5)
-    if not 1 <= trials <= 100:
-        raise InputError(f"--trials must be from 1 to 100, got {trials}")
-    hold_s = args.hold_s if args.hold_s is not None else (2.0 if args.quick else thesis.HOLD_S)
-    if not (math.isfinite(hold_s) and 0 <= hold_s <= 60):
-        raise InputError(f"--hold-s must be from 0 to 60 s, got {hold_s!r}")
-    options = TrialOptions(
-        trials,
-        args.planner,
-        args.detector,
-        hold_s,
-        randomize=args.randomize,
-        mounting=args.mounting,
-    )
+    options = _trial_options(args)
     if args.scheduler is not None:
         check_scheduler_address(args.scheduler)
     if args.workers is not None and not 1 <= args.workers <= 256:
@@ -246,6 +205,23 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         emit(result.to_dict())
     return 0
+
+
+def _trial_options(args: argparse.Namespace) -> Any:
+    """The trials of each design and object: --trials, --hold-s (the quick run's defaults
+    with --quick), the parts, --randomize and --mounting."""
+    from softpad.design import TrialOptions
+
+    trials = args.trials if args.trials is not None else (1 if args.quick else 5)
+    if not 1 <= trials <= 100:
+        raise InputError(f"--trials must be from 1 to 100, got {trials}")
+    hold_s = args.hold_s if args.hold_s is not None else (2.0 if args.quick else thesis.HOLD_S)
+    if not (math.isfinite(hold_s) and 0 <= hold_s <= 60):
+        raise InputError(f"--hold-s must be from 0 to 60 s, got {hold_s!r}")
+    return TrialOptions(
+        trials, args.planner, args.detector, hold_s, randomize=args.randomize,
+        mounting=args.mounting,
+    )  # fmt: skip
 
 
 def cached_line(cached: int, computed: int, root: Path | None) -> str:

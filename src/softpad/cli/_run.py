@@ -287,10 +287,7 @@ def run(args: argparse.Namespace) -> int:
             "run", box, args.box, names, params, gripper=gripper,
             planner=args.planner, contact_detector=args.detector,
         )  # fmt: skip
-        if args.config:  # FluidPressure is absolute: the site's ambient pressure
-            from softpad.config import load_installation
-
-            meta["ambient_pressure_pa"] = load_installation(args.config).box.ambient_pressure_pa
+        _add_ambient(meta, args.config)
         pad = installed_pad_pose(args.config)  # where the pad stands: /tf_static everywhere
         recorder = open_recorder(
             str(record_path) if record_path else None, box, meta, args.force, pad=pad
@@ -325,6 +322,14 @@ def run(args: argparse.Namespace) -> int:
                     r.close()
             _save_png(log, png_path, names)
     return _report(args, log, result, names, png_path, record_path)
+
+
+def _add_ambient(meta: dict[str, Any], config: str | None) -> None:
+    """FluidPressure is absolute: the site's ambient pressure from the installation file."""
+    if config:
+        from softpad.config import load_installation
+
+        meta["ambient_pressure_pa"] = load_installation(config).box.ambient_pressure_pa
 
 
 def _in_process(box: Any) -> bool:

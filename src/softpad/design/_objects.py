@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import math
 import tomllib
+from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from importlib import resources
 from pathlib import Path
@@ -140,6 +141,31 @@ class ObjectSet:
     def with_gripper(self, gripper: str | None) -> ObjectSet:
         """The set with one mounting for every object (None: unchanged)."""
         return self if gripper is None else replace(self, gripper=gripper)
+
+    def check_on_pads(self, designs: Sequence[Any]) -> None:
+        """Refuse a sweep where an object would lie off a design's pad: its footprint centre,
+        placed as its rule says, outside the pad's outline (checked before any work).
+
+        Parameters
+        ----------
+        designs
+            Pad designs (``rows``, ``cols``, ``pitch_m``), e.g. :class:`PadDesign`.
+        """
+        for d in designs:
+            w, h = d.cols * d.pitch_m, d.rows * d.pitch_m
+            pad = f"the {d.rows}x{d.cols} pad of {w * 1e3:.0f} x {h * 1e3:.0f} mm"
+            for obj in self.objects:
+                try:
+                    p = obj.placed_on((w, h)).placement
+                except InputError as exc:  # metres away: beyond any placement
+                    raise InputError(f"object {obj.name!r} would lie off {pad}: {exc}") from None
+                cx, cy = footprint_centre_m(obj.spec.parts, p.yaw_rad)
+                x, y = p.x_m + cx, p.y_m + cy
+                if not (0.0 <= x <= w and 0.0 <= y <= h):
+                    raise InputError(
+                        f"object {obj.name!r} would lie at ({x * 1e3:.0f}, {y * 1e3:.0f}) mm, "
+                        f"off {pad}"
+                    )
 
     def fingerprint(self) -> dict[str, Any]:
         """What identifies the set in a cache key: every spec and placement rule."""

@@ -21,6 +21,7 @@ from softpad.trials._compare import (
     merge_comparisons,
     wilson_interval,
 )
+from softpad.trials._compare_report import comparison_table, parse_pairs, plot_comparison
 from softpad.trials._config import (
     TrialConfig,
     check_mounting_choice,
@@ -68,6 +69,7 @@ __all__ = [
     "calibrate",
     "check_mounting_choice",
     "compare",
+    "comparison_table",
     "drawn_placement",
     "errored_records",
     "errored_trial",
@@ -75,7 +77,9 @@ __all__ = [
     "idle_false_alarms_per_hour",
     "merge_comparisons",
     "pad_reading",
+    "parse_pairs",
     "perturbed_placement",
+    "plot_comparison",
     "protocol_loads",
     "read_increments",
     "record_calibration",

@@ -131,23 +131,9 @@ def plot_grasps(
         :data:`SMALLEST_PRINTED_PT` or more when the figure is printed :data:`PAGE_WIDTH_IN` wide.
     """
     layout = layout or PadLayout()
-    tip_thickness_m, tip_width_m, line_width_m = _sizes(
-        layout, tip_thickness_m, tip_width_m, line_width_m
-    )
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    sizes = _sizes(layout, tip_thickness_m, tip_width_m, line_width_m)
     names = result.object_names
-    n = len(names)
-    cols = min(4, n)
-    rows = math.ceil(n / cols)
-    width = 3.3 * cols + 4.6
-    pt = SMALLEST_PRINTED_PT * width / PAGE_WIDTH_IN  # readable once printed a page wide
-    fig = plt.figure(figsize=(width, 3.9 * rows + 1.0))
-    grid = fig.add_gridspec(rows, cols + 2)
-    sizes = (tip_thickness_m, tip_width_m, line_width_m)
+    fig, grid, cols, pt = _grasps_figure(len(names))
     for i, name in enumerate(names):
         ax = fig.add_subplot(grid[i // cols, i % cols])
         _grasp_panel(ax, result, name, specs[name], layout, sizes, trial_index, pt)
@@ -159,9 +145,27 @@ def plot_grasps(
     )
     fig.tight_layout()
     if path:
+        import matplotlib.pyplot as plt
+
         fig.savefig(path, dpi=150)
         plt.close(fig)
     return fig
+
+
+def _grasps_figure(n: int) -> tuple[Any, Any, int, float]:
+    """The figure of :func:`plot_grasps` for ``n`` objects: the figure, its grid, the panels
+    per row and the label size (pt) that prints readable a page wide."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    cols = min(4, n)
+    rows = math.ceil(n / cols)
+    width = 3.3 * cols + 4.6
+    pt = SMALLEST_PRINTED_PT * width / PAGE_WIDTH_IN  # readable once printed a page wide
+    fig = plt.figure(figsize=(width, 3.9 * rows + 1.0))
+    return fig, fig.add_gridspec(rows, cols + 2), cols, pt
 
 
 def _grasp_panel(
