@@ -42,11 +42,12 @@ def test_custom_robot_example() -> None:
 
 def test_pad_4x4_example() -> None:
     """Object 5 moved one module up and right on a 4 x 4 pad: the 2 x 3 plan, shifted by one
-    module in x and y (the 2 x 3 pad's plan of the same object, computed here)."""
+    module in x and y (the 2 x 3 pad's plan of the same object, computed here on the same pad
+    model: the packaged cast-pad table is the 2 x 3 pad's, so a 4 x 4 pad has clamped modules)."""
     from softpad.harness import run_simulated
 
     result = runpy.run_path(str(EXAMPLES / "pad_4x4.py"))["main"]()
-    small = run_simulated(["object-5"], "sim://?seed=5").result.plans[0]
+    small = run_simulated(["object-5"], "sim://?seed=5&pad=clamped").result.plans[0]
     assert small.modules == (1, 2, 3) and result["modules"] == (6, 7, 8)
     assert result["cog"] == pytest.approx((small.cog[0] + 1, small.cog[1] + 1), abs=0.02)
     assert result["theta"] == pytest.approx(small.theta) == pytest.approx(math.pi / 2)
