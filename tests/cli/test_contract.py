@@ -244,10 +244,10 @@ def test_every_parser_refuses_abbreviations_and_offers_json() -> None:
         ("config", "check"),
         (
             "fem",
-            "sweep, design, stiffness, sensitivity, chamber, fit, compare, characteristic or response",
+            "sweep, design, stiffness, sensitivity, chamber, fit, compare, characteristic, response or cast-response",
         ),
         ("log", "info, plot, export or recover"),
-        ("pad", "probe or map"),
+        ("pad", "probe, map or sensitivity"),
         ("ros", "node, env or urdf"),
         ("sim", "arm-node"),
     ],

@@ -20,7 +20,7 @@ and lifted with a 'calibration_unload' event; softpad.trials.record_calibration 
 from any box. The fit: sensor noise and leak from the idle minute, response scale and seam
 width by least squares of every module's increment on the simulator's sealed rise.
 
---objects fits instead each Table 6.1 object's unknown the seed does not give (the can's end
+--objects fits instead each Table 6.1 object's unknown the thesis does not give (the can's end
 weight, the charger's mass split, the limes' arrangement, the toy's shape, the banana's
 curve) to the thesis's plan of that object, the only evidence for it: the value of its
 sourced range whose modal plan over placement draws (analytic world, noisy box) lies nearest

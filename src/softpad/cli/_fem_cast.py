@@ -12,7 +12,7 @@ from softpad.cli._paths import atomic_path, check_output
 from softpad.errors import InputError
 
 _HELP = "every chamber's response to a load anywhere on the cast 2 x 3 pad, 0.5..2.8 kPa (.npz)"
-_DESCRIPTION = """The pad as the seed's mould makes it (Section 6.1.1): a continuous 1.5 mm upper
+_DESCRIPTION = """The pad as the thesis's mould makes it (Section 6.1.1): a continuous 1.5 mm upper
 layer of EcoFlex 00-30 over 45 x 45 mm acetate chambers, bonded to the grid's walls between them
 and to the border. One FElupe model of the whole layer; at each pressure one factorisation and
 one solve per chamber give every chamber's s_k = -dV_k/dF of a point force anywhere on the pad
@@ -28,7 +28,7 @@ def register(fem_sub: Any) -> None:
     add_number(
         p,
         "--wall-mm",
-        "width of the grid's walls between acetate sheets, mm (default 1; the seed gives none)",
+        "width of the grid's walls between acetate sheets, mm (default 1; the thesis gives none)",
         1.0,
         lo=0.05,
         hi=10.0,

@@ -123,7 +123,7 @@ def _add_node_grasp_options(node: Any) -> None:
     node.add_argument(
         "--hold-s",
         type=float,
-        help="hold time of a grasp, seconds (default 15, the seed's)",
+        help="hold time of a grasp, seconds (default 15, the thesis's)",
     )
 
 

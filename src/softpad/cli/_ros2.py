@@ -30,6 +30,8 @@ def register(sub: Any) -> None:
         "ros2",
         "ROS 2 node of the pad (rclpy wheels; docs/ros.md)",
         f"ROS 2 adapters of SoftPad. {_NETWORK}",
+        "examples:\n  softpad ros2 build-interfaces                                   once\n"
+        "  softpad ros2 node --box sim:// --robot sim:// --place object-3  grasps on request\n",
         metavar="COMMAND",
     )
     node = add_command(

@@ -87,6 +87,10 @@ class _Running:
 
         return self.stop.is_set() or not rclpy.ok()
 
+    def signal_shutdown(self, reason: str) -> None:
+        """End the loop (the ROS 1 node's ``rospy.signal_shutdown`` when its run ends)."""
+        self.stop.set()
+
 
 def declare_parameters(node: Any, config: NodeConfig) -> dict[str, Any]:
     """Declare every key of :data:`CONFIG_KEYS` as a ROS 2 parameter with ``config``'s value
@@ -137,7 +141,14 @@ class Ros2PadNode(PadNode):
         apply_loopback_environment()
         import rclpy
 
-        rclpy.init(args=["softpad", "--ros-args", *(ros_args or [])])
+        from rclpy.signals import SignalHandlerOptions
+
+        # Ctrl-C and SIGTERM stop the node as they stop every softpad command (exit 130 / 143,
+        # the box left safe), not through rclpy's handler, which invalidates the context first
+        rclpy.init(
+            args=["softpad", "--ros-args", *(ros_args or [])],
+            signal_handler_options=SignalHandlerOptions.NO,
+        )
         self.node = rclpy.create_node(name)
         self.running = _Running()
         self.rospy = self.running  # type: ignore[assignment]  # the loop's stop condition
@@ -345,7 +356,9 @@ def watch_loop2(
     import rclpy
 
     if not rclpy.ok():
-        rclpy.init(args=["softpad"])
+        from rclpy.signals import SignalHandlerOptions
+
+        rclpy.init(args=["softpad"], signal_handler_options=SignalHandlerOptions.NO)
     node = rclpy.create_node(node_name)
     pubs = Ros2Publishers(node, layout, box_url)
     pubs.box = box
