@@ -326,7 +326,9 @@ def test_validate_command_on_one_seed(capsys: pytest.CaptureFixture[str]) -> Non
     obs = out["observations"]
     assert {"name", "source", "thesis", "predicted", "interval", "agrees", "test"} <= set(obs[0])
     exp = next(o for o in obs if o["name"] == "Experiment 2 held, all objects")
-    assert exp["predicted"].endswith("/11") and exp["agrees"] is not None
+    assert exp["predicted"].endswith("/11")
+    # 11 trials are far fewer than ten times the thesis's 55: never an agreement
+    assert exp["verdict"] in ("undecided", "disagree") and exp["agrees"] is not True
     assert len(out["trials"]) == 11
     assert {"role", "verdict"} <= set(obs[0]) and all(o["role"] for o in obs)
     assert sum(c["not_run"] for c in out["counts"].values()) == 0

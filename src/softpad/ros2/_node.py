@@ -140,7 +140,6 @@ class Ros2PadNode(PadNode):
         ensure_rclpy()
         apply_loopback_environment()
         import rclpy
-
         from rclpy.signals import SignalHandlerOptions
 
         # Ctrl-C and SIGTERM stop the node as they stop every softpad command (exit 130 / 143,
