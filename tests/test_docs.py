@@ -36,7 +36,6 @@ import re
 import shutil
 import socket
 import subprocess
-import sys
 from pathlib import Path
 from typing import Any
 
@@ -223,17 +222,14 @@ def _start_roscore(env: dict[str, str]) -> subprocess.Popen[bytes]:
         stderr=subprocess.DEVNULL,
         start_new_session=True,
     )
+    # the system's Python, where Debian's rosgraph lives
     probe = [
-        sys.executable,
+        "/usr/bin/python3",
         "-c",
         "import rosgraph, sys; sys.exit(not rosgraph.is_master_online())",
     ]
-    sys_env = {
-        **env,
-        "PYTHONPATH": f"/usr/lib/python3/dist-packages{os.pathsep}{env['PYTHONPATH']}",
-    }
     for _ in range(600):  # each probe waits on the master's socket; about 60 s in all
-        if subprocess.run(probe, env=sys_env, check=False, timeout=30).returncode == 0:
+        if subprocess.run(probe, env=env, check=False, timeout=30).returncode == 0:
             return proc
         try:
             proc.wait(timeout=0.1)
