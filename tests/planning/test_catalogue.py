@@ -51,26 +51,37 @@ def test_objects_never_held_stay_unknown_and_grasps_follow_their_readings(
     assert len(box.readings_pa) == 5 and box.grasps[4] == (1.5, 0.54, 0.0)
 
 
+def _pooled(catalogue: Catalogue) -> np.ndarray:
+    """The pooled within-object covariance, from numpy's per-object covariances weighted by
+    their degrees of freedom (an independent route to S), plus var I."""
+    covs = [
+        (len(o.readings_pa) - 1, np.cov(np.array(o.readings_pa), rowvar=False))
+        for o in catalogue.objects
+    ]
+    s = sum(w * c for w, c in covs) / sum(w for w, _ in covs)
+    return s + VAR * np.eye(6)
+
+
 def test_the_distance_is_scipy_mahalanobis(catalogue: Catalogue) -> None:
-    """Against scipy.spatial.distance.mahalanobis with the inverse of (S + var I)."""
+    """Against scipy.spatial.distance.mahalanobis with the inverse of (S_pooled + var I)."""
     from scipy.spatial.distance import mahalanobis
 
+    cov = _pooled(catalogue)
+    np.testing.assert_allclose(catalogue.covariance_pa2(), cov, rtol=1e-12)
     obj = catalogue.objects[0]
-    x = np.array(obj.readings_pa)
-    vi = np.linalg.inv(np.cov(x, rowvar=False) + VAR * np.eye(6))
     r = np.array([240.0, 200, 120, 5, -3, 2])
-    expected = mahalanobis(r, x.mean(axis=0), vi) ** 2
-    assert obj.distance2(r, VAR) == pytest.approx(expected, rel=1e-9)
+    expected = mahalanobis(r, np.array(obj.readings_pa).mean(axis=0), np.linalg.inv(cov)) ** 2
+    assert obj.distance2(r, cov) == pytest.approx(expected, rel=1e-9)
 
 
 def test_readings_of_a_known_object_are_recognised_at_the_stated_rate(
     catalogue: Catalogue,
 ) -> None:
-    """20000 readings drawn from the object's own Gaussian (its mean, S + var I): called
+    """20000 readings drawn from the object's own Gaussian (its mean, S_pooled + var I): called
     unknown at the criterion's 0.1 %; within 0.05-0.2 % (20 expected, about 2 standard errors)."""
     obj = catalogue.objects[0]
     x = np.array(obj.readings_pa)
-    cov = np.cov(x, rowvar=False) + VAR * np.eye(6)
+    cov = _pooled(catalogue)
     draws = np.random.default_rng(7).multivariate_normal(x.mean(axis=0), cov, size=20000)
     unknown = np.mean([catalogue.recognise(r)[0] is None for r in draws])
     assert 0.0005 <= unknown <= 0.002

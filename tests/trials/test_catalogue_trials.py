@@ -26,7 +26,7 @@ def test_a_recorded_held_trial_is_recognised_and_its_grasp_reused(
     assert taught.success
     out = tmp_path / "catalogue.toml"
     assert main(["learn", str(rec), "--out", str(out)]) == 0
-    assert "1 known objects from 1 trials (1 held)" in capsys.readouterr().out
+    assert "1 known objects from 1 trials (1 held; 0 recordings" in capsys.readouterr().out
     (known,) = load_catalogue(out).objects
     assert known.name == "object-5" and known.grasps[0][:2] == pytest.approx(taught.cog)
     config = TrialConfig(planner="catalogue", detector="thesis", catalogue=str(out))

@@ -13,14 +13,16 @@ _EPILOG = """examples:
   softpad learn train-*.mcap --out catalogue.toml       learn the objects held in them
   softpad compare --pair catalogue:adaptive --catalogue catalogue.toml --seeds 2-3 --randomize
 
-Each recording is one trial of one object (softpad trials --record): its first plan's
+Each recording is one trial of one object (softpad trials --record; one without a plan of
+one object or an outcome is skipped and counted): its first plan's
 increments are the object's reading, its last grasp (after any retry) the grasp tried, and
 its outcome says whether it held. An object held at least once is known: its readings and
 the grasps that held it go into the catalogue. --planner catalogue recognises a known object
-when the squared Mahalanobis distance of its increments from the object's readings (their
-covariance plus the recorded sensor noise) is under the chi-square 0.999 quantile with one
-degree of freedom per module, and grasps it as the nearest held trial did; any other object
-goes to the model-based planner (docs/planner.md).
+when the squared Mahalanobis distance of its increments from the object's mean reading
+(under the readings' pooled within-object covariance plus the recorded sensor noise) is
+under the chi-square 0.999 quantile with one degree of freedom per module, and grasps it as
+the nearest held trial did; any other object goes to the model-based planner
+(docs/planner.md).
 """
 
 
@@ -39,10 +41,11 @@ def register(sub: Any) -> None:
     p.set_defaults(handler=run)
 
 
-def learned_trial(run: Any) -> tuple[Any, float]:
+def learned_trial(run: Any) -> tuple[Any, float] | None:
     """The :class:`~softpad.planning.LearnedTrial` of one recorded trial and the variance of
     a planning increment under its sensor noise, Pa^2 (per-frame variance / 5: the mean of 10
-    reads minus a reference of 10)."""
+    reads minus a reference of 10); None for a trial that teaches nothing (no plan of one
+    object or no outcome: the object was not detected, the box faulted)."""
     from softpad.planning import LearnedTrial
 
     name = f"recording {str(run.path)!r}"
@@ -52,7 +55,7 @@ def learned_trial(run: Any) -> tuple[Any, float]:
     plans = [d for _, kind, d in run.events if kind == "plan"]
     outcomes = [d.get("outcome") for _, kind, d in run.events if kind == "outcome"]
     if not plans or not outcomes or len(plans[0].get("objects", [])) != 1:
-        raise InputError(f"{name}: needs one plan of one object and an outcome")
+        return None
     first = plans[0]["objects"][0]
     grasp = (float(first["cog"][0]), float(first["cog"][1]), float(first["theta"]))
     for _, kind, d in run.events:
@@ -73,7 +76,10 @@ def run(args: argparse.Namespace) -> int:
 
     out = check_output(args.out, "--out", force=args.force, suffix=".toml")
     assert out is not None
-    pairs = [learned_trial(load_recording(path)) for path in args.recordings]
+    learned = [learned_trial(load_recording(path)) for path in args.recordings]
+    pairs = [x for x in learned if x is not None]
+    if not pairs:
+        raise InputError("no recording holds a plan of one object and its outcome")
     trials = [t for t, _ in pairs]
     variance = statistics.median(v for _, v in pairs)
     if not variance > 0:
@@ -87,6 +93,7 @@ def run(args: argparse.Namespace) -> int:
                 "out": str(out),
                 "objects": [o.name for o in catalogue.objects],
                 "trials": len(trials),
+                "skipped": len(learned) - len(pairs),
                 "held": held,
                 "increment_noise_pa": round(variance**0.5, 3),
                 "recognition_threshold": round(catalogue.threshold, 3),
@@ -95,6 +102,7 @@ def run(args: argparse.Namespace) -> int:
         return 0
     say(
         f"{out}: {len(catalogue.objects)} known objects from {len(trials)} trials "
-        f"({held} held); increment noise {variance**0.5:.1f} Pa"
+        f"({held} held; {len(learned) - len(pairs)} recordings without a plan of one object "
+        f"skipped); increment noise {variance**0.5:.1f} Pa"
     )
     return 0

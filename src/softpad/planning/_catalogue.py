@@ -7,13 +7,17 @@ from its readings and grasps it where the nearest held trial did; an object it d
 recognise goes to the fallback planner (the model-based one when made by name).
 
 Recognition criterion: the squared Mahalanobis distance of the increments ``r`` (pascals, one
-per module) from an object's signature,
+per module) from an object's signature (the mean of its held trials' readings),
 
     d2 = (r - mean)^T (S + var I)^-1 (r - mean),
 
-with ``S`` the sample covariance of its training readings and ``var`` the variance of a planning
-increment under the measured sensor noise (the recordings' per-frame variance over 5: the
-increment is the mean of 10 reads minus a reference of 10). The object is known when the
+with ``S`` the pooled within-object covariance of the training readings (every known object's
+readings about its own mean, summed, over the trials less the objects: how much one object's
+reading moves from trial to trial with its pose and the lab's uncertain inputs; a covariance
+per object from two or three trials is singular and called most of an object's own readings
+unknown) and ``var`` the variance of a planning increment under the measured sensor noise (the
+recordings' per-frame variance over 5: the increment is the mean of 10 reads minus a
+reference of 10). The object is known when the
 smallest ``d2`` is at most the chi-square quantile of ``recognition_quantile`` (0.999) with one
 degree of freedom per module: a reading of that object (Gaussian with that covariance) is
 called unknown 0.1 % of the time.
@@ -69,13 +73,11 @@ class KnownObject:
         """Mean reading, pascals."""
         return np.mean(np.array(self.readings_pa), axis=0)
 
-    def distance2(self, reading: np.ndarray, variance_pa2: float) -> float:
-        """Squared Mahalanobis distance of ``reading`` (see the module's docstring)."""
-        x = np.array(self.readings_pa)
-        n = x.shape[1]
-        cov = np.cov(x, rowvar=False) if len(x) > 1 else np.zeros((n, n))
+    def distance2(self, reading: np.ndarray, covariance_pa2: np.ndarray) -> float:
+        """Squared Mahalanobis distance of ``reading`` from the signature under
+        ``covariance_pa2`` (:meth:`Catalogue.covariance_pa2`)."""
         d = reading - self.signature_pa
-        return float(d @ np.linalg.solve(cov + variance_pa2 * np.eye(n), d))
+        return float(d @ np.linalg.solve(covariance_pa2, d))
 
     def nearest_grasp(self, reading: np.ndarray) -> tuple[float, float, float]:
         """The grasp of the held trial whose reading is nearest ``reading``."""
@@ -104,6 +106,18 @@ class Catalogue:
     objects: tuple[KnownObject, ...] = ()
     recognition_quantile: float = 0.999
 
+    def covariance_pa2(self) -> np.ndarray:
+        """``S + var I``: the pooled within-object covariance of the readings plus the
+        increment's noise variance, Pa^2 (see the module's docstring)."""
+        scatter = np.zeros((self.modules, self.modules))
+        dof = 0
+        for obj in self.objects:
+            x = np.array(obj.readings_pa)
+            dev = x - x.mean(axis=0)
+            scatter += dev.T @ dev
+            dof += len(x) - 1
+        return scatter / max(dof, 1) + self.variance_pa2 * np.eye(self.modules)
+
     @property
     def threshold(self) -> float:
         """Largest squared distance of a known object (chi-square, one dof per module)."""
@@ -115,9 +129,10 @@ class Catalogue:
         """The known object nearest the reading and its squared distance; None when no object
         lies within :attr:`threshold` (an unknown object)."""
         r = np.asarray(increments_pa, dtype=float)[: self.modules]
+        cov = self.covariance_pa2()
         best: tuple[KnownObject | None, float] = (None, math.inf)
         for obj in self.objects:
-            d2 = obj.distance2(r, self.variance_pa2)
+            d2 = obj.distance2(r, cov)
             if d2 < best[1]:
                 best = (obj, d2)
         return best if best[1] <= self.threshold else (None, best[1])
