@@ -49,6 +49,11 @@ def register(sub: Any) -> None:
         f"{', '.join(available_contact_detectors())}",
     )
     p.add_argument("--idle-hours", type=float, default=1.0, help="idle time for false alarms")
+    p.add_argument(
+        "--catalogue",
+        metavar="FILE.toml",
+        help="known objects (softpad learn) for the catalogue planner's pairs",
+    )
     p.add_argument("--png", metavar="FILE.png", help="draw success and delay per pair")
     p.add_argument("--force", action="store_true", help="overwrite an existing --png file")
     p.add_argument(
@@ -74,6 +79,10 @@ def run(args: argparse.Namespace) -> int:
     seeds, pairs = int_ranges(args.seeds, "--seeds", lo=0, hi=2**32 - 1), parse_pairs(args.pair)
     specs = select_objects(args.objects, args.objects_file)
     check_counts(args.trials, args.workers)
+    if args.catalogue:
+        from softpad.planning import load_catalogue
+
+        load_catalogue(args.catalogue)  # a bad file is named before any trial
     if not (math.isfinite(args.idle_hours) and 0 < args.idle_hours <= 100):
         raise InputError(f"--idle-hours must be in (0, 100] h, got {args.idle_hours!r}")
     bar = _bar(len(specs) * args.trials * len(seeds) * len(pairs), not args.no_progress)
@@ -85,7 +94,7 @@ def run(args: argparse.Namespace) -> int:
             trials=args.trials,
             workers=args.workers,
             idle_hours=args.idle_hours,
-            config=TrialConfig(randomize=args.randomize),
+            config=TrialConfig(randomize=args.randomize, catalogue=args.catalogue),
             on_trial=(lambda _: bar.update(1)) if bar else None,
         )
     finally:

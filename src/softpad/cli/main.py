@@ -35,6 +35,7 @@ _COMMAND_MODULES = (
     "_config",
     "_trials",
     "_compare",
+    "_learn",
     "_validate",
     "_calibrate",
     "_results",

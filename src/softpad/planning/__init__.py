@@ -6,6 +6,14 @@ direction theta) with the thesis's rules, generalised to R x C pads (docs/planne
 """
 
 from softpad.planning._cases import FIG_6_7, RULE_CASES, TABLE_6_1, PlanCase
+from softpad.planning._catalogue import (
+    Catalogue,
+    CataloguePlanner,
+    KnownObject,
+    LearnedTrial,
+    learn_catalogue,
+    load_catalogue,
+)
 from softpad.planning._gripper_aware import (
     DEFAULT_SEAM_WIDTH_M,
     GripperAwarePlanner,
@@ -49,8 +57,12 @@ __all__ = [
     "PLANNER_REGISTRY",
     "RULE_CASES",
     "TABLE_6_1",
+    "Catalogue",
+    "CataloguePlanner",
     "GraspPlan",
     "GripperAwarePlanner",
+    "KnownObject",
+    "LearnedTrial",
     "ModelBasedParams",
     "ModelBasedPlanner",
     "PadModel",
@@ -70,7 +82,9 @@ __all__ = [
     "choose_mounting",
     "format_plans",
     "landing_side",
+    "learn_catalogue",
     "load_axis",
+    "load_catalogue",
     "make_planner",
     "object_extent_m",
     "pcom",

@@ -35,6 +35,9 @@ class PlannerContext:
     contact_detector
         The loop's contact detector (a planner may ask how small a rise it senses), None:
         the thesis's.
+    catalogue
+        Catalogue file of known objects (``softpad learn``) for ``--planner catalogue``; None:
+        no object is known.
     """
 
     layout: PadLayout = field(default_factory=PadLayout)
@@ -42,6 +45,7 @@ class PlannerContext:
     gripper: GripperSpec | None = None
     params: PlannerParams | None = None
     contact_detector: ContactDetector | None = None
+    catalogue: str | None = None
 
     def sensing_ratio(self) -> float:
         """The contact detector's sensing ratio (:func:`softpad.sensing.sensing_ratio`; 1 for
@@ -83,10 +87,14 @@ def planner_for(
     detector: ContactDetector,
     sample_rate_hz: float,
     layout: PadLayout | None = None,
+    catalogue: str | None = None,
 ) -> Planner:
     """:func:`make_planner` for a loop that detects contact with ``detector`` at
-    ``sample_rate_hz`` on ``layout`` (the thesis's 2 x 3 pad when None)."""
-    context = PlannerContext(layout or PadLayout(), sample_rate_hz, gripper, params, detector)
+    ``sample_rate_hz`` on ``layout`` (the thesis's 2 x 3 pad when None); ``catalogue``: the
+    known objects' file of ``--planner catalogue``."""
+    context = PlannerContext(
+        layout or PadLayout(), sample_rate_hz, gripper, params, detector, catalogue
+    )
     return make_planner(name, context)
 
 
@@ -113,6 +121,16 @@ def _model_based(context: PlannerContext) -> Planner:
     return ModelBasedPlanner(gripper, sensing_ratio=context.sensing_ratio())
 
 
+def _catalogue(context: PlannerContext) -> Planner:
+    """known objects (softpad learn) grasped where they were held, unknown ones model-based"""
+    from softpad.planning._catalogue import Catalogue, CataloguePlanner, load_catalogue
+
+    n = context.layout.n_modules
+    known = load_catalogue(context.catalogue) if context.catalogue else Catalogue(n, 1.0)
+    return CataloguePlanner(known, _model_based(context))
+
+
 register_planner("thesis", _thesis)
 register_planner("gripper-aware", _gripper_aware)
 register_planner("model-based", _model_based)
+register_planner("catalogue", _catalogue)

@@ -47,6 +47,9 @@ class TrialConfig:
     planner: str = "thesis"
     #: Contact detector by name (:func:`softpad.sensing.available_contact_detectors`).
     detector: str = "thesis"
+    #: Catalogue of known objects (``softpad learn``) for the ``catalogue`` planner; None: no
+    #: object is known (every one goes to its model-based fallback).
+    catalogue: str | None = None
     #: Draw every uncertain input of the simulated lab (:data:`softpad.sim.UNCERTAIN_PARAMETERS`:
     #: pad and fingertip physics, grip force, seam, sample rate, sensor noise, tubing,
     #: placement noise, the charger's size and the can's mass distribution) from its range,

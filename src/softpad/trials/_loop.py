@@ -160,6 +160,7 @@ class _Trial:
             detector,
             self.box.sample_rate_hz,
             self.world.layout,
+            catalogue=self.config.catalogue,
         )
 
     def place(self) -> None:

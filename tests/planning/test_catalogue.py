@@ -1,0 +1,188 @@
+"""Known objects as a mode (issue 47 item 3): learning, recognition, planning, files."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from softpad.errors import InputError
+from softpad.layout import PadLayout
+from softpad.planning import (
+    TABLE_6_1,
+    Catalogue,
+    CataloguePlanner,
+    GraspPlan,
+    LearnedTrial,
+    learn_catalogue,
+    load_catalogue,
+    make_planner,
+)
+
+LAYOUT = PadLayout()
+VAR = 30.0  # Pa^2: a planning increment's variance under about 12 Pa of per-frame noise
+
+
+def _trials(rng: np.random.Generator) -> list[LearnedTrial]:
+    """A banana-like reading on modules 1-3 and a box on 4-6, eight trials each, spread by
+    placement; the box held in five of them, the can never."""
+    out = []
+    for k in range(8):
+        a = np.array([250, 180, 130, 0, 0, 0]) + rng.normal(0, 15, 6) * [1, 1, 1, 0, 0, 0]
+        out.append(LearnedTrial("banana", tuple(a), (1.3 + 0.01 * k, 1.5, 1.57), True))
+        b = np.array([0, 0, 0, 120, 300, 120]) + rng.normal(0, 15, 6) * [0, 0, 0, 1, 1, 1]
+        out.append(LearnedTrial("box", tuple(b), (1.5, 0.5 + 0.01 * k, 0.0), k < 5))
+        c = np.array([0, 400, 0, 0, 400, 0]) + rng.normal(0, 15, 6) * [0, 1, 0, 0, 1, 0]
+        out.append(LearnedTrial("can", tuple(c), (1.5, 1.0, 1.57), False))
+    return out
+
+
+@pytest.fixture(scope="module")
+def catalogue() -> Catalogue:
+    return learn_catalogue(_trials(np.random.default_rng(1)), VAR)
+
+
+def test_objects_never_held_stay_unknown_and_grasps_follow_their_readings(
+    catalogue: Catalogue,
+) -> None:
+    assert [o.name for o in catalogue.objects] == ["banana", "box"]
+    box = catalogue.objects[1]
+    assert len(box.readings_pa) == 5 and box.grasps[4] == (1.5, 0.54, 0.0)
+
+
+def _pooled(catalogue: Catalogue) -> np.ndarray:
+    """The pooled within-object covariance, from numpy's per-object covariances weighted by
+    their degrees of freedom (an independent route to S), plus var I."""
+    covs = [
+        (len(o.readings_pa) - 1, np.cov(np.array(o.readings_pa), rowvar=False))
+        for o in catalogue.objects
+    ]
+    s = sum(w * c for w, c in covs) / sum(w for w, _ in covs)
+    return s + VAR * np.eye(6)
+
+
+def test_the_distance_is_scipy_mahalanobis(catalogue: Catalogue) -> None:
+    """Against scipy.spatial.distance.mahalanobis with the inverse of (S_pooled + var I)."""
+    from scipy.spatial.distance import mahalanobis
+
+    cov = _pooled(catalogue)
+    np.testing.assert_allclose(catalogue.covariance_pa2(), cov, rtol=1e-12)
+    obj = catalogue.objects[0]
+    r = np.array([240.0, 200, 120, 5, -3, 2])
+    expected = mahalanobis(r, np.array(obj.readings_pa).mean(axis=0), np.linalg.inv(cov)) ** 2
+    assert obj.distance2(r, cov) == pytest.approx(expected, rel=1e-9)
+
+
+def test_readings_of_a_known_object_are_recognised_at_the_stated_rate(
+    catalogue: Catalogue,
+) -> None:
+    """20000 readings drawn from the object's own Gaussian (its mean, S_pooled + var I): called
+    unknown at the criterion's 0.1 %; within 0.05-0.2 % (20 expected, about 2 standard errors)."""
+    obj = catalogue.objects[0]
+    x = np.array(obj.readings_pa)
+    cov = _pooled(catalogue)
+    draws = np.random.default_rng(7).multivariate_normal(x.mean(axis=0), cov, size=20000)
+    unknown = np.mean([catalogue.recognise(r)[0] is None for r in draws])
+    assert 0.0005 <= unknown <= 0.002
+
+
+def test_other_objects_are_unknown(catalogue: Catalogue) -> None:
+    """The never-held can, and the banana moved by a quarter module (its load shifted)."""
+    assert catalogue.recognise([0, 400, 0, 0, 400, 0])[0] is None
+    assert catalogue.recognise([150, 250, 200, 0, 0, 0])[0] is None
+    known, d2 = catalogue.recognise([250, 180, 130, 0, 0, 0])
+    assert known is not None and known.name == "banana" and d2 < catalogue.threshold
+
+
+class _Fallback:
+    def __init__(self) -> None:
+        self.calls: list[str] = []
+
+    def plan(self, increments_pa, objects, layout):
+        self.calls.append("plan")
+        return [GraspPlan(objects[0], (0.0, 0.0), (9.0, 9.0), 0.0, "fallback", objects[0])]
+
+    def retry(self, plan, *args, **kwargs):
+        self.calls.append("retry")
+        return plan
+
+
+def test_a_known_object_is_grasped_where_its_nearest_held_trial_was(
+    catalogue: Catalogue,
+) -> None:
+    fallback = _Fallback()
+    planner = CataloguePlanner(catalogue, fallback)
+    box = catalogue.objects[1]
+    reading = np.array(box.readings_pa[3]) + 1.0  # nearest: the fourth held trial
+    (plan,) = planner.plan(reading, [(4, 5, 6)], LAYOUT)
+    assert (plan.cog, plan.theta) == ((1.5, 0.53), 0.0)
+    assert plan.rule.startswith("catalogue box ") and planner.last_known == "box"
+    assert planner.retry(plan, reading, LAYOUT, reading) is None and fallback.calls == []
+
+
+@pytest.mark.parametrize(
+    ("reading", "objects"),
+    [
+        ([0, 400, 0, 0, 400, 0], [(2, 5)]),
+        ([250, 180, 130, 0, 0, 0], [(1, 2, 3), (5,)]),
+    ],
+    ids=["unknown", "two-objects"],
+)
+def test_unknown_objects_and_crowded_pads_go_to_the_fallback(
+    catalogue: Catalogue, reading: list[float], objects: list[tuple[int, ...]]
+) -> None:
+    fallback = _Fallback()
+    planner = CataloguePlanner(catalogue, fallback)
+    (plan,) = planner.plan(reading, objects, LAYOUT)
+    assert plan.rule == "fallback" and planner.last_known is None
+    assert planner.retry(plan, reading, LAYOUT, reading) is plan
+    assert fallback.calls == ["plan", "retry"]
+
+
+def test_without_a_catalogue_the_planner_is_the_model_based_one() -> None:
+    """``--planner catalogue`` with no file knows no object: Table 6.1's plans are the
+    model-based planner's."""
+    mine, theirs = make_planner("catalogue"), make_planner("model-based")
+    for case in TABLE_6_1:
+        objects = [tuple(m for m in range(1, 7) if case.delta_pa[m - 1] > 50)]
+        assert mine.plan(case.delta_pa, objects, LAYOUT) == theirs.plan(
+            case.delta_pa, objects, LAYOUT
+        ), case.name
+
+
+def test_the_file_round_trips_and_reaches_the_planner(catalogue: Catalogue, tmp_path: Path) -> None:
+    path = tmp_path / "catalogue.toml"
+    path.write_text(catalogue.to_toml())
+    assert load_catalogue(path) == catalogue
+    planner = make_planner("catalogue", catalogue=str(path))
+    assert planner.catalogue == catalogue  # type: ignore[attr-defined]
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        (None, "not found"),
+        ('schema = "other"\n', "schema must be 'softpad-catalogue/1'"),
+        ('schema = "softpad-catalogue/1"\nmodules = 6\n', "malformed"),
+        ("schema = [", "not valid TOML"),
+    ],
+    ids=["missing", "schema", "malformed", "not-toml"],
+)
+def test_bad_catalogue_files_are_named(tmp_path: Path, text: str | None, message: str) -> None:
+    path = tmp_path / "c.toml"
+    if text is not None:
+        path.write_text(text)
+    with pytest.raises(InputError, match=message):
+        load_catalogue(path)
+
+
+def test_learning_refuses_what_it_cannot_learn_from() -> None:
+    with pytest.raises(InputError, match="at least one"):
+        learn_catalogue([], VAR)
+    a = LearnedTrial("a", (1.0,) * 6, (0, 0, 0), True)
+    b = LearnedTrial("b", (1.0,) * 12, (0, 0, 0), True)
+    with pytest.raises(InputError, match="different module counts"):
+        learn_catalogue([a, b], VAR)
+    with pytest.raises(InputError, match="positive"):
+        learn_catalogue([a], 0.0)

@@ -1,0 +1,60 @@
+"""``softpad learn`` and ``--pair catalogue:...``: a recorded trial becomes a known object."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from softpad.cli.main import main
+
+
+@pytest.mark.mujoco
+def test_a_recorded_held_trial_is_recognised_and_its_grasp_reused(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Object 5, seed 0, recorded with the thesis pair (held); learned; the same trial with
+    the catalogue planner recognises it and grasps where the recording did (the model-based
+    fallback would plan elsewhere)."""
+    from softpad.planning import load_catalogue
+    from softpad.sim import get_object
+    from softpad.trials import TrialConfig, run_trial
+
+    spec = get_object("object-5")
+    rec = tmp_path / "train.mcap"
+    taught, _ = run_trial(spec, 0, 0, TrialConfig(record_path=str(rec)))
+    assert taught.success
+    out = tmp_path / "catalogue.toml"
+    assert main(["learn", str(rec), "--out", str(out)]) == 0
+    assert "1 known objects from 1 trials (1 held; 0 recordings" in capsys.readouterr().out
+    (known,) = load_catalogue(out).objects
+    assert known.name == "object-5" and known.grasps[0][:2] == pytest.approx(taught.cog)
+    config = TrialConfig(planner="catalogue", detector="thesis", catalogue=str(out))
+    again, _ = run_trial(spec, 0, 0, config)
+    assert again.cog == pytest.approx(taught.cog) and again.theta == pytest.approx(taught.theta)
+    fallback, _ = run_trial(spec, 0, 0, TrialConfig(planner="model-based"))
+    assert fallback.cog != pytest.approx(taught.cog, abs=0.01)
+
+
+def test_a_bad_catalogue_is_named_before_any_trial(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    import softpad.trials
+
+    def never(*args: object, **kwargs: object) -> None:
+        raise AssertionError("the trials started before --catalogue was read")
+
+    monkeypatch.setattr(softpad.trials, "compare", never)
+    argv = ["compare", "--seeds", "0", "--pair", "catalogue:adaptive"]
+    assert main([*argv, "--catalogue", str(tmp_path / "none.toml")]) == 2
+    assert "not found" in capsys.readouterr().err
+
+
+def test_learn_refuses_a_recording_that_is_no_trial(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    assert main(["learn", str(tmp_path / "none.mcap"), "--out", str(tmp_path / "c.toml")]) == 2
+    err = capsys.readouterr().err
+    assert "none.mcap" in err and "Traceback" not in err
+    assert main(["learn", "x.mcap", "--out", str(tmp_path / "c.txt")]) == 2
+    assert "must name a .toml file" in capsys.readouterr().err
