@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import asyncio
 import json
+import re
 import struct
 import subprocess
 import sys
@@ -56,9 +57,10 @@ def test_monitor_serves_module_pressures_to_a_websocket_client(subprotocol: str)
     )
     try:
         assert child.stdout is not None
-        line = child.stdout.readline()
-        assert line.startswith("foxglove: ws://127.0.0.1:"), line
-        url = line.split()[1]
+        line = child.stdout.readline()  # the first line names the box and the server (issue 51)
+        found = re.search(r"to Foxglove at (ws://127\.0\.0\.1:\d+)", line)
+        assert line.startswith("softpad box monitor: the simulated box sim://") and found, line
+        url = found.group(1)
         topic = "/softpad/module_3/pressure"
         info, channels, msgs = asyncio.run(_receive_pressures(url, topic, 5, subprotocol))
     finally:
@@ -82,14 +84,15 @@ def test_monitor_serves_module_pressures_to_a_websocket_client(subprotocol: str)
 
 
 def test_monitor_without_foxglove_prints_plain_lines_into_a_pipe(capsys) -> None:
-    """Into a pipe or file (capsys is not a terminal): a header, then one plain line per period
-    (no carriage returns), the pad's six modules only."""
+    """Into a pipe or file (capsys is not a terminal): the line naming the box, a header, then
+    one plain line per period (no carriage returns), the pad's six modules only."""
     from softpad.cli.main import main
 
-    assert main(["box", "monitor", "--count", "20", "--period-s", "0.05"]) == 0
+    assert main(["box", "monitor", "--box", "sim://", "--count", "20", "--period-s", "0.05"]) == 0
     out = capsys.readouterr().out
     assert "\r" not in out
-    header, *lines = out.splitlines()
+    first, header, *lines = out.splitlines()
+    assert first.startswith("softpad box monitor: the simulated box sim://")
     assert header.split() == [
         "seq", "t_s", *[f"m{k}_kpa" for k in range(1, 7)], "supply_kpa", "frames/s",
         "p50_ms", "p99_ms", "lost",

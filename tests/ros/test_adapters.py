@@ -123,7 +123,8 @@ def test_without_a_master_the_node_says_so_at_once(free_port) -> None:
 
 
 def test_run_with_ros_without_a_master_is_one_line(free_port) -> None:
-    """``softpad run --ros`` with no master: the node's one-line error, exit 2, no run."""
+    """``softpad run --ros`` with no master: the node's one-line error, exit 2, no run (stdout
+    holds only the first line that names the box, issue 51)."""
     from softpad.ros import rospy_available
 
     if not rospy_available():
@@ -133,7 +134,8 @@ def test_run_with_ros_without_a_master_is_one_line(free_port) -> None:
         "run", "--ros", "--objects", "object-5", ROS_MASTER_URI=f"http://127.0.0.1:{port}",
         ROS_IP="127.0.0.1", ROS_HOSTNAME="localhost",
     )  # fmt: skip
-    assert r.returncode == 2 and r.stderr.count("\n") == 1 and not r.stdout
+    assert r.returncode == 2 and r.stderr.count("\n") == 1
+    assert r.stdout.splitlines() == ["softpad run: object-5 on sim://"]
     assert f"no ROS master answers at http://127.0.0.1:{port}" in r.stderr
 
 

@@ -60,7 +60,17 @@ class LearnedTrial:
 
 @dataclass(frozen=True)
 class KnownObject:
-    """One object of the catalogue: its training readings and the grasps that held it."""
+    """One object of the catalogue: its training readings and the grasps that held it.
+
+    Parameters
+    ----------
+    name
+        The object's name in the recordings.
+    readings_pa
+        Readings of its held trials, pascals (trials x modules).
+    grasps
+        The grasp that held it in each of those trials: (x, y) module units, theta radians.
+    """
 
     name: str
     #: Readings of its held trials, pascals (trials x modules).
@@ -166,7 +176,18 @@ def learn_catalogue(
     trials: Sequence[LearnedTrial], variance_pa2: float, recognition_quantile: float = 0.999
 ) -> Catalogue:
     """A catalogue of every object held at least once in ``trials`` (objects never held have
-    no grasp to reuse and stay unknown)."""
+    no grasp to reuse and stay unknown).
+
+    Parameters
+    ----------
+    trials
+        Recorded trials: each object's increments, the grasp tried and whether it held.
+    variance_pa2
+        Variance of the sensor noise on one increment, Pa^2, added to the readings' pooled
+        within-object covariance.
+    recognition_quantile
+        Chi-square quantile of the Mahalanobis bound within which a reading is recognised.
+    """
     if not trials:
         raise InputError("a catalogue needs at least one recorded trial")
     n = {len(t.increments_pa) for t in trials}
@@ -184,7 +205,13 @@ def learn_catalogue(
 
 
 def load_catalogue(path: str | Path) -> Catalogue:
-    """Read a catalogue written by ``softpad learn`` (InputError names what is wrong)."""
+    """Read a catalogue written by ``softpad learn`` (InputError names what is wrong).
+
+    Parameters
+    ----------
+    path
+        The catalogue file (TOML).
+    """
     import tomllib
 
     p = Path(path)
