@@ -245,11 +245,14 @@ def run_node(args: argparse.Namespace) -> int:
         if getattr(args, key):
             changes[key] = getattr(args, key)
     node = PadNode(config.updated(changes))
-    if args.json:
-        print(json.dumps({"box": node.config.box, "layout": node.layout.name}), flush=True)
-    else:
-        print(f"softpad ros node: box {node.config.box}, {node.layout.name} pad", flush=True)
-    node.run()
+    try:
+        if args.json:
+            print(json.dumps({"box": node.config.box, "layout": node.layout.name}), flush=True)
+        else:
+            print(f"softpad ros node: box {node.config.box}, {node.layout.name} pad", flush=True)
+        node.run()
+    finally:  # a signal before run() too: actionlib's goal thread would keep the process alive
+        node.rospy.signal_shutdown("softpad ros node ended")
     return 0
 
 
