@@ -26,7 +26,7 @@ an idle pad with noise and drift."""
 
 
 def register(sub: Any) -> None:
-    from softpad.cli._trials import add_randomize_option, add_trial_options
+    from softpad.cli._trials import add_mounting_option, add_randomize_option, add_trial_options
     from softpad.planning import available_planners
     from softpad.sensing import available_contact_detectors
 
@@ -40,6 +40,7 @@ def register(sub: Any) -> None:
     )
     add_trial_options(p, seeds="0-9")
     add_randomize_option(p)
+    add_mounting_option(p, "each object's own: Table 6.1's per Section 6.3, an object set's")
     p.add_argument(
         "--pair",
         action="append",
@@ -94,7 +95,9 @@ def run(args: argparse.Namespace) -> int:
             trials=args.trials,
             workers=args.workers,
             idle_hours=args.idle_hours,
-            config=TrialConfig(randomize=args.randomize, catalogue=args.catalogue),
+            config=TrialConfig(
+                randomize=args.randomize, catalogue=args.catalogue, mounting=args.mounting
+            ),
             on_trial=(lambda _: bar.update(1)) if bar else None,
         )
     finally:

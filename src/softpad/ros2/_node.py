@@ -302,6 +302,9 @@ class Ros2PadNode(PadNode):
 
         self.running.stop.set()
         self.executor.shutdown()
+        spinner = getattr(self, "_spinner", None)
+        if spinner is not None:  # a C++ wait still running at exit aborts the process
+            spinner.join(timeout=10.0)
         self.node.destroy_node()
         if rclpy.ok():
             rclpy.shutdown()
