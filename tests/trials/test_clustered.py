@@ -154,3 +154,14 @@ def test_compare_merge_prints_and_saves_the_contrasts(
     table = capsys.readouterr().out
     assert "| model-based:cusum against thesis:cusum | +10.0 points |" in table
     assert "| 1 / 0 of 10 | 1 |" in table
+
+
+def test_one_object_gives_p_one_and_a_point_interval() -> None:
+    """One object (``compare --objects banana``): the exact sign-flip p is 1 (both signs give
+    the same |mean|), and every bootstrap resample is that object: the interval is its
+    difference (scipy's permutation test refused one observation: an internal error)."""
+    from softpad.trials._clustered import cluster_bootstrap_interval, sign_flip_p_value
+
+    assert sign_flip_p_value([0.4]) == 1.0
+    lo, hi = cluster_bootstrap_interval(np.array([1]), np.array([5]), np.array([3]), np.array([5]))
+    assert lo == hi == pytest.approx(0.4)

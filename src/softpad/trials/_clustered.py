@@ -61,8 +61,8 @@ def sign_flip_p_value(differences: Sequence[float], seed: int = BOOTSTRAP_SEED) 
     d = np.asarray(differences, dtype=float)
     if d.size == 0:
         raise InputError("a paired test needs at least one object")
-    if not np.any(d):
-        return 1.0
+    if not np.any(d) or d.size == 1:
+        return 1.0  # one object: +d and -d have the same |mean|, so p is exactly 1
     res = permutation_test(
         (d, np.zeros_like(d)),
         lambda a, b, axis: np.mean(a - b, axis=axis),
