@@ -96,22 +96,9 @@ class CastPadResponse:
     @classmethod
     def from_file(cls, path: str | Path) -> CastPadResponse:
         """Read a cast response ``.npz``; InputError names what is missing or wrong."""
-        p = Path(path)
-        try:
-            with np.load(p, allow_pickle=False) as z:
-                missing = [k for k in _ARRAYS if k not in z]
-                if missing:
-                    raise InputError(f"cast pad response {str(p)!r} lacks array(s) {missing}")
-                arrays = {k: np.array(z[k], dtype=float) for k in _ARRAYS}
-                meta = json.loads(str(z["meta"][()])) if "meta" in z else {}
-        except InputError:
-            raise
-        except FileNotFoundError:
-            raise InputError(f"cast pad response file {str(p)!r} does not exist") from None
-        except (OSError, ValueError, EOFError) as exc:
-            raise InputError(
-                f"cast pad response {str(p)!r} is not a readable .npz: {exc}"
-            ) from None
+        from softpad.fem._response_table import read_tables
+
+        arrays, meta = read_tables(path, _ARRAYS, "cast pad response")
         return cls(**arrays, meta=meta)
 
     def to_npz(self, path: str | Path) -> Path:

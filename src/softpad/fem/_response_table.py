@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -130,20 +131,7 @@ class ModuleResponse:
     @classmethod
     def from_file(cls, path: str | Path) -> ModuleResponse:
         """Read a response ``.npz``; InputError names what is missing or wrong."""
-        p = Path(path)
-        try:
-            with np.load(p, allow_pickle=False) as z:
-                missing = [k for k in _ARRAYS if k not in z]
-                if missing:
-                    raise InputError(f"module response {str(p)!r} lacks array(s) {missing}")
-                arrays = {k: np.array(z[k], dtype=float) for k in _ARRAYS}
-                meta = json.loads(str(z["meta"][()])) if "meta" in z else {}
-        except InputError:
-            raise
-        except FileNotFoundError:
-            raise InputError(f"module response file {str(p)!r} does not exist") from None
-        except (OSError, ValueError, EOFError) as exc:
-            raise InputError(f"module response {str(p)!r} is not a readable .npz: {exc}") from None
+        arrays, meta = read_tables(path, _ARRAYS, "module response")
         return cls(**arrays, meta=meta)
 
     def to_npz(self, path: str | Path) -> Path:
@@ -247,3 +235,25 @@ class ModuleResponse:
         ``1 / (dV/dp + (V + V_gap + V_t) / (p_atm + p))`` (multiply by ``F s``)."""
         c = float(self._along_pressure(self.compliance_m3_pa, pressure_pa))
         return 1.0 / (c + self.gas_compliance_m3_pa(pressure_pa, **gas))
+
+
+def read_tables(
+    path: str | Path, names: Sequence[str], what: str
+) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
+    """The float arrays ``names`` and the JSON ``meta`` of a response ``.npz`` (``what`` names
+    the file in errors); InputError names what is missing or unreadable."""
+    p = Path(path)
+    try:
+        with np.load(p, allow_pickle=False) as z:
+            missing = [k for k in names if k not in z]
+            if missing:
+                raise InputError(f"{what} {str(p)!r} lacks array(s) {missing}")
+            arrays = {k: np.array(z[k], dtype=float) for k in names}
+            meta = json.loads(str(z["meta"][()])) if "meta" in z else {}
+    except InputError:
+        raise
+    except FileNotFoundError:
+        raise InputError(f"{what} file {str(p)!r} does not exist") from None
+    except (OSError, ValueError, EOFError) as exc:
+        raise InputError(f"{what} {str(p)!r} is not a readable .npz: {exc}") from None
+    return arrays, meta
