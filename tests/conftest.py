@@ -1,14 +1,18 @@
-"""Fixtures shared by the test folders: loopback ports and a served simulated box."""
+"""Fixtures shared by the test folders: loopback ports, a served simulated box and an
+installation file with a non-zero pad pose."""
 
 from __future__ import annotations
 
+import math
 import resource
 import socket
 import time
-from collections.abc import Callable, Generator, Iterator
+from collections.abc import Callable, Generator, Iterator, Sequence
 from contextlib import AbstractContextManager, contextmanager
+from pathlib import Path
 from typing import Any
 
+import numpy as np
 import pytest
 
 
@@ -137,3 +141,50 @@ def cli(capsys: pytest.CaptureFixture[str]) -> Callable[..., tuple[int, str, str
         return code, out, err
 
     return run
+
+
+#: An installation file whose pad stands away from the base frame's origin (issue 48: the
+#: ``[pad.pose]`` never reached ``/tf_static``): 400, -100, 20 mm, turned 30 degrees.
+SITE_TOML = """
+[pad]
+rows = 2
+cols = 3
+[pad.pose]
+x_mm = 400.0
+y_mm = -100.0
+z_mm = 20.0
+yaw_deg = 30.0
+"""
+
+
+class Site:
+    """An installation file (``path``) with a non-zero pad pose, and that pose in SI."""
+
+    #: The pose of ``SITE_TOML`` in metres and radians.
+    xyz_m = (0.4, -0.1, 0.02)
+    yaw_rad = math.radians(30.0)
+
+    def __init__(self, path: Path) -> None:
+        self.path = path
+        path.write_text(SITE_TOML)
+
+    @property
+    def quaternion(self) -> tuple[float, float, float, float]:
+        """The yaw as a quaternion (x, y, z, w)."""
+        return (0.0, 0.0, math.sin(self.yaw_rad / 2), math.cos(self.yaw_rad / 2))
+
+    def check_pad_transform(
+        self, frames: tuple[str, str], xyz: Sequence[float], q: Sequence[float]
+    ) -> None:
+        """Assert that base -> softpad (``frames``: parent, child) is this installation's
+        pose: ``xyz`` in m within 1 um, the quaternion ``q`` (x, y, z, w) within 1e-9."""
+        assert tuple(frames) == ("base", "softpad")
+        np.testing.assert_allclose(xyz, self.xyz_m, atol=1e-6)
+        np.testing.assert_allclose(q, self.quaternion, atol=1e-9)
+
+
+@pytest.fixture
+def site(tmp_path: Path) -> Site:
+    """``site.path``: ``tmp_path/site.toml`` with a non-zero ``[pad.pose]``; ``site.xyz_m``,
+    ``site.yaw_rad``, ``site.quaternion`` and ``site.check_pad_transform(...)`` to check it."""
+    return Site(tmp_path / "site.toml")

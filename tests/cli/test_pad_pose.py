@@ -3,25 +3,14 @@
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
+from typing import Any
 
 import pytest
 
 from softpad.cli.main import main
 
 pytest.importorskip("mcap_ros2")
-
-SITE = """
-[pad]
-rows = 2
-cols = 3
-[pad.pose]
-x_mm = 400.0
-y_mm = -100.0
-z_mm = 20.0
-yaw_deg = 30.0
-"""
 
 
 def _tf_static(path: Path) -> list[object]:
@@ -30,11 +19,9 @@ def _tf_static(path: Path) -> list[object]:
     return [m.ros_msg for m in read_ros2_messages(str(path), topics=["/tf_static"])]
 
 
-def test_a_recording_places_the_pad_where_the_installation_says(tmp_path: Path) -> None:
-    site = tmp_path / "site.toml"
-    site.write_text(SITE)
+def test_a_recording_places_the_pad_where_the_installation_says(tmp_path: Path, site: Any) -> None:
     out = tmp_path / "run.mcap"
-    argv = ["run", "--objects", "object-5", "--hold-s", "0.5", "--config", str(site)]
+    argv = ["run", "--objects", "object-5", "--hold-s", "0.5", "--config", str(site.path)]
     assert main([*argv, "--record", str(out), "--json"]) in (0, 1)
     # the recording holds exactly the table's names and types (softpad.topics)
     from mcap.reader import make_reader
@@ -49,10 +36,10 @@ def test_a_recording_places_the_pad_where_the_installation_says(tmp_path: Path) 
     assert channels == topics_for("recording", 6)
     (msg,) = _tf_static(out)
     pad = msg.transforms[0]  # type: ignore[attr-defined]
-    assert (pad.header.frame_id, pad.child_frame_id) == ("base", "softpad")
     t, q = pad.transform.translation, pad.transform.rotation
-    assert (t.x, t.y, t.z) == pytest.approx((0.4, -0.1, 0.02))
-    assert (q.z, q.w) == pytest.approx((math.sin(math.radians(15)), math.cos(math.radians(15))))
+    site.check_pad_transform(
+        (pad.header.frame_id, pad.child_frame_id), (t.x, t.y, t.z), (q.x, q.y, q.z, q.w)
+    )
     # the modules stay on the pad: softpad -> softpad_module_1 at (0.5, 1.5) module units
     m1 = msg.transforms[1]  # type: ignore[attr-defined]
     assert m1.child_frame_id == "softpad_module_1"
@@ -61,13 +48,11 @@ def test_a_recording_places_the_pad_where_the_installation_says(tmp_path: Path) 
     )
 
 
-def test_without_an_installation_the_pad_is_at_the_origin(tmp_path: Path) -> None:
+def test_without_an_installation_the_pad_is_at_the_origin(site: Any) -> None:
     from softpad.cli._installation import installed_pad_pose
     from softpad.layout import PadPose
 
     assert installed_pad_pose(None) == PadPose()
-    site = tmp_path / "site.toml"
-    site.write_text(SITE)
-    pose = installed_pad_pose(str(site))
-    assert (pose.x_m, pose.y_m, pose.z_m) == pytest.approx((0.4, -0.1, 0.02))
-    assert pose.yaw_rad == pytest.approx(math.radians(30))
+    pose = installed_pad_pose(str(site.path))
+    assert (pose.x_m, pose.y_m, pose.z_m) == pytest.approx(site.xyz_m)
+    assert pose.yaw_rad == pytest.approx(site.yaw_rad)

@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 import asyncio
+import base64
 import json
 import re
 import struct
 import subprocess
 import sys
+from typing import Any
 
 import numpy as np
 import pytest
@@ -20,9 +22,11 @@ websockets = pytest.importorskip("websockets")
 SUBPROTOCOLS = ("foxglove.websocket.v1", "foxglove.sdk.v1")
 
 
-async def _receive_pressures(
+async def _receive(
     url: str, topic: str, n: int, subprotocol: str
-) -> tuple[dict, dict[str, dict], list[dict]]:
+) -> tuple[dict, dict[str, dict], list[bytes]]:
+    """The server's info, its channels (once ``topic`` and /tf_static are advertised) and the
+    payloads of the first ``n`` messages of ``topic`` a subscriber gets."""
     from websockets.asyncio.client import connect
 
     async with connect(url, subprotocols=[subprotocol], open_timeout=30) as ws:
@@ -37,30 +41,43 @@ async def _receive_pressures(
                 channels.update({c["topic"]: c for c in msg["channels"]})
         sub = {"op": "subscribe", "subscriptions": [{"id": 7, "channelId": channels[topic]["id"]}]}
         await ws.send(json.dumps(sub))
-        received = []
+        received: list[bytes] = []
         while len(received) < n:
             data = await asyncio.wait_for(ws.recv(), 30)
             if isinstance(data, bytes) and data[0] == 0x01:  # message data
                 sub_id, _log_time = struct.unpack_from("<IQ", data, 1)
                 assert sub_id == 7
-                received.append(json.loads(data[13:]))
+                received.append(data[13:])
         return info, channels, received
+
+
+async def _receive_pressures(
+    url: str, topic: str, n: int, subprotocol: str
+) -> tuple[dict, dict[str, dict], list[dict]]:
+    info, channels, payloads = await _receive(url, topic, n, subprotocol)
+    return info, channels, [json.loads(p) for p in payloads]
+
+
+def _monitor(*extra: str) -> tuple[subprocess.Popen[str], str]:
+    """``softpad box monitor --foxglove --port 0`` in a child process, and its viewer URL
+    from the first line it prints."""
+    entry = "import sys; from softpad.cli.main import main; sys.exit(main(sys.argv[1:]))"
+    argv = ["-c", entry, "box", "monitor", "--foxglove", "--port", "0", *extra]
+    child = subprocess.Popen([sys.executable, *argv], stdout=subprocess.PIPE, text=True)
+    assert child.stdout is not None
+    line = child.stdout.readline()  # the first line names the box and the server (issue 51)
+    found = re.search(r"to Foxglove at (ws://127\.0\.0\.1:\d+)", line)
+    if not (line.startswith("softpad box monitor: the simulated box sim://") and found):
+        child.terminate()
+        child.wait(timeout=30)
+        raise AssertionError(line)
+    return child, found.group(1)
 
 
 @pytest.mark.parametrize("subprotocol", SUBPROTOCOLS)
 def test_monitor_serves_module_pressures_to_a_websocket_client(subprotocol: str) -> None:
-    url_box = "sim://?inflated_kpa=1.1&noise=0"
-    entry = "import sys; from softpad.cli.main import main; sys.exit(main(sys.argv[1:]))"
-    argv = ["-c", entry, "box", "monitor", "--foxglove", "--port", "0"]
-    child = subprocess.Popen(
-        [sys.executable, *argv, "--box", url_box], stdout=subprocess.PIPE, text=True
-    )
+    child, url = _monitor("--box", "sim://?inflated_kpa=1.1&noise=0")
     try:
-        assert child.stdout is not None
-        line = child.stdout.readline()  # the first line names the box and the server (issue 51)
-        found = re.search(r"to Foxglove at (ws://127\.0\.0\.1:\d+)", line)
-        assert line.startswith("softpad box monitor: the simulated box sim://") and found, line
-        url = found.group(1)
         topic = "/softpad/module_3/pressure"
         info, channels, msgs = asyncio.run(_receive_pressures(url, topic, 5, subprotocol))
     finally:
@@ -81,6 +98,48 @@ def test_monitor_serves_module_pressures_to_a_websocket_client(subprotocol: str)
         assert m["fluid_pressure"] == pytest.approx(101325.0 + 1100.0, abs=1.0)
     stamps = [m["header"]["stamp"]["sec"] + 1e-9 * m["header"]["stamp"]["nanosec"] for m in msgs]
     assert np.all(np.diff(stamps) > 0) and stamps[0] > 1.7e9  # the recorded clock (UNIX)
+
+
+def _decoded(channel: dict, payload: bytes) -> Any:
+    """``payload`` decoded with the protobuf schema the server advertised for ``channel``
+    (Google's protobuf runtime, as a Foxglove viewer decodes it)."""
+    from google.protobuf import descriptor_pb2, descriptor_pool, message_factory
+
+    assert channel["encoding"] == "protobuf", channel["encoding"]
+    files = descriptor_pb2.FileDescriptorSet.FromString(base64.b64decode(channel["schema"]))
+    pool = descriptor_pool.DescriptorPool()
+    for f in files.file:
+        pool.Add(f)
+    message = message_factory.GetMessageClass(pool.FindMessageTypeByName(channel["schemaName"]))
+    return message.FromString(payload)
+
+
+@pytest.mark.parametrize("subprotocol", SUBPROTOCOLS)
+def test_the_live_view_stands_the_pad_where_the_installation_says(
+    subprotocol: str, site: Any
+) -> None:
+    """``box monitor --foxglove --config site.toml``: /tf_static, as a viewer decodes it from
+    the advertised schema, carries the installation's ``[pad.pose]`` (issue 48: the pad stood
+    at the base's origin), the modules on the pad."""
+    pytest.importorskip("google.protobuf")
+    child, url = _monitor("--box", "sim://", "--config", str(site.path))
+    try:
+        _info, channels, (payload,) = asyncio.run(_receive(url, "/tf_static", 1, subprotocol))
+    finally:
+        child.terminate()
+        child.wait(timeout=30)
+    assert channels["/tf_static"]["schemaName"] == "foxglove.FrameTransforms"
+    pad, *modules = _decoded(channels["/tf_static"], payload).transforms
+    t, q = pad.translation, pad.rotation
+    site.check_pad_transform(
+        (pad.parent_frame_id, pad.child_frame_id), (t.x, t.y, t.z), (q.x, q.y, q.z, q.w)
+    )
+    assert [m.child_frame_id for m in modules] == [f"softpad_module_{k}" for k in range(1, 7)]
+    assert {m.parent_frame_id for m in modules} == {"softpad"}
+    # module 1's centre at (0.5, 1.5) module pitches in the pad frame (45 mm modules)
+    assert (modules[0].translation.x, modules[0].translation.y) == pytest.approx(
+        (0.5 * 0.045, 1.5 * 0.045)
+    )
 
 
 def test_monitor_without_foxglove_prints_plain_lines_into_a_pipe(capsys) -> None:

@@ -17,6 +17,7 @@ import sys
 import time
 from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -395,6 +396,45 @@ def test_run_with_ros_publishes_the_loop_it_runs(procs: _Procs) -> None:
     pairs = zip(outcome["grasps"], run["grasps"], strict=True)
     assert [{k: g[k] for k in o} for o, g in pairs] == outcome["grasps"]
     _check_loop_topics(logs, outcome)
+
+
+def test_run_with_ros_stands_the_pad_where_the_installation_says(procs: _Procs, site: Any) -> None:
+    """``softpad run --ros --config site.toml``: /tf_static (latched, as ``rostopic echo``
+    receives it) carries the installation's ``[pad.pose]`` (issue 48: the pad stood at the
+    base's origin), the modules on the pad; the run's node publishes exactly the topic table's
+    ``ros1`` names and types."""
+    from softpad.ros import ensure_rospy
+
+    ensure_rospy()
+    import rosgraph
+
+    from softpad.topics import ros1_type, topics_for
+
+    logs = _watch(procs, "/tf_static")
+    run, log = procs.start(
+        "run", SOFTPAD, "run", "--ros", "--objects", "object-5", "--hold-s", "0.5",
+        "--config", str(site.path), "--json",
+    )  # fmt: skip
+    (tf,) = _wait(lambda: _messages(logs["/tf_static"]), 120.0, "/tf_static of the run")
+    master = rosgraph.Master("/softpad_test", master_uri=procs.env["ROS_MASTER_URI"])
+    publishers, _, _ = master.getSystemState()
+    types = dict(master.getTopicTypes())
+    ours = {
+        t: types[t] for t, nodes in publishers
+        if any(n.startswith("/softpad_run") for n in nodes) and t != "/rosout"
+    }  # fmt: skip
+    assert ours == {n: ros1_type(t) for n, t in topics_for("ros1", 6).items()}
+    assert run.wait(180) == 0, log.read_text()[-2000:]
+    pad, *modules = tf["transforms"]
+    t, q = pad["transform"]["translation"], pad["transform"]["rotation"]
+    site.check_pad_transform(
+        (pad["header"]["frame_id"], pad["child_frame_id"]),
+        (t["x"], t["y"], t["z"]),
+        (q["x"], q["y"], q["z"], q["w"]),
+    )
+    assert [m["child_frame_id"] for m in modules] == [f"softpad_module_{k}" for k in range(1, 7)]
+    first = modules[0]["transform"]["translation"]  # module 1 at (0.5, 1.5) pitches of 45 mm
+    assert (first["x"], first["y"]) == pytest.approx((0.5 * 0.045, 1.5 * 0.045))
 
 
 def test_grasp_service_drives_the_arm_node_through_ros(procs: _Procs, tmp_path: Path) -> None:

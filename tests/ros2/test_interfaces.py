@@ -3,9 +3,9 @@ the node's settings from an installation file, the run's watchers given the pad'
 
 from __future__ import annotations
 
-import math
 import re
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -34,47 +34,30 @@ def test_the_packages_hold_the_tables_definitions_and_their_dependencies(tmp_pat
     assert all(f"<depend>{d}</depend>" in xml for d in deps.group(1).split())
 
 
-SITE = """
-[pad]
-rows = 2
-cols = 3
-[pad.pose]
-x_mm = 400.0
-y_mm = -100.0
-z_mm = 20.0
-yaw_deg = 30.0
-[thresholds]
-t_o_kpa = 0.06
-"""
-
-
-def test_the_node_reads_the_installation_file_in_its_units(tmp_path: Path) -> None:
+def test_the_node_reads_the_installation_file_in_its_units(site: Any) -> None:
     """TOML in mm, degrees and kPa -> the node's settings in m, rad and Pa (issue 48: the ROS
     node refused the installation file)."""
     from softpad.cli._ros2 import node_config
 
-    site = tmp_path / "site.toml"
-    site.write_text(SITE)
-    c = node_config(str(site))
-    assert (c.pad.x_m, c.pad.y_m, c.pad.z_m) == pytest.approx((0.4, -0.1, 0.02))
-    assert c.pad.yaw_rad == pytest.approx(math.radians(30))
+    site.path.write_text(site.path.read_text() + "[thresholds]\nt_o_kpa = 0.06\n")
+    c = node_config(str(site.path))
+    assert (c.pad.x_m, c.pad.y_m, c.pad.z_m) == pytest.approx(site.xyz_m)
+    assert c.pad.yaw_rad == pytest.approx(site.yaw_rad)
     assert c.object_threshold_pa == pytest.approx(60.0)
     assert c.layout == "2x3"
 
 
-def test_run_gives_its_watchers_the_installations_pose(tmp_path: Path) -> None:
+def test_run_gives_its_watchers_the_installations_pose(site: Any) -> None:
     """The live view of ``softpad run --foxglove`` gets the installation's pose."""
     pytest.importorskip("foxglove")
     from softpad.box import open_box
     from softpad.cli._installation import installed_pad_pose
     from softpad.cli._run import _live
 
-    site = tmp_path / "site.toml"
-    site.write_text(SITE)
-    pad = installed_pad_pose(str(site))
+    pad = installed_pad_pose(str(site.path))
     with open_box("sim://") as box:
         live = _live(0, box, True, pad)
         try:
-            assert live.pad == pad and live.pad.x_m == pytest.approx(0.4)
+            assert live.pad == pad and live.pad.x_m == pytest.approx(site.xyz_m[0])
         finally:
             live.close()

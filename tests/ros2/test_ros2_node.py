@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import itertools
 import json
-import math
 import os
 import re
 import shutil
@@ -22,6 +21,7 @@ import xml.etree.ElementTree as ET
 from collections import Counter
 from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -50,18 +50,6 @@ def _domain() -> str:
     return str(1 + (os.getpid() * 7 + next(_DOMAINS)) % 100)
 
 
-SITE = """
-[pad]
-rows = 2
-cols = 3
-[pad.pose]
-x_mm = 400.0
-y_mm = -100.0
-z_mm = 20.0
-yaw_deg = 30.0
-"""
-
-
 def test_the_profile_keeps_every_locator_on_loopback() -> None:
     """Every address of the Fast DDS profile is 127.0.0.1, built-in transports are off (no
     default multicast), and no multicast locator list exists."""
@@ -87,13 +75,12 @@ def test_the_environment_names_localhost_discovery(tmp_path: Path) -> None:
 class _Node:
     """``softpad ros2 node`` in its own process, stopped at the end."""
 
-    def __init__(self, tmp: Path, *args: str, trace: Path | None = None) -> None:
+    def __init__(self, tmp: Path, site: Path, *args: str, trace: Path | None = None) -> None:
         self.env = {**os.environ, **loopback_environment(tmp)}
         self.env["ROS_DOMAIN_ID"] = _domain()  # this node's own domain
-        (tmp / "site.toml").write_text(SITE)
         self.log = tmp / "node.log"
         cmd = [sys.executable, "-m", "softpad", "ros2", "node", "--config",
-               str(tmp / "site.toml"), *args]  # fmt: skip
+               str(site), *args]  # fmt: skip
         if trace is not None:  # every datagram the node sends, with its destination
             cmd = ["strace", "-f", "-qq", "-e", "trace=sendto,sendmsg,sendmmsg", "-o",
                    str(trace), *cmd]  # fmt: skip
@@ -130,9 +117,9 @@ class _Node:
 
 
 @pytest.fixture
-def node(tmp_path: Path, request: pytest.FixtureRequest) -> Iterator[_Node]:
+def node(tmp_path: Path, site: Any, request: pytest.FixtureRequest) -> Iterator[_Node]:
     box = getattr(request, "param", "sim://")
-    n = _Node(tmp_path, "--box", box, "--robot", "sim://", "--place", "object-3")
+    n = _Node(tmp_path, site.path, "--box", box, "--robot", "sim://", "--place", "object-3")
     try:
         yield n
     finally:
@@ -141,7 +128,7 @@ def node(tmp_path: Path, request: pytest.FixtureRequest) -> Iterator[_Node]:
 
 @needs_ros2
 def test_a_subscriber_gets_100_hz_absolute_pressures_diagnostics_and_the_pad_pose(
-    node: _Node,
+    node: _Node, site: Any
 ) -> None:
     out = node.client("watch", 6.0, timeout_s=180)
     rate = (out["count"] - 1) / out["span_s"]  # type: ignore[operator]
@@ -155,20 +142,18 @@ def test_a_subscriber_gets_100_hz_absolute_pressures_diagnostics_and_the_pad_pos
     assert "softpad: link" in out["statuses"] and "softpad: channel 6" in out["statuses"]
     assert len(out["statuses"]) == 8  # type: ignore[arg-type]
     pad = out["transforms"][0]  # type: ignore[index]
-    assert (pad["parent"], pad["child"]) == ("base", "softpad")
-    assert pad["xyz"] == pytest.approx([0.4, -0.1, 0.02])
-    assert pad["q"] == pytest.approx([0, 0, math.sin(math.radians(15)), math.cos(math.radians(15))])
+    site.check_pad_transform((pad["parent"], pad["child"]), pad["xyz"], pad["q"])
     assert len(out["transforms"]) == 7  # type: ignore[arg-type]
 
 
 @needs_ros2
 @pytest.mark.skipif(shutil.which("strace") is None, reason="strace not installed (apt-get)")
-def test_nothing_the_node_sends_leaves_loopback(tmp_path: Path) -> None:
+def test_nothing_the_node_sends_leaves_loopback(tmp_path: Path, site: Any) -> None:
     """Every datagram of the node (discovery and data, while a client in another process
     watches it) goes to 127.0.0.1: no multicast, no other address. Without the loopback
     settings the same node sends discovery to 239.255.0.1 (Fast DDS's multicast group)."""
     trace = tmp_path / "sends.txt"
-    n = _Node(tmp_path, "--box", "sim://", trace=trace)
+    n = _Node(tmp_path, site.path, "--box", "sim://", trace=trace)
     try:
         out = n.client("watch", 2.0, timeout_s=180)
     finally:
@@ -229,14 +214,15 @@ def test_cancelling_a_grasp_ends_in_the_safe_state(node: _Node) -> None:
 
 @needs_ros2
 @pytest.mark.slow
-def test_run_ros2_publishes_the_run_with_the_installations_pad_pose(tmp_path: Path) -> None:
+def test_run_ros2_publishes_the_run_with_the_installations_pad_pose(
+    tmp_path: Path, site: Any
+) -> None:
     """``softpad run --ros2``: another process sees the run's pressures and /tf_static with
     the installation's pad pose while the run goes on, and the run ends normally."""
     env = {**os.environ, **loopback_environment(tmp_path)}
     env["ROS_DOMAIN_ID"] = _domain()
-    (tmp_path / "site.toml").write_text(SITE)
     cmd = [sys.executable, "-m", "softpad", "run", "--ros2", "--objects", "object-3",
-           "--hold-s", "2", "--config", str(tmp_path / "site.toml"), "--json"]  # fmt: skip
+           "--hold-s", "2", "--config", str(site.path), "--json"]  # fmt: skip
     run = subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
     try:
         r = subprocess.run(
@@ -252,5 +238,5 @@ def test_run_ros2_publishes_the_run_with_the_installations_pad_pose(tmp_path: Pa
     assert out["count"] > 100
     assert out["robot_poses"] > 0  # the simulated gripper's measured pose, 20 Hz
     pad = out["transforms"][0]
-    assert pad["xyz"] == pytest.approx([0.4, -0.1, 0.02])
+    site.check_pad_transform((pad["parent"], pad["child"]), pad["xyz"], pad["q"])
     assert run.returncode == 0, output[-2000:]
