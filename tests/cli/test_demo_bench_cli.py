@@ -21,6 +21,9 @@ def test_demo_writes_the_report(tmp_path: Path, cli) -> None:
         assert (out / name).stat().st_size > 0, name
     for name in ("grasps.png", "trace.png", "plans_reference.png"):
         assert (out / name).read_bytes()[:8] == PNG, name
+    # each figure also a paper's column wide (tests/trials/test_column_figures.py)
+    for name in ("grasps-banana.png", "outcomes.png", "plans_reference-banana.png"):
+        assert (out / "column" / name).read_bytes()[:8] == PNG, name
     results = json.loads((out / "results.json").read_text())
     names = [o["name"] for o in results["objects"]]
     assert names[:6] == [f"object-{k}" for k in range(1, 7)] and len(names) == 11

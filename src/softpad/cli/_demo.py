@@ -76,10 +76,10 @@ def run(args: argparse.Namespace) -> int:
         trace,
         trace_title=f"{trace_object}, trial 1 (seed {args.seeds})",
     )
-    names = ", ".join(p.name for p in paths)
+    names = ", ".join(p.name for p in paths if p.parent == out)
     say(
         f"\n{len(exp.trials)} trials in {exp.wall_time_s:.1f} s on {exp.workers} workers; "
-        f"report written to {out}/ ({names}, plans_reference.md/.csv/.png)",
+        f"report written to {out}/ ({names}, plans_reference.md/.csv/.png; column/: each figure a column wide)",
         args.json,
     )
     if args.json:
@@ -90,7 +90,7 @@ def run(args: argparse.Namespace) -> int:
 def _reference_plans(out: Path) -> None:
     """The planner on the thesis's Table 6.1 reference increments (no physics)."""
     from softpad.layout import PadLayout
-    from softpad.planning import TABLE_6_1, plan_grasps
+    from softpad.planning import TABLE_6_1, plan_grasps, plot_plan_columns
 
     layout = PadLayout()
     header = (
@@ -115,6 +115,7 @@ def _reference_plans(out: Path) -> None:
     (out / "plans_reference.md").write_text("\n".join(rows) + "\n")
     (out / "plans_reference.csv").write_text("\n".join(csv_lines) + "\n")
     _plot_all(out / "plans_reference.png", results, layout)
+    plot_plan_columns(results, out / "column", layout)  # each case a column wide
 
 
 def _pi(theta: float) -> str:

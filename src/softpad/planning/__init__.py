@@ -47,10 +47,20 @@ from softpad.planning._registry import (
     planner_for,
     register_planner,
 )
-from softpad.planning._render import ascii_pad, format_plans, plan_legend_handles, plot_plans
+from softpad.planning._render import (
+    COLUMN_FONT_PT,
+    COLUMN_WIDTH_IN,
+    ascii_pad,
+    format_plans,
+    plan_legend_handles,
+    plot_plan_columns,
+    plot_plans,
+)
 
 __all__ = [
     "ALL_MOUNTINGS",
+    "COLUMN_FONT_PT",
+    "COLUMN_WIDTH_IN",
     "DEFAULT_SAFETY_SHIFT",
     "DEFAULT_SEAM_WIDTH_M",
     "FIG_6_7",
@@ -91,6 +101,7 @@ __all__ = [
     "plan_grasps",
     "plan_legend_handles",
     "planner_for",
+    "plot_plan_columns",
     "plot_plans",
     "pressed_share",
     "register_planner",

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -11,6 +12,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from softpad.errors import InputError
 from softpad.layout import GripperSpec, PadLayout
+from softpad.planning._cases import PlanCase
 from softpad.planning._records import GraspPlan
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -143,6 +145,66 @@ def plot_plans(
     if title:
         ax.set_title(title, fontsize=font_pt)
     return ax
+
+
+#: Width of one column of a two-column paper, inches: the figures of
+#: :func:`plot_plan_columns` are that wide.
+COLUMN_WIDTH_IN = 3.5
+#: Font size of every label of a column-wide figure, points (a paper's smallest is 6.5 pt).
+COLUMN_FONT_PT = 7.0
+
+
+def plot_plan_columns(
+    cases: Sequence[tuple[PlanCase, GraspPlan]],
+    folder: str | Path,
+    layout: PadLayout,
+    prefix: str = "plans_reference-",
+    gripper: GripperSpec | None = None,
+) -> list[Path]:
+    """One figure :data:`COLUMN_WIDTH_IN` wide per case, to print in a paper's column: the
+    pad in millimetres with the module grid (:func:`plot_plans`), the increments on one
+    colour scale for all cases, a colour bar and the legend below; every label
+    :data:`COLUMN_FONT_PT` at the figure's own width.
+
+    Parameters
+    ----------
+    cases
+        Each case (its ``name``, ``weight_g`` and ``delta_pa``, Pa) with its plan.
+    folder
+        Output folder (made if absent); each figure is ``folder/<prefix><name>.png``.
+    layout
+        The pad.
+    prefix
+        Start of each file name.
+    gripper
+        Fingertip sizes of the drawn jaws (default :class:`~softpad.layout.GripperSpec`).
+
+    Returns
+    -------
+    list of pathlib.Path
+        The figures written, in the order of ``cases``.
+    """
+    from matplotlib.figure import Figure
+
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    vmax = max(float(np.max(case.delta_pa)) for case, _ in cases) / 1e3
+    paths = []
+    for case, plan in cases:
+        fig = Figure(figsize=(COLUMN_WIDTH_IN, 2.7), layout="constrained")
+        ax = fig.add_subplot()
+        plot_plans(
+            case.delta_pa, [plan], layout, gripper, ax=ax, vmax_kpa=vmax, legend=False,
+            title=f"{case.name} ({case.weight_g:g} g), one scale for all objects",
+            font_pt=COLUMN_FONT_PT,
+        )  # fmt: skip
+        fig.legend(
+            handles=plan_legend_handles(one_line=True), loc="outside lower center", ncols=3,
+            fontsize=COLUMN_FONT_PT, frameon=False,
+        )  # fmt: skip
+        paths.append(folder / f"{prefix}{case.name}.png")
+        fig.savefig(paths[-1], dpi=300)
+    return paths
 
 
 def plan_legend_handles(one_line: bool = False) -> list[Any]:

@@ -4,6 +4,7 @@ the thesis's Fig. 6.10, beside every trial's outcome (success per object with it
 from __future__ import annotations
 
 import math
+from pathlib import Path
 from typing import Any
 
 from softpad.layout import PadLayout
@@ -14,6 +15,8 @@ from softpad.trials._records import ExperimentResult, TrialResult
 #: font size they may then show, points: :func:`plot_grasps` sizes its labels to read there.
 PAGE_WIDTH_IN = 7.0
 SMALLEST_PRINTED_PT = 6.5
+#: Colour of a module whose increment was above t_o.
+_ABOVE_T_O = "#f4a6c0"
 
 
 def draw_grasp(
@@ -38,7 +41,7 @@ def draw_grasp(
     side = p - line_width_m * 1e3
     for k in layout.modules:
         cx, cy = (c * p for c in layout.center(k))
-        colour = "#f4a6c0" if k in trial.modules else "#f3d9e3"
+        colour = _ABOVE_T_O if k in trial.modules else "#f3d9e3"
         ax.add_patch(
             Rectangle(
                 (cx - side / 2, cy - side / 2), side, side, facecolor=colour, edgecolor="none"
@@ -150,6 +153,60 @@ def plot_grasps(
         fig.savefig(path, dpi=150)
         plt.close(fig)
     return fig
+
+
+def plot_grasp_columns(
+    result: ExperimentResult,
+    specs: dict[str, Any],
+    folder: str | Path,
+    layout: PadLayout | None = None,
+    sizes_m: tuple[float | None, float | None, float | None] = (None, None, None),
+    trial_index: int = 0,
+) -> list[Path]:
+    """:func:`plot_grasps` split into figures a paper's column wide (``COLUMN_WIDTH_IN``):
+    ``folder/grasps-<object>.png``, trial ``trial_index`` of each object drawn by
+    :func:`draw_grasp` with a legend of its marks, and ``folder/outcomes.png``, every
+    object's trials held (:func:`success_chart`). Every label ``COLUMN_FONT_PT`` at the
+    figure's own width. ``sizes_m``: fingertip thickness and width and line width, metres
+    (None: the MuJoCo world's). Returns the paths."""
+    from matplotlib.figure import Figure
+
+    from softpad.planning import COLUMN_FONT_PT, COLUMN_WIDTH_IN
+
+    layout = layout or PadLayout()
+    sizes = _sizes(layout, *sizes_m)
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    paths = []
+    for name in result.object_names:
+        fig = Figure(figsize=(COLUMN_WIDTH_IN, 3.6), layout="constrained")
+        ax = fig.add_subplot()
+        _grasp_panel(ax, result, name, specs[name], layout, sizes, trial_index, COLUMN_FONT_PT)
+        fig.legend(
+            handles=_grasp_legend_handles(), loc="outside lower center", ncols=2,
+            fontsize=COLUMN_FONT_PT, frameon=False,
+        )  # fmt: skip
+        paths.append(folder / f"grasps-{name}.png")
+        fig.savefig(paths[-1], dpi=300)
+    height = 0.9 + 0.22 * len(result.object_names)
+    fig = Figure(figsize=(COLUMN_WIDTH_IN, height), layout="constrained")
+    success_chart(fig.add_subplot(), result, COLUMN_FONT_PT)
+    paths.append(folder / "outcomes.png")
+    fig.savefig(paths[-1], dpi=300)
+    return paths
+
+
+def _grasp_legend_handles() -> list[Any]:
+    """Legend entries of :func:`draw_grasp`'s marks."""
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    return [
+        Patch(color="black", label="fingertips, approach opening"),
+        Line2D([], [], ls="", marker="+", color="black", ms=6, label="planned COG"),
+        Patch(facecolor="#8fb3d9", edgecolor="#2b4c6f", alpha=0.6, label="object"),
+        Patch(color=_ABOVE_T_O, label="module above t_o"),
+    ]
 
 
 def _grasps_figure(n: int) -> tuple[Any, Any, int, float]:

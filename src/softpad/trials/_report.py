@@ -20,11 +20,12 @@ def write_report(
     line_width_m: float | None = None,
 ) -> list[Path]:
     """Write the experiment to ``out``: ``table.md``, ``table.csv``, ``results.json``,
-    ``grasps.png`` (every planned grasp over the pad, like Fig. 6.10), ``trace.png`` (pressure
+    ``grasps.png`` (every planned grasp over the pad, like Fig. 6.10) and its column-wide
+    figures in ``column/``, ``trace.png`` (pressure
     traces of one trial, like Fig. 6.8) and ``README.md`` (the summary); return the paths.
     Fingertip and line sizes (metres) default to the MuJoCo world's (see
     :func:`softpad.trials._plots.plot_grasps`)."""
-    from softpad.trials._plots import plot_grasps
+    from softpad.trials._plots import plot_grasp_columns, plot_grasps
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
@@ -43,6 +44,8 @@ def write_report(
         line_width_m=line_width_m,
     )
     paths.append(out / "grasps.png")
+    sizes = (tip_thickness_m, tip_width_m, line_width_m)
+    paths += plot_grasp_columns(result, specs, out / "column", sizes_m=sizes)
     if trace is not None:
         trace.plot(out / "trace.png", title=trace_title)
         paths.append(out / "trace.png")
@@ -74,6 +77,9 @@ def _summary(result: ExperimentResult, table_md: str, has_trace: bool, trace_tit
         "",
         "- `grasps.png`: the planned grasp of trial 1 of every object over the pad (black: the "
         "fingertips at the approach opening), like Fig. 6.10.",
+        "- `column/`: the same figures split to print a paper's column wide (3.5 in): "
+        "`grasps-OBJECT.png` and `outcomes.png`, and `plans_reference-OBJECT.png` from `softpad "
+        "demo`.",
     ]
     if has_trace:
         lines.append(
