@@ -15,6 +15,7 @@ from softpad.ros._arm import (
     open_robot,
     open_ros1_robot,
 )
+from softpad.ros._messages import grasp_poses, jsonable
 from softpad.ros._msgs import (
     ensure_messages,
     generate_messages,
@@ -23,6 +24,7 @@ from softpad.ros._msgs import (
     shell_environment,
 )
 from softpad.ros._node import CONFIG_KEYS, NodeConfig, PadNode, load_config
+from softpad.ros._pad_topics import PadTopics
 from softpad.ros._publish import (
     EVENT_TOPIC,
     OUTCOME_TOPIC,
@@ -63,11 +65,14 @@ __all__ = [
     "NodeConfig",
     "PadNode",
     "PadPublishers",
+    "PadTopics",
     "Ros1Robot",
     "SimArmNode",
     "ensure_messages",
     "ensure_rospy",
     "generate_messages",
+    "grasp_poses",
+    "jsonable",
     "load_config",
     "message_definitions",
     "open_robot",

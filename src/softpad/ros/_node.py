@@ -572,9 +572,9 @@ class PadNode:
 
 def _jsonable_result(result: dict[str, Any]) -> dict[str, Any]:
     """``result`` with non-finite numbers as None (JSON has none)."""
-    from softpad.ros._publish import _jsonable
+    from softpad.ros._messages import jsonable
 
-    return _jsonable(result)  # type: ignore[no-any-return]
+    return jsonable(result)  # type: ignore[no-any-return]
 
 
 def _summary(result: dict[str, Any]) -> dict[str, Any]:

@@ -12,19 +12,15 @@ publishes what the loop does through them, so ``softpad ros node``'s ``~grasp`` 
 
 from __future__ import annotations
 
-import json
-import math
-import time
 import warnings
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from typing import Any
-
-import numpy as np
 
 from softpad import thesis
 from softpad import topics as T
 from softpad.box import PressureFrame
 from softpad.layout import PadLayout, PadPose
+from softpad.ros._pad_topics import PadTopics
 
 #: The loop's phase (std_msgs/String, latched): ``adjust``, ``wait_object``, ``descend``, ...
 PHASE_TOPIC = T.PHASE_TOPIC
@@ -35,8 +31,6 @@ OUTCOME_TOPIC = T.OUTCOME_TOPIC
 #: Every event of the node's watch and of the grasp loop (``softpad_msgs/Event``: ``kind`` and
 #: its data as JSON, SI units), as recordings hold them on the same topic.
 EVENT_TOPIC = T.EVENT_TOPIC
-#: Wall time between two diagnostics messages, seconds.
-DIAGNOSTICS_PERIOD_S = 1.0
 
 
 def init_node(rospy: Any, name: str) -> None:
@@ -45,19 +39,16 @@ def init_node(rospy: Any, name: str) -> None:
         rospy.init_node(name, anonymous=True, disable_signals=True)
 
 
-class PadPublishers:
-    """The pad's topics of one ROS node (module docstring).
+class PadPublishers(PadTopics):
+    """The pad's topics of one ROS 1 node (module docstring; the messages are
+    :class:`~softpad.ros._pad_topics.PadTopics`', shared with ROS 2).
 
     Parameters
     ----------
     rospy
         The imported rospy, its node initialised.
-    layout
-        The pad (one pressure topic per module).
-    box_url
-        Named in the diagnostics.
-    ambient_pressure_pa
-        Added to the gauge readings in ``sensor_msgs/FluidPressure`` (absolute), Pa.
+    layout, box_url, ambient_pressure_pa
+        As :class:`~softpad.ros._pad_topics.PadTopics`'s.
     """
 
     def __init__(
@@ -67,43 +58,21 @@ class PadPublishers:
         box_url: str,
         ambient_pressure_pa: float = thesis.AMBIENT_PRESSURE_PA,
     ) -> None:
-        self.rospy, self.layout, self.n = rospy, layout, layout.n_modules
-        self.box_url, self.ambient_pressure_pa = box_url, ambient_pressure_pa
-        self._box: Any = None
-        #: Whether frames are paced to the wall clock (an in-process simulated box only).
-        self.pace = False
-        #: The fault the diagnostics report as the link's ERROR, None while healthy.
-        self.fault: str | None = None
-        self.frames, self.last_t = 0, 0.0
-        self._last_pressures = np.zeros(self.n)
-        self._next_diag = 0.0
-        #: The robot's measured pose (``x_m, y_m, z_m, yaw_rad``), published at the table's
-        #: rate while set (a simulated arm's, during a grasp).
-        self.robot_state: Callable[[], Any] | None = None
-        self._next_pose = -math.inf
+        self.rospy = rospy
+        super().__init__(layout, box_url, ambient_pressure_pa)
         self._make_publishers()
-        self.reset_pace()
 
-    @property
-    def box(self) -> Any:
-        """The box whose rate and valves the diagnostics report (set once it is open). Its
-        frames are paced when it is an in-process simulated box (lock-step, faster than real
-        time); a served or hardware box sends them at its own rate, and pacing those would only
-        add latency to the loop's reads."""
-        return self._box
+    def stamp(self) -> Any:
+        return self.rospy.Time.now()
 
-    @box.setter
-    def box(self, box: Any) -> None:
-        from softpad.box import simulator_of
+    def softpad_messages(self) -> Any:
+        from softpad.ros._msgs import ensure_messages
 
-        self._box = box
-        self.pace = simulator_of(box) is not None
+        return ensure_messages()
 
     def _make_publishers(self) -> None:
         """One publisher per name of the table's ``ros1`` rows, its type and QoS (latched:
         ``latch``; depth: the queue)."""
-        #: Publisher of every topic of the table's ``ros1`` output, by name.
-        self.pub: dict[str, Any] = {}
         for t in T.TOPICS:
             if "ros1" not in t.outputs:
                 continue
@@ -120,143 +89,6 @@ class PadPublishers:
                     name, cls, queue_size=t.qos.depth, latch=t.qos.latched
                 )
 
-    def static_frames(self, pad: PadPose, base_frame: str) -> None:
-        """``base_frame`` -> ``softpad`` (the pad's pose) and ``softpad`` -> each module."""
-        from softpad.ros import _messages as m
-
-        stamp = self.rospy.Time.now()
-        tf = m.static_transform(stamp, pad, base_frame)
-        tf.transforms.extend(m.module_transforms(stamp, self.layout))
-        self.pub[T.TF_STATIC_TOPIC].publish(tf)
-
-    def reset_pace(self) -> None:
-        """Start pacing afresh: the next frame's box time counts from the wall time now."""
-        self._wall0: float | None = None
-        self._box0 = 0.0
-        self._rate_window: list[float] = []
-
-    def frame(self, frame: PressureFrame) -> None:
-        """Publish one frame (an in-process simulated box paced to the wall clock when it runs
-        ahead of it), and the diagnostics when their period has passed."""
-        from softpad.ros import _messages as m
-
-        now = time.monotonic()
-        if self._wall0 is None:
-            self._wall0, self._box0 = now, frame.t_s
-        ahead = (frame.t_s - self._box0) - (now - self._wall0)
-        if self.pace and ahead > 0:
-            time.sleep(ahead)
-        self.frames += 1
-        self.last_t = frame.t_s
-        self._rate_window = [*self._rate_window[-199:], time.monotonic()]
-        stamp = self.rospy.Time.now()
-        p = frame.pressures_pa[: self.n]
-        for k in range(1, self.n + 1):
-            msg = m.fluid_pressure(stamp, k, float(p[k - 1]), self.ambient_pressure_pa)
-            self.pub[T.module_topic(k)].publish(msg)
-        supply = m.fluid_pressure(stamp, 0, float(frame.supply_pa), self.ambient_pressure_pa)
-        supply.header.frame_id = T.PAD_FRAME
-        self.pub[T.SUPPLY_TOPIC].publish(supply)
-        self.pub[T.GAUGE_TOPIC].publish(m.labelled_array([*p, frame.supply_pa], T.GAUGE_LABEL))
-        self._last_pressures = p
-        self._robot_pose(stamp, frame.t_s)
-        if time.monotonic() >= self._next_diag:
-            self.diagnostics()
-
-    def _robot_pose(self, stamp: Any, t_s: float) -> None:
-        """The robot's measured pose at the table's rate (box time) while :attr:`robot_state`
-        is set."""
-        from geometry_msgs.msg import PoseStamped
-
-        from softpad.ros import _messages as m
-
-        if self.robot_state is None or t_s < self._next_pose:
-            return
-        self._next_pose = t_s + 1.0 / (T.topic(T.ROBOT_POSE_TOPIC).rate_hz or 20.0)
-        s = self.robot_state()
-        msg = PoseStamped(pose=m.pose(s.x_m, s.y_m, s.z_m, getattr(s, "yaw_rad", 0.0)))
-        msg.header.stamp, msg.header.frame_id = stamp, T.PAD_FRAME
-        self.pub[T.ROBOT_POSE_TOPIC].publish(msg)
-
-    def plans(self, plans: Sequence[dict[str, Any]]) -> None:
-        """Objects and grasps of ``plans`` (:meth:`softpad.planning.GraspPlan.to_dict`)."""
-        from softpad.ros import _messages as m
-
-        stamp = self.rospy.Time.now()
-        self.pub[T.OBJECT_TOPIC].publish(m.pose_array(stamp, m.object_poses(plans, self.layout)))
-        self.pub[T.PLAN_TOPIC].publish(m.pose_array(stamp, m.grasp_poses(plans)))
-
-    def contact(self, touching: bool) -> None:
-        from std_msgs.msg import Bool
-
-        self.pub[T.CONTACT_TOPIC].publish(Bool(bool(touching)))
-
-    def phase(self, name: str) -> None:
-        from std_msgs.msg import String
-
-        self.pub[T.PHASE_TOPIC].publish(String(name))
-
-    def event(self, t_s: float, kind: str, data: dict[str, Any]) -> None:
-        """One event on :data:`EVENT_TOPIC`: ``kind`` and ``data`` as JSON (non-finite numbers
-        as null), stamped now, in the pad frame; ``t_s`` (box time, s) joins the data."""
-        from softpad.ros._messages import PAD_FRAME
-        from softpad.ros._msgs import ensure_messages
-
-        msg = ensure_messages().Event(
-            kind=kind, data_json=json.dumps(_jsonable(dict(data, t_s=t_s)))
-        )
-        msg.header.stamp, msg.header.frame_id = self.rospy.Time.now(), PAD_FRAME
-        self.pub[T.EVENT_TOPIC].publish(msg)
-
-    def outcome(self, summary: dict[str, Any]) -> None:
-        """The end of a grasp loop (``softpad_msgs/Outcome``): its ``outcome``, ``message``
-        and the whole summary as JSON (non-finite numbers as null)."""
-        from softpad.ros._msgs import ensure_messages
-
-        msg = ensure_messages().Outcome(
-            outcome=str(summary.get("outcome", "")), message=str(summary.get("message") or ""),
-            summary_json=json.dumps(_jsonable(summary)),
-        )  # fmt: skip
-        msg.header.stamp, msg.header.frame_id = self.rospy.Time.now(), T.PAD_FRAME
-        self.pub[OUTCOME_TOPIC].publish(msg)
-
-    def diagnostics(self) -> None:
-        """``/diagnostics``: the link (ERROR with :attr:`fault`), the rate, every channel."""
-        from diagnostic_msgs.msg import DiagnosticArray
-
-        from softpad.ros import _messages as m
-
-        self._next_diag = time.monotonic() + DIAGNOSTICS_PERIOD_S
-        w = self._rate_window
-        rate = (len(w) - 1) / (w[-1] - w[0]) if len(w) > 1 and w[-1] > w[0] else 0.0
-        nominal = float(self.box.sample_rate_hz) if self.box is not None else math.nan
-        link = m.diagnostic_status(
-            2 if self.fault else 0, "softpad: link", self.fault or "OK", box=self.box_url,
-            frames=self.frames,
-        )  # fmt: skip
-        rate_ok = self.fault is None and rate >= 0.8 * nominal
-        rate_st = m.diagnostic_status(
-            0 if rate_ok else 1, "softpad: rate", "OK" if rate_ok else "below the box rate",
-            rate_hz=f"{rate:.1f}", nominal_hz=f"{nominal:g}",
-        )  # fmt: skip
-        status = [link, rate_st, *(self._channel_status(k) for k in range(1, self.n + 1))]
-        msg = DiagnosticArray(status=status)
-        msg.header.stamp = self.rospy.Time.now()
-        self.pub[T.DIAGNOSTICS_TOPIC].publish(msg)
-
-    def _channel_status(self, k: int) -> Any:
-        from softpad.control import DEFAULT_MAX_PRESSURE_PA
-        from softpad.ros import _messages as m
-
-        p = float(self._last_pressures[k - 1])
-        bad = not math.isfinite(p) or p > DEFAULT_MAX_PRESSURE_PA
-        valves = getattr(self.box, "valves", None)
-        valve = valves[k - 1].value if valves is not None else "?"
-        return m.diagnostic_status(
-            2 if bad else 0, f"softpad: channel {k}", "no valid reading or over the maximum"
-            if bad else "OK", pressure_pa=f"{p:.1f}", valve=valve,
-        )  # fmt: skip
-
 
 def message_class(ros2_type: str) -> Any:
     """The ROS 1 message class of the table's type ``pkg/msg/Name``: Debian's message
@@ -269,17 +101,6 @@ def message_class(ros2_type: str) -> Any:
 
         return getattr(ensure_messages(), name)
     return getattr(importlib.import_module(f"{package}.msg"), name)
-
-
-def _jsonable(value: Any) -> Any:
-    """``value`` with NaN and infinities as None (JSON has no such numbers)."""
-    if isinstance(value, float):
-        return value if math.isfinite(value) else None
-    if isinstance(value, dict):
-        return {k: _jsonable(v) for k, v in value.items()}
-    if isinstance(value, list | tuple):
-        return [_jsonable(v) for v in value]
-    return value
 
 
 class GraspCancelled(KeyboardInterrupt):
@@ -388,12 +209,6 @@ def watch_loop(
 
     rospy = require_master()
     init_node(rospy, node_name)
-    from softpad.box import simulator_of
-
     pubs = PadPublishers(rospy, layout, box_url)
-    pubs.box = box
-    sim = simulator_of(box)
-    if sim is not None:  # the simulated arm's measured pose, as recordings take it
-        pubs.robot_state = sim.world.gripper_state
-    pubs.static_frames(pad or PadPose(), base_frame)
+    pubs.watch_run(box, pad, base_frame)
     return LoopPublisher(pubs)

@@ -23,8 +23,8 @@ from typing import Any
 
 from softpad import topics as T
 from softpad.errors import HardwareFault, InputError
-from softpad.ros import CONFIG_KEYS, LoopPublisher, NodeConfig, PadNode
-from softpad.ros2._publish import Ros2Publishers, _jsonable
+from softpad.ros import CONFIG_KEYS, LoopPublisher, NodeConfig, PadNode, jsonable
+from softpad.ros2._publish import Ros2Publishers
 
 
 class GraspCanceled(HardwareFault):
@@ -244,7 +244,7 @@ class Ros2PadNode(PadNode):
                 header=Header(stamp=self.ros2.stamp(), frame_id=T.PAD_FRAME),
                 poses=_grasp_poses(r.result),
             )
-            result.result_json = json.dumps(_jsonable(r.result.to_dict()))
+            result.result_json = json.dumps(jsonable(r.result.to_dict()))
         if r.outcome == "canceled":
             goal_handle.canceled()
         elif r.ok:
@@ -312,10 +312,9 @@ class Ros2PadNode(PadNode):
 
 def _grasp_poses(result: Any) -> list[Any]:
     """The grasps the loop tried: COG on the pad surface, yaw = theta (frame softpad)."""
-    from softpad.ros2._publish import _pose
+    from softpad.ros import grasp_poses
 
-    plans = [g.plan.to_dict(result.layout) for g in result.grasps]
-    return [_pose(p["cog_m"][0], p["cog_m"][1], 0.0, float(p["theta"])) for p in plans]
+    return grasp_poses([g.plan.to_dict(result.layout) for g in result.grasps])
 
 
 class Ros2RunPublisher(Ros2LoopPublisher):
@@ -349,8 +348,6 @@ def watch_loop2(
     and this process publishes the table's ``ros2`` topics, with ``/tf_static`` placing the pad
     at ``pad`` (a :class:`~softpad.layout.PadPose`, the installation's ``[pad.pose]``; None:
     the origin) in ``base_frame``."""
-    from softpad.box import simulator_of
-    from softpad.layout import PadPose
     from softpad.ros2._interfaces import apply_loopback_environment, ensure_rclpy
 
     ensure_rclpy()
@@ -363,9 +360,5 @@ def watch_loop2(
         rclpy.init(args=["softpad"], signal_handler_options=SignalHandlerOptions.NO)
     node = rclpy.create_node(node_name)
     pubs = Ros2Publishers(node, layout, box_url)
-    pubs.box = box
-    sim = simulator_of(box)
-    if sim is not None:  # the simulated gripper's measured pose, as recordings take it
-        pubs.robot_state = sim.world.gripper_state
-    pubs.static_frames(pad or PadPose(), base_frame)
+    pubs.watch_run(box, pad, base_frame)
     return Ros2RunPublisher(pubs)
