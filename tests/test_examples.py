@@ -107,6 +107,44 @@ def test_make_eval_objects_example_splits_the_ycb_set_in_halves(tmp_path: Path) 
     assert not halves["ycb-dev"] & halves["ycb-eval"]
 
 
+def test_make_validation_table_example_sets_before_beside_after(tmp_path: Path) -> None:
+    """One row of two validate JSONs: the old verdict, the new one with its interval, and
+    the detectable fall in points (0.21 -> 21); the counts of each role below."""
+    import json
+
+    name = "Experiment 2 held, all objects"
+    before = {
+        "counts": {"agree": 0, "disagree": 1, "not_run": 0},
+        "observations": [{"name": name, "predicted": "89/110", "agrees": False}],
+    }
+    counts = {"agree": 0, "disagree": 0, "undecided": 1, "not_run": 0}
+    after = {
+        "counts": {"validation": counts},
+        "observations": [
+            {
+                "name": name,
+                "role": "validation",
+                "thesis": "52/55",
+                "thesis_interval": [0.852, 0.981],
+                "predicted": "91/110",
+                "interval": [0.746, 0.886],
+                "verdict": "undecided",
+                "detectable": [0.21, None],
+            }
+        ],
+    }
+    paths = [tmp_path / "before.json", tmp_path / "after.json"]
+    for path, doc in zip(paths, (before, after), strict=True):
+        path.write_text(json.dumps(doc), encoding="utf-8")
+    main = runpy.run_path(str(EXAMPLES / "make_validation_table.py"), run_name="example")["main"]
+    out = main(*paths)
+    assert (
+        f"| validation | {name} | 52/55 (0.852, 0.981) | 89/110 | **no** | "
+        "91/110 (0.746, 0.886) | undecided | -21/+none |"
+    ) in out.splitlines()
+    assert "After, validation: 0 agree, 0 disagree, 1 undecided, 0 not run." in out
+
+
 def test_every_example_is_run_here() -> None:
     """A new script in examples/ needs its test in this file (one figure pinned)."""
     source = Path(__file__).read_text(encoding="utf-8")

@@ -1,6 +1,6 @@
 """One table of docs/validation.md from two ``softpad validate --json`` outputs: before and after.
 
-    python docs/make_validation_table.py BEFORE.json AFTER.json
+    python examples/make_validation_table.py BEFORE.json AFTER.json
 
 prints a Markdown table with one line per observation: its role (after issue 45: validation,
 calibration, construction), the thesis's value with its 95 % interval, the prediction and
@@ -75,6 +75,11 @@ def table(before: dict[str, Any], after: dict[str, Any]) -> str:
     return "\n".join(lines)
 
 
+def main(before: Path, after: Path) -> str:
+    """The table of two ``softpad validate --json`` files (paths), as Markdown text."""
+    a, b = (json.loads(Path(p).read_text(encoding="utf-8")) for p in (before, after))
+    return table(a, b)
+
+
 if __name__ == "__main__":
-    a, b = (json.loads(Path(p).read_text(encoding="utf-8")) for p in sys.argv[1:3])
-    print(table(a, b))
+    print(main(Path(sys.argv[1]), Path(sys.argv[2])))
