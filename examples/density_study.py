@@ -33,6 +33,7 @@ def parse(argv: list[str] | None = None) -> argparse.Namespace:
     p.add_argument("--eval-set", default="ycb-eval")
     p.add_argument("--dev-seeds", default="1000")
     p.add_argument("--eval-seeds", default="9301")
+    p.add_argument("--only", choices=("dev", "eval"), default=None, help="one of the two sets")
     p.add_argument("--trials", type=int, default=1, help="trials per object and seed")
     p.add_argument("--objects", type=int, default=None, help="the first N objects of each set")
     p.add_argument("--pads", default=None, help="pads by index into DENSITY_PADS, e.g. 0,3")
@@ -57,14 +58,17 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
     pads = DENSITY_PADS
     if args.pads is not None:
         pads = tuple(DENSITY_PADS[int(i)] for i in args.pads.split(","))
-    sets = [subset(example_object_set(n), args.objects) for n in (args.dev_set, args.eval_set)]
+    names = {"dev": args.dev_set, "eval": args.eval_set}
+    chosen = [names[args.only]] if args.only else list(names.values())
+    sets = [subset(example_object_set(n), args.objects) for n in chosen]
     seeds = {args.dev_set: _seeds(args.dev_seeds), args.eval_set: _seeds(args.eval_seeds)}
     cache = ResultCache(args.cache if args.cache is not None else default_cache_dir())
     study = density_study(
         sets, seeds, args.trials, pads, valves=args.valves, cache=cache,
         progress=lambda line: print(line, file=sys.stderr, flush=True),
     )  # fmt: skip
-    answer = study.smallest_pad("model-based:adaptive", args.eval_set, 0.85)
+    held = chosen[-1]
+    answer = study.smallest_pad("model-based:adaptive", held, 0.85)
     print(study.table_markdown())
     for pad, figures in study.convergence.items():
         diffs = ", ".join(
@@ -72,12 +76,12 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
         )
         print(f"{pad}: coarse vs medium mesh: {diffs}")
     verb = "holds 85 % first on" if answer["reached"] else "does not reach 85 %; best"
-    print(f"model-based:adaptive on {args.eval_set} {verb} {answer['pad']} "
+    print(f"model-based:adaptive on {held} {verb} {answer['pad']} "
           f"({answer['successes']}/{answer['trials']})")  # fmt: skip
     if args.png:
         import matplotlib.pyplot as plt
 
-        plt.close(study.plot(args.png, args.eval_set))
+        plt.close(study.plot(args.png, held))
     out = {**study.to_dict(), "answer": answer}
     if args.json:
         with open(args.json, "w", encoding="utf-8") as f:

@@ -267,7 +267,7 @@ def _plot(study: DensityStudy, held_out: str, path: str | Path | None) -> Any:
         ax.tick_params(labelsize=7)
     modules = sorted({r["modules"] for r in mine})
     axes[0].set_xticks(modules, [str(m) for m in modules])
-    axes[0].legend(fontsize=6, loc="lower right")
+    axes[0].legend(fontsize=6, loc="best", framealpha=0.8)
     fig.tight_layout()
     if path is not None:
         fig.savefig(path, dpi=200)
