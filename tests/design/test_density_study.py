@@ -43,3 +43,11 @@ def test_the_study_pads_cover_about_the_thesis_area() -> None:
     for d in DENSITY_PADS:
         assert d.rows * d.cols * d.pitch_m**2 == pytest.approx(area, rel=0.15)
     assert [d.n_modules for d in DENSITY_PADS] == [6, 12, 15, 24]
+
+
+def test_design_valves_option_names_its_choices(capsys: pytest.CaptureFixture[str]) -> None:
+    from softpad.cli.main import main
+
+    assert main(["design", "--valves", "tiny"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "--valves" in err and "'sized'" in err
