@@ -150,3 +150,34 @@ def test_every_example_is_run_here() -> None:
     source = Path(__file__).read_text(encoding="utf-8")
     missing = [p.name for p in sorted(EXAMPLES.glob("*.py")) if f'"{p.name}"' not in source]
     assert not missing, f"examples without a test in {Path(__file__).name}: {missing}"
+
+
+@pytest.mark.fem
+def test_the_example_runs_at_a_tiny_size_and_draws_the_figure(tmp_path: Path) -> None:
+    """One object of each set, 2 of the 4 pads, the three pairs: every row, the convergence of
+    each pad, the answer, and a figure 3.5 in wide."""
+    from PIL import Image
+
+    png, js = tmp_path / "density.png", tmp_path / "density.json"
+    argv = ["--objects", "1", "--pads", "0,3", "--cache", str(tmp_path / "cache"),
+            "--png", str(png), "--json", str(js)]  # fmt: skip
+    out = runpy.run_path(str(EXAMPLES / "density_study.py"))["main"](argv)
+    rows = out["rows"]
+    assert len(rows) == 2 * 3 * 2  # sets x pairs x pads
+    assert {r["pad"] for r in rows} == {"2x3 45 mm", "4x6 22.5 mm"}
+    assert all(r["trials"] == 1 for r in rows)
+    by_pad = {r["pad"]: r["fem"] for r in rows}
+    # the denser pad's module is stiffer and feels lighter weights (its own FEM response)
+    assert (
+        by_pad["4x6 22.5 mm"]["centre_stiffness_n_per_mm"]
+        > by_pad["2x3 45 mm"]["centre_stiffness_n_per_mm"]
+    )
+    assert (
+        by_pad["4x6 22.5 mm"]["compact_min_detectable_mass_g"]
+        < 0.5 * by_pad["2x3 45 mm"]["compact_min_detectable_mass_g"]
+    )
+    for figures in out["convergence"].values():  # coarse within 5 % of medium for the masses
+        assert abs(figures["compact_min_detectable_mass_kg"]["relative_difference"]) < 0.05
+    assert out["answer"]["set"] == "ycb-eval" and js.is_file()
+    with Image.open(png) as im:
+        assert im.size[0] == pytest.approx(3.5 * 200, abs=2)

@@ -90,6 +90,8 @@ def register(sub: Any) -> None:
     add_randomize_option(p)
     add_mounting_option(p, "the object set's: each object's, or its one gripper")
     add_part_options(p)
+    p.add_argument("--valves", choices=("thesis", "sized"), default="thesis",
+                   help="the thesis's orifices, or orifices sized to each module's channel")  # fmt: skip
     p.add_argument(
         "--scheduler", metavar="tcp://127.0.0.1:PORT", help="a running Dask scheduler on loopback"
     )
@@ -220,7 +222,7 @@ def _trial_options(args: argparse.Namespace) -> Any:
         raise InputError(f"--hold-s must be from 0 to 60 s, got {hold_s!r}")
     return TrialOptions(
         trials, args.planner, args.detector, hold_s, randomize=args.randomize,
-        mounting=args.mounting,
+        mounting=args.mounting, valves=args.valves,
     )  # fmt: skip
 
 

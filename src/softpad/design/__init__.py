@@ -15,7 +15,14 @@ Dask, pyarrow, FElupe and matplotlib are imported lazily inside the functions.
 
 from softpad.design._cache import ResultCache, code_version, default_cache_dir
 from softpad.design._dask import available_cpus, check_scheduler_address, dask_client, has_dask
-from softpad.design._evaluate import TrialOptions, run_design_trials
+from softpad.design._density import (
+    DENSITY_PADS,
+    DENSITY_PAIRS,
+    DensityStudy,
+    density_study,
+    pad_convergence,
+)
+from softpad.design._evaluate import VALVE_CHOICES, TrialOptions, run_design_trials
 from softpad.design._objects import (
     EXAMPLE_SETS,
     OBJECT_SET_SCHEMA,
@@ -43,12 +50,16 @@ from softpad.design._trials import run_experiment_on_dask
 
 __all__ = [
     "COLUMNS",
+    "DENSITY_PADS",
+    "DENSITY_PAIRS",
     "EXAMPLE_SETS",
     "FEM_CELLS",
     "LIMITS",
     "OBJECT_SET_SCHEMA",
     "QUICK_DESIGNS",
     "THESIS_DESIGN",
+    "VALVE_CHOICES",
+    "DensityStudy",
     "DesignRow",
     "DesignSpace",
     "FemResponse",
@@ -64,6 +75,7 @@ __all__ = [
     "code_version",
     "dask_client",
     "default_cache_dir",
+    "density_study",
     "design_row",
     "design_sweep",
     "example_object_set",
@@ -72,6 +84,7 @@ __all__ = [
     "has_dask",
     "load_object_set",
     "object_set_from_dict",
+    "pad_convergence",
     "parse_grids",
     "parse_values",
     "rank_rows",

@@ -23,6 +23,30 @@ from typing import Any
 from softpad import thesis
 from softpad.errors import MM_AS_M, MS_AS_S, InputError, check_range
 
+#: The box's valves of a design's trials (:attr:`TrialOptions.valves`).
+VALVE_CHOICES = ("thesis", "sized")
+
+
+def channel_capacity_m3_pa(characteristic: Any, pressure_pa: float) -> float:
+    """Volume of atmospheric air a module's channel takes per pascal at ``pressure_pa``
+    (isothermal, unloaded): ``dV/dp + (V + V_tubing) / (p_atm + p)``, m^3/Pa."""
+    from softpad.sim import PneumaticParams
+
+    pn = PneumaticParams()
+    v = float(characteristic.volume_m3(pressure_pa, 0.0))
+    c = float(characteristic.volume_slope_m3_pa(pressure_pa, 0.0))
+    return c + (v + pn.tubing_volume_m3) / (pn.atmosphere_pa + pressure_pa)
+
+
+def valve_scale(characteristic: Any, p0_pa: float) -> float:
+    """Orifice scale of ``"sized"`` valves: the channel capacity of ``characteristic`` at p0
+    over that of the thesis's module (:class:`softpad.sim.AnalyticCharacteristic`'s defaults,
+    the project's FEM of the 45 mm module) at the thesis's p0."""
+    from softpad.sim import AnalyticCharacteristic
+
+    reference = channel_capacity_m3_pa(AnalyticCharacteristic(), thesis.P0_PA)
+    return channel_capacity_m3_pa(characteristic, p0_pa) / reference
+
 
 @dataclass(frozen=True)
 class TrialOptions:
@@ -53,6 +77,12 @@ class TrialOptions:
     #: pad's reading of the placed object (:func:`softpad.planning.choose_mounting`); or one
     #: of ``"10/4"``, ``"6/2"``, ``"4/0"`` for every object.
     mounting: str | None = None
+    #: The box's valves: ``"thesis"``, the thesis's orifices on every module; ``"sized"``,
+    #: orifices scaled by the module's channel capacity over the thesis pad's
+    #: (:func:`valve_scale`), so that a valve opening moves the pressure as much as on the
+    #: thesis's pad (small modules need it: with the thesis's valves a 22.5 mm module cannot
+    #: be adjusted to p0 within the tolerance, docs/design.md).
+    valves: str = "thesis"
 
     def __post_init__(self) -> None:
         from softpad.planning import PLANNER_REGISTRY
@@ -78,6 +108,11 @@ class TrialOptions:
         from softpad.trials import check_mounting_choice
 
         check_mounting_choice(self.mounting, "trial options mounting")
+        if self.valves not in VALVE_CHOICES:
+            raise InputError(
+                f"trial options valves must be one of {', '.join(VALVE_CHOICES)}, got "
+                f"{self.valves!r}"
+            )
 
     def to_dict(self) -> dict[str, Any]:
         """The options (SI), part of every cache key."""
@@ -212,17 +247,26 @@ def _mounting(
 def _trial_box(
     design: Any, world: Any, characteristic: Any, seed: int, options: TrialOptions, lab: Any
 ) -> Any:
-    """The simulated box of one trial: the design's module characteristic, the trial's sensor
-    noise (drawn by ``lab`` when randomized), started at 0.9 p0 with the sweep's safety limits."""
+    """The simulated box of one trial: the design's module characteristic, its valves
+    (``options.valves``), the trial's sensor noise (drawn by ``lab`` when randomized), started
+    at 0.9 p0 with the sweep's safety limits."""
     from softpad.box import SafetyLimits, SimBox
-    from softpad.sim import SensorParams
+    from softpad.sim import PneumaticParams, SensorParams
 
+    pneumatics = PneumaticParams()
+    if options.valves == "sized":
+        k = valve_scale(characteristic, design.p0_pa)
+        pneumatics = PneumaticParams(
+            inflate_orifice_m2=pneumatics.inflate_orifice_m2 * k,
+            deflate_orifice_m2=pneumatics.deflate_orifice_m2 * k,
+        )
     box = SimBox(
         world,
         channels=max(8, design.layout.n_modules),
         sample_rate_hz=options.sample_rate_hz,
         seed=seed % (2**31),
         characteristic=characteristic,
+        pneumatics=pneumatics,
         sensor=(SensorParams() if lab is None else lab.sensor())
         if options.noise
         else SensorParams.ideal(),

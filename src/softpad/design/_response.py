@@ -9,7 +9,12 @@ at that state one tangent solve gives (:meth:`~softpad.fem.ModuleModel.pressure_
 * the sealed-chamber rise per newton ``dp/dF = s / (C + (V + V_dead) / (p_atm + p0))``, the
   same law as :func:`softpad.fem.sealed_chamber_study` (Section "sealed chamber" of
   docs/fem.md), on the footprint and as a map over the top face (a point load at each node);
-* the minimum detectable mass at t_o: ``m = t_o / (g dp/dF)`` (thesis: about 6 g at 1.1 kPa).
+* the minimum detectable mass at t_o: ``m = t_o / (g dp/dF)`` (thesis: about 6 g at 1.1 kPa),
+  on the brick's footprint scaled to the module and on a fixed 10 x 10 mm weight at the centre
+  (the same object on every pad: the figure pads of different pitch are compared by);
+* the centre's sensitivity (the sealed rise per newton of a point load there) and its
+  stiffness (a load on the 10 x 10 mm centre patch per metre of the patch's deflection, the
+  chamber open: one more tangent solve).
 
 The simulated box then runs on an :class:`softpad.sim.AnalyticCharacteristic` fitted to these
 numbers (volume, compliance, height and effective area at p0), see :meth:`FemResponse.characteristic`.
@@ -31,6 +36,9 @@ GRAVITY_M_S2 = 9.80665
 BRICK_FOOTPRINT_M = (0.042, 0.031)
 #: Residual air under a flat layer, m^3 (as the packaged characteristic, 0.2 mL).
 GAP_VOLUME_M3 = 0.2e-6
+#: Side of the compact weight whose minimum detectable mass every pad is compared by, m
+#: (10 x 10 mm at the module's centre, as ``softpad pad sensitivity``'s compact probe).
+COMPACT_SIDE_M = 0.010
 
 
 @dataclass(frozen=True)
@@ -68,6 +76,15 @@ class FemResponse:
     map_rise_pa_n: tuple[float, ...]
     #: Wall time of the finite-element work, s.
     solve_time_s: float = 0.0
+    #: Sealed-chamber rise per newton of a point load at the module's centre, Pa/N.
+    centre_rise_pa_n: float = float("nan")
+    #: Sealed-chamber rise per newton of a 10 x 10 mm weight at the centre, Pa/N.
+    compact_rise_pa_n: float = float("nan")
+    #: Smallest 10 x 10 mm weight at the centre whose rise reaches t_o, kg.
+    compact_min_detectable_mass_kg: float = float("nan")
+    #: Open chamber (constant pressure): a load spread on the 10 x 10 mm centre patch per
+    #: metre of the patch's mean deflection, N/m.
+    centre_stiffness_n_m: float = float("nan")
 
     def characteristic(self) -> Any:
         """An :class:`softpad.sim.AnalyticCharacteristic` through this response at p0.
@@ -111,6 +128,9 @@ class FemResponse:
             "rise_kpa_per_n": round(self.rise_pa_n * 1e-3, 4),
             "min_detectable_mass_g": round(self.min_detectable_mass_kg * 1e3, 2),
             "sensitive_fraction": round(self.sensitive_fraction, 3),
+            "centre_rise_kpa_per_n": round(self.centre_rise_pa_n * 1e-3, 4),
+            "compact_min_detectable_mass_g": round(self.compact_min_detectable_mass_kg * 1e3, 2),
+            "centre_stiffness_n_per_mm": round(self.centre_stiffness_n_m * 1e-3, 4),
         }
 
 
@@ -146,6 +166,12 @@ def fem_response(
     per_force = float(np.dot(model.load_patch_weights, dudp[:, 2]))
     rise = per_force / (compliance + gas)
     xy, point_rise, fraction = _sensitivity_map(model, dudp, compliance + gas)
+    from softpad.fem import LoadPatch
+
+    centre = float(dudp[model.centre_top_point, 2]) / (compliance + gas)
+    compact_patch = LoadPatch("rectangle", COMPACT_SIDE_M, COMPACT_SIDE_M)
+    compact = float(np.dot(model.patch_weights(compact_patch), dudp[:, 2])) / (compliance + gas)
+    stiffness = 1.0 / model.patch_load_compliance(compact_patch)
     return FemResponse(
         width_m=width_m,
         thickness_m=thickness_m,
@@ -161,6 +187,10 @@ def fem_response(
         map_xy_m=xy,
         map_rise_pa_n=point_rise,
         solve_time_s=time.perf_counter() - t0,
+        centre_rise_pa_n=centre,
+        compact_rise_pa_n=compact,
+        compact_min_detectable_mass_kg=threshold_pa / (compact * GRAVITY_M_S2),
+        centre_stiffness_n_m=stiffness,
     )
 
 

@@ -627,6 +627,23 @@ class ModuleModel:
             return dudp, float(4.0 * np.dot(g[self._dof1], du[self._dof1]))
         return dudp
 
+    def patch_weights(self, patch: LoadPatch) -> np.ndarray:
+        """Share of a load spread evenly on ``patch`` carried by each point (sums to one)."""
+        return -self._patch_load_vector(patch)[2::3] / 0.25
+
+    def patch_load_compliance(self, patch: LoadPatch) -> float:
+        """Load-weighted mean downward deflection of ``patch`` per newton of a load spread
+        evenly on it, at constant chamber pressure (an open chamber), m/N, at the current
+        state: one tangent solve (the quarter carries a quarter of the load)."""
+        from scipy.sparse.linalg import spsolve
+
+        _, K = self._system(self.pressure_pa, self.load_n)
+        f = np.zeros(K.shape[0])
+        f[: self._ndisp] = self._patch_load_vector(patch)
+        du = np.zeros_like(f)
+        du[self._dof1] = spsolve(K[self._dof1][:, self._dof1].tocsc(), f[self._dof1])
+        return float(-np.dot(self.patch_weights(patch), du[: self._ndisp][2::3]))
+
     # ------------------------------------------------------------------ output
     def full_mesh(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Whole-module points, hexahedral cells and displacements by mirroring the quarter.
