@@ -236,3 +236,26 @@ def test_estimate_is_the_likelihood_of_each_hypothesis_on_its_own(name, masked):
     assert ll.min() > best - params.log_floor
     want = np.exp(ll - ll.max())
     np.testing.assert_allclose(list(got.values()), want / want.sum(), rtol=1e-9)
+
+
+def test_pad_model_is_the_cast_pads_fem_response_relative_to_each_chambers_centre():
+    """The planner's default pad model against the FEM table's own lookup
+    (softpad.fem.CastPadResponse.influence), chamber by chamber, at p0."""
+    from softpad.sim import default_cast_response
+
+    cast = default_cast_response()
+    assert cast is not None
+    model = packaged_pad_model()
+    pitch = float(cast.centers_m[1, 0] - cast.centers_m[0, 0])
+    rng = np.random.default_rng(3)
+    local = rng.uniform(-0.45, 0.45, (40, 2))
+    expected = []
+    for k, centre in enumerate(cast.centers_m):
+        s = cast.influence(centre + local * pitch, thesis.P0_PA)[:, k]
+        expected.append(s / cast.influence(centre[None], thesis.P0_PA)[0, k])
+    # the table is sampled on a 91-point grid (1/90 module): nearest lookup, 2 % of the centre
+    np.testing.assert_allclose(model.response(local), np.mean(expected, axis=0), atol=0.02)
+    clamped = packaged_pad_model(pad="clamped")
+    assert not np.allclose(clamped.table, model.table, atol=1e-3)
+    with pytest.raises(InputError, match="pad model"):
+        packaged_pad_model(pad="glass")

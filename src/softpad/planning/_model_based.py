@@ -3,8 +3,9 @@
 The module reads top to bottom in the order the planner works:
 
 1. **The pad model** (:class:`PadModel`): how much a load at a point of a module raises its
-   chamber's pressure, relative to the same load at the centre: the project's FEM response
-   (``softpad/data/module_response.npz``, written by ``softpad fem response``), read as data.
+   chamber's pressure, relative to the same load at the centre: the project's FEM of the pad
+   as cast (``softpad/data/cast_pad_response.npz``, written by ``softpad fem cast-response``;
+   the simulator's default pad), read as data.
 2. **Estimate** (:func:`estimate`): hypotheses of a rectangular footprint (centre, length,
    width, yaw on a coarse grid) carrying the object's weight evenly; each predicts every
    module's increment up to one unknown scale (the weight), fitted in closed form; the Gaussian
@@ -144,21 +145,60 @@ class PadModel:
 
 
 @lru_cache(maxsize=4)
-def packaged_pad_model(pressure_pa: float = thesis.P0_PA) -> PadModel:
-    """The pad model from the packaged FEM response at the pressure nearest ``pressure_pa``
-    (bilinear between the FEM's nodes)."""
-    path = resources.files("softpad").joinpath("data", "module_response.npz")
-    try:
-        with path.open("rb") as fh, np.load(fh, allow_pickle=False) as z:
-            p, axis, infl = z["pressure_pa"], z["axis_m"], z["influence_m3_n"]
-    except (OSError, KeyError, ValueError) as exc:
-        raise InputError(f"cannot read the packaged module response: {exc}") from None
+def packaged_pad_model(pressure_pa: float = thesis.P0_PA, pad: str = "cast") -> PadModel:
+    """The pad model from the project's packaged FEM response at ``pressure_pa``.
+
+    ``pad="cast"`` (default): the pad as built, one silicone layer cast over every chamber
+    (``softpad/data/cast_pad_response.npz``, ``softpad fem cast-response``; the simulator's
+    default pad): each chamber's response over its own square, relative to its centre,
+    averaged over the chambers (linear between the table's pressures). ``pad="clamped"``:
+    the single module clamped at its edge (``module_response.npz``, the first generation's
+    model; bilinear, nearest pressure)."""
+    if pad == "cast":
+        return _cast_pad_model(pressure_pa)
+    if pad != "clamped":
+        raise InputError(f"pad model must be 'cast' or 'clamped', got {pad!r}")
+    z = _read_npz("module_response.npz", ("pressure_pa", "axis_m", "influence_m3_n"))
+    p, axis, infl = z["pressure_pa"], z["axis_m"], z["influence_m3_n"]
     s = infl[int(np.argmin(np.abs(p - pressure_pa)))]
     side = 2.0 * float(axis[-1])  # the FEM module's chamber; its seam is 0 (thesis figures)
     grid = np.abs(np.linspace(-0.5, 0.5, _LOOKUP)) * side
-    along_x = np.array([np.interp(grid, axis, s[:, j]) for j in range(axis.size)])  # (N, L)
-    table = np.array([np.interp(grid, axis, along_x[:, i]) for i in range(_LOOKUP)])
-    return PadModel(np.clip(table / s[0, 0], 0.0, None))
+    return PadModel(np.clip(_bilinear(axis, axis, s, grid, grid) / s[0, 0], 0.0, None))
+
+
+def _read_npz(name: str, keys: tuple[str, ...]) -> dict[str, Array]:
+    """Arrays ``keys`` of the packaged ``name`` (InputError when unreadable)."""
+    path = resources.files("softpad").joinpath("data", name)
+    try:
+        with path.open("rb") as fh, np.load(fh, allow_pickle=False) as z:
+            return {k: np.asarray(z[k], dtype=float) for k in keys}
+    except (OSError, KeyError, ValueError) as exc:
+        raise InputError(f"cannot read the packaged pad response {name}: {exc}") from None
+
+
+def _bilinear(ax: Array, ay: Array, values: Array, gx: Array, gy: Array) -> Array:
+    """``values`` (on nodes ``ax`` x ``ay``) at the grid ``gx`` x ``gy``: (len gx, len gy)."""
+    along_x = np.array([np.interp(gx, ax, values[:, j]) for j in range(ay.size)])  # (Ny, L)
+    return np.array([np.interp(gy, ay, along_x[:, i]) for i in range(gx.size)])
+
+
+def _cast_pad_model(pressure_pa: float) -> PadModel:
+    """:func:`packaged_pad_model` of the cast pad (see there)."""
+    keys = ("pressure_pa", "x_axis_m", "y_axis_m", "influence_m3_n", "centers_m")
+    z = _read_npz("cast_pad_response.npz", keys)
+    p, infl = z["pressure_pa"], z["influence_m3_n"]
+    i = int(np.clip(np.searchsorted(p, pressure_pa) - 1, 0, max(p.size - 2, 0)))
+    j = min(i + 1, p.size - 1)
+    f = 0.0 if j == i else float(np.clip((pressure_pa - p[i]) / (p[j] - p[i]), 0.0, 1.0))
+    s = (1 - f) * infl[i] + f * infl[j]  # (K, Nx, Ny)
+    centres = z["centers_m"]
+    pitch = float(np.min(np.diff(np.unique(np.round(centres[:, 0], 9)))))
+    local = np.linspace(-0.5, 0.5, _LOOKUP) * pitch
+    maps = []
+    for k, (cx, cy) in enumerate(centres):
+        m = _bilinear(z["x_axis_m"], z["y_axis_m"], s[k], cx + local, cy + local)
+        maps.append(m / m[_LOOKUP // 2, _LOOKUP // 2])
+    return PadModel(np.clip(np.mean(maps, axis=0), 0.0, None))
 
 
 # --- 2. estimate -------------------------------------------------------------------------------
@@ -534,7 +574,8 @@ class ModelBasedPlanner:
         The contact detector's step floor over the thesis detector's
         (:func:`softpad.sensing.sensing_ratio`; 1 for the thesis's).
     model
-        The pad model (:func:`packaged_pad_model` at ``params.pressure_pa`` by default).
+        The pad model (:func:`packaged_pad_model` at ``params.pressure_pa`` by default: the
+        cast pad's FEM response).
     """
 
     gripper: GripperSpec = field(default_factory=GripperSpec)
