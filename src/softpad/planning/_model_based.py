@@ -80,6 +80,24 @@ class ModelBasedParams:
     #: Half-width of the band across the jaws, as a share of the object's half-extent, in
     #: which the grasp centre must lie for the object to hang balanced between the jaws.
     centre_band: float = 0.5
+    #: The object's extent over its footprint (along the footprint's length, across it) for
+    #: each shape the pad cannot tell apart: a box rests on its whole face (1, 1); a lying
+    #: cylinder on a strip half its diameter wide (1, 2); a round object (a ball, a fruit) on
+    #: a disc half its diameter across (2, 2). The halves are a soft pad's contact, the
+    #: simulator's LYING_CYLINDER_CONTACT_FRACTION and SPHERE_CONTACT_FRACTION (0.5 each).
+    shape_extents: tuple[tuple[float, float], ...] = ((1.0, 1.0), (1.0, 2.0), (2.0, 2.0))
+    #: Prior weight of each shape of ``shape_extents`` (equal: the readings do not tell them
+    #: apart; an assumption set before any trial ran).
+    shape_weights: tuple[float, ...] = (1.0, 1.0, 1.0)
+    #: Steps each way of the finer search around the best coarse candidate (2: a 5 x 5 x 5
+    #: grid of direction, shift along and shift across the closing direction).
+    refine_steps: int = 2
+    #: Direction step of the finer search, as a share of the fan's step (0.25: 5.6 degrees,
+    #: so that the finer grid reaches half-way to the next direction of the fan).
+    refine_turn: float = 0.25
+    #: Shift step of the finer search, as a share of the hypotheses' centre step (0.25:
+    #: 2.8 mm on the 45 mm pad; the grid reaches half-way to the next centre tried).
+    refine_shift: float = 0.25
     #: Mean response under a fingertip's sole, as a share of the centre's, at which the
     #: thesis's contact detector senses it (scaled by the detector's sensing ratio).
     needed_share: float = 0.5
@@ -98,6 +116,8 @@ class ModelBasedParams:
         positive = ("noise_pa", "clearance_m", "centre_band", "needed_share", "pressure_pa")
         for name in (
             *positive,
+            "refine_turn",
+            "refine_shift",
             "model_error",
             "surprise",
             "side_share",
@@ -107,14 +127,27 @@ class ModelBasedParams:
             v = getattr(self, name)
             if not (isinstance(v, int | float) and math.isfinite(v) and v >= 0):
                 raise InputError(f"model-based parameter {name} must be a number >= 0, got {v!r}")
-        for name in ("centre_steps", "yaw_steps", "kept_hypotheses", "directions"):
+        for name in ("centre_steps", "yaw_steps", "kept_hypotheses", "directions", "refine_steps"):
             v = getattr(self, name)
-            if not (isinstance(v, int) and 1 <= v <= 64):
+            if not (isinstance(v, int) and (0 if name == "refine_steps" else 1) <= v <= 64):
                 raise InputError(
                     f"model-based parameter {name} must be an integer 1..64, got {v!r}"
                 )
         if not self.sizes_mm or not all(0 < s <= 500 for s in self.sizes_mm):
             raise InputError(f"sizes_mm must be lengths in (0, 500] mm, got {self.sizes_mm!r}")
+        _check_shapes(self.shape_extents, self.shape_weights)
+
+
+def _check_shapes(extents: tuple[tuple[float, float], ...], weights: tuple[float, ...]) -> None:
+    """InputError unless every shape has two extents >= 1 and a weight >= 0, some > 0."""
+    ok = len(extents) >= 1 and len(weights) == len(extents)
+    ok = ok and all(len(e) == 2 and all(math.isfinite(v) and v >= 1 for v in e) for e in extents)
+    ok = ok and all(math.isfinite(w) and w >= 0 for w in weights) and sum(weights) > 0
+    if not ok:
+        raise InputError(
+            "shape_extents must be pairs of numbers >= 1 with one weight >= 0 each (some > 0), "
+            f"got {extents!r} and {weights!r}"
+        )
 
 
 # --- 1. the pad model --------------------------------------------------------------------------
@@ -487,12 +520,67 @@ def _offsets(post: Posterior, centres: Array, thetas: Array) -> tuple[Array, ...
     return dx * ux + dy * uy, dy * ux - dx * uy, c, s
 
 
-def _half_extents(post: Posterior, c: Array, s: Array, widen: float | Array) -> tuple[Array, Array]:
-    """Half extents of the footprints along and across the closing direction (G, H), or
-    (K, G, H) for ``widen`` (K, 1, 1); ``widen`` multiplies the footprint's width (2: a
-    lying cylinder, whose contact strip is half its diameter)."""
-    hl, hw = post.halves[None, :, 0], widen * post.halves[None, :, 1]
+def _half_extents(post: Posterior, c: Array, s: Array, extents: Array) -> tuple[Array, Array]:
+    """Half extents of the object along and across the closing direction for each shape
+    (``extents`` (S, 2): the object's extent over its footprint along the footprint's length
+    and across it): (S, G, H) each."""
+    hl = extents[:, 0, None, None] * post.halves[None, None, :, 0]
+    hw = extents[:, 1, None, None] * post.halves[None, None, :, 1]
     return hl * c + hw * s, hl * s + hw * c
+
+
+def _shapes(params: ModelBasedParams) -> tuple[Array, Array]:
+    """The shapes' extents (S, 2) and prior weights (S,) summing to 1."""
+    w = np.asarray(params.shape_weights, dtype=float)
+    return np.asarray(params.shape_extents, dtype=float), w / w.sum()
+
+
+def edge_scale(params: ModelBasedParams) -> float:
+    """Scale of the logistic error of where the object's edge lies beyond a hypothesis's,
+    module units: its rms is the rms of the hypotheses' centre grid's rounding (a uniform
+    error over one step, step / sqrt(12); 3.2 mm on the 45 mm pad at 4 steps a module)."""
+    rms = 1.0 / (params.centre_steps * math.sqrt(12.0))
+    return rms * math.sqrt(3.0) / math.pi  # a logistic of scale b has rms b pi / sqrt(3)
+
+
+def _clear(margin: Array, scale: float) -> Array:
+    """Chance that an edge lies inside a jaw's path by less than ``margin`` (logistic)."""
+    return 1.0 / (1.0 + np.exp(-np.clip(margin / scale, -60.0, 60.0)))
+
+
+def _landing_terms(
+    post: Posterior,
+    centres: Array,
+    thetas: Array,
+    gripper: GripperSpec,
+    layout: PadLayout,
+    params: ModelBasedParams,
+) -> tuple[Array, NDArray[np.bool_]]:
+    """Per shape and hypothesis (S, G, H): the chance that both open jaws come down clear of
+    the object (the landing term), and whether it then closes on it and hangs balanced."""
+    half_open = (gripper.max_width_m / 2 - params.clearance_m) / layout.pitch_m
+    narrow = gripper.min_width_m / layout.pitch_m
+    m_u, m_n, c, s = _offsets(post, centres, thetas)
+    e_u, e_n = _half_extents(post, c, s, _shapes(params)[0])
+    b = edge_scale(params)
+    clear = _clear(half_open - m_u - e_u, b) * _clear(half_open + m_u - e_u, b)
+    hold = (2 * e_u > narrow) & (np.abs(m_n) < params.centre_band * e_n)
+    return clear, hold
+
+
+def landing_chance(
+    post: Posterior,
+    centres: Array,
+    thetas: Array,
+    gripper: GripperSpec,
+    layout: PadLayout,
+    params: ModelBasedParams,
+) -> Array:
+    """Posterior chance (G,) that a jaw of each grasp comes down on the object: from the
+    estimated footprints (the posterior), the shapes they may be of, and the uncertainty of
+    where the object's edge lies (:func:`edge_scale`)."""
+    clear, _ = _landing_terms(post, centres, thetas, gripper, layout, params)
+    return 1.0 - np.einsum("s,sgh,h->g", _shapes(params)[1], clear, post.probs)
 
 
 def fit_chance(
@@ -503,15 +591,11 @@ def fit_chance(
     layout: PadLayout,
     params: ModelBasedParams,
 ) -> Array:
-    """Posterior chance (G,) that each grasp's jaws come down clear of the object, close on
-    it and hold it balanced, a box's footprint and a lying cylinder's counting alike."""
-    half_open = (gripper.max_width_m / 2 - params.clearance_m) / layout.pitch_m
-    narrow = gripper.min_width_m / layout.pitch_m
-    m_u, m_n, c, s = _offsets(post, centres, thetas)
-    e_u, e_n = _half_extents(post, c, s, np.array([1.0, 2.0])[:, None, None])  # (2, G, H)
-    ok = (np.abs(m_u) + e_u < half_open) & (2 * e_u > narrow)
-    ok &= np.abs(m_n) < params.centre_band * e_n
-    return 0.5 * (ok[0] @ post.probs) + 0.5 * (ok[1] @ post.probs)
+    """Posterior chance (G,) that each grasp's jaws come down clear of the object (the
+    landing term, :func:`landing_chance`), close on it and hold it balanced, every shape of
+    ``params.shape_extents`` counting with its weight."""
+    clear, hold = _landing_terms(post, centres, thetas, gripper, layout, params)
+    return np.einsum("s,sgh,h->g", _shapes(params)[1], clear * hold, post.probs)
 
 
 def predicted_success(
@@ -531,6 +615,22 @@ def predicted_success(
     return sensed * fit_chance(post, centres, thetas, gripper, layout, params)
 
 
+def refined(centre: Array, theta: float, params: ModelBasedParams) -> tuple[Array, Array]:
+    """The finer search around a grasp: centres (G, 2), module units, and directions (G,):
+    every direction ``refine_steps`` steps of ``refine_turn`` fan steps either way, with the
+    centre shifted along and across it by ``refine_steps`` steps of ``refine_shift``
+    hypothesis steps either way (the grasp itself included)."""
+    k = np.arange(-params.refine_steps, params.refine_steps + 1)
+    thetas = theta + k * params.refine_turn * math.pi / params.directions
+    shift = k * params.refine_shift / params.centre_steps
+    u = np.column_stack([np.cos(thetas), np.sin(thetas)])  # (D, 2)
+    n = np.column_stack([-u[:, 1], u[:, 0]])
+    along, across = np.meshgrid(shift, shift, indexing="ij")
+    offs = along.ravel()[:, None, None] * u[None] + across.ravel()[:, None, None] * n[None]
+    centres = np.asarray(centre) + offs  # (A, D, 2)
+    return centres.reshape(-1, 2), np.tile(thetas, along.size)
+
+
 def landing_likelihood(
     post: Posterior,
     plan: GraspPlan,
@@ -541,19 +641,18 @@ def landing_likelihood(
 ) -> Array:
     """Likelihood (H,) of a landing of ``plan``'s jaws on the object, on the ``side`` of the
     centre the pad felt pressed (+1 along the closing direction, -1 against, 0 unknown):
-    1 where the footprint (either shape) puts a jaw there, ``surprise`` elsewhere."""
+    1 where the footprint (any shape, by its weight) puts a jaw there, ``surprise``
+    elsewhere."""
     centre, theta = np.array([plan.cog]), np.array([plan.theta])
     half_open = gripper.max_width_m / 2 / layout.pitch_m
     tip_half = gripper.tip_width_m / 2 / layout.pitch_m
-    m_u, m_n, c, s = (a[0] for a in _offsets(post, centre, theta))
-    like = np.zeros(len(post.probs))
-    for widen in (1.0, 2.0):
-        e_u, e_n = (a[0] for a in _half_extents(post, c[None], s[None], widen))
-        under = np.abs(m_n) < e_n + tip_half
-        plus, minus = under & (m_u + e_u > half_open), under & (m_u - e_u < -half_open)
-        hit = {1: plus, -1: minus}.get(side, plus | minus)
-        like += 0.5 * np.where(hit, 1.0, params.surprise)
-    return like
+    m_u, m_n, c, s = _offsets(post, centre, theta)  # (1, H) each
+    extents, weights = _shapes(params)
+    e_u, e_n = (a[:, 0] for a in _half_extents(post, c, s, extents))  # (S, H)
+    under = np.abs(m_n) < e_n + tip_half
+    plus, minus = under & (m_u + e_u > half_open), under & (m_u - e_u < -half_open)
+    hit = {1: plus, -1: minus}.get(side, plus | minus)
+    return np.asarray(weights @ np.where(hit, 1.0, params.surprise), dtype=float)
 
 
 # --- 5. choose ---------------------------------------------------------------------------------
@@ -598,7 +697,24 @@ class ModelBasedPlanner:
         d = check_increments(increments_pa, layout)
         groups = outline_objects(d, objects, layout, self.params.outline_threshold_pa)
         self._evidence.clear()
-        return [self._choose(d, g, groups, layout, []) for g in groups]
+        return [self._choose(d, g, groups, layout, [])[0] for g in groups]
+
+    def mounting_success(
+        self,
+        increments_pa: ArrayLike,
+        objects: list[tuple[int, ...]],
+        layout: PadLayout,
+        gripper: GripperSpec,
+    ) -> float:
+        """Predicted success of the grasp this planner would choose for the most loaded of
+        ``objects`` with ``gripper``'s jaws (the ``--mounting auto`` hook)."""
+        d = check_increments(increments_pa, layout)
+        groups = outline_objects(d, objects, layout, self.params.outline_threshold_pa)
+        if not groups:
+            return 0.0
+        target = max(groups, key=lambda g: float(sum(d[m - 1] for m in g)))
+        other = replace(self, gripper=gripper, _evidence={})
+        return other._choose(d, target, groups, layout, [])[1]
 
     def retry(
         self,
@@ -619,7 +735,7 @@ class ModelBasedPlanner:
         if (plan, side) not in seen:  # asked at the landing, then after the miss: one landing
             seen.append((plan, side))
         groups = outline_objects(d, [plan.modules], layout, self.params.outline_threshold_pa)
-        best = self._choose(d, plan.modules, groups, layout, seen)
+        best = self._choose(d, plan.modules, groups, layout, seen)[0]
         moved = math.dist(best.cog, plan.cog) * layout.pitch_m > 2e-3
         turned = abs(math.remainder(best.theta - plan.theta, math.pi)) > math.radians(5)
         if not closed and not (moved or turned):
@@ -633,7 +749,9 @@ class ModelBasedPlanner:
         groups: list[tuple[int, ...]],
         layout: PadLayout,
         evidence: list[tuple[GraspPlan, int]],
-    ) -> GraspPlan:
+    ) -> tuple[GraspPlan, float]:
+        """The grasp of the object on ``modules`` with the highest predicted success, and
+        that success."""
         assert self.model is not None
         others = frozenset(m for g in groups if g != modules for m in g)
         post = estimate(d, modules, layout, self.model, self.params, others)
@@ -647,10 +765,18 @@ class ModelBasedPlanner:
             post, cg, tg, self.gripper, layout, self.model, self.params, self.sensing_ratio
         )
         i = int(np.argmax(score))
+        if self.params.refine_steps:
+            cg, tg = refined(cg[i], float(tg[i]), self.params)
+            score = predicted_success(
+                post, cg, tg, self.gripper, layout, self.model, self.params, self.sensing_ratio
+            )
+            i = int(np.argmax(score))  # the coarse best is the grid's centre: never worse
         centre = (float(cg[i, 0]), float(cg[i, 1]))
-        theta = float(tg[i]) - (math.pi if tg[i] > math.pi / 2 + 1e-12 else 0.0)
+        t = float(tg[i]) % math.pi
+        theta = t - (math.pi if t > math.pi / 2 + 1e-12 else 0.0)
         rule = f"model-based p={score[i]:.2f}"
-        return GraspPlan(modules, pcom(d, modules, layout), centre, theta, rule, modules)
+        plan = GraspPlan(modules, pcom(d, modules, layout), centre, theta, rule, modules)
+        return plan, float(score[i])
 
 
 def _pressed_side(plan: GraspPlan, layout: PadLayout, rise: Array, share: float) -> int:
