@@ -376,3 +376,26 @@ def test_the_mounting_is_the_one_with_the_highest_predicted_success():
         assert p[chosen] == max(p.values()), (p, chosen)
         assert chosen == expected or expected is None, p
         assert len(set(p.values())) == 3, p  # the mountings are told apart
+
+
+@pytest.mark.parametrize("box", BOXES)
+def test_grid_scoring_equals_scoring_grasp_by_grasp(box):
+    """The planner scores its candidates as a grid (the landing term per shift along, the
+    balance per shift across); the same grasps scored one by one give the same figures."""
+    from softpad.planning._model_based import (
+        candidate_grid,
+        grid_success,
+        predicted_success,
+        refined_grid,
+    )
+
+    params, model = ModelBasedParams(), packaged_pad_model()
+    post = _posterior(box, params)
+    for grid in (candidate_grid(post, params), refined_grid(np.array([1.4, 1.1]), 0.3, params)):
+        score = grid_success(post, grid, WIDE, LAYOUT, model, params, 1.3)
+        centres, thetas = grid.grasps()
+        one_by_one = predicted_success(
+            post, centres.reshape(-1, 2), thetas.ravel(), WIDE, LAYOUT, model, params, 1.3
+        )
+        np.testing.assert_allclose(score.ravel(), one_by_one, rtol=1e-9, atol=1e-12)
+        assert score.max() > 0  # not a comparison of zeros

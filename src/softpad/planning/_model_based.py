@@ -468,6 +468,23 @@ def _padded(
 # --- 3. candidates -----------------------------------------------------------------------------
 
 
+def candidate_grid(post: Posterior, params: ModelBasedParams) -> Grid:
+    """:func:`candidates` as a :class:`Grid`."""
+    step = 1.0 / params.centre_steps
+    fan = np.arange(params.directions) * math.pi / params.directions
+    thetas = np.unique(np.concatenate([fan, (post.yaws + math.pi / 2) % math.pi]))
+    across = np.array([0.0, 0.5, -0.5, 1.0, -1.0]) * step
+    return Grid(np.asarray(post.mean_centre()), thetas, np.zeros(1), across)
+
+
+def refined_grid(centre: Array, theta: float, params: ModelBasedParams) -> Grid:
+    """:func:`refined` as a :class:`Grid`."""
+    k = np.arange(-params.refine_steps, params.refine_steps + 1)
+    thetas = theta + k * params.refine_turn * math.pi / params.directions
+    shift = k * params.refine_shift / params.centre_steps
+    return Grid(np.asarray(centre, dtype=float), thetas, shift, shift)
+
+
 def candidates(post: Posterior, params: ModelBasedParams) -> tuple[Array, Array]:
     """Grasp centres (G, 2), module units, and closing directions (G,): the fixed fan of
     directions and the directions across the likely footprints, each with its centre on the
@@ -508,15 +525,23 @@ def tip_response(
     return np.maximum(np.maximum(0.0, mean[0]), mean[1])
 
 
-def _offsets(post: Posterior, centres: Array, thetas: Array) -> tuple[Array, ...]:
+def _offsets(
+    post: Posterior, centres: Array, thetas: Array, distinct: int | None = None
+) -> tuple[Array, ...]:
     """Offsets of each footprint's centre from each grasp centre along and across the
-    closing direction, and |cos|, |sin| of the footprint's yaw from it: (G, H) each."""
+    closing direction, and |cos|, |sin| of the footprint's yaw from it: (G, H) each
+    (``centres`` may be one centre for all, (1, 2); ``distinct``: the directions are all
+    different, G of them)."""
     ux, uy = np.cos(thetas)[:, None], np.sin(thetas)[:, None]
     dx = post.centres[None, :, 0] - centres[:, None, 0]
     dy = post.centres[None, :, 1] - centres[:, None, 1]
-    directions, row = np.unique(thetas, return_inverse=True)  # a few, each at several centres
-    phi = post.yaws[None, :] - directions[:, None]
-    c, s = np.abs(np.cos(phi))[row], np.abs(np.sin(phi))[row]
+    if distinct is not None:
+        phi = post.yaws[None, :] - thetas[:, None]
+        c, s = np.abs(np.cos(phi)), np.abs(np.sin(phi))
+    else:  # a few, each at several centres
+        directions, row = np.unique(thetas, return_inverse=True)
+        phi = post.yaws[None, :] - directions[:, None]
+        c, s = np.abs(np.cos(phi))[row], np.abs(np.sin(phi))[row]
     return dx * ux + dy * uy, dy * ux - dx * uy, c, s
 
 
@@ -545,7 +570,7 @@ def edge_scale(params: ModelBasedParams) -> float:
 
 def _clear(margin: Array, scale: float) -> Array:
     """Chance that an edge lies inside a jaw's path by less than ``margin`` (logistic)."""
-    return 1.0 / (1.0 + np.exp(-np.clip(margin / scale, -60.0, 60.0)))
+    return 0.5 + 0.5 * np.tanh(margin * (0.5 / scale))  # the logistic, without overflow
 
 
 def _landing_terms(
@@ -613,6 +638,63 @@ def predicted_success(
     need = params.needed_share * sensing_ratio
     sensed = np.clip(tip_response(centres, thetas, gripper, layout, model) / need, 0.0, 1.0)
     return sensed * fit_chance(post, centres, thetas, gripper, layout, params)
+
+
+@dataclass(frozen=True)
+class Grid:
+    """Grasps on a grid: every direction of ``thetas`` (D,) with its centre at ``base``
+    (2,) shifted by each of ``along`` (A,) along the closing direction and each of
+    ``across`` (B,) across it (module units). Scored as a grid, the landing term depends on
+    the shift along only and the balance on the shift across only: (A + B) D H terms and one
+    product instead of A B D H of each."""
+
+    base: Array
+    thetas: Array
+    along: Array
+    across: Array
+
+    def grasps(self) -> tuple[Array, Array]:
+        """Centres (A, B, D, 2) and directions (A, B, D) of the grid's grasps."""
+        u = np.column_stack([np.cos(self.thetas), np.sin(self.thetas)])  # (D, 2)
+        n = np.column_stack([-u[:, 1], u[:, 0]])
+        centres = (
+            self.base
+            + self.along[:, None, None, None] * u[None, None]
+            + self.across[None, :, None, None] * n[None, None]
+        )
+        shape = (self.along.size, self.across.size, self.thetas.size)
+        return centres, np.broadcast_to(self.thetas, shape)
+
+
+def grid_success(
+    post: Posterior,
+    grid: Grid,
+    gripper: GripperSpec,
+    layout: PadLayout,
+    model: PadModel,
+    params: ModelBasedParams,
+    sensing_ratio: float,
+) -> Array:
+    """:func:`predicted_success` of every grasp of ``grid``, (A, B, D)."""
+    half_open = (gripper.max_width_m / 2 - params.clearance_m) / layout.pitch_m
+    narrow = gripper.min_width_m / layout.pitch_m
+    m_u, m_n, c, s = _offsets(post, grid.base[None], grid.thetas, grid.thetas.size)  # (D, H)
+    extents, weights = _shapes(params)
+    e_u, e_n = _half_extents(post, c, s, extents)  # (S, D, H)
+    m_u = m_u[None] - grid.along[:, None, None]  # (A, D, H)
+    b = edge_scale(params)
+    e_u4 = e_u[:, None]
+    clear = _clear(half_open - m_u - e_u4, b) * _clear(half_open + m_u - e_u4, b)  # (S,A,D,H)
+    m_n = np.abs(m_n[None] - grid.across[:, None, None])  # (B, D, H)
+    hold = (2 * e_u > narrow)[:, None] & (m_n < params.centre_band * e_n[:, None])  # (S,B,D,H)
+    # sum over shapes and hypotheses of w_s p_h clear[s,a,d,h] hold[s,b,d,h], as (S, D) matrix
+    # products (a 4-operand einsum is several times slower)
+    lhs = (clear * (weights[:, None, None, None] * post.probs)).transpose(0, 2, 1, 3)
+    fit = (lhs @ hold.astype(float).transpose(0, 2, 3, 1)).sum(axis=0).transpose(1, 2, 0)
+    centres, thetas = grid.grasps()
+    tip = tip_response(centres.reshape(-1, 2), thetas.ravel(), gripper, layout, model)
+    need = params.needed_share * sensing_ratio
+    return np.clip(tip.reshape(fit.shape) / need, 0.0, 1.0) * fit
 
 
 def refined(centre: Array, theta: float, params: ModelBasedParams) -> tuple[Array, Array]:
@@ -760,19 +842,19 @@ class ModelBasedPlanner:
                 landing_likelihood(post, tried, side, self.gripper, layout, self.params)
             )
         post = post.sample(self.params.kept_hypotheses)
-        cg, tg = candidates(post, self.params)
-        score = predicted_success(
-            post, cg, tg, self.gripper, layout, self.model, self.params, self.sensing_ratio
-        )
-        i = int(np.argmax(score))
+        args = (self.gripper, layout, self.model, self.params, self.sensing_ratio)
+        grid = candidate_grid(post, self.params)
+        score = grid_success(post, grid, *args)
+        centres, thetas = grid.grasps()
+        i = np.unravel_index(int(np.argmax(score)), score.shape)
         if self.params.refine_steps:
-            cg, tg = refined(cg[i], float(tg[i]), self.params)
-            score = predicted_success(
-                post, cg, tg, self.gripper, layout, self.model, self.params, self.sensing_ratio
-            )
-            i = int(np.argmax(score))  # the coarse best is the grid's centre: never worse
-        centre = (float(cg[i, 0]), float(cg[i, 1]))
-        t = float(tg[i]) % math.pi
+            grid = refined_grid(centres[i], float(thetas[i]), self.params)
+            score = grid_success(post, grid, *args)
+            centres, thetas = grid.grasps()
+            # the coarse best is the grid's centre: never worse
+            i = np.unravel_index(int(np.argmax(score)), score.shape)
+        centre = (float(centres[i][0]), float(centres[i][1]))
+        t = float(thetas[i]) % math.pi
         theta = t - (math.pi if t > math.pi / 2 + 1e-12 else 0.0)
         rule = f"model-based p={score[i]:.2f}"
         plan = GraspPlan(modules, pcom(d, modules, layout), centre, theta, rule, modules)
