@@ -392,8 +392,7 @@ def test_grid_scoring_equals_scoring_grasp_by_grasp(box):
     params, model = ModelBasedParams(), packaged_pad_model()
     post = _posterior(box, params)
     for grid in (candidate_grid(post, params), refined_grid(np.array([1.4, 1.1]), 0.3, params)):
-        score = grid_success(post, grid, WIDE, LAYOUT, model, params, 1.3)
-        centres, thetas = grid.grasps()
+        score, centres, thetas = grid_success(post, grid, WIDE, LAYOUT, model, params, 1.3)
         one_by_one = predicted_success(
             post, centres.reshape(-1, 2), thetas.ravel(), WIDE, LAYOUT, model, params, 1.3
         )

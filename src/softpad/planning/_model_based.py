@@ -513,8 +513,8 @@ def tip_response(
 ) -> Array:
     """Mean relative response under the better-placed of the two open fingertips of each
     grasp (G,): what the contact detector has to sense."""
-    u = np.column_stack([np.cos(thetas), np.sin(thetas)])
-    n = np.column_stack([-u[:, 1], u[:, 0]])
+    cos, sin = np.cos(thetas), np.sin(thetas)
+    u, n = np.stack([cos, sin], axis=1), np.stack([-sin, cos], axis=1)
     reach = (gripper.max_width_m + gripper.tip_thickness_m) / 2 / layout.pitch_m
     sole = (
         _SOLE[:, 0, None, None] * gripper.tip_thickness_m * u[None]
@@ -655,8 +655,8 @@ class Grid:
 
     def grasps(self) -> tuple[Array, Array]:
         """Centres (A, B, D, 2) and directions (A, B, D) of the grid's grasps."""
-        u = np.column_stack([np.cos(self.thetas), np.sin(self.thetas)])  # (D, 2)
-        n = np.column_stack([-u[:, 1], u[:, 0]])
+        cos, sin = np.cos(self.thetas), np.sin(self.thetas)
+        u, n = np.stack([cos, sin], axis=1), np.stack([-sin, cos], axis=1)  # (D, 2) each
         centres = (
             self.base
             + self.along[:, None, None, None] * u[None, None]
@@ -674,8 +674,9 @@ def grid_success(
     model: PadModel,
     params: ModelBasedParams,
     sensing_ratio: float,
-) -> Array:
-    """:func:`predicted_success` of every grasp of ``grid``, (A, B, D)."""
+) -> tuple[Array, Array, Array]:
+    """:func:`predicted_success` of every grasp of ``grid``, (A, B, D), with the grasps
+    (:meth:`Grid.grasps`)."""
     half_open = (gripper.max_width_m / 2 - params.clearance_m) / layout.pitch_m
     narrow = gripper.min_width_m / layout.pitch_m
     m_u, m_n, c, s = _offsets(post, grid.base[None], grid.thetas, grid.thetas.size)  # (D, H)
@@ -694,7 +695,7 @@ def grid_success(
     centres, thetas = grid.grasps()
     tip = tip_response(centres.reshape(-1, 2), thetas.ravel(), gripper, layout, model)
     need = params.needed_share * sensing_ratio
-    return np.clip(tip.reshape(fit.shape) / need, 0.0, 1.0) * fit
+    return np.clip(tip.reshape(fit.shape) / need, 0.0, 1.0) * fit, centres, thetas
 
 
 def refined(centre: Array, theta: float, params: ModelBasedParams) -> tuple[Array, Array]:
@@ -844,13 +845,11 @@ class ModelBasedPlanner:
         post = post.sample(self.params.kept_hypotheses)
         args = (self.gripper, layout, self.model, self.params, self.sensing_ratio)
         grid = candidate_grid(post, self.params)
-        score = grid_success(post, grid, *args)
-        centres, thetas = grid.grasps()
+        score, centres, thetas = grid_success(post, grid, *args)
         i = np.unravel_index(int(np.argmax(score)), score.shape)
         if self.params.refine_steps:
             grid = refined_grid(centres[i], float(thetas[i]), self.params)
-            score = grid_success(post, grid, *args)
-            centres, thetas = grid.grasps()
+            score, centres, thetas = grid_success(post, grid, *args)
             # the coarse best is the grid's centre: never worse
             i = np.unravel_index(int(np.argmax(score)), score.shape)
         centre = (float(centres[i][0]), float(centres[i][1]))
