@@ -236,3 +236,165 @@ def test_estimate_is_the_likelihood_of_each_hypothesis_on_its_own(name, masked):
     assert ll.min() > best - params.log_floor
     want = np.exp(ll - ll.max())
     np.testing.assert_allclose(list(got.values()), want / want.sum(), rtol=1e-9)
+
+
+def test_pad_model_is_the_cast_pads_fem_response_relative_to_each_chambers_centre():
+    """The planner's default pad model against the FEM table's own lookup
+    (softpad.fem.CastPadResponse.influence), chamber by chamber, at p0."""
+    from softpad.sim import default_cast_response
+
+    cast = default_cast_response()
+    assert cast is not None
+    model = packaged_pad_model()
+    pitch = float(cast.centers_m[1, 0] - cast.centers_m[0, 0])
+    rng = np.random.default_rng(3)
+    local = rng.uniform(-0.45, 0.45, (40, 2))
+    expected = []
+    for k, centre in enumerate(cast.centers_m):
+        s = cast.influence(centre + local * pitch, thesis.P0_PA)[:, k]
+        expected.append(s / cast.influence(centre[None], thesis.P0_PA)[0, k])
+    # the table is sampled on a 91-point grid (1/90 module): nearest lookup, 2 % of the centre
+    np.testing.assert_allclose(model.response(local), np.mean(expected, axis=0), atol=0.02)
+    clamped = packaged_pad_model(pad="clamped")
+    assert not np.allclose(clamped.table, model.table, atol=1e-3)
+    with pytest.raises(InputError, match="pad model"):
+        packaged_pad_model(pad="glass")
+
+
+def _posterior(box, params=None):
+    params = params or ModelBasedParams()
+    d = _increments(*box)
+    (obj,) = detect_objects(d, LAYOUT)
+    post = estimate(d, obj, LAYOUT, packaged_pad_model(), params)
+    return post.sample(params.kept_hypotheses)
+
+
+def test_a_grasp_whose_jaw_would_land_on_the_footprint_scores_worse():
+    """The landing term: the same direction across a 60 x 30 mm rectangle, centred and then
+    shifted along the closing direction until the near jaw stands over the estimated
+    footprint; the shifted grasp is the likelier to land and scores worse, step by step."""
+    from softpad.planning._model_based import fit_chance, landing_chance, predicted_success
+
+    params, model = ModelBasedParams(), packaged_pad_model()
+    post = _posterior(BOXES[0], params)
+    centre = np.asarray(post.mean_centre())
+    shifts_mm = np.array([0.0, 10.0, 20.0, 30.0])
+    centres = centre + np.column_stack([shifts_mm / 45.0, np.zeros(4)])
+    thetas = np.zeros(4)  # along the 60 mm side, jaws 100 mm apart
+    land = landing_chance(post, centres, thetas, WIDE, LAYOUT, params)
+    fit = fit_chance(post, centres, thetas, WIDE, LAYOUT, params)
+    score = predicted_success(post, centres, thetas, WIDE, LAYOUT, model, params, 1.0)
+    assert (np.diff(land) > 0).all() and land[-1] > land[0] + 0.3, land
+    assert (np.diff(fit) < 0).all(), fit
+    assert score[0] > 0.1 and score[-1] < 0.2 * score[0], score
+
+
+def test_landing_term_is_soft_near_the_edge():
+    """The edge's position is uncertain (a logistic of the centre grid's rms): a jaw 1 mm
+    clear of every hypothesis still lands now and then, one 20 mm clear almost never, so the
+    planner prefers room to spare over a grasp that just fits."""
+    from softpad.planning._model_based import Posterior, edge_scale, landing_chance
+
+    params = ModelBasedParams(shape_weights=(1.0, 0.0, 0.0))
+    post = Posterior(np.array([[1.5, 1.0]]), np.array([[0.5, 0.2]]), np.zeros(1), np.ones(1))
+    # jaws along x open to 100 mm less 2 mm clearance each side; the footprint 45 mm long
+    half_open_mm = 100.0 / 2 - 2.0
+    gaps_mm = np.array([1.0, 5.0, 20.0])
+    shift = (half_open_mm - 22.5 - gaps_mm) / 45.0  # near jaw's gap to the edge: gaps_mm
+    centres = np.column_stack([1.5 + shift, np.ones(3)])
+    land = landing_chance(post, centres, np.zeros(3), WIDE, LAYOUT, params)
+    b_mm = edge_scale(params) * 45.0
+    assert b_mm == pytest.approx(45.0 / 4 / math.sqrt(12) * math.sqrt(3) / math.pi)  # 1.79 mm
+    expected = 1.0 - 1.0 / (1.0 + np.exp(-gaps_mm / b_mm))  # the far jaw is far clear
+    np.testing.assert_allclose(land, expected, rtol=0.05, atol=1e-4)
+    assert land[0] > 0.3 and land[-1] < 1e-3
+
+
+def test_a_round_object_needs_room_a_box_does_not():
+    """Curved objects: a small footprint may be a ball's contact disc (half its diameter).
+    As a round object the same reading makes a landing of centred jaws likelier than as a
+    box, with the 4/0 jaws (40 mm) and with the 10/4 jaws (100 mm) alike."""
+    from softpad.planning._model_based import landing_chance
+
+    box = ((67.5, 45.0), (20.0, 20.0), 0.0, 60.0)
+    narrow = GripperSpec.from_mounting("4/0")
+    out = {}
+    for shapes in ((1.0, 0.0, 0.0), (0.0, 0.0, 1.0)):
+        params = ModelBasedParams(shape_weights=shapes)
+        post = _posterior(box, params)
+        centre = np.asarray([post.mean_centre()])
+        out[shapes] = [
+            float(landing_chance(post, centre, np.zeros(1), g, LAYOUT, params)[0])
+            for g in (narrow, WIDE)
+        ]
+    for k in range(2):
+        assert out[(0.0, 0.0, 1.0)][k] > out[(1.0, 0.0, 0.0)][k] + 0.1, out
+
+
+def test_finer_search_never_scores_worse_and_finds_more_room():
+    """The finer search around the best coarse candidate: its grasp's predicted success is
+    at least the coarse one's on every simulated rectangle, and higher on some."""
+    params = ModelBasedParams()
+    coarse = replace_params(params, refine_steps=0)
+    gains = []
+    for box in BOXES:
+        d = _increments(*box)
+        objs = detect_objects(d, LAYOUT)
+        (fine,) = ModelBasedPlanner(WIDE, params).plan(d, objs, LAYOUT)
+        (rough,) = ModelBasedPlanner(WIDE, coarse).plan(d, objs, LAYOUT)
+        p_fine, p_rough = (float(p.rule.split("p=")[1]) for p in (fine, rough))
+        assert p_fine >= p_rough - 0.005, (box, fine, rough)
+        gains.append(p_fine - p_rough)
+    assert max(gains) > 0.01, gains
+
+
+def replace_params(params, **changes):
+    from dataclasses import replace
+
+    return replace(params, **changes)
+
+
+def test_the_mounting_is_the_one_with_the_highest_predicted_success():
+    """--mounting auto with the model-based planner: every installed mounting's predicted
+    success is asked for, and the highest wins (a large object goes to the wide jaws; a
+    narrow object to jaws whose minimum opening closes on it)."""
+    from softpad.planning import MountingChooser, choose_mounting
+
+    planner = ModelBasedPlanner(WIDE)
+    assert isinstance(planner, MountingChooser)
+    for box, expected in (
+        (((67.5, 45.0), (80.0, 55.0), 0.0, 150.0), "10/4"),
+        *((b, None) for b in BOXES),
+    ):
+        d = _increments(*box)
+        objs = detect_objects(d, LAYOUT)
+        p = {
+            m: planner.mounting_success(d, objs, LAYOUT, GripperSpec.from_mounting(m))
+            for m in ("10/4", "6/2", "4/0")
+        }
+        chosen = choose_mounting(d, LAYOUT, planner=planner)
+        assert p[chosen] == max(p.values()), (p, chosen)
+        assert chosen == expected or expected is None, p
+        assert len(set(p.values())) == 3, p  # the mountings are told apart
+
+
+@pytest.mark.parametrize("box", BOXES)
+def test_grid_scoring_equals_scoring_grasp_by_grasp(box):
+    """The planner scores its candidates as a grid (the landing term per shift along, the
+    balance per shift across); the same grasps scored one by one give the same figures."""
+    from softpad.planning._model_based import (
+        candidate_grid,
+        grid_success,
+        predicted_success,
+        refined_grid,
+    )
+
+    params, model = ModelBasedParams(), packaged_pad_model()
+    post = _posterior(box, params)
+    for grid in (candidate_grid(post, params), refined_grid(np.array([1.4, 1.1]), 0.3, params)):
+        score, centres, thetas = grid_success(post, grid, WIDE, LAYOUT, model, params, 1.3)
+        one_by_one = predicted_success(
+            post, centres.reshape(-1, 2), thetas.ravel(), WIDE, LAYOUT, model, params, 1.3
+        )
+        np.testing.assert_allclose(score.ravel(), one_by_one, rtol=1e-9, atol=1e-12)
+        assert score.max() > 0  # not a comparison of zeros

@@ -55,3 +55,33 @@ def test_reach_is_the_centres_span_plus_one_pitch(
 ) -> None:
     layout = PadLayout()
     assert reach_m(modules, theta, layout) == pytest.approx(pitches * layout.pitch_m, abs=1e-6)
+
+
+class _Predicting:
+    """A planner that says how likely its grasp is under each gripper (by max width)."""
+
+    def __init__(self, success: dict[float, float]) -> None:
+        self.success = success
+        self.asked: list[float] = []
+
+    def plan(self, increments_pa, objects, layout):
+        return []
+
+    def mounting_success(self, increments_pa, objects, layout, gripper):
+        self.asked.append(gripper.max_width_m)
+        return self.success[round(gripper.max_width_m, 3)]
+
+
+def test_a_predicting_planner_decides_the_mounting() -> None:
+    """With a MountingChooser the width rule is not used: the installed mounting with the
+    highest predicted success wins, the narrowest of equals, only installed ones asked."""
+    reading = _reading({3: 120.0, 6: 120.0})  # the width rule says 6/2
+    assert choose_mounting(reading, planner=_Predicting({0.1: 0.9, 0.06: 0.5, 0.04: 0.1})) == "10/4"
+    assert choose_mounting(reading, planner=_Predicting({0.1: 0.2, 0.06: 0.5, 0.04: 0.7})) == "4/0"
+    tie = _Predicting({0.1: 0.6, 0.06: 0.6, 0.04: 0.3})
+    assert choose_mounting(reading, planner=tie) == "6/2"
+    only = _Predicting({0.1: 0.9, 0.06: 0.5, 0.04: 0.1})
+    assert choose_mounting(reading, installed=("6/2", "4/0"), planner=only) == "6/2"
+    assert sorted(only.asked) == [0.04, 0.06]
+    # a planner without the hook: the width rule
+    assert choose_mounting(reading, planner=object()) == "6/2"

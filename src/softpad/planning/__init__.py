@@ -36,7 +36,13 @@ from softpad.planning._model_based import (
 from softpad.planning._mounting import ALL_MOUNTINGS, choose_mounting
 from softpad.planning._params import DEFAULT_SAFETY_SHIFT, PlannerParams
 from softpad.planning._pcom import pcom
-from softpad.planning._plan import Planner, RetryPlanner, ThesisPlanner, plan_grasps
+from softpad.planning._plan import (
+    MountingChooser,
+    Planner,
+    RetryPlanner,
+    ThesisPlanner,
+    plan_grasps,
+)
 from softpad.planning._records import GraspPlan
 from softpad.planning._registry import (
     PLANNER_REGISTRY,
@@ -75,6 +81,7 @@ __all__ = [
     "LearnedTrial",
     "ModelBasedParams",
     "ModelBasedPlanner",
+    "MountingChooser",
     "PadModel",
     "PlanCase",
     "Planner",

@@ -3,8 +3,9 @@
 The module reads top to bottom in the order the planner works:
 
 1. **The pad model** (:class:`PadModel`): how much a load at a point of a module raises its
-   chamber's pressure, relative to the same load at the centre: the project's FEM response
-   (``softpad/data/module_response.npz``, written by ``softpad fem response``), read as data.
+   chamber's pressure, relative to the same load at the centre: the project's FEM of the pad
+   as cast (``softpad/data/cast_pad_response.npz``, written by ``softpad fem cast-response``;
+   the simulator's default pad), read as data.
 2. **Estimate** (:func:`estimate`): hypotheses of a rectangular footprint (centre, length,
    width, yaw on a coarse grid) carrying the object's weight evenly; each predicts every
    module's increment up to one unknown scale (the weight), fitted in closed form; the Gaussian
@@ -79,6 +80,24 @@ class ModelBasedParams:
     #: Half-width of the band across the jaws, as a share of the object's half-extent, in
     #: which the grasp centre must lie for the object to hang balanced between the jaws.
     centre_band: float = 0.5
+    #: The object's extent over its footprint (along the footprint's length, across it) for
+    #: each shape the pad cannot tell apart: a box rests on its whole face (1, 1); a lying
+    #: cylinder on a strip half its diameter wide (1, 2); a round object (a ball, a fruit) on
+    #: a disc half its diameter across (2, 2). The halves are a soft pad's contact, the
+    #: simulator's LYING_CYLINDER_CONTACT_FRACTION and SPHERE_CONTACT_FRACTION (0.5 each).
+    shape_extents: tuple[tuple[float, float], ...] = ((1.0, 1.0), (1.0, 2.0), (2.0, 2.0))
+    #: Prior weight of each shape of ``shape_extents`` (equal: the readings do not tell them
+    #: apart; an assumption set before any trial ran).
+    shape_weights: tuple[float, ...] = (1.0, 1.0, 1.0)
+    #: Steps each way of the finer search around the best coarse candidate (2: a 5 x 5 x 5
+    #: grid of direction, shift along and shift across the closing direction).
+    refine_steps: int = 2
+    #: Direction step of the finer search, as a share of the fan's step (0.25: 5.6 degrees,
+    #: so that the finer grid reaches half-way to the next direction of the fan).
+    refine_turn: float = 0.25
+    #: Shift step of the finer search, as a share of the hypotheses' centre step (0.25:
+    #: 2.8 mm on the 45 mm pad; the grid reaches half-way to the next centre tried).
+    refine_shift: float = 0.25
     #: Mean response under a fingertip's sole, as a share of the centre's, at which the
     #: thesis's contact detector senses it (scaled by the detector's sensing ratio).
     needed_share: float = 0.5
@@ -97,6 +116,8 @@ class ModelBasedParams:
         positive = ("noise_pa", "clearance_m", "centre_band", "needed_share", "pressure_pa")
         for name in (
             *positive,
+            "refine_turn",
+            "refine_shift",
             "model_error",
             "surprise",
             "side_share",
@@ -106,14 +127,27 @@ class ModelBasedParams:
             v = getattr(self, name)
             if not (isinstance(v, int | float) and math.isfinite(v) and v >= 0):
                 raise InputError(f"model-based parameter {name} must be a number >= 0, got {v!r}")
-        for name in ("centre_steps", "yaw_steps", "kept_hypotheses", "directions"):
+        for name in ("centre_steps", "yaw_steps", "kept_hypotheses", "directions", "refine_steps"):
             v = getattr(self, name)
-            if not (isinstance(v, int) and 1 <= v <= 64):
+            if not (isinstance(v, int) and (0 if name == "refine_steps" else 1) <= v <= 64):
                 raise InputError(
                     f"model-based parameter {name} must be an integer 1..64, got {v!r}"
                 )
         if not self.sizes_mm or not all(0 < s <= 500 for s in self.sizes_mm):
             raise InputError(f"sizes_mm must be lengths in (0, 500] mm, got {self.sizes_mm!r}")
+        _check_shapes(self.shape_extents, self.shape_weights)
+
+
+def _check_shapes(extents: tuple[tuple[float, float], ...], weights: tuple[float, ...]) -> None:
+    """InputError unless every shape has two extents >= 1 and a weight >= 0, some > 0."""
+    ok = len(extents) >= 1 and len(weights) == len(extents)
+    ok = ok and all(len(e) == 2 and all(math.isfinite(v) and v >= 1 for v in e) for e in extents)
+    ok = ok and all(math.isfinite(w) and w >= 0 for w in weights) and sum(weights) > 0
+    if not ok:
+        raise InputError(
+            "shape_extents must be pairs of numbers >= 1 with one weight >= 0 each (some > 0), "
+            f"got {extents!r} and {weights!r}"
+        )
 
 
 # --- 1. the pad model --------------------------------------------------------------------------
@@ -144,21 +178,60 @@ class PadModel:
 
 
 @lru_cache(maxsize=4)
-def packaged_pad_model(pressure_pa: float = thesis.P0_PA) -> PadModel:
-    """The pad model from the packaged FEM response at the pressure nearest ``pressure_pa``
-    (bilinear between the FEM's nodes)."""
-    path = resources.files("softpad").joinpath("data", "module_response.npz")
-    try:
-        with path.open("rb") as fh, np.load(fh, allow_pickle=False) as z:
-            p, axis, infl = z["pressure_pa"], z["axis_m"], z["influence_m3_n"]
-    except (OSError, KeyError, ValueError) as exc:
-        raise InputError(f"cannot read the packaged module response: {exc}") from None
+def packaged_pad_model(pressure_pa: float = thesis.P0_PA, pad: str = "cast") -> PadModel:
+    """The pad model from the project's packaged FEM response at ``pressure_pa``.
+
+    ``pad="cast"`` (default): the pad as built, one silicone layer cast over every chamber
+    (``softpad/data/cast_pad_response.npz``, ``softpad fem cast-response``; the simulator's
+    default pad): each chamber's response over its own square, relative to its centre,
+    averaged over the chambers (linear between the table's pressures). ``pad="clamped"``:
+    the single module clamped at its edge (``module_response.npz``, the first generation's
+    model; bilinear, nearest pressure)."""
+    if pad == "cast":
+        return _cast_pad_model(pressure_pa)
+    if pad != "clamped":
+        raise InputError(f"pad model must be 'cast' or 'clamped', got {pad!r}")
+    z = _read_npz("module_response.npz", ("pressure_pa", "axis_m", "influence_m3_n"))
+    p, axis, infl = z["pressure_pa"], z["axis_m"], z["influence_m3_n"]
     s = infl[int(np.argmin(np.abs(p - pressure_pa)))]
     side = 2.0 * float(axis[-1])  # the FEM module's chamber; its seam is 0 (thesis figures)
     grid = np.abs(np.linspace(-0.5, 0.5, _LOOKUP)) * side
-    along_x = np.array([np.interp(grid, axis, s[:, j]) for j in range(axis.size)])  # (N, L)
-    table = np.array([np.interp(grid, axis, along_x[:, i]) for i in range(_LOOKUP)])
-    return PadModel(np.clip(table / s[0, 0], 0.0, None))
+    return PadModel(np.clip(_bilinear(axis, axis, s, grid, grid) / s[0, 0], 0.0, None))
+
+
+def _read_npz(name: str, keys: tuple[str, ...]) -> dict[str, Array]:
+    """Arrays ``keys`` of the packaged ``name`` (InputError when unreadable)."""
+    path = resources.files("softpad").joinpath("data", name)
+    try:
+        with path.open("rb") as fh, np.load(fh, allow_pickle=False) as z:
+            return {k: np.asarray(z[k], dtype=float) for k in keys}
+    except (OSError, KeyError, ValueError) as exc:
+        raise InputError(f"cannot read the packaged pad response {name}: {exc}") from None
+
+
+def _bilinear(ax: Array, ay: Array, values: Array, gx: Array, gy: Array) -> Array:
+    """``values`` (on nodes ``ax`` x ``ay``) at the grid ``gx`` x ``gy``: (len gx, len gy)."""
+    along_x = np.array([np.interp(gx, ax, values[:, j]) for j in range(ay.size)])  # (Ny, L)
+    return np.array([np.interp(gy, ay, along_x[:, i]) for i in range(gx.size)])
+
+
+def _cast_pad_model(pressure_pa: float) -> PadModel:
+    """:func:`packaged_pad_model` of the cast pad (see there)."""
+    keys = ("pressure_pa", "x_axis_m", "y_axis_m", "influence_m3_n", "centers_m")
+    z = _read_npz("cast_pad_response.npz", keys)
+    p, infl = z["pressure_pa"], z["influence_m3_n"]
+    i = int(np.clip(np.searchsorted(p, pressure_pa) - 1, 0, max(p.size - 2, 0)))
+    j = min(i + 1, p.size - 1)
+    f = 0.0 if j == i else float(np.clip((pressure_pa - p[i]) / (p[j] - p[i]), 0.0, 1.0))
+    s = (1 - f) * infl[i] + f * infl[j]  # (K, Nx, Ny)
+    centres = z["centers_m"]
+    pitch = float(np.min(np.diff(np.unique(np.round(centres[:, 0], 9)))))
+    local = np.linspace(-0.5, 0.5, _LOOKUP) * pitch
+    maps = []
+    for k, (cx, cy) in enumerate(centres):
+        m = _bilinear(z["x_axis_m"], z["y_axis_m"], s[k], cx + local, cy + local)
+        maps.append(m / m[_LOOKUP // 2, _LOOKUP // 2])
+    return PadModel(np.clip(np.mean(maps, axis=0), 0.0, None))
 
 
 # --- 2. estimate -------------------------------------------------------------------------------
@@ -395,6 +468,23 @@ def _padded(
 # --- 3. candidates -----------------------------------------------------------------------------
 
 
+def candidate_grid(post: Posterior, params: ModelBasedParams) -> Grid:
+    """:func:`candidates` as a :class:`Grid`."""
+    step = 1.0 / params.centre_steps
+    fan = np.arange(params.directions) * math.pi / params.directions
+    thetas = np.unique(np.concatenate([fan, (post.yaws + math.pi / 2) % math.pi]))
+    across = np.array([0.0, 0.5, -0.5, 1.0, -1.0]) * step
+    return Grid(np.asarray(post.mean_centre()), thetas, np.zeros(1), across)
+
+
+def refined_grid(centre: Array, theta: float, params: ModelBasedParams) -> Grid:
+    """:func:`refined` as a :class:`Grid`."""
+    k = np.arange(-params.refine_steps, params.refine_steps + 1)
+    thetas = theta + k * params.refine_turn * math.pi / params.directions
+    shift = k * params.refine_shift / params.centre_steps
+    return Grid(np.asarray(centre, dtype=float), thetas, shift, shift)
+
+
 def candidates(post: Posterior, params: ModelBasedParams) -> tuple[Array, Array]:
     """Grasp centres (G, 2), module units, and closing directions (G,): the fixed fan of
     directions and the directions across the likely footprints, each with its centre on the
@@ -423,8 +513,8 @@ def tip_response(
 ) -> Array:
     """Mean relative response under the better-placed of the two open fingertips of each
     grasp (G,): what the contact detector has to sense."""
-    u = np.column_stack([np.cos(thetas), np.sin(thetas)])
-    n = np.column_stack([-u[:, 1], u[:, 0]])
+    cos, sin = np.cos(thetas), np.sin(thetas)
+    u, n = np.stack([cos, sin], axis=1), np.stack([-sin, cos], axis=1)
     reach = (gripper.max_width_m + gripper.tip_thickness_m) / 2 / layout.pitch_m
     sole = (
         _SOLE[:, 0, None, None] * gripper.tip_thickness_m * u[None]
@@ -435,24 +525,87 @@ def tip_response(
     return np.maximum(np.maximum(0.0, mean[0]), mean[1])
 
 
-def _offsets(post: Posterior, centres: Array, thetas: Array) -> tuple[Array, ...]:
+def _offsets(
+    post: Posterior, centres: Array, thetas: Array, distinct: int | None = None
+) -> tuple[Array, ...]:
     """Offsets of each footprint's centre from each grasp centre along and across the
-    closing direction, and |cos|, |sin| of the footprint's yaw from it: (G, H) each."""
+    closing direction, and |cos|, |sin| of the footprint's yaw from it: (G, H) each
+    (``centres`` may be one centre for all, (1, 2); ``distinct``: the directions are all
+    different, G of them)."""
     ux, uy = np.cos(thetas)[:, None], np.sin(thetas)[:, None]
     dx = post.centres[None, :, 0] - centres[:, None, 0]
     dy = post.centres[None, :, 1] - centres[:, None, 1]
-    directions, row = np.unique(thetas, return_inverse=True)  # a few, each at several centres
-    phi = post.yaws[None, :] - directions[:, None]
-    c, s = np.abs(np.cos(phi))[row], np.abs(np.sin(phi))[row]
+    if distinct is not None:
+        phi = post.yaws[None, :] - thetas[:, None]
+        c, s = np.abs(np.cos(phi)), np.abs(np.sin(phi))
+    else:  # a few, each at several centres
+        directions, row = np.unique(thetas, return_inverse=True)
+        phi = post.yaws[None, :] - directions[:, None]
+        c, s = np.abs(np.cos(phi))[row], np.abs(np.sin(phi))[row]
     return dx * ux + dy * uy, dy * ux - dx * uy, c, s
 
 
-def _half_extents(post: Posterior, c: Array, s: Array, widen: float | Array) -> tuple[Array, Array]:
-    """Half extents of the footprints along and across the closing direction (G, H), or
-    (K, G, H) for ``widen`` (K, 1, 1); ``widen`` multiplies the footprint's width (2: a
-    lying cylinder, whose contact strip is half its diameter)."""
-    hl, hw = post.halves[None, :, 0], widen * post.halves[None, :, 1]
+def _half_extents(post: Posterior, c: Array, s: Array, extents: Array) -> tuple[Array, Array]:
+    """Half extents of the object along and across the closing direction for each shape
+    (``extents`` (S, 2): the object's extent over its footprint along the footprint's length
+    and across it): (S, G, H) each."""
+    hl = extents[:, 0, None, None] * post.halves[None, None, :, 0]
+    hw = extents[:, 1, None, None] * post.halves[None, None, :, 1]
     return hl * c + hw * s, hl * s + hw * c
+
+
+def _shapes(params: ModelBasedParams) -> tuple[Array, Array]:
+    """The shapes' extents (S, 2) and prior weights (S,) summing to 1."""
+    w = np.asarray(params.shape_weights, dtype=float)
+    return np.asarray(params.shape_extents, dtype=float), w / w.sum()
+
+
+def edge_scale(params: ModelBasedParams) -> float:
+    """Scale of the logistic error of where the object's edge lies beyond a hypothesis's,
+    module units: its rms is the rms of the hypotheses' centre grid's rounding (a uniform
+    error over one step, step / sqrt(12); 3.2 mm on the 45 mm pad at 4 steps a module)."""
+    rms = 1.0 / (params.centre_steps * math.sqrt(12.0))
+    return rms * math.sqrt(3.0) / math.pi  # a logistic of scale b has rms b pi / sqrt(3)
+
+
+def _clear(margin: Array, scale: float) -> Array:
+    """Chance that an edge lies inside a jaw's path by less than ``margin`` (logistic)."""
+    return 0.5 + 0.5 * np.tanh(margin * (0.5 / scale))  # the logistic, without overflow
+
+
+def _landing_terms(
+    post: Posterior,
+    centres: Array,
+    thetas: Array,
+    gripper: GripperSpec,
+    layout: PadLayout,
+    params: ModelBasedParams,
+) -> tuple[Array, NDArray[np.bool_]]:
+    """Per shape and hypothesis (S, G, H): the chance that both open jaws come down clear of
+    the object (the landing term), and whether it then closes on it and hangs balanced."""
+    half_open = (gripper.max_width_m / 2 - params.clearance_m) / layout.pitch_m
+    narrow = gripper.min_width_m / layout.pitch_m
+    m_u, m_n, c, s = _offsets(post, centres, thetas)
+    e_u, e_n = _half_extents(post, c, s, _shapes(params)[0])
+    b = edge_scale(params)
+    clear = _clear(half_open - m_u - e_u, b) * _clear(half_open + m_u - e_u, b)
+    hold = (2 * e_u > narrow) & (np.abs(m_n) < params.centre_band * e_n)
+    return clear, hold
+
+
+def landing_chance(
+    post: Posterior,
+    centres: Array,
+    thetas: Array,
+    gripper: GripperSpec,
+    layout: PadLayout,
+    params: ModelBasedParams,
+) -> Array:
+    """Posterior chance (G,) that a jaw of each grasp comes down on the object: from the
+    estimated footprints (the posterior), the shapes they may be of, and the uncertainty of
+    where the object's edge lies (:func:`edge_scale`)."""
+    clear, _ = _landing_terms(post, centres, thetas, gripper, layout, params)
+    return 1.0 - np.einsum("s,sgh,h->g", _shapes(params)[1], clear, post.probs)
 
 
 def fit_chance(
@@ -463,15 +616,11 @@ def fit_chance(
     layout: PadLayout,
     params: ModelBasedParams,
 ) -> Array:
-    """Posterior chance (G,) that each grasp's jaws come down clear of the object, close on
-    it and hold it balanced, a box's footprint and a lying cylinder's counting alike."""
-    half_open = (gripper.max_width_m / 2 - params.clearance_m) / layout.pitch_m
-    narrow = gripper.min_width_m / layout.pitch_m
-    m_u, m_n, c, s = _offsets(post, centres, thetas)
-    e_u, e_n = _half_extents(post, c, s, np.array([1.0, 2.0])[:, None, None])  # (2, G, H)
-    ok = (np.abs(m_u) + e_u < half_open) & (2 * e_u > narrow)
-    ok &= np.abs(m_n) < params.centre_band * e_n
-    return 0.5 * (ok[0] @ post.probs) + 0.5 * (ok[1] @ post.probs)
+    """Posterior chance (G,) that each grasp's jaws come down clear of the object (the
+    landing term, :func:`landing_chance`), close on it and hold it balanced, every shape of
+    ``params.shape_extents`` counting with its weight."""
+    clear, hold = _landing_terms(post, centres, thetas, gripper, layout, params)
+    return np.einsum("s,sgh,h->g", _shapes(params)[1], clear * hold, post.probs)
 
 
 def predicted_success(
@@ -491,6 +640,80 @@ def predicted_success(
     return sensed * fit_chance(post, centres, thetas, gripper, layout, params)
 
 
+@dataclass(frozen=True)
+class Grid:
+    """Grasps on a grid: every direction of ``thetas`` (D,) with its centre at ``base``
+    (2,) shifted by each of ``along`` (A,) along the closing direction and each of
+    ``across`` (B,) across it (module units). Scored as a grid, the landing term depends on
+    the shift along only and the balance on the shift across only: (A + B) D H terms and one
+    product instead of A B D H of each."""
+
+    base: Array
+    thetas: Array
+    along: Array
+    across: Array
+
+    def grasps(self) -> tuple[Array, Array]:
+        """Centres (A, B, D, 2) and directions (A, B, D) of the grid's grasps."""
+        cos, sin = np.cos(self.thetas), np.sin(self.thetas)
+        u, n = np.stack([cos, sin], axis=1), np.stack([-sin, cos], axis=1)  # (D, 2) each
+        centres = (
+            self.base
+            + self.along[:, None, None, None] * u[None, None]
+            + self.across[None, :, None, None] * n[None, None]
+        )
+        shape = (self.along.size, self.across.size, self.thetas.size)
+        return centres, np.broadcast_to(self.thetas, shape)
+
+
+def grid_success(
+    post: Posterior,
+    grid: Grid,
+    gripper: GripperSpec,
+    layout: PadLayout,
+    model: PadModel,
+    params: ModelBasedParams,
+    sensing_ratio: float,
+) -> tuple[Array, Array, Array]:
+    """:func:`predicted_success` of every grasp of ``grid``, (A, B, D), with the grasps
+    (:meth:`Grid.grasps`)."""
+    half_open = (gripper.max_width_m / 2 - params.clearance_m) / layout.pitch_m
+    narrow = gripper.min_width_m / layout.pitch_m
+    m_u, m_n, c, s = _offsets(post, grid.base[None], grid.thetas, grid.thetas.size)  # (D, H)
+    extents, weights = _shapes(params)
+    e_u, e_n = _half_extents(post, c, s, extents)  # (S, D, H)
+    m_u = m_u[None] - grid.along[:, None, None]  # (A, D, H)
+    b = edge_scale(params)
+    e_u4 = e_u[:, None]
+    clear = _clear(half_open - m_u - e_u4, b) * _clear(half_open + m_u - e_u4, b)  # (S,A,D,H)
+    m_n = np.abs(m_n[None] - grid.across[:, None, None])  # (B, D, H)
+    hold = (2 * e_u > narrow)[:, None] & (m_n < params.centre_band * e_n[:, None])  # (S,B,D,H)
+    # sum over shapes and hypotheses of w_s p_h clear[s,a,d,h] hold[s,b,d,h], as (S, D) matrix
+    # products (a 4-operand einsum is several times slower)
+    lhs = (clear * (weights[:, None, None, None] * post.probs)).transpose(0, 2, 1, 3)
+    fit = (lhs @ hold.astype(float).transpose(0, 2, 3, 1)).sum(axis=0).transpose(1, 2, 0)
+    centres, thetas = grid.grasps()
+    tip = tip_response(centres.reshape(-1, 2), thetas.ravel(), gripper, layout, model)
+    need = params.needed_share * sensing_ratio
+    return np.clip(tip.reshape(fit.shape) / need, 0.0, 1.0) * fit, centres, thetas
+
+
+def refined(centre: Array, theta: float, params: ModelBasedParams) -> tuple[Array, Array]:
+    """The finer search around a grasp: centres (G, 2), module units, and directions (G,):
+    every direction ``refine_steps`` steps of ``refine_turn`` fan steps either way, with the
+    centre shifted along and across it by ``refine_steps`` steps of ``refine_shift``
+    hypothesis steps either way (the grasp itself included)."""
+    k = np.arange(-params.refine_steps, params.refine_steps + 1)
+    thetas = theta + k * params.refine_turn * math.pi / params.directions
+    shift = k * params.refine_shift / params.centre_steps
+    u = np.column_stack([np.cos(thetas), np.sin(thetas)])  # (D, 2)
+    n = np.column_stack([-u[:, 1], u[:, 0]])
+    along, across = np.meshgrid(shift, shift, indexing="ij")
+    offs = along.ravel()[:, None, None] * u[None] + across.ravel()[:, None, None] * n[None]
+    centres = np.asarray(centre) + offs  # (A, D, 2)
+    return centres.reshape(-1, 2), np.tile(thetas, along.size)
+
+
 def landing_likelihood(
     post: Posterior,
     plan: GraspPlan,
@@ -501,19 +724,18 @@ def landing_likelihood(
 ) -> Array:
     """Likelihood (H,) of a landing of ``plan``'s jaws on the object, on the ``side`` of the
     centre the pad felt pressed (+1 along the closing direction, -1 against, 0 unknown):
-    1 where the footprint (either shape) puts a jaw there, ``surprise`` elsewhere."""
+    1 where the footprint (any shape, by its weight) puts a jaw there, ``surprise``
+    elsewhere."""
     centre, theta = np.array([plan.cog]), np.array([plan.theta])
     half_open = gripper.max_width_m / 2 / layout.pitch_m
     tip_half = gripper.tip_width_m / 2 / layout.pitch_m
-    m_u, m_n, c, s = (a[0] for a in _offsets(post, centre, theta))
-    like = np.zeros(len(post.probs))
-    for widen in (1.0, 2.0):
-        e_u, e_n = (a[0] for a in _half_extents(post, c[None], s[None], widen))
-        under = np.abs(m_n) < e_n + tip_half
-        plus, minus = under & (m_u + e_u > half_open), under & (m_u - e_u < -half_open)
-        hit = {1: plus, -1: minus}.get(side, plus | minus)
-        like += 0.5 * np.where(hit, 1.0, params.surprise)
-    return like
+    m_u, m_n, c, s = _offsets(post, centre, theta)  # (1, H) each
+    extents, weights = _shapes(params)
+    e_u, e_n = (a[:, 0] for a in _half_extents(post, c, s, extents))  # (S, H)
+    under = np.abs(m_n) < e_n + tip_half
+    plus, minus = under & (m_u + e_u > half_open), under & (m_u - e_u < -half_open)
+    hit = {1: plus, -1: minus}.get(side, plus | minus)
+    return np.asarray(weights @ np.where(hit, 1.0, params.surprise), dtype=float)
 
 
 # --- 5. choose ---------------------------------------------------------------------------------
@@ -534,7 +756,8 @@ class ModelBasedPlanner:
         The contact detector's step floor over the thesis detector's
         (:func:`softpad.sensing.sensing_ratio`; 1 for the thesis's).
     model
-        The pad model (:func:`packaged_pad_model` at ``params.pressure_pa`` by default).
+        The pad model (:func:`packaged_pad_model` at ``params.pressure_pa`` by default: the
+        cast pad's FEM response).
     """
 
     gripper: GripperSpec = field(default_factory=GripperSpec)
@@ -557,7 +780,24 @@ class ModelBasedPlanner:
         d = check_increments(increments_pa, layout)
         groups = outline_objects(d, objects, layout, self.params.outline_threshold_pa)
         self._evidence.clear()
-        return [self._choose(d, g, groups, layout, []) for g in groups]
+        return [self._choose(d, g, groups, layout, [])[0] for g in groups]
+
+    def mounting_success(
+        self,
+        increments_pa: ArrayLike,
+        objects: list[tuple[int, ...]],
+        layout: PadLayout,
+        gripper: GripperSpec,
+    ) -> float:
+        """Predicted success of the grasp this planner would choose for the most loaded of
+        ``objects`` with ``gripper``'s jaws (the ``--mounting auto`` hook)."""
+        d = check_increments(increments_pa, layout)
+        groups = outline_objects(d, objects, layout, self.params.outline_threshold_pa)
+        if not groups:
+            return 0.0
+        target = max(groups, key=lambda g: float(sum(d[m - 1] for m in g)))
+        other = replace(self, gripper=gripper, _evidence={})
+        return other._choose(d, target, groups, layout, [])[1]
 
     def retry(
         self,
@@ -578,7 +818,7 @@ class ModelBasedPlanner:
         if (plan, side) not in seen:  # asked at the landing, then after the miss: one landing
             seen.append((plan, side))
         groups = outline_objects(d, [plan.modules], layout, self.params.outline_threshold_pa)
-        best = self._choose(d, plan.modules, groups, layout, seen)
+        best = self._choose(d, plan.modules, groups, layout, seen)[0]
         moved = math.dist(best.cog, plan.cog) * layout.pitch_m > 2e-3
         turned = abs(math.remainder(best.theta - plan.theta, math.pi)) > math.radians(5)
         if not closed and not (moved or turned):
@@ -592,7 +832,9 @@ class ModelBasedPlanner:
         groups: list[tuple[int, ...]],
         layout: PadLayout,
         evidence: list[tuple[GraspPlan, int]],
-    ) -> GraspPlan:
+    ) -> tuple[GraspPlan, float]:
+        """The grasp of the object on ``modules`` with the highest predicted success, and
+        that success."""
         assert self.model is not None
         others = frozenset(m for g in groups if g != modules for m in g)
         post = estimate(d, modules, layout, self.model, self.params, others)
@@ -601,15 +843,21 @@ class ModelBasedPlanner:
                 landing_likelihood(post, tried, side, self.gripper, layout, self.params)
             )
         post = post.sample(self.params.kept_hypotheses)
-        cg, tg = candidates(post, self.params)
-        score = predicted_success(
-            post, cg, tg, self.gripper, layout, self.model, self.params, self.sensing_ratio
-        )
-        i = int(np.argmax(score))
-        centre = (float(cg[i, 0]), float(cg[i, 1]))
-        theta = float(tg[i]) - (math.pi if tg[i] > math.pi / 2 + 1e-12 else 0.0)
+        args = (self.gripper, layout, self.model, self.params, self.sensing_ratio)
+        grid = candidate_grid(post, self.params)
+        score, centres, thetas = grid_success(post, grid, *args)
+        i = np.unravel_index(int(np.argmax(score)), score.shape)
+        if self.params.refine_steps:
+            grid = refined_grid(centres[i], float(thetas[i]), self.params)
+            score, centres, thetas = grid_success(post, grid, *args)
+            # the coarse best is the grid's centre: never worse
+            i = np.unravel_index(int(np.argmax(score)), score.shape)
+        centre = (float(centres[i][0]), float(centres[i][1]))
+        t = float(thetas[i]) % math.pi
+        theta = t - (math.pi if t > math.pi / 2 + 1e-12 else 0.0)
         rule = f"model-based p={score[i]:.2f}"
-        return GraspPlan(modules, pcom(d, modules, layout), centre, theta, rule, modules)
+        plan = GraspPlan(modules, pcom(d, modules, layout), centre, theta, rule, modules)
+        return plan, float(score[i])
 
 
 def _pressed_side(plan: GraspPlan, layout: PadLayout, rise: Array, share: float) -> int:

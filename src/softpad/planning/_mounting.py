@@ -9,6 +9,7 @@ reach along the planned direction of grasp (:func:`reach_m`), and the jaws must 
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -26,8 +27,14 @@ def choose_mounting(
     layout: PadLayout | None = None,
     installed: Sequence[str] = ALL_MOUNTINGS,
     threshold_pa: float = thesis.OBJECT_THRESHOLD_PA,
+    planner: Any | None = None,
 ) -> str:
     """The installed mounting for the most loaded object the pad reads.
+
+    With a ``planner`` that predicts its grasps' success (a
+    :class:`~softpad.planning.MountingChooser`, e.g. the model-based planner), the mounting
+    is a decision: the installed one under which the planner's grasp of the most loaded
+    object has the highest predicted success (the narrowest of equals). Otherwise:
 
     The thesis's planner plans every object above ``threshold_pa`` (t_o); for the one with
     the largest summed increment, :func:`reach_m` estimates its width along the planned
@@ -45,6 +52,8 @@ def choose_mounting(
         Names of the mountings at hand (``"10/4"``, ``"6/2"``, ``"4/0"``).
     threshold_pa
         Object threshold t_o, pascals.
+    planner
+        The planner that will grasp; used when it is a ``MountingChooser``.
 
     Returns
     -------
@@ -65,10 +74,33 @@ def choose_mounting(
     plans = plan_grasps(d, layout, PlannerParams(object_threshold_pa=threshold_pa))
     if not plans:
         return by_width[-1]
+    from softpad.planning._plan import MountingChooser
+
+    if isinstance(planner, MountingChooser):
+        return _most_successful(planner, d, [p.modules for p in plans], layout, by_width)
     best = max(plans, key=lambda p: sum(d[m - 1] for m in p.modules))
     extent = reach_m(best.modules, best.theta, layout)
     fits = [n for n in by_width if thesis.GRIPPER_MOUNTINGS_M[n][0] > extent]
     return fits[0] if fits else by_width[-1]
+
+
+def _most_successful(
+    planner: Any,
+    d: list[float],
+    objects: list[tuple[int, ...]],
+    layout: PadLayout,
+    by_width: list[str],
+) -> str:
+    """The mounting of ``by_width`` (narrowest first) with the highest predicted success of
+    ``planner``'s grasp; the narrowest of equals."""
+    from softpad.layout import GripperSpec
+
+    best, best_p = by_width[-1], -1.0
+    for name in by_width:
+        p = planner.mounting_success(d, objects, layout, GripperSpec.from_mounting(name))
+        if p > best_p:
+            best, best_p = name, p
+    return best
 
 
 def reach_m(modules: Sequence[int], theta: float, layout: PadLayout) -> float:

@@ -8,7 +8,7 @@ from typing import Protocol, runtime_checkable
 from numpy.typing import ArrayLike
 
 from softpad.errors import InputError
-from softpad.layout import PadLayout, parse_layout
+from softpad.layout import GripperSpec, PadLayout, parse_layout
 from softpad.planning._params import PlannerParams
 from softpad.planning._records import GraspPlan
 from softpad.planning._thesis_rules import plan_with_rules
@@ -46,6 +46,24 @@ class RetryPlanner(Planner, Protocol):
         worth trying. ``increments_pa``: the increments it was planned from;
         ``landing_rise_pa``: each module's rise over the pre-descent reference in the frame
         that sensed the fingers (where the landing jaw pressed the object into the pad)."""
+        ...
+
+
+@runtime_checkable
+class MountingChooser(Protocol):
+    """A planner that predicts how likely a grasp is to succeed with a given gripper: the
+    hook with which ``--mounting auto`` chooses among the installed mountings the one with
+    the highest predicted success (:func:`softpad.planning.choose_mounting`)."""
+
+    def mounting_success(
+        self,
+        increments_pa: ArrayLike,
+        objects: list[tuple[int, ...]],
+        layout: PadLayout,
+        gripper: GripperSpec,
+    ) -> float:
+        """Predicted success, in [0, 1], of this planner's grasp of the most loaded of
+        ``objects`` (sorted 1-based modules each) with ``gripper``'s jaws."""
         ...
 
 

@@ -71,7 +71,24 @@ def surveyed_mounting(
     obj: Any, placement: tuple[float, float, float], seed: int, config: TrialConfig, lab: Any | None
 ) -> str:
     """The mounting ``--mounting auto`` installs for a trial: chosen from the pad's reading of
-    the placed object (:func:`softpad.planning.choose_mounting`, every mounting installed)."""
+    the placed object (:func:`softpad.planning.choose_mounting`, every mounting installed);
+    a planner that predicts its grasps' success (the model-based planner) decides it: the
+    mounting under which its grasp is the most likely to hold."""
     from softpad.planning import choose_mounting
 
-    return choose_mounting(pad_reading(obj, placement, seed, config, lab))
+    reading = pad_reading(obj, placement, seed, config, lab)
+    return choose_mounting(reading, planner=trial_planner(config))
+
+
+def trial_planner(config: TrialConfig) -> Any:
+    """The trial's planner as the loop makes it (its detector's sensing ratio at the
+    configured sample rate), with the thesis's 10/4 gripper until the mounting is chosen."""
+    from softpad.layout import PadLayout
+    from softpad.planning import planner_for
+    from softpad.sensing import make_contact_detector
+
+    layout, rate = PadLayout(), config.sample_rate_hz
+    detector = make_contact_detector(config.detector, rate, layout)
+    return planner_for(
+        config.planner, None, config.execution.planner, detector, rate, layout, config.catalogue
+    )
