@@ -145,6 +145,16 @@ def test_make_validation_table_example_sets_before_beside_after(tmp_path: Path) 
     assert "After, validation: 0 agree, 0 disagree, 1 undecided, 0 not run." in out
 
 
+def test_planner_dev_draws_example_counts_every_development_draw() -> None:
+    """One draw per development object: each ends in exactly one outcome, and the 5.2 g dice
+    (below the minimum detectable mass) is the one object never seen."""
+    main = runpy.run_path(str(EXAMPLES / "planner_dev_draws.py"), run_name="example")["main"]
+    total = main(["--seeds", "1"])
+    outcomes = ("hit", "outside", "nothing_between", "narrow", "ok", "none")
+    assert sum(total[k] for k in outcomes) == 10
+    assert total["none"] == 1
+
+
 def test_every_example_is_run_here() -> None:
     """A new script in examples/ needs its test in this file (one figure pinned)."""
     source = Path(__file__).read_text(encoding="utf-8")

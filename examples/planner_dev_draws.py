@@ -3,7 +3,7 @@ development half (ycb-dev) at seeds 1000 and up, the planner's grasp, and where 
 jaws come down on the object's true outline. Development only: never run it on an
 evaluation set or on evaluation seeds.
 
-    PYTHONPATH=src python docs/planner_dev_draws.py --seeds 10 [--mounting auto] [--planner NAME]
+    PYTHONPATH=src python examples/planner_dev_draws.py --seeds 10 [--mounting auto] [--planner NAME]
 
 Per object: ``hit`` (a jaw's path crosses the object's outline within the fingertip's width:
 the jaws would land on it), ``outside`` (the grasp centre over 3 mm off the object),
@@ -49,14 +49,15 @@ def outcome(obj, placement, plan, gripper, layout) -> str:
     return "narrow" if 2 * ext < gripper.min_width_m else "ok"
 
 
-def main() -> None:
+def main(argv: list[str] | None = None) -> collections.Counter[str]:
+    """Print the draws' outcomes per object and in total; return the total counts."""
     from softpad.cli._trials import select_objects
 
     ap = argparse.ArgumentParser()
     ap.add_argument("--seeds", type=int, default=10)
     ap.add_argument("--mounting", default=None)
     ap.add_argument("--planner", default="model-based")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
     layout, model = PadLayout(), packaged_pad_model()
     total: collections.Counter[str] = collections.Counter()
     for spec in select_objects(None, DEV_SET):
@@ -85,6 +86,7 @@ def main() -> None:
         print(f"{spec.name:28s} " + " ".join(f"{k}={v}" for k, v in sorted(c.items())))
         total.update(c)
     print("total", " ".join(f"{k}={v}" for k, v in sorted(total.items())))
+    return total
 
 
 if __name__ == "__main__":
