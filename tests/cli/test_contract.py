@@ -90,7 +90,7 @@ def test_internal_error_exits_4_naming_where_to_report(capsys, monkeypatch) -> N
     def broken(*args, **kwargs):
         raise ZeroDivisionError("boom")
 
-    monkeypatch.setattr(softpad.planning, "plan_grasps", broken)
+    monkeypatch.setattr(softpad.planning, "plan_by_name", broken)
     code, data, err = _json(capsys, "plan", "--delta", BANANA, "--json")
     assert code == 4 and data["error"]["kind"] == "internal"
     assert "boom" in err and "report" in err and "--debug" in err
