@@ -266,28 +266,3 @@ def run_arm_node(args: argparse.Namespace) -> int:
         print(f"softpad sim arm-node: box on {node.url}, arm on /softpad_arm", flush=True)
     node.serve()
     return 0
-
-
-def run_with_robot_url(
-    args: argparse.Namespace,
-    names: list[str],
-    box: Any,
-    recorder: Any,
-    params: Any,
-    **parts: Any,
-) -> Any:
-    """``softpad run --robot URL``: the loop with a robot made by the robot registry
-    (``ros1://``, or a robot an installed package registers)."""
-    from softpad.control import make_robot
-    from softpad.harness import SimulatedRun, TouchTruth
-    from softpad.ros import run_with_robot
-
-    robot = make_robot(args.robot, box=box)
-    try:
-        result = run_with_robot(names, box, robot, params, recorder, gripper=args.gripper, **parts)
-    finally:
-        close = getattr(robot, "close", None)
-        if close is not None:
-            close()
-    # no ground truth of the touches through ROS: the report leaves them empty
-    return SimulatedRun(result, tuple(TouchTruth(None, None) for _ in result.grasps))
