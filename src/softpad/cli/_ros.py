@@ -200,32 +200,18 @@ def run_urdf(args: argparse.Namespace) -> int:
 
 def installation_settings(path: str) -> dict[str, Any]:
     """The node's settings (:data:`softpad.ros.CONFIG_KEYS`, SI) from the installation file
-    ``path`` (TOML, mm and degrees): its box link, pad and pose, thresholds, ambient pressure
-    and gripper, as every other command reads it."""
-    from softpad.cli._installation import _defaults
+    ``path`` (TOML, mm and degrees), as every other command reads it
+    (:func:`softpad.ros.installation_settings`)."""
     from softpad.config import load_installation
     from softpad.errors import InputError
+    from softpad.ros import installation_settings as settings
 
     if path.endswith(".json"):
         raise InputError(
             f"--config {path!r}: the node reads the installation file (TOML, examples/site.toml);"
             " give node settings as options or ROS parameters (docs/ros.md)"
         )
-    inst = load_installation(path)
-    pad, th = inst.pad, inst.thresholds
-    values: dict[str, Any] = {
-        "layout": f"{pad.rows}x{pad.cols}", "pitch_m": pad.pitch_m,
-        "pad_x_m": pad.x_m, "pad_y_m": pad.y_m, "pad_z_m": pad.z_m, "pad_yaw_rad": pad.yaw_rad,
-        "object_threshold_pa": th.object_threshold_pa,
-        "contact_threshold_pa": th.contact_threshold_pa,
-        "ambient_pressure_pa": inst.box.ambient_pressure_pa,
-    }  # fmt: skip
-    defaults = _defaults(inst)
-    if "box" in defaults:  # the box daemon's link
-        values["box"] = defaults["box"]
-    if inst.gripper_mounting is not None:
-        values["gripper"] = inst.gripper_mounting
-    return values
+    return settings(load_installation(path))
 
 
 def run_node(args: argparse.Namespace) -> int:

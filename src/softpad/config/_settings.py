@@ -219,6 +219,19 @@ class Installation:
     gripper_mounting: str | None = None
     source: str = "<defaults>"
 
+    @property
+    def box_url(self) -> str | None:
+        """The URL of the box daemon the link connects to (``zenoh://HOST:PORT/PREFIX``, with
+        ``?config=`` this file where the link has credentials), None without ``link.connect``."""
+        link = self.link
+        if not link.connect:
+            return None
+        host_port = link.connect[0].split("/", 1)[1]
+        url = f"zenoh://{host_port}/{link.key_prefix}"
+        if link.user is not None or link.tls_root_ca is not None:  # the link's credentials
+            url += f"?config={self.source}"
+        return url
+
 
 # --- typed getters that name the key --------------------------------------------------
 def _get(table: dict[str, Any], key: str, where: str, kind: type, default: Any) -> Any:
