@@ -69,54 +69,15 @@ def register(sub: Any) -> None:
         q.set_defaults(handler=run)
 
 
-def _topics(path: str) -> list[tuple[str, str, int]]:
-    from mcap.reader import make_reader
-
-    with open(path, "rb") as f:
-        summary = make_reader(f).get_summary()
-    if summary is None or summary.statistics is None:
-        return []
-    counts = summary.statistics.channel_message_counts
-    return sorted(
-        (ch.topic, summary.schemas[ch.schema_id].name, counts.get(cid, 0))
-        for cid, ch in summary.channels.items()
-    )
-
-
 def _info(run: Any, as_json: bool) -> None:
-    s = run.summary()
-    s["topics"] = [
-        {"topic": t, "type": ty, "messages": n}
-        for t, ty, n in (_topics(s["path"]) if run.complete else [])
-    ]
-    if as_json:
-        from softpad.cli._output import emit
+    from softpad.cli._output import emit
+    from softpad.record import info_lines, recording_info
 
+    s = recording_info(run)
+    if as_json:
         emit(s)
         return
-    print(
-        f"{s['path']}: {s['frames']} frames of {s['channels']} channels over {s['duration_s']:.2f} s"
-    )
-    print(
-        f"  recorded {s['wall_clock_start']} by softpad {s['software_version']}, {s['sample_rate_hz']:g} Hz"
-    )
-    if not s["complete"]:
-        print(
-            "  cut short (crash?): read up to the last flushed chunk; 'softpad log recover' fixes it"
-        )
-    print(f"  objects: {', '.join(s['objects'] or []) or '-'}")
-    for o in s["plans"]:
-        print(
-            f"  plan: modules {','.join(map(str, o['modules']))}  COG ({o['cog'][0]:.2f}, {o['cog'][1]:.2f})  theta {o['theta']:+.3f} rad  [{o['rule']}]"
-        )
-    for c in s["contact"]:
-        print(f"  contact: t = {c['t_s']:.3f} s on module(s) {', '.join(map(str, c['modules']))}")
-    print(
-        f"  events {s['events']}, valve commands {s['valve_commands']}, robot poses {s['robot_poses']}"
-    )
-    print(f"  outcome: {s['outcome']}")
-    for t in s["topics"]:
-        print(f"  {t['topic']:32s} {t['type']:36s} {t['messages']}")
+    print("\n".join(info_lines(s)))
 
 
 def run(args: argparse.Namespace) -> int:

@@ -9,6 +9,8 @@ in-memory recorder, :class:`Tee` sends a run to several recorders.
 """
 
 from softpad.record._bags import to_rosbag1, to_rosbag2
+from softpad.record._info import info_lines, recording_info
+from softpad.record._learn import Learned, learn_from_recordings, learned_trial
 from softpad.record._live import FoxgloveLive
 from softpad.record._log import RunLog
 from softpad.record._mcap import FLUSH_PERIOD_S, McapRecorder, check_output
@@ -36,6 +38,7 @@ __all__ = [
     "SUPPLY_TOPIC",
     "VALVE_TOPIC",
     "FoxgloveLive",
+    "Learned",
     "McapRecorder",
     "RecordedRun",
     "ReplayBox",
@@ -43,9 +46,13 @@ __all__ = [
     "Tee",
     "check_output",
     "compare_replay",
+    "info_lines",
+    "learn_from_recordings",
+    "learned_trial",
     "load_recording",
     "module_topic",
     "open_replay_url",
+    "recording_info",
     "recover",
     "to_rosbag1",
     "to_rosbag2",
