@@ -71,8 +71,8 @@ def run(args: argparse.Namespace) -> int:
     import math
 
     from softpad.cli._paths import check_output
-    from softpad.cli._trials import check_counts, select_objects
-    from softpad.trials import TrialConfig, compare, parse_pairs
+    from softpad.cli._trials import select_objects
+    from softpad.trials import TrialConfig, check_counts, compare, parse_pairs
 
     check_output(args.png, "--png", force=args.force, suffix=".png")  # before hours of trials
     if args.merge:

@@ -121,45 +121,12 @@ def add_trial_options(
 
 
 def select_objects(names_text: str | None, objects_file: str | None = None) -> list[Any]:
-    """Catalogue objects named in ``names_text`` (comma-separated), all when None; with
-    ``objects_file``, that object set's objects (those named, all when None), each placed on
-    the thesis's 2 x 3 pad with its mounting."""
-    from softpad.sim import get_object, object_names
+    """The objects named in ``names_text`` (comma-separated; all when None), of the catalogue
+    or of ``objects_file`` (:func:`softpad.design.trial_objects`)."""
+    from softpad.design import trial_objects
 
-    if objects_file is not None:
-        return _set_objects(objects_file, names_text)
-    known = list(object_names())
-    if names_text is None:
-        return [get_object(n) for n in known]
-    names = name_list(names_text, "--objects")
-    for n in names:
-        if n not in known:
-            raise InputError(f"unknown object {n!r}; known objects: {', '.join(known)}")
-    return [get_object(n) for n in names]
-
-
-def _set_objects(path: str, names_text: str | None) -> list[Any]:
-    """The objects of the object-set file ``path`` as catalogue specs on the 2 x 3 pad."""
-    from dataclasses import replace
-
-    from softpad.design import load_object_set
-
-    objects = load_object_set(path)
-    pad = (
-        thesis.PROTOTYPE_COLS * thesis.MODULE_PITCH_M,
-        thesis.PROTOTYPE_ROWS * thesis.MODULE_PITCH_M,
-    )
-    chosen = list(objects.objects)
-    if names_text is not None:
-        names = name_list(names_text, "--objects")
-        unknown = [n for n in names if n not in objects.names]
-        if unknown:
-            raise InputError(
-                f"--objects: {', '.join(unknown)} not in {path!r}; its objects: "
-                f"{', '.join(objects.names)}"
-            )
-        chosen = [o for o in chosen if o.name in names]
-    return [replace(o.placed_on(pad), gripper=objects.mounting(o)) for o in chosen]
+    names = None if names_text is None else name_list(names_text, "--objects")
+    return trial_objects(names, objects_file)
 
 
 def progress_bar(total: int, enabled: bool, desc: str = "trials") -> Any:
@@ -173,30 +140,15 @@ def progress_bar(total: int, enabled: bool, desc: str = "trials") -> Any:
 
 def trial_errors_exit(errored: list[dict[str, Any]], prog: str) -> int:
     """Exit code of a command whose trials ran: 0, or the internal-error code with a message on
-    stderr naming the trials that raised (``errored``: their ``to_dict()`` records, cause
-    ``trial_error``, the traceback in ``detail``)."""
+    stderr naming the trials that raised (:func:`softpad.trials.trial_errors_text`)."""
     from softpad.errors import EXIT_INTERNAL
+    from softpad.trials import trial_errors_text
 
-    if not errored:
+    text = trial_errors_text(errored, prog)
+    if text is None:
         return 0
-    named = ", ".join(f"{t['object']} trial {t['trial']} (seed {t['seed']})" for t in errored[:5])
-    more = f" and {len(errored) - 5} more" if len(errored) > 5 else ""
-    last = (errored[0].get("detail") or "").strip().splitlines()[-1:] or [""]
-    print(
-        f"softpad {prog}: error: {len(errored)} trial(s) raised and count as failed: {named}"
-        f"{more}; first: {last[0]}. This is a bug; the tracebacks are in the trials' 'detail' "
-        "(--json)",
-        file=sys.stderr,
-    )
+    print(text, file=sys.stderr)
     return EXIT_INTERNAL
-
-
-def check_counts(trials: int, workers: int | None) -> None:
-    """Validate ``--trials`` and ``--workers`` (shared by ``trials`` and ``demo``)."""
-    if not 1 <= trials <= 1000:
-        raise InputError(f"--trials must be from 1 to 1000, got {trials}")
-    if workers is not None and not 1 <= workers <= 256:
-        raise InputError(f"--workers must be from 1 to 256, got {workers}")
 
 
 def run_with_progress(
@@ -242,6 +194,8 @@ def _show(args: argparse.Namespace) -> bool:
 
 def run(args: argparse.Namespace) -> int:
     import math
+
+    from softpad.trials import check_counts
 
     specs = select_objects(args.objects, args.objects_file)
     check_counts(args.trials, args.workers)

@@ -16,6 +16,16 @@ Dask, pyarrow, FElupe and matplotlib are imported lazily inside the functions.
 from softpad.design._cache import ResultCache, code_version, default_cache_dir
 from softpad.design._dask import available_cpus, check_scheduler_address, dask_client, has_dask
 from softpad.design._evaluate import TrialOptions, run_design_trials
+from softpad.design._inputs import (
+    MAX_DESIGNS,
+    cache_folder,
+    cached_line,
+    choose_object_set,
+    designs_from_text,
+    sweep_trial_options,
+    trial_objects,
+    write_sweep,
+)
 from softpad.design._objects import (
     EXAMPLE_SETS,
     OBJECT_SET_SCHEMA,
@@ -46,6 +56,7 @@ __all__ = [
     "EXAMPLE_SETS",
     "FEM_CELLS",
     "LIMITS",
+    "MAX_DESIGNS",
     "OBJECT_SET_SCHEMA",
     "QUICK_DESIGNS",
     "THESIS_DESIGN",
@@ -60,12 +71,16 @@ __all__ = [
     "SweepResult",
     "TrialOptions",
     "available_cpus",
+    "cache_folder",
+    "cached_line",
     "check_scheduler_address",
+    "choose_object_set",
     "code_version",
     "dask_client",
     "default_cache_dir",
     "design_row",
     "design_sweep",
+    "designs_from_text",
     "example_object_set",
     "fem_response",
     "footprint_centre_m",
@@ -79,4 +94,7 @@ __all__ = [
     "run_experiment_on_dask",
     "run_sweep",
     "stable_hash",
+    "sweep_trial_options",
+    "trial_objects",
+    "write_sweep",
 ]

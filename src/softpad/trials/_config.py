@@ -93,6 +93,45 @@ class TrialConfig:
         check_mounting_choice(self.mounting, "trial mounting")
 
 
+def check_counts(trials: int, workers: int | None) -> None:
+    """Refuse a trial count outside 1..1000 or a worker count outside 1..256.
+
+    Parameters
+    ----------
+    trials
+        Trials per object (``--trials``).
+    workers
+        Worker processes (``--workers``), or None (all CPUs).
+    """
+    if not 1 <= trials <= 1000:
+        raise InputError(f"--trials must be from 1 to 1000, got {trials}")
+    if workers is not None and not 1 <= workers <= 256:
+        raise InputError(f"--workers must be from 1 to 256, got {workers}")
+
+
+def trial_errors_text(errored: list[dict[str, Any]], prog: str) -> str | None:
+    """The message of a command whose trials raised, naming them (None when none did).
+
+    Parameters
+    ----------
+    errored
+        The raising trials' ``to_dict()`` records (cause ``trial_error``, the traceback in
+        ``detail``).
+    prog
+        The command, for the message (``trials``, ``demo``).
+    """
+    if not errored:
+        return None
+    named = ", ".join(f"{t['object']} trial {t['trial']} (seed {t['seed']})" for t in errored[:5])
+    more = f" and {len(errored) - 5} more" if len(errored) > 5 else ""
+    last = (errored[0].get("detail") or "").strip().splitlines()[-1:] or [""]
+    return (
+        f"softpad {prog}: error: {len(errored)} trial(s) raised and count as failed: {named}"
+        f"{more}; first: {last[0]}. This is a bug; the tracebacks are in the trials' 'detail' "
+        "(--json)"
+    )
+
+
 def check_mounting_choice(mounting: str | None, what: str) -> None:
     """InputError unless ``mounting`` is None, ``"auto"`` or a thesis mounting."""
     from softpad import thesis
