@@ -91,20 +91,11 @@ def register(sub: Any) -> None:
 
 def _read_frame(path: str) -> Any:
     """The readings of a frame file (``-``: stdin), :class:`softpad.sensing.PadReadings`."""
-    from softpad.sensing import parse_readings
+    from softpad.sensing import parse_readings, read_readings
 
     if path == "-":
-        text = sys.stdin.read()
-    else:
-        try:
-            text = Path(path).read_bytes().decode("utf-8")
-        except OSError as exc:
-            raise InputError(f"cannot read frame file {path!r}: {exc.strerror}") from None
-        except UnicodeDecodeError:
-            raise InputError(
-                f"frame file {path!r} is not text (CSV or JSON expected; a binary file?)"
-            ) from None
-    return parse_readings(text, f"frame file {path!r}")
+        return parse_readings(sys.stdin.read(), f"frame file {path!r}")
+    return read_readings(path)
 
 
 def run(args: argparse.Namespace) -> int:
