@@ -39,3 +39,41 @@ def test_the_trial_commands_get_the_workers_the_others_not() -> None:
         argv = result_argv(spec, "quick", workers=2)
         assert argv[: len(spec.quick)] == list(spec.quick)
         assert (argv[-2:] == ["--workers", "2"]) == (spec.quick[0] in ("validate", "compare"))
+
+
+@pytest.mark.parametrize(
+    ("seeds", "hold_s", "record", "message"),
+    [
+        (list(range(101)), 15.0, None, "--seeds '0-100' names 101 seeds; at most 100"),
+        ([0], 601.0, None, "--hold-s must be from 0 to 600 s, got 601.0"),
+        ([0, 1], 15.0, "run.mcap", "--record takes one seed at a time"),
+    ],
+    ids=["seeds", "hold", "record"],
+)
+def test_a_campaign_out_of_bounds_is_refused(seeds, hold_s, record, message) -> None:
+    from softpad.trials import check_campaign
+
+    with pytest.raises(InputError, match=message):
+        check_campaign(seeds, "0-100", hold_s, record)
+
+
+def test_comparisons_that_cannot_be_read_are_named(tmp_path) -> None:
+    from softpad.trials import read_comparisons
+
+    binary = tmp_path / "c.json"
+    binary.write_bytes(b"\xff\xfe\x00")
+    with pytest.raises(InputError, match="is not text"):
+        read_comparisons([str(binary)])
+    with pytest.raises(InputError, match="cannot read comparison"):
+        read_comparisons([str(tmp_path / "missing.json")])
+
+
+def test_the_object_fits_read_as_a_table() -> None:
+    from softpad.trials import ObjectFit, object_fits_table
+
+    fit = ObjectFit(
+        "banana", "banana_curve", 0.0, 0.3, 0.1, (0.0, 0.15, 0.3), (0.9, 0.2, 0.4), 0.15
+    )
+    lines = object_fits_table([fit]).splitlines()
+    assert lines[0] == "| object | parameter | range | nominal | fitted | best score |"
+    assert lines[2] == "| banana | banana_curve | 0 .. 0.3 | 0.1 | 0.15 | 0.2 |"

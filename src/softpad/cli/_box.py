@@ -389,11 +389,9 @@ def inflate(args: argparse.Namespace) -> int:
 
 def _monitor_foxglove(args: argparse.Namespace, layout: Any) -> int:
     """Read frames from the box and publish them to Foxglove, paced to real time."""
-    import time
-
     from softpad.box import describe_box, open_watched
     from softpad.cli._installation import installed_pad_pose
-    from softpad.record import FoxgloveLive
+    from softpad.record import FoxgloveLive, relay_frames
 
     if not 0 <= args.port <= 65535:
         raise InputError(f"--port must be within 0..65535, got {args.port}")
@@ -407,18 +405,8 @@ def _monitor_foxglove(args: argparse.Namespace, layout: Any) -> int:
                 f"(port {live.port}); Ctrl-C stops",
                 flush=True,
             )
-        wall0 = t0 = None
-        i = 0
         try:
-            while args.count == 0 or i < args.count:
-                f = box.read()
-                if wall0 is None or t0 is None:
-                    wall0, t0 = time.monotonic(), f.t_s
-                delay = wall0 + (f.t_s - t0) - time.monotonic()
-                if delay > 0:  # a simulated box runs faster than real time: keep pace
-                    time.sleep(delay)
-                live.frame(f, "monitor")
-                i += 1
+            relay_frames(box, live, args.count)
         finally:  # Ctrl-C too (exit 130)
             print("softpad box monitor: stopped", file=sys.stderr)
     return 0

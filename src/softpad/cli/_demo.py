@@ -9,7 +9,7 @@ from typing import Any
 from softpad.cli._args import add_command
 from softpad.cli._output import emit, say
 from softpad.cli._paths import check_output_dir
-from softpad.cli._record import add_record_option, check_trial_recordings
+from softpad.cli._record import add_record_option
 from softpad.errors import InputError
 
 _DESCRIPTION = """\
@@ -43,7 +43,12 @@ def register(sub: Any) -> None:
 def run(args: argparse.Namespace) -> int:
     from softpad.cli._trials import run_with_progress, trial_errors_exit
     from softpad.sim import get_object, object_names
-    from softpad.trials import check_counts, errored_records, write_report
+    from softpad.trials import (
+        check_counts,
+        check_trial_recordings,
+        errored_records,
+        write_report,
+    )
 
     check_counts(args.trials, args.workers)
     out = check_output_dir(args.out, "--out", force=args.force)

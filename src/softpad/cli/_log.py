@@ -131,26 +131,11 @@ def _check_outputs(args: argparse.Namespace) -> None:
 
 
 def _export(args: argparse.Namespace, rec: Any) -> None:
+    from softpad.record import export_recording
 
-    if args.rosbag2 or args.rosbag1:
-        from softpad.record import to_rosbag1, to_rosbag2
-
-        out = args.rosbag2 or args.rosbag1
-        write = to_rosbag2 if args.rosbag2 else to_rosbag1
-        write(args.file, out, force=args.force)
-        kind = "rosbag2 directory" if args.rosbag2 else "ROS 1 bag"
-        _done(args, f"{len(rec)} frames and every message written to the {kind} {out}", files=[out])
-        return
-    out = args.out or args.csv or args.parquet
-    if (args.csv and not out.endswith(".csv")) or (args.parquet and not out.endswith(".parquet")):
-        raise InputError(f"the file's name must end in its format's suffix, got {out!r}")
-    if out.endswith(".csv"):
-        rec.to_csv(out)
-    elif out.endswith(".parquet"):
-        rec.to_parquet(out)
-    else:
-        raise InputError(f"--out must end in .csv or .parquet, got {out!r}")
-    _done(args, f"{len(rec)} frames and {len(rec.events)} events written to {out}", files=[out])
+    table, bag = (args.out, args.csv, args.parquet), (args.rosbag2, args.rosbag1)
+    text, out = export_recording(rec, args.file, table, bag, force=args.force)
+    _done(args, text, files=[out])
 
 
 def _done(args: argparse.Namespace, text: str, **result: Any) -> None:

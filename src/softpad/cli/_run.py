@@ -18,7 +18,7 @@ from softpad.cli._args import (
 from softpad.cli._installation import installed_pad_pose
 from softpad.cli._output import emit, say
 from softpad.cli._paths import atomic_path, check_output
-from softpad.cli._record import add_record_option, open_recorder, run_metadata
+from softpad.cli._record import add_record_option
 from softpad.errors import EXIT_FAILED, EXIT_HARDWARE, EXIT_OK, HardwareFault, InputError
 
 _EPILOG = """examples:
@@ -289,6 +289,8 @@ def _watchers(
     args: argparse.Namespace, box: Any, names: list[str], params: Any, record_path: Any
 ) -> tuple[Any, Any, Any, Any]:
     """The run's recorder (``--record``), Foxglove view and ROS publishers, those asked for."""
+    from softpad.record import open_recorder, run_metadata
+
     meta = run_metadata(
         "run", box, args.box, names, params, gripper=args.gripper,
         planner=args.planner, contact_detector=args.detector,

@@ -10,7 +10,7 @@ from typing import Any
 from softpad import thesis
 from softpad.cli._args import Renamed, add_command, add_integer, int_ranges, name_list
 from softpad.cli._output import emit, say
-from softpad.cli._record import add_record_option, check_trial_recordings
+from softpad.cli._record import add_record_option
 from softpad.cli._run import add_part_options
 from softpad.errors import InputError
 
@@ -193,23 +193,19 @@ def _show(args: argparse.Namespace) -> bool:
 
 
 def run(args: argparse.Namespace) -> int:
-    import math
-
-    from softpad.trials import check_counts
+    from softpad.trials import (
+        ExperimentResult,
+        check_campaign,
+        check_counts,
+        check_trial_recordings,
+        errored_records,
+    )
 
     specs = select_objects(args.objects, args.objects_file)
     check_counts(args.trials, args.workers)
     seeds = int_ranges(args.seeds, "--seeds", lo=0, hi=2**32 - 1)
-    if len(seeds) > 100:
-        raise InputError(f"--seeds {args.seeds!r} names {len(seeds)} seeds; at most 100")
-    if not math.isfinite(args.hold_s) or not 0 <= args.hold_s <= 600:
-        raise InputError(f"--hold-s must be from 0 to 600 s, got {args.hold_s!r}")
-    if args.record and len(seeds) > 1:
-        raise InputError(
-            "--record takes one seed at a time (trial files are named by object and trial)"
-        )
+    check_campaign(seeds, args.seeds, args.hold_s, args.record)
     check_trial_recordings(args.record, specs, args.trials, args.force)
-    from softpad.trials import ExperimentResult, errored_records
 
     finished: list[dict[str, Any]] = []
     args.partial = {"seeds": seeds, "completed_seeds": [], "finished_trials": finished}

@@ -19,18 +19,20 @@ from softpad.trials._compare import (
     compare,
     idle_false_alarms_per_hour,
     merge_comparisons,
+    read_comparisons,
     wilson_interval,
 )
 from softpad.trials._compare_report import comparison_table, parse_pairs, plot_comparison
 from softpad.trials._config import (
     TrialConfig,
+    check_campaign,
     check_counts,
     check_mounting_choice,
     drawn_placement,
     trial_errors_text,
     trial_execution_params,
 )
-from softpad.trials._object_fit import ObjectFit, fit_object_unknowns
+from softpad.trials._object_fit import ObjectFit, fit_object_unknowns, object_fits_table
 from softpad.trials._quoted import (
     RESULTS,
     ResultSpec,
@@ -39,6 +41,7 @@ from softpad.trials._quoted import (
     rerun_results,
     result_argv,
 )
+from softpad.trials._recordings import check_trial_recordings
 from softpad.trials._records import (
     FAILURE_CAUSES,
     THESIS_OVERALL_SUCCESS,
@@ -81,8 +84,10 @@ __all__ = [
     "TrialResult",
     "ValidationResult",
     "calibrate",
+    "check_campaign",
     "check_counts",
     "check_mounting_choice",
+    "check_trial_recordings",
     "commit_text",
     "compare",
     "comparison_table",
@@ -92,11 +97,13 @@ __all__ = [
     "fit_object_unknowns",
     "idle_false_alarms_per_hour",
     "merge_comparisons",
+    "object_fits_table",
     "pad_reading",
     "parse_pairs",
     "perturbed_placement",
     "plot_comparison",
     "protocol_loads",
+    "read_comparisons",
     "read_increments",
     "record_calibration",
     "rerun_results",

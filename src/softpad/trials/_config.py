@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, TypeVar
 
@@ -107,6 +108,33 @@ def check_counts(trials: int, workers: int | None) -> None:
         raise InputError(f"--trials must be from 1 to 1000, got {trials}")
     if workers is not None and not 1 <= workers <= 256:
         raise InputError(f"--workers must be from 1 to 256, got {workers}")
+
+
+def check_campaign(
+    seeds: Sequence[int], seeds_text: str, hold_s: float, record: str | None = None
+) -> None:
+    """Refuse a trial campaign of more than 100 seeds, a hold outside 0..600 s, or
+    recordings (named by object and trial) over several seeds.
+
+    Parameters
+    ----------
+    seeds
+        The experiment seeds.
+    seeds_text
+        How they were given (``--seeds``), for the message.
+    hold_s
+        Hold time after the lift, s.
+    record
+        The recordings' base name, or None.
+    """
+    if len(seeds) > 100:
+        raise InputError(f"--seeds {seeds_text!r} names {len(seeds)} seeds; at most 100")
+    if not math.isfinite(hold_s) or not 0 <= hold_s <= 600:
+        raise InputError(f"--hold-s must be from 0 to 600 s, got {hold_s!r}")
+    if record and len(seeds) > 1:
+        raise InputError(
+            "--record takes one seed at a time (trial files are named by object and trial)"
+        )
 
 
 def trial_errors_text(errored: list[dict[str, Any]], prog: str) -> str | None:
