@@ -210,7 +210,24 @@ class Thresholds:
 
 @dataclass(frozen=True, slots=True)
 class Installation:
-    """Every setting of one installation (see :func:`load_installation`)."""
+    """Every setting of one installation (see :func:`load_installation`).
+
+    Attributes
+    ----------
+    box
+        The box: channels and their wiring, supply, sample rate (Hz), ambient pressure (Pa).
+    link
+        The zenoh link: endpoints, key prefix, credentials, watchdog (s).
+    pad
+        The pad: rows, columns, pitch (m) and its pose in the robot's base frame (m, rad).
+    thresholds
+        p0, the adjustment tolerance, t_o, t_g and the maximum pressure (Pa), the window
+        (samples).
+    gripper_mounting
+        The gripper's mounting (``"10/4"``, ``"6/2"``, ``"4/0"``), or None.
+    source
+        The file read, ``"<defaults>"`` without one.
+    """
 
     box: BoxSettings = field(default_factory=BoxSettings)
     link: LinkSettings = field(default_factory=LinkSettings)

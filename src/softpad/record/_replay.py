@@ -258,6 +258,11 @@ def compare_replay(recording: RecordedRun | str | Path) -> dict[str, Any]:
     on every frame of each descent, a retried grasp's too, from the mean of the reads before
     it.
 
+    Parameters
+    ----------
+    recording
+        The recording (a :class:`RecordedRun`, or its .mcap file).
+
     Returns
     -------
     dict
