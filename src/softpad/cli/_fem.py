@@ -383,17 +383,17 @@ def _progress(args: argparse.Namespace, label: str) -> Iterator[Callable[[int, i
         bar.close()
 
 
-def _study(args: argparse.Namespace, files: Any, label: str, name: str, *a: Any) -> int:
-    """Run ``softpad.fem.run_<name>`` on the command's module and ``files`` with a progress
-    bar named ``label``; print its report (``--json``: its dict)."""
-    import softpad.fem
+def _study(args: argparse.Namespace, files: Any, label: str, run: Any, *a: Any) -> int:
+    """``run(module, *a, files, progress)`` (a :mod:`softpad.fem` ``run_*`` study) on the
+    command's module with a progress bar named ``label``; print its report (``--json``: its
+    dict)."""
     from softpad.fem import StudyModule
 
     model = getattr(args, "model", "neo-hookean")
     shape = (args.thickness_mm, args.width_mm, args.mesh)
     module = StudyModule(model, getattr(args, "param", ()), *shape)
     with _progress(args, label) as progress:
-        report = getattr(softpad.fem, f"run_{name}")(module, *a, files, progress)
+        report = run(module, *a, files, progress)
     if args.json:
         emit(report.data)
     else:
@@ -403,64 +403,82 @@ def _study(args: argparse.Namespace, files: Any, label: str, name: str, *a: Any)
 
 # ---------------------------------------------------------------------------- handlers
 def _sweep(args: argparse.Namespace) -> int:
+    from softpad.fem import run_sweep
+
     files = _files(args)
-    return _study(args, files, f"sweep {args.model}", "sweep", args.max_pressure_kpa, args.points)
+    return _study(args, files, f"sweep {args.model}", run_sweep, args.max_pressure_kpa, args.points)
 
 
 def _design(args: argparse.Namespace) -> int:
+    from softpad.fem import run_design
+
     files = _files(args)
     defaults = {"thickness": "1,1.5,2,2.5,3", "width": "35,40,45,50,55"}
     text = args.values_mm or defaults[args.parameter]
     values = number_list(text, "--values-mm", 1e-3, positive=True)
     models = _models(args.models)
     design = (args.parameter, values, models, args.pressure_kpa)
-    return _study(args, files, f"design {args.parameter}", "design", *design)
+    return _study(args, files, f"design {args.parameter}", run_design, *design)
 
 
 def _stiffness(args: argparse.Namespace) -> int:
+    from softpad.fem import run_stiffness
+
     files = _files(args)
     pressures = number_list(args.pressures_kpa, "--pressures-kpa", 1e3, positive=True)
     forces = number_list(args.forces_n, "--forces-n", positive=True)
-    return _study(args, files, "stiffness", "stiffness", pressures, forces, args.radius_mm)
+    return _study(args, files, "stiffness", run_stiffness, pressures, forces, args.radius_mm)
 
 
 def _sensitivity(args: argparse.Namespace) -> int:
+    from softpad.fem import run_sensitivity
+
     files = _files(args)
     pressures = number_list(args.pressures_kpa, "--pressures-kpa", 1e3, positive=True)
     probe = (args.fraction, args.probe_g, args.threshold_kpa)
-    return _study(args, files, "sensitivity", "sensitivity", pressures, *probe)
+    return _study(args, files, "sensitivity", run_sensitivity, pressures, *probe)
 
 
 def _chamber(args: argparse.Namespace) -> int:
+    from softpad.fem import run_chamber
+
     files = _files(args)
     masses = number_list(args.masses_g, "--masses-g", 1e-3, positive=True)
     threshold = (args.threshold_kpa, args.noise_kpa, args.n_sigma)
     chamber = (args.pressure_kpa, masses, args.footprint_mm, args.dead_volume_ml, threshold)
-    return _study(args, files, "chamber", "chamber", *chamber)
+    return _study(args, files, "chamber", run_chamber, *chamber)
 
 
 def _fit(args: argparse.Namespace) -> int:
+    from softpad.fem import run_fit
+
     files = _files(args)
     free = [s.strip() for s in args.free.split(",") if s.strip()] if args.free else None
-    return _study(args, files, f"fit {args.model}", "fit", args.data, free, args.max_evals)
+    return _study(args, files, f"fit {args.model}", run_fit, args.data, free, args.max_evals)
 
 
 def _compare(args: argparse.Namespace) -> int:
+    from softpad.fem import run_compare
+
     files = _files(args)
-    return _study(args, files, "compare", "compare", args.data, _models(args.models))
+    return _study(args, files, "compare", run_compare, args.data, _models(args.models))
 
 
 def _characteristic(args: argparse.Namespace) -> int:
+    from softpad.fem import run_characteristic
+
     files = _files(args)
     text = args.pressures_kpa
     pressures = number_list(text, "--pressures-kpa", 1e3) if text else None
     loads = number_list(args.loads_n, "--loads-n") if args.loads_n else None
     table = (pressures, loads, args.gap_volume_ml)
-    return _study(args, files, "characteristic", "characteristic", *table)
+    return _study(args, files, "characteristic", run_characteristic, *table)
 
 
 def _response(args: argparse.Namespace) -> int:
+    from softpad.fem import run_response
+
     files = _files(args)
     text = args.pressures_kpa
     pressures = number_list(text, "--pressures-kpa", 1e3, positive=True) if text else None
-    return _study(args, files, "response", "response", pressures, not args.no_convergence)
+    return _study(args, files, "response", run_response, pressures, not args.no_convergence)
