@@ -29,3 +29,10 @@ def test_a_connecting_link_is_the_nodes_box() -> None:
     inst = parse_installation({"link": {"connect": ["tcp/127.0.0.1:7450"]}})
     assert inst.box_url == "zenoh://127.0.0.1:7450/softpad/box"
     assert installation_settings(inst)["box"] == inst.box_url
+
+
+def test_given_options_override_only_where_given() -> None:
+    from softpad.ros import given_settings
+
+    assert given_settings(None, box=None, place="", robot="sim://") == {"robot": "sim://"}
+    assert given_settings(0.0, box="sim://") == {"hold_s": 0.0, "box": "sim://"}

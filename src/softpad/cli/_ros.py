@@ -215,22 +215,13 @@ def installation_settings(path: str) -> dict[str, Any]:
 
 
 def run_node(args: argparse.Namespace) -> int:
-    from softpad.ros import NodeConfig, PadNode
+    from softpad.ros import NodeConfig, PadNode, given_settings
 
     config = NodeConfig()
     if args.config:
         config = config.updated(installation_settings(args.config))
-    changes: dict[str, Any] = {}
-    if args.hold_s is not None:
-        changes["hold_s"] = args.hold_s
-    if args.box:
-        changes["box"] = args.box
-    if args.place:
-        changes["place"] = args.place
-    for key in ("planner", "detector", "robot"):
-        if getattr(args, key):
-            changes[key] = getattr(args, key)
-    node = PadNode(config.updated(changes))
+    names = {key: getattr(args, key) for key in ("box", "place", "planner", "detector", "robot")}
+    node = PadNode(config.updated(given_settings(args.hold_s, **names)))
     try:
         if args.json:
             print(json.dumps({"box": node.config.box, "layout": node.layout.name}), flush=True)

@@ -90,16 +90,11 @@ def node_config(path: str | None) -> Any:
 
 
 def run_node(args: argparse.Namespace) -> int:
+    from softpad.ros import given_settings
     from softpad.ros2 import Ros2PadNode
 
-    changes: dict[str, Any] = {}
-    if args.box:
-        changes["box"] = args.box
-    if args.place:
-        changes["place"] = args.place
-    for key in ("planner", "detector", "robot"):
-        if getattr(args, key):
-            changes[key] = getattr(args, key)
+    names = {key: getattr(args, key) for key in ("box", "place", "planner", "detector", "robot")}
+    changes = given_settings(**names)
     node = Ros2PadNode(node_config(args.config).updated(changes), ros_args=args.ros_args)
     try:
         start = {"box": node.config.box, "layout": node.layout.name, "node": "/softpad"}

@@ -15,7 +15,7 @@ from softpad.ros._arm import (
     open_robot,
     open_ros1_robot,
 )
-from softpad.ros._installation import installation_settings
+from softpad.ros._installation import given_settings, installation_settings
 from softpad.ros._msgs import (
     ensure_messages,
     generate_messages,
@@ -69,6 +69,7 @@ __all__ = [
     "ensure_messages",
     "ensure_rospy",
     "generate_messages",
+    "given_settings",
     "installation_settings",
     "load_config",
     "message_definitions",

@@ -40,4 +40,21 @@ def installation_settings(installation: Any, pitch: bool = True) -> dict[str, An
     return values
 
 
-__all__ = ["installation_settings"]
+def given_settings(hold_s: float | None = None, **names: str | None) -> dict[str, Any]:
+    """The node's settings given as options: ``hold_s`` unless None, each of ``names``
+    (``box``, ``place``, ``planner``, ``detector``, ``robot``) unless None or empty; they
+    override the installation's (:meth:`NodeConfig.updated`).
+
+    Parameters
+    ----------
+    hold_s
+        Hold time of a grasp, s.
+    names
+        Settings by key (:data:`softpad.ros.CONFIG_KEYS`).
+    """
+    changes: dict[str, Any] = {} if hold_s is None else {"hold_s": hold_s}
+    changes.update({key: value for key, value in names.items() if value})
+    return changes
+
+
+__all__ = ["given_settings", "installation_settings"]
