@@ -68,3 +68,10 @@ def test_a_sweep_reports_each_pressure_and_writes_through_the_hook(tmp_path) -> 
 def test_a_table_study_needs_its_file() -> None:
     with pytest.raises(InputError, match=r"--out FILE\.npz"):
         run_characteristic(StudyModule(mesh="coarse"), [0.0, 500.0], [0.0], 0.2, StudyFiles())
+
+
+def test_the_cast_response_needs_its_file_before_solving() -> None:
+    from softpad.fem import run_cast_response
+
+    with pytest.raises(InputError, match=r"--out FILE\.npz"):
+        run_cast_response("neo-hookean", 1.0, None, (4, 1), [], StudyFiles())

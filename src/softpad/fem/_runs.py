@@ -702,3 +702,58 @@ def _response_report(result: Any, out: Path) -> tuple[dict[str, Any], tuple[str,
             f"{100 * conv['largest_difference']:.2f} % against {conv['reference_mesh']}"
         )
     return summary, tuple(lines)
+
+
+def run_cast_response(
+    model: str,
+    wall_mm: float,
+    foundation_mpa_per_m: float | None,
+    mesh: tuple[int, int],
+    pressures_pa: Sequence[float],
+    files: StudyFiles,
+) -> StudyReport:
+    """The cast pad's response table into ``files.out`` (.npz) and its sensitivities at p0
+    (1.1 kPa, within the table's pressures).
+
+    Parameters
+    ----------
+    model
+        Material preset (thesis Table 7.1).
+    wall_mm
+        Width of the walls between the chambers, mm.
+    foundation_mpa_per_m
+        Stiffness of the foundation under the walls, MPa/m; None: rigid.
+    mesh
+        (cells, layers) of :class:`~softpad.fem.MeshOptions`.
+    pressures_pa
+        The table's pressures, Pa; empty: :data:`DEFAULT_RESPONSE_PRESSURES_PA`.
+    files
+        Where the table goes (``out``).
+
+    Returns
+    -------
+    StudyReport
+        The table's path, meta and sensitivities (Pa/N, g), and the report's lines.
+    """
+    from softpad.fem._cast import CastPadGeometry, cast_pad_response, cast_sensitivities
+    from softpad.fem._geometry import MeshOptions
+    from softpad.fem._materials import get_material
+    from softpad.fem._response import DEFAULT_RESPONSE_PRESSURES_PA
+
+    out = _out(files)
+    k = float("inf") if foundation_mpa_per_m is None else foundation_mpa_per_m * 1e6
+    pad = CastPadGeometry(wall_width_m=wall_mm * 1e-3, foundation_pa_per_m=k)
+    pressures = list(pressures_pa) or DEFAULT_RESPONSE_PRESSURES_PA
+    table = cast_pad_response(get_material(model), pad, MeshOptions(*mesh), pressures)
+    with files.atomic(out) as tmp:
+        table.to_npz(tmp)
+    p0 = min(max(1100.0, float(table.pressure_pa[0])), float(table.pressure_pa[-1]))
+    figures = cast_sensitivities(table, p0)
+    lines = [f"wrote {out}: {len(table.pressure_pa)} pressures, {table.meta['mesh']}"]
+    for name, v in figures["probes"].items():
+        rises = ", ".join(f"{r:.0f}" for r in v["rise_pa_n"])
+        lines.append(f"  {name}: every module [{rises}] Pa/N")
+    for name, g in figures["min_detectable_mass_g"].items():
+        lines.append(f"  minimum detectable mass, {name}: {g:.2f} g at t_o = 50 Pa")
+    data = {"path": str(out), "meta": table.meta, "sensitivities": figures}
+    return StudyReport(data, tuple(lines))
