@@ -15,7 +15,7 @@ CLI = Path(softpad.__file__).parent / "cli"
 MAX_CLI_LINES = 3000
 #: Lines the shell held when this test was written (issue 46 left it above the limit): the
 #: count may only go down; lower it as code moves out, and drop the xfail at the limit.
-CURRENT_CEILING = 4627
+CURRENT_CEILING = 4483
 
 
 def wc_lines(path: Path) -> int:
