@@ -127,46 +127,17 @@ def _outputs(args: argparse.Namespace) -> dict[str, Any]:
 
 def run(args: argparse.Namespace) -> int:
     from softpad.cli._paths import write_text_atomic
-    from softpad.design import (
-        ResultCache,
-        cache_folder,
-        cached_line,
-        check_scheduler_address,
-        choose_object_set,
-        design_sweep,
-        sweep_trial_options,
-        write_sweep,
-    )
+    from softpad.design import ResultCache, cache_folder, cached_line, design_sweep, write_sweep
 
-    object_set = choose_object_set(args.objects, args.example, args.gripper, args.mounting)
-    designs = _designs(args)
-    object_set.check_on_pads(designs)
-    seeds = int_ranges(args.seeds, "--seeds", lo=0, hi=2**32 - 1)
-    if len(seeds) > 100:
-        raise InputError(f"--seeds names {len(seeds)} seeds; at most 100")
-    options = sweep_trial_options(
-        args.trials, args.hold_s, args.quick, args.planner, args.detector, args.randomize,
-        args.mounting,
-    )  # fmt: skip
-    if args.scheduler is not None:
-        check_scheduler_address(args.scheduler)
-    if args.workers is not None and not 1 <= args.workers <= 256:
-        raise InputError(f"--workers must be from 1 to 256, got {args.workers}")
+    designs, object_set, options, seeds = _sweep_inputs(args)
     outputs = _outputs(args)
     cache = ResultCache(None if args.no_cache else cache_folder(args.cache))
     bar = _bar(not args.no_progress and sys.stderr.isatty())
     try:
         result = design_sweep(
-            designs,
-            object_set,
-            options,
-            seeds,
-            quick=args.quick,
-            scheduler=args.scheduler,
-            workers=args.workers,
-            cache=cache,
-            progress=bar,
-        )
+            designs, object_set, options, seeds, quick=args.quick, scheduler=args.scheduler,
+            workers=args.workers, cache=cache, progress=bar,
+        )  # fmt: skip
     finally:
         if bar is not None:
             bar.close()
@@ -183,6 +154,27 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         emit(result.to_dict())
     return 0
+
+
+def _sweep_inputs(args: argparse.Namespace) -> tuple[list[Any], Any, Any, list[int]]:
+    """The sweep's designs, object set, trial options and seeds, checked before any work."""
+    from softpad.design import check_scheduler_address, choose_object_set, sweep_trial_options
+
+    object_set = choose_object_set(args.objects, args.example, args.gripper, args.mounting)
+    designs = _designs(args)
+    object_set.check_on_pads(designs)
+    seeds = int_ranges(args.seeds, "--seeds", lo=0, hi=2**32 - 1)
+    if len(seeds) > 100:
+        raise InputError(f"--seeds names {len(seeds)} seeds; at most 100")
+    options = sweep_trial_options(
+        args.trials, args.hold_s, args.quick, args.planner, args.detector, args.randomize,
+        args.mounting,
+    )  # fmt: skip
+    if args.scheduler is not None:
+        check_scheduler_address(args.scheduler)
+    if args.workers is not None and not 1 <= args.workers <= 256:
+        raise InputError(f"--workers must be from 1 to 256, got {args.workers}")
+    return designs, object_set, options, seeds
 
 
 class _Bar:
