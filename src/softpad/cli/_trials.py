@@ -193,13 +193,7 @@ def _show(args: argparse.Namespace) -> bool:
 
 
 def run(args: argparse.Namespace) -> int:
-    from softpad.trials import (
-        ExperimentResult,
-        check_campaign,
-        check_counts,
-        check_trial_recordings,
-        errored_records,
-    )
+    from softpad.trials import check_campaign, check_counts, check_trial_recordings
 
     specs = select_objects(args.objects, args.objects_file)
     check_counts(args.trials, args.workers)
@@ -211,11 +205,18 @@ def run(args: argparse.Namespace) -> int:
     args.partial = {"seeds": seeds, "completed_seeds": [], "finished_trials": finished}
     if getattr(args, "scheduler", None) is not None:
         return _run_on_dask(args, specs, seeds)
-    done = _run_here(args, specs, seeds, finished)
-    pooled = ExperimentResult.pooled(done)
+    return _pooled(args, _run_here(args, specs, seeds, finished), "workers")
+
+
+def _pooled(args: argparse.Namespace, experiments: list[Any], workers: str) -> int:
+    """Print the seeds' experiments pooled (``--json``: as one object); the exit code."""
+    from softpad.trials import ExperimentResult, errored_records
+
+    pooled = ExperimentResult.pooled(experiments)
     say(pooled.to_text(), args.json)
     say(
-        f"({len(pooled.trials)} trials in {pooled.wall_time_s:.1f} s on {pooled.workers} workers)",
+        f"({len(pooled.trials)} trials in {pooled.wall_time_s:.1f} s on {pooled.workers} "
+        f"{workers})",
         args.json,
     )
     if args.json:
@@ -298,7 +299,6 @@ def _config(args: argparse.Namespace) -> Any:
 def _run_on_dask(args: argparse.Namespace, specs: list[Any], seeds: list[int]) -> int:
     """``--scheduler``: every seed's trials as Dask tasks (softpad.design's client), pooled."""
     from softpad.design import check_scheduler_address, run_experiment_on_dask
-    from softpad.trials import ExperimentResult, errored_records
 
     if args.record:
         raise InputError("--record is not available with --scheduler (trials run on Dask workers)")
@@ -322,13 +322,4 @@ def _run_on_dask(args: argparse.Namespace, specs: list[Any], seeds: list[int]) -
     if len(seeds) > 1:
         for exp in exps:
             say(f"seed {exp.seed}: {exp.overall()['successes']}/{len(exp.trials)} held", args.json)
-    pooled = ExperimentResult.pooled(exps)
-    say(pooled.to_text(), args.json)
-    say(
-        f"({len(pooled.trials)} trials in {pooled.wall_time_s:.1f} s on {pooled.workers} Dask "
-        "workers)",
-        args.json,
-    )
-    if args.json:
-        emit(pooled.to_dict())
-    return trial_errors_exit(errored_records(pooled.trials), "trials")
+    return _pooled(args, exps, "Dask workers")
