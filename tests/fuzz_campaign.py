@@ -176,6 +176,7 @@ FEM_LONG_JOBS = (
 def _stub_targets() -> list[tuple[Any, str, Any]]:
     """(object, attribute, replacement) of every stubbed long job."""
     import softpad.box
+    import softpad.box._daemon
     import softpad.box._zenoh
     import softpad.cli._bench
     import softpad.cli._box
@@ -190,10 +191,12 @@ def _stub_targets() -> list[tuple[Any, str, Any]]:
     import softpad.record
     import softpad.ros
     import softpad.sim
+    import softpad.sim._probe
     import softpad.trials
 
     targets: list[tuple[Any, str, Any]] = [
         (softpad.harness, "run_simulated", _started),
+        (softpad.harness, "run_objects", _started),
         (softpad.cli._trials, "run_with_progress", _started),
         (softpad.cli._trials, "run_seeds_with_progress", _started),
         (softpad.cli._demo, "_reference_plans", _started),
@@ -201,6 +204,8 @@ def _stub_targets() -> list[tuple[Any, str, Any]]:
         (softpad.cli._box, "_monitor_foxglove", _started),
         (softpad.control, "inflate_and_adjust", _started),
         (softpad.box, "BoxDaemon", _started),
+        (softpad.box._daemon, "BoxDaemon", _started),  # ServeOptions.daemon's
+        (softpad.box, "open_watched", _open_box_checked(softpad.box.open_watched)),
         (softpad.box, "open_box", _open_box_checked(softpad.box.open_box)),
         (softpad.record, "FoxgloveLive", _started),
         (softpad.design, "design_sweep", _started),
@@ -212,10 +217,16 @@ def _stub_targets() -> list[tuple[Any, str, Any]]:
         (softpad.box._zenoh, "ZenohBox", _zenoh_box),
         (softpad.cli._bench, "importlib", types.SimpleNamespace(import_module=_started)),
         (softpad.sim, "sealed_rise_map", _started),
+        (softpad.sim._probe, "sealed_rise_map", _started),  # softpad.sim.pad_map's
         (softpad.fem._response, "module_response", _started),
         (softpad.fem.ModuleSetup, "model", _started),
     ]
     targets.extend((softpad.fem, name, _started) for name in FEM_LONG_JOBS)
+    # where softpad.fem's study runs (softpad.fem.run_sweep, ...) find them
+    targets.extend(
+        (sys.modules[getattr(softpad.fem, name).__module__], name, _started)
+        for name in FEM_LONG_JOBS
+    )
     return targets
 
 

@@ -160,13 +160,14 @@ def test_run_builds_the_detector_for_the_boxs_pad() -> None:
     """``softpad run`` (and ``trials``, ``compare``) make the contact detector for the pad on
     the box: a 3 x 4 simulated pad gets the 12-module CUSUM, not the 6-module one."""
     from softpad.box import open_box
-    from softpad.cli._run import execution_params, loop_parts
+    from softpad.cli._run import execution_params
     from softpad.cli.main import build_parser
+    from softpad.harness import box_loop_parts
 
     args = build_parser().parse_args(["run", "--detector", "cusum", "--planner", "thesis"])
     assert isinstance(args, argparse.Namespace)
     with open_box("sim://?layout=3x4&channels=12&seed=1") as box:
-        parts = loop_parts(args, box, execution_params(args), "10/4")
+        parts = box_loop_parts(box, execution_params(args), "10/4", args.planner, args.detector)
     twelve = cusum_for_rate(box.sample_rate_hz, 12).single.threshold_pa
     assert parts["contact_detector"].single.threshold_pa == pytest.approx(twelve)
 

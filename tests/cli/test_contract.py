@@ -90,7 +90,7 @@ def test_internal_error_exits_4_naming_where_to_report(capsys, monkeypatch) -> N
     def broken(*args, **kwargs):
         raise ZeroDivisionError("boom")
 
-    monkeypatch.setattr(softpad.planning, "plan_grasps", broken)
+    monkeypatch.setattr(softpad.planning, "plan_by_name", broken)
     code, data, err = _json(capsys, "plan", "--delta", BANANA, "--json")
     assert code == 4 and data["error"]["kind"] == "internal"
     assert "boom" in err and "report" in err and "--debug" in err
@@ -149,6 +149,7 @@ def test_outputs_are_checked_before_any_work(capsys, monkeypatch, tmp_path, argv
 
     monkeypatch.chdir(tmp_path)
     monkeypatch.setattr(softpad.harness, "run_simulated", never)
+    monkeypatch.setattr(softpad.harness, "run_objects", never)
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert message in err and err.count("\n") == 1
@@ -317,11 +318,11 @@ def test_run_passes_the_thesis_parameters_in_si(monkeypatch, capsys) -> None:
 
     seen = {}
 
-    def capture(names, box, params, recorder, gripper=None, robot=None, **parts):
+    def capture(names, box, params, *rest):
         seen["params"] = params
         raise InputError("stop here")
 
-    monkeypatch.setattr(softpad.harness, "run_simulated", capture)
+    monkeypatch.setattr(softpad.harness, "run_objects", capture)
     argv = ["run", "--p0-kpa", "1.5", "--object-threshold-kpa", "0.07"]
     argv += ["--contact-threshold-kpa", "0.12", "--window", "5", "--approach-speed-mps", "0.02"]
     assert main(argv) == 2

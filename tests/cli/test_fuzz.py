@@ -11,6 +11,7 @@ with ``--json``, stdout is JSON with ``schema_version``.
 from __future__ import annotations
 
 import json
+import sys
 import tempfile
 import types
 from collections.abc import Iterator
@@ -39,6 +40,7 @@ def _started(*args: object, **kwargs: object) -> None:
 def stubbed() -> Iterator[Path]:
     """Long jobs stubbed, the working folder a fresh temporary one (module scope)."""
     import softpad.box
+    import softpad.box._daemon
     import softpad.cli._bench
     import softpad.cli._demo
     import softpad.cli._trials
@@ -52,14 +54,17 @@ def stubbed() -> Iterator[Path]:
     mp = pytest.MonkeyPatch()
     mp.setattr(softpad.sim._probe, "sealed_rise_map", _started)
     mp.setattr(softpad.harness, "run_simulated", _started)
+    mp.setattr(softpad.harness, "run_objects", _started)
     mp.setattr(softpad.cli._trials, "run_with_progress", _started)
     mp.setattr(softpad.cli._trials, "run_seeds_with_progress", _started)
     mp.setattr(softpad.cli._demo, "_reference_plans", _started)
     mp.setattr(softpad.cli._bench, "importlib", types.SimpleNamespace(import_module=_started))
     mp.setattr(softpad.control, "inflate_and_adjust", _started)
     mp.setattr(softpad.box, "BoxDaemon", _started)
+    mp.setattr(softpad.box._daemon, "BoxDaemon", _started)  # ServeOptions.daemon's
     mp.setattr(softpad.design, "design_sweep", _started)
-    for name in FEM_LONG_JOBS:
+    for name in FEM_LONG_JOBS:  # in the package and where softpad.fem's study runs find them
+        mp.setattr(sys.modules[getattr(softpad.fem, name).__module__], name, _started)
         mp.setattr(softpad.fem, name, _started)
     mp.setattr(softpad.fem.ModuleSetup, "model", _started)
     import softpad.fem._response

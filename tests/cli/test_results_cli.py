@@ -8,8 +8,8 @@ from pathlib import Path
 
 import pytest
 
-from softpad.cli._results import RESULTS
 from softpad.cli.main import main
+from softpad.trials import RESULTS
 
 
 @pytest.mark.slow

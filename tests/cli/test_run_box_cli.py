@@ -193,7 +193,7 @@ def test_the_timeline_says_whether_a_retry_followed_a_close() -> None:
     """A retry after the jaws closed on nothing and one at the landing (``closed`` False,
     the jaws not closed) read differently; an event without ``closed`` (a run recorded
     before it existed) reads as after a close."""
-    from softpad.cli._run import _retry_text
+    from softpad.harness import retry_text as _retry_text
 
     event = dict(z_m=0.0291, cog=[1.33, 1.12], theta=1.5708, rule="n6+shifted-after-miss")
     after = _retry_text(event)
@@ -207,8 +207,9 @@ def test_the_timeline_says_whether_a_retry_followed_a_close() -> None:
 def test_drop_carried_is_an_option_of_run() -> None:
     """``--drop-carried`` (default) and ``--no-drop-carried`` reach the loop's parameters;
     the timeline names the modules that went up with the held object."""
-    from softpad.cli._run import _EVENT_TEXT, execution_params
+    from softpad.cli._run import execution_params
     from softpad.cli.main import build_parser
+    from softpad.harness import EVENT_TEXT as _EVENT_TEXT
 
     p = build_parser()
     assert execution_params(p.parse_args(["run"])).drop_carried is True

@@ -154,7 +154,7 @@ def test_a_simulated_box_is_paced_at_real_time_unless_asked(capsys) -> None:
     paced (before the fix a monitor ran its private simulator at about 270,000 frames/s)."""
     import time
 
-    from softpad.cli._box import Pacer
+    from softpad.box import Pacer
     from softpad.cli.main import main
 
     t0 = time.monotonic()

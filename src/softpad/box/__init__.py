@@ -43,6 +43,18 @@ from softpad.box._registry import (
     served_services,
 )
 from softpad.box._safety import RATED_MAX_PRESSURE_PA, SafetyGuard, SafetyLimits, SafetyTrip
+from softpad.box._serve import SERVE_SIM_RATE_HZ, ServeOptions
+from softpad.box._watch import (
+    LINK_DEFAULT,
+    MonitorPeriod,
+    Pacer,
+    describe_box,
+    monitor_header,
+    monitor_periods,
+    open_watched,
+    stamped_frames,
+    stats_lines,
+)
 from softpad.box._wrapper import BoxWrapper
 from softpad.box._zenoh import ControlRefused, ZenohBox, open_zenoh_url
 
@@ -91,7 +103,9 @@ __all__ = [
     "BOX_SERVICES",
     "DEFAULT_URL",
     "FAULT_KINDS",
+    "LINK_DEFAULT",
     "RATED_MAX_PRESSURE_PA",
+    "SERVE_SIM_RATE_HZ",
     "Box",
     "BoxDaemon",
     "BoxWrapper",
@@ -104,12 +118,15 @@ __all__ = [
     "GpiodValveLines",
     "HardwareBox",
     "IIOReader",
+    "MonitorPeriod",
+    "Pacer",
     "PressureFrame",
     "SafetyGuard",
     "SafetyLimits",
     "SafetyTrip",
     "SensorFaults",
     "SensorZeroShift",
+    "ServeOptions",
     "SimBox",
     "SimLayer",
     "StampedFrame",
@@ -122,12 +139,18 @@ __all__ = [
     "check_conformance",
     "compose_sim_box",
     "daemon_auth",
+    "describe_box",
     "guard_box",
+    "monitor_header",
+    "monitor_periods",
     "open_box",
     "open_sim_url",
+    "open_watched",
     "open_zenoh_url",
     "parse_url",
     "register_backend",
     "served_services",
     "simulator_of",
+    "stamped_frames",
+    "stats_lines",
 ]

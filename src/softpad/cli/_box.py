@@ -81,7 +81,8 @@ link (zenoh://127.0.0.1:7447, or the link of --config FILE) and fails within sec
 the link, when nothing serves there; a simulated box (--box sim://) runs paced at real time
 unless its URL says realtime=0."""
 
-#: The box a monitor watches without --box or --config: the box daemon's default link.
+#: The box a monitor watches without --box or --config: the box daemon's default link
+#: (:data:`softpad.box.LINK_DEFAULT`, not imported so that building the parser loads no box).
 LINK_DEFAULT = "zenoh://127.0.0.1:7447"
 
 _MONITOR_BOX_HELP = (
@@ -235,69 +236,17 @@ def _register_serve(bsub: Any) -> None:
     )
 
 
-class Pacer:
-    """Keeps a simulated box opened by this command at real time: each frame waits until the
-    wall clock reaches its box time. A served box is paced by its daemon; ``sim://?realtime=0``
-    asks for no pacing (as fast as the simulator computes).
-
-    Parameters
-    ----------
-    url
-        The box's URL.
-    """
-
-    def __init__(self, url: str) -> None:
-        from softpad.box import parse_url
-
-        self.on = url.startswith("sim://") and parse_url(url)[2].get("realtime") != "0"
-        self._start: tuple[float, float] | None = None  # (wall s, box s) of the first frame
-
-    def wait(self, t_s: float) -> None:
-        """Wait until the wall clock reaches box time ``t_s`` (s) after the first frame."""
-        import time
-
-        if not self.on:
-            return
-        if self._start is None:
-            self._start = (time.monotonic(), t_s)
-        delay = self._start[0] + (t_s - self._start[1]) - time.monotonic()
-        if delay > 0:
-            time.sleep(delay)
-
-
-def describe_box(url: str, paced: bool | None = None) -> str:
-    """Which box a command talks to, for its first line (``paced``: whether the command keeps
-    a simulated box at real time; None says nothing of it)."""
-    if url.startswith("sim://"):
-        pace = {True: " (paced at real time; sim://?realtime=0: unpaced)", False: " (unpaced)"}
-        return f"the simulated box {url}{'' if paced is None else pace[paced]}"
-    if url.startswith("zenoh://"):
-        return f"the served box at {url}"
-    return f"the box {url}"
-
-
 def _first_line(
     command: str, url: str, json_mode: bool, tail: str = "", paced: bool | None = None
 ) -> None:
     """The first line of a command that talks to a box: which box (stderr under --json)."""
+    from softpad.box import describe_box
+
     say(f"softpad box {command}: {describe_box(url, paced)}{tail}", json_mode)
 
 
-def _stamped(box: Any, i: int, pacer: Pacer) -> tuple[int, Any]:
-    """(seq, frame): the daemon's sequence number for a served box, else the frame index."""
-    from softpad.box import ZenohBox
-
-    if isinstance(box, ZenohBox):
-        s = box.read_stamped()
-        return s.seq, s.frame
-    f = box.read()
-    pacer.wait(f.t_s)
-    return i + 1, f
-
-
 def read(args: argparse.Namespace) -> int:
-    from softpad.box import open_box
-    from softpad.errors import InputError
+    from softpad.box import Pacer, open_box, stamped_frames
 
     if args.count < 0:
         raise InputError(f"--count must be >= 0 (0: endless), got {args.count}")
@@ -310,9 +259,10 @@ def read(args: argparse.Namespace) -> int:
         if not args.json:
             head = "    t_s  " + " ".join(f"{'ch' + str(k + 1):>8s}" for k in range(box.channels))
             print(head + "  supply   (kPa)")
+        frames = stamped_frames(box, pacer)
         i = 0
         while args.count == 0 or i < args.count:
-            seq, f = _stamped(box, i, pacer)
+            seq, f, _ = next(frames)
             if i % args.every == 0:
                 if args.json:
                     emit({"seq": seq, **f.to_dict()})
@@ -325,9 +275,7 @@ def read(args: argparse.Namespace) -> int:
 
 
 def monitor(args: argparse.Namespace) -> int:
-    import time
-
-    from softpad.errors import InputError
+    from softpad.box import Pacer, monitor_header, monitor_periods, open_watched
     from softpad.layout import parse_layout
 
     if args.count < 0:
@@ -336,94 +284,30 @@ def monitor(args: argparse.Namespace) -> int:
     if args.foxglove:
         return _monitor_foxglove(args, layout)
     pacer = Pacer(args.box)
-    with _open_watched(args.box) as box:
+    with open_watched(args.box) as box:
         tail = " (read-only); Ctrl-C stops"
         _first_line("monitor", args.box, args.json, tail, paced=pacer.on)
         n = min(layout.n_modules, box.channels)
         terminal = sys.stdout.isatty() and not args.json
         if not args.json:
-            print(_monitor_header(n), flush=True)
-        every = max(1, round(box.sample_rate_hz * args.period_s))
-        i, lost, last, lat, t0, i0 = 0, 0, None, [], time.monotonic(), 0
+            print(monitor_header(n), flush=True)
         try:
-            while args.count == 0 or i < args.count:
-                seq, f, latency_s = _timed(box, i, pacer)
-                lost += 0 if last is None else max(0, seq - last - 1)
-                last, i = seq, i + 1
-                if latency_s is not None:
-                    lat.append(latency_s)
-                if i % every == 0 or i == args.count:  # frames per wall second in the period
-                    now = time.monotonic()
-                    rate = (i - i0) / max(now - t0, 1e-9)
-                    _monitor_line(args.json, terminal, seq, f, n, rate, lat, lost)
-                    lat, t0, i0 = [], now, i
+            for period in monitor_periods(box, pacer, n, args.period_s, args.count):
+                if args.json:
+                    emit(period.to_dict())
+                else:
+                    line = period.line()
+                    print(
+                        "\r" + line if terminal else line, end="" if terminal else "\n", flush=True
+                    )
         finally:  # Ctrl-C too (exit 130): end the line refreshed in place
             if terminal:
                 print()
     return 0
 
 
-def _open_watched(url: str) -> Any:
-    """The box a monitor watches; when nothing serves at a zenoh:// link, the error says how
-    to serve one or to watch a simulated box instead."""
-    from softpad.box import ConnectionLost, open_box
-
-    try:
-        return open_box(url)
-    except ConnectionLost as exc:
-        raise ConnectionLost(
-            f"{exc} (is a box served there? 'softpad box serve --sim' serves the simulator; "
-            "--box sim:// watches a simulated box of this command's own)"
-        ) from None
-
-
-def _timed(box: Any, i: int, pacer: Pacer) -> tuple[int, Any, float | None]:
-    """(seq, frame, latency s): the latency from the daemon's sample to now for a served box
-    (its monotonic clock is this machine's on loopback), None for a box opened here."""
-    import time
-
-    from softpad.box import ZenohBox
-
-    if isinstance(box, ZenohBox):
-        s = box.read_stamped()
-        return s.seq, s.frame, time.monotonic() - s.mono_s
-    f = box.read()
-    pacer.wait(f.t_s)
-    return i + 1, f, None
-
-
-def _monitor_header(n: int) -> str:
-    modules = " ".join(f"{f'm{k + 1}_kpa':>8s}" for k in range(n))
-    return (
-        f"{'seq':>9s} {'t_s':>9s} {modules} {'supply_kpa':>10s} {'frames/s':>9s} "
-        f"{'p50_ms':>8s} {'p99_ms':>8s} {'lost':>6s}"
-    )
-
-
-def _monitor_line(
-    as_json: bool, terminal: bool, seq: int, f: Any, n: int, rate: float, lat: list[float],
-    lost: int,
-) -> None:  # fmt: skip
-    import numpy as np
-
-    p50 = p99 = None
-    if lat:
-        p50, p99 = (round(float(v) * 1e3, 3) for v in np.percentile(lat, [50, 99]))
-    if as_json:
-        d = f.to_dict()
-        d["pressures_kpa"] = d["pressures_kpa"][:n]
-        emit({"seq": seq, **d, "rate_hz": round(rate, 1), "latency_p50_ms": p50,
-              "latency_p99_ms": p99, "lost": lost})  # fmt: skip
-        return
-    vals = " ".join(f"{v / 1e3:8.3f}" for v in f.pressures_pa[:n])
-    ms = " ".join(f"{'-':>8s}" if v is None else f"{v:8.2f}" for v in (p50, p99))
-    line = f"{seq:9d} {f.t_s:9.3f} {vals} {f.supply_pa / 1e3:10.2f} {rate:9.1f} {ms} {lost:6d}"
-    print("\r" + line if terminal else line, end="" if terminal else "\n", flush=True)
-
-
 def stats(args: argparse.Namespace) -> int:
-    from softpad.box import ZenohBox, open_box
-    from softpad.errors import InputError
+    from softpad.box import ZenohBox, open_box, stats_lines
 
     with open_box(args.box) as box:
         if not isinstance(box, ZenohBox):
@@ -433,77 +317,22 @@ def stats(args: argparse.Namespace) -> int:
     d.pop("ok", None)
     if args.json:
         emit(d)
-        return 0
-
-    def ms(v: float | None) -> str:
-        return "-" if v is None else f"{v * 1e3:.3f} ms"
-
-    print(f"rate      {d['achieved_rate_hz']:.1f} Hz achieved of {d['target_rate_hz']:g} Hz")
-    print(
-        f"period    p50 {ms(d.get('period_p50_s'))}, p99 {ms(d['period_p99_s'])}, "
-        f"max {ms(d.get('period_max_s'))}, jitter (std) {ms(d['jitter_std_s'])}; "
-        f"error p99 {ms(d.get('period_error_p99_s'))}"
-    )
-    print(f"dropped   {d['dropped_samples']} ticks; malformed payloads {d['malformed_payloads']}")
-    if "cpu_percent" in d:
-        print(
-            f"cpu       daemon {d['cpu_percent']:.1f} % of a core, sampling thread "
-            f"{d['sampler_cpu_percent']:.1f} %; gc {d['gc_collections']} collections, "
-            f"longest {ms(d['gc_pause_max_s'])}; load average {d['load_average_1min']:g}"
-        )
-    print(
-        f"safety    {d['safety_vents']} vents, {d['watchdog_trips']} watchdog trips, {d['refused_commands']} refused, {d.get('auth_failures', 0)} forged or replayed"
-    )
-    print(f"control   {d['controller'] or 'nobody'}; frames {d['frames']}, seq {d['seq']}")
+    else:
+        print("\n".join(stats_lines(d)))
     return 0
 
 
+def _serve_options(args: argparse.Namespace) -> Any:
+    from softpad.box import ServeOptions
+
+    return ServeOptions(
+        args.box, args.hardware, args.config, args.listen or (), args.port, args.rate_hz,
+        args.watchdog_s, args.realtime, args.rt_priority,
+    )  # fmt: skip
+
+
 def _daemon_for(args: argparse.Namespace) -> Any:
-    from softpad.box import BoxDaemon, daemon_auth, open_box, parse_url, served_services
-    from softpad.config import Installation, check_endpoint, check_remote_policy, load_installation
-    from softpad.errors import InputError
-
-    if args.rt_priority is not None and not 1 <= args.rt_priority <= 99:
-        raise InputError(f"--rt-priority must be from 1 to 99, got {args.rt_priority}")
-    url = f"hw://{args.hardware}" if args.hardware else _sim_url(args)
-    scheme, location, _options = parse_url(url)
-    path = args.hardware or args.config or (location if scheme == "hw" else None)
-    inst = load_installation(path) if path else Installation()
-    link = inst.link
-    listen = [check_endpoint(e, "--listen") for e in args.listen or ()]
-    if args.port is not None:
-        if not 1 <= args.port <= 65535:
-            raise InputError(f"--port must be within 1..65535, got {args.port}")
-        listen.append(f"tcp/127.0.0.1:{args.port}")
-    if listen:
-        import dataclasses
-
-        link = dataclasses.replace(link, listen=tuple(listen))
-        check_remote_policy(link)
-    if link.tls_certificate is not None and not any(e.startswith("tls/") for e in link.listen):
-        raise InputError(
-            "link.tls_certificate is set but no listen endpoint is tls/: TLS would protect "
-            f"nothing on {', '.join(link.listen)}; listen on tls/HOST:PORT or drop the TLS keys"
-        )
-    box = open_box(url)
-    try:
-        services = served_services(url, box)  # the simulator's world and robot for sim://
-        return BoxDaemon(
-            box,
-            link.listen,
-            link.key_prefix,
-            max_pressure_pa=inst.thresholds.max_pressure_pa,
-            watchdog_s=args.watchdog_s or link.watchdog_s,
-            watchdog_action=link.watchdog_action,
-            services=services,
-            lockstep_frames=2 if services and not args.realtime else None,
-            rt_priority=args.rt_priority,
-            auth=daemon_auth(link),
-            log=_daemon_log,
-        )
-    except BaseException:
-        box.close()
-        raise
+    return _serve_options(args).daemon(_daemon_log)
 
 
 def _daemon_log(text: str) -> None:
@@ -513,30 +342,10 @@ def _daemon_log(text: str) -> None:
         print(f"softpad box serve: {text}", file=sys.stderr, flush=True)
 
 
-#: Frame rate of ``box serve --sim`` unless the URL or --rate-hz says otherwise, Hz (the
-#: hardware box's default sample rate).
-SERVE_SIM_RATE_HZ = 1000.0
-
-
-def _sim_url(args: argparse.Namespace) -> str:
-    """The --box URL with the served simulator's rate: --rate-hz, else the URL's rate_hz, else
-    :data:`SERVE_SIM_RATE_HZ`."""
-    from softpad.box import parse_url
-
-    url = str(args.box)
-    if not url.startswith("sim://"):
-        return url
-    if args.rate_hz is None and "rate_hz" in parse_url(url)[2]:
-        return url
-    rate = args.rate_hz or SERVE_SIM_RATE_HZ
-    if "rate_hz" in parse_url(url)[2]:
-        raise InputError("give the rate once: --rate-hz or the URL's rate_hz")
-    return url + ("&" if "?" in url else "?") + f"rate_hz={rate:g}"
-
-
 def serve(args: argparse.Namespace) -> int:
-    daemon = _daemon_for(args)
-    what = _served(args)
+    options = _serve_options(args)
+    daemon = options.daemon(_daemon_log)
+    what = options.served
     try:
         with daemon:
             if args.json:
@@ -553,17 +362,9 @@ def serve(args: argparse.Namespace) -> int:
     return 0
 
 
-def _served(args: argparse.Namespace) -> str:
-    """What ``box serve`` serves, in words: the simulated box and its URL, or the hardware."""
-    if args.hardware:
-        return f"the hardware box wired in {args.hardware}"
-    return f"the simulated box {_sim_url(args)}"
-
-
 def inflate(args: argparse.Namespace) -> int:
     from softpad.box import open_box
     from softpad.control import InflationParams, inflate_and_adjust
-    from softpad.errors import InputError
 
     with open_box(args.box) as box:
         _first_line("inflate", args.box, args.json)
@@ -588,17 +389,14 @@ def inflate(args: argparse.Namespace) -> int:
 
 def _monitor_foxglove(args: argparse.Namespace, layout: Any) -> int:
     """Read frames from the box and publish them to Foxglove, paced to real time."""
-    import sys
-    import time
-
+    from softpad.box import describe_box, open_watched
     from softpad.cli._installation import installed_pad_pose
-    from softpad.errors import InputError
-    from softpad.record import FoxgloveLive
+    from softpad.record import FoxgloveLive, relay_frames
 
     if not 0 <= args.port <= 65535:
         raise InputError(f"--port must be within 0..65535, got {args.port}")
     pad = installed_pad_pose(getattr(args, "config", None))  # the installation's [pad.pose]
-    with _open_watched(args.box) as box, FoxgloveLive(args.port, layout, pad=pad) as live:
+    with open_watched(args.box) as box, FoxgloveLive(args.port, layout, pad=pad) as live:
         if args.json:
             emit({"foxglove": live.url, "port": live.port, "serving": args.box})
         else:
@@ -607,18 +405,8 @@ def _monitor_foxglove(args: argparse.Namespace, layout: Any) -> int:
                 f"(port {live.port}); Ctrl-C stops",
                 flush=True,
             )
-        wall0 = t0 = None
-        i = 0
         try:
-            while args.count == 0 or i < args.count:
-                f = box.read()
-                if wall0 is None or t0 is None:
-                    wall0, t0 = time.monotonic(), f.t_s
-                delay = wall0 + (f.t_s - t0) - time.monotonic()
-                if delay > 0:  # a simulated box runs faster than real time: keep pace
-                    time.sleep(delay)
-                live.frame(f, "monitor")
-                i += 1
+            relay_frames(box, live, args.count)
         finally:  # Ctrl-C too (exit 130)
             print("softpad box monitor: stopped", file=sys.stderr)
     return 0

@@ -78,21 +78,12 @@ def run(args: argparse.Namespace) -> int:
 
 def _objects(args: argparse.Namespace) -> int:
     """``--objects``: the objects' unknowns fitted to Table 6.1's plans."""
-    from softpad.trials import fit_object_unknowns
+    from softpad.trials import fit_object_unknowns, object_fits_table
 
     if args.recordings:
         raise InputError("--objects fits to the thesis's plans and takes no recordings")
     fits = fit_object_unknowns(draws=args.draws, grid=args.grid)
-    lines = [
-        "| object | parameter | range | nominal | fitted | best score |",
-        "|---|---|---|---|---|---|",
-    ]
-    for f in fits:
-        lines.append(
-            f"| {f.object} | {f.parameter} | {f.low:g} .. {f.high:g} | {f.nominal:g} | "
-            f"{f.fitted:.4g} | {min(f.scores):.3g} |"
-        )
-    say("\n".join(lines), args.json)
+    say(object_fits_table(fits), args.json)
     if args.json:
         emit({"draws": args.draws, "grid": args.grid, "fits": [f.to_dict() for f in fits]})
     return 0

@@ -71,8 +71,8 @@ def run(args: argparse.Namespace) -> int:
     import math
 
     from softpad.cli._paths import check_output
-    from softpad.cli._trials import check_counts, select_objects
-    from softpad.trials import TrialConfig, compare, parse_pairs
+    from softpad.cli._trials import select_objects
+    from softpad.trials import TrialConfig, check_counts, compare, parse_pairs
 
     check_output(args.png, "--png", force=args.force, suffix=".png")  # before hours of trials
     if args.merge:
@@ -108,23 +108,11 @@ def run(args: argparse.Namespace) -> int:
 
 def _merged(args: argparse.Namespace) -> dict[str, Any]:
     """The comparisons of the ``--merge`` files as one."""
-    from pathlib import Path
-
-    from softpad.errors import parse_json
-    from softpad.trials import merge_comparisons
+    from softpad.trials import read_comparisons
 
     if args.pair:
         raise InputError("--merge runs no pair: leave out --pair (each file names its own)")
-    docs = []
-    for path in args.merge:
-        try:
-            text = Path(path).read_bytes().decode("utf-8")
-        except OSError as exc:
-            raise InputError(f"cannot read comparison {path!r}: {exc.strerror}") from None
-        except UnicodeDecodeError:
-            raise InputError(f"comparison {path!r} is not text (JSON expected)") from None
-        docs.append((repr(path), parse_json(text, f"comparison {path!r}")))
-    return merge_comparisons(docs)
+    return read_comparisons(args.merge)
 
 
 def _show(d: dict[str, Any], args: argparse.Namespace) -> int:

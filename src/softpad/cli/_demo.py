@@ -3,14 +3,13 @@
 from __future__ import annotations
 
 import argparse
-import math
 from pathlib import Path
 from typing import Any
 
 from softpad.cli._args import add_command
 from softpad.cli._output import emit, say
 from softpad.cli._paths import check_output_dir
-from softpad.cli._record import add_record_option, check_trial_recordings
+from softpad.cli._record import add_record_option
 from softpad.errors import InputError
 
 _DESCRIPTION = """\
@@ -42,9 +41,14 @@ def register(sub: Any) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from softpad.cli._trials import check_counts, run_with_progress, trial_errors_exit
+    from softpad.cli._trials import run_with_progress, trial_errors_exit
     from softpad.sim import get_object, object_names
-    from softpad.trials import errored_records, write_report
+    from softpad.trials import (
+        check_counts,
+        check_trial_recordings,
+        errored_records,
+        write_report,
+    )
 
     check_counts(args.trials, args.workers)
     out = check_output_dir(args.out, "--out", force=args.force)
@@ -89,73 +93,6 @@ def run(args: argparse.Namespace) -> int:
 
 def _reference_plans(out: Path) -> None:
     """The planner on the thesis's Table 6.1 reference increments (no physics)."""
-    from softpad.layout import PadLayout
-    from softpad.planning import TABLE_6_1, plan_grasps, plot_plan_columns
+    from softpad.trials import write_reference_plans
 
-    layout = PadLayout()
-    header = (
-        "| object | weight (g) | modules | thesis (x, y, theta) | planned (x, y, theta) | rule |"
-    )
-    rows = [header, "|---|---|---|---|---|---|"]
-    csv_lines = ["object,weight_g,modules,thesis_x,thesis_y,thesis_theta_rad,x,y,theta_rad,rule"]
-    results = []
-    for case in TABLE_6_1:
-        (plan,) = plan_grasps(case.delta_pa, layout)
-        results.append((case, plan))
-        rows.append(
-            f"| {case.name} | {case.weight_g:g} | {','.join(map(str, plan.modules))} | "
-            f"({case.cog[0]:.2f}, {case.cog[1]:.2f}, {_pi(case.theta)}) | "
-            f"({plan.cog[0]:.2f}, {plan.cog[1]:.2f}, {_pi(plan.theta)}) | {plan.rule} |"
-        )
-        csv_lines.append(
-            f"{case.name},{case.weight_g},{' '.join(map(str, plan.modules))},{case.cog[0]},"
-            f"{case.cog[1]},{case.theta:.9f},{plan.cog[0]:.6f},{plan.cog[1]:.6f},"
-            f"{plan.theta:.9f},{plan.rule}"
-        )
-    (out / "plans_reference.md").write_text("\n".join(rows) + "\n")
-    (out / "plans_reference.csv").write_text("\n".join(csv_lines) + "\n")
-    _plot_all(out / "plans_reference.png", results, layout)
-    plot_plan_columns(results, out / "column", layout)  # each case a column wide
-
-
-def _pi(theta: float) -> str:
-    for num, text in ((0.0, "0"), (0.5, "pi/2"), (0.25, "pi/4"), (-0.25, "-pi/4")):
-        if math.isclose(theta, num * math.pi, abs_tol=1e-9):
-            return text
-    return f"{theta:.3f}"
-
-
-def _plot_all(path: Path, results: list[Any], layout: Any) -> None:
-    """Every reference case on one figure: one colour scale (the largest increment of all
-    cases), one colour bar and one legend for all panels, axes in millimetres with the module
-    grid; labels sized to read when the figure is printed a page wide (7 in)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    import numpy as np
-
-    from softpad.planning import plan_legend_handles, plot_plans
-
-    n = len(results)
-    cols = 4
-    rows = math.ceil(n / cols)
-    vmax = max(float(np.max(case.delta_pa)) for case, _ in results) / 1e3
-    width = 3.9 * cols
-    pt = 6.5 * width / 7.0  # 6.5 pt once printed 7 in wide
-    fig, axes = plt.subplots(rows, cols, figsize=(width, 3.0 * rows), squeeze=False)
-    for ax, (case, plan) in zip(axes.flat, results, strict=False):
-        plot_plans(
-            case.delta_pa, [plan], layout, ax=ax, title=f"{case.name} ({case.weight_g:g} g)",
-            vmax_kpa=vmax, legend=False, colorbar=False, font_pt=pt,
-        )  # fmt: skip
-    for ax in list(axes.flat)[n:]:
-        ax.axis("off")
-    fig.legend(handles=plan_legend_handles(), loc="lower right", fontsize=pt, frameon=False)
-    fig.tight_layout(rect=(0, 0, 0.92, 1))
-    image = axes.flat[0].images[0]
-    bar = fig.colorbar(image, ax=axes.ravel().tolist(), fraction=0.02, pad=0.01)
-    bar.set_label("pressure increment dP (kPa), one scale for all panels", fontsize=pt)
-    bar.ax.tick_params(labelsize=pt)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    write_reference_plans(out)

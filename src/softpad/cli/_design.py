@@ -3,9 +3,7 @@
 from __future__ import annotations
 
 import argparse
-import math
 import sys
-from pathlib import Path
 from typing import Any
 
 from softpad import thesis
@@ -110,32 +108,11 @@ def register(sub: Any) -> None:
 
 def _designs(args: argparse.Namespace) -> list[Any]:
     """The designs the options span (the quick set when none is given with --quick)."""
-    from softpad import design as d
+    from softpad.design import designs_from_text
 
-    given = [args.grid, args.pitch_mm, args.thickness_mm, args.material, args.p0_kpa]
-    if args.quick and not any(v is not None for v in given):
-        return list(d.QUICK_DESIGNS)
-    base = d.THESIS_DESIGN
-    space = d.DesignSpace(
-        grids=d.parse_grids(args.grid) if args.grid is not None else ((base.rows, base.cols),),
-        pitches_m=d.parse_values(args.pitch_mm, "--pitch-mm", 1e-3, d.LIMITS["pitch_m"])
-        if args.pitch_mm is not None
-        else (base.pitch_m,),
-        thicknesses_m=d.parse_values(
-            args.thickness_mm, "--thickness-mm", 1e-3, d.LIMITS["thickness_m"]
-        )
-        if args.thickness_mm is not None
-        else (base.thickness_m,),
-        materials=tuple(name_list(args.material, "--material"))
-        if args.material is not None
-        else (base.material,),
-        p0s_pa=d.parse_values(args.p0_kpa, "--p0-kpa", 1e3, d.LIMITS["p0_pa"])
-        if args.p0_kpa is not None
-        else (base.p0_pa,),
-    )
-    if space.size > 500:
-        raise InputError(f"the options span {space.size} designs; at most 500 per sweep")
-    return space.designs()
+    materials = None if args.material is None else name_list(args.material, "--material")
+    given = (args.grid, args.pitch_mm, args.thickness_mm, materials, args.p0_kpa)
+    return designs_from_text(*given, quick=args.quick)
 
 
 def _outputs(args: argparse.Namespace) -> dict[str, Any]:
@@ -150,51 +127,23 @@ def _outputs(args: argparse.Namespace) -> dict[str, Any]:
     }
 
 
-def _object_set(args: argparse.Namespace) -> Any:
-    from softpad.design import example_object_set, load_object_set
-
-    if args.gripper is not None and args.mounting is not None:
-        raise InputError("give --gripper (one mounting for the set) or --mounting, not both")
-    if args.objects:
-        s = load_object_set(args.objects)
-    else:
-        s = example_object_set("thesis-set" if args.example is None else args.example)
-    return s.with_gripper(args.gripper)
-
-
 def run(args: argparse.Namespace) -> int:
-    from softpad.design import ResultCache, check_scheduler_address, design_sweep
+    from softpad.cli._paths import write_text_atomic
+    from softpad.design import ResultCache, cache_folder, cached_line, design_sweep, write_sweep
 
-    object_set = _object_set(args)
-    designs = _designs(args)
-    object_set.check_on_pads(designs)
-    seeds = int_ranges(args.seeds, "--seeds", lo=0, hi=2**32 - 1)
-    if len(seeds) > 100:
-        raise InputError(f"--seeds names {len(seeds)} seeds; at most 100")
-    options = _trial_options(args)
-    if args.scheduler is not None:
-        check_scheduler_address(args.scheduler)
-    if args.workers is not None and not 1 <= args.workers <= 256:
-        raise InputError(f"--workers must be from 1 to 256, got {args.workers}")
+    designs, object_set, options, seeds = _sweep_inputs(args)
     outputs = _outputs(args)
-    cache = ResultCache(None if args.no_cache else _cache_dir(args.cache))
+    cache = ResultCache(None if args.no_cache else cache_folder(args.cache))
     bar = _bar(not args.no_progress and sys.stderr.isatty())
     try:
         result = design_sweep(
-            designs,
-            object_set,
-            options,
-            seeds,
-            quick=args.quick,
-            scheduler=args.scheduler,
-            workers=args.workers,
-            cache=cache,
-            progress=bar,
-        )
+            designs, object_set, options, seeds, quick=args.quick, scheduler=args.scheduler,
+            workers=args.workers, cache=cache, progress=bar,
+        )  # fmt: skip
     finally:
         if bar is not None:
             bar.close()
-    _write(result, outputs)
+    write_sweep(result, outputs, write_text_atomic)
     if result.meta["cached"]:  # first: what was not computed now, where it came from
         result.meta["cache_dir"] = str(cache.root)
         say(cached_line(result.meta["cached"], result.meta["computed"], cache.root), args.json)
@@ -209,59 +158,25 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _trial_options(args: argparse.Namespace) -> Any:
-    """The trials of each design and object: --trials, --hold-s (the quick run's defaults
-    with --quick), the parts, --randomize and --mounting."""
-    from softpad.design import TrialOptions
+def _sweep_inputs(args: argparse.Namespace) -> tuple[list[Any], Any, Any, list[int]]:
+    """The sweep's designs, object set, trial options and seeds, checked before any work."""
+    from softpad.design import check_scheduler_address, choose_object_set, sweep_trial_options
 
-    trials = args.trials if args.trials is not None else (1 if args.quick else 5)
-    if not 1 <= trials <= 100:
-        raise InputError(f"--trials must be from 1 to 100, got {trials}")
-    hold_s = args.hold_s if args.hold_s is not None else (2.0 if args.quick else thesis.HOLD_S)
-    if not (math.isfinite(hold_s) and 0 <= hold_s <= 60):
-        raise InputError(f"--hold-s must be from 0 to 60 s, got {hold_s!r}")
-    return TrialOptions(
-        trials, args.planner, args.detector, hold_s, randomize=args.randomize,
-        mounting=args.mounting, valves=args.valves,
+    object_set = choose_object_set(args.objects, args.example, args.gripper, args.mounting)
+    designs = _designs(args)
+    object_set.check_on_pads(designs)
+    seeds = int_ranges(args.seeds, "--seeds", lo=0, hi=2**32 - 1)
+    if len(seeds) > 100:
+        raise InputError(f"--seeds names {len(seeds)} seeds; at most 100")
+    options = sweep_trial_options(
+        args.trials, args.hold_s, args.quick, args.planner, args.detector, args.randomize,
+        args.mounting, args.valves,
     )  # fmt: skip
-
-
-def cached_line(cached: int, computed: int, root: Path | None) -> str:
-    """The first line of a design run answered, in part or whole, from the cache."""
-    share = "all" if not computed else f"{cached} of {cached + computed}"
-    return (
-        f"softpad design: {share} tasks answered from the cache {root} (results of an "
-        "earlier run of this code); --no-cache computes everything"
-    )
-
-
-def _cache_dir(text: str | None) -> Path:
-    """The cache folder (created now, so that an unusable one fails before any work)."""
-    from softpad.design import default_cache_dir
-
-    path = default_cache_dir() if text is None else Path(text)
-    if text is not None and not text.strip():
-        raise InputError("--cache needs a folder name, got an empty value")
-    try:
-        path.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise InputError(f"--cache {str(path)!r} cannot be used: {exc.strerror or exc}") from None
-    return path
-
-
-def _write(result: Any, outputs: dict[str, Any]) -> None:
-    from softpad.cli._paths import write_text_atomic
-
-    if outputs["csv"] is not None:
-        result.to_csv(outputs["csv"])
-    if outputs["parquet"] is not None:
-        result.to_parquet(outputs["parquet"])
-    if outputs["png"] is not None:
-        import matplotlib.pyplot as plt
-
-        plt.close(result.plot(outputs["png"]))
-    if outputs["report"] is not None:
-        write_text_atomic(outputs["report"], result.report())
+    if args.scheduler is not None:
+        check_scheduler_address(args.scheduler)
+    if args.workers is not None and not 1 <= args.workers <= 256:
+        raise InputError(f"--workers must be from 1 to 256, got {args.workers}")
+    return designs, object_set, options, seeds
 
 
 class _Bar:

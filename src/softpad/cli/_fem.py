@@ -38,11 +38,6 @@ measurement CSV: header pressure_kpa,height_mm; one row per measured point.
 """
 
 
-def _numbers(text: str, flag: str, scale: float = 1.0, positive: bool = False) -> list[float]:
-    """Parse ``"1,1.5,2"`` times ``scale`` (see :func:`softpad.cli._args.number_list`)."""
-    return number_list(text, flag, scale, positive)
-
-
 def _model_name(text: str) -> str:
     name = str(text).strip().lower()
     if name not in _MODELS:
@@ -329,9 +324,12 @@ def _table_studies(fem_sub: Any) -> None:
     r.set_defaults(handler=_response)
 
 
-def _check_outputs(args: argparse.Namespace) -> None:
+def _files(args: argparse.Namespace) -> Any:
     """Check every output file named on the command line before the study starts."""
+    from softpad.fem import StudyFiles
+
     seen: dict[Any, str] = {}
+    paths: dict[str, Any] = {}
     for flag, suffix in (("csv", ".csv"), ("png", ".png"), ("vtu", ".vtu"), ("out", ".npz")):
         if not hasattr(args, flag):
             continue
@@ -340,58 +338,8 @@ def _check_outputs(args: argparse.Namespace) -> None:
             raise InputError(f"--{flag} and --{seen[path.resolve()]} name the same file {path}")
         if path is not None:
             seen[path.resolve()] = flag
-        setattr(args, flag, path)
-
-
-def _save_figure(fig: Any, path: Any) -> None:
-    from softpad.fem import save_figure
-
-    with atomic_path(path) as tmp:
-        save_figure(fig, tmp)
-
-
-# ---------------------------------------------------------------------------- helpers
-def _geometry(args: argparse.Namespace) -> Any:
-    from softpad.fem import ModuleGeometry
-
-    if args.thickness_mm <= 0:
-        raise InputError(f"--thickness-mm must be > 0 mm, got {args.thickness_mm:g} mm")
-    if args.width_mm <= 0:
-        raise InputError(f"--width-mm must be > 0 mm, got {args.width_mm:g} mm")
-    try:
-        return ModuleGeometry(args.width_mm * 1e-3, args.thickness_mm * 1e-3)
-    except InputError as exc:
-        raise InputError(
-            f"--thickness-mm {args.thickness_mm:g} / --width-mm {args.width_mm:g}: {exc}"
-        ) from None
-
-
-def _mesh(args: argparse.Namespace) -> Any:
-    from softpad.fem import MeshOptions
-
-    return {
-        "coarse": MeshOptions(6, 1),
-        "default": MeshOptions(),
-        "fine": MeshOptions(16, 2),
-    }[args.mesh]
-
-
-def _material(args: argparse.Namespace) -> Any:
-    """The preset named by ``--model`` with the ``--param NAME=VALUE`` overrides applied."""
-    from softpad.fem import get_material
-
-    material = get_material(args.model)
-    overrides = {}
-    for item in args.param:
-        name, sep, value = str(item).partition("=")
-        if not sep:
-            raise InputError(f"--param needs NAME=VALUE, got {item!r}")
-        try:
-            number = float(value)
-        except ValueError:
-            raise InputError(f"--param {name.strip()}: {value!r} is not a number") from None
-        overrides[name.strip()] = number
-    return material.with_parameters(**overrides) if overrides else material
+        paths[flag] = path
+    return StudyFiles(**paths, atomic=atomic_path)
 
 
 def _models(text: str, flag: str = "--models") -> list[str]:
@@ -435,356 +383,102 @@ def _progress(args: argparse.Namespace, label: str) -> Iterator[Callable[[int, i
         bar.close()
 
 
-def _outputs(args: argparse.Namespace, result: Any) -> None:
-    if args.csv:
-        with atomic_path(args.csv) as tmp:
-            result.to_csv(tmp)
-    if args.png:
-        _save_figure(result.plot(), args.png)
+def _study(args: argparse.Namespace, files: Any, label: str, run: Any, *a: Any) -> int:
+    """``run(module, *a, files, progress)`` (a :mod:`softpad.fem` ``run_*`` study) on the
+    command's module with a progress bar named ``label``; print its report (``--json``: its
+    dict)."""
+    from softpad.fem import StudyModule
 
-
-def _setup(args: argparse.Namespace) -> Any:
-    """The command's module: ``--model`` with its ``--param`` overrides, geometry and mesh."""
-    from softpad.fem import ModuleSetup
-
-    return ModuleSetup(_material(args), _geometry(args), _mesh(args))
-
-
-def _run_study(
-    args: argparse.Namespace, label: str, study: Callable[..., Any], *a: Any, **kw: Any
-) -> Any:
-    """``study(*a, **kw)`` (a :mod:`softpad.fem` study) with a progress bar named ``label``."""
+    model = getattr(args, "model", "neo-hookean")
+    shape = (args.thickness_mm, args.width_mm, args.mesh)
+    module = StudyModule(model, getattr(args, "param", ()), *shape)
     with _progress(args, label) as progress:
-        return study(*a, progress=progress, **kw)
-
-
-def _written_or_emitted(args: argparse.Namespace, result: Any) -> bool:
-    """Write ``--csv``/``--png``; with ``--json`` print the result's dict and return True
-    (nothing more to print)."""
-    _outputs(args, result)
+        report = run(module, *a, files, progress)
     if args.json:
-        emit(result.to_dict())
-    return bool(args.json)
+        emit(report.data)
+    else:
+        print("\n".join(report.lines))
+    return 0
 
 
 # ---------------------------------------------------------------------------- handlers
 def _sweep(args: argparse.Namespace) -> int:
-    import numpy as np
+    from softpad.fem import run_sweep
 
-    from softpad.fem import inflation_sweep
-
-    _check_outputs(args)
-    if args.points < 2:
-        raise InputError(f"--points must be >= 2, got {args.points}")
-    if args.max_pressure_kpa <= 0:
-        raise InputError(f"--max-pressure-kpa must be > 0 kPa, got {args.max_pressure_kpa:g}")
-    pressures = np.linspace(0.0, args.max_pressure_kpa * 1e3, args.points)
-    model = _setup(args).model(contact=False)
-    with _progress(args, f"sweep {args.model}") as progress:
-        result = inflation_sweep(model, pressures, progress)
-    _outputs(args, result)
-    if args.vtu:
-        with atomic_path(args.vtu) as tmp:
-            model.write_vtu(str(tmp))
-    if args.json:
-        emit(result.to_json_dict())
-        return 0
-    print(f"model {result.model}: centre height against pressure")
-    print("pressure_kpa  height_mm  volume_ml")
-    for p, h, v in zip(result.pressure_pa, result.height_m, result.volume_m3, strict=True):
-        print(f"{p * 1e-3:12.3f}  {h * 1e3:9.3f}  {v * 1e6:9.3f}")
-    return 0
+    files = _files(args)
+    return _study(args, files, f"sweep {args.model}", run_sweep, args.max_pressure_kpa, args.points)
 
 
 def _design(args: argparse.Namespace) -> int:
-    from softpad.fem import ModuleSetup, check_design_values, design_sweep
+    from softpad.fem import run_design
 
-    _check_outputs(args)
+    files = _files(args)
     defaults = {"thickness": "1,1.5,2,2.5,3", "width": "35,40,45,50,55"}
-    values = _numbers(
-        args.values_mm or defaults[args.parameter], "--values-mm", 1e-3, positive=True
-    )
-    check_design_values(args.parameter, values, "--values-mm")
-    geometry, mesh = _geometry(args), _mesh(args)
-    result = _run_study(
-        args,
-        f"design {args.parameter}",
-        design_sweep,
-        args.parameter,
-        values,
-        setups=[ModuleSetup(m, geometry, mesh) for m in _models(args.models)],
-        pressure_pa=args.pressure_kpa * 1e3,
-    )
-    if _written_or_emitted(args, result):
-        return 0
-    print(f"centre height (mm) at {args.pressure_kpa:g} kPa against {args.parameter}")
-    print(f"{args.parameter}_mm  " + "  ".join(f"{m:>13}" for m in result.models))
-    for j, v in enumerate(result.values_m):
-        print(f"{v * 1e3:12.3f}  " + "  ".join(f"{h * 1e3:13.3f}" for h in result.height_m[:, j]))
-    return 0
+    text = args.values_mm or defaults[args.parameter]
+    values = number_list(text, "--values-mm", 1e-3, positive=True)
+    models = _models(args.models)
+    design = (args.parameter, values, models, args.pressure_kpa)
+    return _study(args, files, f"design {args.parameter}", run_design, *design)
 
 
 def _stiffness(args: argparse.Namespace) -> int:
-    from softpad.fem import check_study_pressures, stiffness_study
+    from softpad.fem import run_stiffness
 
-    _check_outputs(args)
-    pressures = _numbers(args.pressures_kpa, "--pressures-kpa", 1e3, positive=True)
-    check_study_pressures(pressures, "--pressures-kpa")
-    forces = _numbers(args.forces_n, "--forces-n", positive=True)
-    if not 0 < args.radius_mm < args.width_mm / 2:
-        raise InputError(
-            f"--radius-mm must be > 0 and below half the module width ({args.width_mm / 2:g} mm), "
-            f"got {args.radius_mm:g}"
-        )
-    result = _run_study(
-        args,
-        "stiffness",
-        stiffness_study,
-        _setup(args),
-        pressures,
-        forces,
-        args.radius_mm * 1e-3,
-    )
-    if _written_or_emitted(args, result):
-        return 0
-    k = result.stiffness_n_per_m * 1e-3
-    print(f"model {result.model}: equivalent stiffness (N/mm); * = layer touches the base")
-    print("pressure_kpa  " + "  ".join(f"F={f:g}N".rjust(10) for f in result.force_n))
-    for i, p in enumerate(result.pressure_pa):
-        cells = [
-            f"{k[i, j]:9.4f}{'*' if result.touches_base[i, j] else ' '}"
-            for j in range(len(result.force_n))
-        ]
-        print(f"{p * 1e-3:12.3f}  " + "  ".join(cells))
-    return 0
+    files = _files(args)
+    pressures = number_list(args.pressures_kpa, "--pressures-kpa", 1e3, positive=True)
+    forces = number_list(args.forces_n, "--forces-n", positive=True)
+    return _study(args, files, "stiffness", run_stiffness, pressures, forces, args.radius_mm)
 
 
 def _sensitivity(args: argparse.Namespace) -> int:
-    from softpad.fem import check_study_pressures, sensitive_area_study
+    from softpad.fem import run_sensitivity
 
-    _check_outputs(args)
-    pressures = _numbers(args.pressures_kpa, "--pressures-kpa", 1e3, positive=True)
-    check_study_pressures(pressures, "--pressures-kpa")
-    result = _run_study(
-        args,
-        "sensitivity",
-        sensitive_area_study,
-        _setup(args),
-        pressures,
-        fraction=args.fraction,
-        probe_mass_kg=args.probe_g * 1e-3,
-        threshold_pa=args.threshold_kpa * 1e3,
-    )
-    if _written_or_emitted(args, result):
-        return 0
-    print(
-        f"model {result.model}: sensitive area = top-face region where a small load changes the "
-        f"chamber volume by >= {result.fraction:g} x its effect at the centre"
-    )
-    print(
-        f"detectable side: where a {args.probe_g:g} g probe raises the sealed pressure by >= "
-        f"{args.threshold_kpa:g} kPa"
-    )
-    print("pressure_kpa  side_mm  area_mm2  centre_dV/dF_ml_per_n  detectable_side_mm")
-    for p, s, ar, c, d in zip(
-        result.pressure_pa,
-        result.side_m,
-        result.area_m2,
-        result.centre_response_m3_per_n,
-        result.detectable_area_m2,
-        strict=True,
-    ):
-        print(
-            f"{p * 1e-3:12.3f}  {s * 1e3:7.2f}  {ar * 1e6:8.1f}  {c * 1e6:21.3f}  "
-            f"{d**0.5 * 1e3:18.2f}"
-        )
-    return 0
+    files = _files(args)
+    pressures = number_list(args.pressures_kpa, "--pressures-kpa", 1e3, positive=True)
+    probe = (args.fraction, args.probe_g, args.threshold_kpa)
+    return _study(args, files, "sensitivity", run_sensitivity, pressures, *probe)
 
 
 def _chamber(args: argparse.Namespace) -> int:
-    from softpad.fem import (
-        check_masses,
-        detection_threshold_pa,
-        parse_footprint,
-        sealed_chamber_study,
-    )
+    from softpad.fem import run_chamber
 
-    _check_outputs(args)
-    masses = _numbers(args.masses_g, "--masses-g", 1e-3, positive=True)
-    check_masses(masses, "--masses-g")
-    if args.pressure_kpa <= 0:
-        raise InputError(f"--pressure-kpa must be > 0 kPa, got {args.pressure_kpa:g}")
-    noise = None if args.noise_kpa is None else args.noise_kpa * 1e3
-    threshold, _ = detection_threshold_pa(
-        args.threshold_kpa * 1e3,
-        noise,
-        args.n_sigma,
-        ("--threshold-kpa", "--n-sigma x --noise-kpa"),
-    )
-    footprint = parse_footprint(args.footprint_mm, args.width_mm * 1e-3, "--footprint-mm")
-    result = _run_study(
-        args,
-        "chamber",
-        sealed_chamber_study,
-        _setup(args),
-        args.pressure_kpa * 1e3,
-        masses,
-        footprint=footprint,
-        dead_volume_m3=args.dead_volume_ml * 1e-6,
-    )
-    if args.csv:
-        with atomic_path(args.csv) as tmp:
-            result.to_csv(tmp)
-    if args.png:
-        _save_figure(result.plot(threshold_pa=threshold), args.png)
-    info = result.to_dict(threshold)
-    if args.json:
-        emit(info)
-        return 0
-    print(
-        f"model {result.model}: sealed at {info['initial_pressure_kpa']:g} kPa, chamber "
-        f"{info['initial_volume_ml']:.3f} mL + dead volume {info['dead_volume_ml']:.3f} mL, "
-        f"footprint {info['footprint']}"
-    )
-    print("mass_g  rise_kpa  volume_ml  height_mm")
-    for m, dp, v, h in zip(
-        info["mass_g"],
-        info["delta_pressure_kpa"],
-        info["volume_ml"],
-        info["height_mm"],
-        strict=True,
-    ):
-        print(f"{m:6.1f}  {dp:8.4f}  {v:9.3f}  {h:9.3f}")
-    print(
-        f"small-load slope {info['rise_kpa_per_g'] * 1e3:.3f} Pa/g; minimum detectable mass "
-        f"{info['min_detectable_mass_g']:.2f} g at threshold {threshold * 1e-3:g} kPa"
-    )
-    return 0
+    files = _files(args)
+    masses = number_list(args.masses_g, "--masses-g", 1e-3, positive=True)
+    threshold = (args.threshold_kpa, args.noise_kpa, args.n_sigma)
+    chamber = (args.pressure_kpa, masses, args.footprint_mm, args.dead_volume_ml, threshold)
+    return _study(args, files, "chamber", run_chamber, *chamber)
 
 
 def _fit(args: argparse.Namespace) -> int:
-    from softpad.fem import fit_material, read_measurements
+    from softpad.fem import run_fit
 
-    _check_outputs(args)
-    pressure, height = read_measurements(args.data)
+    files = _files(args)
     free = [s.strip() for s in args.free.split(",") if s.strip()] if args.free else None
-    result = _run_study(
-        args,
-        f"fit {args.model}",
-        fit_material,
-        pressure,
-        height,
-        _material(args),
-        free=free,
-        geometry=_geometry(args),
-        mesh=_mesh(args),
-        max_evaluations=args.max_evals,
-    )
-    if _written_or_emitted(args, result):
-        return 0
-    info = result.to_dict()
-    print(f"model {args.model}: RMSE {info['initial_rmse_mm']:.4f} mm -> {info['rmse_mm']:.4f} mm")
-    for name, value in info["parameters"].items():
-        print(f"  {name} = {value:.6g} (was {info['initial_parameters'][name]:.6g})")
-    return 0
+    return _study(args, files, f"fit {args.model}", run_fit, args.data, free, args.max_evals)
 
 
 def _compare(args: argparse.Namespace) -> int:
-    from softpad.fem import compare_models, read_measurements
+    from softpad.fem import run_compare
 
-    _check_outputs(args)
-    pressure, height = read_measurements(args.data)
-    result = _run_study(
-        args,
-        "compare",
-        compare_models,
-        pressure,
-        height,
-        _models(args.models),
-        geometry=_geometry(args),
-        mesh=_mesh(args),
-    )
-    if _written_or_emitted(args, result):
-        return 0
-    print("rank  model           RMSE_mm")
-    for i, (name, err) in enumerate(zip(result.models, result.rmse_m, strict=True), 1):
-        print(f"{i:4d}  {name:14s}  {err * 1e3:7.4f}")
-    return 0
+    files = _files(args)
+    return _study(args, files, "compare", run_compare, args.data, _models(args.models))
 
 
 def _characteristic(args: argparse.Namespace) -> int:
-    from softpad.fem import module_characteristic
+    from softpad.fem import run_characteristic
 
-    _check_outputs(args)
-    pressures = _numbers(args.pressures_kpa, "--pressures-kpa", 1e3) if args.pressures_kpa else None
-    loads = _numbers(args.loads_n, "--loads-n") if args.loads_n else None
-    result = _run_study(
-        args,
-        "characteristic",
-        module_characteristic,
-        _setup(args),
-        pressures_pa=pressures,
-        loads_n=loads,
-        gap_volume_m3=args.gap_volume_ml * 1e-6,
-    )
-    out = args.out
-    with atomic_path(out) as tmp:
-        result.to_npz(tmp)
-    if args.png:
-        _save_figure(result.plot(), args.png)
-    if args.csv:
-        with atomic_path(args.csv) as tmp:
-            result.to_csv(tmp)
-    if args.json:
-        emit({"path": str(out), **result.to_dict()})
-        return 0
-    print(
-        f"wrote {out}: {len(result.pressure_pa)} pressures x {len(result.load_n)} loads "
-        f"({result.meta['model']}, {result.meta['load_patch'].split(' on ')[0]})"
-    )
-    return 0
+    files = _files(args)
+    text = args.pressures_kpa
+    pressures = number_list(text, "--pressures-kpa", 1e3) if text else None
+    loads = number_list(args.loads_n, "--loads-n") if args.loads_n else None
+    table = (pressures, loads, args.gap_volume_ml)
+    return _study(args, files, "characteristic", run_characteristic, *table)
 
 
 def _response(args: argparse.Namespace) -> int:
-    from softpad.fem import (
-        DEFAULT_RESPONSE_PRESSURES_PA,
-        check_study_pressures,
-        module_response,
-        response_convergence,
-    )
+    from softpad.fem import run_response
 
-    _check_outputs(args)
-    pressures = (
-        _numbers(args.pressures_kpa, "--pressures-kpa", 1e3, positive=True)
-        if args.pressures_kpa
-        else DEFAULT_RESPONSE_PRESSURES_PA
-    )
-    check_study_pressures(pressures, "--pressures-kpa")
-    setup = _setup(args)
-    with _progress(args, "response") as progress:
-        result = module_response(setup, pressures, progress)
-    if not args.no_convergence:
-        result.meta["convergence"] = response_convergence(setup)
-    with atomic_path(args.out) as tmp:
-        result.to_npz(tmp)
-    summary = {
-        "path": str(args.out),
-        "pressure_kpa": [p * 1e-3 for p in result.pressure_pa],
-        "reference_s_ml_n": [s * 1e6 for s in result.reference_influence_m3_n],
-        "compliance_ml_kpa": [c * 1e9 for c in result.compliance_m3_pa],
-        "meta": result.meta,
-    }
-    if args.json:
-        emit(summary)
-        return 0
-    conv = result.meta.get("convergence")
-    print(
-        f"wrote {args.out}: {len(result.pressure_pa)} pressures x "
-        f"{len(result.axis_m)}^2 nodes ({result.meta['model']}, {result.meta['mesh']})"
-    )
-    if conv:
-        print(
-            f"mesh convergence at {conv['pressure_pa'] / 1e3:g} kPa: largest difference "
-            f"{100 * conv['largest_difference']:.2f} % against {conv['reference_mesh']}"
-        )
-    return 0
+    files = _files(args)
+    text = args.pressures_kpa
+    pressures = number_list(text, "--pressures-kpa", 1e3, positive=True) if text else None
+    return _study(args, files, "response", run_response, pressures, not args.no_convergence)

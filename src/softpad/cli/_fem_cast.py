@@ -63,36 +63,19 @@ def register(fem_sub: Any) -> None:
 
 
 def _cast_response(args: argparse.Namespace) -> int:
-    from softpad.fem import (
-        DEFAULT_RESPONSE_PRESSURES_PA,
-        CastPadGeometry,
-        MeshOptions,
-        cast_pad_response,
-        cast_sensitivities,
-        get_material,
-    )
+    from softpad.fem import StudyFiles, run_cast_response
 
     out = check_output(args.out, "--out", force=args.force, suffix=".npz")
     if out is None:
         raise InputError("--out needs a file name")
-    pressures = _pressures(args.pressures_kpa) or DEFAULT_RESPONSE_PRESSURES_PA
-    k = float("inf") if args.foundation_mpa_per_m is None else args.foundation_mpa_per_m * 1e6
-    pad = CastPadGeometry(wall_width_m=args.wall_mm * 1e-3, foundation_pa_per_m=k)
-    mesh = MeshOptions(*_MESHES[args.mesh])
-    table = cast_pad_response(get_material(args.model), pad, mesh, pressures)
-    with atomic_path(out) as tmp:
-        table.to_npz(tmp)
-    p0 = min(max(1100.0, float(table.pressure_pa[0])), float(table.pressure_pa[-1]))
-    figures = cast_sensitivities(table, p0)
+    pressures = _pressures(args.pressures_kpa)
+    shape = (args.wall_mm, args.foundation_mpa_per_m, _MESHES[args.mesh])
+    files = StudyFiles(out=out, atomic=atomic_path)
+    report = run_cast_response(args.model, *shape, pressures, files)
     if args.json:
-        emit({"path": str(out), "meta": table.meta, "sensitivities": figures})
-        return 0
-    print(f"wrote {out}: {len(table.pressure_pa)} pressures, {table.meta['mesh']}")
-    for name, v in figures["probes"].items():
-        rises = ", ".join(f"{r:.0f}" for r in v["rise_pa_n"])
-        print(f"  {name}: every module [{rises}] Pa/N")
-    for name, g in figures["min_detectable_mass_g"].items():
-        print(f"  minimum detectable mass, {name}: {g:.2f} g at t_o = 50 Pa")
+        emit(report.data)
+    else:
+        print("\n".join(report.lines))
     return 0
 
 

@@ -69,7 +69,7 @@ def config_path(argv: Sequence[str]) -> str | None:
 
 def _defaults(inst: Any) -> dict[str, Any]:
     """Option destinations and the installation's values for them (CLI units)."""
-    th, pad, link = inst.thresholds, inst.pad, inst.link
+    th, pad = inst.thresholds, inst.pad
     out: dict[str, Any] = {
         "p0_kpa": th.p0_pa / 1e3,
         "object_threshold_kpa": th.object_threshold_pa / 1e3,
@@ -80,11 +80,8 @@ def _defaults(inst: Any) -> dict[str, Any]:
     }
     if inst.gripper_mounting is not None:
         out["gripper"] = inst.gripper_mounting
-    if link.connect:
-        host_port = link.connect[0].split("/", 1)[1]
-        out["box"] = f"zenoh://{host_port}/{link.key_prefix}"
-        if link.user is not None or link.tls_root_ca is not None:  # the link's credentials
-            out["box"] += f"?config={inst.source}"
+    if inst.box_url is not None:
+        out["box"] = inst.box_url
     return out
 
 

@@ -6,7 +6,6 @@ import argparse
 from typing import Any
 
 from softpad.cli._args import add_command
-from softpad.errors import InputError
 
 _EPILOG = """examples:
   softpad trials --seeds 0-1 --record train.mcap        record 2 x 55 trials (one file each)
@@ -41,68 +40,34 @@ def register(sub: Any) -> None:
     p.set_defaults(handler=run)
 
 
-def learned_trial(run: Any) -> tuple[Any, float] | None:
-    """The :class:`~softpad.planning.LearnedTrial` of one recorded trial and the variance of
-    a planning increment under its sensor noise, Pa^2 (per-frame variance / 5: the mean of 10
-    reads minus a reference of 10); None for a trial that teaches nothing (no plan of one
-    object or no outcome: the object was not detected, the box faulted)."""
-    from softpad.planning import LearnedTrial
-
-    name = f"recording {str(run.path)!r}"
-    objects = run.metadata.get("objects")
-    if not (isinstance(objects, list) and len(objects) == 1):
-        raise InputError(f"{name}: not a trial of one object (objects {objects!r})")
-    plans = [d for _, kind, d in run.events if kind == "plan"]
-    outcomes = [d.get("outcome") for _, kind, d in run.events if kind == "outcome"]
-    if not plans or not outcomes or len(plans[0].get("objects", [])) != 1:
-        return None
-    first = plans[0]["objects"][0]
-    grasp = (float(first["cog"][0]), float(first["cog"][1]), float(first["theta"]))
-    for _, kind, d in run.events:
-        if kind == "retry":  # the grasp tried last
-            grasp = (float(d["cog"][0]), float(d["cog"][1]), float(d["theta"]))
-    increments = tuple(float(v) for v in plans[0]["increments_pa"])
-    variance = float(run.metadata.get("pressure_variance_pa2", 0.0)) / 5
-    return LearnedTrial(str(objects[0]), increments, grasp, outcomes[-1] == "held"), variance
-
-
 def run(args: argparse.Namespace) -> int:
-    import statistics
-
     from softpad.cli._output import emit, say
     from softpad.cli._paths import check_output
-    from softpad.planning import learn_catalogue
-    from softpad.record import load_recording
+    from softpad.record import learn_from_recordings
 
     out = check_output(args.out, "--out", force=args.force, suffix=".toml")
     assert out is not None
-    learned = [learned_trial(load_recording(path)) for path in args.recordings]
-    pairs = [x for x in learned if x is not None]
-    if not pairs:
-        raise InputError("no recording holds a plan of one object and its outcome")
-    trials = [t for t, _ in pairs]
-    variance = statistics.median(v for _, v in pairs)
-    if not variance > 0:
-        raise InputError("the recordings carry no sensor noise (pressure_variance_pa2)")
-    catalogue = learn_catalogue(trials, variance)
+    learned = learn_from_recordings(args.recordings)
+    catalogue, trials = learned.catalogue, learned.trials
     out.write_text(catalogue.to_toml(), encoding="utf-8")
     held = sum(t.held for t in trials)
+    noise = learned.variance_pa2**0.5
     if args.json:
         emit(
             {
                 "out": str(out),
                 "objects": [o.name for o in catalogue.objects],
                 "trials": len(trials),
-                "skipped": len(learned) - len(pairs),
+                "skipped": learned.skipped,
                 "held": held,
-                "increment_noise_pa": round(variance**0.5, 3),
+                "increment_noise_pa": round(noise, 3),
                 "recognition_threshold": round(catalogue.threshold, 3),
             }
         )
         return 0
     say(
         f"{out}: {len(catalogue.objects)} known objects from {len(trials)} trials "
-        f"({held} held; {len(learned) - len(pairs)} recordings without a plan of one object "
-        f"skipped); increment noise {variance**0.5:.1f} Pa"
+        f"({held} held; {learned.skipped} recordings without a plan of one object "
+        f"skipped); increment noise {noise:.1f} Pa"
     )
     return 0

@@ -69,54 +69,15 @@ def register(sub: Any) -> None:
         q.set_defaults(handler=run)
 
 
-def _topics(path: str) -> list[tuple[str, str, int]]:
-    from mcap.reader import make_reader
-
-    with open(path, "rb") as f:
-        summary = make_reader(f).get_summary()
-    if summary is None or summary.statistics is None:
-        return []
-    counts = summary.statistics.channel_message_counts
-    return sorted(
-        (ch.topic, summary.schemas[ch.schema_id].name, counts.get(cid, 0))
-        for cid, ch in summary.channels.items()
-    )
-
-
 def _info(run: Any, as_json: bool) -> None:
-    s = run.summary()
-    s["topics"] = [
-        {"topic": t, "type": ty, "messages": n}
-        for t, ty, n in (_topics(s["path"]) if run.complete else [])
-    ]
-    if as_json:
-        from softpad.cli._output import emit
+    from softpad.cli._output import emit
+    from softpad.record import info_lines, recording_info
 
+    s = recording_info(run)
+    if as_json:
         emit(s)
         return
-    print(
-        f"{s['path']}: {s['frames']} frames of {s['channels']} channels over {s['duration_s']:.2f} s"
-    )
-    print(
-        f"  recorded {s['wall_clock_start']} by softpad {s['software_version']}, {s['sample_rate_hz']:g} Hz"
-    )
-    if not s["complete"]:
-        print(
-            "  cut short (crash?): read up to the last flushed chunk; 'softpad log recover' fixes it"
-        )
-    print(f"  objects: {', '.join(s['objects'] or []) or '-'}")
-    for o in s["plans"]:
-        print(
-            f"  plan: modules {','.join(map(str, o['modules']))}  COG ({o['cog'][0]:.2f}, {o['cog'][1]:.2f})  theta {o['theta']:+.3f} rad  [{o['rule']}]"
-        )
-    for c in s["contact"]:
-        print(f"  contact: t = {c['t_s']:.3f} s on module(s) {', '.join(map(str, c['modules']))}")
-    print(
-        f"  events {s['events']}, valve commands {s['valve_commands']}, robot poses {s['robot_poses']}"
-    )
-    print(f"  outcome: {s['outcome']}")
-    for t in s["topics"]:
-        print(f"  {t['topic']:32s} {t['type']:36s} {t['messages']}")
+    print("\n".join(info_lines(s)))
 
 
 def run(args: argparse.Namespace) -> int:
@@ -170,26 +131,11 @@ def _check_outputs(args: argparse.Namespace) -> None:
 
 
 def _export(args: argparse.Namespace, rec: Any) -> None:
+    from softpad.record import export_recording
 
-    if args.rosbag2 or args.rosbag1:
-        from softpad.record import to_rosbag1, to_rosbag2
-
-        out = args.rosbag2 or args.rosbag1
-        write = to_rosbag2 if args.rosbag2 else to_rosbag1
-        write(args.file, out, force=args.force)
-        kind = "rosbag2 directory" if args.rosbag2 else "ROS 1 bag"
-        _done(args, f"{len(rec)} frames and every message written to the {kind} {out}", files=[out])
-        return
-    out = args.out or args.csv or args.parquet
-    if (args.csv and not out.endswith(".csv")) or (args.parquet and not out.endswith(".parquet")):
-        raise InputError(f"the file's name must end in its format's suffix, got {out!r}")
-    if out.endswith(".csv"):
-        rec.to_csv(out)
-    elif out.endswith(".parquet"):
-        rec.to_parquet(out)
-    else:
-        raise InputError(f"--out must end in .csv or .parquet, got {out!r}")
-    _done(args, f"{len(rec)} frames and {len(rec.events)} events written to {out}", files=[out])
+    table, bag = (args.out, args.csv, args.parquet), (args.rosbag2, args.rosbag1)
+    text, out = export_recording(rec, args.file, table, bag, force=args.force)
+    _done(args, text, files=[out])
 
 
 def _done(args: argparse.Namespace, text: str, **result: Any) -> None:

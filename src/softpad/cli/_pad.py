@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import math
 from typing import Any
 
 from softpad import thesis
@@ -139,7 +138,7 @@ def _sensitivity_command(psub: Any) -> None:
 
 
 def _sensitivity(args: argparse.Namespace) -> int:
-    from softpad.sim import PadResponse, pad_sensitivities
+    from softpad.sim import PadResponse, pad_sensitivities, sensitivity_lines
 
     gain = {} if args.line_gain is None else {"line_gain": args.line_gain}
     response = PadResponse(pad_model=args.pad_model, **gain)
@@ -147,17 +146,8 @@ def _sensitivity(args: argparse.Namespace) -> int:
     if args.json:
         emit({"command": "pad sensitivity", **out})
         return 0
-    say(
-        f"{out['pad_model']} pad at {args.pressure_kpa:g} kPa, line gain {out['line_gain']:g}: "
-        "sealed rise per newton (Pa/N)"
-    )
-    for name, v in out["loads"].items():
-        rises = " ".join(f"{r:6.0f}" for r in v["rise_pa_n"])
-        say(f"  {name:45s} modules 1-6: {rises}")
-    say(f"line sensitivity (can strip, least of modules 1, 4): {out['line_pa_n']:.0f} Pa/N")
-    say(f"corner sensitivity (least of modules 1, 2, 4, 5): {out['corner_pa_n']:.0f} Pa/N")
-    for name, g in out["min_detectable_mass_g"].items():
-        say(f"minimum detectable mass at t_o = 50 Pa, {name}: {g:.2f} g")
+    for line in sensitivity_lines(out, args.pressure_kpa):
+        say(line)
     return 0
 
 
@@ -207,83 +197,32 @@ def _open_sim(url: str) -> Any:
 
 
 def _probe(args: argparse.Namespace) -> int:
-    from softpad.sim import probe_box
+    from softpad.sim import probe_report
 
     size = _footprint(args)
     with _open_sim(args.box) as box:
         lay = box.world.layout
-        x, y = _pair(args.at, "--at", 0.0, float(max(lay.cols, lay.rows)), "module units")
-        if x > lay.cols or y > lay.rows:
-            raise InputError(
-                f"--at {x:g},{y:g} is off the {lay.rows}x{lay.cols} pad (x 0..{lay.cols}, "
-                f"y 0..{lay.rows} module units)"
-            )
-        at_m = (x * lay.pitch_m, y * lay.pitch_m)
-        result = probe_box(box, at_m, size, args.force_n)
-    out = {
-        "command": "pad probe",
-        "box": args.box,
-        "at": [x, y],
-        "at_m": list(at_m),
-        "force_n": args.force_n,
-        "footprint_mm": [size[0] * 1e3, size[1] * 1e3],
-        "reference_kpa": [round(v / 1e3, 6) for v in result.reference_pa],
-        "delta_kpa": [round(v / 1e3, 6) for v in result.delta_pa],
-        "fem_delta_kpa": [round(v / 1e3, 6) for v in result.fem_delta_pa],
-        "delta_kpa_per_n": [round(v / 1e3 / args.force_n, 6) for v in result.delta_pa],
-        "fem_delta_kpa_per_n": [round(v / 1e3 / args.force_n, 6) for v in result.fem_delta_pa],
-    }
+        at = _pair(args.at, "--at", 0.0, float(max(lay.cols, lay.rows)), "module units")
+        out, lines = probe_report(box, at, size, args.force_n, args.box)
     if args.json:
         emit(out)
         return 0
-    say(
-        f"block {size[0] * 1e3:g} x {size[1] * 1e3:g} mm, {args.force_n:g} N at ({x:g}, {y:g}) "
-        f"module units on {args.box}"
-    )
-    say("module  delta_kPa  delta_kPa/N  FEM_kPa  FEM_kPa/N")
-    per_n = 1e3 * args.force_n  # Pa -> kPa/N
-    for k, (d, f) in enumerate(zip(result.delta_pa, result.fem_delta_pa, strict=True), 1):
-        say(f"{k:6d}  {d / 1e3:9.4f}  {d / per_n:11.3f}  {f / 1e3:7.4f}  {f / per_n:9.3f}")
+    for line in lines:
+        say(line)
     return 0
 
 
 def _map(args: argparse.Namespace) -> int:
-    import numpy as np
-
-    from softpad.sim import sealed_rise_map
+    from softpad.sim import pad_map
 
     size = _footprint(args)
     png = check_output(args.png, "--png", force=args.force, suffix=".png")
     assert png is not None  # --png is required
     with _open_sim(args.box) as box:
-        world, step = box.world, args.step_mm * 1e-3
-        lay = world.layout
-        xs = np.arange(0.5 * step, lay.cols * lay.pitch_m, step)
-        ys = np.arange(0.5 * step, lay.rows * lay.pitch_m, step)
-        p0 = float(np.median(box.true_pressures_pa[: lay.n_modules]))
-        if p0 < thesis.P0_RANGE_PA[0] - 1.0:
-            raise InputError(
-                f"the box's modules are at {p0 / 1e3:g} kPa; inflate them first "
-                f"(e.g. sim://?inflated_kpa=1.1), p0 range {thesis.P0_RANGE_PA[0] / 1e3:g}.."
-                f"{thesis.P0_RANGE_PA[1] / 1e3:g} kPa"
-            )
-        rise = sealed_rise_map(
-            world.response, box.characteristic, p0, args.force_n, size, xs, ys, box.pneumatics
-        )
-    top = rise.max(axis=2)
+        heat = pad_map(box, args.force_n, size, args.step_mm * 1e-3)
     with atomic_path(png) as tmp:
-        _draw_map(tmp, xs, ys, top, lay, size, args.force_n, p0)
-    out = {
-        "command": "pad map",
-        "box": args.box,
-        "png": str(png),
-        "force_n": args.force_n,
-        "footprint_mm": [size[0] * 1e3, size[1] * 1e3],
-        "pressure_kpa": p0 / 1e3,
-        "largest_kpa": float(top.max()) / 1e3,
-        "smallest_kpa": float(top.min()) / 1e3,
-        "share_above_object_threshold": float((top >= thesis.OBJECT_THRESHOLD_PA).mean()),
-    }
+        heat.save_png(tmp)
+    out = {"command": "pad map", "box": args.box, "png": str(png), **heat.to_dict()}
     if args.json:
         emit(out)
         return 0
@@ -292,46 +231,3 @@ def _map(args: argparse.Namespace) -> int:
         f"{100 * out['share_above_object_threshold']:.0f} % of block centres above t_o"
     )
     return 0
-
-
-def _draw_map(
-    path: Any,
-    xs: Any,
-    ys: Any,
-    top: Any,
-    lay: Any,
-    size: tuple[float, float],
-    force: float,
-    p0: float,
-) -> None:
-    """The heat map (kPa) with module outlines and threshold contours, saved as PNG."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    from matplotlib.patches import Rectangle
-
-    fig, ax = plt.subplots(figsize=(1.6 + 2.2 * lay.cols, 0.8 + 2.2 * lay.rows))
-    units = 1.0 / lay.pitch_m
-    ext = (0.0, lay.cols, 0.0, lay.rows)
-    im = ax.imshow(top / 1e3, origin="lower", extent=ext, cmap="viridis", aspect="equal")
-    fig.colorbar(im, ax=ax, label="largest module rise (kPa)")
-    levels = [thesis.OBJECT_THRESHOLD_PA / 1e3, thesis.CONTACT_THRESHOLD_PA / 1e3]
-    if top.max() / 1e3 > levels[0]:
-        cs = ax.contour(xs * units, ys * units, top / 1e3, levels=levels, colors=["w", "r"])
-        ax.clabel(cs, fmt=lambda v: f"{v * 1e3:.0f} Pa")
-    for k in range(lay.n_modules):
-        r, c = divmod(k, lay.cols)
-        ax.add_patch(Rectangle((c, lay.rows - 1 - r), 1, 1, fill=False, ec="k", lw=1.2))
-        ax.text(c + 0.05, lay.rows - 1 - r + 0.05, str(k + 1), color="w", fontsize=9)
-    ax.set_xlabel("x (module units)")
-    ax.set_ylabel("y (module units)")
-    ax.set_title(
-        f"{force:g} N on {size[0] * 1e3:g} x {size[1] * 1e3:g} mm, p0 = {p0 / 1e3:.2f} kPa",
-        fontsize=10,
-    )
-    fig.tight_layout()
-    fig.savefig(path, format="png", dpi=110)
-    plt.close(fig)
-    if not math.isfinite(float(top.max())):  # pragma: no cover - guarded by the physics
-        raise InputError("the map has no finite values")

@@ -91,31 +91,22 @@ def register(sub: Any) -> None:
 
 def _read_frame(path: str) -> Any:
     """The readings of a frame file (``-``: stdin), :class:`softpad.sensing.PadReadings`."""
-    from softpad.sensing import parse_readings
+    from softpad.sensing import parse_readings, read_readings
 
     if path == "-":
-        text = sys.stdin.read()
-    else:
-        try:
-            text = Path(path).read_bytes().decode("utf-8")
-        except OSError as exc:
-            raise InputError(f"cannot read frame file {path!r}: {exc.strerror}") from None
-        except UnicodeDecodeError:
-            raise InputError(
-                f"frame file {path!r} is not text (CSV or JSON expected; a binary file?)"
-            ) from None
-    return parse_readings(text, f"frame file {path!r}")
+        return parse_readings(sys.stdin.read(), f"frame file {path!r}")
+    return read_readings(path)
 
 
 def run(args: argparse.Namespace) -> int:
     from softpad.layout import parse_layout
-    from softpad.planning import PlannerParams, format_plans
+    from softpad.planning import PlannerParams, check_planner_choice, format_plans, plan_by_name
 
     try:
         layout = parse_layout(args.layout, pitch_m=args.pitch_mm / 1e3)
     except InputError as exc:
         raise InputError(f"--layout {args.layout!r}: {exc}") from None
-    _check_planner(args.planner, args.gripper)
+    check_planner_choice(args.planner, args.gripper)
     png = check_output(args.png, "--png", force=args.force, suffix=".png")
     source, readings = _readings(args)
     delta = readings.increments_pa(layout, source)
@@ -123,7 +114,7 @@ def run(args: argparse.Namespace) -> int:
         object_threshold_pa=args.threshold_kpa * 1e3, safety_shift=args.safety_shift
     )
     try:
-        plans = _plans(args, delta, layout, params)
+        plans = plan_by_name(args.planner, args.gripper, delta, layout, params)
     except InputError as exc:
         raise InputError(f"{source}: {exc}") from None
     if png is not None:
@@ -164,32 +155,6 @@ def _planner_help() -> str:
     from softpad.planning import PLANNER_REGISTRY
 
     return PLANNER_REGISTRY.help().replace("%", "%%")
-
-
-def _check_planner(planner: str, mounting: str) -> None:
-    """``--planner`` and ``--gripper`` known, else an InputError naming them."""
-    from softpad import thesis as t
-    from softpad.planning import available_planners
-
-    if planner not in (names := available_planners()):
-        raise InputError(f"--planner must be one of {', '.join(names)}, got {planner!r}")
-    if mounting not in t.GRIPPER_MOUNTINGS_M:
-        raise InputError(
-            f"--gripper must be one of {', '.join(t.GRIPPER_MOUNTINGS_M)}, got {mounting!r}"
-        )
-
-
-def _plans(args: argparse.Namespace, delta: list[float], layout: Any, params: Any) -> Any:
-    """The plans of ``--planner`` (the thesis's: :func:`softpad.planning.plan_grasps`)."""
-    from softpad.layout import GripperSpec
-    from softpad.planning import make_planner, plan_grasps
-    from softpad.sensing import detect_objects
-
-    gripper = GripperSpec.from_mounting(args.gripper)
-    if args.planner == "thesis":
-        return plan_grasps(delta, layout, params)
-    planner = make_planner(args.planner, layout=layout, gripper=gripper, params=params)
-    return planner.plan(delta, detect_objects(delta, layout, params.object_threshold_pa), layout)
 
 
 def _save_plot(path: Path, delta: list[float], plans: Any, layout: Any, json_mode: bool) -> None:

@@ -200,51 +200,28 @@ def run_urdf(args: argparse.Namespace) -> int:
 
 def installation_settings(path: str) -> dict[str, Any]:
     """The node's settings (:data:`softpad.ros.CONFIG_KEYS`, SI) from the installation file
-    ``path`` (TOML, mm and degrees): its box link, pad and pose, thresholds, ambient pressure
-    and gripper, as every other command reads it."""
-    from softpad.cli._installation import _defaults
+    ``path`` (TOML, mm and degrees), as every other command reads it
+    (:func:`softpad.ros.installation_settings`)."""
     from softpad.config import load_installation
     from softpad.errors import InputError
+    from softpad.ros import installation_settings as settings
 
     if path.endswith(".json"):
         raise InputError(
             f"--config {path!r}: the node reads the installation file (TOML, examples/site.toml);"
             " give node settings as options or ROS parameters (docs/ros.md)"
         )
-    inst = load_installation(path)
-    pad, th = inst.pad, inst.thresholds
-    values: dict[str, Any] = {
-        "layout": f"{pad.rows}x{pad.cols}", "pitch_m": pad.pitch_m,
-        "pad_x_m": pad.x_m, "pad_y_m": pad.y_m, "pad_z_m": pad.z_m, "pad_yaw_rad": pad.yaw_rad,
-        "object_threshold_pa": th.object_threshold_pa,
-        "contact_threshold_pa": th.contact_threshold_pa,
-        "ambient_pressure_pa": inst.box.ambient_pressure_pa,
-    }  # fmt: skip
-    defaults = _defaults(inst)
-    if "box" in defaults:  # the box daemon's link
-        values["box"] = defaults["box"]
-    if inst.gripper_mounting is not None:
-        values["gripper"] = inst.gripper_mounting
-    return values
+    return settings(load_installation(path))
 
 
 def run_node(args: argparse.Namespace) -> int:
-    from softpad.ros import NodeConfig, PadNode
+    from softpad.ros import NodeConfig, PadNode, given_settings
 
     config = NodeConfig()
     if args.config:
         config = config.updated(installation_settings(args.config))
-    changes: dict[str, Any] = {}
-    if args.hold_s is not None:
-        changes["hold_s"] = args.hold_s
-    if args.box:
-        changes["box"] = args.box
-    if args.place:
-        changes["place"] = args.place
-    for key in ("planner", "detector", "robot"):
-        if getattr(args, key):
-            changes[key] = getattr(args, key)
-    node = PadNode(config.updated(changes))
+    names = {key: getattr(args, key) for key in ("box", "place", "planner", "detector", "robot")}
+    node = PadNode(config.updated(given_settings(args.hold_s, **names)))
     try:
         if args.json:
             print(json.dumps({"box": node.config.box, "layout": node.layout.name}), flush=True)
@@ -266,28 +243,3 @@ def run_arm_node(args: argparse.Namespace) -> int:
         print(f"softpad sim arm-node: box on {node.url}, arm on /softpad_arm", flush=True)
     node.serve()
     return 0
-
-
-def run_with_robot_url(
-    args: argparse.Namespace,
-    names: list[str],
-    box: Any,
-    recorder: Any,
-    params: Any,
-    **parts: Any,
-) -> Any:
-    """``softpad run --robot URL``: the loop with a robot made by the robot registry
-    (``ros1://``, or a robot an installed package registers)."""
-    from softpad.control import make_robot
-    from softpad.harness import SimulatedRun, TouchTruth
-    from softpad.ros import run_with_robot
-
-    robot = make_robot(args.robot, box=box)
-    try:
-        result = run_with_robot(names, box, robot, params, recorder, gripper=args.gripper, **parts)
-    finally:
-        close = getattr(robot, "close", None)
-        if close is not None:
-            close()
-    # no ground truth of the touches through ROS: the report leaves them empty
-    return SimulatedRun(result, tuple(TouchTruth(None, None) for _ in result.grasps))

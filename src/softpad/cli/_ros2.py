@@ -83,37 +83,18 @@ def node_config(path: str | None) -> Any:
 
     if path is None or Path(path).suffix != ".toml":
         return load_config(path)
-    from softpad.cli._installation import _defaults
     from softpad.config import load_installation
+    from softpad.ros import installation_settings
 
-    inst = load_installation(path)
-    pad, th = inst.pad, inst.thresholds
-    values: dict[str, Any] = {
-        "layout": f"{pad.rows}x{pad.cols}",
-        "pad_x_m": pad.x_m, "pad_y_m": pad.y_m, "pad_z_m": pad.z_m, "pad_yaw_rad": pad.yaw_rad,
-        "object_threshold_pa": th.object_threshold_pa,
-        "contact_threshold_pa": th.contact_threshold_pa,
-        "ambient_pressure_pa": inst.box.ambient_pressure_pa,
-    }  # fmt: skip
-    if inst.gripper_mounting is not None:
-        values["gripper"] = inst.gripper_mounting
-    box = _defaults(inst).get("box")
-    if box:
-        values["box"] = box
-    return NodeConfig().updated(values)
+    return NodeConfig().updated(installation_settings(load_installation(path), pitch=False))
 
 
 def run_node(args: argparse.Namespace) -> int:
+    from softpad.ros import given_settings
     from softpad.ros2 import Ros2PadNode
 
-    changes: dict[str, Any] = {}
-    if args.box:
-        changes["box"] = args.box
-    if args.place:
-        changes["place"] = args.place
-    for key in ("planner", "detector", "robot"):
-        if getattr(args, key):
-            changes[key] = getattr(args, key)
+    names = {key: getattr(args, key) for key in ("box", "place", "planner", "detector", "robot")}
+    changes = given_settings(**names)
     node = Ros2PadNode(node_config(args.config).updated(changes), ros_args=args.ros_args)
     try:
         start = {"box": node.config.box, "layout": node.layout.name, "node": "/softpad"}

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 from typing import Any
 
@@ -19,7 +18,7 @@ from softpad.cli._args import (
 from softpad.cli._installation import installed_pad_pose
 from softpad.cli._output import emit, say
 from softpad.cli._paths import atomic_path, check_output
-from softpad.cli._record import add_record_option, open_recorder, run_metadata
+from softpad.cli._record import add_record_option
 from softpad.errors import EXIT_FAILED, EXIT_HARDWARE, EXIT_OK, HardwareFault, InputError
 
 _EPILOG = """examples:
@@ -175,28 +174,6 @@ def add_part_options(p: argparse.ArgumentParser) -> None:
     add_registry_option(p, "--detector", CONTACT_DETECTOR_REGISTRY, "contact detector")
 
 
-def box_layout(box: Any) -> Any:
-    """The pad on ``box``: a simulated box's world's, else the thesis's 2 x 3 (a served
-    simulator states its pad only when the run sets it up)."""
-    from softpad.layout import PadLayout
-
-    layout = getattr(getattr(box, "world", None), "layout", None)
-    return layout if isinstance(layout, PadLayout) else PadLayout()
-
-
-def loop_parts(args: argparse.Namespace, box: Any, params: Any, mounting: str) -> dict[str, Any]:
-    """The planner and contact detector named by ``--planner`` and ``--detector``, made by
-    their registries for the box's sample rate, its pad and the gripper ``mounting``
-    (:func:`softpad.control.loop_parts`, as the ROS node's ``~grasp`` makes them)."""
-    from softpad.control import loop_parts as make_parts
-    from softpad.layout import GripperSpec
-
-    spec = GripperSpec.from_mounting(mounting)
-    return make_parts(
-        args.planner, args.detector, box.sample_rate_hz, box_layout(box), spec, params
-    )
-
-
 def add_thesis_params(p: argparse.ArgumentParser) -> None:
     """The thesis's loop parameters (Section 6.2) as options with their physical ranges."""
 
@@ -267,7 +244,7 @@ def _object_names(args: argparse.Namespace) -> list[str]:
 def run(args: argparse.Namespace) -> int:
     from softpad.box import open_box
     from softpad.errors import SoftPadError
-    from softpad.harness import resolve_objects, run_simulated
+    from softpad.harness import resolve_objects, run_objects
     from softpad.record import RunLog, Tee
 
     names = [s.name for s in resolve_objects(_object_names(args))]  # fail before any work
@@ -283,28 +260,12 @@ def run(args: argparse.Namespace) -> int:
     with open_box(args.box) as box:
         if not args.json:  # first: which box (the JSON's stderr is the error line alone)
             print(f"softpad run: {', '.join(names)} on {args.box}", flush=True)
-        meta = run_metadata(
-            "run", box, args.box, names, params, gripper=gripper,
-            planner=args.planner, contact_detector=args.detector,
-        )  # fmt: skip
-        _add_ambient(meta, args.config)
-        pad = installed_pad_pose(args.config)  # where the pad stands: /tf_static everywhere
-        recorder = open_recorder(
-            str(record_path) if record_path else None, box, meta, args.force, pad=pad
-        )
-        live = _live(args.foxglove, box, args.json, pad)
-        ros = _ros_watch(args.ros, box, args.box, pad)
-        ros2 = _ros2_watch(args.ros2, box, args.box, pad)
+        recorder, live, ros, ros2 = _watchers(args, box, names, params, record_path)
         try:
             tee = Tee(log, recorder, live, ros, ros2)
-            parts = loop_parts(args, box, params, gripper or resolve_objects(names)[0].gripper)
-            if args.robot.partition("://")[0].lower() == "sim" or _in_process(box):
-                robot = _robot(args.robot, box, gripper or resolve_objects(names)[0].gripper)
-                result = run_simulated(names, box, params, tee, gripper, robot, **parts)
-            else:
-                from softpad.cli._ros import run_with_robot_url
-
-                result = run_with_robot_url(args, names, box, tee, params, **parts)
+            result = run_objects(
+                names, box, params, tee, gripper, args.robot, args.planner, args.detector
+            )
             for r in (ros, ros2):
                 if r is not None:
                     r.finish(result.result)
@@ -324,6 +285,27 @@ def run(args: argparse.Namespace) -> int:
     return _report(args, log, result, names, png_path, record_path)
 
 
+def _watchers(
+    args: argparse.Namespace, box: Any, names: list[str], params: Any, record_path: Any
+) -> tuple[Any, Any, Any, Any]:
+    """The run's recorder (``--record``), Foxglove view and ROS publishers, those asked for."""
+    from softpad.record import open_recorder, run_metadata
+
+    meta = run_metadata(
+        "run", box, args.box, names, params, gripper=args.gripper,
+        planner=args.planner, contact_detector=args.detector,
+    )  # fmt: skip
+    _add_ambient(meta, args.config)
+    pad = installed_pad_pose(args.config)  # where the pad stands: /tf_static everywhere
+    recorder = open_recorder(
+        str(record_path) if record_path else None, box, meta, args.force, pad=pad
+    )
+    live = _live(args.foxglove, box, args.json, pad)
+    ros = _ros_watch(args.ros, box, args.box, pad)
+    ros2 = _ros2_watch(args.ros2, box, args.box, pad)
+    return recorder, live, ros, ros2
+
+
 def _add_ambient(meta: dict[str, Any], config: str | None) -> None:
     """FluidPressure is absolute: the site's ambient pressure from the installation file."""
     if config:
@@ -332,25 +314,9 @@ def _add_ambient(meta: dict[str, Any], config: str | None) -> None:
         meta["ambient_pressure_pa"] = load_installation(config).box.ambient_pressure_pa
 
 
-def _in_process(box: Any) -> bool:
-    from softpad.box import simulator_of
-
-    return simulator_of(box) is not None
-
-
-def _robot(url: str, box: Any, mounting: str) -> Any:
-    """The ``--robot`` on an in-process simulated box: None for plain ``sim://`` (the run's
-    own simulated arm, with its ground truth), else the robot registry's."""
-    from softpad.control import make_robot
-    from softpad.layout import GripperSpec
-
-    if url.rstrip("/").lower() == "sim:":
-        return None
-    gripper = GripperSpec.from_mounting(mounting)
-    return make_robot(url, box=box, layout=box_layout(box), gripper=gripper)
-
-
 def _report(args: Any, log: Any, result: Any, names: list[str], png: Any, record: Any) -> int:
+    from softpad.harness import timeline
+
     d = result.to_dict()
     held = result.outcome == "held"
     if args.json:
@@ -358,7 +324,7 @@ def _report(args: Any, log: Any, result: Any, names: list[str], png: Any, record
             d["error"] = {"kind": "failed", "message": f"grasp not held: {result.outcome}"}
         emit(d)
     else:
-        for line in _timeline(log, result):
+        for line in timeline(log.events, result):
             print("  " + line)
         print(f"outcome: {result.outcome}")
     for path, what in ((png, "pressure traces"), (record, "recording")):
@@ -388,18 +354,10 @@ def _from_installation(path: str, params: Any) -> Any:
     """What the options do not cover from an installation file: the adjustment tolerance,
     the maximum pressure and the inflation's window (its thresholds, window and gripper are
     already the options' defaults, ``softpad.cli._installation``)."""
-    import dataclasses
-
     from softpad.config import load_installation
+    from softpad.harness import execution_params as with_installation
 
-    th = load_installation(path).thresholds
-    inflation = dataclasses.replace(
-        params.inflation,
-        tolerance_pa=th.adjust_tolerance_pa,
-        max_pressure_pa=th.max_pressure_pa,
-        filter_length=params.filter_length,
-    )
-    return dataclasses.replace(params, inflation=inflation)
+    return with_installation(params, load_installation(path))
 
 
 def _live(port: int | None, box: Any, json_mode: bool, pad: Any = None) -> Any:
@@ -420,6 +378,7 @@ def _ros_watch(enabled: bool, box: Any, url: str, pad: Any = None) -> Any:
     """``--ros``: the publisher of :mod:`softpad.ros` the run reports to, else None."""
     if not enabled:
         return None
+    from softpad.harness import box_layout
     from softpad.ros import watch_loop
 
     return watch_loop(box_layout(box), box, url, pad=pad)
@@ -429,117 +388,25 @@ def _ros2_watch(enabled: bool, box: Any, url: str, pad: Any = None) -> Any:
     """``--ros2``: the publisher of :mod:`softpad.ros2` the run reports to, else None."""
     if not enabled:
         return None
+    from softpad.harness import box_layout
     from softpad.ros2 import watch_loop2
 
     return watch_loop2(box_layout(box), box, url, pad=pad)
 
 
 def _report_fault(args: argparse.Namespace, log: Any, names: list[str], exc: Exception) -> int:
-    """Print what was detected and the safe state reached; the hardware-fault exit code.
+    """Print what was detected and the safe state reached (:func:`softpad.harness.fault_report`);
+    the hardware-fault exit code."""
+    from softpad.harness import fault_report
 
-    With ``--json``: ``outcome``, ``faults``, ``safe_state`` and ``phases`` at the top and the
-    contract's ``error`` object (kind ``hardware``, message, events and frames recorded so far).
-    """
-    faults = [f.to_dict() for f in getattr(exc, "faults", ())]
-    safe = getattr(exc, "safe_state", None)
-    d = {
-        "outcome": "fault",
-        "objects": names,
-        "faults": faults,
-        "safe_state": None if safe is None else safe.to_dict(),
-        "phases": [
-            {"phase": e["phase"], "t_s": round(t, 4)} for t, k, e in log.events if k == "phase"
-        ],
-        "error": {
-            "kind": "hardware",
-            "message": str(exc),
-            "events": _events(log),
-            "frames": len(log),
-        },
-    }
+    d, lines = fault_report(exc, names, log.events, len(log))
     if args.json:
         emit(d)
     else:
-        for f in faults:
-            print(f"t = {f['t_s']:7.2f} s  fault on channel {f['channel']} ({f['cause']})")
-        if safe is not None:
-            kpa = ", ".join("nan" if v != v else f"{v / 1e3:.3f}" for v in safe.pressures_pa)
-            state = "verified" if safe.verified else f"NOT verified: {safe.reason}"
-            print(f"safe state {state}; pressures {kpa} kPa")
+        for line in lines:
+            print(line)
     print(f"softpad run: error: hardware fault: {exc}", file=sys.stderr)
     return EXIT_HARDWARE
-
-
-def _kpa(values: Any) -> str:
-    return " ".join(f"{v / 1e3:.3f}" for v in values)
-
-
-def _modules(d: dict[str, Any]) -> str:
-    return ", ".join(map(str, d["modules"]))
-
-
-def _plan_lines(d: dict[str, Any]) -> list[str]:
-    lines = [f"increments (kPa): {_kpa(d['increments_pa'])}"]
-    for o in d["objects"]:
-        lines.append(
-            f"plan: modules {','.join(map(str, o['modules']))}  PCOM "
-            f"({o['pcom'][0]:.2f}, {o['pcom'][1]:.2f})  COG ({o['cog'][0]:.2f}, {o['cog'][1]:.2f})  "
-            f"theta {o['theta']:+.3f} rad ({math.degrees(o['theta']):+.0f} deg)  [{o['rule']}]"
-        )
-    return lines
-
-
-#: How each event kind of a run reads in the timeline (kinds not listed are not shown).
-_EVENT_TEXT: dict[str, Any] = {
-    "adjusted": lambda d: [
-        f"adjusted: every module within tolerance of {d['target_pa'] / 1e3:.3f} kPa"
-    ],
-    "reference": lambda d: [f"reference saved (kPa): {_kpa(d['reference_pa'])}"],
-    "object_seen": lambda d: [f"object detected on module(s) {_modules(d)}"],
-    "plan": _plan_lines,
-    "contact": lambda d: [f"contact detected on module(s) {_modules(d)}"],
-    "no_contact": lambda d: [
-        f"no contact detected down to {d['z_m'] * 1e3:.1f} mm: gripper not closed"
-    ],
-    "retry": lambda d: [_retry_text(d)],
-    "carried": lambda d: [
-        f"module(s) {_modules(d)} unloaded during the hold: that object went up with this "
-        "one, not grasped again"
-    ],
-    "outcome": lambda d: [d["outcome"]],
-}
-_SHOWN_PHASES = ("approach", "descend", "close", "lift", "hold", "release")
-
-
-def _retry_text(d: dict[str, Any]) -> str:
-    """The timeline's line for a ``retry`` event (``closed``: after the jaws closed)."""
-    landed = f"the fingers landed {d['z_m'] * 1e3:.1f} mm above the pad base"
-    why = (
-        f"the jaws closed on nothing after {landed}, on the object"
-        if d.get("closed", True)
-        else f"{landed}, on one side of the object: not closing"
-    )
-    grasp = f"COG ({d['cog'][0]:.2f}, {d['cog'][1]:.2f}) theta {d['theta']:+.3f} rad"
-    return f"{why}; trying {grasp} [{d['rule']}]"
-
-
-def _timeline(log: Any, result: Any) -> list[str]:
-    lines = []
-    for t, kind, d in log.events:
-        if kind == "phase" and d["phase"] in _SHOWN_PHASES:
-            lines.append(f"t = {t:7.2f} s  {d['phase']}")
-        elif kind in _EVENT_TEXT:
-            lines += [f"t = {t:7.2f} s  {text}" for text in _EVENT_TEXT[kind](d)]
-    for i, g in enumerate(result.result.grasps):
-        delay, travel = result.contact_delay_s(i), result.finger_travel_m(i)
-        if delay is not None and travel is not None:
-            lines.append(
-                f"grasp {i + 1}: contact {delay * 1e3:.0f} ms after the first fingertip touch, "
-                f"finger travel {travel * 1e3:.1f} mm; outcome {g.outcome}"
-            )
-        else:
-            lines.append(f"grasp {i + 1}: outcome {g.outcome}")
-    return lines
 
 
 if __name__ == "__main__":  # pragma: no cover

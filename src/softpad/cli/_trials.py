@@ -10,7 +10,7 @@ from typing import Any
 from softpad import thesis
 from softpad.cli._args import Renamed, add_command, add_integer, int_ranges, name_list
 from softpad.cli._output import emit, say
-from softpad.cli._record import add_record_option, check_trial_recordings
+from softpad.cli._record import add_record_option
 from softpad.cli._run import add_part_options
 from softpad.errors import InputError
 
@@ -121,45 +121,12 @@ def add_trial_options(
 
 
 def select_objects(names_text: str | None, objects_file: str | None = None) -> list[Any]:
-    """Catalogue objects named in ``names_text`` (comma-separated), all when None; with
-    ``objects_file``, that object set's objects (those named, all when None), each placed on
-    the thesis's 2 x 3 pad with its mounting."""
-    from softpad.sim import get_object, object_names
+    """The objects named in ``names_text`` (comma-separated; all when None), of the catalogue
+    or of ``objects_file`` (:func:`softpad.design.trial_objects`)."""
+    from softpad.design import trial_objects
 
-    if objects_file is not None:
-        return _set_objects(objects_file, names_text)
-    known = list(object_names())
-    if names_text is None:
-        return [get_object(n) for n in known]
-    names = name_list(names_text, "--objects")
-    for n in names:
-        if n not in known:
-            raise InputError(f"unknown object {n!r}; known objects: {', '.join(known)}")
-    return [get_object(n) for n in names]
-
-
-def _set_objects(path: str, names_text: str | None) -> list[Any]:
-    """The objects of the object-set file ``path`` as catalogue specs on the 2 x 3 pad."""
-    from dataclasses import replace
-
-    from softpad.design import load_object_set
-
-    objects = load_object_set(path)
-    pad = (
-        thesis.PROTOTYPE_COLS * thesis.MODULE_PITCH_M,
-        thesis.PROTOTYPE_ROWS * thesis.MODULE_PITCH_M,
-    )
-    chosen = list(objects.objects)
-    if names_text is not None:
-        names = name_list(names_text, "--objects")
-        unknown = [n for n in names if n not in objects.names]
-        if unknown:
-            raise InputError(
-                f"--objects: {', '.join(unknown)} not in {path!r}; its objects: "
-                f"{', '.join(objects.names)}"
-            )
-        chosen = [o for o in chosen if o.name in names]
-    return [replace(o.placed_on(pad), gripper=objects.mounting(o)) for o in chosen]
+    names = None if names_text is None else name_list(names_text, "--objects")
+    return trial_objects(names, objects_file)
 
 
 def progress_bar(total: int, enabled: bool, desc: str = "trials") -> Any:
@@ -173,30 +140,15 @@ def progress_bar(total: int, enabled: bool, desc: str = "trials") -> Any:
 
 def trial_errors_exit(errored: list[dict[str, Any]], prog: str) -> int:
     """Exit code of a command whose trials ran: 0, or the internal-error code with a message on
-    stderr naming the trials that raised (``errored``: their ``to_dict()`` records, cause
-    ``trial_error``, the traceback in ``detail``)."""
+    stderr naming the trials that raised (:func:`softpad.trials.trial_errors_text`)."""
     from softpad.errors import EXIT_INTERNAL
+    from softpad.trials import trial_errors_text
 
-    if not errored:
+    text = trial_errors_text(errored, prog)
+    if text is None:
         return 0
-    named = ", ".join(f"{t['object']} trial {t['trial']} (seed {t['seed']})" for t in errored[:5])
-    more = f" and {len(errored) - 5} more" if len(errored) > 5 else ""
-    last = (errored[0].get("detail") or "").strip().splitlines()[-1:] or [""]
-    print(
-        f"softpad {prog}: error: {len(errored)} trial(s) raised and count as failed: {named}"
-        f"{more}; first: {last[0]}. This is a bug; the tracebacks are in the trials' 'detail' "
-        "(--json)",
-        file=sys.stderr,
-    )
+    print(text, file=sys.stderr)
     return EXIT_INTERNAL
-
-
-def check_counts(trials: int, workers: int | None) -> None:
-    """Validate ``--trials`` and ``--workers`` (shared by ``trials`` and ``demo``)."""
-    if not 1 <= trials <= 1000:
-        raise InputError(f"--trials must be from 1 to 1000, got {trials}")
-    if workers is not None and not 1 <= workers <= 256:
-        raise InputError(f"--workers must be from 1 to 256, got {workers}")
 
 
 def run_with_progress(
@@ -241,31 +193,30 @@ def _show(args: argparse.Namespace) -> bool:
 
 
 def run(args: argparse.Namespace) -> int:
-    import math
+    from softpad.trials import check_campaign, check_counts, check_trial_recordings
 
     specs = select_objects(args.objects, args.objects_file)
     check_counts(args.trials, args.workers)
     seeds = int_ranges(args.seeds, "--seeds", lo=0, hi=2**32 - 1)
-    if len(seeds) > 100:
-        raise InputError(f"--seeds {args.seeds!r} names {len(seeds)} seeds; at most 100")
-    if not math.isfinite(args.hold_s) or not 0 <= args.hold_s <= 600:
-        raise InputError(f"--hold-s must be from 0 to 600 s, got {args.hold_s!r}")
-    if args.record and len(seeds) > 1:
-        raise InputError(
-            "--record takes one seed at a time (trial files are named by object and trial)"
-        )
+    check_campaign(seeds, args.seeds, args.hold_s, args.record)
     check_trial_recordings(args.record, specs, args.trials, args.force)
-    from softpad.trials import ExperimentResult, errored_records
 
     finished: list[dict[str, Any]] = []
     args.partial = {"seeds": seeds, "completed_seeds": [], "finished_trials": finished}
     if getattr(args, "scheduler", None) is not None:
         return _run_on_dask(args, specs, seeds)
-    done = _run_here(args, specs, seeds, finished)
-    pooled = ExperimentResult.pooled(done)
+    return _pooled(args, _run_here(args, specs, seeds, finished), "workers")
+
+
+def _pooled(args: argparse.Namespace, experiments: list[Any], workers: str) -> int:
+    """Print the seeds' experiments pooled (``--json``: as one object); the exit code."""
+    from softpad.trials import ExperimentResult, errored_records
+
+    pooled = ExperimentResult.pooled(experiments)
     say(pooled.to_text(), args.json)
     say(
-        f"({len(pooled.trials)} trials in {pooled.wall_time_s:.1f} s on {pooled.workers} workers)",
+        f"({len(pooled.trials)} trials in {pooled.wall_time_s:.1f} s on {pooled.workers} "
+        f"{workers})",
         args.json,
     )
     if args.json:
@@ -348,7 +299,6 @@ def _config(args: argparse.Namespace) -> Any:
 def _run_on_dask(args: argparse.Namespace, specs: list[Any], seeds: list[int]) -> int:
     """``--scheduler``: every seed's trials as Dask tasks (softpad.design's client), pooled."""
     from softpad.design import check_scheduler_address, run_experiment_on_dask
-    from softpad.trials import ExperimentResult, errored_records
 
     if args.record:
         raise InputError("--record is not available with --scheduler (trials run on Dask workers)")
@@ -372,13 +322,4 @@ def _run_on_dask(args: argparse.Namespace, specs: list[Any], seeds: list[int]) -
     if len(seeds) > 1:
         for exp in exps:
             say(f"seed {exp.seed}: {exp.overall()['successes']}/{len(exp.trials)} held", args.json)
-    pooled = ExperimentResult.pooled(exps)
-    say(pooled.to_text(), args.json)
-    say(
-        f"({len(pooled.trials)} trials in {pooled.wall_time_s:.1f} s on {pooled.workers} Dask "
-        "workers)",
-        args.json,
-    )
-    if args.json:
-        emit(pooled.to_dict())
-    return trial_errors_exit(errored_records(pooled.trials), "trials")
+    return _pooled(args, exps, "Dask workers")

@@ -71,8 +71,8 @@ def register(sub: Any) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from softpad.cli._trials import check_counts, progress_bar
-    from softpad.trials import validate
+    from softpad.cli._trials import progress_bar
+    from softpad.trials import check_counts, validate
 
     seeds = [] if args.seeds is None else int_ranges(args.seeds, "--seeds", lo=0, hi=2**32 - 1)
     if len(seeds) > 100:

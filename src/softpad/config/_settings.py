@@ -210,7 +210,24 @@ class Thresholds:
 
 @dataclass(frozen=True, slots=True)
 class Installation:
-    """Every setting of one installation (see :func:`load_installation`)."""
+    """Every setting of one installation (see :func:`load_installation`).
+
+    Attributes
+    ----------
+    box
+        The box: channels and their wiring, supply, sample rate (Hz), ambient pressure (Pa).
+    link
+        The zenoh link: endpoints, key prefix, credentials, watchdog (s).
+    pad
+        The pad: rows, columns, pitch (m) and its pose in the robot's base frame (m, rad).
+    thresholds
+        p0, the adjustment tolerance, t_o, t_g and the maximum pressure (Pa), the window
+        (samples).
+    gripper_mounting
+        The gripper's mounting (``"10/4"``, ``"6/2"``, ``"4/0"``), or None.
+    source
+        The file read, ``"<defaults>"`` without one.
+    """
 
     box: BoxSettings = field(default_factory=BoxSettings)
     link: LinkSettings = field(default_factory=LinkSettings)
@@ -218,6 +235,19 @@ class Installation:
     thresholds: Thresholds = field(default_factory=Thresholds)
     gripper_mounting: str | None = None
     source: str = "<defaults>"
+
+    @property
+    def box_url(self) -> str | None:
+        """The URL of the box daemon the link connects to (``zenoh://HOST:PORT/PREFIX``, with
+        ``?config=`` this file where the link has credentials), None without ``link.connect``."""
+        link = self.link
+        if not link.connect:
+            return None
+        host_port = link.connect[0].split("/", 1)[1]
+        url = f"zenoh://{host_port}/{link.key_prefix}"
+        if link.user is not None or link.tls_root_ca is not None:  # the link's credentials
+            url += f"?config={self.source}"
+        return url
 
 
 # --- typed getters that name the key --------------------------------------------------

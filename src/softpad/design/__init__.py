@@ -23,6 +23,16 @@ from softpad.design._density import (
     pad_convergence,
 )
 from softpad.design._evaluate import VALVE_CHOICES, TrialOptions, run_design_trials
+from softpad.design._inputs import (
+    MAX_DESIGNS,
+    cache_folder,
+    cached_line,
+    choose_object_set,
+    designs_from_text,
+    sweep_trial_options,
+    trial_objects,
+    write_sweep,
+)
 from softpad.design._objects import (
     EXAMPLE_SETS,
     OBJECT_SET_SCHEMA,
@@ -55,6 +65,7 @@ __all__ = [
     "EXAMPLE_SETS",
     "FEM_CELLS",
     "LIMITS",
+    "MAX_DESIGNS",
     "OBJECT_SET_SCHEMA",
     "QUICK_DESIGNS",
     "THESIS_DESIGN",
@@ -71,13 +82,17 @@ __all__ = [
     "SweepResult",
     "TrialOptions",
     "available_cpus",
+    "cache_folder",
+    "cached_line",
     "check_scheduler_address",
+    "choose_object_set",
     "code_version",
     "dask_client",
     "default_cache_dir",
     "density_study",
     "design_row",
     "design_sweep",
+    "designs_from_text",
     "example_object_set",
     "fem_response",
     "footprint_centre_m",
@@ -92,4 +107,7 @@ __all__ = [
     "run_experiment_on_dask",
     "run_sweep",
     "stable_hash",
+    "sweep_trial_options",
+    "trial_objects",
+    "write_sweep",
 ]

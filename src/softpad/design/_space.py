@@ -202,7 +202,19 @@ def parse_values(
     text: str, name: str, scale: float, limits: tuple[float, float]
 ) -> tuple[float, ...]:
     """Numbers of a design option: ``1,1.5,2`` or ``1:2:0.5`` (start:stop:step, inclusive),
-    in the option's unit, returned in SI (times ``scale``)."""
+    in the option's unit, returned in SI (times ``scale``).
+
+    Parameters
+    ----------
+    text
+        The values as given.
+    name
+        The option, for messages (``--pitch-mm``).
+    scale
+        SI per unit of the text (1e-3 for mm, 1e3 for kPa).
+    limits
+        The lowest and highest value, SI.
+    """
     values: list[float] = []
     for part in text.split(","):
         values.extend(_values_of(part.strip(), name))
@@ -216,7 +228,13 @@ def parse_values(
 
 
 def parse_grids(text: str) -> tuple[tuple[int, int], ...]:
-    """Grids of ``--grid 2x3,3x4``."""
+    """Grids of ``--grid 2x3,3x4``.
+
+    Parameters
+    ----------
+    text
+        ``RxC`` grids, comma-separated (each side within :data:`LIMITS` ``rows``).
+    """
     out = []
     lo, hi = LIMITS["rows"]
     for part in text.split(","):

@@ -16,6 +16,16 @@ from softpad.harness._assembly import (
     execution_params,
     world_access,
 )
+from softpad.harness._command import (
+    EVENT_TEXT,
+    box_layout,
+    box_loop_parts,
+    fault_report,
+    retry_text,
+    run_objects,
+    run_with_robot,
+    timeline,
+)
 from softpad.harness._inflation_study import (
     InflationPoint,
     inflation_study,
@@ -32,6 +42,7 @@ from softpad.harness._robot import SimulatedRobot, TouchTruth, open_sim_robot
 from softpad.harness._run import SimulatedRun, resolve_objects, run_simulated
 
 __all__ = [
+    "EVENT_TEXT",
     "SIMULATION_OPS",
     "BuiltLoop",
     "InflationPoint",
@@ -40,15 +51,22 @@ __all__ = [
     "SimulatedRun",
     "TouchTruth",
     "WorldAccess",
+    "box_layout",
+    "box_loop_parts",
     "build_loop",
     "execution_params",
+    "fault_report",
     "has_simulation",
     "inflation_study",
     "open_sim_robot",
     "recommend_p0",
     "resolve_objects",
+    "retry_text",
+    "run_objects",
     "run_simulated",
+    "run_with_robot",
     "served_simulation",
     "simulation_extensions",
+    "timeline",
     "world_access",
 ]

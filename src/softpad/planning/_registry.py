@@ -134,3 +134,63 @@ register_planner("thesis", _thesis)
 register_planner("gripper-aware", _gripper_aware)
 register_planner("model-based", _model_based)
 register_planner("catalogue", _catalogue)
+
+
+def plan_by_name(
+    planner: str,
+    mounting: str,
+    delta_pa: Any,
+    layout: PadLayout,
+    params: PlannerParams,
+) -> Any:
+    """The plans the registered planner ``planner`` makes of one reading (the thesis's:
+    :func:`softpad.planning.plan_grasps`), for the gripper ``mounting``.
+
+    Parameters
+    ----------
+    planner
+        A registered planner's name (:func:`available_planners`).
+    mounting
+        Gripper mounting ``"10/4"``, ``"6/2"`` or ``"4/0"``.
+    delta_pa
+        Every module's pressure increment, Pa.
+    layout
+        The pad.
+    params
+        The planner's parameters (object threshold t_o, safety shift).
+
+    Returns
+    -------
+    list of GraspPlan
+        One plan per object found.
+    """
+    from softpad.planning._plan import plan_grasps
+    from softpad.sensing import detect_objects
+
+    check_planner_choice(planner, mounting)
+    if planner == "thesis":
+        return plan_grasps(delta_pa, layout, params)
+    gripper = GripperSpec.from_mounting(mounting)
+    made = make_planner(planner, layout=layout, gripper=gripper, params=params)
+    return made.plan(delta_pa, detect_objects(delta_pa, layout, params.object_threshold_pa), layout)
+
+
+def check_planner_choice(planner: str, mounting: str) -> None:
+    """Refuse an unknown planner or gripper mounting, naming the known ones.
+
+    Parameters
+    ----------
+    planner
+        A planner's name (``--planner``).
+    mounting
+        A gripper mounting (``--gripper``).
+    """
+    from softpad import thesis
+    from softpad.errors import InputError
+
+    if planner not in (names := available_planners()):
+        raise InputError(f"--planner must be one of {', '.join(names)}, got {planner!r}")
+    if mounting not in thesis.GRIPPER_MOUNTINGS_M:
+        raise InputError(
+            f"--gripper must be one of {', '.join(thesis.GRIPPER_MOUNTINGS_M)}, got {mounting!r}"
+        )

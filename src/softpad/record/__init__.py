@@ -9,11 +9,16 @@ in-memory recorder, :class:`Tee` sends a run to several recorders.
 """
 
 from softpad.record._bags import to_rosbag1, to_rosbag2
+from softpad.record._export_to import export_recording
+from softpad.record._info import info_lines, recording_info
+from softpad.record._learn import Learned, learn_from_recordings, learned_trial
 from softpad.record._live import FoxgloveLive
 from softpad.record._log import RunLog
 from softpad.record._mcap import FLUSH_PERIOD_S, McapRecorder, check_output
 from softpad.record._read import RecordedRun, load_recording, recover
-from softpad.record._replay import ReplayBox, compare_replay, open_replay_url
+from softpad.record._relay import relay_frames
+from softpad.record._replay import ReplayBox, compare_replay, open_replay_url, replay_lines
+from softpad.record._run_record import open_recorder, run_metadata
 from softpad.record._schemas import (
     EVENT_TOPIC,
     OWN_TYPES,
@@ -36,6 +41,7 @@ __all__ = [
     "SUPPLY_TOPIC",
     "VALVE_TOPIC",
     "FoxgloveLive",
+    "Learned",
     "McapRecorder",
     "RecordedRun",
     "ReplayBox",
@@ -43,10 +49,19 @@ __all__ = [
     "Tee",
     "check_output",
     "compare_replay",
+    "export_recording",
+    "info_lines",
+    "learn_from_recordings",
+    "learned_trial",
     "load_recording",
     "module_topic",
+    "open_recorder",
     "open_replay_url",
+    "recording_info",
     "recover",
+    "relay_frames",
+    "replay_lines",
+    "run_metadata",
     "to_rosbag1",
     "to_rosbag2",
 ]

@@ -62,6 +62,15 @@ def to_rosbag2(recording: str | Path, out: str | Path, force: bool = False) -> P
     storage, ``metadata.yaml`` version 9), which ``ros2 bag info|play`` and ``rosbags`` read.
 
     An existing ``out`` is refused unless ``force`` (then it is replaced).
+
+    Parameters
+    ----------
+    recording
+        The MCAP file.
+    out
+        The rosbag2 directory written.
+    force
+        Replace an existing ``out``.
     """
     import shutil
 
@@ -92,7 +101,17 @@ def to_rosbag1(recording: str | Path, out: str | Path, force: bool = False) -> P
     gains ``seq``; the project's two types are carried over), then copied once more to mark
     ``/tf_static`` latched (the converter writes no latching flag) and to number each topic's
     headers 1, 2, 3, ... (it leaves every ``seq`` 0); ``rosbag play`` and
-    Debian's ``rosbag`` Python package read it."""
+    Debian's ``rosbag`` Python package read it.
+
+    Parameters
+    ----------
+    recording
+        The MCAP file.
+    out
+        The bag written (``.bag``).
+    force
+        Replace an existing ``out``.
+    """
     import contextlib
     import io
 

@@ -9,6 +9,7 @@ what was recorded: how a change is checked against recordings from the real pad.
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import asdict
 from pathlib import Path
@@ -257,6 +258,11 @@ def compare_replay(recording: RecordedRun | str | Path) -> dict[str, Any]:
     on every frame of each descent, a retried grasp's too, from the mean of the reads before
     it.
 
+    Parameters
+    ----------
+    recording
+        The recording (a :class:`RecordedRun`, or its .mcap file).
+
     Returns
     -------
     dict
@@ -289,3 +295,42 @@ def compare_replay(recording: RecordedRun | str | Path) -> dict[str, Any]:
         "same": bool(plan_same and all(c["same"] for c in contacts)),
         "outcome": run.outcome,
     }
+
+
+def _plan_text(o: dict[str, Any]) -> str:
+    mods = ",".join(map(str, o["modules"]))
+    return (
+        f"modules {mods}  COG ({o['cog'][0]:.3f}, {o['cog'][1]:.3f})  theta {o['theta']:+.4f} rad "
+        f"({math.degrees(o['theta']):+.0f} deg)  [{o['rule']}]"
+    )
+
+
+def _contact_text(c: dict[str, Any] | None) -> str:
+    if c is None:
+        return "none"
+    return f"t = {c['t_s']:.3f} s on module(s) {', '.join(map(str, c['modules']))}"
+
+
+def replay_lines(d: dict[str, Any]) -> list[str]:
+    """The comparison of :func:`compare_replay` as text: the plans recorded and now, each
+    descent's contact recorded and now, and the verdict.
+
+    Parameters
+    ----------
+    d
+        The comparison.
+    """
+    lines = [f"softpad replay: {d['path']} (recorded outcome: {d['outcome']})"]
+    plan = d["plan"]
+    for label, plans in (("recorded", plan["recorded"]), ("now", plan["now"] or [])):
+        for o in plans or [{}]:
+            lines.append(f"  plan {label:8s} {_plan_text(o) if o else 'none'}")
+    lines.append(f"  plan: {'same' if plan['same'] else 'DIFFERENT'}")
+    for i, c in enumerate(d["contacts"], 1):
+        lines.append(f"  descent {i}: recorded contact {_contact_text(c['recorded'])}")
+        lines.append(f"  descent {i}: now      contact {_contact_text(c['now'])}")
+        lines.append(f"  descent {i}: {'same contact sample' if c['same'] else 'DIFFERENT'}")
+    lines.append(
+        "verdict: " + ("today's code decides what was recorded" if d["same"] else "DIFFERENT")
+    )
+    return lines

@@ -15,6 +15,7 @@ from softpad.ros._arm import (
     open_robot,
     open_ros1_robot,
 )
+from softpad.ros._installation import given_settings, installation_settings
 from softpad.ros._messages import grasp_poses, jsonable
 from softpad.ros._msgs import (
     ensure_messages,
@@ -71,7 +72,9 @@ __all__ = [
     "ensure_messages",
     "ensure_rospy",
     "generate_messages",
+    "given_settings",
     "grasp_poses",
+    "installation_settings",
     "jsonable",
     "load_config",
     "message_definitions",

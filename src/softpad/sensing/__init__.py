@@ -53,6 +53,7 @@ from softpad.sensing._readings import (
     check_increment_range,
     check_reading_range,
     parse_readings,
+    read_readings,
 )
 from softpad.sensing._registry import (
     CONTACT_DETECTOR_REGISTRY,
@@ -118,6 +119,7 @@ __all__ = [
     "measured_change",
     "outline_objects",
     "parse_readings",
+    "read_readings",
     "register_contact_detector",
     "register_object_detector",
     "sensing_ratio",

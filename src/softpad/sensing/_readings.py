@@ -234,10 +234,32 @@ def _csv_columns(header: list[str], body: list[list[str]], source: str) -> PadRe
     )
 
 
+def read_readings(path: str) -> PadReadings:
+    """The readings of a frame file (CSV or JSON, see :func:`parse_readings`).
+
+    Parameters
+    ----------
+    path
+        The file.
+    """
+    from pathlib import Path
+
+    try:
+        text = Path(path).read_bytes().decode("utf-8")
+    except OSError as exc:
+        raise InputError(f"cannot read frame file {path!r}: {exc.strerror}") from None
+    except UnicodeDecodeError:
+        raise InputError(
+            f"frame file {path!r} is not text (CSV or JSON expected; a binary file?)"
+        ) from None
+    return parse_readings(text, f"frame file {path!r}")
+
+
 __all__ = [
     "READING_RANGE_PA",
     "PadReadings",
     "check_increment_range",
     "check_reading_range",
     "parse_readings",
+    "read_readings",
 ]

@@ -37,6 +37,7 @@ from softpad.sim._objects import (
     load_catalogue,
     object_names,
 )
+from softpad.sim._pad_report import PadMap, pad_map, probe_report, sensitivity_lines
 from softpad.sim._pneumatics import ChamberBank, PneumaticParams
 from softpad.sim._probe import SENSITIVITY_LOADS, pad_sensitivities, probe_box, sealed_rise_map
 from softpad.sim._response import (
@@ -87,6 +88,7 @@ __all__ = [
     "ObjectFootprint",
     "ObjectPose",
     "ObjectSpec",
+    "PadMap",
     "PadPhysics",
     "PadResponse",
     "PadSurface",
@@ -115,9 +117,12 @@ __all__ = [
     "operating_pressure",
     "packaged_response_path",
     "packaged_table_path",
+    "pad_map",
     "pad_sensitivities",
     "parse_mounting",
     "probe_box",
+    "probe_report",
     "sealed_rise_map",
     "sealed_sensitivity_pa_n",
+    "sensitivity_lines",
 ]

@@ -19,16 +19,29 @@ from softpad.trials._compare import (
     compare,
     idle_false_alarms_per_hour,
     merge_comparisons,
+    read_comparisons,
     wilson_interval,
 )
 from softpad.trials._compare_report import comparison_table, parse_pairs, plot_comparison
 from softpad.trials._config import (
     TrialConfig,
+    check_campaign,
+    check_counts,
     check_mounting_choice,
     drawn_placement,
+    trial_errors_text,
     trial_execution_params,
 )
-from softpad.trials._object_fit import ObjectFit, fit_object_unknowns
+from softpad.trials._object_fit import ObjectFit, fit_object_unknowns, object_fits_table
+from softpad.trials._quoted import (
+    RESULTS,
+    ResultSpec,
+    RunCommand,
+    commit_text,
+    rerun_results,
+    result_argv,
+)
+from softpad.trials._recordings import check_trial_recordings
 from softpad.trials._records import (
     FAILURE_CAUSES,
     THESIS_OVERALL_SUCCESS,
@@ -38,6 +51,7 @@ from softpad.trials._records import (
     TrialResult,
     errored_records,
 )
+from softpad.trials._reference_plans import write_reference_plans
 from softpad.trials._report import write_report
 from softpad.trials._runner import (
     errored_trial,
@@ -55,6 +69,7 @@ __all__ = [
     "DEFAULT_PAIRS",
     "FAILURE_CAUSES",
     "IDLE_BOX",
+    "RESULTS",
     "THESIS_OVERALL_SUCCESS",
     "THESIS_TABLE_6_1",
     "CalibrationLoad",
@@ -63,11 +78,17 @@ __all__ = [
     "ObjectFit",
     "ObjectSummary",
     "Observation",
+    "ResultSpec",
+    "RunCommand",
     "TrialConfig",
     "TrialResult",
     "ValidationResult",
     "calibrate",
+    "check_campaign",
+    "check_counts",
     "check_mounting_choice",
+    "check_trial_recordings",
+    "commit_text",
     "compare",
     "comparison_table",
     "drawn_placement",
@@ -76,21 +97,27 @@ __all__ = [
     "fit_object_unknowns",
     "idle_false_alarms_per_hour",
     "merge_comparisons",
+    "object_fits_table",
     "pad_reading",
     "parse_pairs",
     "perturbed_placement",
     "plot_comparison",
     "protocol_loads",
+    "read_comparisons",
     "read_increments",
     "record_calibration",
+    "rerun_results",
+    "result_argv",
     "run_experiment",
     "run_experiments",
     "run_trial",
     "simulated_session",
+    "trial_errors_text",
     "trial_execution_params",
     "trial_recording_path",
     "trial_seed",
     "validate",
     "wilson_interval",
+    "write_reference_plans",
     "write_report",
 ]

@@ -154,6 +154,31 @@ def _document(seeds: list[int], combos: list[dict[str, Any]]) -> dict[str, Any]:
     }
 
 
+def read_comparisons(paths: Sequence[str]) -> dict[str, Any]:
+    """One comparison from the saved ``softpad compare --json`` files ``paths``
+    (:func:`merge_comparisons`).
+
+    Parameters
+    ----------
+    paths
+        The files (JSON), in order.
+    """
+    from pathlib import Path
+
+    from softpad.errors import parse_json
+
+    docs = []
+    for path in paths:
+        try:
+            text = Path(path).read_bytes().decode("utf-8")
+        except OSError as exc:
+            raise InputError(f"cannot read comparison {path!r}: {exc.strerror}") from None
+        except UnicodeDecodeError:
+            raise InputError(f"comparison {path!r} is not text (JSON expected)") from None
+        docs.append((repr(path), parse_json(text, f"comparison {path!r}")))
+    return merge_comparisons(docs)
+
+
 def merge_comparisons(documents: Sequence[tuple[str, Any]]) -> dict[str, Any]:
     """One comparison from several ``softpad compare --json`` documents of the same seeds and
     objects (pairs run separately, on other days or machines), in the order given.

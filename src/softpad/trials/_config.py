@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, TypeVar
 
@@ -91,6 +92,72 @@ class TrialConfig:
         if self.sample_rate_hz <= 0:
             raise InputError("trial sample_rate_hz must be > 0 Hz")
         check_mounting_choice(self.mounting, "trial mounting")
+
+
+def check_counts(trials: int, workers: int | None) -> None:
+    """Refuse a trial count outside 1..1000 or a worker count outside 1..256.
+
+    Parameters
+    ----------
+    trials
+        Trials per object (``--trials``).
+    workers
+        Worker processes (``--workers``), or None (all CPUs).
+    """
+    if not 1 <= trials <= 1000:
+        raise InputError(f"--trials must be from 1 to 1000, got {trials}")
+    if workers is not None and not 1 <= workers <= 256:
+        raise InputError(f"--workers must be from 1 to 256, got {workers}")
+
+
+def check_campaign(
+    seeds: Sequence[int], seeds_text: str, hold_s: float, record: str | None = None
+) -> None:
+    """Refuse a trial campaign of more than 100 seeds, a hold outside 0..600 s, or
+    recordings (named by object and trial) over several seeds.
+
+    Parameters
+    ----------
+    seeds
+        The experiment seeds.
+    seeds_text
+        How they were given (``--seeds``), for the message.
+    hold_s
+        Hold time after the lift, s.
+    record
+        The recordings' base name, or None.
+    """
+    if len(seeds) > 100:
+        raise InputError(f"--seeds {seeds_text!r} names {len(seeds)} seeds; at most 100")
+    if not math.isfinite(hold_s) or not 0 <= hold_s <= 600:
+        raise InputError(f"--hold-s must be from 0 to 600 s, got {hold_s!r}")
+    if record and len(seeds) > 1:
+        raise InputError(
+            "--record takes one seed at a time (trial files are named by object and trial)"
+        )
+
+
+def trial_errors_text(errored: list[dict[str, Any]], prog: str) -> str | None:
+    """The message of a command whose trials raised, naming them (None when none did).
+
+    Parameters
+    ----------
+    errored
+        The raising trials' ``to_dict()`` records (cause ``trial_error``, the traceback in
+        ``detail``).
+    prog
+        The command, for the message (``trials``, ``demo``).
+    """
+    if not errored:
+        return None
+    named = ", ".join(f"{t['object']} trial {t['trial']} (seed {t['seed']})" for t in errored[:5])
+    more = f" and {len(errored) - 5} more" if len(errored) > 5 else ""
+    last = (errored[0].get("detail") or "").strip().splitlines()[-1:] or [""]
+    return (
+        f"softpad {prog}: error: {len(errored)} trial(s) raised and count as failed: {named}"
+        f"{more}; first: {last[0]}. This is a bug; the tracebacks are in the trials' 'detail' "
+        "(--json)"
+    )
 
 
 def check_mounting_choice(mounting: str | None, what: str) -> None:

@@ -19,6 +19,7 @@ value. ``softpad calibrate --objects`` runs the fit.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -26,7 +27,12 @@ import numpy as np
 
 from softpad.errors import InputError
 
-__all__ = ["ObjectFit", "fit_object_unknowns", "plan_score"]
+__all__ = [
+    "ObjectFit",
+    "fit_object_unknowns",
+    "object_fits_table",
+    "plan_score",
+]
 
 #: Placement draws per grid value, and grid values per range, of the default fit.
 FIT_DRAWS = 20
@@ -127,3 +133,23 @@ def fit_object_unknowns(
         best = tied[len(tied) // 2]
         out.append(ObjectFit(name, p.name, p.low, p.high, p.nominal, values, tuple(scores), best))
     return out
+
+
+def object_fits_table(fits: Sequence[ObjectFit]) -> str:
+    """The fitted unknowns as a Markdown table (range, nominal, fitted, best score).
+
+    Parameters
+    ----------
+    fits
+        The fits (:func:`fit_object_unknowns`).
+    """
+    lines = [
+        "| object | parameter | range | nominal | fitted | best score |",
+        "|---|---|---|---|---|---|",
+    ]
+    for f in fits:
+        lines.append(
+            f"| {f.object} | {f.parameter} | {f.low:g} .. {f.high:g} | {f.nominal:g} | "
+            f"{f.fitted:.4g} | {min(f.scores):.3g} |"
+        )
+    return "\n".join(lines)

@@ -1,0 +1,92 @@
+"""Learning a catalogue of known objects from recorded trials (``softpad learn``): each
+trial's first plan, the grasp tried last and its outcome, and the increments' noise from the
+recording's sensor variance."""
+
+from __future__ import annotations
+
+import statistics
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from softpad.errors import InputError
+
+
+def learned_trial(run: Any) -> tuple[Any, float] | None:
+    """The :class:`~softpad.planning.LearnedTrial` of one recorded trial and the variance of
+    a planning increment under its sensor noise, Pa^2 (per-frame variance / 5: the mean of 10
+    reads minus a reference of 10); None for a trial that teaches nothing (no plan of one
+    object or no outcome: the object was not detected, the box faulted).
+
+    Parameters
+    ----------
+    run
+        The :class:`~softpad.record.RecordedRun` of one trial of one object.
+    """
+    from softpad.planning import LearnedTrial
+
+    name = f"recording {str(run.path)!r}"
+    objects = run.metadata.get("objects")
+    if not (isinstance(objects, list) and len(objects) == 1):
+        raise InputError(f"{name}: not a trial of one object (objects {objects!r})")
+    plans = [d for _, kind, d in run.events if kind == "plan"]
+    outcomes = [d.get("outcome") for _, kind, d in run.events if kind == "outcome"]
+    if not plans or not outcomes or len(plans[0].get("objects", [])) != 1:
+        return None
+    first = plans[0]["objects"][0]
+    grasp = (float(first["cog"][0]), float(first["cog"][1]), float(first["theta"]))
+    for _, kind, d in run.events:
+        if kind == "retry":  # the grasp tried last
+            grasp = (float(d["cog"][0]), float(d["cog"][1]), float(d["theta"]))
+    increments = tuple(float(v) for v in plans[0]["increments_pa"])
+    variance = float(run.metadata.get("pressure_variance_pa2", 0.0)) / 5
+    return LearnedTrial(str(objects[0]), increments, grasp, outcomes[-1] == "held"), variance
+
+
+@dataclass(frozen=True)
+class Learned:
+    """A catalogue learned from recordings.
+
+    Attributes
+    ----------
+    catalogue
+        The :class:`~softpad.planning.Catalogue` of known objects.
+    trials
+        The trials it was learned from.
+    skipped
+        Recordings that taught nothing (no plan of one object or no outcome).
+    variance_pa2
+        The median variance of a planning increment, Pa^2.
+    """
+
+    catalogue: Any
+    trials: tuple[Any, ...]
+    skipped: int
+    variance_pa2: float
+
+
+def learn_from_recordings(paths: Sequence[str]) -> Learned:
+    """Learn the catalogue of known objects from the recorded trials ``paths``
+    (:func:`softpad.planning.learn_catalogue`).
+
+    Parameters
+    ----------
+    paths
+        Recordings (.mcap) of trials of one object each.
+    """
+    from softpad.planning import learn_catalogue
+    from softpad.record._read import load_recording
+
+    learned = [learned_trial(load_recording(path)) for path in paths]
+    pairs = [x for x in learned if x is not None]
+    if not pairs:
+        raise InputError("no recording holds a plan of one object and its outcome")
+    trials = tuple(t for t, _ in pairs)
+    variance = statistics.median(v for _, v in pairs)
+    if not variance > 0:
+        raise InputError("the recordings carry no sensor noise (pressure_variance_pa2)")
+    catalogue = learn_catalogue(trials, variance)
+    return Learned(catalogue, trials, len(learned) - len(pairs), variance)
+
+
+__all__ = ["Learned", "learn_from_recordings", "learned_trial"]
