@@ -8,6 +8,7 @@ import sys
 from scipy.stats import binomtest
 
 from softpad.trials import wilson_interval
+from softpad.trials._plots import wilson_interval as plotted_interval
 
 
 def test_wilson_interval_is_scipys_to_the_last_bit() -> None:
@@ -17,6 +18,7 @@ def test_wilson_interval_is_scipys_to_the_last_bit() -> None:
         for k in range(n + 1):
             ci = binomtest(k, n).proportion_ci(confidence_level=0.95, method="wilson")
             assert wilson_interval(k, n) == (round(float(ci.low), 4), round(float(ci.high), 4))
+            assert plotted_interval(k, n) == (float(ci.low), float(ci.high))
     assert wilson_interval(0, 0) == (0.0, 1.0)
 
 

@@ -28,14 +28,20 @@ def wilson_interval(successes: int, trials: int) -> tuple[float, float]:
         )
     if trials == 0:
         return (0.0, 1.0)
-    k, n, z = int(successes), int(trials), _Z_95
+    lo, hi = wilson_bounds_95(int(successes), int(trials))
+    return (round(lo, 4), round(hi, 4))
+
+
+def wilson_bounds_95(k: int, n: int) -> tuple[float, float]:
+    """The unrounded 95 % Wilson interval of ``k`` successes in ``n >= 1`` trials (unchecked):
+    scipy's ``_binom_wilson_conf_int`` step by step."""
+    z = _Z_95
     p = k / n
     denom = 2 * (n + z**2)
     center = (2 * n * p + z**2) / denom
     delta = z / denom * sqrt(4 * n * p * (1 - p) + z**2)
     lo = 0.0 if k == 0 else center - delta
     hi = 1.0 if k == n else center + delta
-    return (round(float(lo), 4), round(float(hi), 4))
-
+    return (float(lo), float(hi))
 
 __all__ = ["wilson_interval"]
