@@ -44,4 +44,5 @@ def wilson_bounds_95(k: int, n: int) -> tuple[float, float]:
     hi = 1.0 if k == n else center + delta
     return (float(lo), float(hi))
 
+
 __all__ = ["wilson_interval"]
