@@ -47,6 +47,10 @@ REFERENCE_HELD_OF_40 = {
 }
 #: Two-sided p-value below which the held counts are taken to differ.
 ALPHA = 1e-3
+#: Objects whose test runs in ``make test`` (about 2.5 CPU s each): those with a reference
+#: rate strictly between 0 and 40 of 40 (the seam case, the banana's rule, the limes), where a
+#: changed loop shows first; the others run in ``make test-slow`` (issue 50).
+FAST = {"object-1", "banana", "limes"}
 
 
 def outcome(name: str, seed: int) -> str:
@@ -54,7 +58,9 @@ def outcome(name: str, seed: int) -> str:
     return run_simulated([name], f"sim://?seed={seed}", ExecutionParams(hold_s=0.5)).outcome
 
 
-@pytest.mark.parametrize("name", NAMES, ids=NAMES)
+@pytest.mark.parametrize(
+    "name", [n if n in FAST else pytest.param(n, marks=pytest.mark.slow) for n in NAMES], ids=NAMES
+)
 def test_held_rate_over_seeds_agrees_with_the_reference(name: str) -> None:
     outcomes = [outcome(name, s) for s in SEEDS]
     held = outcomes.count("held")

@@ -12,6 +12,7 @@ import pytest
 import softpad.design
 from softpad.cli.main import main
 from softpad.design import TrialOptions, object_set_from_dict
+from softpad.design import _dask as dask_module
 from softpad.design import _sweep as sweep_module
 from softpad.errors import InputError
 
@@ -71,6 +72,12 @@ def test_the_scheduler_is_asked_when_the_cache_answers_everything(
     naming it (before the fix it answered from the cache, exit 0, the scheduler never asked)."""
     monkeypatch.setattr(
         sweep_module, "_cached_results", lambda cache, tasks: {t.key: {} for t in tasks}
+    )
+    # nothing listens there: a 1 s connection timeout says so as well as the default 20 s
+    # (the test idled 20 s; issue 50)
+    client = dask_module.dask_client
+    monkeypatch.setattr(
+        dask_module, "dask_client", lambda s, w, timeout_s=1.0: client(s, w, timeout_s)
     )
     address = f"tcp://127.0.0.1:{free_port()}"
     with pytest.raises(InputError, match=f"no Dask scheduler answers at {address}"):

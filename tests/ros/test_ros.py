@@ -437,6 +437,9 @@ def test_run_with_ros_stands_the_pad_where_the_installation_says(procs: _Procs, 
     assert (first["x"], first["y"]) == pytest.approx((0.5 * 0.045, 1.5 * 0.045))
 
 
+# make test-slow (10 CPU s, issue 50): its parts run in make test: the grasp service
+# (test_grasp_service_runs_the_loop_...), the arm node over ROS (test_run_with_the_arm_in_ros_...)
+@pytest.mark.slow
 def test_grasp_service_drives_the_arm_node_through_ros(procs: _Procs, tmp_path: Path) -> None:
     """``ros node --box <the arm node's served simulator> --robot ros1://``: the node is the
     box's controller, places object 5 through the served ``sim.place``, and ``~grasp`` moves
@@ -458,6 +461,9 @@ def test_grasp_service_drives_the_arm_node_through_ros(procs: _Procs, tmp_path: 
     _check_loop_topics(logs, outcome)
 
 
+# make test-slow (10 CPU s, issue 50): an arm lost mid-approach runs in make test
+# (test_arm_lost_mid_approach_ends_the_run_with_the_box_safe), as does the grasp service
+@pytest.mark.slow
 def test_arm_lost_during_a_grasp_from_ros_publishes_the_fault(
     procs: _Procs, tmp_path: Path
 ) -> None:

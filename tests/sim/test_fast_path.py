@@ -178,6 +178,36 @@ def test_drift_filter_equals_the_plain_recursion() -> None:
     np.testing.assert_array_equal(bank._drift, d)
 
 
+def test_drift_without_scipy_is_lfilter_to_the_last_bit() -> None:
+    """The plain-float recursion (a box whose noise block lasts 10 s or more: no scipy.signal
+    import) and lfilter give the same drift, bit for bit, over blocks and from any start."""
+    from scipy.signal import lfilter
+
+    from softpad.sim._sensor import drift_recursion
+
+    rng = np.random.default_rng(5)
+    for a in (SensorBank(8, 1e-2, SensorParams(), rng)._a, 0.5, 1.0 - 1e-9):
+        d0 = rng.normal(0.0, 3.0, 8)
+        innov = rng.normal(0.0, 0.1, (4096, 8))
+        expected = lfilter([1.0], [1.0, -a], innov, axis=0, zi=(a * d0)[None, :])[0]
+        np.testing.assert_array_equal(drift_recursion(innov, d0, a), expected)
+    # a 100 Hz bank and a 1 kHz bank: each path, the plain recursion's readings
+    for dt in (1e-2, 1e-3):
+        bank = SensorBank(8, dt, SensorParams(), np.random.default_rng(11), block=4096)
+        assert bank._lfilter is (dt == 1e-3)
+        d0, state = bank._drift.copy(), bank.rng.bit_generator.state
+        bank._refill()
+        ref = np.random.default_rng()
+        ref.bit_generator.state = state
+        noise = ref.normal(0.0, bank.params.noise_std_pa, (4096, 8))
+        innov = ref.normal(0.0, bank._drift_innov, (4096, 8))
+        d = d0
+        for k in range(4096):
+            d = bank._a * d + innov[k]
+            innov[k] = d
+        np.testing.assert_array_equal(bank._noise, noise + innov + bank.offset_pa)
+
+
 def test_quantisation_equals_round_and_clip() -> None:
     params = SensorParams()
     bank = SensorBank(4, 1e-3, params, np.random.default_rng(0))

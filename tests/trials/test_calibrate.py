@@ -52,10 +52,16 @@ def test_leak_rate_is_proportional_to_area() -> None:
     assert a == pytest.approx(b, rel=0.05)
 
 
-def test_centre_loads_only_leave_the_seam_unidentified(tmp_path: Path) -> None:
+@pytest.fixture(scope="module")
+def centre_recording(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A short session of two loads on module centres (the default pad)."""
     loads = [CalibrationLoad(0.05, 0.0675, 0.0675), CalibrationLoad(0.05, 0.0225, 0.0225)]
-    path = simulated_session(tmp_path / "c.mcap", loads=loads, idle_s=10.0, hold_s=4.0)
-    r = calibrate([path])
+    path = tmp_path_factory.mktemp("cal") / "c.mcap"
+    return simulated_session(path, loads=loads, idle_s=10.0, hold_s=4.0)
+
+
+def test_centre_loads_only_leave_the_seam_unidentified(centre_recording: Path) -> None:
+    r = calibrate([centre_recording])
     assert r.seam_width_m is None
     assert r.response_scale == pytest.approx(1.0, rel=0.05)
 
@@ -70,10 +76,15 @@ def test_not_a_calibration_recording(tmp_path: Path) -> None:
         calibrate([path])
 
 
-def test_command(hidden_recording: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_command(centre_recording: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """The command reports what :func:`calibrate` finds (on the short recording: the hidden
+    pad's recovery is test_recovers_hidden_parameters's; issue 50)."""
     from softpad.cli.main import main
 
-    assert main(["calibrate", str(hidden_recording), "--json"]) == 0
+    assert main(["calibrate", str(centre_recording), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
-    assert out["response_scale"] == pytest.approx(1.3, rel=0.03)
+    r = calibrate([centre_recording])
+    assert out["response_scale"] == pytest.approx(r.response_scale, abs=1e-4)  # 4 decimals
+    assert out["response_scale"] == pytest.approx(1.0, rel=0.05)
+    assert out["seam_width_mm"] is None
     assert main(["calibrate", "missing.mcap"]) == 2

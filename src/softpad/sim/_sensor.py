@@ -77,6 +77,28 @@ class SensorParams(CheckedFields, what="sensor"):
 SPAN_ROWS = 8
 
 
+#: A sensor bank whose noise block lasts less than this (simulated seconds) filters the drift
+#: with scipy's lfilter; longer blocks (100 Hz: 41 s) use :func:`drift_recursion`.
+LFILTER_BELOW_S = 10.0
+
+
+def drift_recursion(
+    innov: NDArray[np.float64], d0: NDArray[np.float64], a: float
+) -> NDArray[np.float64]:
+    """``d[k] = a d[k-1] + innov[k]`` down the rows from ``d[-1] = d0``, in plain floats
+    column by column: bit for bit what ``lfilter([1], [1, -a], innov, axis=0, zi=a d0)``
+    computes (``x + a y``, one product and one sum a sample), without importing SciPy."""
+    cols = []
+    for col, d in zip(innov.T.tolist(), d0.tolist(), strict=True):
+        out: list[float] = []
+        add = out.append
+        for e in col:
+            d = a * d + e
+            add(d)
+        cols.append(out)
+    return np.array(cols, dtype=float).T.reshape(innov.shape)
+
+
 def _row_spans(block: NDArray[np.float64]) -> tuple[list[float], list[float]]:
     """Lowest and highest value of every row of ``block`` (NaN where a row has a NaN)."""
     return np.minimum.reduce(block, axis=1).tolist(), np.maximum.reduce(block, axis=1).tolist()
@@ -126,7 +148,11 @@ class SensorBank:
             if params.drift_std_pa
             else np.zeros(n_channels)
         )
-        if params.drift_std_pa:  # imported here, not in the first sample: a box daemon
+        # the drift's recursion over a block of rows: scipy's lfilter (a C loop, 0.2 ms a
+        # block) where blocks come fast, else plain floats (about 3 ms a block of 4096 x 8)
+        # that spare the process importing scipy.signal (0.7 CPU s); the same bits (tested)
+        self._lfilter = bool(params.drift_std_pa) and dt_s * block < LFILTER_BELOW_S
+        if self._lfilter:  # imported here, not in the first sample: a box daemon
             import scipy.signal  # noqa: F401  samples under its lock (seconds on a busy host)
         self._q = params.quantization_pa
         self._lo, self._hi = params.range_min_pa, params.range_max_pa
@@ -157,11 +183,15 @@ class SensorBank:
         if p.drift_std_pa:
             # first-order Gauss-Markov drift d[k] = a d[k-1] + e[k], one row per sample: the
             # same recursion as a Python loop over the rows (bitwise, tested), run by lfilter
-            from scipy.signal import lfilter
-
             innov = self.rng.normal(0.0, self._drift_innov, (b, n))
             a = self._a
-            drift = lfilter([1.0], [1.0, -a], innov, axis=0, zi=(a * self._drift)[None, :])[0]
+            if self._lfilter:
+                from scipy.signal import lfilter
+
+                zi = (a * self._drift)[None, :]
+                drift = lfilter([1.0], [1.0, -a], innov, axis=0, zi=zi)[0]
+            else:
+                drift = drift_recursion(innov, self._drift, a)
             self._drift = drift[-1].copy()
             noise += drift
         self._noise = noise + self.offset_pa

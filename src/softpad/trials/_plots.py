@@ -244,7 +244,12 @@ def _grasp_panel(
 
 
 def wilson_interval(held: int, trials: int, confidence: float = 0.95) -> tuple[float, float]:
-    """Wilson score interval of a success proportion (``scipy.stats.binomtest``)."""
+    """Wilson score interval of a success proportion (``scipy.stats.binomtest``'s; at 95 %
+    the same bits written out, without importing scipy.stats)."""
+    if confidence == 0.95 and trials >= 1:
+        from softpad.trials._stats import wilson_bounds_95
+
+        return wilson_bounds_95(int(held), int(trials))
     from scipy.stats import binomtest
 
     ci = binomtest(held, trials).proportion_ci(confidence_level=confidence, method="wilson")
