@@ -134,16 +134,17 @@ class ContactSensing:
             if watch and (a in grip or b in grip):
                 near.append(i)
         if on:
+            sel = np.array(on, dtype=np.intp)  # one index array for both reads
             if self._elliptic:
-                addr = con.efc_address[on]
+                addr = con.efc_address[sel]
                 f = np.abs(d.efc_force[addr])
-                if addr.min() < 0:  # excluded contacts carry no force
+                if np.minimum.reduce(addr) < 0:  # excluded contacts carry no force
                     f[addr < 0] = 0.0
             else:
                 f = np.array([self._normal_force(s, i) for i in on])
             self._flush_if_pressure_changed()
             k_arr = np.array(ks, dtype=np.intp)
-            self._pending.append((k_arr, f, con.pos[on, :2]))
+            self._pending.append((k_arr, f, con.pos[sel, :2]))
             self._last = (k_arr, f)
         else:
             self._last = (_NO_MODULES, _NO_FORCES)

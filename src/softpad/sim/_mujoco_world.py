@@ -215,12 +215,14 @@ class MujocoWorld(PadWorld):
         # the hand moves continuously (the robot sees it move on every sample, whatever the
         # sample period); MuJoCo steps each time a whole time step has elapsed
         remaining = dt
+        arm, coast = self._arm, self.coast
         while self._pending_s + remaining >= ts * (1 - 1e-9):
             chunk = max(ts - self._pending_s, 0.0)
-            self._arm.move(chunk)
+            arm.move(chunk)
             remaining -= chunk
             self._pending_s = 0.0
-            if self.coast.coasts(self._time_s, self._still()):
+            # whether the arm stands still is asked only inside a coasting window
+            if coast.armed and coast.coasts(self._time_s, self._still()):
                 self._coast_step(ts)
             else:
                 self._mj_step(ts)
@@ -479,7 +481,8 @@ class MujocoWorld(PadWorld):
 
     def _mj_step(self, ts: float) -> None:
         """One MuJoCo step of ``ts`` seconds: module springs, hand, jaws, lowering, loads."""
-        s = self.scene
+        s = self._scene
+        assert s is not None
         m, d = s.model, s.data
         self._follow_heights(ts)
         hand, hq, qpos, qvel = self._arm.hand, s.hand_q, s.qpos, s.qvel
@@ -498,5 +501,6 @@ class MujocoWorld(PadWorld):
                         qvel[da + 2] = max(qvel[da + 2], -_LOWER_M_S)
         tip_z = float(hand[2] - self.gripper.finger_length_m)
         self._sensing.update(s, self._time_s + self._pending_s, tip_z, self._arm.width_setpoint)
-        if self.coast.until_s is not None:
-            self.coast.observe(qvel, self._time_s, self._still())
+        coast = self._coast
+        if coast is not None and coast.until_s is not None:
+            coast.observe(qvel, self._time_s, self._still())
