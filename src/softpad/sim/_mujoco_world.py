@@ -128,6 +128,7 @@ class MujocoWorld(PadWorld):
         self._loads = np.zeros(n)
         self._scene: MujocoScene | None = None
         self._coast: HoldCoast | None = None
+        self._resting = False
         self._build(tuple(objects))
 
     def _build(self, objects: tuple[ObjectModel, ...]) -> None:
@@ -224,6 +225,8 @@ class MujocoWorld(PadWorld):
             # whether the arm stands still is asked only inside a coasting window
             if coast.armed and coast.coasts(self._time_s, self._still()):
                 self._coast_step(ts)
+            elif self._resting and self._still():
+                self._rest_step(ts)
             else:
                 self._mj_step(ts)
         # the chamber feels the impulse of the step's contacts, not the peak of one solver
@@ -455,6 +458,21 @@ class MujocoWorld(PadWorld):
         constraints, the module loads held (:mod:`softpad.sim._mujoco_coast`). A trial allows
         it for its hold, where the object has settled in the jaws or on the pad."""
         self.coast.allow(until_s)
+
+    def rest_while_still(self, on: bool) -> None:
+        """Hold the world still while nothing it is told to do moves (``on``; False: step it
+        again): no MuJoCo step is solved, positions and velocities stay as they are, the module
+        loads stay those of the last stepped sample period, the time runs on. For a phase
+        whose physics no longer decides anything a caller reads from the world: a trial's
+        valve check, after the grasp has been scored (the box's gas physics still runs on the
+        held loads)."""
+        self._resting = bool(on)
+
+    def _rest_step(self, ts: float) -> None:
+        """One step of ``ts`` seconds held still: the module springs follow the box's heights
+        (as in every step), nothing else moves."""
+        self._follow_heights(ts)
+        self.scene.data.time += ts
 
     def _still(self) -> bool:
         """True when nothing the world is told to do moves: the arm at its goal, the jaw
