@@ -149,23 +149,26 @@ class CastPadResponse:
         pts = np.asarray(points_m, dtype=float).reshape(-1, 2)
         key = round(float(pressure_pa), 3)
         table = self._cache.get(key)
-        if table is None:
-            table = self._cache[key] = np.asarray(
-                self.along_pressure(self.influence_m3_n, float(pressure_pa))
-            )
+        if table is None:  # (x, y, K): a point's K values side by side (one gather a corner)
+            at = np.asarray(self.along_pressure(self.influence_m3_n, float(pressure_pa)))
+            table = self._cache[key] = np.ascontiguousarray(np.moveaxis(at, 0, -1))
         ax, ay = self.x_axis_m, self.y_axis_m
-        i = np.clip(np.searchsorted(ax, pts[:, 0], side="right") - 1, 0, ax.size - 2)
-        j = np.clip(np.searchsorted(ay, pts[:, 1], side="right") - 1, 0, ay.size - 2)
-        tx = np.clip((pts[:, 0] - ax[i]) / (ax[i + 1] - ax[i]), 0.0, 1.0)[:, None]
-        ty = np.clip((pts[:, 1] - ay[j]) / (ay[j + 1] - ay[j]), 0.0, 1.0)[:, None]
+        x, y = pts[:, 0], pts[:, 1]
+        # np.clip's values without its Python wrapper (a simulated trial's hot path)
+        i = np.minimum(np.maximum(np.searchsorted(ax, x, side="right") - 1, 0), ax.size - 2)
+        j = np.minimum(np.maximum(np.searchsorted(ay, y, side="right") - 1, 0), ay.size - 2)
+        i1, j1 = i + 1, j + 1
+        tx = np.minimum(np.maximum(0.0, (x - ax[i]) / (ax[i1] - ax[i])), 1.0)[:, None]
+        ty = np.minimum(np.maximum(0.0, (y - ay[j]) / (ay[j1] - ay[j])), 1.0)[:, None]
+        sx, sy = 1 - tx, 1 - ty
         v = (
-            table[:, i, j].T * (1 - tx) * (1 - ty)
-            + table[:, i + 1, j].T * tx * (1 - ty)
-            + table[:, i, j + 1].T * (1 - tx) * ty
-            + table[:, i + 1, j + 1].T * tx * ty
+            table[i, j] * sx * sy
+            + table[i1, j] * tx * sy
+            + table[i, j1] * sx * ty
+            + table[i1, j1] * tx * ty
         )
-        on = (pts[:, 0] >= ax[0]) & (pts[:, 0] <= ax[-1]) & (pts[:, 1] >= ay[0])
-        on &= pts[:, 1] <= ay[-1]
+        on = (x >= ax[0]) & (x <= ax[-1]) & (y >= ay[0])
+        on &= y <= ay[-1]
         return np.where(on[:, None], v, 0.0)
 
     def compliance(self, pressure_pa: float) -> NDArray[np.float64]:

@@ -379,7 +379,12 @@ class TabulatedCharacteristic:
         j, u, _ = self._locate(self.load_n, f)
         j1 = np.minimum(j + 1, self.load_n.size - 1)
         cols = table[:, j] * (1 - u) + table[:, j1] * u  # (P, m) at each module's load
-        slopes = np.diff(cols, axis=0) / np.diff(self.pressure_pa)[:, None]
+        # np.diff's values (a[1:] - a[:-1]) without its wrapper; the grid's steps kept
+        steps = self._cache.get("steps")
+        if steps is None:
+            grid = self.pressure_pa
+            steps = self._cache["steps"] = (grid[1:] - grid[:-1])[:, None]
+        slopes = (cols[1:] - cols[:-1]) / steps
         return key, cols, slopes, drop, np.arange(f.size)
 
     def height_m(self, pressure_pa: ArrayLike, load_n: ArrayLike) -> NDArray[np.float64]:

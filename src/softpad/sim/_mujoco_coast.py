@@ -66,6 +66,12 @@ class HoldCoast:
     def _reset(self) -> None:
         self._v0, self._count, self._anchor, self._left = None, 0, None, 0
 
+    @property
+    def armed(self) -> bool:
+        """True when steps are left of a coasting window (:meth:`coasts` may say True): the
+        world asks whether the arm stands still only then."""
+        return self._left > 0
+
     def coasts(self, time_s: float, still: bool) -> bool:
         """True when the next step at ``time_s`` is coasted (``still``: the arm stands)."""
         if self._left <= 0:

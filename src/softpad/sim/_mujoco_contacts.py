@@ -10,7 +10,6 @@ a descent (the first touch of a tip on a module or of a finger on an object).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -21,8 +20,6 @@ from softpad.sim._response import PadResponse
 
 #: A contact normal with a vertical component above this is "from above" (cosine).
 _FROM_ABOVE = 0.7
-_NO_MODULES = np.zeros(0, dtype=np.intp)
-_NO_FORCES = np.zeros(0)
 
 
 @dataclass(frozen=True)
@@ -79,9 +76,9 @@ class ContactSensing:
         self._mj = mujoco
         self._force = np.zeros(6)
         self._n = n_modules
-        self._last: tuple[NDArray[np.intp], NDArray[np.float64]] = (_NO_MODULES, _NO_FORCES)
+        self._last: tuple[list[int], list[float]] = ([], [])
         # contacts of the steps not yet weighted: (modules, normal forces, points) per step
-        self._pending: list[tuple[NDArray[np.intp], NDArray[np.float64], Any]] = []
+        self._pending: list[tuple[list[int], list[float], list[list[float]]]] = []
         self._pending_pressure = self.pressure_pa
         self._flushed = np.zeros(n_modules)
         self._steps = 0
@@ -112,7 +109,7 @@ class ContactSensing:
         d = s.data
         gm = self._geom_modules(s)
         if not d.ncon:  # nothing touches anything (the hand in the air over an empty pad)
-            self._last = (_NO_MODULES, _NO_FORCES)
+            self._last = ([], [])
             self._steps += 1
             return
         con = d.contact
@@ -134,19 +131,19 @@ class ContactSensing:
             if watch and (a in grip or b in grip):
                 near.append(i)
         if on:
+            # plain floats, made arrays once a sample period (_flush): a step has 3-4 contacts
             if self._elliptic:
-                addr = con.efc_address[on]
-                f = np.abs(d.efc_force[addr])
-                if addr.min() < 0:  # excluded contacts carry no force
-                    f[addr < 0] = 0.0
+                addr, efc = con.efc_address.tolist(), d.efc_force
+                # excluded contacts (address -1) carry no force
+                f = [abs(float(efc[a])) if a >= 0 else 0.0 for a in (addr[i] for i in on)]
             else:
-                f = np.array([self._normal_force(s, i) for i in on])
+                f = [self._normal_force(s, i) for i in on]
             self._flush_if_pressure_changed()
-            k_arr = np.array(ks, dtype=np.intp)
-            self._pending.append((k_arr, f, con.pos[on, :2]))
-            self._last = (k_arr, f)
+            xy = con.pos.tolist()
+            self._pending.append((ks, f, [xy[i][:2] for i in on]))
+            self._last = (ks, f)
         else:
-            self._last = (_NO_MODULES, _NO_FORCES)
+            self._last = ([], [])
         self._steps += 1
         for i in near:
             self._watch(s, time_s, tip_z_m, width_m, i, g1[i], g2[i], gm)
@@ -194,7 +191,8 @@ class ContactSensing:
     def forces(self) -> NDArray[np.float64]:
         """Plain normal contact force on every module top at the last step, N."""
         k, f = self._last
-        return np.bincount(k, weights=f, minlength=self._n).astype(float)
+        ks = np.array(k, dtype=np.intp)
+        return np.bincount(ks, weights=np.array(f, dtype=float), minlength=self._n).astype(float)
 
     def mean_loads(self) -> NDArray[np.float64] | None:
         """Equivalent load per module, averaged over the steps since the last call (None when
@@ -219,21 +217,21 @@ class ContactSensing:
         pending, self._pending = self._pending, []
         if not pending:
             return
-        ks = np.concatenate([p[0] for p in pending])
-        f = np.concatenate([p[1] for p in pending])
+        ks = np.array([k for p in pending for k in p[0]], dtype=np.intp)
+        f = np.array([v for p in pending for v in p[1]], dtype=float)
         total, start = self._flushed, 0
         if self.response is not None and self._centres is not None:
             # every module's share of each contact (the cast pad's layer spreads a load on a
             # module top to its neighbours)
-            pts = np.concatenate([p[2] for p in pending])
+            pts = np.array([xy for p in pending for xy in p[2]], dtype=float)
             shares = self.response.point_factors(ks, pts, self._pending_pressure) * f[:, None]
             for step in pending:
-                stop = start + step[0].size
+                stop = start + len(step[0])
                 total += shares[start:stop].sum(axis=0)
                 start = stop
             return
         for step in pending:
-            stop = start + step[0].size
+            stop = start + len(step[0])
             total += np.bincount(ks[start:stop], weights=f[start:stop], minlength=self._n)
             start = stop
 

@@ -128,6 +128,7 @@ class MujocoWorld(PadWorld):
         self._loads = np.zeros(n)
         self._scene: MujocoScene | None = None
         self._coast: HoldCoast | None = None
+        self._resting = False
         self._build(tuple(objects))
 
     def _build(self, objects: tuple[ObjectModel, ...]) -> None:
@@ -215,13 +216,17 @@ class MujocoWorld(PadWorld):
         # the hand moves continuously (the robot sees it move on every sample, whatever the
         # sample period); MuJoCo steps each time a whole time step has elapsed
         remaining = dt
+        arm, coast = self._arm, self.coast
         while self._pending_s + remaining >= ts * (1 - 1e-9):
             chunk = max(ts - self._pending_s, 0.0)
-            self._arm.move(chunk)
+            arm.move(chunk)
             remaining -= chunk
             self._pending_s = 0.0
-            if self.coast.coasts(self._time_s, self._still()):
+            # whether the arm stands still is asked only inside a coasting window
+            if coast.armed and coast.coasts(self._time_s, self._still()):
                 self._coast_step(ts)
+            elif self._resting and self._still():
+                self._rest_step(ts)
             else:
                 self._mj_step(ts)
         # the chamber feels the impulse of the step's contacts, not the peak of one solver
@@ -454,6 +459,21 @@ class MujocoWorld(PadWorld):
         it for its hold, where the object has settled in the jaws or on the pad."""
         self.coast.allow(until_s)
 
+    def rest_while_still(self, on: bool) -> None:
+        """Hold the world still while nothing it is told to do moves (``on``; False: step it
+        again): no MuJoCo step is solved, positions and velocities stay as they are, the module
+        loads stay those of the last stepped sample period, the time runs on. For a phase
+        whose physics no longer decides anything a caller reads from the world: a trial's
+        valve check, after the grasp has been scored (the box's gas physics still runs on the
+        held loads)."""
+        self._resting = bool(on)
+
+    def _rest_step(self, ts: float) -> None:
+        """One step of ``ts`` seconds held still: the module springs follow the box's heights
+        (as in every step), nothing else moves."""
+        self._follow_heights(ts)
+        self.scene.data.time += ts
+
     def _still(self) -> bool:
         """True when nothing the world is told to do moves: the arm at its goal, the jaw
         setpoint at its goal, no object being lowered."""
@@ -479,7 +499,8 @@ class MujocoWorld(PadWorld):
 
     def _mj_step(self, ts: float) -> None:
         """One MuJoCo step of ``ts`` seconds: module springs, hand, jaws, lowering, loads."""
-        s = self.scene
+        s = self._scene
+        assert s is not None
         m, d = s.model, s.data
         self._follow_heights(ts)
         hand, hq, qpos, qvel = self._arm.hand, s.hand_q, s.qpos, s.qvel
@@ -498,5 +519,6 @@ class MujocoWorld(PadWorld):
                         qvel[da + 2] = max(qvel[da + 2], -_LOWER_M_S)
         tip_z = float(hand[2] - self.gripper.finger_length_m)
         self._sensing.update(s, self._time_s + self._pending_s, tip_z, self._arm.width_setpoint)
-        if self.coast.until_s is not None:
-            self.coast.observe(qvel, self._time_s, self._still())
+        coast = self._coast
+        if coast is not None and coast.until_s is not None:
+            coast.observe(qvel, self._time_s, self._still())

@@ -62,6 +62,12 @@ class TrialConfig:
     #: stepped (:mod:`softpad.sim._mujoco_coast`; docs/trials.md). False: every step solved
     #: (the reference the equivalence tests compare with).
     coast_settled_hold: bool = True
+    #: Hold the MuJoCo world still through the valve check that ends a trial
+    #: (:meth:`softpad.sim.MujocoWorld.rest_while_still`): the grasp has been scored by then
+    #: and nothing the result holds is read from the world after it; the box's valves, gas and
+    #: sensors and the fault monitor run on the object's last loads (a check's fault can only
+    #: end the trial's simulated time earlier). False: every step solved.
+    still_valve_check: bool = True
     #: The gripper's mounting: None, each object's own (the thesis's per-object choice,
     #: Section 6.3, for Table 6.1); ``"auto"``, chosen from the pad's reading of the placed
     #: object among every installed mounting (:func:`softpad.planning.choose_mounting`; issue

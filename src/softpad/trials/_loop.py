@@ -75,6 +75,8 @@ class _TrialWatcher:
         elif phase == "hold" and self.t.config.coast_settled_hold:
             hold_s = self.t.config.execution.hold_s
             world.coast_settled_until(t_s + hold_s - _COAST_MARGIN_S)
+        elif phase == "valve_check" and self.t.config.still_valve_check:
+            world.rest_while_still(True)  # scored already: see TrialConfig.still_valve_check
         elif phase == "lift":  # the jaws have closed: is the object between them?
             contacts = world.gripper_contacts()
             seen["between"] = min(contacts.finger_on_object_n) > _TOUCH_N
