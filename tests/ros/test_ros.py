@@ -328,9 +328,14 @@ def _outcome(logs: dict[str, Path]) -> dict:  # type: ignore[type-arg]
 def _check_loop_topics(logs: dict[str, Path], outcome: dict) -> None:  # type: ignore[type-arg]
     """The loop's phases in order on /softpad/phase, contact seen on /softpad/contact while
     it held the fingers on the pad, and its plan on /softpad/plan/grasps."""
-    phases = [m["data"] for m in _messages(logs["/softpad/phase"])]
+
+    def phases() -> list[str]:
+        return [m["data"] for m in _messages(logs["/softpad/phase"])]
+
+    # each topic has its own `rostopic echo`: the last phase may be written after the outcome
+    _wait(lambda: "done" in phases(), 30.0, "'done' on /softpad/phase")
     loop = ["plan", "approach", "descend", "close", "lift", "hold", "release", "done"]
-    assert [p for p in phases if p in loop] == loop, phases
+    assert [p for p in phases() if p in loop] == loop, phases()
     contact = [m["data"] for m in _messages(logs["/softpad/contact"])]
     assert True in contact and contact[0] is False  # untouched until the fingers land
     (plan,) = outcome["objects"]

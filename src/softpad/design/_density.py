@@ -174,7 +174,21 @@ def pad_convergence(
     pads: Sequence[PadDesign], cache: ResultCache | None = None
 ) -> dict[str, dict[str, dict[str, float]]]:
     """Each pad's FEM figures on the coarse and the medium mesh and their relative difference
-    ``coarse / medium - 1`` (responses kept in ``cache`` under the sweeps' keys)."""
+    ``coarse / medium - 1``.
+
+    Parameters
+    ----------
+    pads
+        The pad designs (each module's geometry, its pitch and channel).
+    cache
+        Where the FEM responses are kept, under the sweeps' keys; None: a cache in memory.
+
+    Returns
+    -------
+    dict
+        Per pad label, per figure (:data:`CONVERGENCE_FIELDS`): ``coarse``, ``medium`` and
+        ``relative_difference``.
+    """
     cache = cache or ResultCache(None)
     out: dict[str, dict[str, dict[str, float]]] = {}
     for pad in pads:
