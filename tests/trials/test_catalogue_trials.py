@@ -19,6 +19,7 @@ def test_a_recorded_held_trial_is_recognised_and_its_grasp_reused(
     from softpad.planning import load_catalogue
     from softpad.sim import get_object
     from softpad.trials import TrialConfig, run_trial
+    from softpad.trials._compare import summarise
 
     spec = get_object("object-5")
     rec = tmp_path / "train.mcap"
@@ -32,8 +33,12 @@ def test_a_recorded_held_trial_is_recognised_and_its_grasp_reused(
     config = TrialConfig(planner="catalogue", detector="thesis", catalogue=str(out))
     again, _ = run_trial(spec, 0, 0, config)
     assert again.cog == pytest.approx(taught.cog) and again.theta == pytest.approx(taught.theta)
+    # the trial record carries the plan's rule: the recognition is counted from it
+    assert again.to_dict()["rule"].startswith("catalogue: object-5 (d2=")
+    assert summarise([again])["recognised_as"] == {"object-5": 1}
     fallback, _ = run_trial(spec, 0, 0, TrialConfig(planner="model-based"))
     assert fallback.cog != pytest.approx(taught.cog, abs=0.01)
+    assert summarise([fallback])["recognised_as"] == {} and summarise([fallback])["unknown"] == 0
 
 
 def test_a_bad_catalogue_is_named_before_any_trial(
@@ -58,3 +63,18 @@ def test_learn_refuses_a_recording_that_is_no_trial(
     assert "none.mcap" in err and "Traceback" not in err
     assert main(["learn", "x.mcap", "--out", str(tmp_path / "c.txt")]) == 2
     assert "must name a .toml file" in capsys.readouterr().err
+
+
+def test_compare_counts_the_catalogue_planners_decisions() -> None:
+    """Each pair's summary counts the trials recognised (by name) and those handed on."""
+    from softpad.trials import TrialResult
+    from softpad.trials._compare import summarise
+
+    def trial(rule: str | None, success: bool = True) -> TrialResult:
+        cause = None if success else "jaws_hit_object"
+        return TrialResult("object-5", 0, 0, (0.0, 0.0, 0.0), "10/4", success, cause, rule=rule)
+
+    rules = ["catalogue: object-5 (d2=3.1)", "catalogue: object 7 (d2=1.0)"] * 2
+    trials = [trial(r) for r in rules] + [trial("unknown -> centred (p=0.9)", False), trial(None)]
+    s = summarise(trials)
+    assert s["recognised_as"] == {"object-5": 2, "object 7": 2} and s["unknown"] == 1

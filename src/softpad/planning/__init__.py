@@ -7,10 +7,13 @@ direction theta) with the thesis's rules, generalised to R x C pads (docs/planne
 
 from softpad.planning._cases import FIG_6_7, RULE_CASES, TABLE_6_1, PlanCase
 from softpad.planning._catalogue import (
+    KNOWN_RULE,
+    UNKNOWN_RULE,
     Catalogue,
     CataloguePlanner,
     KnownObject,
     LearnedTrial,
+    known_name,
     learn_catalogue,
     load_catalogue,
 )
@@ -64,9 +67,11 @@ __all__ = [
     "DEFAULT_SAFETY_SHIFT",
     "DEFAULT_SEAM_WIDTH_M",
     "FIG_6_7",
+    "KNOWN_RULE",
     "PLANNER_REGISTRY",
     "RULE_CASES",
     "TABLE_6_1",
+    "UNKNOWN_RULE",
     "Catalogue",
     "CataloguePlanner",
     "GraspPlan",
@@ -91,6 +96,7 @@ __all__ = [
     "centred_on_load",
     "choose_mounting",
     "format_plans",
+    "known_name",
     "landing_side",
     "learn_catalogue",
     "load_axis",

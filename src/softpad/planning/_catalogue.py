@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -42,6 +42,17 @@ from softpad.planning._records import GraspPlan
 
 #: Schema tag of a catalogue file.
 CATALOGUE_SCHEMA = "softpad-catalogue/1"
+#: Start of the rule of a known object's plan (``"catalogue: NAME (d2=...)"``).
+KNOWN_RULE = "catalogue: "
+#: Start of the rule of an unknown object's plan, the fallback's rule after it.
+UNKNOWN_RULE = "unknown -> "
+
+
+def known_name(rule: str | None) -> str | None:
+    """The known object a catalogue plan's ``rule`` names; None for any other rule."""
+    if rule is None or not rule.startswith(KNOWN_RULE):
+        return None
+    return rule[len(KNOWN_RULE) :].rsplit(" (d2=", 1)[0]
 
 
 @dataclass(frozen=True)
@@ -266,7 +277,8 @@ class CataloguePlanner:
             known, d2 = self.catalogue.recognise(r)
         self.last_known = None if known is None else known.name
         if known is None:
-            return self.fallback.plan(increments_pa, objects, layout)
+            plans = self.fallback.plan(increments_pa, objects, layout)
+            return [replace(p, rule=UNKNOWN_RULE + p.rule) for p in plans]
         x, y, theta = known.nearest_grasp(r)
         mods = objects[0]
         return [
@@ -275,25 +287,29 @@ class CataloguePlanner:
                 pcom(r, mods, layout),
                 (x, y),
                 theta,
-                f"catalogue {known.name} d2={d2:.1f}",
+                f"{KNOWN_RULE}{known.name} (d2={d2:.1f})",
                 mods,
             )
         ]
 
     def retry(self, plan: GraspPlan, *args: Any, **kwargs: Any) -> GraspPlan | None:
         """A known object's grasp is not retried; an unknown one's is the fallback's retry."""
-        if plan.rule.startswith("catalogue ") or not hasattr(self.fallback, "retry"):
+        if plan.rule.startswith(KNOWN_RULE) or not hasattr(self.fallback, "retry"):
             return None
-        result: GraspPlan | None = self.fallback.retry(plan, *args, **kwargs)
+        handed = replace(plan, rule=plan.rule.removeprefix(UNKNOWN_RULE))
+        result: GraspPlan | None = self.fallback.retry(handed, *args, **kwargs)
         return result
 
 
 __all__ = [
     "CATALOGUE_SCHEMA",
+    "KNOWN_RULE",
+    "UNKNOWN_RULE",
     "Catalogue",
     "CataloguePlanner",
     "KnownObject",
     "LearnedTrial",
+    "known_name",
     "learn_catalogue",
     "load_catalogue",
 ]
