@@ -13,8 +13,10 @@ from softpad.layout import PadLayout
 from softpad.planning import (
     TABLE_6_1,
     Catalogue,
+    CatalogueParams,
     CataloguePlanner,
     GraspPlan,
+    KnownObject,
     LearnedTrial,
     known_name,
     learn_catalogue,
@@ -53,48 +55,63 @@ def test_objects_never_held_stay_unknown_and_grasps_follow_their_readings(
     assert len(box.readings_pa) == 5 and box.grasps[4] == (1.5, 0.54, 0.0)
 
 
-def _pooled(catalogue: Catalogue) -> np.ndarray:
-    """The pooled within-object covariance, from numpy's per-object covariances weighted by
-    their degrees of freedom (an independent route to S), plus var I."""
-    covs = [
-        (len(o.readings_pa) - 1, np.cov(np.array(o.readings_pa), rowvar=False))
-        for o in catalogue.objects
-    ]
-    s = sum(w * c for w, c in covs) / sum(w for w, _ in covs)
-    return s + VAR * np.eye(6)
+def _shares_and_log(r: np.ndarray) -> tuple[np.ndarray, float]:
+    p = np.maximum(np.asarray(r, dtype=float), 0.0)
+    return p / p.sum(), float(np.log(p.sum()))
 
 
-def test_the_distance_is_scipy_mahalanobis(catalogue: Catalogue) -> None:
-    """Against scipy.spatial.distance.mahalanobis with the inverse of (S_pooled + var I)."""
-    from scipy.spatial.distance import mahalanobis
-
-    cov = _pooled(catalogue)
-    np.testing.assert_allclose(catalogue.covariance_pa2(), cov, rtol=1e-12)
-    obj = catalogue.objects[0]
-    r = np.array([240.0, 200, 120, 5, -3, 2])
-    expected = mahalanobis(r, np.array(obj.readings_pa).mean(axis=0), np.linalg.inv(cov)) ** 2
-    assert obj.distance2(r, cov) == pytest.approx(expected, rel=1e-9)
-
-
-def test_readings_of_a_known_object_are_recognised_at_the_stated_rate(
+def test_each_tolerance_is_the_margin_times_the_largest_leave_one_out_distance(
     catalogue: Catalogue,
 ) -> None:
-    """20000 readings drawn from the object's own Gaussian (its mean, S_pooled + var I): called
-    unknown at the criterion's 0.1 %; within 0.05-0.2 % (20 expected, about 2 standard errors)."""
-    obj = catalogue.objects[0]
-    x = np.array(obj.readings_pa)
-    cov = _pooled(catalogue)
-    draws = np.random.default_rng(7).multivariate_normal(x.mean(axis=0), cov, size=20000)
-    unknown = np.mean([catalogue.recognise(r)[0] is None for r in draws])
-    assert 0.0005 <= unknown <= 0.002
+    """Recomputed with scipy's cityblock distances: for each held reading the nearest other
+    one (pattern and load apart), the largest of those, times the margin (1.5), floored."""
+    from scipy.spatial.distance import cdist
+
+    params = CatalogueParams()
+    for obj in catalogue.objects:
+        f = [_shares_and_log(np.array(r)) for r in obj.readings_pa]
+        shares = np.array([x for x, _ in f])
+        logs = np.array([[v] for _, v in f])
+        ds, dl = cdist(shares, shares, "cityblock"), cdist(logs, logs, "cityblock")
+        np.fill_diagonal(ds, np.inf)
+        np.fill_diagonal(dl, np.inf)
+        share = max(params.share_floor, params.margin * ds.min(axis=1).max())
+        load = max(params.load_floor, params.margin * dl.min(axis=1).max())
+        assert (obj.share_tolerance, obj.load_tolerance) == pytest.approx((share, load)), obj.name
+
+
+def test_a_reading_is_known_within_the_tolerances_and_unknown_beyond() -> None:
+    """One object, two held readings far apart, tolerances 0.2 (pattern) and 0.1 (load):
+    a reading's total load 0.9 / 1.1 tolerances (log) from the first's is known / unknown;
+    so is load share moved between modules (L1 of the shares 0.9 / 1.1 tolerances) and the
+    grasp is the matching reading's."""
+    first, second = (250.0, 180.0, 130.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 90.0, 300.0, 90.0)
+    obj = KnownObject("banana", (first, second), ((1.0, 1.5, 0.0), (1.5, 0.5, 1.57)), 0.2, 0.1)
+    cat = Catalogue(6, VAR, (obj,))
+    r = np.array(first)
+    for factor, known in ((0.9, True), (1.1, False), (-0.9, True), (-1.1, False)):
+        got, _, k = cat.recognise(r * np.exp(factor * 0.1))
+        assert (got is obj and k == 0) is known, factor
+    for fraction, known in ((0.9, True), (1.1, False)):
+        moved = fraction * 0.2 / 2 * r.sum()  # the L1 distance of the shares: 2 x moved
+        got, _, k = cat.recognise(r + np.array([-moved, 0, 0, moved, 0, 0]))
+        assert (got is obj and k == 0) is known, fraction
+    assert cat.recognise(np.array(second) * 1.05)[::2] == (obj, 1)
 
 
 def test_other_objects_are_unknown(catalogue: Catalogue) -> None:
     """The never-held can, and the banana moved by a quarter module (its load shifted)."""
     assert catalogue.recognise([0, 400, 0, 0, 400, 0])[0] is None
     assert catalogue.recognise([150, 250, 200, 0, 0, 0])[0] is None
-    known, d2 = catalogue.recognise([250, 180, 130, 0, 0, 0])
-    assert known is not None and known.name == "banana" and d2 < catalogue.threshold
+    assert catalogue.recognise([0, 0, 0, 0, 0, 0])[0] is None
+    known, d, _ = catalogue.recognise([250, 180, 130, 0, 0, 0])
+    assert known is not None and known.name == "banana" and d < banana_gap(catalogue)
+
+
+def banana_gap(catalogue: Catalogue) -> float:
+    """The distance (pattern plus load) of the mean banana from the box's nearest reading."""
+    box = catalogue.objects[1]
+    return box.distance([250, 180, 130, 0, 0, 0])[0]
 
 
 class _Fallback:
@@ -119,7 +136,7 @@ def test_a_known_object_is_grasped_where_its_nearest_held_trial_was(
     reading = np.array(box.readings_pa[3]) + 1.0  # nearest: the fourth held trial
     (plan,) = planner.plan(reading, [(4, 5, 6)], LAYOUT)
     assert (plan.cog, plan.theta) == ((1.5, 0.53), 0.0)
-    assert plan.rule.startswith("catalogue: box (d2=") and planner.last_known == "box"
+    assert plan.rule.startswith("catalogue: box (d=") and planner.last_known == "box"
     assert known_name(plan.rule) == "box"
     assert planner.retry(plan, reading, LAYOUT, reading) is None and fallback.calls == []
 
@@ -169,8 +186,8 @@ def test_the_file_round_trips_and_reaches_the_planner(catalogue: Catalogue, tmp_
     ("text", "message"),
     [
         (None, "not found"),
-        ('schema = "other"\n', "schema must be 'softpad-catalogue/1'"),
-        ('schema = "softpad-catalogue/1"\nmodules = 6\n', "malformed"),
+        ('schema = "other"\n', "schema must be 'softpad-catalogue/2'"),
+        ('schema = "softpad-catalogue/2"\nmodules = 6\n', "malformed"),
         ("schema = [", "not valid TOML"),
     ],
     ids=["missing", "schema", "malformed", "not-toml"],

@@ -34,7 +34,7 @@ def test_a_recorded_held_trial_is_recognised_and_its_grasp_reused(
     again, _ = run_trial(spec, 0, 0, config)
     assert again.cog == pytest.approx(taught.cog) and again.theta == pytest.approx(taught.theta)
     # the trial record carries the plan's rule: the recognition is counted from it
-    assert again.to_dict()["rule"].startswith("catalogue: object-5 (d2=")
+    assert again.to_dict()["rule"].startswith("catalogue: object-5 (d=")
     assert summarise([again])["recognised_as"] == {"object-5": 1}
     fallback, _ = run_trial(spec, 0, 0, TrialConfig(planner="model-based"))
     assert fallback.cog != pytest.approx(taught.cog, abs=0.01)
@@ -74,7 +74,7 @@ def test_compare_counts_the_catalogue_planners_decisions() -> None:
         cause = None if success else "jaws_hit_object"
         return TrialResult("object-5", 0, 0, (0.0, 0.0, 0.0), "10/4", success, cause, rule=rule)
 
-    rules = ["catalogue: object-5 (d2=3.1)", "catalogue: object 7 (d2=1.0)"] * 2
+    rules = ["catalogue: object-5 (d=0.31)", "catalogue: object 7 (d=0.10)"] * 2
     trials = [trial(r) for r in rules] + [trial("unknown -> centred (p=0.9)", False), trial(None)]
     s = summarise(trials)
     assert s["recognised_as"] == {"object-5": 2, "object 7": 2} and s["unknown"] == 1
