@@ -60,24 +60,35 @@ def _shares_and_log(r: np.ndarray) -> tuple[np.ndarray, float]:
     return p / p.sum(), float(np.log(p.sum()))
 
 
-def test_each_tolerance_is_the_margin_times_the_largest_leave_one_out_distance(
+def test_every_object_gets_the_stated_tolerances_and_the_file_keeps_them(
+    tmp_path: Path,
+) -> None:
+    cat = learn_catalogue(_trials(np.random.default_rng(1)), VAR, CatalogueParams(0.2, 0.1))
+    assert {(o.share_tolerance, o.load_tolerance) for o in cat.objects} == {(0.2, 0.1)}
+    path = tmp_path / "c.toml"
+    path.write_text(cat.to_toml())
+    assert load_catalogue(path) == cat
+    default = learn_catalogue(_trials(np.random.default_rng(1)), VAR)
+    assert {(o.share_tolerance, o.load_tolerance) for o in default.objects} == {(0.35, 0.30)}
+
+
+def test_the_distances_are_scipys_cityblock_of_the_shares_and_of_the_log_loads(
     catalogue: Catalogue,
 ) -> None:
-    """Recomputed with scipy's cityblock distances: for each held reading the nearest other
-    one (pattern and load apart), the largest of those, times the margin (1.5), floored."""
-    from scipy.spatial.distance import cdist
+    """Against scipy.spatial.distance.cityblock on shares and log totals computed here."""
+    from scipy.spatial.distance import cityblock
 
-    params = CatalogueParams()
-    for obj in catalogue.objects:
-        f = [_shares_and_log(np.array(r)) for r in obj.readings_pa]
-        shares = np.array([x for x, _ in f])
-        logs = np.array([[v] for _, v in f])
-        ds, dl = cdist(shares, shares, "cityblock"), cdist(logs, logs, "cityblock")
-        np.fill_diagonal(ds, np.inf)
-        np.fill_diagonal(dl, np.inf)
-        share = max(params.share_floor, params.margin * ds.min(axis=1).max())
-        load = max(params.load_floor, params.margin * dl.min(axis=1).max())
-        assert (obj.share_tolerance, obj.load_tolerance) == pytest.approx((share, load)), obj.name
+    r = np.array([240.0, 200, 120, 5, -3, 2])
+    s, log_total = _shares_and_log(r)
+    banana = catalogue.objects[0]
+    expected = [
+        cityblock(s, _shares_and_log(np.array(x))[0])
+        + abs(log_total - _shares_and_log(np.array(x))[1])
+        for x in banana.readings_pa
+    ]
+    d, k, within = banana.distance(r)
+    assert d == pytest.approx(min(expected), rel=1e-12) and within
+    assert k == int(np.argmin(expected))
 
 
 def test_a_reading_is_known_within_the_tolerances_and_unknown_beyond() -> None:
@@ -100,9 +111,9 @@ def test_a_reading_is_known_within_the_tolerances_and_unknown_beyond() -> None:
 
 
 def test_other_objects_are_unknown(catalogue: Catalogue) -> None:
-    """The never-held can, and the banana moved by a quarter module (its load shifted)."""
+    """The never-held can, the banana moved by half a module (its load shifted), no load."""
     assert catalogue.recognise([0, 400, 0, 0, 400, 0])[0] is None
-    assert catalogue.recognise([150, 250, 200, 0, 0, 0])[0] is None
+    assert catalogue.recognise([100, 250, 250, 0, 0, 0])[0] is None
     assert catalogue.recognise([0, 0, 0, 0, 0, 0])[0] is None
     known, d, _ = catalogue.recognise([250, 180, 130, 0, 0, 0])
     assert known is not None and known.name == "banana" and d < banana_gap(catalogue)
