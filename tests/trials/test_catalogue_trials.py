@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -78,3 +79,42 @@ def test_compare_counts_the_catalogue_planners_decisions() -> None:
     trials = [trial(r) for r in rules] + [trial("unknown -> centred (p=0.9)", False), trial(None)]
     s = summarise(trials)
     assert s["recognised_as"] == {"object-5": 2, "object 7": 2} and s["unknown"] == 1
+
+
+def test_the_preregistered_report_parses_as_written(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """docs/planner.md's two report commands run through the real command line (the trials
+    replaced): the catalogue pair alone, Table 6.1 at seeds 210-219 and ycb-eval's ten
+    objects at 9401-9402, randomized, the catalogue read."""
+    import re
+    import shlex
+
+    import softpad.trials
+    from softpad.planning import LearnedTrial, learn_catalogue
+
+    root = Path(__file__).resolve().parents[2]
+    page = (root / "docs" / "planner.md").read_text(encoding="utf-8")
+    section = page.split("Pre-registered report", 1)[1]
+    block = re.search(r"```text\n(.*?)```", section, re.S)
+    assert block is not None
+    commands = [shlex.split(line) for line in block.group(1).splitlines() if line.strip()]
+    (tmp_path / "catalogue.toml").write_text(
+        learn_catalogue([LearnedTrial("toy", (1.0,) * 6, (1, 1, 0), True)], 1.0).to_toml()
+    )
+    seen: list[dict[str, Any]] = []
+
+    def fake(specs: Any, seeds: Any, pairs: Any, **kwargs: Any) -> dict[str, Any]:
+        seen.append({"specs": specs, "seeds": list(seeds), "pairs": list(pairs), **kwargs})
+        return {"schema_version": 2, "seeds": list(seeds), "combinations": [], "contrasts": []}
+
+    monkeypatch.setattr(softpad.trials, "compare", fake)
+    monkeypatch.chdir(tmp_path)
+    for argv in commands:
+        assert argv[0] == "softpad" and argv[-2] == ">"
+        args = [str(root / a) if a.startswith("src/") else a for a in argv[1:-2]]
+        assert main(args) == 0, capsys.readouterr().err
+    assert [s["seeds"] for s in seen] == [list(range(210, 220)), [9401, 9402]]
+    assert all(s["pairs"] == [("catalogue", "adaptive")] for s in seen)
+    assert [len(s["specs"]) for s in seen] == [11, 10]
+    assert all(s["config"].randomize and s["config"].catalogue for s in seen)
