@@ -316,8 +316,10 @@ class CataloguePlanner:
         ]
 
     def retry(self, plan: GraspPlan, *args: Any, **kwargs: Any) -> GraspPlan | None:
-        """A known object's grasp is not retried; an unknown one's is the fallback's retry."""
-        if plan.rule.startswith(KNOWN_RULE) or not hasattr(self.fallback, "retry"):
+        """The fallback's retry, for a known object's grasp too: after the jaws landed on
+        the object, the landing is evidence the catalogue's grasp does not fit this trial's
+        draw (a charger of another size), and the fallback plans again from it."""
+        if not hasattr(self.fallback, "retry"):
             return None
         handed = replace(plan, rule=plan.rule.removeprefix(UNKNOWN_RULE))
         result: GraspPlan | None = self.fallback.retry(handed, *args, **kwargs)
