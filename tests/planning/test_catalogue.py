@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -12,9 +13,12 @@ from softpad.layout import PadLayout
 from softpad.planning import (
     TABLE_6_1,
     Catalogue,
+    CatalogueParams,
     CataloguePlanner,
     GraspPlan,
+    KnownObject,
     LearnedTrial,
+    known_name,
     learn_catalogue,
     load_catalogue,
     make_planner,
@@ -51,48 +55,74 @@ def test_objects_never_held_stay_unknown_and_grasps_follow_their_readings(
     assert len(box.readings_pa) == 5 and box.grasps[4] == (1.5, 0.54, 0.0)
 
 
-def _pooled(catalogue: Catalogue) -> np.ndarray:
-    """The pooled within-object covariance, from numpy's per-object covariances weighted by
-    their degrees of freedom (an independent route to S), plus var I."""
-    covs = [
-        (len(o.readings_pa) - 1, np.cov(np.array(o.readings_pa), rowvar=False))
-        for o in catalogue.objects
-    ]
-    s = sum(w * c for w, c in covs) / sum(w for w, _ in covs)
-    return s + VAR * np.eye(6)
+def _shares_and_log(r: np.ndarray) -> tuple[np.ndarray, float]:
+    p = np.maximum(np.asarray(r, dtype=float), 0.0)
+    return p / p.sum(), float(np.log(p.sum()))
 
 
-def test_the_distance_is_scipy_mahalanobis(catalogue: Catalogue) -> None:
-    """Against scipy.spatial.distance.mahalanobis with the inverse of (S_pooled + var I)."""
-    from scipy.spatial.distance import mahalanobis
+def test_every_object_gets_the_stated_tolerances_and_the_file_keeps_them(
+    tmp_path: Path,
+) -> None:
+    cat = learn_catalogue(_trials(np.random.default_rng(1)), VAR, CatalogueParams(0.2, 0.1))
+    assert {(o.share_tolerance, o.load_tolerance) for o in cat.objects} == {(0.2, 0.1)}
+    path = tmp_path / "c.toml"
+    path.write_text(cat.to_toml())
+    assert load_catalogue(path) == cat
+    default = learn_catalogue(_trials(np.random.default_rng(1)), VAR)
+    assert {(o.share_tolerance, o.load_tolerance) for o in default.objects} == {(0.35, 0.30)}
 
-    cov = _pooled(catalogue)
-    np.testing.assert_allclose(catalogue.covariance_pa2(), cov, rtol=1e-12)
-    obj = catalogue.objects[0]
-    r = np.array([240.0, 200, 120, 5, -3, 2])
-    expected = mahalanobis(r, np.array(obj.readings_pa).mean(axis=0), np.linalg.inv(cov)) ** 2
-    assert obj.distance2(r, cov) == pytest.approx(expected, rel=1e-9)
 
-
-def test_readings_of_a_known_object_are_recognised_at_the_stated_rate(
+def test_the_distances_are_scipys_cityblock_of_the_shares_and_of_the_log_loads(
     catalogue: Catalogue,
 ) -> None:
-    """20000 readings drawn from the object's own Gaussian (its mean, S_pooled + var I): called
-    unknown at the criterion's 0.1 %; within 0.05-0.2 % (20 expected, about 2 standard errors)."""
-    obj = catalogue.objects[0]
-    x = np.array(obj.readings_pa)
-    cov = _pooled(catalogue)
-    draws = np.random.default_rng(7).multivariate_normal(x.mean(axis=0), cov, size=20000)
-    unknown = np.mean([catalogue.recognise(r)[0] is None for r in draws])
-    assert 0.0005 <= unknown <= 0.002
+    """Against scipy.spatial.distance.cityblock on shares and log totals computed here."""
+    from scipy.spatial.distance import cityblock
+
+    r = np.array([240.0, 200, 120, 5, -3, 2])
+    s, log_total = _shares_and_log(r)
+    banana = catalogue.objects[0]
+    expected = [
+        cityblock(s, _shares_and_log(np.array(x))[0])
+        + abs(log_total - _shares_and_log(np.array(x))[1])
+        for x in banana.readings_pa
+    ]
+    d, k, within = banana.distance(r)
+    assert d == pytest.approx(min(expected), rel=1e-12) and within
+    assert k == int(np.argmin(expected))
+
+
+def test_a_reading_is_known_within_the_tolerances_and_unknown_beyond() -> None:
+    """One object, two held readings far apart, tolerances 0.2 (pattern) and 0.1 (load):
+    a reading's total load 0.9 / 1.1 tolerances (log) from the first's is known / unknown;
+    so is load share moved between modules (L1 of the shares 0.9 / 1.1 tolerances) and the
+    grasp is the matching reading's."""
+    first, second = (250.0, 180.0, 130.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 90.0, 300.0, 90.0)
+    obj = KnownObject("banana", (first, second), ((1.0, 1.5, 0.0), (1.5, 0.5, 1.57)), 0.2, 0.1)
+    cat = Catalogue(6, VAR, (obj,))
+    r = np.array(first)
+    for factor, known in ((0.9, True), (1.1, False), (-0.9, True), (-1.1, False)):
+        got, _, k = cat.recognise(r * np.exp(factor * 0.1))
+        assert (got is obj and k == 0) is known, factor
+    for fraction, known in ((0.9, True), (1.1, False)):
+        moved = fraction * 0.2 / 2 * r.sum()  # the L1 distance of the shares: 2 x moved
+        got, _, k = cat.recognise(r + np.array([-moved, 0, 0, moved, 0, 0]))
+        assert (got is obj and k == 0) is known, fraction
+    assert cat.recognise(np.array(second) * 1.05)[::2] == (obj, 1)
 
 
 def test_other_objects_are_unknown(catalogue: Catalogue) -> None:
-    """The never-held can, and the banana moved by a quarter module (its load shifted)."""
+    """The never-held can, the banana moved by half a module (its load shifted), no load."""
     assert catalogue.recognise([0, 400, 0, 0, 400, 0])[0] is None
-    assert catalogue.recognise([150, 250, 200, 0, 0, 0])[0] is None
-    known, d2 = catalogue.recognise([250, 180, 130, 0, 0, 0])
-    assert known is not None and known.name == "banana" and d2 < catalogue.threshold
+    assert catalogue.recognise([100, 250, 250, 0, 0, 0])[0] is None
+    assert catalogue.recognise([0, 0, 0, 0, 0, 0])[0] is None
+    known, d, _ = catalogue.recognise([250, 180, 130, 0, 0, 0])
+    assert known is not None and known.name == "banana" and d < banana_gap(catalogue)
+
+
+def banana_gap(catalogue: Catalogue) -> float:
+    """The distance (pattern plus load) of the mean banana from the box's nearest reading."""
+    box = catalogue.objects[1]
+    return box.distance([250, 180, 130, 0, 0, 0])[0]
 
 
 class _Fallback:
@@ -117,8 +147,10 @@ def test_a_known_object_is_grasped_where_its_nearest_held_trial_was(
     reading = np.array(box.readings_pa[3]) + 1.0  # nearest: the fourth held trial
     (plan,) = planner.plan(reading, [(4, 5, 6)], LAYOUT)
     assert (plan.cog, plan.theta) == ((1.5, 0.53), 0.0)
-    assert plan.rule.startswith("catalogue box ") and planner.last_known == "box"
-    assert planner.retry(plan, reading, LAYOUT, reading) is None and fallback.calls == []
+    assert plan.rule.startswith("catalogue: box (d=") and planner.last_known == "box"
+    assert known_name(plan.rule) == "box"
+    # a landing on the known object: the fallback plans again
+    assert planner.retry(plan, reading, LAYOUT, reading) == plan and fallback.calls == ["retry"]
 
 
 @pytest.mark.parametrize(
@@ -135,8 +167,10 @@ def test_unknown_objects_and_crowded_pads_go_to_the_fallback(
     fallback = _Fallback()
     planner = CataloguePlanner(catalogue, fallback)
     (plan,) = planner.plan(reading, objects, LAYOUT)
-    assert plan.rule == "fallback" and planner.last_known is None
-    assert planner.retry(plan, reading, LAYOUT, reading) is plan
+    assert plan.rule == "unknown -> fallback" and planner.last_known is None
+    assert known_name(plan.rule) is None
+    # the fallback retries its own plan (its rule without the catalogue's prefix)
+    assert planner.retry(plan, reading, LAYOUT, reading) == replace(plan, rule="fallback")
     assert fallback.calls == ["plan", "retry"]
 
 
@@ -146,9 +180,10 @@ def test_without_a_catalogue_the_planner_is_the_model_based_one() -> None:
     mine, theirs = make_planner("catalogue"), make_planner("model-based")
     for case in TABLE_6_1:
         objects = [tuple(m for m in range(1, 7) if case.delta_pa[m - 1] > 50)]
-        assert mine.plan(case.delta_pa, objects, LAYOUT) == theirs.plan(
-            case.delta_pa, objects, LAYOUT
-        ), case.name
+        plans = mine.plan(case.delta_pa, objects, LAYOUT)
+        assert all(p.rule.startswith("unknown -> ") for p in plans), case.name
+        handed = [replace(p, rule=p.rule.removeprefix("unknown -> ")) for p in plans]
+        assert handed == theirs.plan(case.delta_pa, objects, LAYOUT), case.name
 
 
 def test_the_file_round_trips_and_reaches_the_planner(catalogue: Catalogue, tmp_path: Path) -> None:
@@ -163,8 +198,8 @@ def test_the_file_round_trips_and_reaches_the_planner(catalogue: Catalogue, tmp_
     ("text", "message"),
     [
         (None, "not found"),
-        ('schema = "other"\n', "schema must be 'softpad-catalogue/1'"),
-        ('schema = "softpad-catalogue/1"\nmodules = 6\n', "malformed"),
+        ('schema = "other"\n', "schema must be 'softpad-catalogue/2'"),
+        ('schema = "softpad-catalogue/2"\nmodules = 6\n', "malformed"),
         ("schema = [", "not valid TOML"),
     ],
     ids=["missing", "schema", "malformed", "not-toml"],

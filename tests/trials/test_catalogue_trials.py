@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -19,6 +20,7 @@ def test_a_recorded_held_trial_is_recognised_and_its_grasp_reused(
     from softpad.planning import load_catalogue
     from softpad.sim import get_object
     from softpad.trials import TrialConfig, run_trial
+    from softpad.trials._compare import summarise
 
     spec = get_object("object-5")
     rec = tmp_path / "train.mcap"
@@ -32,8 +34,12 @@ def test_a_recorded_held_trial_is_recognised_and_its_grasp_reused(
     config = TrialConfig(planner="catalogue", detector="thesis", catalogue=str(out))
     again, _ = run_trial(spec, 0, 0, config)
     assert again.cog == pytest.approx(taught.cog) and again.theta == pytest.approx(taught.theta)
+    # the trial record carries the plan's rule: the recognition is counted from it
+    assert again.to_dict()["rule"].startswith("catalogue: object-5 (d=")
+    assert summarise([again])["recognised_as"] == {"object-5": 1}
     fallback, _ = run_trial(spec, 0, 0, TrialConfig(planner="model-based"))
     assert fallback.cog != pytest.approx(taught.cog, abs=0.01)
+    assert summarise([fallback])["recognised_as"] == {} and summarise([fallback])["unknown"] == 0
 
 
 def test_a_bad_catalogue_is_named_before_any_trial(
@@ -58,3 +64,57 @@ def test_learn_refuses_a_recording_that_is_no_trial(
     assert "none.mcap" in err and "Traceback" not in err
     assert main(["learn", "x.mcap", "--out", str(tmp_path / "c.txt")]) == 2
     assert "must name a .toml file" in capsys.readouterr().err
+
+
+def test_compare_counts_the_catalogue_planners_decisions() -> None:
+    """Each pair's summary counts the trials recognised (by name) and those handed on."""
+    from softpad.trials import TrialResult
+    from softpad.trials._compare import summarise
+
+    def trial(rule: str | None, success: bool = True) -> TrialResult:
+        cause = None if success else "jaws_hit_object"
+        return TrialResult("object-5", 0, 0, (0.0, 0.0, 0.0), "10/4", success, cause, rule=rule)
+
+    rules = ["catalogue: object-5 (d=0.31)", "catalogue: object 7 (d=0.10)"] * 2
+    trials = [trial(r) for r in rules] + [trial("unknown -> centred (p=0.9)", False), trial(None)]
+    s = summarise(trials)
+    assert s["recognised_as"] == {"object-5": 2, "object 7": 2} and s["unknown"] == 1
+
+
+def test_the_preregistered_report_parses_as_written(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """docs/planner.md's two report commands run through the real command line (the trials
+    replaced): the catalogue pair alone, Table 6.1 at seeds 210-219 and ycb-eval's ten
+    objects at 9401-9402, randomized, the catalogue read."""
+    import re
+    import shlex
+
+    import softpad.trials
+    from softpad.planning import LearnedTrial, learn_catalogue
+
+    root = Path(__file__).resolve().parents[2]
+    page = (root / "docs" / "planner.md").read_text(encoding="utf-8")
+    section = page.split("Pre-registered report", 1)[1]
+    block = re.search(r"```text\n(.*?)```", section, re.S)
+    assert block is not None
+    commands = [shlex.split(line) for line in block.group(1).splitlines() if line.strip()]
+    (tmp_path / "catalogue.toml").write_text(
+        learn_catalogue([LearnedTrial("toy", (1.0,) * 6, (1, 1, 0), True)], 1.0).to_toml()
+    )
+    seen: list[dict[str, Any]] = []
+
+    def fake(specs: Any, seeds: Any, pairs: Any, **kwargs: Any) -> dict[str, Any]:
+        seen.append({"specs": specs, "seeds": list(seeds), "pairs": list(pairs), **kwargs})
+        return {"schema_version": 2, "seeds": list(seeds), "combinations": [], "contrasts": []}
+
+    monkeypatch.setattr(softpad.trials, "compare", fake)
+    monkeypatch.chdir(tmp_path)
+    for argv in commands:
+        assert argv[0] == "softpad" and argv[-2] == ">"
+        args = [str(root / a) if a.startswith("src/") else a for a in argv[1:-2]]
+        assert main(args) == 0, capsys.readouterr().err
+    assert [s["seeds"] for s in seen] == [list(range(210, 220)), [9401, 9402]]
+    assert all(s["pairs"] == [("catalogue", "adaptive")] for s in seen)
+    assert [len(s["specs"]) for s in seen] == [11, 10]
+    assert all(s["config"].randomize and s["config"].catalogue for s in seen)

@@ -56,3 +56,17 @@ def test_pairs_are_registered_names() -> None:
         parse_pairs(["thesis"])
     with pytest.raises(InputError, match="got 'nope:thesis'"):
         parse_pairs(["nope:thesis"])
+
+
+def test_the_table_counts_a_catalogue_pairs_decisions() -> None:
+    """A catalogue pair's recognised and unknown trials (summarise's counts) under the table;
+    pairs without any (older documents, other planners) add no line."""
+    catalogue = {**_combo("catalogue", "adaptive", 2, 0.1), "recognised_as": {"toy": 2}}
+    catalogue["unknown"] = 1
+    lines = comparison_table({"seeds": [3], "combinations": [catalogue]}).splitlines()
+    assert lines[-1] == (
+        "catalogue:adaptive: 2 trials recognised as a known object, 1 called unknown "
+        "(handed on), of 4"
+    )
+    plain = {**_combo("thesis", "thesis", 1, 0.12), "recognised_as": {}, "unknown": 0}
+    assert len(comparison_table({"seeds": [3], "combinations": [plain]}).splitlines()) == 4

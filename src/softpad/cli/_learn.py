@@ -16,11 +16,10 @@ Each recording is one trial of one object (softpad trials --record; one without 
 one object or an outcome is skipped and counted): its first plan's
 increments are the object's reading, its last grasp (after any retry) the grasp tried, and
 its outcome says whether it held. An object held at least once is known: its readings and
-the grasps that held it go into the catalogue. --planner catalogue recognises a known object
-when the squared Mahalanobis distance of its increments from the object's mean reading
-(under the readings' pooled within-object covariance plus the recorded sensor noise) is
-under the chi-square 0.999 quantile with one degree of freedom per module, and grasps it as
-the nearest held trial did; any other object goes to the model-based planner
+the grasps that held it go into the catalogue, with tolerances learned from the spread of
+its held readings. --planner catalogue recognises a known object when the reading's load
+pattern (module shares) and total load lie within the object's tolerances of one of its held
+readings, and grasps it as that trial did; any other object goes to the model-based planner
 (docs/planner.md).
 """
 
@@ -61,7 +60,10 @@ def run(args: argparse.Namespace) -> int:
                 "skipped": learned.skipped,
                 "held": held,
                 "increment_noise_pa": round(noise, 3),
-                "recognition_threshold": round(catalogue.threshold, 3),
+                "tolerances": {
+                    o.name: [round(o.share_tolerance, 3), round(o.load_tolerance, 3)]
+                    for o in catalogue.objects
+                },
             }
         )
         return 0

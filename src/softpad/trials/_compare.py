@@ -12,6 +12,7 @@ import numpy as np
 
 import softpad
 from softpad.errors import InputError
+from softpad.planning import UNKNOWN_RULE, known_name
 from softpad.trials._clustered import contrasts
 from softpad.trials._config import TrialConfig
 from softpad.trials._records import TrialResult, errored_records
@@ -74,6 +75,10 @@ def summarise(trials: Sequence[TrialResult]) -> dict[str, Any]:
         "success_interval": list(wilson_interval(ok, len(trials))),
         "failures": dict(Counter(t.cause for t in trials if not t.success and t.cause)),
         "retried": sum(t.attempts > 1 for t in trials),
+        # the catalogue planner's decision (planning._catalogue): trials of a known object by
+        # the name recognised, and trials handed on as unknown (0 and {} for other planners)
+        "recognised_as": dict(Counter(n for t in trials if (n := known_name(t.rule)))),
+        "unknown": sum((t.rule or "").startswith(UNKNOWN_RULE) for t in trials),
         "delay_s_median": d50,
         "delay_s_p95": d95,
         "finger_travel_m_median": f50,
@@ -125,22 +130,29 @@ def compare(
                 "idle_hours": idle_hours,
                 "objects": [{"name": n, **summarise(ts)} for n, ts in by_object.items()],
                 # every failed trial, to run it again alone (trial_seed of seed, object, trial)
-                "failed_trials": [
-                    {
-                        "object": t.object,
-                        "trial": t.trial,
-                        "seed": s,
-                        "cause": t.cause,
-                        "parameters": t.parameters,
-                    }
-                    for s, t in zip(trial_seeds, results, strict=True)
-                    if not t.success
-                ],
+                "failed_trials": _failed_trials(trial_seeds, results),
                 # trials that raised (a bug, not a grasp outcome): their records, tracebacks
                 "errored": errored_records(results),
             }
         )
     return _document(list(seeds), combos)
+
+
+def _failed_trials(seeds: list[int], results: list[TrialResult]) -> list[dict[str, Any]]:
+    """Every failed trial with its experiment seed (to run it again alone), cause, first
+    plan's rule and drawn inputs."""
+    return [
+        {
+            "object": t.object,
+            "trial": t.trial,
+            "seed": s,
+            "cause": t.cause,
+            "rule": t.rule,
+            "parameters": t.parameters,
+        }
+        for s, t in zip(seeds, results, strict=True)
+        if not t.success
+    ]
 
 
 def _document(seeds: list[int], combos: list[dict[str, Any]]) -> dict[str, Any]:

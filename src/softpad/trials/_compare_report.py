@@ -79,7 +79,26 @@ def comparison_table(comparison: dict[str, Any]) -> str:
             f"{_pct(c['success'])} | {_pct(lo)} .. {_pct(hi)} | {delay} | {travel} | "
             f"{c['false_alarms_per_hour']:g} | {c['failures'] or '-'} |"
         )
-    return "\n".join(lines + _contrast_table(comparison.get("contrasts", [])))
+    return "\n".join(
+        lines
+        + _recognition_lines(comparison["combinations"])
+        + _contrast_table(comparison.get("contrasts", []))
+    )
+
+
+def _recognition_lines(combos: list[dict[str, Any]]) -> list[str]:
+    """For each catalogue pair (one whose trials were recognised or handed on): how many
+    trials it recognised as a known object and how many it called unknown."""
+    lines = []
+    for c in combos:
+        known = sum(c.get("recognised_as", {}).values())
+        unknown = c.get("unknown", 0)
+        if known or unknown:
+            lines.append(
+                f"{c['planner']}:{c['detector']}: {known} trials recognised as a known object, "
+                f"{unknown} called unknown (handed on), of {c['trials']}"
+            )
+    return ["", *lines] if lines else []
 
 
 def _contrast_table(contrasts: list[dict[str, Any]]) -> list[str]:

@@ -70,6 +70,8 @@ class _TrialWatcher:
         phase = data.get("phase") if kind == "phase" else None
         if kind == "plan":
             seen["increments_pa"] = tuple(data.get("increments_pa", ()))
+            plans = data.get("objects") or [{}]
+            seen["rule"] = plans[0].get("rule")
         elif phase == "approach":
             self._approach(data)
         elif phase == "hold" and self.t.config.coast_settled_hold:
@@ -336,6 +338,7 @@ def _planned(seen: dict[str, Any], t: _Trial) -> dict[str, Any]:
         increments_pa=seen.get("increments_pa", ()),
         cog=cog,
         theta=theta,
+        rule=seen.get("rule"),
         opening_m=t.robot.max_opening_m,
         contact_detected=seen.get("detected", False),
         cog_outside_object_mm=seen.get("cog_outside_mm"),

@@ -90,6 +90,9 @@ class TrialResult:
     cog: tuple[float, float] | None = None
     #: Planned direction of grasp, radians, or None.
     theta: float | None = None
+    #: The rule of the first plan (the planner's words: ``"catalogue NAME ..."`` for a known
+    #: object of the catalogue planner, ``"unknown -> ..."`` for one it handed on), or None.
+    rule: str | None = None
     #: Jaw opening during the approach, metres.
     opening_m: float = 0.0
     #: The pad sensed the fingers (filtered increment above t_g) during the descent.
@@ -132,6 +135,7 @@ class TrialResult:
             "increments_pa": [round(v, 2) for v in self.increments_pa],
             "cog": None if self.cog is None else [round(v, r) for v in self.cog],
             "theta": None if self.theta is None else round(self.theta, r),
+            "rule": self.rule,
             "opening_mm": round(self.opening_m * 1e3, 3),
             "contact_detected": self.contact_detected,
             "contact_delay_s": None
