@@ -36,9 +36,15 @@ from softpad.sim import (
     PneumaticParams,
     SensorBank,
     SensorParams,
+    TabulatedCharacteristic,
     World,
     default_characteristic,
 )
+
+try:  # the exact solve in compiled code (src/softpad/box/_fastsim.c; make ext / pip install)
+    import softpad.box._fastsim as _fastsim
+except ImportError:  # pragma: no cover - no C compiler: the NumPy reference alone
+    _fastsim = None  # type: ignore[assignment]
 
 #: (inflation valve open, deflation valve open) for each command.
 _VALVE_OPEN = {
@@ -62,6 +68,71 @@ def _check_args(n_modules: int, channels: int, sample_rate_hz: float, seed: int)
         raise InputError(f"seed must be an integer >= 0, got {seed!r}") from None
     if s < 0:
         raise InputError(f"seed must be >= 0, got {seed!r}")
+
+
+class CompiledChambers(ChamberBank):
+    """The gas physics with its exact pressure solve and module heights in compiled code.
+
+    The same bits as :class:`~softpad.sim.ChamberBank` (the reference; tested on random valve
+    schedules): the compiled kernel (:mod:`softpad.box._fastsim`) runs Newton's method with the
+    tabulated characteristic's interpolation along the pressure, the load columns taken from
+    the characteristic's own cache. Any other characteristic, a solve that does not converge
+    in Newton's six steps or an input that is not finite runs the NumPy reference.
+    """
+
+    def __init__(
+        self,
+        n_channels: int,
+        n_modules: int,
+        characteristic: ModuleCharacteristic,
+        params: PneumaticParams | None = None,
+    ) -> None:
+        super().__init__(n_channels, n_modules, characteristic, params)
+        tab = characteristic if isinstance(characteristic, TabulatedCharacteristic) else None
+        self._tab = tab if _fastsim is not None and tab is not None else None
+
+    def _columns(
+        self, which: str
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64] | None]:
+        """The table's columns at the current loads, their slopes along the pressure and the
+        pressure a load beyond the table takes off: the cache the reference fills
+        (``TabulatedCharacteristic._along_pressure``), filled the same way."""
+        tab = self._tab
+        assert tab is not None
+        f = self.loads_n
+        key = f.tobytes()
+        entry = tab._cache.get(which)
+        if entry is None or entry[0] != key:
+            entry = tab._cache[which] = tab._load_columns(which, f, key)
+        return entry[1], entry[2], entry[3]
+
+    def _solve(self, p: NDArray[np.float64]) -> NDArray[np.float64]:
+        tab = self._tab
+        if tab is None or not self.loads_n.shape == p.shape == (self.n_modules,):
+            return super()._solve(p)
+        cols, slopes, drop = self._columns("volume")
+        out, dn_dp = np.empty_like(p), np.empty_like(p)
+        creep = self._creep if self._creeping else None
+        par = self.params
+        amount = np.ascontiguousarray(self._amount, dtype=float)
+        if _fastsim.solve(
+            p, amount, cols, slopes, tab.pressure_pa, drop, creep,
+            par.atmosphere_pa, par.tubing_volume_m3, out, dn_dp,
+        ):  # fmt: skip
+            self._dn_dp = dn_dp
+            return out
+        return super()._solve(p)
+
+    def heights_m(self) -> NDArray[np.float64]:
+        tab = self._tab
+        p = self.pressure_pa[: self.n_modules]
+        if tab is None or self.loads_n.shape != p.shape:
+            return super().heights_m()
+        cols, slopes, drop = self._columns("height")
+        out = np.empty_like(p)
+        if _fastsim.interp(p, cols, slopes, tab.pressure_pa, drop, out):
+            return out
+        return super().heights_m()
 
 
 class SimBox(Box):
@@ -126,7 +197,7 @@ class SimBox(Box):
         self.pneumatics = pneumatics or PneumaticParams()
         self.sensor_params = sensor or SensorParams()
         rng = np.random.default_rng(self.seed)
-        self.chambers = ChamberBank(channels, n_mod, self.characteristic, self.pneumatics)
+        self.chambers = CompiledChambers(channels, n_mod, self.characteristic, self.pneumatics)
         if initial_pressure_pa:
             self._start_inflated(float(initial_pressure_pa))
         self.sensors = SensorBank(channels, self._dt, self.sensor_params, rng)

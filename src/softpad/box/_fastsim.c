@@ -1,0 +1,247 @@
+/* The simulated box's exact pressure solve in compiled code (issue 50, item 4).
+ *
+ * The same arithmetic, in the same order, as the NumPy reference in softpad.sim._pneumatics
+ * (ChamberBank._solve, its first loop: Newton's method from the previous pressure, at most six
+ * steps) with the tabulated characteristic's interpolation along the pressure
+ * (softpad.sim._characteristic.TabulatedCharacteristic._along_pressure, the load columns
+ * cached by the caller): every operation is one IEEE-754 double operation (+, -, *, /, fabs,
+ * comparisons), which NumPy's element-wise loops compute identically, so the results are the
+ * same bits (tests/box/test_fastsim.py checks them). Built with -ffp-contract=off: no fused
+ * multiply-add may merge two roundings into one.
+ *
+ * No NumPy headers: arrays come in through the buffer protocol (float64; the 1-D ones
+ * C-contiguous, the tables (pressures x modules) with any strides), and results are written
+ * into arrays the caller allocated.
+ */
+#define PY_SSIZE_T_CLEAN
+#include <Python.h>
+
+#include <math.h>
+#include <string.h>
+
+typedef struct {
+    Py_buffer view;
+    int held;
+} Buf;
+
+/* Take a C-contiguous float64 buffer of exactly n elements (n < 0: any length); None when
+ * allow_none. Returns 0, or -1 with an exception set. */
+static int take(PyObject *obj, Buf *b, Py_ssize_t n, int writable, int allow_none,
+                const char *what)
+{
+    b->held = 0;
+    if (obj == Py_None && allow_none)
+        return 0;
+    int flags = PyBUF_C_CONTIGUOUS | PyBUF_FORMAT | (writable ? PyBUF_WRITABLE : 0);
+    if (PyObject_GetBuffer(obj, &b->view, flags) < 0)
+        return -1;
+    b->held = 1;
+    const char *f = b->view.format;
+    if (b->view.itemsize != 8 || f == NULL || !(f[0] == 'd' || (f[0] == '<' && f[1] == 'd'))) {
+        PyErr_Format(PyExc_TypeError, "%s must be a float64 array", what);
+        return -1;
+    }
+    if (n >= 0 && b->view.len != n * 8) {
+        PyErr_Format(PyExc_ValueError, "%s must have %zd elements, got %zd", what, n,
+                     b->view.len / 8);
+        return -1;
+    }
+    return 0;
+}
+
+/* Take a 2-D float64 buffer of shape (rows, cols), any strides (multiples of 8 bytes). */
+static int take2(PyObject *obj, Buf *b, Py_ssize_t rows, Py_ssize_t cols, const char *what)
+{
+    b->held = 0;
+    if (PyObject_GetBuffer(obj, &b->view, PyBUF_STRIDES | PyBUF_FORMAT) < 0)
+        return -1;
+    b->held = 1;
+    const char *f = b->view.format;
+    Py_buffer *v = &b->view;
+    if (v->itemsize != 8 || f == NULL || !(f[0] == 'd' || (f[0] == '<' && f[1] == 'd'))) {
+        PyErr_Format(PyExc_TypeError, "%s must be a float64 array", what);
+        return -1;
+    }
+    if (v->ndim != 2 || v->shape[0] != rows || v->shape[1] != cols || v->strides[0] % 8 ||
+        v->strides[1] % 8) {
+        PyErr_Format(PyExc_ValueError, "%s must have shape (%zd, %zd)", what, rows, cols);
+        return -1;
+    }
+    return 0;
+}
+
+static void release(Buf *bufs, int k)
+{
+    for (int i = 0; i < k; i++)
+        if (bufs[i].held)
+            PyBuffer_Release(&bufs[i].view);
+}
+
+static double *data(Buf *b) { return b->held ? (double *)b->view.buf : NULL; }
+
+/* Number of grid values <= x (numpy.searchsorted(grid, x, side="right") for finite x). */
+static Py_ssize_t count_le(const double *grid, Py_ssize_t n, double x)
+{
+    Py_ssize_t lo = 0, hi = n;
+    while (lo < hi) {
+        Py_ssize_t mid = lo + ((hi - lo) >> 1);
+        if (grid[mid] <= x)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+typedef struct {
+    const double *cols, *slopes, *grid, *drop, *creep;
+    Py_ssize_t m, np;
+    Py_ssize_t c0, c1, s0, s1; /* strides of cols and slopes, in elements */
+} Table;
+
+static Table table(Buf *cols, Buf *slopes, Buf *grid, Buf *drop, Buf *creep, Py_ssize_t m)
+{
+    Table t = {data(cols), data(slopes), data(grid), data(drop), data(creep), m,
+               grid->view.len / 8,
+               cols->view.strides[0] / 8, cols->view.strides[1] / 8,
+               slopes->view.strides[0] / 8, slopes->view.strides[1] / 8};
+    return t;
+}
+
+/* V (creep added where given) and dV/dp of module j at gauge pressure p. */
+static void volume_and_slope(const Table *t, Py_ssize_t j, double p, double *v, double *dv)
+{
+    if (t->drop)
+        p = p - t->drop[j];
+    double g0 = t->grid[0];
+    double pc = p >= g0 ? p : g0; /* finite inputs: numpy.maximum's value */
+    Py_ssize_t i = count_le(t->grid, t->np, pc) - 1;
+    if (i > t->np - 2)
+        i = t->np - 2;
+    double slope = t->slopes[i * t->s0 + j * t->s1];
+    double value = t->cols[i * t->c0 + j * t->c1] + slope * (pc - t->grid[i]);
+    *v = t->creep ? value + t->creep[j] : value;
+    *dv = p >= g0 ? slope : 0.0;
+}
+
+static int finite_all(const double *x, Py_ssize_t n)
+{
+    for (Py_ssize_t i = 0; i < n; i++)
+        if (!isfinite(x[i]))
+            return 0;
+    return 1;
+}
+
+/* solve(p, amount, cols, slopes, grid, drop, creep, patm, vt, p_out, dn_dp_out) -> bool */
+static PyObject *solve(PyObject *self, PyObject *args)
+{
+    PyObject *o[9];
+    double patm, vt;
+    if (!PyArg_ParseTuple(args, "OOOOOOOddOO", &o[0], &o[1], &o[2], &o[3], &o[4], &o[5], &o[6],
+                          &patm, &vt, &o[7], &o[8]))
+        return NULL;
+    Buf b[9];
+    memset(b, 0, sizeof b);
+    PyObject *result = NULL;
+    if (take(o[0], &b[0], -1, 0, 0, "p") < 0)
+        goto done;
+    Py_ssize_t m = b[0].view.len / 8;
+    if (take(o[1], &b[1], m, 0, 0, "amount") < 0 || take(o[4], &b[4], -1, 0, 0, "grid") < 0)
+        goto done;
+    Py_ssize_t np_ = b[4].view.len / 8;
+    if (np_ < 2) {
+        PyErr_SetString(PyExc_ValueError, "grid must have at least 2 pressures");
+        goto done;
+    }
+    if (take2(o[2], &b[2], np_, m, "cols") < 0 || take2(o[3], &b[3], np_ - 1, m, "slopes") < 0 ||
+        take(o[5], &b[5], m, 0, 1, "drop") < 0 || take(o[6], &b[6], m, 0, 1, "creep") < 0 ||
+        take(o[7], &b[7], m, 1, 0, "p_out") < 0 || take(o[8], &b[8], m, 1, 0, "dn_dp_out") < 0)
+        goto done;
+    Table t = table(&b[2], &b[3], &b[4], &b[5], &b[6], m);
+    const double *p0 = data(&b[0]), *n = data(&b[1]);
+    double *p = data(&b[7]), *dn = data(&b[8]);
+    int ok = finite_all(p0, m) && finite_all(n, m) && isfinite(patm) && isfinite(vt) &&
+             (t.drop == NULL || finite_all(t.drop, m)) && (t.creep == NULL || finite_all(t.creep, m));
+    int converged = 0;
+    if (ok) {
+        memcpy(p, p0, m * sizeof(double));
+        for (int it = 0; it < 6 && !converged; it++) {
+            double biggest = 0.0;
+            int finite = 1;
+            for (Py_ssize_t j = 0; j < m; j++) {
+                double v, dv;
+                volume_and_slope(&t, j, p[j], &v, &dv);
+                double d = (v + vt) + (patm + p[j]) * dv;
+                double step = ((patm + p[j]) * (v + vt) - n[j]) / d;
+                p[j] = p[j] - step;
+                dn[j] = d;
+                double a = fabs(step);
+                if (!isfinite(a))
+                    finite = 0;
+                else if (a > biggest)
+                    biggest = a;
+            }
+            if (!finite)
+                break; /* NaN or infinity: left to the reference */
+            converged = biggest < 1e-2;
+        }
+    }
+    result = PyBool_FromLong(converged);
+done:
+    release(b, 9);
+    return result;
+}
+
+/* interp(p, cols, slopes, grid, drop, out): the value of the tabulated column at each p. */
+static PyObject *interp(PyObject *self, PyObject *args)
+{
+    PyObject *o[6];
+    if (!PyArg_ParseTuple(args, "OOOOOO", &o[0], &o[1], &o[2], &o[3], &o[4], &o[5]))
+        return NULL;
+    Buf b[6];
+    memset(b, 0, sizeof b);
+    PyObject *result = NULL;
+    if (take(o[0], &b[0], -1, 0, 0, "p") < 0 || take(o[3], &b[3], -1, 0, 0, "grid") < 0)
+        goto done;
+    Py_ssize_t m = b[0].view.len / 8, np_ = b[3].view.len / 8;
+    if (np_ < 2) {
+        PyErr_SetString(PyExc_ValueError, "grid must have at least 2 pressures");
+        goto done;
+    }
+    if (take2(o[1], &b[1], np_, m, "cols") < 0 || take2(o[2], &b[2], np_ - 1, m, "slopes") < 0 ||
+        take(o[4], &b[4], m, 0, 1, "drop") < 0 || take(o[5], &b[5], m, 1, 0, "out") < 0)
+        goto done;
+    Buf none = {.held = 0};
+    Table t = table(&b[1], &b[2], &b[3], &b[4], &none, m);
+    const double *p = data(&b[0]);
+    double *out = data(&b[5]);
+    int ok = finite_all(p, m) && (t.drop == NULL || finite_all(t.drop, m));
+    if (ok)
+        for (Py_ssize_t j = 0; j < m; j++) {
+            double dv;
+            volume_and_slope(&t, j, p[j], &out[j], &dv);
+        }
+    result = PyBool_FromLong(ok);
+done:
+    release(b, 6);
+    return result;
+}
+
+static PyMethodDef methods[] = {
+    {"solve", solve, METH_VARARGS,
+     "solve(p, amount, cols, slopes, grid, drop, creep, patm, vt, p_out, dn_dp_out) -> bool: "
+     "Newton's method (at most 6 steps) into p_out and dn_dp_out; False: not converged or not "
+     "finite (the caller then runs the reference)."},
+    {"interp", interp, METH_VARARGS,
+     "interp(p, cols, slopes, grid, drop, out) -> bool: the table's value at each pressure "
+     "into out; False: an input was not finite (out not written)."},
+    {NULL, NULL, 0, NULL},
+};
+
+static struct PyModuleDef module = {
+    PyModuleDef_HEAD_INIT, "_fastsim",
+    "The simulated box's exact pressure solve in compiled code (same bits as NumPy).", -1,
+    methods,
+};
+
+PyMODINIT_FUNC PyInit__fastsim(void) { return PyModule_Create(&module); }
