@@ -19,6 +19,9 @@
 #include <math.h>
 #include <string.h>
 
+/* softpad.sim._pneumatics.SETTLED_PA: a channel this close to its equilibrium is settled. */
+#define SETTLED_PA 1e-3
+
 typedef struct {
     Py_buffer view;
     int held;
@@ -227,6 +230,125 @@ done:
     return result;
 }
 
+/* g(x) = x / sqrt(|x| + p_lam): the orifice law's pressure dependence. */
+static double orifice(double x, double lam_pa) { return x / sqrt(fabs(x) + lam_pa); }
+
+/* relax(p, eq, flowing, a_in, a_out, dn_dp, supply, laminar, k, mode, lam_out, p_eq_out)
+ * -> bool: ChamberBank._relaxation (mode 1: no outflow, 2: no inflow, 0: both; flowing None:
+ * every channel flows). False: an input was not finite (nothing written). */
+static PyObject *relax(PyObject *self, PyObject *args)
+{
+    PyObject *o[8];
+    double supply, lam_pa, k;
+    int mode;
+    if (!PyArg_ParseTuple(args, "OOOOOOdddiOO", &o[0], &o[1], &o[2], &o[3], &o[4], &o[5], &supply,
+                          &lam_pa, &k, &mode, &o[6], &o[7]))
+        return NULL;
+    Buf b[8];
+    memset(b, 0, sizeof b);
+    PyObject *result = NULL;
+    if (take(o[0], &b[0], -1, 0, 0, "p") < 0)
+        goto done;
+    Py_ssize_t m = b[0].view.len / 8;
+    if (take(o[1], &b[1], m, 0, 0, "eq") < 0 || take(o[3], &b[3], m, 0, 0, "a_in") < 0 ||
+        take(o[4], &b[4], m, 0, 0, "a_out") < 0 || take(o[5], &b[5], m, 0, 0, "dn_dp") < 0 ||
+        take(o[6], &b[6], m, 1, 0, "lam_out") < 0 || take(o[7], &b[7], m, 1, 0, "p_eq_out") < 0)
+        goto done;
+    const unsigned char *flowing = NULL;
+    if (o[2] != Py_None) { /* a bool array */
+        if (PyObject_GetBuffer(o[2], &b[2].view, PyBUF_C_CONTIGUOUS) < 0)
+            goto done;
+        b[2].held = 1;
+        if (b[2].view.len != m || b[2].view.itemsize != 1) {
+            PyErr_SetString(PyExc_ValueError, "flowing must be a bool array of the modules");
+            goto done;
+        }
+        flowing = (const unsigned char *)b[2].view.buf;
+    }
+    const double *p = data(&b[0]), *eq = data(&b[1]), *a_in = data(&b[3]), *a_out = data(&b[4]);
+    const double *dn = data(&b[5]);
+    double *lam = data(&b[6]), *p_eq = data(&b[7]);
+    int ok = finite_all(p, m) && finite_all(eq, m) && finite_all(a_in, m) &&
+             finite_all(a_out, m) && finite_all(dn, m) && isfinite(supply) && isfinite(k);
+    for (Py_ssize_t j = 0; ok && j < m; j++) {
+        double pe = (flowing == NULL || flowing[j]) ? eq[j] : p[j];
+        double d = p[j] - pe;
+        double flow;
+        if (mode == 1)
+            flow = k * (a_in[j] * orifice(supply - p[j], lam_pa));
+        else if (mode == 2)
+            flow = k * -(a_out[j] * orifice(p[j], lam_pa));
+        else
+            flow = k * (a_in[j] * orifice(supply - p[j], lam_pa) - a_out[j] * orifice(p[j], lam_pa));
+        int far = fabs(d) > SETTLED_PA;
+        double r = -flow / (far ? d : 1.0) / dn[j];
+        r = r >= 0.0 ? r : 0.0; /* numpy.maximum(r, 0.0) for a number r: r (or a zero) */
+        lam[j] = far ? r : 0.0;
+        p_eq[j] = pe;
+    }
+    result = PyBool_FromLong(ok);
+done:
+    release(b, 8);
+    return result;
+}
+
+/* ramp(p0, p_eq, decay, lam, resolve_pa, path) -> rows: the stretch's true pressures
+ * p_eq + (p0 - p_eq) decay (decay = exp(-lam t), rows of steps, computed by NumPy: its exp
+ * is not the C library's) into the first m columns of path, and the rows to keep: as
+ * _start_stretch, the binary search of resolve_pa in the largest move of a rising channel
+ * (lam > 0) from p0 along the rows (at least one row; all of them when there is one). */
+static PyObject *ramp(PyObject *self, PyObject *args)
+{
+    PyObject *o[5];
+    double resolve_pa;
+    if (!PyArg_ParseTuple(args, "OOOOdO", &o[0], &o[1], &o[2], &o[3], &resolve_pa, &o[4]))
+        return NULL;
+    Buf b[5];
+    memset(b, 0, sizeof b);
+    PyObject *result = NULL;
+    if (take(o[0], &b[0], -1, 0, 0, "p0") < 0 || take(o[4], &b[4], -1, 1, 0, "path") < 0)
+        goto done;
+    Py_ssize_t m = b[0].view.len / 8;
+    if (take(o[1], &b[1], m, 0, 0, "p_eq") < 0 || take(o[3], &b[3], m, 0, 0, "lam") < 0 ||
+        take(o[2], &b[2], -1, 0, 0, "decay") < 0)
+        goto done;
+    Py_ssize_t rows = b[2].view.len / 8 / (m ? m : 1);
+    Py_buffer *pv = &b[4].view;
+    if (m == 0 || rows < 1 || b[2].view.len != rows * m * 8 || pv->ndim != 2 ||
+        pv->shape[0] < rows || pv->shape[1] < m) {
+        PyErr_SetString(PyExc_ValueError, "ramp: decay must be (rows, m), path (>= rows, >= m)");
+        goto done;
+    }
+    const double *p0 = data(&b[0]), *pe = data(&b[1]), *dec = data(&b[2]), *lam = data(&b[3]);
+    double *path = data(&b[4]);
+    Py_ssize_t width = pv->shape[1], keep = rows;
+    double *moved = PyMem_Malloc(rows * sizeof(double));
+    if (moved == NULL) {
+        PyErr_NoMemory();
+        goto done;
+    }
+    for (Py_ssize_t r = 0; r < rows; r++) {
+        double most = 0.0;
+        for (Py_ssize_t j = 0; j < m; j++) {
+            double a = pe[j] + (p0[j] - pe[j]) * dec[r * m + j];
+            path[r * width + j] = a;
+            double d = fabs(a - p0[j]);
+            if (lam[j] > 0 && d > most)
+                most = d;
+        }
+        moved[r] = most;
+    }
+    if (rows > 1) { /* numpy.searchsorted(moved, resolve_pa, side="right"), at least 1 */
+        keep = count_le(moved, rows, resolve_pa);
+        keep = keep > 1 ? keep : 1;
+    }
+    PyMem_Free(moved);
+    result = PyLong_FromSsize_t(keep);
+done:
+    release(b, 5);
+    return result;
+}
+
 static PyMethodDef methods[] = {
     {"solve", solve, METH_VARARGS,
      "solve(p, amount, cols, slopes, grid, drop, creep, patm, vt, p_out, dn_dp_out) -> bool: "
@@ -235,6 +357,12 @@ static PyMethodDef methods[] = {
     {"interp", interp, METH_VARARGS,
      "interp(p, cols, slopes, grid, drop, out) -> bool: the table's value at each pressure "
      "into out; False: an input was not finite (out not written)."},
+    {"relax", relax, METH_VARARGS,
+     "relax(p, eq, flowing, a_in, a_out, dn_dp, supply, laminar, k, mode, lam_out, p_eq_out) "
+     "-> bool: relaxation rates and equilibria of the channels (ChamberBank._relaxation)."},
+    {"ramp", ramp, METH_VARARGS,
+     "ramp(p0, p_eq, decay, lam, resolve_pa, path) -> rows: the stretch's pressures into path, "
+     "and how many rows it keeps."},
     {NULL, NULL, 0, NULL},
 };
 

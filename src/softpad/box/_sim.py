@@ -71,13 +71,16 @@ def _check_args(n_modules: int, channels: int, sample_rate_hz: float, seed: int)
 
 
 class CompiledChambers(ChamberBank):
-    """The gas physics with its exact pressure solve and module heights in compiled code.
+    """The gas physics with its exact pressure solve, the start of each stretch and the module
+    heights in compiled code.
 
     The same bits as :class:`~softpad.sim.ChamberBank` (the reference; tested on random valve
     schedules): the compiled kernel (:mod:`softpad.box._fastsim`) runs Newton's method with the
     tabulated characteristic's interpolation along the pressure, the load columns taken from
-    the characteristic's own cache. Any other characteristic, a solve that does not converge
-    in Newton's six steps or an input that is not finite runs the NumPy reference.
+    the characteristic's own cache, and the relaxation rates and pressures of each stretch.
+    Any other characteristic (for the solve and heights), a solve that does not converge in
+    Newton's six steps, a stiff or collapsed stretch start or an input that is not finite runs
+    the NumPy reference.
     """
 
     def __init__(
@@ -88,6 +91,8 @@ class CompiledChambers(ChamberBank):
         params: PneumaticParams | None = None,
     ) -> None:
         super().__init__(n_channels, n_modules, characteristic, params)
+        #: The compiled kernels (None: not built; the reference alone), fixed at construction.
+        self._kernel = _fastsim
         tab = characteristic if isinstance(characteristic, TabulatedCharacteristic) else None
         self._tab = tab if _fastsim is not None and tab is not None else None
 
@@ -115,13 +120,67 @@ class CompiledChambers(ChamberBank):
         creep = self._creep if self._creeping else None
         par = self.params
         amount = np.ascontiguousarray(self._amount, dtype=float)
-        if _fastsim.solve(
+        assert self._kernel is not None
+        if self._kernel.solve(
             p, amount, cols, slopes, tab.pressure_pa, drop, creep,
             par.atmosphere_pa, par.tubing_volume_m3, out, dn_dp,
         ):  # fmt: skip
             self._dn_dp = dn_dp
             return out
         return super()._solve(p)
+
+    def _relaxation(
+        self, p: NDArray[np.float64], supply_pa: float
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        kernel = self._kernel
+        if kernel is None:
+            return super()._relaxation(p, supply_pa)
+        mode = 1 if self._no_outflow else 2 if self._no_inflow else 0  # the reference's order
+        flowing = None if self._all_flowing else self._flowing
+        lam, p_eq = np.empty_like(p), np.empty_like(p)
+        par = self.params
+        if kernel.relax(
+            p, self._eq, flowing, self._a_in, self._a_out, self._dn_dp, supply_pa,
+            par.laminar_pa, self._k, mode, lam, p_eq,
+        ):  # fmt: skip
+            return lam, p_eq
+        return super()._relaxation(p, supply_pa)
+
+    def _start_stretch(
+        self,
+        dt_s: float,
+        inflate_open: NDArray[np.bool_],
+        deflate_open: NDArray[np.bool_],
+        supply_pa: float,
+        valve_key: object,
+    ) -> None:
+        """The reference's stretch (:meth:`ChamberBank._start_stretch`, which runs a stiff or
+        collapsed start) with its pressures written by the kernel; the decay ``exp(-lambda t)``
+        by NumPy (whose exp is not the C library's)."""
+        args = (dt_s, inflate_open, deflate_open, supply_pa, valve_key)
+        kernel = self._kernel
+        if kernel is None:
+            return super()._start_stretch(*args)
+        self._update_equilibrium(inflate_open, deflate_open, supply_pa, valve_key)
+        p0 = self._p_modules.copy()
+        lam, p_eq = self._relaxation(p0, supply_pa)
+        theta = self.relaxation_per_stretch
+        lam_max = float(np.maximum.reduce(lam))
+        collapsed = not np.minimum.reduce(p0) >= 0.0 and bool(
+            np.any((p0 < 0.0) & (p_eq > p0) & (lam > 0.0))
+        )
+        if lam_max * dt_s > theta or collapsed:
+            return super()._start_stretch(*args)
+        self._valve_key, self._supply, self._stretch_dt = valve_key, supply_pa, dt_s
+        steps = self._step_times(dt_s)
+        if lam_max * steps[-1, 0] > theta:
+            steps = steps[: max(1, int(theta / (lam_max * dt_s)))]
+        decay = np.exp(-lam * steps)
+        path = np.zeros((decay.shape[0], self.n_channels))
+        rows = kernel.ramp(p0, p_eq, decay, lam, self.resolve_pa, path)
+        self._path, self._pos, self._applied = path[:rows], 1, 0
+        self._p0, self._n0, self._c0, self._p_eq = p0, self._amount.copy(), self._dn_dp, p_eq
+        return None
 
     def heights_m(self) -> NDArray[np.float64]:
         tab = self._tab
@@ -130,7 +189,8 @@ class CompiledChambers(ChamberBank):
             return super().heights_m()
         cols, slopes, drop = self._columns("height")
         out = np.empty_like(p)
-        if _fastsim.interp(p, cols, slopes, tab.pressure_pa, drop, out):
+        assert self._kernel is not None
+        if self._kernel.interp(p, cols, slopes, tab.pressure_pa, drop, out):
             return out
         return super().heights_m()
 
