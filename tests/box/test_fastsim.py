@@ -42,7 +42,7 @@ def _schedule(seed: int, frames: int) -> dict[int, tuple[str, object]]:
     return events
 
 
-KERNELS = ("solve", "interp", "relax", "ramp")
+KERNELS = ("solve", "interp", "relax", "ramp", "crosses", "readings")
 
 
 def _counted(calls: dict[str, int], name: str) -> object:
@@ -69,8 +69,15 @@ def _run(box: SimBox, events: dict[int, tuple[str, object]], frames: int) -> lis
             box.world.press(*ev[1])  # type: ignore[misc]
         frame = box.read()
         heights = box.module_heights_m
+        # the lowest and highest reading the guard is given, as numbers: the sign of a zero
+        # among the readings' zeros (unconnected ports) is NumPy's reduction order's
+        span = box.sensors.span
+        spans = b"" if span is None else (np.array(span[1:]) + 0.0).tobytes()  # -0.0 -> 0.0
         out.append(
-            frame.pressures_pa.tobytes() + box.true_pressures_pa.tobytes() + heights.tobytes()
+            frame.pressures_pa.tobytes()
+            + box.true_pressures_pa.tobytes()
+            + heights.tobytes()
+            + spans
         )
     return out
 
@@ -151,6 +158,32 @@ def test_the_kernel_on_random_states_including_fallbacks() -> None:
     assert 0 < declined < 200  # both paths exercised
 
 
+def test_crossings_and_readings_on_random_arrays() -> None:
+    """The crossing test and the readings (with their rows' spans) against NumPy's."""
+    rng = np.random.default_rng(3)
+    hits = 0
+    for _ in range(2000):
+        p, start, eq = rng.normal(0, 50, (3, 6)).round(rng.integers(0, 3))
+        want = bool(((p - eq) * (start - eq) < 0).any())
+        hits += want
+        assert fastsim.crosses(p, start, eq) is want
+    assert 100 < hits < 1900
+    for q, lo, hi in ((2.44, -2e3, 10e3), (0.0, -2e3, 10e3), (2.44, -5.0, 7.0)):
+        true = rng.normal(0, 30, (40, 8))
+        noise = rng.normal(0, 3, (60, 8))[10:50]
+        out = np.empty((40, 8))
+        lows, highs = fastsim.readings(true, noise, q, 1 / q if q else 0.0, lo, hi, out)
+        x = true + noise
+        if q:
+            x = np.rint(x * (1 / q)) * q
+        ref = np.minimum(np.maximum(x, lo), hi)
+        assert out.tobytes() == ref.tobytes()
+        assert lows == ref.min(axis=1).tolist() and highs == ref.max(axis=1).tolist()
+    assert fastsim.readings(true, noise, 2.44, 1 / 2.44, 0.0, 1e4, out) is None  # a zero bound
+    true[3, 2] = np.nan
+    assert fastsim.readings(true, noise, 2.44, 1 / 2.44, -2e3, 1e4, out) is None
+
+
 def test_bad_arrays_are_refused() -> None:
     out = np.empty(2)
     with pytest.raises(TypeError, match="float64"):
@@ -162,3 +195,9 @@ def test_bad_arrays_are_refused() -> None:
     assert not fastsim.interp(
         np.array([np.nan, 0.0]), np.zeros((2, 2)), np.zeros((1, 2)), np.arange(2.0), None, out
     )
+
+
+def test_the_span_rows_agree() -> None:
+    from softpad.sim import _sensor
+
+    assert sim_module.SPAN_ROWS == _sensor.SPAN_ROWS

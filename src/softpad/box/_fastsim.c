@@ -52,7 +52,7 @@ static int take(PyObject *obj, Buf *b, Py_ssize_t n, int writable, int allow_non
     return 0;
 }
 
-/* Take a 2-D float64 buffer of shape (rows, cols), any strides (multiples of 8 bytes). */
+/* Take a 2-D float64 buffer of shape (rows, cols) (-1: any), any strides (multiples of 8). */
 static int take2(PyObject *obj, Buf *b, Py_ssize_t rows, Py_ssize_t cols, const char *what)
 {
     b->held = 0;
@@ -65,7 +65,8 @@ static int take2(PyObject *obj, Buf *b, Py_ssize_t rows, Py_ssize_t cols, const 
         PyErr_Format(PyExc_TypeError, "%s must be a float64 array", what);
         return -1;
     }
-    if (v->ndim != 2 || v->shape[0] != rows || v->shape[1] != cols || v->strides[0] % 8 ||
+    if (v->ndim != 2 || (rows >= 0 && v->shape[0] != rows) || (cols >= 0 && v->shape[1] != cols) ||
+        v->strides[0] % 8 ||
         v->strides[1] % 8) {
         PyErr_Format(PyExc_ValueError, "%s must have shape (%zd, %zd)", what, rows, cols);
         return -1;
@@ -349,6 +350,102 @@ done:
     return result;
 }
 
+/* crosses(p, p_start, p_eq) -> bool: whether any channel's (p - p_eq) (p_start - p_eq) < 0
+ * (ChamberBank._no_crossing's test: the solve landed past the stretch's equilibrium). */
+static PyObject *crosses(PyObject *self, PyObject *args)
+{
+    PyObject *o[3];
+    if (!PyArg_ParseTuple(args, "OOO", &o[0], &o[1], &o[2]))
+        return NULL;
+    Buf b[3];
+    memset(b, 0, sizeof b);
+    PyObject *result = NULL;
+    if (take(o[0], &b[0], -1, 0, 0, "p") < 0)
+        goto done;
+    Py_ssize_t m = b[0].view.len / 8;
+    if (take(o[1], &b[1], m, 0, 0, "p_start") < 0 || take(o[2], &b[2], m, 0, 0, "p_eq") < 0)
+        goto done;
+    const double *p = data(&b[0]), *ps = data(&b[1]), *pe = data(&b[2]);
+    int any = 0;
+    for (Py_ssize_t j = 0; j < m; j++)
+        any |= (p[j] - pe[j]) * (ps[j] - pe[j]) < 0;
+    result = PyBool_FromLong(any);
+done:
+    release(b, 3);
+    return result;
+}
+
+/* readings(true, noise, q, inv_q, lo, hi, out) -> (lows, highs) or None: the sensors'
+ * readings of rows of true pressures with their rows of noise, as SensorBank._quantise
+ * (true + noise, times 1/q, rounded half to even, times q, clipped to [lo, hi]; q = 0: not
+ * quantised) into out, with each row's lowest and highest reading as lists of floats (its
+ * _row_spans: the same numbers; a zero's sign may differ, which no comparison sees). None
+ * where a value is not finite or a bound is zero (out is then not to be used). */
+static PyObject *readings(PyObject *self, PyObject *args)
+{
+    PyObject *o[3];
+    double q, inv_q, lo, hi;
+    if (!PyArg_ParseTuple(args, "OOddddO", &o[0], &o[1], &q, &inv_q, &lo, &hi, &o[2]))
+        return NULL;
+    Buf b[3];
+    memset(b, 0, sizeof b);
+    PyObject *result = NULL, *lows = NULL, *highs = NULL;
+    if (take2(o[0], &b[0], -1, -1, "true") < 0)
+        goto done;
+    Py_ssize_t rows = b[0].view.shape[0], n = b[0].view.shape[1];
+    if (take2(o[1], &b[1], rows, n, "noise") < 0 || take(o[2], &b[2], rows * n, 1, 0, "out") < 0)
+        goto done;
+    Py_ssize_t t0 = b[0].view.strides[0] / 8, t1 = b[0].view.strides[1] / 8;
+    Py_ssize_t n0 = b[1].view.strides[0] / 8, n1 = b[1].view.strides[1] / 8;
+    const double *tp = data(&b[0]), *np_ = data(&b[1]);
+    double *out = data(&b[2]);
+    /* a bound at zero: numpy's clip may keep either zero of a -0.0 reading; left to it */
+    if (!isfinite(q) || !isfinite(inv_q) || isnan(lo) || isnan(hi) || lo == 0.0 || hi == 0.0 ||
+        n == 0)
+        goto none;
+    lows = PyList_New(rows);
+    highs = PyList_New(rows);
+    if (lows == NULL || highs == NULL)
+        goto done;
+    for (Py_ssize_t r = 0; r < rows; r++) {
+        double least = 0.0, most = 0.0;
+        for (Py_ssize_t j = 0; j < n; j++) {
+            double x = tp[r * t0 + j * t1] + np_[r * n0 + j * n1];
+            if (q != 0.0) {
+                x = x * inv_q;
+                x = nearbyint(x);
+                x *= q;
+            }
+            if (!isfinite(x))
+                goto none;
+            x = x >= lo ? x : lo;
+            x = x <= hi ? x : hi;
+            out[r * n + j] = x;
+            if (j == 0 || x < least)
+                least = x;
+            if (j == 0 || x > most)
+                most = x;
+        }
+        PyObject *a = PyFloat_FromDouble(least), *z = PyFloat_FromDouble(most);
+        if (a == NULL || z == NULL) {
+            Py_XDECREF(a);
+            Py_XDECREF(z);
+            goto done;
+        }
+        PyList_SET_ITEM(lows, r, a);
+        PyList_SET_ITEM(highs, r, z);
+    }
+    result = PyTuple_Pack(2, lows, highs);
+    goto done;
+none:
+    result = Py_NewRef(Py_None);
+done:
+    Py_XDECREF(lows);
+    Py_XDECREF(highs);
+    release(b, 3);
+    return result;
+}
+
 static PyMethodDef methods[] = {
     {"solve", solve, METH_VARARGS,
      "solve(p, amount, cols, slopes, grid, drop, creep, patm, vt, p_out, dn_dp_out) -> bool: "
@@ -363,6 +460,11 @@ static PyMethodDef methods[] = {
     {"ramp", ramp, METH_VARARGS,
      "ramp(p0, p_eq, decay, lam, resolve_pa, path) -> rows: the stretch's pressures into path, "
      "and how many rows it keeps."},
+    {"crosses", crosses, METH_VARARGS,
+     "crosses(p, p_start, p_eq) -> bool: whether a solve landed past its equilibrium."},
+    {"readings", readings, METH_VARARGS,
+     "readings(true, noise, q, inv_q, lo, hi, out) -> (lows, highs) or None: quantised, "
+     "clipped readings into out and each row's lowest and highest."},
     {NULL, NULL, 0, NULL},
 };
 

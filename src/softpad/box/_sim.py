@@ -46,6 +46,10 @@ try:  # the exact solve in compiled code (src/softpad/box/_fastsim.c; make ext /
 except ImportError:  # pragma: no cover - no C compiler: the NumPy reference alone
     _fastsim = None  # type: ignore[assignment]
 
+#: The shortest ramp whose rows' spans the sensors compute (``softpad.sim._sensor.SPAN_ROWS``;
+#: tests/box/test_fastsim.py checks they agree).
+SPAN_ROWS = 8
+
 #: (inflation valve open, deflation valve open) for each command.
 _VALVE_OPEN = {
     ValveCommand.CLOSED: (False, False),
@@ -146,6 +150,13 @@ class CompiledChambers(ChamberBank):
             return lam, p_eq
         return super()._relaxation(p, supply_pa)
 
+    def _no_crossing(
+        self, p: NDArray[np.float64], p_start: NDArray[np.float64], p_eq: NDArray[np.float64]
+    ) -> NDArray[np.float64]:
+        if self._kernel is not None and not self._kernel.crosses(p, p_start, p_eq):
+            return p  # the reference's test, without its three array operations
+        return super()._no_crossing(p, p_start, p_eq)
+
     def _start_stretch(
         self,
         dt_s: float,
@@ -193,6 +204,59 @@ class CompiledChambers(ChamberBank):
         if self._kernel.interp(p, cols, slopes, tab.pressure_pa, drop, out):
             return out
         return super().heights_m()
+
+
+class CompiledSensors(SensorBank):
+    """The sensors with the readings of each stretch of the gas physics computed in compiled
+    code (:func:`softpad.box._fastsim.readings`): the same readings as
+    :class:`~softpad.sim.SensorBank` (the reference), which computes them where a value is
+    not finite or a range bound is zero."""
+
+    def __init__(
+        self,
+        n_channels: int,
+        dt_s: float,
+        params: SensorParams,
+        rng: np.random.Generator,
+    ) -> None:
+        super().__init__(n_channels, dt_s, params, rng)
+        self._kernel = _fastsim
+
+    def sample_path(
+        self, path: NDArray[np.float64], row: int, key: int, supply_pa: float
+    ) -> tuple[NDArray[np.float64], float]:
+        """:meth:`SensorBank.sample_path`, line for line, with the ramp's readings and their
+        rows' spans from the kernel."""
+        if self._kernel is None:
+            return super().sample_path(path, row, key, supply_pa)
+        hit = self.next_on_ramp(key, supply_pa)
+        if hit is not None:
+            return hit
+        if self._i >= self.block:
+            self._refill()
+        i = self._i
+        k = min(path.shape[0] - row, self.block - i)
+        ramp = np.empty((k, path.shape[1]))
+        spans = self._kernel.readings(
+            path[row : row + k], self._noise[i : i + k], self._q, self._inv_q, self._lo,
+            self._hi, ramp,
+        )  # fmt: skip
+        if spans is None:
+            return super().sample_path(path, row, key, supply_pa)
+        self._i = i + 1
+        self._same = 0
+        self._static = None
+        ramp.flags.writeable = False
+        self._ramp, self._ramp_key, self._ramp_start = ramp, key, i
+        self._ramp_end = i + k
+        self._ramp_next = i + 1
+        reading = ramp[0]
+        if k >= SPAN_ROWS:
+            self._ramp_lo, self._ramp_hi = spans
+            self.span = (reading, self._ramp_lo[0], self._ramp_hi[0])
+        else:  # as the reference: too short a ramp to pay for the reductions
+            self._ramp_lo, self.span = None, None
+        return reading, supply_pa + self._supply_noise[i]
 
 
 class SimBox(Box):
@@ -260,7 +324,7 @@ class SimBox(Box):
         self.chambers = CompiledChambers(channels, n_mod, self.characteristic, self.pneumatics)
         if initial_pressure_pa:
             self._start_inflated(float(initial_pressure_pa))
-        self.sensors = SensorBank(channels, self._dt, self.sensor_params, rng)
+        self.sensors = CompiledSensors(channels, self._dt, self.sensor_params, rng)
         self._setup_disturbances(disturbances, rng)
         self._n_mod = n_mod
         self._valve_count = 0
