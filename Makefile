@@ -24,7 +24,9 @@ ext: venv
 	@if command -v cc >/dev/null; then \
 	    cc -O2 -std=c11 -Wall -shared -fPIC -I"$$($(call PYINFO,INCLUDEPY))" src/softpad/box/_fastguard.c \
 	        -o "src/softpad/box/_fastguard$$($(call PYINFO,EXT_SUFFIX))" -lpthread; \
-	else echo "ext: no C compiler: the compiled guard is not built (its tests are skipped)"; fi
+	    cc -O2 -std=c11 -Wall -ffp-contract=off -shared -fPIC -I"$$($(call PYINFO,INCLUDEPY))" \
+	        src/softpad/box/_fastsim.c -o "src/softpad/box/_fastsim$$($(call PYINFO,EXT_SUFFIX))"; \
+	else echo "ext: no C compiler: the compiled guard and solve are not built (their tests are skipped)"; fi
 
 demo: venv
 	MPLBACKEND=Agg $(BIN)/softpad demo --out report --force

@@ -36,9 +36,19 @@ from softpad.sim import (
     PneumaticParams,
     SensorBank,
     SensorParams,
+    TabulatedCharacteristic,
     World,
     default_characteristic,
 )
+
+try:  # the exact solve in compiled code (src/softpad/box/_fastsim.c; make ext / pip install)
+    import softpad.box._fastsim as _fastsim
+except ImportError:  # pragma: no cover - no C compiler: the NumPy reference alone
+    _fastsim = None  # type: ignore[assignment]
+
+#: The shortest ramp whose rows' spans the sensors compute (``softpad.sim._sensor.SPAN_ROWS``;
+#: tests/box/test_fastsim.py checks they agree).
+SPAN_ROWS = 8
 
 #: (inflation valve open, deflation valve open) for each command.
 _VALVE_OPEN = {
@@ -62,6 +72,191 @@ def _check_args(n_modules: int, channels: int, sample_rate_hz: float, seed: int)
         raise InputError(f"seed must be an integer >= 0, got {seed!r}") from None
     if s < 0:
         raise InputError(f"seed must be >= 0, got {seed!r}")
+
+
+class CompiledChambers(ChamberBank):
+    """The gas physics with its exact pressure solve, the start of each stretch and the module
+    heights in compiled code.
+
+    The same bits as :class:`~softpad.sim.ChamberBank` (the reference; tested on random valve
+    schedules): the compiled kernel (:mod:`softpad.box._fastsim`) runs Newton's method with the
+    tabulated characteristic's interpolation along the pressure, the load columns taken from
+    the characteristic's own cache, and the relaxation rates and pressures of each stretch.
+    Any other characteristic (for the solve and heights), a solve that does not converge in
+    Newton's six steps, a stiff or collapsed stretch start or an input that is not finite runs
+    the NumPy reference.
+    """
+
+    def __init__(
+        self,
+        n_channels: int,
+        n_modules: int,
+        characteristic: ModuleCharacteristic,
+        params: PneumaticParams | None = None,
+    ) -> None:
+        super().__init__(n_channels, n_modules, characteristic, params)
+        #: The compiled kernels (None: not built; the reference alone), fixed at construction.
+        self._kernel = _fastsim
+        tab = characteristic if isinstance(characteristic, TabulatedCharacteristic) else None
+        self._tab = tab if _fastsim is not None and tab is not None else None
+
+    def _columns(
+        self, which: str
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64] | None]:
+        """The table's columns at the current loads, their slopes along the pressure and the
+        pressure a load beyond the table takes off: the cache the reference fills
+        (``TabulatedCharacteristic._along_pressure``), filled the same way."""
+        tab = self._tab
+        assert tab is not None
+        f = self.loads_n
+        key = f.tobytes()
+        entry = tab._cache.get(which)
+        if entry is None or entry[0] != key:
+            entry = tab._cache[which] = tab._load_columns(which, f, key)
+        return entry[1], entry[2], entry[3]
+
+    def _solve(self, p: NDArray[np.float64]) -> NDArray[np.float64]:
+        tab = self._tab
+        if tab is None or not self.loads_n.shape == p.shape == (self.n_modules,):
+            return super()._solve(p)
+        cols, slopes, drop = self._columns("volume")
+        out, dn_dp = np.empty_like(p), np.empty_like(p)
+        creep = self._creep if self._creeping else None
+        par = self.params
+        amount = np.ascontiguousarray(self._amount, dtype=float)
+        assert self._kernel is not None
+        if self._kernel.solve(
+            p, amount, cols, slopes, tab.pressure_pa, drop, creep,
+            par.atmosphere_pa, par.tubing_volume_m3, out, dn_dp,
+        ):  # fmt: skip
+            self._dn_dp = dn_dp
+            return out
+        return super()._solve(p)
+
+    def _relaxation(
+        self, p: NDArray[np.float64], supply_pa: float
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        kernel = self._kernel
+        if kernel is None:
+            return super()._relaxation(p, supply_pa)
+        mode = 1 if self._no_outflow else 2 if self._no_inflow else 0  # the reference's order
+        flowing = None if self._all_flowing else self._flowing
+        lam, p_eq = np.empty_like(p), np.empty_like(p)
+        par = self.params
+        if kernel.relax(
+            p, self._eq, flowing, self._a_in, self._a_out, self._dn_dp, supply_pa,
+            par.laminar_pa, self._k, mode, lam, p_eq,
+        ):  # fmt: skip
+            return lam, p_eq
+        return super()._relaxation(p, supply_pa)
+
+    def _no_crossing(
+        self, p: NDArray[np.float64], p_start: NDArray[np.float64], p_eq: NDArray[np.float64]
+    ) -> NDArray[np.float64]:
+        if self._kernel is not None and not self._kernel.crosses(p, p_start, p_eq):
+            return p  # the reference's test, without its three array operations
+        return super()._no_crossing(p, p_start, p_eq)
+
+    def _start_stretch(
+        self,
+        dt_s: float,
+        inflate_open: NDArray[np.bool_],
+        deflate_open: NDArray[np.bool_],
+        supply_pa: float,
+        valve_key: object,
+    ) -> None:
+        """The reference's stretch (:meth:`ChamberBank._start_stretch`, which runs a stiff or
+        collapsed start) with its pressures written by the kernel; the decay ``exp(-lambda t)``
+        by NumPy (whose exp is not the C library's)."""
+        args = (dt_s, inflate_open, deflate_open, supply_pa, valve_key)
+        kernel = self._kernel
+        if kernel is None:
+            return super()._start_stretch(*args)
+        self._update_equilibrium(inflate_open, deflate_open, supply_pa, valve_key)
+        p0 = self._p_modules.copy()
+        lam, p_eq = self._relaxation(p0, supply_pa)
+        theta = self.relaxation_per_stretch
+        lam_max = float(np.maximum.reduce(lam))
+        collapsed = not np.minimum.reduce(p0) >= 0.0 and bool(
+            np.any((p0 < 0.0) & (p_eq > p0) & (lam > 0.0))
+        )
+        if lam_max * dt_s > theta or collapsed:
+            return super()._start_stretch(*args)
+        self._valve_key, self._supply, self._stretch_dt = valve_key, supply_pa, dt_s
+        steps = self._step_times(dt_s)
+        if lam_max * steps[-1, 0] > theta:
+            steps = steps[: max(1, int(theta / (lam_max * dt_s)))]
+        decay = np.exp(-lam * steps)
+        path = np.zeros((decay.shape[0], self.n_channels))
+        rows = kernel.ramp(p0, p_eq, decay, lam, self.resolve_pa, path)
+        self._path, self._pos, self._applied = path[:rows], 1, 0
+        self._p0, self._n0, self._c0, self._p_eq = p0, self._amount.copy(), self._dn_dp, p_eq
+        return None
+
+    def heights_m(self) -> NDArray[np.float64]:
+        tab = self._tab
+        p = self.pressure_pa[: self.n_modules]
+        if tab is None or self.loads_n.shape != p.shape:
+            return super().heights_m()
+        cols, slopes, drop = self._columns("height")
+        out = np.empty_like(p)
+        assert self._kernel is not None
+        if self._kernel.interp(p, cols, slopes, tab.pressure_pa, drop, out):
+            return out
+        return super().heights_m()
+
+
+class CompiledSensors(SensorBank):
+    """The sensors with the readings of each stretch of the gas physics computed in compiled
+    code (:func:`softpad.box._fastsim.readings`): the same readings as
+    :class:`~softpad.sim.SensorBank` (the reference), which computes them where a value is
+    not finite or a range bound is zero."""
+
+    def __init__(
+        self,
+        n_channels: int,
+        dt_s: float,
+        params: SensorParams,
+        rng: np.random.Generator,
+    ) -> None:
+        super().__init__(n_channels, dt_s, params, rng)
+        self._kernel = _fastsim
+
+    def sample_path(
+        self, path: NDArray[np.float64], row: int, key: int, supply_pa: float
+    ) -> tuple[NDArray[np.float64], float]:
+        """:meth:`SensorBank.sample_path`, line for line, with the ramp's readings and their
+        rows' spans from the kernel."""
+        if self._kernel is None:
+            return super().sample_path(path, row, key, supply_pa)
+        hit = self.next_on_ramp(key, supply_pa)
+        if hit is not None:
+            return hit
+        if self._i >= self.block:
+            self._refill()
+        i = self._i
+        k = min(path.shape[0] - row, self.block - i)
+        ramp = np.empty((k, path.shape[1]))
+        spans = self._kernel.readings(
+            path[row : row + k], self._noise[i : i + k], self._q, self._inv_q, self._lo,
+            self._hi, ramp,
+        )  # fmt: skip
+        if spans is None:
+            return super().sample_path(path, row, key, supply_pa)
+        self._i = i + 1
+        self._same = 0
+        self._static = None
+        ramp.flags.writeable = False
+        self._ramp, self._ramp_key, self._ramp_start = ramp, key, i
+        self._ramp_end = i + k
+        self._ramp_next = i + 1
+        reading = ramp[0]
+        if k >= SPAN_ROWS:
+            self._ramp_lo, self._ramp_hi = spans
+            self.span = (reading, self._ramp_lo[0], self._ramp_hi[0])
+        else:  # as the reference: too short a ramp to pay for the reductions
+            self._ramp_lo, self.span = None, None
+        return reading, supply_pa + self._supply_noise[i]
 
 
 class SimBox(Box):
@@ -126,10 +321,10 @@ class SimBox(Box):
         self.pneumatics = pneumatics or PneumaticParams()
         self.sensor_params = sensor or SensorParams()
         rng = np.random.default_rng(self.seed)
-        self.chambers = ChamberBank(channels, n_mod, self.characteristic, self.pneumatics)
+        self.chambers = CompiledChambers(channels, n_mod, self.characteristic, self.pneumatics)
         if initial_pressure_pa:
             self._start_inflated(float(initial_pressure_pa))
-        self.sensors = SensorBank(channels, self._dt, self.sensor_params, rng)
+        self.sensors = CompiledSensors(channels, self._dt, self.sensor_params, rng)
         self._setup_disturbances(disturbances, rng)
         self._n_mod = n_mod
         self._valve_count = 0

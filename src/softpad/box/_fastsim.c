@@ -1,0 +1,477 @@
+/* The simulated box's exact pressure solve in compiled code (issue 50, item 4).
+ *
+ * The same arithmetic, in the same order, as the NumPy reference in softpad.sim._pneumatics
+ * (ChamberBank._solve, its first loop: Newton's method from the previous pressure, at most six
+ * steps) with the tabulated characteristic's interpolation along the pressure
+ * (softpad.sim._characteristic.TabulatedCharacteristic._along_pressure, the load columns
+ * cached by the caller): every operation is one IEEE-754 double operation (+, -, *, /, fabs,
+ * comparisons), which NumPy's element-wise loops compute identically, so the results are the
+ * same bits (tests/box/test_fastsim.py checks them). Built with -ffp-contract=off: no fused
+ * multiply-add may merge two roundings into one.
+ *
+ * No NumPy headers: arrays come in through the buffer protocol (float64; the 1-D ones
+ * C-contiguous, the tables (pressures x modules) with any strides), and results are written
+ * into arrays the caller allocated.
+ */
+#define PY_SSIZE_T_CLEAN
+#include <Python.h>
+
+#include <math.h>
+#include <string.h>
+
+/* softpad.sim._pneumatics.SETTLED_PA: a channel this close to its equilibrium is settled. */
+#define SETTLED_PA 1e-3
+
+typedef struct {
+    Py_buffer view;
+    int held;
+} Buf;
+
+/* Take a C-contiguous float64 buffer of exactly n elements (n < 0: any length); None when
+ * allow_none. Returns 0, or -1 with an exception set. */
+static int take(PyObject *obj, Buf *b, Py_ssize_t n, int writable, int allow_none,
+                const char *what)
+{
+    b->held = 0;
+    if (obj == Py_None && allow_none)
+        return 0;
+    int flags = PyBUF_C_CONTIGUOUS | PyBUF_FORMAT | (writable ? PyBUF_WRITABLE : 0);
+    if (PyObject_GetBuffer(obj, &b->view, flags) < 0)
+        return -1;
+    b->held = 1;
+    const char *f = b->view.format;
+    if (b->view.itemsize != 8 || f == NULL || !(f[0] == 'd' || (f[0] == '<' && f[1] == 'd'))) {
+        PyErr_Format(PyExc_TypeError, "%s must be a float64 array", what);
+        return -1;
+    }
+    if (n >= 0 && b->view.len != n * 8) {
+        PyErr_Format(PyExc_ValueError, "%s must have %zd elements, got %zd", what, n,
+                     b->view.len / 8);
+        return -1;
+    }
+    return 0;
+}
+
+/* Take a 2-D float64 buffer of shape (rows, cols) (-1: any), any strides (multiples of 8). */
+static int take2(PyObject *obj, Buf *b, Py_ssize_t rows, Py_ssize_t cols, const char *what)
+{
+    b->held = 0;
+    if (PyObject_GetBuffer(obj, &b->view, PyBUF_STRIDES | PyBUF_FORMAT) < 0)
+        return -1;
+    b->held = 1;
+    const char *f = b->view.format;
+    Py_buffer *v = &b->view;
+    if (v->itemsize != 8 || f == NULL || !(f[0] == 'd' || (f[0] == '<' && f[1] == 'd'))) {
+        PyErr_Format(PyExc_TypeError, "%s must be a float64 array", what);
+        return -1;
+    }
+    if (v->ndim != 2 || (rows >= 0 && v->shape[0] != rows) || (cols >= 0 && v->shape[1] != cols) ||
+        v->strides[0] % 8 ||
+        v->strides[1] % 8) {
+        PyErr_Format(PyExc_ValueError, "%s must have shape (%zd, %zd)", what, rows, cols);
+        return -1;
+    }
+    return 0;
+}
+
+static void release(Buf *bufs, int k)
+{
+    for (int i = 0; i < k; i++)
+        if (bufs[i].held)
+            PyBuffer_Release(&bufs[i].view);
+}
+
+static double *data(Buf *b) { return b->held ? (double *)b->view.buf : NULL; }
+
+/* Number of grid values <= x (numpy.searchsorted(grid, x, side="right") for finite x). */
+static Py_ssize_t count_le(const double *grid, Py_ssize_t n, double x)
+{
+    Py_ssize_t lo = 0, hi = n;
+    while (lo < hi) {
+        Py_ssize_t mid = lo + ((hi - lo) >> 1);
+        if (grid[mid] <= x)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+typedef struct {
+    const double *cols, *slopes, *grid, *drop, *creep;
+    Py_ssize_t m, np;
+    Py_ssize_t c0, c1, s0, s1; /* strides of cols and slopes, in elements */
+} Table;
+
+static Table table(Buf *cols, Buf *slopes, Buf *grid, Buf *drop, Buf *creep, Py_ssize_t m)
+{
+    Table t = {data(cols), data(slopes), data(grid), data(drop), data(creep), m,
+               grid->view.len / 8,
+               cols->view.strides[0] / 8, cols->view.strides[1] / 8,
+               slopes->view.strides[0] / 8, slopes->view.strides[1] / 8};
+    return t;
+}
+
+/* V (creep added where given) and dV/dp of module j at gauge pressure p. */
+static void volume_and_slope(const Table *t, Py_ssize_t j, double p, double *v, double *dv)
+{
+    if (t->drop)
+        p = p - t->drop[j];
+    double g0 = t->grid[0];
+    double pc = p >= g0 ? p : g0; /* finite inputs: numpy.maximum's value */
+    Py_ssize_t i = count_le(t->grid, t->np, pc) - 1;
+    if (i > t->np - 2)
+        i = t->np - 2;
+    double slope = t->slopes[i * t->s0 + j * t->s1];
+    double value = t->cols[i * t->c0 + j * t->c1] + slope * (pc - t->grid[i]);
+    *v = t->creep ? value + t->creep[j] : value;
+    *dv = p >= g0 ? slope : 0.0;
+}
+
+static int finite_all(const double *x, Py_ssize_t n)
+{
+    for (Py_ssize_t i = 0; i < n; i++)
+        if (!isfinite(x[i]))
+            return 0;
+    return 1;
+}
+
+/* solve(p, amount, cols, slopes, grid, drop, creep, patm, vt, p_out, dn_dp_out) -> bool */
+static PyObject *solve(PyObject *self, PyObject *args)
+{
+    PyObject *o[9];
+    double patm, vt;
+    if (!PyArg_ParseTuple(args, "OOOOOOOddOO", &o[0], &o[1], &o[2], &o[3], &o[4], &o[5], &o[6],
+                          &patm, &vt, &o[7], &o[8]))
+        return NULL;
+    Buf b[9];
+    memset(b, 0, sizeof b);
+    PyObject *result = NULL;
+    if (take(o[0], &b[0], -1, 0, 0, "p") < 0)
+        goto done;
+    Py_ssize_t m = b[0].view.len / 8;
+    if (take(o[1], &b[1], m, 0, 0, "amount") < 0 || take(o[4], &b[4], -1, 0, 0, "grid") < 0)
+        goto done;
+    Py_ssize_t np_ = b[4].view.len / 8;
+    if (np_ < 2) {
+        PyErr_SetString(PyExc_ValueError, "grid must have at least 2 pressures");
+        goto done;
+    }
+    if (take2(o[2], &b[2], np_, m, "cols") < 0 || take2(o[3], &b[3], np_ - 1, m, "slopes") < 0 ||
+        take(o[5], &b[5], m, 0, 1, "drop") < 0 || take(o[6], &b[6], m, 0, 1, "creep") < 0 ||
+        take(o[7], &b[7], m, 1, 0, "p_out") < 0 || take(o[8], &b[8], m, 1, 0, "dn_dp_out") < 0)
+        goto done;
+    Table t = table(&b[2], &b[3], &b[4], &b[5], &b[6], m);
+    const double *p0 = data(&b[0]), *n = data(&b[1]);
+    double *p = data(&b[7]), *dn = data(&b[8]);
+    int ok = finite_all(p0, m) && finite_all(n, m) && isfinite(patm) && isfinite(vt) &&
+             (t.drop == NULL || finite_all(t.drop, m)) && (t.creep == NULL || finite_all(t.creep, m));
+    int converged = 0;
+    if (ok) {
+        memcpy(p, p0, m * sizeof(double));
+        for (int it = 0; it < 6 && !converged; it++) {
+            double biggest = 0.0;
+            int finite = 1;
+            for (Py_ssize_t j = 0; j < m; j++) {
+                double v, dv;
+                volume_and_slope(&t, j, p[j], &v, &dv);
+                double d = (v + vt) + (patm + p[j]) * dv;
+                double step = ((patm + p[j]) * (v + vt) - n[j]) / d;
+                p[j] = p[j] - step;
+                dn[j] = d;
+                double a = fabs(step);
+                if (!isfinite(a))
+                    finite = 0;
+                else if (a > biggest)
+                    biggest = a;
+            }
+            if (!finite)
+                break; /* NaN or infinity: left to the reference */
+            converged = biggest < 1e-2;
+        }
+    }
+    result = PyBool_FromLong(converged);
+done:
+    release(b, 9);
+    return result;
+}
+
+/* interp(p, cols, slopes, grid, drop, out): the value of the tabulated column at each p. */
+static PyObject *interp(PyObject *self, PyObject *args)
+{
+    PyObject *o[6];
+    if (!PyArg_ParseTuple(args, "OOOOOO", &o[0], &o[1], &o[2], &o[3], &o[4], &o[5]))
+        return NULL;
+    Buf b[6];
+    memset(b, 0, sizeof b);
+    PyObject *result = NULL;
+    if (take(o[0], &b[0], -1, 0, 0, "p") < 0 || take(o[3], &b[3], -1, 0, 0, "grid") < 0)
+        goto done;
+    Py_ssize_t m = b[0].view.len / 8, np_ = b[3].view.len / 8;
+    if (np_ < 2) {
+        PyErr_SetString(PyExc_ValueError, "grid must have at least 2 pressures");
+        goto done;
+    }
+    if (take2(o[1], &b[1], np_, m, "cols") < 0 || take2(o[2], &b[2], np_ - 1, m, "slopes") < 0 ||
+        take(o[4], &b[4], m, 0, 1, "drop") < 0 || take(o[5], &b[5], m, 1, 0, "out") < 0)
+        goto done;
+    Buf none = {.held = 0};
+    Table t = table(&b[1], &b[2], &b[3], &b[4], &none, m);
+    const double *p = data(&b[0]);
+    double *out = data(&b[5]);
+    int ok = finite_all(p, m) && (t.drop == NULL || finite_all(t.drop, m));
+    if (ok)
+        for (Py_ssize_t j = 0; j < m; j++) {
+            double dv;
+            volume_and_slope(&t, j, p[j], &out[j], &dv);
+        }
+    result = PyBool_FromLong(ok);
+done:
+    release(b, 6);
+    return result;
+}
+
+/* g(x) = x / sqrt(|x| + p_lam): the orifice law's pressure dependence. */
+static double orifice(double x, double lam_pa) { return x / sqrt(fabs(x) + lam_pa); }
+
+/* relax(p, eq, flowing, a_in, a_out, dn_dp, supply, laminar, k, mode, lam_out, p_eq_out)
+ * -> bool: ChamberBank._relaxation (mode 1: no outflow, 2: no inflow, 0: both; flowing None:
+ * every channel flows). False: an input was not finite (nothing written). */
+static PyObject *relax(PyObject *self, PyObject *args)
+{
+    PyObject *o[8];
+    double supply, lam_pa, k;
+    int mode;
+    if (!PyArg_ParseTuple(args, "OOOOOOdddiOO", &o[0], &o[1], &o[2], &o[3], &o[4], &o[5], &supply,
+                          &lam_pa, &k, &mode, &o[6], &o[7]))
+        return NULL;
+    Buf b[8];
+    memset(b, 0, sizeof b);
+    PyObject *result = NULL;
+    if (take(o[0], &b[0], -1, 0, 0, "p") < 0)
+        goto done;
+    Py_ssize_t m = b[0].view.len / 8;
+    if (take(o[1], &b[1], m, 0, 0, "eq") < 0 || take(o[3], &b[3], m, 0, 0, "a_in") < 0 ||
+        take(o[4], &b[4], m, 0, 0, "a_out") < 0 || take(o[5], &b[5], m, 0, 0, "dn_dp") < 0 ||
+        take(o[6], &b[6], m, 1, 0, "lam_out") < 0 || take(o[7], &b[7], m, 1, 0, "p_eq_out") < 0)
+        goto done;
+    const unsigned char *flowing = NULL;
+    if (o[2] != Py_None) { /* a bool array */
+        if (PyObject_GetBuffer(o[2], &b[2].view, PyBUF_C_CONTIGUOUS) < 0)
+            goto done;
+        b[2].held = 1;
+        if (b[2].view.len != m || b[2].view.itemsize != 1) {
+            PyErr_SetString(PyExc_ValueError, "flowing must be a bool array of the modules");
+            goto done;
+        }
+        flowing = (const unsigned char *)b[2].view.buf;
+    }
+    const double *p = data(&b[0]), *eq = data(&b[1]), *a_in = data(&b[3]), *a_out = data(&b[4]);
+    const double *dn = data(&b[5]);
+    double *lam = data(&b[6]), *p_eq = data(&b[7]);
+    int ok = finite_all(p, m) && finite_all(eq, m) && finite_all(a_in, m) &&
+             finite_all(a_out, m) && finite_all(dn, m) && isfinite(supply) && isfinite(k);
+    for (Py_ssize_t j = 0; ok && j < m; j++) {
+        double pe = (flowing == NULL || flowing[j]) ? eq[j] : p[j];
+        double d = p[j] - pe;
+        double flow;
+        if (mode == 1)
+            flow = k * (a_in[j] * orifice(supply - p[j], lam_pa));
+        else if (mode == 2)
+            flow = k * -(a_out[j] * orifice(p[j], lam_pa));
+        else
+            flow = k * (a_in[j] * orifice(supply - p[j], lam_pa) - a_out[j] * orifice(p[j], lam_pa));
+        int far = fabs(d) > SETTLED_PA;
+        double r = -flow / (far ? d : 1.0) / dn[j];
+        r = r >= 0.0 ? r : 0.0; /* numpy.maximum(r, 0.0) for a number r: r (or a zero) */
+        lam[j] = far ? r : 0.0;
+        p_eq[j] = pe;
+    }
+    result = PyBool_FromLong(ok);
+done:
+    release(b, 8);
+    return result;
+}
+
+/* ramp(p0, p_eq, decay, lam, resolve_pa, path) -> rows: the stretch's true pressures
+ * p_eq + (p0 - p_eq) decay (decay = exp(-lam t), rows of steps, computed by NumPy: its exp
+ * is not the C library's) into the first m columns of path, and the rows to keep: as
+ * _start_stretch, the binary search of resolve_pa in the largest move of a rising channel
+ * (lam > 0) from p0 along the rows (at least one row; all of them when there is one). */
+static PyObject *ramp(PyObject *self, PyObject *args)
+{
+    PyObject *o[5];
+    double resolve_pa;
+    if (!PyArg_ParseTuple(args, "OOOOdO", &o[0], &o[1], &o[2], &o[3], &resolve_pa, &o[4]))
+        return NULL;
+    Buf b[5];
+    memset(b, 0, sizeof b);
+    PyObject *result = NULL;
+    if (take(o[0], &b[0], -1, 0, 0, "p0") < 0 || take(o[4], &b[4], -1, 1, 0, "path") < 0)
+        goto done;
+    Py_ssize_t m = b[0].view.len / 8;
+    if (take(o[1], &b[1], m, 0, 0, "p_eq") < 0 || take(o[3], &b[3], m, 0, 0, "lam") < 0 ||
+        take(o[2], &b[2], -1, 0, 0, "decay") < 0)
+        goto done;
+    Py_ssize_t rows = b[2].view.len / 8 / (m ? m : 1);
+    Py_buffer *pv = &b[4].view;
+    if (m == 0 || rows < 1 || b[2].view.len != rows * m * 8 || pv->ndim != 2 ||
+        pv->shape[0] < rows || pv->shape[1] < m) {
+        PyErr_SetString(PyExc_ValueError, "ramp: decay must be (rows, m), path (>= rows, >= m)");
+        goto done;
+    }
+    const double *p0 = data(&b[0]), *pe = data(&b[1]), *dec = data(&b[2]), *lam = data(&b[3]);
+    double *path = data(&b[4]);
+    Py_ssize_t width = pv->shape[1], keep = rows;
+    double *moved = PyMem_Malloc(rows * sizeof(double));
+    if (moved == NULL) {
+        PyErr_NoMemory();
+        goto done;
+    }
+    for (Py_ssize_t r = 0; r < rows; r++) {
+        double most = 0.0;
+        for (Py_ssize_t j = 0; j < m; j++) {
+            double a = pe[j] + (p0[j] - pe[j]) * dec[r * m + j];
+            path[r * width + j] = a;
+            double d = fabs(a - p0[j]);
+            if (lam[j] > 0 && d > most)
+                most = d;
+        }
+        moved[r] = most;
+    }
+    if (rows > 1) { /* numpy.searchsorted(moved, resolve_pa, side="right"), at least 1 */
+        keep = count_le(moved, rows, resolve_pa);
+        keep = keep > 1 ? keep : 1;
+    }
+    PyMem_Free(moved);
+    result = PyLong_FromSsize_t(keep);
+done:
+    release(b, 5);
+    return result;
+}
+
+/* crosses(p, p_start, p_eq) -> bool: whether any channel's (p - p_eq) (p_start - p_eq) < 0
+ * (ChamberBank._no_crossing's test: the solve landed past the stretch's equilibrium). */
+static PyObject *crosses(PyObject *self, PyObject *args)
+{
+    PyObject *o[3];
+    if (!PyArg_ParseTuple(args, "OOO", &o[0], &o[1], &o[2]))
+        return NULL;
+    Buf b[3];
+    memset(b, 0, sizeof b);
+    PyObject *result = NULL;
+    if (take(o[0], &b[0], -1, 0, 0, "p") < 0)
+        goto done;
+    Py_ssize_t m = b[0].view.len / 8;
+    if (take(o[1], &b[1], m, 0, 0, "p_start") < 0 || take(o[2], &b[2], m, 0, 0, "p_eq") < 0)
+        goto done;
+    const double *p = data(&b[0]), *ps = data(&b[1]), *pe = data(&b[2]);
+    int any = 0;
+    for (Py_ssize_t j = 0; j < m; j++)
+        any |= (p[j] - pe[j]) * (ps[j] - pe[j]) < 0;
+    result = PyBool_FromLong(any);
+done:
+    release(b, 3);
+    return result;
+}
+
+/* readings(true, noise, q, inv_q, lo, hi, out) -> (lows, highs) or None: the sensors'
+ * readings of rows of true pressures with their rows of noise, as SensorBank._quantise
+ * (true + noise, times 1/q, rounded half to even, times q, clipped to [lo, hi]; q = 0: not
+ * quantised) into out, with each row's lowest and highest reading as lists of floats (its
+ * _row_spans: the same numbers; a zero's sign may differ, which no comparison sees). None
+ * where a value is not finite or a bound is zero (out is then not to be used). */
+static PyObject *readings(PyObject *self, PyObject *args)
+{
+    PyObject *o[3];
+    double q, inv_q, lo, hi;
+    if (!PyArg_ParseTuple(args, "OOddddO", &o[0], &o[1], &q, &inv_q, &lo, &hi, &o[2]))
+        return NULL;
+    Buf b[3];
+    memset(b, 0, sizeof b);
+    PyObject *result = NULL, *lows = NULL, *highs = NULL;
+    if (take2(o[0], &b[0], -1, -1, "true") < 0)
+        goto done;
+    Py_ssize_t rows = b[0].view.shape[0], n = b[0].view.shape[1];
+    if (take2(o[1], &b[1], rows, n, "noise") < 0 || take(o[2], &b[2], rows * n, 1, 0, "out") < 0)
+        goto done;
+    Py_ssize_t t0 = b[0].view.strides[0] / 8, t1 = b[0].view.strides[1] / 8;
+    Py_ssize_t n0 = b[1].view.strides[0] / 8, n1 = b[1].view.strides[1] / 8;
+    const double *tp = data(&b[0]), *np_ = data(&b[1]);
+    double *out = data(&b[2]);
+    /* a bound at zero: numpy's clip may keep either zero of a -0.0 reading; left to it */
+    if (!isfinite(q) || !isfinite(inv_q) || isnan(lo) || isnan(hi) || lo == 0.0 || hi == 0.0 ||
+        n == 0)
+        goto none;
+    lows = PyList_New(rows);
+    highs = PyList_New(rows);
+    if (lows == NULL || highs == NULL)
+        goto done;
+    for (Py_ssize_t r = 0; r < rows; r++) {
+        double least = 0.0, most = 0.0;
+        for (Py_ssize_t j = 0; j < n; j++) {
+            double x = tp[r * t0 + j * t1] + np_[r * n0 + j * n1];
+            if (q != 0.0) {
+                x = x * inv_q;
+                x = nearbyint(x);
+                x *= q;
+            }
+            if (!isfinite(x))
+                goto none;
+            x = x >= lo ? x : lo;
+            x = x <= hi ? x : hi;
+            out[r * n + j] = x;
+            if (j == 0 || x < least)
+                least = x;
+            if (j == 0 || x > most)
+                most = x;
+        }
+        PyObject *a = PyFloat_FromDouble(least), *z = PyFloat_FromDouble(most);
+        if (a == NULL || z == NULL) {
+            Py_XDECREF(a);
+            Py_XDECREF(z);
+            goto done;
+        }
+        PyList_SET_ITEM(lows, r, a);
+        PyList_SET_ITEM(highs, r, z);
+    }
+    result = PyTuple_Pack(2, lows, highs);
+    goto done;
+none:
+    result = Py_NewRef(Py_None);
+done:
+    Py_XDECREF(lows);
+    Py_XDECREF(highs);
+    release(b, 3);
+    return result;
+}
+
+static PyMethodDef methods[] = {
+    {"solve", solve, METH_VARARGS,
+     "solve(p, amount, cols, slopes, grid, drop, creep, patm, vt, p_out, dn_dp_out) -> bool: "
+     "Newton's method (at most 6 steps) into p_out and dn_dp_out; False: not converged or not "
+     "finite (the caller then runs the reference)."},
+    {"interp", interp, METH_VARARGS,
+     "interp(p, cols, slopes, grid, drop, out) -> bool: the table's value at each pressure "
+     "into out; False: an input was not finite (out not written)."},
+    {"relax", relax, METH_VARARGS,
+     "relax(p, eq, flowing, a_in, a_out, dn_dp, supply, laminar, k, mode, lam_out, p_eq_out) "
+     "-> bool: relaxation rates and equilibria of the channels (ChamberBank._relaxation)."},
+    {"ramp", ramp, METH_VARARGS,
+     "ramp(p0, p_eq, decay, lam, resolve_pa, path) -> rows: the stretch's pressures into path, "
+     "and how many rows it keeps."},
+    {"crosses", crosses, METH_VARARGS,
+     "crosses(p, p_start, p_eq) -> bool: whether a solve landed past its equilibrium."},
+    {"readings", readings, METH_VARARGS,
+     "readings(true, noise, q, inv_q, lo, hi, out) -> (lows, highs) or None: quantised, "
+     "clipped readings into out and each row's lowest and highest."},
+    {NULL, NULL, 0, NULL},
+};
+
+static struct PyModuleDef module = {
+    PyModuleDef_HEAD_INIT, "_fastsim",
+    "The simulated box's exact pressure solve in compiled code (same bits as NumPy).", -1,
+    methods,
+};
+
+PyMODINIT_FUNC PyInit__fastsim(void) { return PyModule_Create(&module); }

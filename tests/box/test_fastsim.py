@@ -1,0 +1,203 @@
+"""The simulated box's compiled solve (src/softpad/box/_fastsim.c) gives the NumPy reference's
+bits: every reading, true pressure and module height, on random valve schedules and loads."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from softpad.box import SafetyTrip, ValveCommand
+from softpad.box import _sim as sim_module
+from softpad.box._sim import CompiledChambers, SimBox
+from softpad.sim import AnalyticWorld, ChamberBank, DisturbanceParams, default_characteristic
+
+fastsim = pytest.importorskip("softpad.box._fastsim", reason="not built (make ext)")
+
+COMMANDS = (ValveCommand.CLOSED, ValveCommand.INFLATE, ValveCommand.DEFLATE)
+
+
+def _box(seed: int, compiled: bool, monkeypatch: pytest.MonkeyPatch, **kw: object) -> SimBox:
+    """A 1 kHz box on an analytic world; the reference built with the kernel hidden."""
+    with monkeypatch.context() as m:
+        if not compiled:
+            m.setattr(sim_module, "_fastsim", None)
+        box = SimBox(AnalyticWorld(), sample_rate_hz=1000.0, seed=seed, **kw)  # type: ignore[arg-type]
+    assert isinstance(box.chambers, CompiledChambers)
+    assert (box.chambers._tab is not None) is compiled
+    assert (box.chambers._kernel is not None) is compiled
+    return box
+
+
+def _schedule(seed: int, frames: int) -> dict[int, tuple[str, object]]:
+    """Random valve commands and presses (light to beyond the table's loads) by frame."""
+    rng = np.random.default_rng(1000 + seed)
+    events: dict[int, tuple[str, object]] = {}
+    for f in rng.choice(frames, size=frames // 60, replace=False):
+        if rng.random() < 0.7:
+            events[int(f)] = ("valves", [COMMANDS[k] for k in rng.integers(0, 3, 8)])
+        else:
+            force = float(rng.choice([0.0, rng.uniform(0.05, 2.0), rng.uniform(2.0, 40.0)]))
+            centre = (float(rng.uniform(0.0, 0.135)), float(rng.uniform(0.0, 0.09)))
+            events[int(f)] = ("press", (centre, (0.04, 0.04), force))
+    return events
+
+
+KERNELS = ("solve", "interp", "relax", "ramp", "crosses", "readings")
+
+
+def _counted(calls: dict[str, int], name: str) -> object:
+    kernel = getattr(fastsim, name)
+
+    def counted(*a: object) -> object:
+        calls[name] += 1
+        return kernel(*a)
+
+    return counted
+
+
+def _run(box: SimBox, events: dict[int, tuple[str, object]], frames: int) -> list[bytes]:
+    out = []
+    for f in range(frames):
+        ev = events.get(f)
+        if ev is not None and ev[0] == "valves":
+            for ch, cmd in enumerate(ev[1], start=1):  # type: ignore[arg-type]
+                try:
+                    box.set_valve(ch, cmd)
+                except SafetyTrip:  # a tripped channel keeps venting (in both boxes)
+                    pass
+        elif ev is not None:
+            box.world.press(*ev[1])  # type: ignore[misc]
+        frame = box.read()
+        heights = box.module_heights_m
+        # the lowest and highest reading the guard is given, as numbers: the sign of a zero
+        # among the readings' zeros (unconnected ports) is NumPy's reduction order's
+        span = box.sensors.span
+        spans = b"" if span is None else (np.array(span[1:]) + 0.0).tobytes()  # -0.0 -> 0.0
+        out.append(
+            frame.pressures_pa.tobytes()
+            + box.true_pressures_pa.tobytes()
+            + heights.tobytes()
+            + spans
+        )
+    return out
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_random_schedules_give_the_reference_bits(
+    seed: int, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    frames = 3000
+    events = _schedule(seed, frames)
+    kw = {"initial_pressure_pa": float(np.random.default_rng(seed).uniform(0, 3e3))}
+    calls = dict.fromkeys(KERNELS, 0)
+    ref = _run(_box(seed, False, monkeypatch, **kw), events, frames)
+    for name in KERNELS:
+        monkeypatch.setattr(sim_module._fastsim, name, _counted(calls, name))
+    got = _run(_box(seed, True, monkeypatch, **kw), events, frames)
+    assert min(calls.values()) > 50, calls  # the compiled path ran (a stretch every 20 ms)
+    first = next((i for i, (a, b) in enumerate(zip(ref, got, strict=True)) if a != b), None)
+    assert first is None, f"seed {seed}: first different frame {first}"
+
+
+@pytest.mark.parametrize(("seed", "leak_m2"), [(0, 2e-9), (1, 2e-9), (2, 1e-6)])
+def test_with_disturbances_and_a_leak(
+    seed: int, leak_m2: float, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Creep (the volume the kernel adds) and a leak (stretches with every valve closed; a
+    large one is stiff: sub-steps, the reference's)."""
+    from softpad.box import Fault
+
+    frames = 4000
+    events = _schedule(seed, frames)
+    runs = []
+    for compiled in (False, True):
+        box = _box(
+            seed,
+            compiled,
+            monkeypatch,
+            initial_pressure_pa=1100.0,
+            disturbances=DisturbanceParams(update_s=0.05),
+        )
+        box.inject_fault(Fault("leak", channel=2, at_s=0.5, arg=leak_m2))
+        runs.append(_run(box, events, frames))
+    assert runs[0] == runs[1]
+
+
+def test_the_kernel_on_random_states_including_fallbacks() -> None:
+    """The kernel against ChamberBank._solve itself: random pressures, amounts, loads (beyond
+    the table too) and creep; where it declines (not converged), the reference is what runs."""
+    char = default_characteristic()
+    rng = np.random.default_rng(7)
+    declined = 0
+    for trial in range(400):
+        ref = ChamberBank(6, 6, char)
+        fast = CompiledChambers(6, 6, char)
+        loads = rng.choice([0.0, 1.0, 30.0]) * rng.random(6)
+        p = rng.uniform(-500.0, 4000.0, 6)
+        for bank in (ref, fast):
+            bank.set_state(p, loads)
+        amount = ref.amount * (1 + rng.normal(0, 10.0 ** rng.uniform(-6, -2), 6))
+        creep = rng.uniform(0, 1e-7, 6) if trial % 2 else None
+        for bank in (ref, fast):
+            bank._amount = amount.copy()
+            if creep is not None:
+                bank._creep, bank._creeping = creep.copy(), True
+        start = rng.uniform(-100.0, 3000.0, 6)
+        out = np.empty(6)
+        dn = np.empty(6)
+        cols, slopes, drop = fast._columns("volume")
+        if not fastsim.solve(
+            start, amount, cols, slopes, char.pressure_pa, drop,
+            creep, 101325.0, fast.params.tubing_volume_m3, out, dn,
+        ):  # fmt: skip
+            declined += 1
+        a, b = ref._solve(start.copy()), fast._solve(start.copy())
+        assert a.tobytes() == b.tobytes(), trial
+        assert ref._dn_dp.tobytes() == fast._dn_dp.tobytes(), trial
+        assert ref.heights_m().tobytes() == fast.heights_m().tobytes(), trial
+    assert 0 < declined < 200  # both paths exercised
+
+
+def test_crossings_and_readings_on_random_arrays() -> None:
+    """The crossing test and the readings (with their rows' spans) against NumPy's."""
+    rng = np.random.default_rng(3)
+    hits = 0
+    for _ in range(2000):
+        p, start, eq = rng.normal(0, 50, (3, 6)).round(rng.integers(0, 3))
+        want = bool(((p - eq) * (start - eq) < 0).any())
+        hits += want
+        assert fastsim.crosses(p, start, eq) is want
+    assert 100 < hits < 1900
+    for q, lo, hi in ((2.44, -2e3, 10e3), (0.0, -2e3, 10e3), (2.44, -5.0, 7.0)):
+        true = rng.normal(0, 30, (40, 8))
+        noise = rng.normal(0, 3, (60, 8))[10:50]
+        out = np.empty((40, 8))
+        lows, highs = fastsim.readings(true, noise, q, 1 / q if q else 0.0, lo, hi, out)
+        x = true + noise
+        if q:
+            x = np.rint(x * (1 / q)) * q
+        ref = np.minimum(np.maximum(x, lo), hi)
+        assert out.tobytes() == ref.tobytes()
+        assert lows == ref.min(axis=1).tolist() and highs == ref.max(axis=1).tolist()
+    assert fastsim.readings(true, noise, 2.44, 1 / 2.44, 0.0, 1e4, out) is None  # a zero bound
+    true[3, 2] = np.nan
+    assert fastsim.readings(true, noise, 2.44, 1 / 2.44, -2e3, 1e4, out) is None
+
+
+def test_bad_arrays_are_refused() -> None:
+    out = np.empty(2)
+    with pytest.raises(TypeError, match="float64"):
+        fastsim.interp(
+            np.zeros(2, np.float32), np.zeros((2, 2)), np.zeros((1, 2)), np.zeros(2), None, out
+        )
+    with pytest.raises(ValueError, match="shape"):
+        fastsim.interp(np.zeros(2), np.zeros((3, 2)), np.zeros((1, 2)), np.zeros(2), None, out)
+    assert not fastsim.interp(
+        np.array([np.nan, 0.0]), np.zeros((2, 2)), np.zeros((1, 2)), np.arange(2.0), None, out
+    )
+
+
+def test_the_span_rows_agree() -> None:
+    from softpad.sim import _sensor
+
+    assert sim_module.SPAN_ROWS == _sensor.SPAN_ROWS
