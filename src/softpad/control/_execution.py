@@ -618,12 +618,14 @@ class GraspExecution:
                 self._move(above, p.travel_speed_m_s, "retreating")
                 outcome = "contact_not_detected"
                 break
-            retry = self._retry(plan, delta, "landed", stop_z, attempt)
-            if retry is None:
+            landed = self._next_grasp(plan, delta, "landed", stop_z)
+            if landed is None:
                 outcome = self._close_lift_hold(plan.modules)
                 retry = self._retry(plan, delta, outcome, stop_z, attempt)
-            else:  # a jaw is on the object: closing would push it; up, and land again
-                outcome = "landed"
+            else:  # a jaw is on the object: closing would push it (a round one into the pad)
+                outcome, retry = "landed", landed if attempt < p.max_attempts else None
+                if retry is None:  # no attempt left: up without closing, the grasp failed
+                    self.recorder.event(self._last_t, "outcome", outcome=outcome)
                 self._move_up()
             if retry is None:
                 break
@@ -660,9 +662,22 @@ class GraspExecution:
         ``landing_height_m``) and attempts are left: after closing on nothing (``outcome``
         ``missed``) or, with ``retry_before_close``, before closing (``landed``); None
         otherwise."""
+        if attempt >= self.params.max_attempts:
+            return None
+        return self._next_grasp(plan, delta, outcome, stop_z)
+
+    def _next_grasp(
+        self, plan: GraspPlan, delta: NDArray[np.float64], outcome: str, stop_z: float
+    ) -> GraspPlan | None:
+        """The planner's next grasp after ``outcome`` at a landing on the object, whatever
+        the attempts left (:meth:`_retry`'s conditions but the count). At the landing
+        (``landed``) a grasp is also the planner's word that a jaw is on the object and
+        closing there would push it: on the last attempt the loop then goes up without
+        closing (a round object wedged into the pad by a closing jaw drives its chambers to
+        the sensor's full scale)."""
         p = self.params
         wanted = ("landed", "missed") if p.retry_before_close else ("missed",)
-        if outcome not in wanted or stop_z <= p.landing_height_m or attempt >= p.max_attempts:
+        if outcome not in wanted or stop_z <= p.landing_height_m:
             return None
         if not isinstance(self.planner, RetryPlanner):
             return None
