@@ -141,7 +141,11 @@ class ExecutionParams(CheckedFields, what="execution"):
     #: again), not where it also pressed the line (a jaw on a toy's arm, its body on the
     #: line: closing still holds it). Development seeds 100-115 (80 trials each,
     #: gripper-aware planner, adaptive detector): charger 79 held against 65; toy, can and
-    #: banana trial for trial as without it. False: close after every landing, retry only
+    #: banana trial for trial as without it. Asked on the last attempt too: where the planner
+    #: would try again the loop goes up without closing (outcome ``landed``) instead of
+    #: closing with a jaw on the object (issue 47: a retry landing on a lying apple, orange or
+    #: can wedged it into the pad, chambers at the sensor's 10 kPa full scale, 5 of 50
+    #: ycb-dev trials; until 2026-11-28). False: close after every landing, retry only
     #: after closing on nothing (the loop before 2026-11-24).
     retry_before_close: bool = True
     #: After a grasp that held, skip the later planned objects whose modules all unloaded
@@ -187,7 +191,9 @@ class GraspRecord:
     #: The grasp plan that was executed.
     plan: GraspPlan
     #: ``held``, ``dropped`` (held after lifting, lost during the hold), ``missed`` (nothing
-    #: between the closed jaws) or ``contact_not_detected``.
+    #: between the closed jaws), ``landed`` (a jaw sensed on the object, where the planner
+    #: would try again, with no attempt left: the jaws did not close) or
+    #: ``contact_not_detected``.
     outcome: str
     #: Whether the contact detector sensed the fingers.
     contact_detected: bool
