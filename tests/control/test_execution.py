@@ -316,6 +316,11 @@ def test_only_a_miss_after_landing_on_the_object_asks_the_planner_again() -> Non
     assert loop._retry(first, np.zeros(6), "missed", 0.049, 2) is None  # max_attempts (2) used
     assert loop._retry(first, np.zeros(6), "landed", 0.049, 2) is None
     assert planner.calls == 2
+    # the planner's word at a landing, whatever the attempts left: on the last attempt the
+    # loop goes up without closing where it is given (tests/control/test_retry_landing.py)
+    assert loop._next_grasp(first, np.zeros(6), "landed", 0.049) is planner.turned
+    assert loop._next_grasp(first, np.zeros(6), "landed", 0.0075) is None
+    assert planner.calls == 3
     thesis = GraspExecution(SimBox(world), SimulatedRobot(world))
     assert thesis._retry(first, np.zeros(6), "missed", 0.049, 1) is None
     assert thesis._retry(first, np.zeros(6), "landed", 0.049, 1) is None
@@ -324,7 +329,7 @@ def test_only_a_miss_after_landing_on_the_object_asks_the_planner_again() -> Non
     after = GraspExecution(SimBox(world), SimulatedRobot(world), params=late, planner=planner)
     assert after._retry(first, np.zeros(6), "landed", 0.049, 1) is None
     assert after._retry(first, np.zeros(6), "missed", 0.049, 1) is planner.turned
-    assert planner.calls == 3
+    assert planner.calls == 4
 
 
 def test_a_bad_attempt_count_is_named() -> None:

@@ -141,7 +141,11 @@ class ExecutionParams(CheckedFields, what="execution"):
     #: again), not where it also pressed the line (a jaw on a toy's arm, its body on the
     #: line: closing still holds it). Development seeds 100-115 (80 trials each,
     #: gripper-aware planner, adaptive detector): charger 79 held against 65; toy, can and
-    #: banana trial for trial as without it. False: close after every landing, retry only
+    #: banana trial for trial as without it. Asked on the last attempt too: where the planner
+    #: would try again the loop goes up without closing (outcome ``landed``) instead of
+    #: closing with a jaw on the object (issue 47: a retry landing on a lying apple, orange or
+    #: can wedged it into the pad, chambers at the sensor's 10 kPa full scale, 5 of 50
+    #: ycb-dev trials; until 2026-11-28). False: close after every landing, retry only
     #: after closing on nothing (the loop before 2026-11-24).
     retry_before_close: bool = True
     #: After a grasp that held, skip the later planned objects whose modules all unloaded
@@ -187,7 +191,9 @@ class GraspRecord:
     #: The grasp plan that was executed.
     plan: GraspPlan
     #: ``held``, ``dropped`` (held after lifting, lost during the hold), ``missed`` (nothing
-    #: between the closed jaws) or ``contact_not_detected``.
+    #: between the closed jaws), ``landed`` (a jaw sensed on the object, where the planner
+    #: would try again, with no attempt left: the jaws did not close) or
+    #: ``contact_not_detected``.
     outcome: str
     #: Whether the contact detector sensed the fingers.
     contact_detected: bool
@@ -618,12 +624,14 @@ class GraspExecution:
                 self._move(above, p.travel_speed_m_s, "retreating")
                 outcome = "contact_not_detected"
                 break
-            retry = self._retry(plan, delta, "landed", stop_z, attempt)
-            if retry is None:
+            landed = self._next_grasp(plan, delta, "landed", stop_z)
+            if landed is None:
                 outcome = self._close_lift_hold(plan.modules)
                 retry = self._retry(plan, delta, outcome, stop_z, attempt)
-            else:  # a jaw is on the object: closing would push it; up, and land again
-                outcome = "landed"
+            else:  # a jaw is on the object: closing would push it (a round one into the pad)
+                outcome, retry = "landed", landed if attempt < p.max_attempts else None
+                if retry is None:  # no attempt left: up without closing, the grasp failed
+                    self.recorder.event(self._last_t, "outcome", outcome=outcome)
                 self._move_up()
             if retry is None:
                 break
@@ -660,9 +668,22 @@ class GraspExecution:
         ``landing_height_m``) and attempts are left: after closing on nothing (``outcome``
         ``missed``) or, with ``retry_before_close``, before closing (``landed``); None
         otherwise."""
+        if attempt >= self.params.max_attempts:
+            return None
+        return self._next_grasp(plan, delta, outcome, stop_z)
+
+    def _next_grasp(
+        self, plan: GraspPlan, delta: NDArray[np.float64], outcome: str, stop_z: float
+    ) -> GraspPlan | None:
+        """The planner's next grasp after ``outcome`` at a landing on the object, whatever
+        the attempts left (:meth:`_retry`'s conditions but the count). At the landing
+        (``landed``) a grasp is also the planner's word that a jaw is on the object and
+        closing there would push it: on the last attempt the loop then goes up without
+        closing (a round object wedged into the pad by a closing jaw drives its chambers to
+        the sensor's full scale)."""
         p = self.params
         wanted = ("landed", "missed") if p.retry_before_close else ("missed",)
-        if outcome not in wanted or stop_z <= p.landing_height_m or attempt >= p.max_attempts:
+        if outcome not in wanted or stop_z <= p.landing_height_m:
             return None
         if not isinstance(self.planner, RetryPlanner):
             return None

@@ -97,6 +97,8 @@ class _TrialWatcher:
         elif kind == "outcome":  # the end of a hold: is the object carried (truth)?
             world.coast_settled_until(None)
             seen["outcome"] = data.get("outcome")
+            if seen["outcome"] == "landed":  # the loop went up without closing: on what?
+                seen["tip_hit"] = world.tip_hit_object
             seen["carried"] = seen.get("carried", False) or world.holding()
         elif kind == "retry":
             seen["attempts"] = seen.get("attempts", 1) + 1
@@ -379,6 +381,8 @@ def _cause(
         return "cog_outside_object", f"the planned COG lay {outside:.1f} mm outside the object{hit}"
     if seen.get("tip_hit") is not None:
         return "jaws_hit_object", f"a jaw came down on {seen['tip_hit']}"
+    if outcome == "landed":  # sensed on the object with no attempt left: the jaws never closed
+        return "jaws_hit_object", "a jaw was sensed on the object; the jaws did not close"
     if not seen.get("between", False):
         x, y, yaw = seen.get("closed_at", (0.0, 0.0, 0.0))
         inside = half_extent_along_m(spec, placed, (x, y), yaw, band_m=gripper.tip_width_m / 2)
