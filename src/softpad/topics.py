@@ -302,7 +302,7 @@ MESSAGE_DEFINITIONS: dict[str, str] = {
     "softpad_msgs/msg/Outcome": (
         "# The end of one grasp loop.\n"
         "std_msgs/Header header\n"
-        "# held, dropped, missed, contact_not_detected, fault, error or canceled\n"
+        "# held, dropped, missed, landed, contact_not_detected, fault, error or canceled\n"
         "string outcome\n"
         "# why, for fault, error and canceled\n"
         "string message\n"
@@ -314,7 +314,7 @@ MESSAGE_DEFINITIONS: dict[str, str] = {
         "# hold time, s; 0: the node's hold_s\n"
         "float64 hold_s\n"
         "---\n"
-        "# held, dropped, missed, contact_not_detected, fault, error or canceled\n"
+        "# held, dropped, missed, landed, contact_not_detected, fault, error or canceled\n"
         "string outcome\n"
         "# why, for fault, error and canceled\n"
         "string message\n"
