@@ -82,8 +82,16 @@ def test_compare_keeps_the_comparison_and_names_the_errored_trials() -> None:
     assert [(t["object"], t["trial"]) for t in c["errored"]] == [BAD]
     # every failed trial is listed with its experiment seed, to be run again alone
     assert c["failed_trials"] == [
-        {"object": "banana", "trial": 1, "seed": 3, "cause": "trial_error", "parameters": None}
-    ]  # parameters: the drawn uncertain inputs under --randomize, None without
+        {
+            "object": "banana",
+            "trial": 1,
+            "seed": 3,
+            "cause": "trial_error",
+            "rule": None,
+            "parameters": None,
+        }
+    ]  # rule: the first plan's (none: the trial errored); parameters: the drawn uncertain
+    # inputs under --randomize, None without
     assert "a planted defect" in c["errored"][0]["detail"]
     assert "banana trial 1 (seed" in err
 
