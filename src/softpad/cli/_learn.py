@@ -8,7 +8,7 @@ from typing import Any
 from softpad.cli._args import add_command
 
 _EPILOG = """examples:
-  softpad trials --seeds 0-1 --record train.mcap        record 2 x 55 trials (one file each)
+  softpad trials --seeds 0 --record train.mcap          record 55 trials (one file each)
   softpad learn train-*.mcap --out catalogue.toml       learn the objects held in them
   softpad compare --pair catalogue:adaptive --catalogue catalogue.toml --seeds 2-3 --randomize
 
