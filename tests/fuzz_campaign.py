@@ -128,7 +128,7 @@ MAX_READS = 1000
 def _open_box_checked(real: Callable[[str], Any]) -> Callable[..., Any]:
     """``open_box`` that opens ``sim://`` and ``replay://`` boxes for real, stopping the
     command after :data:`MAX_READS` frames; a ``zenoh://`` URL is checked but never
-    connects (:func:`_zenoh_box`)."""
+    connects (:class:`_ZenohBox`)."""
 
     def open_box(url: str = "sim://") -> Any:
         box = real(url)  # a zenoh:// URL is checked, then stops at the stubbed ZenohBox
@@ -146,9 +146,12 @@ def _open_box_checked(real: Callable[[str], Any]) -> Callable[..., Any]:
     return open_box
 
 
-def _zenoh_box(host: str, port: int, *args: Any, **kwargs: Any) -> Any:
-    """The client of a checked ``zenoh://`` URL: it would connect here."""
-    raise _Started(f"box zenoh://{host}:{port} would be used here")
+class _ZenohBox:
+    """The client of a checked ``zenoh://`` URL: it would connect here. A class, so that
+    ``isinstance(box, ZenohBox)`` in the code under test still works (it is False)."""
+
+    def __init__(self, host: str, port: int, *args: Any, **kwargs: Any) -> None:
+        raise _Started(f"box zenoh://{host}:{port} would be used here")
 
 
 def _arm_node(box_url: str = "sim://", *args: Any, **kwargs: Any) -> Any:
@@ -214,7 +217,7 @@ def _stub_targets() -> list[tuple[Any, str, Any]]:
         (softpad.trials, "validate", _started),
         (softpad.ros, "PadNode", _started),
         (softpad.ros, "SimArmNode", _arm_node),
-        (softpad.box._zenoh, "ZenohBox", _zenoh_box),
+        (softpad.box._zenoh, "ZenohBox", _ZenohBox),
         (softpad.cli._bench, "importlib", types.SimpleNamespace(import_module=_started)),
         (softpad.sim, "sealed_rise_map", _started),
         (softpad.sim._probe, "sealed_rise_map", _started),  # softpad.sim.pad_map's
