@@ -68,6 +68,13 @@ class TrialConfig:
     #: sensors and the fault monitor run on the object's last loads (a check's fault can only
     #: end the trial's simulated time earlier). False: every step solved.
     still_valve_check: bool = True
+    #: Let the MuJoCo world coast also through the approach and the descent while the hand
+    #: moves through free air (:meth:`softpad.sim.MujocoWorld.coast_free_hand`): the object has
+    #: settled on the pad, the hand's geoms stay more than 3 mm from every other geom, so no
+    #: contact is made or broken; re-checked with real steps every 0.5 s as in the hold. It
+    #: changes results within a stated tolerance, not bit for bit (docs/trials.md). False:
+    #: every step of those phases solved.
+    coast_free_hand: bool = True
     #: The gripper's mounting: None, each object's own (the thesis's per-object choice,
     #: Section 6.3, for Table 6.1); ``"auto"``, chosen from the pad's reading of the placed
     #: object among every installed mounting (:func:`softpad.planning.choose_mounting`; issue
