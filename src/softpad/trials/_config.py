@@ -59,8 +59,8 @@ class TrialConfig:
     #: Let the MuJoCo world coast through the hold once everything in it moves at steady
     #: velocities (the object settled in the jaws or on the pad): positions advance without
     #: solving contacts, re-checked with real steps every 0.5 s, the hold's last second always
-    #: stepped (:mod:`softpad.sim._mujoco_coast`; docs/trials.md). False: every step solved
-    #: (the reference the equivalence tests compare with).
+    #: stepped (:mod:`softpad.sim._mujoco_coast`; docs/trials.md). False: every step of the
+    #: hold solved (the reference the equivalence tests compare with).
     coast_settled_hold: bool = True
     #: Hold the MuJoCo world still through the valve check that ends a trial
     #: (:meth:`softpad.sim.MujocoWorld.rest_while_still`): the grasp has been scored by then
