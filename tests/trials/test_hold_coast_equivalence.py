@@ -40,7 +40,10 @@ OBJECTS = (
 
 
 def _fields(name: str, seed: int, trial: int, coast: bool, randomize: bool) -> dict[str, Any]:
-    config = TrialConfig(coast_settled_hold=coast, randomize=randomize)
+    # the hold's coasting alone: every other step solved (coast_free_hand changes results
+    # within a tolerance, docs/benchmarks.md; with it on in both runs the can below happens to
+    # end alike, by the chaos of its edge grasp, not because the hold's coasting is exact)
+    config = TrialConfig(coast_settled_hold=coast, randomize=randomize, coast_free_hand=False)
     result, _ = run_trial(get_object(name), trial, trial_seed(seed, name, trial), config)
     d = dataclasses.asdict(result)
     del d["wall_time_s"]

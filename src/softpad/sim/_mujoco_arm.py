@@ -112,6 +112,10 @@ class KinematicArm:
             and self.hand.tobytes() == g[:4].tobytes()
         )
 
+    def jaws_at_rest(self) -> bool:
+        """True when the jaw setpoint stands at its goal (the hand may move)."""
+        return self.width_setpoint == self.goal[4]
+
     def move(self, dt: float) -> None:
         """Advance the hand along its straight line, and the yaw and jaw setpoint, by ``dt`` s."""
         if self.at_rest():  # nothing to advance (the hold, the waits: half of a trial's steps)

@@ -14,7 +14,9 @@ that starts (the object accelerating out of the jaws) ends the coasting within
 
 The world coasts only when told to (:meth:`softpad.sim.MujocoWorld.coast_settled_until`: the
 trial's lab allows it for the hold, up to a margin before its end, so that the outcome is read
-from real steps) and only while the hand and the jaw setpoint stand still.
+from real steps) and only while the hand and the jaw setpoint stand still, or, where allowed
+(:meth:`softpad.sim.MujocoWorld.coast_free_hand`), while only the hand moves, clear of
+everything else.
 """
 
 from __future__ import annotations

@@ -124,6 +124,7 @@ class MujocoScene:
         self.sole = (self._id("geom", "sole_right"), self._id("geom", "sole_left"))
         self.finger = (self._id("geom", "finger_right"), self._id("geom", "finger_left"))
         self.palm = self._id("geom", "palm")
+        self.hand_body = self._id("body", "hand")
         axes = ("x", "y", "z", "yaw")
         self.hand_qpos = np.array([self._qpos(f"hand_{a}") for a in axes])
         self.hand_dof = np.array([self._dof(f"hand_{a}") for a in axes])

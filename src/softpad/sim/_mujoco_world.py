@@ -20,6 +20,7 @@ from numpy.typing import ArrayLike, NDArray
 from softpad.errors import MM_AS_M, InputError, check_finite, check_range
 from softpad.layout import PadLayout
 from softpad.sim._mujoco_arm import ARM_ACCELERATION_M_S2, KinematicArm
+from softpad.sim._mujoco_clearance import HandClearance
 from softpad.sim._mujoco_coast import HoldCoast
 from softpad.sim._mujoco_contacts import ContactSensing, GripperContacts
 from softpad.sim._mujoco_model import MujocoGripper, ObjectModel, PadPhysics, parking_position
@@ -129,6 +130,7 @@ class MujocoWorld(PadWorld):
         self._scene: MujocoScene | None = None
         self._coast: HoldCoast | None = None
         self._resting = False
+        self._free_hand: HandClearance | None = None
         self._build(tuple(objects))
 
     def _build(self, objects: tuple[ObjectModel, ...]) -> None:
@@ -146,6 +148,8 @@ class MujocoWorld(PadWorld):
         until = self._coast.until_s if self._coast is not None else None
         self._coast = HoldCoast(np.setdiff1d(np.arange(scene.model.nv), scene.hand_dof))
         self._coast.allow(until)
+        if self._free_hand is not None:
+            self._free_hand = HandClearance(scene.model, scene.hand_body)
 
     @property
     def scene(self) -> MujocoScene:
@@ -223,7 +227,7 @@ class MujocoWorld(PadWorld):
             remaining -= chunk
             self._pending_s = 0.0
             # whether the arm stands still is asked only inside a coasting window
-            if coast.armed and coast.coasts(self._time_s, self._still()):
+            if coast.armed and coast.coasts(self._time_s, self._coastable()):
                 self._coast_step(ts)
             elif self._resting and self._still():
                 self._rest_step(ts)
@@ -474,6 +478,36 @@ class MujocoWorld(PadWorld):
         self._follow_heights(ts)
         self.scene.data.time += ts
 
+    def coast_free_hand(self, on: bool) -> None:
+        """Let the world coast (:meth:`coast_settled_until`) also while the hand moves, as long
+        as it stays clear of every other geom (``on``; False: only while the arm stands still).
+
+        While the hand moves through free air towards a settled object, no contact is made or
+        broken: the world coasts at its steady velocities while the hand's geoms stay farther
+        than :data:`~softpad.sim._mujoco_clearance.CLEARANCE_MARGIN_M` from every other geom
+        (a lower bound from their boxes, less the hand's travel since the last real step) and
+        the jaw setpoint stands still. A trial allows it for the approach and the descent."""
+        s = self.scene
+        self._free_hand = HandClearance(s.model, s.hand_body) if on else None
+
+    def _coastable(self) -> bool:
+        """True when the world may coast: nothing it is told to do moves, or only the hand
+        moves, clear of everything (:meth:`coast_free_hand`)."""
+        if self._still():
+            return True
+        if not self._hand_only_moves():
+            return False
+        free = self._free_hand
+        assert free is not None
+        if free.stale:  # the geoms' poses of the real step just taken (hand at its qpos then)
+            s = self.scene
+            free.update(s.data, s.qpos[s.hand_q])
+        return free.clear(self._arm.hand)
+
+    def _hand_only_moves(self) -> bool:
+        """True when coasting with a moving hand is allowed and nothing but the hand moves."""
+        return self._free_hand is not None and not self._lowering and self._arm.jaws_at_rest()
+
     def _still(self) -> bool:
         """True when nothing the world is told to do moves: the arm at its goal, the jaw
         setpoint at its goal, no object being lowered."""
@@ -486,6 +520,7 @@ class MujocoWorld(PadWorld):
         qvel = self.coast.qvel
         assert qvel is not None
         self._mj.mj_integratePos(s.model, s.data.qpos, qvel, ts)
+        s.qpos[s.hand_q] = self._arm.hand  # the hand moves as commanded (coast_free_hand)
         s.data.time += ts
 
     # --- stepping -------------------------------------------------------------------------
@@ -521,4 +556,7 @@ class MujocoWorld(PadWorld):
         self._sensing.update(s, self._time_s + self._pending_s, tip_z, self._arm.width_setpoint)
         coast = self._coast
         if coast is not None and coast.until_s is not None:
-            coast.observe(qvel, self._time_s, self._still())
+            free = self._free_hand
+            if free is not None:
+                free.stale = True
+            coast.observe(qvel, self._time_s, self._still() or self._hand_only_moves())

@@ -16,6 +16,7 @@ are read only to score the trial.
 from __future__ import annotations
 
 import contextlib
+import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -32,6 +33,10 @@ _OUTSIDE_MM = 0.5
 #: so that the outcome is read from solved contacts and a slip in the last coasting window is
 #: still simulated.
 _COAST_MARGIN_S = 1.0
+#: Phases from which the world coasts while the hand moves clear of everything, until the jaws
+#: close or a contact is detected (``TrialConfig.coast_free_hand``): the object is set down and
+#: settles, the hand approaches and descends, the jaws release it and the hand withdraws.
+_FREE_HAND_PHASES = ("wait_object", "descend", "release")
 
 
 class _Placed:
@@ -74,6 +79,11 @@ class _TrialWatcher:
             seen["rule"] = plans[0].get("rule")
         elif phase == "approach":
             self._approach(data)
+            self._free_hand(True)
+        elif phase in _FREE_HAND_PHASES:
+            self._free_hand(True)
+        elif phase == "close" or kind in ("contact", "no_contact"):
+            self._free_hand(False)
         elif phase == "hold" and self.t.config.coast_settled_hold:
             hold_s = self.t.config.execution.hold_s
             world.coast_settled_until(t_s + hold_s - _COAST_MARGIN_S)
@@ -85,7 +95,7 @@ class _TrialWatcher:
             seen["tip_hit"] = world.tip_hit_object
             s = world.gripper_state()
             seen["closed_at"] = (s.x_m, s.y_m, s.yaw_rad)
-        elif kind == "no_contact":
+        if kind == "no_contact":
             seen["tip_hit"] = world.tip_hit_object
             seen["detected"] = False
         elif kind == "contact":
@@ -102,6 +112,13 @@ class _TrialWatcher:
             seen["carried"] = seen.get("carried", False) or world.holding()
         elif kind == "retry":
             seen["attempts"] = seen.get("attempts", 1) + 1
+
+    def _free_hand(self, on: bool) -> None:
+        """Coast the world while the hand moves clear of everything (TrialConfig.coast_free_hand)."""
+        if self.t.config.coast_free_hand:
+            world = self.t.world
+            world.coast_free_hand(on)
+            world.coast_settled_until(math.inf if on else None)
 
     def _approach(self, data: dict[str, Any]) -> None:
         """Score only: where the plan puts the COG relative to the true object."""
