@@ -18,9 +18,11 @@ from softpad.planning import (
     GraspPlan,
     KnownObject,
     LearnedTrial,
+    grasp_rule,
     known_name,
     learn_catalogue,
     load_catalogue,
+    load_centre,
     make_planner,
 )
 
@@ -141,7 +143,9 @@ class _Fallback:
 def test_a_known_object_is_grasped_where_its_nearest_held_trial_was(
     catalogue: Catalogue,
 ) -> None:
+    """Without a grasp rule (a ``softpad-catalogue/2`` file), the nearest held trial's."""
     fallback = _Fallback()
+    catalogue = replace(catalogue, objects=tuple(replace(o, rule=None) for o in catalogue.objects))
     planner = CataloguePlanner(catalogue, fallback)
     box = catalogue.objects[1]
     reading = np.array(box.readings_pa[3]) + 1.0  # nearest: the fourth held trial
@@ -198,8 +202,8 @@ def test_the_file_round_trips_and_reaches_the_planner(catalogue: Catalogue, tmp_
     ("text", "message"),
     [
         (None, "not found"),
-        ('schema = "other"\n', "schema must be 'softpad-catalogue/2'"),
-        ('schema = "softpad-catalogue/2"\nmodules = 6\n', "malformed"),
+        ('schema = "other"\n', "schema must be one of .*'softpad-catalogue/3'"),
+        ('schema = "softpad-catalogue/3"\nmodules = 6\n', "malformed"),
         ("schema = [", "not valid TOML"),
     ],
     ids=["missing", "schema", "malformed", "not-toml"],
@@ -221,3 +225,68 @@ def test_learning_refuses_what_it_cannot_learn_from() -> None:
         learn_catalogue([a, b], VAR)
     with pytest.raises(InputError, match="positive"):
         learn_catalogue([a], 0.0)
+
+
+def _box(theta: float, x: float, held: bool, load: tuple[float, ...]) -> LearnedTrial:
+    return LearnedTrial("box", load, (x, 0.5, theta), held)
+
+
+BOX_LOAD = (0.0, 0.0, 0.0, 100.0, 300.0, 100.0)
+
+
+def test_the_rule_takes_the_direction_that_held_most_often() -> None:
+    """Across (theta 0): 3 of 5 held, Laplace 4/7; along (theta near pi/2, either sign): 2 of
+    2, Laplace 3/4. The rule closes along, at the mean of its held centres and directions;
+    with one more failure along (2 of 3: 3/5 > 4/7 still) and then two (2 of 4: 1/2 < 4/7)
+    the choice holds, then turns."""
+    across = [_box(0.0, 1.0 + 0.1 * k, k < 3, BOX_LOAD) for k in range(5)]
+    along = [_box(1.5, 1.4, True, BOX_LOAD), _box(-1.5, 1.6, True, BOX_LOAD)]
+    params = CatalogueParams()
+    rule = grasp_rule(across + along, params)
+    assert rule is not None and (rule.held, rule.tried) == (2, 2)
+    assert rule.grasp[:2] == pytest.approx((1.5, 0.5)) and abs(rule.grasp[2]) == pytest.approx(
+        np.pi / 2, abs=1e-12
+    )
+    miss = _box(1.55, 1.5, False, BOX_LOAD)
+    assert grasp_rule([*across, *along, miss], params).tried == 3  # type: ignore[union-attr]
+    turned = grasp_rule([*across, *along, miss, miss], params)
+    assert turned is not None and (turned.held, turned.tried) == (3, 5)
+    assert turned.grasp == pytest.approx((1.1, 0.5, 0.0))
+    assert grasp_rule([_box(0.0, 1.0, False, BOX_LOAD)], params) is None
+
+
+def test_the_rule_centre_follows_the_load_centre_by_the_stated_gain() -> None:
+    """Load moved from module 4 to module 6 (one module's share of 0.2 over 2 module units):
+    the load centre moves 0.4 module units in x (computed here as a weighted mean of the
+    module centres), the grasp centre by gain times that; the direction stays."""
+    trials = [_box(0.0, 1.5, True, BOX_LOAD), _box(0.0, 1.5, True, BOX_LOAD)]
+    for gain in (0.0, 0.75, 1.0):
+        rule = grasp_rule(trials, CatalogueParams(centre_gain=gain))
+        assert rule is not None
+        moved = np.array([0.0, 0.0, 0.0, 0.0, 300.0, 200.0])
+        centres = np.array(LAYOUT.center_table)
+        shift = moved @ centres[:, 0] / moved.sum() - np.array(BOX_LOAD) @ centres[:, 0] / 500
+        assert shift == pytest.approx(0.4)
+        x, y, theta = rule.apply(moved, LAYOUT.center_table)
+        assert (x, y, theta) == pytest.approx((1.5 + gain * shift, 0.5, 0.0))
+        assert load_centre(moved, centres) == pytest.approx((1.9, 0.5))
+
+
+def test_a_known_object_is_grasped_by_its_rule_and_the_file_keeps_it(
+    catalogue: Catalogue, tmp_path: Path
+) -> None:
+    box = catalogue.objects[1]
+    assert box.rule is not None and (box.rule.held, box.rule.tried) == (5, 8)
+    assert box.rule.grasp[0] == pytest.approx(1.5) and box.rule.grasp[1] == pytest.approx(0.52)
+    reading = np.array(box.readings_pa[3]) + 1.0
+    (plan,) = CataloguePlanner(catalogue, _Fallback()).plan(reading, [(4, 5, 6)], LAYOUT)
+    assert (*plan.cog, plan.theta) == pytest.approx(box.rule.apply(reading, LAYOUT.center_table))
+    assert (*plan.cog, plan.theta) != pytest.approx(box.grasps[3])
+    path = tmp_path / "c.toml"
+    path.write_text(catalogue.to_toml())
+    assert load_catalogue(path).objects[1].rule == box.rule
+    old = catalogue.to_toml().replace("softpad-catalogue/3", "softpad-catalogue/2")
+    path.write_text(
+        "\n".join(x for x in old.splitlines() if not x.startswith(("rule_", "centre_")))
+    )
+    assert all(o.rule is None for o in load_catalogue(path).objects)

@@ -15,11 +15,12 @@ _EPILOG = """examples:
 Each recording is one trial of one object (softpad trials --record; one without a plan of
 one object or an outcome is skipped and counted): its first plan's
 increments are the object's reading, its last grasp (after any retry) the grasp tried, and
-its outcome says whether it held. An object held at least once is known: its readings and
-the grasps that held it go into the catalogue, with tolerances learned from the spread of
-its held readings. --planner catalogue recognises a known object when the reading's load
-pattern (module shares) and total load lie within the object's tolerances of one of its held
-readings, and grasps it as that trial did; any other object goes to the model-based planner
+its outcome says whether it held. An object held at least once is known: its held readings
+go into the catalogue with the stated tolerances, and a grasp rule learnt from all its
+trials (the closing direction that held most often; the mean centre of its held grasps, moved
+with the reading's load centre). --planner catalogue recognises a known object when the
+reading's load pattern (module shares) and total load lie within the tolerances of one of its
+held readings, and grasps it by its rule; any other object goes to the model-based planner
 (docs/planner.md).
 """
 

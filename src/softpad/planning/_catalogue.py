@@ -36,7 +36,10 @@ from softpad.planning._plan import Planner
 from softpad.planning._records import GraspPlan
 
 #: Schema tag of a catalogue file.
-CATALOGUE_SCHEMA = "softpad-catalogue/2"
+CATALOGUE_SCHEMA = "softpad-catalogue/3"
+#: Schemas :func:`load_catalogue` reads (a ``/2`` file has no grasp rules: each known
+#: object's nearest matching held trial's grasp is reused as it was).
+READABLE_SCHEMAS = ("softpad-catalogue/2", CATALOGUE_SCHEMA)
 #: Start of the rule of a known object's plan (``"catalogue: NAME (d=...)"``).
 KNOWN_RULE = "catalogue: "
 #: Start of the rule of an unknown object's plan, the fallback's rule after it.
@@ -72,8 +75,9 @@ class LearnedTrial:
 
 @dataclass(frozen=True)
 class CatalogueParams:
-    """The recognition criterion's tolerances, given to every object ``learn_catalogue``
-    learns (a catalogue file carries them per object, for a lab to narrow or widen).
+    """The recognition criterion's tolerances and the grasp rule's constants, given to every
+    object ``learn_catalogue`` learns (a catalogue file carries them per object, for a lab
+    to narrow or widen).
 
     Chosen on the development data only (Table 6.1 at seeds 100-103, ycb-dev at 100-101,
     docs/planner.md): tolerances per object from the spread of its own held readings
@@ -86,6 +90,15 @@ class CatalogueParams:
     share_tolerance: float = 0.35
     #: Largest absolute natural log of the ratio of total loads (0.3: about 35 %).
     load_tolerance: float = 0.30
+    #: Closing directions of an object's trials within this many radians (modulo pi) are
+    #: one direction of its grasp rule.
+    direction_tolerance_rad: float = 0.2
+    #: How far the grasp centre follows the reading's load centre from the held readings'
+    #: mean load centre (1: all the way). 0.75: on Table 6.1 at seeds 100-104 (development),
+    #: the error of the grasp centre along the closing direction from the held grasps' mean
+    #: place on the object, leaving each trial out, was 2.4 / 2.3 / 2.5 / 3.0 mm for gains
+    #: 0.5 / 0.75 / 1 / 1.25, and 3.0 mm for the nearest held trial's grasp.
+    centre_gain: float = 0.75
 
 
 def features(increments_pa: ArrayLike) -> tuple[np.ndarray, float] | None:
@@ -119,6 +132,67 @@ def _gaps(reading: np.ndarray, readings: np.ndarray) -> tuple[np.ndarray, np.nda
     return np.where(ok, ds, np.inf), np.where(ok, dl, np.inf)
 
 
+def _wrap(theta: float) -> float:
+    """``theta`` wrapped to (-pi/2, pi/2] (a parallel-jaw grasp is the same under pi)."""
+    return math.pi / 2 - (math.pi / 2 - theta) % math.pi
+
+
+def load_centre(increments_pa: ArrayLike, centres: ArrayLike) -> tuple[float, float] | None:
+    """Centre of the positive load: module centres weighted by their positive increments
+    (module units); None for a reading with no positive increment.
+
+    Parameters
+    ----------
+    increments_pa
+        Each module's pressure increment, Pa (module order).
+    centres
+        Module centres (x, y), module units, one row per module.
+    """
+    f = features(increments_pa)
+    if f is None:
+        return None
+    x, y = f[0] @ np.asarray(centres, dtype=float)
+    return float(x), float(y)
+
+
+@dataclass(frozen=True)
+class GraspRule:
+    """A known object's grasp as a rule of the reading: the closing direction that held it
+    most often, and a centre that follows the reading's load centre.
+
+    The centre is ``centre + gain * (load centre of the reading - load centre of
+    reference_shares)``; the direction is ``grasp[2]``.
+
+    Parameters
+    ----------
+    grasp
+        Mean centre (x, y) of the held grasps in that direction, module units, and the
+        direction, radians.
+    reference_shares
+        Mean load shares of those held trials' readings (one per module).
+    held, tried
+        Trials held, and trials tried, in that direction.
+    centre_gain
+        How far the centre follows the load centre (1: all the way).
+    """
+
+    grasp: tuple[float, float, float]
+    reference_shares: tuple[float, ...]
+    held: int
+    tried: int
+    centre_gain: float = 0.75
+
+    def apply(self, increments_pa: ArrayLike, centres: ArrayLike) -> tuple[float, float, float]:
+        """The grasp (x, y, theta) for ``increments_pa`` on a pad with module ``centres``."""
+        x, y, theta = self.grasp
+        now = load_centre(increments_pa, centres)
+        if now is None:
+            return x, y, theta
+        ref = np.asarray(self.reference_shares, dtype=float) @ np.asarray(centres, dtype=float)
+        g = self.centre_gain
+        return x + g * (now[0] - float(ref[0])), y + g * (now[1] - float(ref[1])), theta
+
+
 @dataclass(frozen=True)
 class KnownObject:
     """One object of the catalogue: its training readings, the grasps that held it and its
@@ -136,6 +210,9 @@ class KnownObject:
         Largest L1 distance of a reading's load shares from one of ``readings_pa``'s.
     load_tolerance
         Largest absolute log ratio of a reading's total load to that same reading's.
+    rule
+        The grasp rule learnt from all its trials; None: the nearest matching held trial's
+        grasp is reused as it was.
     """
 
     name: str
@@ -147,6 +224,17 @@ class KnownObject:
     share_tolerance: float = 0.35
     #: Tolerance on the total load (absolute natural log of the ratio).
     load_tolerance: float = 0.30
+    #: The grasp rule (None: the nearest matching held trial's grasp as it was).
+    rule: GraspRule | None = None
+
+    def grasp(
+        self, increments_pa: ArrayLike, k: int, centres: ArrayLike
+    ) -> tuple[float, float, float]:
+        """The grasp (x, y, theta) for a reading recognised as this object: the rule's, or
+        the ``k``-th held trial's when the object has no rule."""
+        if self.rule is None:
+            return self.grasps[k]
+        return self.rule.apply(increments_pa, centres)
 
     def distance(self, reading: ArrayLike) -> tuple[float, int, bool]:
         """The distance of ``reading`` from the nearest held reading (pattern L1 plus the
@@ -190,7 +278,7 @@ class Catalogue:
         return best[:3] if best[3] else (None, best[1], -1)
 
     def to_toml(self) -> str:
-        """The catalogue as TOML (schema ``softpad-catalogue/2``)."""
+        """The catalogue as TOML (schema ``softpad-catalogue/3``)."""
         lines = [
             f'schema = "{CATALOGUE_SCHEMA}"',
             f"modules = {self.modules}",
@@ -202,7 +290,33 @@ class Catalogue:
             lines.append(f"load_tolerance = {o.load_tolerance!r}")
             lines.append("readings_pa = [" + ", ".join(_floats(r) for r in o.readings_pa) + "]")
             lines.append("grasps = [" + ", ".join(_floats(g) for g in o.grasps) + "]")
+            if o.rule is not None:
+                lines += _rule_lines(o.rule)
         return "\n".join(lines) + "\n"
+
+
+def _rule_lines(rule: GraspRule) -> list[str]:
+    return [
+        f"rule_grasp = {_floats(rule.grasp)}",
+        f"rule_shares = {_floats(rule.reference_shares)}",
+        f"rule_held = {rule.held}",
+        f"rule_tried = {rule.tried}",
+        f"centre_gain = {rule.centre_gain!r}",
+    ]
+
+
+def _rule(o: dict[str, Any]) -> GraspRule | None:
+    """The grasp rule of one ``[[object]]`` table; None when it has none."""
+    if "rule_grasp" not in o:
+        return None
+    g = o["rule_grasp"]
+    return GraspRule(
+        (float(g[0]), float(g[1]), float(g[2])),
+        tuple(float(v) for v in o["rule_shares"]),
+        int(o["rule_held"]),
+        int(o["rule_tried"]),
+        float(o["centre_gain"]),
+    )
 
 
 def _quote(text: str) -> str:
@@ -240,14 +354,53 @@ def learn_catalogue(
         raise InputError(f"variance_pa2 must be a positive number, got {variance_pa2!r}")
     objects = []
     for name in dict.fromkeys(t.object for t in trials):
-        held = [t for t in trials if t.object == name and t.held and features(t.increments_pa)]
+        mine = [t for t in trials if t.object == name and features(t.increments_pa)]
+        held = [t for t in mine if t.held]
         if held:
             readings = tuple(t.increments_pa for t in held)
             grasps = tuple(t.grasp for t in held)
-            objects.append(
-                KnownObject(name, readings, grasps, params.share_tolerance, params.load_tolerance)
-            )
+            tol = (params.share_tolerance, params.load_tolerance)
+            rule = grasp_rule(mine, params)
+            objects.append(KnownObject(name, readings, grasps, *tol, rule))
     return Catalogue(n.pop(), variance_pa2, tuple(objects))
+
+
+def grasp_rule(trials: Sequence[LearnedTrial], params: CatalogueParams) -> GraspRule | None:
+    """One object's grasp rule from its trials: their closing directions grouped within
+    ``params.direction_tolerance_rad``; the direction whose trials held most often (Laplace:
+    (held + 1) / (tried + 2); ties to more held); the mean centre, direction and load shares
+    of its held trials. None when no trial held.
+
+    Parameters
+    ----------
+    trials
+        The object's trials with a positive reading, held or not.
+    params
+        The direction tolerance and the centre gain.
+    """
+    groups: list[tuple[float, list[LearnedTrial]]] = []
+    for t in trials:
+        theta = _wrap(t.grasp[2])
+        near = [g for g in groups if abs(_wrap(theta - g[0])) <= params.direction_tolerance_rad]
+        if near:
+            near[0][1].append(t)
+        else:
+            groups.append((theta, [t]))
+    scored = [(sum(t.held for t in g) + 1) / (len(g) + 2) for _, g in groups]
+    best = max(
+        range(len(groups)),
+        key=lambda i: (scored[i], sum(t.held for t in groups[i][1])),
+        default=None,
+    )
+    if best is None or not any(t.held for t in groups[best][1]):
+        return None
+    ref, group = groups[best]
+    held = [t for t in group if t.held]
+    theta = _wrap(ref + float(np.mean([_wrap(t.grasp[2] - ref) for t in held])))
+    x, y = np.mean([t.grasp[:2] for t in held], axis=0)
+    shares = np.mean([features(t.increments_pa)[0] for t in held], axis=0)  # type: ignore[index]
+    grasp = (float(x), float(y), theta)
+    return GraspRule(grasp, tuple(map(float, shares)), len(held), len(group), params.centre_gain)
 
 
 def load_catalogue(path: str | Path) -> Catalogue:
@@ -267,8 +420,8 @@ def load_catalogue(path: str | Path) -> Catalogue:
         raise InputError(f"catalogue {str(p)!r} not found") from None
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
         raise InputError(f"catalogue {str(p)!r} is not valid TOML: {exc}") from None
-    if d.get("schema") != CATALOGUE_SCHEMA:
-        raise InputError(f"catalogue {str(p)!r}: schema must be {CATALOGUE_SCHEMA!r}")
+    if d.get("schema") not in READABLE_SCHEMAS:
+        raise InputError(f"catalogue {str(p)!r}: schema must be one of {READABLE_SCHEMAS}")
     try:
         objects = tuple(
             KnownObject(
@@ -277,6 +430,7 @@ def load_catalogue(path: str | Path) -> Catalogue:
                 tuple((float(g[0]), float(g[1]), float(g[2])) for g in o["grasps"]),
                 float(o["share_tolerance"]),
                 float(o["load_tolerance"]),
+                _rule(o),
             )
             for o in d.get("object", [])
         )
@@ -314,7 +468,7 @@ class CataloguePlanner:
         if known is None:
             plans = self.fallback.plan(increments_pa, objects, layout)
             return [replace(p, rule=UNKNOWN_RULE + p.rule) for p in plans]
-        x, y, theta = known.grasps[k]
+        x, y, theta = known.grasp(r, k, layout.center_table)
         mods = objects[0]
         return [
             GraspPlan(
@@ -345,10 +499,13 @@ __all__ = [
     "Catalogue",
     "CatalogueParams",
     "CataloguePlanner",
+    "GraspRule",
     "KnownObject",
     "LearnedTrial",
     "features",
+    "grasp_rule",
     "known_name",
     "learn_catalogue",
     "load_catalogue",
+    "load_centre",
 ]
