@@ -71,7 +71,7 @@ def test_every_object_gets_the_stated_tolerances_and_the_file_keeps_them(
     path.write_text(cat.to_toml())
     assert load_catalogue(path) == cat
     default = learn_catalogue(_trials(np.random.default_rng(1)), VAR)
-    assert {(o.share_tolerance, o.load_tolerance) for o in default.objects} == {(0.35, 0.30)}
+    assert {(o.share_tolerance, o.load_tolerance) for o in default.objects} == {(0.25, 0.30)}
 
 
 def test_the_distances_are_scipys_cityblock_of_the_shares_and_of_the_log_loads(
