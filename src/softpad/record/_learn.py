@@ -4,9 +4,11 @@ recording's sensor variance."""
 
 from __future__ import annotations
 
+import json
 import statistics
 from collections.abc import Sequence
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 from softpad.errors import InputError
@@ -44,6 +46,45 @@ def learned_trial(run: Any) -> tuple[Any, float] | None:
 
 
 @dataclass(frozen=True)
+class _TrialEvents:
+    """What learning reads of a recording: its path, metadata and events (t, kind, data)."""
+
+    path: Path
+    metadata: dict[str, Any]
+    events: list[tuple[float, str, dict[str, Any]]]
+
+
+def _trial_events(path: str) -> Any:
+    """The metadata and events of a recording, read through its index without decoding its
+    frames (a fortieth of :func:`~softpad.record.load_recording`'s time); a file without an
+    index (cut short by a crash) or not a SoftPad recording goes through ``load_recording``,
+    which reads what it can or names what is wrong."""
+    from mcap.reader import make_reader
+    from mcap_ros2.decoder import DecoderFactory
+
+    from softpad.record import _schemas as S
+    from softpad.record._read import _decode_metadata, load_recording
+
+    try:
+        with open(path, "rb") as f:
+            reader = make_reader(f, decoder_factories=[DecoderFactory()])
+            meta: dict[str, Any] = {}
+            for m in reader.iter_metadata():
+                if m.name == "softpad":
+                    meta.update(_decode_metadata(dict(m.metadata)))
+            events = [
+                (msg.log_time * 1e-9, str(d.kind), dict(json.loads(d.data_json)))
+                for _, _, msg, d in reader.iter_decoded_messages(topics=[S.EVENT_TOPIC])
+            ]
+    except Exception:  # no summary or index, a torn file, not an MCAP: the full reader decides
+        return load_recording(path)
+    if meta.get("format") not in S.READABLE_FORMATS:
+        return load_recording(path)
+    events.sort(key=lambda e: e[0])
+    return _TrialEvents(Path(path), meta, events)
+
+
+@dataclass(frozen=True)
 class Learned:
     """A catalogue learned from recordings.
 
@@ -75,9 +116,8 @@ def learn_from_recordings(paths: Sequence[str]) -> Learned:
         Recordings (.mcap) of trials of one object each.
     """
     from softpad.planning import learn_catalogue
-    from softpad.record._read import load_recording
 
-    learned = [learned_trial(load_recording(path)) for path in paths]
+    learned = [learned_trial(_trial_events(path)) for path in paths]
     pairs = [x for x in learned if x is not None]
     if not pairs:
         raise InputError("no recording holds a plan of one object and its outcome")
