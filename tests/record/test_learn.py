@@ -31,3 +31,15 @@ def test_a_file_cut_short_goes_through_the_full_reader(tmp_path: Path) -> None:
     cut.write_bytes(data[: 2 * len(data) // 3])
     got = _trial_events(str(cut))
     assert isinstance(got, RecordedRun) and not got.complete
+
+
+def test_a_recording_without_increments_is_named(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """tests/data's recordings predate the plan's increments: a clear error, exit 2."""
+    from softpad.cli.main import main
+
+    out = tmp_path / "c.toml"
+    assert main(["learn", str(DATA / "banana.mcap"), "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "banana.mcap" in err and "no increments_pa" in err and not out.exists()

@@ -40,6 +40,10 @@ def learned_trial(run: Any) -> tuple[Any, float] | None:
     for _, kind, d in run.events:
         if kind == "retry":  # the grasp tried last
             grasp = (float(d["cog"][0]), float(d["cog"][1]), float(d["theta"]))
+    if "increments_pa" not in plans[0]:
+        raise InputError(
+            f"{name}: its plan carries no increments_pa (recorded by an older SoftPad)"
+        )
     increments = tuple(float(v) for v in plans[0]["increments_pa"])
     variance = float(run.metadata.get("pressure_variance_pa2", 0.0)) / 5
     return LearnedTrial(str(objects[0]), increments, grasp, outcomes[-1] == "held"), variance
