@@ -80,17 +80,16 @@ def test_coasting_the_hold_changes_no_trial_result(
     name: str, trial: int, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     """Two of Experiment 2's seed-0 trials: the same result with and without coasting, and
-    more than 6 s of the 15 s hold coasted (3,000 steps of 2 ms, 1,500 of 4 ms)."""
+    more than 6 s of the 15 s hold coasted (3,000 steps of 2 ms)."""
     steps = _coasted(monkeypatch)
     _assert_equivalent(name, 0, range(trial, trial + 1))
     assert len(steps) * TrialConfig().mujoco_timestep_s > 6.0
 
 
 #: Since the fingertips' friction reaches MuJoCo (issue 45: 0.5, not the objects' 0.8), the can
-#: of seed 0, trial 2 slips slowly in the hold: stepped and coasted it ends in different failure
-#: causes ('slipped_during_hold' and 'object_outside_jaws'; at the 4 ms step of issue 50's
-#: fourth round, stepped 'object_outside_jaws', coasted 'slipped_during_hold'). Coasting at a
-#: steady slip is not exact there; strict, so that the case fails once coasting is made exact.
+#: of seed 0, trial 2 slips slowly in the hold: stepped it ends 'slipped_during_hold', coasted
+#: 'object_outside_jaws' (both failures; the cause differs). Coasting at a steady slip is not
+#: exact there; strict, so that the case fails once coasting is made exact again (issue 50).
 _SLIPS_IN_THE_HOLD = pytest.mark.xfail(
     reason="coasting a slowly slipping can changes its failure's cause (issue 50)", strict=True
 )

@@ -79,7 +79,7 @@ class TrialConfig:
     #: contacts' time constant is twice the step (:func:`softpad.sim.build_mjcf`), so a
     #: coarser step also softens every contact; docs/benchmarks.md gives the tolerance it
     #: was measured against.
-    mujoco_timestep_s: float = 4e-3
+    mujoco_timestep_s: float = 2e-3
     #: The gripper's mounting: None, each object's own (the thesis's per-object choice,
     #: Section 6.3, for Table 6.1); ``"auto"``, chosen from the pad's reading of the placed
     #: object among every installed mounting (:func:`softpad.planning.choose_mounting`; issue
