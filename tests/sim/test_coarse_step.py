@@ -155,3 +155,19 @@ def test_trials_run_mujoco_at_the_configured_step() -> None:
         assert abs(trial.world.coast.coast_steps * step - 0.5) <= step / 2
     with pytest.raises(InputError, match="mujoco_timestep_s"):
         TrialConfig(mujoco_timestep_s=0.02)
+
+
+def test_the_arms_move_says_whether_it_stands_at_rest() -> None:
+    """The world's step loop takes the arm's rest from ``move`` (asked once a step): it must be
+    ``at_rest()`` after the move, or a moving hand would be coasted or held still."""
+    from softpad.sim._mujoco_arm import KinematicArm
+
+    gripper = MujocoGripper(mounting="6/2")
+    arm = KinematicArm(np.array([0.05, 0.05, 0.15, 0.0]), gripper.max_width_m)
+    assert arm.move(2e-3) and arm.at_rest()
+    arm.command((0.05, 0.05, 0.1, 0.0), gripper.max_width_m, 0.0, 0.2, gripper)
+    answers = []
+    for _ in range(1000):
+        answers.append(arm.move(2e-3))
+        assert answers[-1] == arm.at_rest()
+    assert not answers[0] and answers[-1]  # moving at first, arrived within 2 s
