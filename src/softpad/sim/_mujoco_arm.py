@@ -116,10 +116,11 @@ class KinematicArm:
         """True when the jaw setpoint stands at its goal (the hand may move)."""
         return self.width_setpoint == self.goal[4]
 
-    def move(self, dt: float) -> None:
-        """Advance the hand along its straight line, and the yaw and jaw setpoint, by ``dt`` s."""
+    def move(self, dt: float) -> bool:
+        """Advance the hand along its straight line, and the yaw and jaw setpoint, by ``dt`` s;
+        True when the arm stands at rest afterwards (:meth:`at_rest`, asked once here)."""
         if self.at_rest():  # nothing to advance (the hold, the waits: half of a trial's steps)
-            return
+            return True
         delta = self.goal[:3] - self.hand[:3]
         dist = float(np.linalg.norm(delta))
         # the arm accelerates and brakes at ARM_ACCELERATION_M_S2 (a kinematic jump to the
@@ -147,6 +148,7 @@ class KinematicArm:
         self.width_setpoint = (
             self.goal[4] if abs(dw) <= step else self.width_setpoint + math.copysign(step, dw)
         )
+        return self.at_rest()
 
 
 def _unwrap(angle: float, reference: float) -> float:

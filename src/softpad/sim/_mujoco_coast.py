@@ -45,10 +45,19 @@ class HoldCoast:
     ----------
     moving_dofs
         Indices of the velocities to watch and to integrate (every dof but the hand's).
+    timestep_s
+        MuJoCo's step, seconds: the windows keep their durations (:data:`VERIFY_STEPS` and
+        :data:`COAST_STEPS` are counted in 2 ms steps), so a coarser step verifies and coasts
+        over the same simulated time.
     """
 
-    def __init__(self, moving_dofs: NDArray[np.intp]) -> None:
+    def __init__(self, moving_dofs: NDArray[np.intp], timestep_s: float = 2e-3) -> None:
         self._dofs = moving_dofs
+        scale = 2e-3 / timestep_s
+        #: Real steps that must show steady velocities before coasting.
+        self.verify_steps = max(1, round(VERIFY_STEPS * scale))
+        #: Steps coasted between two verifications.
+        self.coast_steps = max(1, round(COAST_STEPS * scale))
         #: Coasting allowed before this simulated time, seconds (None: not allowed).
         self.until_s: float | None = None
         #: MuJoCo steps coasted so far (diagnostics).
@@ -96,7 +105,7 @@ class HoldCoast:
             self._v0, self._count = v.copy(), 0
             return
         self._count += 1
-        if self._count < VERIFY_STEPS:
+        if self._count < self.verify_steps:
             return
         steady = float(np.max(np.abs(v - self._v0), initial=0.0)) <= STEADY_DV
         anchor = self._anchor
@@ -105,7 +114,7 @@ class HoldCoast:
                 self._anchor = v.copy()
             self.qvel = np.zeros_like(qvel)
             self.qvel[self._dofs] = v
-            self._left = COAST_STEPS
+            self._left = self.coast_steps
             self._v0 = None
         else:  # moving: watch a new window from here
             self._anchor = None

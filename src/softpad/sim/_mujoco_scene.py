@@ -94,6 +94,11 @@ class MujocoScene:
         self.qpos, self.qvel, self.ctrl = self.data.qpos, self.data.qvel, self.data.ctrl
         self.qpos_spring = self.model.qpos_spring
         self.module_q = _slice(self.module_qpos)
+        # the module bodies are built one after another, one slide joint each: a slice, so
+        # that this is a view the world's springs are written through
+        assert isinstance(self.module_q, slice)
+        #: The module tops' spring rest lengths (a view into ``qpos_spring``).
+        self.module_spring = self.qpos_spring[self.module_q]
         self.hand_q, self.hand_v = _slice(self.hand_qpos), _slice(self.hand_dof)
 
     def _id(self, kind: str, name: str) -> int:

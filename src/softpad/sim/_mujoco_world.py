@@ -118,6 +118,7 @@ class MujocoWorld(PadWorld):
         self._pending_s = 0.0
         self._heights = np.full(n, self.pad.free_height_m)
         self._heights_given = False
+        self._spring_step = np.zeros(n)
         self._lowering: dict[str, float] = {}
         open_w = self.gripper.max_width_m
         cx = self._layout.cols * self._layout.pitch_m / 2
@@ -146,7 +147,9 @@ class MujocoWorld(PadWorld):
         self._scene = scene
         self._step_s = float(scene.model.opt.timestep)
         until = self._coast.until_s if self._coast is not None else None
-        self._coast = HoldCoast(np.setdiff1d(np.arange(scene.model.nv), scene.hand_dof))
+        self._coast = HoldCoast(
+            np.setdiff1d(np.arange(scene.model.nv), scene.hand_dof), self._step_s
+        )
         self._coast.allow(until)
         if self._free_hand is not None:
             self._free_hand = HandClearance(scene.model, scene.hand_body)
@@ -209,7 +212,7 @@ class MujocoWorld(PadWorld):
             raise InputError(f"world time step must be >= 0 s, got {dt!r}")
         if module_heights_m is not None:
             h = np.asarray(module_heights_m, dtype=float)
-            if h.shape != (self._layout.n_modules,) or not np.all(np.isfinite(h)):
+            if h.shape != (self._layout.n_modules,) or not np.isfinite(h).all():
                 raise InputError(
                     f"module heights must be {self._layout.n_modules} finite values, got {h!r}"
                 )
@@ -223,16 +226,15 @@ class MujocoWorld(PadWorld):
         arm, coast = self._arm, self.coast
         while self._pending_s + remaining >= ts * (1 - 1e-9):
             chunk = max(ts - self._pending_s, 0.0)
-            arm.move(chunk)
+            arm_still = arm.move(chunk)  # whether the arm stands, asked once a step
             remaining -= chunk
             self._pending_s = 0.0
-            # whether the arm stands still is asked only inside a coasting window
-            if coast.armed and coast.coasts(self._time_s, self._coastable()):
+            if coast.armed and coast.coasts(self._time_s, self._coastable(arm_still)):
                 self._coast_step(ts)
-            elif self._resting and self._still():
+            elif self._resting and arm_still and not self._lowering:
                 self._rest_step(ts)
             else:
-                self._mj_step(ts)
+                self._mj_step(ts, arm_still)
         # the chamber feels the impulse of the step's contacts, not the peak of one solver
         # step: the loads of the steps in this period, averaged (see module_loads_n)
         mean = self._sensing.mean_loads()
@@ -490,10 +492,11 @@ class MujocoWorld(PadWorld):
         s = self.scene
         self._free_hand = HandClearance(s.model, s.hand_body) if on else None
 
-    def _coastable(self) -> bool:
+    def _coastable(self, arm_still: bool) -> bool:
         """True when the world may coast: nothing it is told to do moves, or only the hand
-        moves, clear of everything (:meth:`coast_free_hand`)."""
-        if self._still():
+        moves, clear of everything (:meth:`coast_free_hand`); ``arm_still``: the arm stands at
+        rest (:meth:`KinematicArm.at_rest`)."""
+        if arm_still and not self._lowering:
             return True
         if not self._hand_only_moves():
             return False
@@ -507,11 +510,6 @@ class MujocoWorld(PadWorld):
     def _hand_only_moves(self) -> bool:
         """True when coasting with a moving hand is allowed and nothing but the hand moves."""
         return self._free_hand is not None and not self._lowering and self._arm.jaws_at_rest()
-
-    def _still(self) -> bool:
-        """True when nothing the world is told to do moves: the arm at its goal, the jaw
-        setpoint at its goal, no object being lowered."""
-        return self._arm.at_rest() and not self._lowering
 
     def _coast_step(self, ts: float) -> None:
         """One coasted step of ``ts`` seconds: module springs, positions at constant velocity."""
@@ -527,13 +525,15 @@ class MujocoWorld(PadWorld):
     def _follow_heights(self, ts: float) -> None:
         """Module rest lengths follow the box's heights, low-passed (see step())."""
         if self._heights_given:
-            s = self.scene
-            alpha = ts / (_HEIGHT_FILTER_S + ts)
-            spring, q = s.qpos_spring, s.module_q
-            spring[q] += alpha * (self._heights - spring[q])
+            spring, buf = self.scene.module_spring, self._spring_step
+            # spring += alpha (heights - spring), in place: the same operations, no temporaries
+            np.subtract(self._heights, spring, out=buf)
+            buf *= ts / (_HEIGHT_FILTER_S + ts)
+            spring += buf
 
-    def _mj_step(self, ts: float) -> None:
-        """One MuJoCo step of ``ts`` seconds: module springs, hand, jaws, lowering, loads."""
+    def _mj_step(self, ts: float, arm_still: bool) -> None:
+        """One MuJoCo step of ``ts`` seconds: module springs, hand, jaws, lowering, loads
+        (``arm_still``: the arm stands at rest, :meth:`KinematicArm.at_rest`)."""
         s = self._scene
         assert s is not None
         m, d = s.model, s.data
@@ -559,4 +559,5 @@ class MujocoWorld(PadWorld):
             free = self._free_hand
             if free is not None:
                 free.stale = True
-            coast.observe(qvel, self._time_s, self._still() or self._hand_only_moves())
+            still = arm_still and not self._lowering
+            coast.observe(qvel, self._time_s, still or self._hand_only_moves())

@@ -75,6 +75,11 @@ class TrialConfig:
     #: changes results within a stated tolerance, not bit for bit (docs/trials.md). False:
     #: every step of those phases solved.
     coast_free_hand: bool = True
+    #: MuJoCo's time step, seconds (2 ms: every campaign before issue 50's fourth round). The
+    #: contacts' time constant is twice the step (:func:`softpad.sim.build_mjcf`), so a
+    #: coarser step also softens every contact; docs/benchmarks.md gives the tolerance it
+    #: was measured against.
+    mujoco_timestep_s: float = 2e-3
     #: The gripper's mounting: None, each object's own (the thesis's per-object choice,
     #: Section 6.3, for Table 6.1); ``"auto"``, chosen from the pad's reading of the placed
     #: object among every installed mounting (:func:`softpad.planning.choose_mounting`; issue
@@ -104,6 +109,7 @@ class TrialConfig:
         CONTACT_DETECTOR_REGISTRY.factory(self.detector)
         if self.sample_rate_hz <= 0:
             raise InputError("trial sample_rate_hz must be > 0 Hz")
+        check_range("trial mujoco_timestep_s", self.mujoco_timestep_s, 5e-4, 5e-3, "s")
         check_mounting_choice(self.mounting, "trial mounting")
 
 

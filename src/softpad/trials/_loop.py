@@ -161,7 +161,7 @@ class _Trial:
         world = _lab_world(lab)
         physics = lab.gripper_physics() if lab is not None else {}
         self.gripper = MujocoGripper.from_spec(self.geometry, **physics)
-        self.world = MujocoWorld(gripper=self.gripper, **world)
+        self.world = MujocoWorld(gripper=self.gripper, timestep_s=config.mujoco_timestep_s, **world)
         self.box = _trial_box(self.world, seed, config, lab)
         # the jaws open to the mounting's width (the loop commands "fully open"); an explicit
         # opening_m is an experimenter's choice that provokes a failure on purpose
