@@ -18,7 +18,15 @@ import numpy as np
 from numpy.typing import NDArray
 
 from softpad import thesis
-from softpad.box._base import Box, PressureFrame, ValveCommand, unchecked_frame
+from softpad.box._base import (
+    _SET_P,
+    _SET_S,
+    _SET_T,
+    Box,
+    PressureFrame,
+    ValveCommand,
+    unchecked_frame,
+)
 from softpad.box._sim_faults import (
     DEFAULT_LEAK_M2,
     FAULT_KINDS,
@@ -45,6 +53,8 @@ try:  # the exact solve in compiled code (src/softpad/box/_fastsim.c; make ext /
     import softpad.box._fastsim as _fastsim
 except ImportError:  # pragma: no cover - no C compiler: the NumPy reference alone
     _fastsim = None  # type: ignore[assignment]
+
+_new_frame = object.__new__
 
 #: The shortest ramp whose rows' spans the sensors compute (``softpad.sim._sensor.SPAN_ROWS``;
 #: tests/box/test_fastsim.py checks they agree).
@@ -436,18 +446,40 @@ class SimBox(Box):
         self._t = t
         if t >= self._faults.next_s:
             self._activate_faults()
-        values, supply = self._sense(self._step_physics(t, dt))
-        return unchecked_frame(t, values, supply)  # t is finite, values 1-D
-
-    def _step_physics(self, t: float, dt: float) -> bool:
-        """Step the world and the gas physics to ``t``; True when the true pressures changed."""
         world = self.world
         world.step(dt, self._heights)
         loads = world.module_loads_n()
-        chambers = self.chambers
         # the loads equal those of the last step (the chambers' loads_n) iff their bytes do;
         # far cheaper than np.array_equal on the hot path
         key = loads.tobytes()
+        dist = self.disturbances
+        chambers = self.chambers
+        if (
+            key == self._loads_key
+            and (dist is None or t < dist.next_s)
+            and (self._any_open or self._leaking or chambers._path is not None)
+            and chambers.hold(dt, self._valve_count, self._supply_true)
+        ):  # the hot path of an inflating box: a step along the stretch of the gas physics
+            sensors = self.sensors
+            hit = sensors.next_on_ramp(chambers.solve_count, self._supply_true)
+            if hit is None:  # _sense's path, as the step changed the pressures
+                path = chambers._path
+                assert path is not None  # hold() stepped along it
+                hit = sensors.sample_path(
+                    path, chambers._pos - 1, chambers.solve_count, self._supply_true
+                )
+            frame = _new_frame(PressureFrame)  # unchecked_frame, inline
+            _SET_T(frame, t)
+            _SET_P(frame, hit[0])
+            _SET_S(frame, hit[1])
+            return frame
+        values, supply = self._sense(self._step_physics(t, dt, loads, key))
+        return unchecked_frame(t, values, supply)  # t is finite, values 1-D
+
+    def _step_physics(self, t: float, dt: float, loads: NDArray[np.float64], key: bytes) -> bool:
+        """Step the gas physics to ``t`` under the world's ``loads`` (their bytes ``key``; the
+        world stepped already); True when the true pressures changed."""
+        chambers = self.chambers
         same_load = key == self._loads_key
         if not same_load:
             self._loads_key = key
@@ -458,8 +490,8 @@ class SimBox(Box):
         if not same_load:
             changed = True
         elif self._any_open or self._leaking or chambers.path is not None:
-            # the hot path of an inflating box: a step along the stretch of the gas physics
-            # (a stretch left running by closing every valve ends with an exact solve)
+            # a step along the stretch of the gas physics (a stretch left running by closing
+            # every valve ends with an exact solve)
             if chambers.hold(dt, self._valve_count, self._supply_true):
                 return True
             changed = True
