@@ -12,7 +12,13 @@ from softpad.box import Box, PressureFrame, SafetyTrip, ValveCommand
 from softpad.box import _sim as sim_module
 from softpad.box._base import unchecked_frame
 from softpad.box._sim import CompiledChambers, SimBox
-from softpad.sim import AnalyticWorld, ChamberBank, DisturbanceParams, default_characteristic
+from softpad.sim import (
+    AnalyticWorld,
+    ChamberBank,
+    DisturbanceParams,
+    TabulatedCharacteristic,
+    default_characteristic,
+)
 
 fastsim = pytest.importorskip("softpad.box._fastsim", reason="not built (make ext)")
 
@@ -265,3 +271,50 @@ def test_the_hot_path_of_a_frame_is_the_general_path(
     assert len(runs[0][1]) > 0  # the guard tripped on the way
     assert general[0] == frames  # the reference: every frame on the general path
     assert general[1] < (0.2 if rate_hz == 1000.0 else 0.7) * frames  # ours: stretch starts
+
+
+def test_the_load_columns_on_random_loads() -> None:
+    """The table's columns at the loads (and their slopes, and the pressure a load beyond
+    the table takes off) against TabulatedCharacteristic._load_columns: loads on the grid,
+    between, below and beyond it; a load not finite is declined."""
+    char = default_characteristic()
+    assert isinstance(char, TabulatedCharacteristic)
+    bank = CompiledChambers(6, 6, char)
+    grid = char.load_n
+    rng = np.random.default_rng(11)
+    beyond = 0
+    for trial in range(300):
+        kind = trial % 4
+        f = (
+            rng.choice(grid, 6)  # on the grid
+            if kind == 0
+            else rng.uniform(-1.0, 1.2 * grid[-1], 6)  # below, inside and beyond
+            if kind == 1
+            else rng.uniform(0.0, grid[-1], 6) * rng.integers(0, 2, 6)  # some unloaded
+            if kind == 2
+            else rng.exponential(grid[-1] / 4, 6)
+        )
+        for which in ("volume", "height"):
+            key = f.tobytes()
+            want = char._load_columns(which, f, key)
+            got = bank._load_columns(char, which, f, key)
+            assert want[0] == got[0] and (want[3] is None) is (got[3] is None), trial
+            for a, b in zip(want[1:4], got[1:4], strict=True):
+                assert a is None or a.tobytes() == b.tobytes(), (trial, which)
+            assert want[4].tolist() == got[4].tolist()
+        beyond += want[3] is not None
+    assert 20 < beyond < 200
+    out = [np.empty((char.pressure_pa.size, 2)), np.empty((char.pressure_pa.size - 1, 2))]
+    args = (grid, char.volume_m3_table, char.pressure_pa, 9e-4, *out, np.empty(2))
+    assert fastsim.columns(np.array([1.0, np.nan]), *args) == 0
+
+
+def test_the_median_is_statistics_median() -> None:
+    import statistics
+
+    rng = np.random.default_rng(5)
+    for n in range(1, 10):
+        for _ in range(50):
+            values = rng.normal(1000.0, 300.0, n).round(rng.integers(-2, 3)).tolist()
+            want = statistics.median(values)
+            assert np.float64(sim_module._median(values)).tobytes() == np.float64(want).tobytes()

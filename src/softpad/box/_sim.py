@@ -12,7 +12,7 @@ are layers around it (:mod:`softpad.box._sim_layers`), composed by ``sim://``
 
 from __future__ import annotations
 
-import statistics
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -68,6 +68,14 @@ _VALVE_OPEN = {
 }
 
 
+def _median(values: list[float]) -> float:
+    """``statistics.median(values)`` (the same value: the middle of the sorted values, or
+    the mean of the two middle ones), without its generic checks and conversions."""
+    data = sorted(values)
+    i = len(data) // 2
+    return data[i] if len(data) % 2 else (data[i - 1] + data[i]) / 2
+
+
 def _check_args(n_modules: int, channels: int, sample_rate_hz: float, seed: int) -> None:
     """Raise InputError naming a bad channel count, sample rate or seed."""
     if not isinstance(channels, int) or not n_modules <= channels <= 64:
@@ -109,6 +117,9 @@ class CompiledChambers(ChamberBank):
         self._kernel = _fastsim
         tab = characteristic if isinstance(characteristic, TabulatedCharacteristic) else None
         self._tab = tab if _fastsim is not None and tab is not None else None
+        #: The area over which a load beyond the table acts as a pressure, m^2 (a property of
+        #: the characteristic that parses its metadata: read once).
+        self._patch_m2 = self._tab.excess_load_area_m2 if self._tab is not None else 0.0
 
     def _columns(
         self, which: str
@@ -122,8 +133,25 @@ class CompiledChambers(ChamberBank):
         key = f.tobytes()
         entry = tab._cache.get(which)
         if entry is None or entry[0] != key:
-            entry = tab._cache[which] = tab._load_columns(which, f, key)
+            entry = tab._cache[which] = self._load_columns(tab, which, f, key)
         return entry[1], entry[2], entry[3]
+
+    def _load_columns(
+        self, tab: TabulatedCharacteristic, which: str, f: NDArray[np.float64], key: bytes
+    ) -> tuple[bytes, NDArray[np.float64], NDArray[np.float64], NDArray[np.float64] | None, Any]:
+        """``TabulatedCharacteristic._load_columns``'s cache entry, its columns, slopes and
+        pressure taken off by a load beyond the table from the kernel (the reference's where a
+        load is not finite)."""
+        table = tab.volume_m3_table if which == "volume" else tab.height_m_table
+        grid, m = tab.pressure_pa, f.size
+        cols, slopes, drop = np.empty((grid.size, m)), np.empty((grid.size - 1, m)), np.empty(m)
+        assert self._kernel is not None
+        beyond = self._kernel.columns(
+            f, tab.load_n, table, grid, self._patch_m2, cols, slopes, drop
+        )
+        if not beyond:
+            return tab._load_columns(which, f, key)
+        return key, cols, slopes, drop if beyond == 2 else None, np.arange(m)
 
     def _solve(self, p: NDArray[np.float64]) -> NDArray[np.float64]:
         tab = self._tab
@@ -428,7 +456,8 @@ class SimBox(Box):
     def read(self) -> PressureFrame:
         """Read one frame (:meth:`Box.read`); the guard is given the readings' lowest and
         highest value where the sensors computed them for a block of frames at once."""
-        self._check_open()
+        if self._closed:
+            self._check_open()  # raises
         frame = self._read()
         guard = self._guard if self._guard is not None else self.safety
         span = self.sensors.span
@@ -518,7 +547,7 @@ class SimBox(Box):
         else:
             if chambers.solved:  # heights follow the exact solves (every <= 20 ms)
                 self._heights = chambers.heights_m()
-                self._operate(statistics.median(chambers.pressure_pa[: self._n_mod].tolist()))
+                self._operate(_median(chambers.pressure_pa[: self._n_mod].tolist()))
             path = chambers.path
             if path is None:  # a load change of sealed modules
                 values, supply = sensors.sample(chambers.pressure_pa, supply_true, True)
