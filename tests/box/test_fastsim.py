@@ -318,3 +318,19 @@ def test_the_median_is_statistics_median() -> None:
             values = rng.normal(1000.0, 300.0, n).round(rng.integers(-2, 3)).tolist()
             want = statistics.median(values)
             assert np.float64(sim_module._median(values)).tobytes() == np.float64(want).tobytes()
+
+
+def test_a_module_built_before_the_columns_kernel_runs_the_reference(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A ``_fastsim`` built from an older source (no ``columns``): the reference's columns."""
+    import types
+
+    old = types.SimpleNamespace(**{k: getattr(fastsim, k) for k in KERNELS})
+    monkeypatch.setattr(sim_module, "_fastsim", old)
+    char = default_characteristic()
+    bank = CompiledChambers(6, 6, char)
+    f = np.array([0.0, 0.5, 1.0, 2.0, 50.0, 3.0])
+    want = char._load_columns("volume", f, f.tobytes())
+    got = bank._load_columns(char, "volume", f, f.tobytes())  # type: ignore[arg-type]
+    assert all(a.tobytes() == b.tobytes() for a, b in zip(want[1:4], got[1:4], strict=True))

@@ -141,13 +141,15 @@ class CompiledChambers(ChamberBank):
     ) -> tuple[bytes, NDArray[np.float64], NDArray[np.float64], NDArray[np.float64] | None, Any]:
         """``TabulatedCharacteristic._load_columns``'s cache entry, its columns, slopes and
         pressure taken off by a load beyond the table from the kernel (the reference's where a
-        load is not finite)."""
+        load is not finite, or a module built before the kernel: ``make ext`` again)."""
+        kernel = getattr(self._kernel, "columns", None)
         table = tab.volume_m3_table if which == "volume" else tab.height_m_table
         grid, m = tab.pressure_pa, f.size
         cols, slopes, drop = np.empty((grid.size, m)), np.empty((grid.size - 1, m)), np.empty(m)
-        assert self._kernel is not None
-        beyond = self._kernel.columns(
-            f, tab.load_n, table, grid, self._patch_m2, cols, slopes, drop
+        beyond = (
+            0
+            if kernel is None
+            else kernel(f, tab.load_n, table, grid, self._patch_m2, cols, slopes, drop)
         )
         if not beyond:
             return tab._load_columns(which, f, key)
