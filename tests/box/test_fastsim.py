@@ -3,13 +3,22 @@ bits: every reading, true pressure and module height, on random valve schedules 
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 import pytest
 
-from softpad.box import SafetyTrip, ValveCommand
+from softpad.box import Box, PressureFrame, SafetyTrip, ValveCommand
 from softpad.box import _sim as sim_module
+from softpad.box._base import unchecked_frame
 from softpad.box._sim import CompiledChambers, SimBox
-from softpad.sim import AnalyticWorld, ChamberBank, DisturbanceParams, default_characteristic
+from softpad.sim import (
+    AnalyticWorld,
+    ChamberBank,
+    DisturbanceParams,
+    TabulatedCharacteristic,
+    default_characteristic,
+)
 
 fastsim = pytest.importorskip("softpad.box._fastsim", reason="not built (make ext)")
 
@@ -55,19 +64,24 @@ def _counted(calls: dict[str, int], name: str) -> object:
     return counted
 
 
-def _run(box: SimBox, events: dict[int, tuple[str, object]], frames: int) -> list[bytes]:
+def _run(
+    box: SimBox, events: dict[int, tuple[str, object]], frames: int, reader: Box | None = None
+) -> list[bytes]:
+    """Every frame's readings, time, supply reading, true pressures, heights and the guard's
+    spans as bytes (read through ``reader``, a box around ``box``, where given)."""
+    reader = box if reader is None else reader
     out = []
     for f in range(frames):
         ev = events.get(f)
         if ev is not None and ev[0] == "valves":
             for ch, cmd in enumerate(ev[1], start=1):  # type: ignore[arg-type]
                 try:
-                    box.set_valve(ch, cmd)
+                    reader.set_valve(ch, cmd)
                 except SafetyTrip:  # a tripped channel keeps venting (in both boxes)
                     pass
         elif ev is not None:
             box.world.press(*ev[1])  # type: ignore[misc]
-        frame = box.read()
+        frame = reader.read()
         heights = box.module_heights_m
         # the lowest and highest reading the guard is given, as numbers: the sign of a zero
         # among the readings' zeros (unconnected ports) is NumPy's reduction order's
@@ -75,6 +89,7 @@ def _run(box: SimBox, events: dict[int, tuple[str, object]], frames: int) -> lis
         spans = b"" if span is None else (np.array(span[1:]) + 0.0).tobytes()  # -0.0 -> 0.0
         out.append(
             frame.pressures_pa.tobytes()
+            + np.array([frame.t_s, frame.supply_pa]).tobytes()
             + box.true_pressures_pa.tobytes()
             + heights.tobytes()
             + spans
@@ -201,3 +216,121 @@ def test_the_span_rows_agree() -> None:
     from softpad.sim import _sensor
 
     assert sim_module.SPAN_ROWS == _sensor.SPAN_ROWS
+
+
+class _General(SimBox):
+    """The box with every frame on the general path (the world's step, then
+    ``_step_physics`` and ``_sense``): the reference of :meth:`SimBox._read`'s hot path."""
+
+    def _read(self) -> PressureFrame:
+        dt = self._dt
+        t = self._t + dt
+        self._t = t
+        if t >= self._faults.next_s:
+            self._activate_faults()
+        self.world.step(dt, self._heights)
+        loads = self.world.module_loads_n()
+        values, supply = self._sense(self._step_physics(t, dt, loads, loads.tobytes()))
+        return unchecked_frame(t, values, supply)
+
+
+@pytest.mark.parametrize(("seed", "rate_hz"), [(0, 1000.0), (1, 1000.0), (2, 100.0), (3, 100.0)])
+def test_the_hot_path_of_a_frame_is_the_general_path(
+    seed: int, rate_hz: float, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Every frame (readings, true pressures, heights, the guard's spans), every trip of the
+    guard and the valves are those of the general path, through the layers of ``sim://``,
+    with a leak, the disturbances and presses; the hot path takes most frames."""
+    from softpad.box import Fault, compose_sim_box
+
+    frames = 3000
+    events = _schedule(seed, frames)
+    events[0] = ("valves", [ValveCommand.INFLATE] * 8)  # up to the guard's trips
+    runs: list[tuple[list[bytes], list[tuple[float, int, str]], tuple[ValveCommand, ...]]] = []
+    general = [0, 0]
+    for cls in (_General, SimBox):
+        box = cls(
+            AnalyticWorld(),
+            sample_rate_hz=rate_hz,
+            seed=seed,
+            initial_pressure_pa=2500.0,
+            disturbances=DisturbanceParams(update_s=0.5) if seed % 2 else None,
+        )
+        box.inject_fault(Fault("leak", channel=3, at_s=1.0, arg=2e-9))
+        sense = box._sense
+
+        def counted(changed: bool, sense: Callable[[bool], object] = sense) -> object:
+            general[len(runs)] += 1
+            return sense(changed)
+
+        monkeypatch.setattr(box, "_sense", counted)
+        layered = compose_sim_box(box)
+        out = _run(box, events, frames, reader=layered)
+        runs.append((out, box.safety.trips, box.valves))
+    assert runs[0] == runs[1]
+    assert len(runs[0][1]) > 0  # the guard tripped on the way
+    assert general[0] == frames  # the reference: every frame on the general path
+    assert general[1] < (0.2 if rate_hz == 1000.0 else 0.7) * frames  # ours: stretch starts
+
+
+def test_the_load_columns_on_random_loads() -> None:
+    """The table's columns at the loads (and their slopes, and the pressure a load beyond
+    the table takes off) against TabulatedCharacteristic._load_columns: loads on the grid,
+    between, below and beyond it; a load not finite is declined."""
+    char = default_characteristic()
+    assert isinstance(char, TabulatedCharacteristic)
+    bank = CompiledChambers(6, 6, char)
+    grid = char.load_n
+    rng = np.random.default_rng(11)
+    beyond = 0
+    for trial in range(300):
+        kind = trial % 4
+        f = (
+            rng.choice(grid, 6)  # on the grid
+            if kind == 0
+            else rng.uniform(-1.0, 1.2 * grid[-1], 6)  # below, inside and beyond
+            if kind == 1
+            else rng.uniform(0.0, grid[-1], 6) * rng.integers(0, 2, 6)  # some unloaded
+            if kind == 2
+            else rng.exponential(grid[-1] / 4, 6)
+        )
+        for which in ("volume", "height"):
+            key = f.tobytes()
+            want = char._load_columns(which, f, key)
+            got = bank._load_columns(char, which, f, key)
+            assert want[0] == got[0] and (want[3] is None) is (got[3] is None), trial
+            for a, b in zip(want[1:4], got[1:4], strict=True):
+                assert a is None or a.tobytes() == b.tobytes(), (trial, which)
+            assert want[4].tolist() == got[4].tolist()
+        beyond += want[3] is not None
+    assert 20 < beyond < 200
+    out = [np.empty((char.pressure_pa.size, 2)), np.empty((char.pressure_pa.size - 1, 2))]
+    args = (grid, char.volume_m3_table, char.pressure_pa, 9e-4, *out, np.empty(2))
+    assert fastsim.columns(np.array([1.0, np.nan]), *args) == 0
+
+
+def test_the_median_is_statistics_median() -> None:
+    import statistics
+
+    rng = np.random.default_rng(5)
+    for n in range(1, 10):
+        for _ in range(50):
+            values = rng.normal(1000.0, 300.0, n).round(rng.integers(-2, 3)).tolist()
+            want = statistics.median(values)
+            assert np.float64(sim_module._median(values)).tobytes() == np.float64(want).tobytes()
+
+
+def test_a_module_built_before_the_columns_kernel_runs_the_reference(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A ``_fastsim`` built from an older source (no ``columns``): the reference's columns."""
+    import types
+
+    old = types.SimpleNamespace(**{k: getattr(fastsim, k) for k in KERNELS})
+    monkeypatch.setattr(sim_module, "_fastsim", old)
+    char = default_characteristic()
+    bank = CompiledChambers(6, 6, char)
+    f = np.array([0.0, 0.5, 1.0, 2.0, 50.0, 3.0])
+    want = char._load_columns("volume", f, f.tobytes())
+    got = bank._load_columns(char, "volume", f, f.tobytes())  # type: ignore[arg-type]
+    assert all(a.tobytes() == b.tobytes() for a, b in zip(want[1:4], got[1:4], strict=True))

@@ -446,6 +446,83 @@ done:
     return result;
 }
 
+/* Where load f lies on the load grid (TabulatedCharacteristic._locate, not extrapolating):
+ * the column j and the fraction u towards column j + 1 (numpy.maximum/minimum's values). */
+static void locate(const double *grid, Py_ssize_t n, double f, Py_ssize_t *j, double *u)
+{
+    if (n == 1) {
+        *j = 0;
+        *u = 0.0;
+        return;
+    }
+    double x = f >= grid[0] ? f : grid[0];
+    x = x <= grid[n - 1] ? x : grid[n - 1];
+    Py_ssize_t i = count_le(grid, n, x) - 1;
+    i = i > n - 2 ? n - 2 : i;
+    i = i < 0 ? 0 : i;
+    *j = i;
+    *u = (x - grid[i]) / (grid[i + 1] - grid[i]);
+}
+
+/* columns(f, loads, table, grid, area, cols_out, slopes_out, drop_out) -> 0, 1 or 2:
+ * TabulatedCharacteristic._load_columns: the table's columns at each module's load and their
+ * slopes along the pressure; 2: a load beyond the table (its excess over the area written to
+ * drop_out, the load taken as the table's largest), 1: none, 0: a load not finite. */
+static PyObject *columns(PyObject *self, PyObject *args)
+{
+    PyObject *o[7];
+    double area;
+    if (!PyArg_ParseTuple(args, "OOOOdOOO", &o[0], &o[1], &o[2], &o[3], &area, &o[4], &o[5],
+                          &o[6]))
+        return NULL;
+    Buf b[7];
+    memset(b, 0, sizeof b);
+    PyObject *result = NULL;
+    if (take(o[0], &b[0], -1, 0, 0, "f") < 0 || take(o[1], &b[1], -1, 0, 0, "loads") < 0 ||
+        take(o[3], &b[3], -1, 0, 0, "grid") < 0)
+        goto done;
+    Py_ssize_t m = b[0].view.len / 8, nl = b[1].view.len / 8, np_ = b[3].view.len / 8;
+    if (nl < 1 || np_ < 2) {
+        PyErr_SetString(PyExc_ValueError, "the table needs a load and two pressures");
+        goto done;
+    }
+    if (take2(o[2], &b[2], np_, nl, "table") < 0 || take(o[4], &b[4], np_ * m, 1, 0, "cols") < 0 ||
+        take(o[5], &b[5], (np_ - 1) * m, 1, 0, "slopes") < 0 ||
+        take(o[6], &b[6], m, 1, 0, "drop") < 0)
+        goto done;
+    const double *f = data(&b[0]), *loads = data(&b[1]), *tab = data(&b[2]), *g = data(&b[3]);
+    double *cols = data(&b[4]), *slopes = data(&b[5]), *drop = data(&b[6]);
+    Py_ssize_t t0 = b[2].view.strides[0] / 8, t1 = b[2].view.strides[1] / 8;
+    double fmax = loads[nl - 1];
+    int beyond = 0;
+    for (Py_ssize_t k = 0; k < m; k++) {
+        if (!isfinite(f[k])) {
+            result = PyLong_FromLong(0);
+            goto done;
+        }
+        beyond |= f[k] > fmax;
+    }
+    for (Py_ssize_t k = 0; k < m; k++) {
+        double fk = f[k], d = fk - fmax;
+        if (beyond) {
+            drop[k] = (d >= 0.0 ? d : 0.0) / area;
+            fk = fk <= fmax ? fk : fmax;
+        }
+        Py_ssize_t j;
+        double u;
+        locate(loads, nl, fk, &j, &u);
+        Py_ssize_t j1 = j + 1 < nl - 1 ? j + 1 : nl - 1;
+        for (Py_ssize_t p = 0; p < np_; p++)
+            cols[p * m + k] = tab[p * t0 + j * t1] * (1 - u) + tab[p * t0 + j1 * t1] * u;
+        for (Py_ssize_t p = 0; p + 1 < np_; p++)
+            slopes[p * m + k] = (cols[(p + 1) * m + k] - cols[p * m + k]) / (g[p + 1] - g[p]);
+    }
+    result = PyLong_FromLong(beyond ? 2 : 1);
+done:
+    release(b, 7);
+    return result;
+}
+
 static PyMethodDef methods[] = {
     {"solve", solve, METH_VARARGS,
      "solve(p, amount, cols, slopes, grid, drop, creep, patm, vt, p_out, dn_dp_out) -> bool: "
@@ -465,6 +542,10 @@ static PyMethodDef methods[] = {
     {"readings", readings, METH_VARARGS,
      "readings(true, noise, q, inv_q, lo, hi, out) -> (lows, highs) or None: quantised, "
      "clipped readings into out and each row's lowest and highest."},
+    {"columns", columns, METH_VARARGS,
+     "columns(f, loads, table, grid, area, cols_out, slopes_out, drop_out) -> 0, 1, 2: the "
+     "table's columns at the loads f and their slopes (TabulatedCharacteristic._load_columns); "
+     "2: a load beyond the table (drop_out written), 0: a load not finite."},
     {NULL, NULL, 0, NULL},
 };
 

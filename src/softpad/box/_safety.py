@@ -99,6 +99,18 @@ class SafetyLimits:
         return self.max_pressure_pa - self.trip_margin_pa
 
 
+def _cause(v: float, rise: float, invalid: bool, lim: SafetyLimits) -> str:
+    """Why a channel reading ``v`` (rising ``rise`` a frame) trips, for the trip history."""
+    if invalid:
+        return f"reading {v / 1e3:.3f} kPa is not valid"
+    if v > lim.trip_pa:
+        return f"{v / 1e3:.3f} kPa over the trip level {lim.trip_pa / 1e3:.3f} kPa"
+    return (
+        f"{v / 1e3:.3f} kPa rising {rise / 1e3:.3f} kPa a frame: the trip level "
+        f"{lim.trip_pa / 1e3:.3f} kPa within a frame"
+    )
+
+
 @dataclass
 class SafetyGuard:
     """State of the box-side safety of ``channels`` channels (pure: no I/O).
@@ -154,8 +166,21 @@ class SafetyGuard:
         times = self._times
         if times and t_s == times[-1]:
             return []
-        finite = math.isfinite(low) and math.isfinite(high)
-        return self._update(t_s, row, None, low, high, finite)
+        if self._any_tripped or not (low > self._min_pa and high < self._max_pa):
+            finite = math.isfinite(low) and math.isfinite(high)
+            return self._update(t_s, row, None, low, high, finite)
+        # _update's hot path, inline (the simulated box's every frame): every reading within
+        # the sensor's range (so finite: the rails are) and no channel tripped
+        self._history.append(row)
+        lows = self._lows
+        lows.append(low)
+        times.append(t_s)
+        rise = (high - lows[0]) / (len(times) - 1) if t_s > times[0] else 0.0
+        if not rise <= 0.0:  # a NaN rise (a NaN low in the window) fails the test below
+            high += rise
+        if high <= self._trip_pa:
+            return []
+        return self._check_arrays(t_s, row.tolist(), self.limits)
 
     def _update(
         self,
@@ -201,34 +226,29 @@ class SafetyGuard:
 
     def _check_arrays(self, t_s: float, values: list[float], lim: SafetyLimits) -> list[int]:
         """The full per-channel test: trips, releases, invalid readings (plain floats: a loop
-        over a few channels is several times faster than NumPy calls)."""
+        over a few channels is several times faster than NumPy calls; the tripped states
+        read as a list, written back only where one changes)."""
         first, n = self._history[0], len(self._history)
         if not isinstance(first, list):  # a row given to check_span
             first = first.tolist()
         span = self._times[-1] - self._times[0]
         per_frame = 1.0 / (n - 1) if n >= 2 and span > 0 else 0.0
-        tripped, new = self.tripped, []
+        tripped, held, new = self.tripped, self.tripped.tolist(), []
+        low, top, trip_pa, release_pa = self._min_pa, self._max_pa, self._trip_pa, self._release_pa
         for k, v in enumerate(values):
-            invalid = not math.isfinite(v) or v <= lim.sensor_min_pa or v >= lim.sensor_max_pa
+            invalid = not math.isfinite(v) or v <= low or v >= top
             rise = (v - first[k]) * per_frame  # the window's mean rise per frame
             rise = rise if math.isfinite(rise) and rise > 0.0 else 0.0  # NaN: invalid, not rising
-            if tripped[k] and v < lim.release_pa and not invalid:
-                tripped[k] = False  # released (a NaN reading is never below)
-            if (invalid or v + rise > self._trip_pa) and not tripped[k]:
-                tripped[k] = True
+            if held[k] and v < release_pa and not invalid:
+                tripped[k] = held[k] = False  # released (a NaN reading is never below)
+            if (invalid or v + rise > trip_pa) and not held[k]:
+                tripped[k] = held[k] = True
                 new.append(k + 1)
-                cause = (
-                    f"reading {v / 1e3:.3f} kPa is not valid"
-                    if invalid
-                    else f"{v / 1e3:.3f} kPa over the trip level {lim.trip_pa / 1e3:.3f} kPa"
-                    if v > lim.trip_pa
-                    else f"{v / 1e3:.3f} kPa rising {rise / 1e3:.3f} kPa a frame: the trip level "
-                    f"{lim.trip_pa / 1e3:.3f} kPa within a frame"
-                )
-                self.trips.append((t_s, k + 1, cause))
-        self._any_tripped = bool(tripped.any())
-        self._held = tripped.tolist()
-        self._free = [not x for x in self._held]
+                self.trips.append((t_s, k + 1, _cause(v, rise, invalid, lim)))
+        if held != self._held:
+            self._any_tripped = True in held
+            self._held = held
+            self._free = [not x for x in held]
         return new
 
     def allows_inflate(self, channel: int) -> bool:

@@ -12,13 +12,21 @@ are layers around it (:mod:`softpad.box._sim_layers`), composed by ``sim://``
 
 from __future__ import annotations
 
-import statistics
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from softpad import thesis
-from softpad.box._base import Box, PressureFrame, ValveCommand, unchecked_frame
+from softpad.box._base import (
+    _SET_P,
+    _SET_S,
+    _SET_T,
+    Box,
+    PressureFrame,
+    ValveCommand,
+    unchecked_frame,
+)
 from softpad.box._sim_faults import (
     DEFAULT_LEAK_M2,
     FAULT_KINDS,
@@ -46,6 +54,8 @@ try:  # the exact solve in compiled code (src/softpad/box/_fastsim.c; make ext /
 except ImportError:  # pragma: no cover - no C compiler: the NumPy reference alone
     _fastsim = None  # type: ignore[assignment]
 
+_new_frame = object.__new__
+
 #: The shortest ramp whose rows' spans the sensors compute (``softpad.sim._sensor.SPAN_ROWS``;
 #: tests/box/test_fastsim.py checks they agree).
 SPAN_ROWS = 8
@@ -56,6 +66,14 @@ _VALVE_OPEN = {
     ValveCommand.INFLATE: (True, False),
     ValveCommand.DEFLATE: (False, True),
 }
+
+
+def _median(values: list[float]) -> float:
+    """``statistics.median(values)`` (the same value: the middle of the sorted values, or
+    the mean of the two middle ones), without its generic checks and conversions."""
+    data = sorted(values)
+    i = len(data) // 2
+    return data[i] if len(data) % 2 else (data[i - 1] + data[i]) / 2
 
 
 def _check_args(n_modules: int, channels: int, sample_rate_hz: float, seed: int) -> None:
@@ -99,6 +117,9 @@ class CompiledChambers(ChamberBank):
         self._kernel = _fastsim
         tab = characteristic if isinstance(characteristic, TabulatedCharacteristic) else None
         self._tab = tab if _fastsim is not None and tab is not None else None
+        #: The area over which a load beyond the table acts as a pressure, m^2 (a property of
+        #: the characteristic that parses its metadata: read once).
+        self._patch_m2 = self._tab.excess_load_area_m2 if self._tab is not None else 0.0
 
     def _columns(
         self, which: str
@@ -112,8 +133,27 @@ class CompiledChambers(ChamberBank):
         key = f.tobytes()
         entry = tab._cache.get(which)
         if entry is None or entry[0] != key:
-            entry = tab._cache[which] = tab._load_columns(which, f, key)
+            entry = tab._cache[which] = self._load_columns(tab, which, f, key)
         return entry[1], entry[2], entry[3]
+
+    def _load_columns(
+        self, tab: TabulatedCharacteristic, which: str, f: NDArray[np.float64], key: bytes
+    ) -> tuple[bytes, NDArray[np.float64], NDArray[np.float64], NDArray[np.float64] | None, Any]:
+        """``TabulatedCharacteristic._load_columns``'s cache entry, its columns, slopes and
+        pressure taken off by a load beyond the table from the kernel (the reference's where a
+        load is not finite, or a module built before the kernel: ``make ext`` again)."""
+        kernel = getattr(self._kernel, "columns", None)
+        table = tab.volume_m3_table if which == "volume" else tab.height_m_table
+        grid, m = tab.pressure_pa, f.size
+        cols, slopes, drop = np.empty((grid.size, m)), np.empty((grid.size - 1, m)), np.empty(m)
+        beyond = (
+            0
+            if kernel is None
+            else kernel(f, tab.load_n, table, grid, self._patch_m2, cols, slopes, drop)
+        )
+        if not beyond:
+            return tab._load_columns(which, f, key)
+        return key, cols, slopes, drop if beyond == 2 else None, np.arange(m)
 
     def _solve(self, p: NDArray[np.float64]) -> NDArray[np.float64]:
         tab = self._tab
@@ -418,7 +458,8 @@ class SimBox(Box):
     def read(self) -> PressureFrame:
         """Read one frame (:meth:`Box.read`); the guard is given the readings' lowest and
         highest value where the sensors computed them for a block of frames at once."""
-        self._check_open()
+        if self._closed:
+            self._check_open()  # raises
         frame = self._read()
         guard = self._guard if self._guard is not None else self.safety
         span = self.sensors.span
@@ -436,18 +477,40 @@ class SimBox(Box):
         self._t = t
         if t >= self._faults.next_s:
             self._activate_faults()
-        values, supply = self._sense(self._step_physics(t, dt))
-        return unchecked_frame(t, values, supply)  # t is finite, values 1-D
-
-    def _step_physics(self, t: float, dt: float) -> bool:
-        """Step the world and the gas physics to ``t``; True when the true pressures changed."""
         world = self.world
         world.step(dt, self._heights)
         loads = world.module_loads_n()
-        chambers = self.chambers
         # the loads equal those of the last step (the chambers' loads_n) iff their bytes do;
         # far cheaper than np.array_equal on the hot path
         key = loads.tobytes()
+        dist = self.disturbances
+        chambers = self.chambers
+        if (
+            key == self._loads_key
+            and (dist is None or t < dist.next_s)
+            and (self._any_open or self._leaking or chambers._path is not None)
+            and chambers.hold(dt, self._valve_count, self._supply_true)
+        ):  # the hot path of an inflating box: a step along the stretch of the gas physics
+            sensors = self.sensors
+            hit = sensors.next_on_ramp(chambers.solve_count, self._supply_true)
+            if hit is None:  # _sense's path, as the step changed the pressures
+                path = chambers._path
+                assert path is not None  # hold() stepped along it
+                hit = sensors.sample_path(
+                    path, chambers._pos - 1, chambers.solve_count, self._supply_true
+                )
+            frame = _new_frame(PressureFrame)  # unchecked_frame, inline
+            _SET_T(frame, t)
+            _SET_P(frame, hit[0])
+            _SET_S(frame, hit[1])
+            return frame
+        values, supply = self._sense(self._step_physics(t, dt, loads, key))
+        return unchecked_frame(t, values, supply)  # t is finite, values 1-D
+
+    def _step_physics(self, t: float, dt: float, loads: NDArray[np.float64], key: bytes) -> bool:
+        """Step the gas physics to ``t`` under the world's ``loads`` (their bytes ``key``; the
+        world stepped already); True when the true pressures changed."""
+        chambers = self.chambers
         same_load = key == self._loads_key
         if not same_load:
             self._loads_key = key
@@ -458,8 +521,8 @@ class SimBox(Box):
         if not same_load:
             changed = True
         elif self._any_open or self._leaking or chambers.path is not None:
-            # the hot path of an inflating box: a step along the stretch of the gas physics
-            # (a stretch left running by closing every valve ends with an exact solve)
+            # a step along the stretch of the gas physics (a stretch left running by closing
+            # every valve ends with an exact solve)
             if chambers.hold(dt, self._valve_count, self._supply_true):
                 return True
             changed = True
@@ -486,7 +549,7 @@ class SimBox(Box):
         else:
             if chambers.solved:  # heights follow the exact solves (every <= 20 ms)
                 self._heights = chambers.heights_m()
-                self._operate(statistics.median(chambers.pressure_pa[: self._n_mod].tolist()))
+                self._operate(_median(chambers.pressure_pa[: self._n_mod].tolist()))
             path = chambers.path
             if path is None:  # a load change of sealed modules
                 values, supply = sensors.sample(chambers.pressure_pa, supply_true, True)

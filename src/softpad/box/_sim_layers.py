@@ -80,7 +80,9 @@ class SimLayer(BoxWrapper):
 
         Whether they do is kept on the plain box (``_passed_by``: the outermost layer found
         passing) until a fault is injected into a layer; a layer that stops passing frames on
-        (its faults waiting or started) never passes them on again, so ``_blocked`` stays."""
+        (its faults waiting or started) never passes them on again, so ``_blocked`` stays.
+        Meanwhile this layer's ``read`` is the plain box's own (an attribute of this layer,
+        removed with ``_passed_by``: no call through this method on every frame)."""
         plain = self._plain
         if plain._passed_by is self:
             return plain.read()
@@ -88,7 +90,16 @@ class SimLayer(BoxWrapper):
             self._blocked = True
             return super().read()
         plain._passed_by = self
+        self.__dict__["read"] = plain.read
         return plain.read()
+
+    def _stop_passing(self) -> None:
+        """A fault was injected into a layer: the layers read the frames again."""
+        plain = self._plain
+        passed_by = plain._passed_by
+        if isinstance(passed_by, SimLayer):
+            passed_by.__dict__.pop("read", None)
+        plain._passed_by = None
 
     def _passes_through(self) -> bool:
         """Whether this layer and those within pass every frame on as it is, and will until
@@ -128,7 +139,7 @@ class _FaultLayer(SimLayer):
         if fault.kind not in self.kinds:
             self.inner.inject_fault(fault)
             return
-        self._plain._passed_by = None  # this layer no longer passes every frame on
+        self._stop_passing()  # this layer no longer passes every frame on
         if fault.channel is not None:
             self.check_channel(fault.channel)
         self._faults.add(fault)

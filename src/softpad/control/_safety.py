@@ -159,6 +159,9 @@ class FaultMonitor:
         self._sealed_frames = np.zeros(self.n, dtype=np.int64)
         self._valves_seen: tuple[ValveCommand, ...] | None = None
         self._sealed_now = np.zeros(self.n, dtype=bool)
+        # the channels sealed for a whole filter length while that no longer changes (None:
+        # counting; FaultMonitor._sealed)
+        self._settled: NDArray[np.bool_] | None = None
         self._window_start: tuple[float, NDArray[np.float64]] | None = None
         self._rising = np.zeros(self.n, dtype=np.int64)
         # sealed (for a whole filter length) at the start of the current window and ever since
@@ -184,11 +187,7 @@ class FaultMonitor:
         bad = self._check_raw(t, p)
         if bad is not None:
             return bad
-        key = valves if isinstance(valves, tuple) else tuple(valves)
-        if key != self._valves_seen:  # the commands change a few times a run
-            self._valves_seen = key
-            self._sealed_now = np.array([v is ValveCommand.CLOSED for v in valves[: self.n]])
-        self._sealed_frames = np.where(self._sealed_now, self._sealed_frames + 1, 0)
+        sealed = self._sealed(valves)
         self._buf.append(p)
         self._supply.append(float(frame.supply_pa))
         if self._buf.count < self.th.filter_length:
@@ -200,13 +199,30 @@ class FaultMonitor:
         if not supply >= th.supply_min_pa:
             what = f"supply pressure {supply / 1e3:.2f} kPa is below {th.supply_min_pa / 1e3:g} kPa"
             return _fault(t, None, "supply_loss", what, "supply lost?")
-        sealed = self._sealed_frames >= th.filter_length
         slopes = self._steady.update(t, p, sealed, rates=not self.robot_pressing)
         if slopes is not None:
             fault = self._check_steady(t, slopes)
             if fault is not None:
                 return fault
         return self._check_trend(t, mean, sealed)
+
+    def _sealed(self, valves: Sequence[ValveCommand]) -> NDArray[np.bool_]:
+        """Count one more frame of every channel's valves closed (0 where not); the channels
+        closed for a whole filter length. While the commands stay and every closed channel has
+        been counted that far, the answer stays the same (the same array, never modified), and
+        the counts are left as they are (they only matter as ``>= filter_length``)."""
+        key = valves if isinstance(valves, tuple) else tuple(valves)
+        if key != self._valves_seen:  # the commands change a few times a run
+            self._valves_seen = key
+            self._sealed_now = np.array([v is ValveCommand.CLOSED for v in valves[: self.n]])
+            self._settled = None
+        if self._settled is not None:
+            return self._settled
+        self._sealed_frames = np.where(self._sealed_now, self._sealed_frames + 1, 0)
+        sealed = self._sealed_frames >= self.th.filter_length
+        if np.array_equal(sealed, self._sealed_now):
+            self._settled = sealed
+        return sealed
 
     def _check_steady(
         self, t: float, rates: tuple[NDArray[np.float64], NDArray[np.float64]]
@@ -215,6 +231,11 @@ class FaultMonitor:
         windows' levels and within each window, Pa/s (NaN where not sealed throughout)."""
         th = self.th
         between, within = rates
+        # no channel rising faster than the limit in every window: none is after the other
+        # channels' fall is taken off either (_unbalanced only lowers a rate, or makes it NaN)
+        fast = np.logical_and.reduce(between > th.rise_loaded_pa_s, axis=0)
+        if not np.logical_or.reduce(fast):
+            return None
         shown = between  # the message gives the channel's own rate (their mean, below)
         sealed = None
         if self.loads_expected:
@@ -329,6 +350,9 @@ class _SteadyRise:
         self._lo = self._hi = 0
         self._total = np.zeros(n)
         self._sealed_from = np.full(n, np.inf)
+        self._from_min = np.inf  # the earliest of _sealed_from
+        self._sealed_seen: NDArray[np.bool_] | None = None  # the last frame's sealed channels
+        self._t_seen = -np.inf  # and its time
         # the half-window edges back from the newest frame, seconds
         self._offsets = 0.5 * window_s * np.arange(2 * count + 3)
 
@@ -352,7 +376,12 @@ class _SteadyRise:
         them (``count + 1`` x n), newest first, Pa/s (NaN where a channel was not sealed
         throughout), or None before the whole span is in, when no channel was sealed
         throughout, or when ``rates`` is False (the frame only kept)."""
-        self._sealed_from = np.where(sealed, np.minimum(self._sealed_from, t), np.inf)
+        if sealed is not self._sealed_seen or not t >= self._t_seen:
+            # (the same array as the last frame's, never modified, and time going on: each
+            # channel sealed since no later than that frame, the others not at all, as before)
+            self._sealed_from = np.where(sealed, np.minimum(self._sealed_from, t), np.inf)
+            self._sealed_seen, self._from_min = sealed, np.minimum.reduce(self._sealed_from)
+        self._t_seen = t
         if self._hi == self._lo:
             self._append(t - 1e-9)
         self._total = self._total + p
@@ -364,7 +393,7 @@ class _SteadyRise:
         if not rates or t - times[self._lo] < span:
             return None
         # ufunc reductions: the values of .min() and .all(), without their Python wrappers
-        if np.minimum.reduce(self._sealed_from) > t - span:
+        if self._from_min > t - span:
             return None  # no channel sealed throughout (see ``old`` below)
         half = 0.5 * self.window_s
         kept = times[self._lo : self._hi]
