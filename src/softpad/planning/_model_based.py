@@ -10,16 +10,18 @@ The module reads top to bottom in the order the planner works:
    width, yaw on a coarse grid) carrying the object's weight evenly; each predicts every
    module's increment up to one unknown scale (the weight), fitted in closed form; the Gaussian
    likelihood of the measured increments under the sensor's noise plus a relative model error
-   weighs the hypotheses (:class:`Posterior`).
+   weighs the hypotheses (:class:`Posterior`). Beside them, two-part hypotheses: a dense
+   footprint on the heavier modules and a light part of unknown shape on the light ones.
 3. **Candidates** (:func:`candidates`): grasp centres at the likely footprints' centres and
    beside them, closing directions along a fixed fan and across each likely footprint.
 4. **Score** (:func:`predicted_success`): the chance that a grasp succeeds under the
    posterior: a fingertip lands where the contact detector in use senses it (the response
    map under its sole against the detector's step floor), both jaws come down clear of the
    object, the object is wide enough for the jaws to close on, and the grasp centre lies in
-   the middle of the object across the jaws. A footprint may be a box's own or the contact
-   strip of a lying cylinder (half its diameter, the simulator's and a soft pad's contact):
-   both count, with equal weight, since the pad cannot tell them apart.
+   the middle of the object across the jaws. A footprint may be a box's own, the contact
+   strip of a lying cylinder or a round object's contact: all count, with equal weight, since
+   the pad cannot tell them apart; a curved object spans at least one of a few diameters
+   across its contact (``curved_diameters``).
 5. **Choose** (:class:`ModelBasedPlanner`): the candidate with the highest predicted success.
    A landing on the object (the fingers sensed high above the pad) is evidence: the
    posterior keeps the hypotheses under which that grasp would have landed a jaw on the
