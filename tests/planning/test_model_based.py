@@ -410,6 +410,10 @@ def test_grid_scoring_equals_scoring_grasp_by_grasp(box):
         assert score.max() > 0  # not a comparison of zeros
 
 
+#: The two-part hypotheses on (light modules under 0.3 of the largest increment).
+PARTS = ModelBasedParams(light_share=0.3)
+
+
 def test_two_part_hypotheses_are_their_definition():
     """The limes' reading (Table 6.1) has light modules: the posterior holds one-part
     footprints centred on every module of the object and two-part ones (a dense footprint
@@ -417,7 +421,7 @@ def test_two_part_hypotheses_are_their_definition():
     ``part_cost`` nats a light module), each with the probability its likelihood gives."""
     from softpad.planning._model_based import light_modules
 
-    params, model = ModelBasedParams(), packaged_pad_model()
+    params, model = PARTS, packaged_pad_model()
     d = np.asarray(next(c for c in TABLE_6_1 if c.name == "limes").delta_pa, dtype=float)
     modules = tuple(m for m in LAYOUT.modules if d[m - 1] > 0)
     light = light_modules(d, modules, LAYOUT, params)
@@ -459,7 +463,7 @@ def test_a_dense_part_with_a_light_part_is_read_as_two_parts():
     d = pad.sealed_rise_pa(loads(brick, (50, 50), 200) + loads((90, 60), (70, 8), 25), thesis.P0_PA)
     (obj,) = outline_objects(d, detect_objects(d, LAYOUT), LAYOUT, 25.0)
     model = packaged_pad_model()
-    post = estimate(d, obj, LAYOUT, model, ModelBasedParams())
+    post = estimate(d, obj, LAYOUT, model, PARTS)
     alone = estimate(d, obj, LAYOUT, model, ModelBasedParams(light_share=0.0))
     assert post.part_share() > 0.5 and alone.part_share() == 0.0
     err = math.dist(np.asarray(post.mean_centre()) * 45.0, brick)
