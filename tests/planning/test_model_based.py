@@ -19,7 +19,7 @@ from softpad.planning import (
     make_planner,
 )
 from softpad.planning._model_based import estimate, packaged_pad_model
-from softpad.sensing import detect_objects
+from softpad.sensing import detect_objects, outline_objects
 
 LAYOUT = PadLayout()
 WIDE = GripperSpec.from_mounting("10/4")
@@ -174,19 +174,26 @@ def test_one_landing_asked_about_twice_is_evidence_once():
     )
 
 
-def _loglik_one_at_a_time(d, layout, params, model, masked):
+def _loglik_one_at_a_time(d, layout, params, model, masked, light=()):
     """Every footprint hypothesis (module, centre, halves, yaw) -> (log-likelihood, share of
     its area on the pad), each predicted on its own from the footprint (``_pattern``) and
-    scored over the pad's modules: the definition, without the planner's tables."""
+    scored over the pad's modules: the definition, without the planner's tables. ``light``
+    modules (a light part's) are left out of the fit and cost only where the footprint
+    predicts more than they read."""
     from softpad.planning._model_based import _pattern, _templates
 
     t = _templates(layout.pitch_m, params, model)
     side = 2 * t.radius + 1
     grid = np.asarray(d, dtype=float).reshape(layout.rows, layout.cols)[::-1]  # bottom row 0
     w = 1.0 / (params.noise_pa**2 + (params.model_error * grid) ** 2)
-    for m in masked:
+    full = w.copy()
+    for m in (*masked, *light):
         row, col = layout.row_col(m)
         w[layout.rows - 1 - row, col] = 0.0
+    lit = np.zeros_like(grid, dtype=bool)
+    for m in light:
+        row, col = layout.row_col(m)
+        lit[layout.rows - 1 - row, col] = True
     out = {}
     for k in range(len(t.yaws)):
         (hl, hw), yaw = t.halves[k], t.yaws[k]
@@ -202,7 +209,9 @@ def _loglik_one_at_a_time(d, layout, params, model, masked):
             b, a = (w * grid * g).sum(), (w * g * g).sum()
             s = max(b, 0.0) / a if a > 0 else 0.0
             centre = (col + 0.5 + t.offsets[k][0], row + 0.5 + t.offsets[k][1])
-            out[(m, *centre, hl, hw, yaw)] = (-0.5 * (w * (grid - s * g) ** 2).sum(), c.sum())
+            short = np.where(lit, np.clip(s * g - grid, 0.0, None), 0.0)
+            ll = -0.5 * (w * (grid - s * g) ** 2).sum() - 0.5 * (full * short**2).sum()
+            out[(m, *centre, hl, hw, yaw)] = (ll, c.sum())
     return out
 
 
@@ -214,8 +223,9 @@ def test_estimate_is_the_likelihood_of_each_hypothesis_on_its_own(name, masked):
     the same hypotheses kept (every one at most ``overhang`` off the pad and within
     ``log_floor`` of the best) with probabilities proportional to exp(log-likelihood). A
     footprint whose share on the pad is the limit itself (the area's sample points make
-    that exact: 0.8 of them) is on either side of it in floating point; either is right."""
-    params, model = ModelBasedParams(), packaged_pad_model()
+    that exact: 0.8 of them) is on either side of it in floating point; either is right.
+    One part only here (``light_share`` 0); the two-part hypotheses in the next test."""
+    params, model = ModelBasedParams(light_share=0.0), packaged_pad_model()
     d = np.asarray(next(c for c in TABLE_6_1 if c.name == name).delta_pa, dtype=float)
     modules = tuple(m for m in LAYOUT.modules if m not in masked and d[m - 1] > 0)
     post = estimate(d, modules, LAYOUT, model, params, masked)
@@ -398,3 +408,87 @@ def test_grid_scoring_equals_scoring_grasp_by_grasp(box):
         )
         np.testing.assert_allclose(score.ravel(), one_by_one, rtol=1e-9, atol=1e-12)
         assert score.max() > 0  # not a comparison of zeros
+
+
+#: The two-part hypotheses on (light modules under 0.3 of the largest increment).
+PARTS = ModelBasedParams(light_share=0.3)
+
+
+def test_two_part_hypotheses_are_their_definition():
+    """The limes' reading (Table 6.1) has light modules: the posterior holds one-part
+    footprints centred on every module of the object and two-part ones (a dense footprint
+    centred on the heavier modules, the light modules free to read more than it predicts,
+    ``part_cost`` nats a light module), each with the probability its likelihood gives."""
+    from softpad.planning._model_based import light_modules
+
+    params, model = PARTS, packaged_pad_model()
+    d = np.asarray(next(c for c in TABLE_6_1 if c.name == "limes").delta_pa, dtype=float)
+    modules = tuple(m for m in LAYOUT.modules if d[m - 1] > 0)
+    light = light_modules(d, modules, LAYOUT, params)
+    assert light and set(light) < set(modules)
+    heavy = tuple(m for m in modules if m not in light)
+    post = estimate(d, modules, LAYOUT, model, params)
+    one = _loglik_one_at_a_time(d, LAYOUT, params, model, frozenset())
+    two = _loglik_one_at_a_time(d, LAYOUT, params, model, frozenset(), light)
+    limit = 1.0 - params.overhang - 1e-9  # a share of exactly the limit: either is right
+    ref = {(1.0, *k[1:]): (ll, a) for k, (ll, a) in one.items() if k[0] in modules}
+    cost = params.part_cost * len(light)
+    ref |= {(2.0, *k[1:]): (ll - cost, a) for k, (ll, a) in two.items() if k[0] in heavy}
+    ref = {k: v for k, v in ref.items() if v[1] > limit}
+    hyps = zip(post.parts, post.centres, post.halves, post.yaws, post.probs, strict=True)
+    got = {(n, *c, *h, y): p for n, c, h, y, p in hyps}
+    best = max(ll for k, (ll, a) in ref.items() if k in got or a > limit + 2e-9)
+    likely = {k for k, (ll, a) in ref.items() if ll > best - params.log_floor}
+    assert {k for k in likely if ref[k][1] > limit + 2e-9} <= set(got) <= likely
+    ll = np.array([ref[k][0] for k in got])
+    want = np.exp(ll - ll.max())
+    np.testing.assert_allclose(list(got.values()), want / want.sum(), rtol=1e-9)
+    assert 0.5 < post.part_share() < 1.0
+
+
+def test_a_dense_part_with_a_light_part_is_read_as_two_parts():
+    """A 200 g brick with a 25 g cable beside it (the simulator's FEM response, the two loads
+    added): the two-part hypotheses explain the reading better than any one footprint (most
+    of the posterior), and put the grasp's footprint on the brick, where one part alone
+    would put it between the brick and the cable."""
+    from softpad.sim import PadResponse
+
+    pad = PadResponse(LAYOUT)
+
+    def loads(centre_mm, size_mm, mass_g):
+        c, s = np.asarray(centre_mm) * 1e-3, np.asarray(size_mm) * 1e-3
+        return pad.rect_equivalent_loads(c, s, mass_g * 9.80665e-3, thesis.P0_PA, 0.0)
+
+    brick = (30.0, 60.0)
+    d = pad.sealed_rise_pa(loads(brick, (50, 50), 200) + loads((90, 60), (70, 8), 25), thesis.P0_PA)
+    (obj,) = outline_objects(d, detect_objects(d, LAYOUT), LAYOUT, 25.0)
+    model = packaged_pad_model()
+    post = estimate(d, obj, LAYOUT, model, PARTS)
+    alone = estimate(d, obj, LAYOUT, model, ModelBasedParams(light_share=0.0))
+    assert post.part_share() > 0.5 and alone.part_share() == 0.0
+    err = math.dist(np.asarray(post.mean_centre()) * 45.0, brick)
+    err_alone = math.dist(np.asarray(alone.mean_centre()) * 45.0, brick)
+    assert err < 8.0 and err_alone > 15.0, (err, err_alone)
+
+
+def test_a_curved_object_may_span_more_than_its_contact():
+    """A narrow contact strip (30 x 12 mm) may be a lying cylinder's: across it the object
+    spans the diameters of ``curved_diameters`` (shares of the opening: 18, 36 and 54 mm
+    with the 60 mm jaws), so jaws closing across the strip land likelier than closing along
+    it (at 54 mm about 2 in 3 of the times: 1 mm to spare each side, the edge's logistic
+    error 1.8 mm; a third of the diameters: about 0.2); read as a strip twice its width (no
+    diameters) across is as safe, and a box is safe either way."""
+    from softpad.planning._model_based import Posterior, landing_chance
+
+    post = Posterior(
+        np.array([[1.5, 1.0]]), np.array([[15.0, 6.0]]) / 45.0, np.zeros(1), np.ones(1)
+    )
+    jaws = GripperSpec.from_mounting("6/2")
+    centre, thetas = np.array([[1.5, 1.0], [1.5, 1.0]]), np.array([math.pi / 2, 0.0])
+    cylinder = ModelBasedParams(shape_weights=(0.0, 1.0, 0.0))
+    across, along = landing_chance(post, centre, thetas, jaws, LAYOUT, cylinder)
+    assert 0.15 < across < 0.25 and along < 0.01, (across, along)
+    flat = replace_params(cylinder, curved_diameters=())
+    assert landing_chance(post, centre, thetas, jaws, LAYOUT, flat)[0] < 0.01
+    box = replace_params(cylinder, shape_weights=(1.0, 0.0, 0.0))
+    assert landing_chance(post, centre, thetas, jaws, LAYOUT, box).max() < 0.01

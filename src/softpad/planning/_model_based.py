@@ -10,16 +10,18 @@ The module reads top to bottom in the order the planner works:
    width, yaw on a coarse grid) carrying the object's weight evenly; each predicts every
    module's increment up to one unknown scale (the weight), fitted in closed form; the Gaussian
    likelihood of the measured increments under the sensor's noise plus a relative model error
-   weighs the hypotheses (:class:`Posterior`).
+   weighs the hypotheses (:class:`Posterior`). Beside them, two-part hypotheses: a dense
+   footprint on the heavier modules and a light part of unknown shape on the light ones.
 3. **Candidates** (:func:`candidates`): grasp centres at the likely footprints' centres and
    beside them, closing directions along a fixed fan and across each likely footprint.
 4. **Score** (:func:`predicted_success`): the chance that a grasp succeeds under the
    posterior: a fingertip lands where the contact detector in use senses it (the response
    map under its sole against the detector's step floor), both jaws come down clear of the
    object, the object is wide enough for the jaws to close on, and the grasp centre lies in
-   the middle of the object across the jaws. A footprint may be a box's own or the contact
-   strip of a lying cylinder (half its diameter, the simulator's and a soft pad's contact):
-   both count, with equal weight, since the pad cannot tell them apart.
+   the middle of the object across the jaws. A footprint may be a box's own, the contact
+   strip of a lying cylinder or a round object's contact: all count, with equal weight, since
+   the pad cannot tell them apart; a curved object spans at least one of a few diameters
+   across its contact (``curved_diameters``).
 5. **Choose** (:class:`ModelBasedPlanner`): the candidate with the highest predicted success.
    A landing on the object (the fingers sensed high above the pad) is evidence: the
    posterior keeps the hypotheses under which that grasp would have landed a jaw on the
@@ -89,6 +91,15 @@ class ModelBasedParams:
     #: Prior weight of each shape of ``shape_extents`` (equal: the readings do not tell them
     #: apart; an assumption set before any trial ran).
     shape_weights: tuple[float, ...] = (1.0, 1.0, 1.0)
+    #: Diameters a curved object may have, as shares of the jaws' full opening, each as
+    #: likely (a shape of ``shape_extents`` with an extent over 1 is curved that way). Its
+    #: contact on the soft pad says little of its diameter: an inflated chamber wraps it
+    #: until the contact carries the weight at the chamber's pressure (a 68 g fruit at
+    #: p0 = 1 kPa: 670 mm^2, a 9 mm strip under a 75 mm fruit), so across a curved shape the
+    #: object spans at least each of these. A lab mounts jaws that open wider than the
+    #: object (thesis, Section 6.3), so the diameters span the opening evenly (30, 60 and
+    #: 90 mm with the 10/4 jaws). Empty: the footprint's multiple only.
+    curved_diameters: tuple[float, ...] = (0.3, 0.6, 0.9)
     #: Steps each way of the finer search around the best coarse candidate (2: a 5 x 5 x 5
     #: grid of direction, shift along and shift across the closing direction).
     refine_steps: int = 2
@@ -107,6 +118,16 @@ class ModelBasedParams:
     #: Share of a landing's rise on one side of the jaws' centre line from which the pad
     #: says that side was pressed (else the side is unknown).
     side_share: float = 2.0 / 3.0
+    #: A module of an object reading under this share of its largest increment may carry a
+    #: light part (a cable, a stem, the light end of an uneven object) beside a dense part on
+    #: the others: the two-part hypotheses of :func:`estimate` (0: one part only).
+    light_share: float = 0.3
+    #: Most modules a light part may lie on (more: the object is read as one part).
+    max_light_modules: int = 3
+    #: Prior log-odds against a light part, nats per module it lies on: each frees one
+    #: load, priced as the Bayesian information criterion prices a free parameter, half the
+    #: log of the readings (6 on the 2 x 3 pad: 0.9, rounded to 1).
+    part_cost: float = 1.0
     #: Pressure of the modules at which the response map is read, Pa (p0).
     pressure_pa: float = thesis.P0_PA
     #: Increment above which a module next to an object joins its outline, Pa.
@@ -123,16 +144,24 @@ class ModelBasedParams:
             "side_share",
             "overhang",
             "outline_threshold_pa",
+            "light_share",
+            "part_cost",
         ):
             v = getattr(self, name)
             if not (isinstance(v, int | float) and math.isfinite(v) and v >= 0):
                 raise InputError(f"model-based parameter {name} must be a number >= 0, got {v!r}")
-        for name in ("centre_steps", "yaw_steps", "kept_hypotheses", "directions", "refine_steps"):
+        counts = ("centre_steps", "yaw_steps", "kept_hypotheses", "directions")
+        for name in (*counts, "refine_steps", "max_light_modules"):
             v = getattr(self, name)
-            if not (isinstance(v, int) and (0 if name == "refine_steps" else 1) <= v <= 64):
+            if not (isinstance(v, int) and (1 if name in counts else 0) <= v <= 64):
                 raise InputError(
                     f"model-based parameter {name} must be an integer 1..64, got {v!r}"
                 )
+        if not all(0 < s <= 1 for s in self.curved_diameters):
+            raise InputError(
+                f"curved_diameters must be shares of the opening in (0, 1], "
+                f"got {self.curved_diameters!r}"
+            )
         if not self.sizes_mm or not all(0 < s <= 500 for s in self.sizes_mm):
             raise InputError(f"sizes_mm must be lengths in (0, 500] mm, got {self.sizes_mm!r}")
         _check_shapes(self.shape_extents, self.shape_weights)
@@ -328,6 +357,9 @@ class Posterior:
     halves: Array  # (H, 2) half length, half width
     yaws: Array  # (H,)
     probs: Array  # (H,) summing to 1
+    #: (H,) parts of each hypothesis: 1 (the footprint carries the whole weight) or 2 (a
+    #: dense part, the footprint, and a light part beside it); None: all 1
+    parts: Array | None = None
 
     def mean_centre(self) -> tuple[float, float]:
         """Posterior mean of the footprint's centre, module units."""
@@ -345,7 +377,13 @@ class Posterior:
         cum = np.cumsum(self.probs)
         picks = np.searchsorted(cum, (np.arange(n) + 0.5) / n * cum[-1])
         i, count = np.unique(np.minimum(picks, self.probs.size - 1), return_counts=True)
-        return Posterior(self.centres[i], self.halves[i], self.yaws[i], count / count.sum())
+        parts = None if self.parts is None else self.parts[i]
+        p = count / count.sum()
+        return Posterior(self.centres[i], self.halves[i], self.yaws[i], p, parts)
+
+    def part_share(self) -> float:
+        """Posterior chance that the object is a dense part and a light one."""
+        return 0.0 if self.parts is None else float(self.probs @ (self.parts > 1))
 
     def reweighted(self, likelihood: Array) -> Posterior:
         """The posterior times ``likelihood``, normalised (unchanged where it is all 0)."""
@@ -363,10 +401,61 @@ def estimate(
 ) -> Posterior:
     """The footprint posterior of the object on ``modules`` (its centre on one of them):
     every hypothesis within ``log_floor`` of the most likely; ``masked`` modules (other
-    objects') say nothing about it."""
+    objects') say nothing about it.
+
+    Beside the footprints that carry the whole weight evenly (one part), the posterior holds
+    two-part hypotheses (:func:`light_modules`): a dense part, the footprint, centred on the
+    object's heavier modules, and a light part of unknown shape on its light modules, which
+    adds a load >= 0 there (a cable, a stem, a light end); each light module costs
+    ``part_cost`` nats of prior odds. ``Posterior.parts`` says which is which."""
+    parts = [(*_loglik(increments_pa, tuple(modules), layout, model, params, masked, ()), 0.0)]
+    light = light_modules(increments_pa, modules, layout, params)
+    if light:
+        heavy = tuple(m for m in modules if m not in light)
+        g, ll = _loglik(increments_pa, heavy, layout, model, params, masked, light)
+        parts.append((g, ll - params.part_cost * len(light), 1.0))
+    top = max(float(ll.max()) for _, ll, _ in parts)
+    kept = [(g, ll, extra, np.flatnonzero(ll > top - params.log_floor)) for g, ll, extra in parts]
+    p = np.exp(np.concatenate([ll[k] for _, ll, _, k in kept]) - top)
+    return Posterior(
+        np.concatenate([g.centres[k] for g, _, _, k in kept]),
+        np.concatenate([g.halves[k] for g, _, _, k in kept]),
+        np.concatenate([g.yaws[k] for g, _, _, k in kept]),
+        p / p.sum(),
+        np.concatenate([np.full(k.size, 1.0 + extra) for _, _, extra, k in kept]),
+    )
+
+
+def light_modules(
+    increments_pa: Array, modules: tuple[int, ...], layout: PadLayout, params: ModelBasedParams
+) -> tuple[int, ...]:
+    """The object's modules a light part may lie on: those reading under ``light_share`` of
+    its largest increment, when the others (the dense part's) are at least one and those
+    light ones at most ``max_light_modules`` (none when ``light_share`` is 0)."""
+    d = np.asarray(increments_pa, dtype=float).ravel()
+    top = max(float(d[m - 1]) for m in modules)
+    light = tuple(m for m in modules if d[m - 1] < params.light_share * top)
+    if not light or len(light) >= len(modules) or len(light) > params.max_light_modules:
+        return ()
+    return light
+
+
+def _loglik(
+    increments_pa: Array,
+    modules: tuple[int, ...],
+    layout: PadLayout,
+    model: PadModel,
+    params: ModelBasedParams,
+    masked: frozenset[int],
+    light: tuple[int, ...],
+) -> tuple[_Group, Array]:
+    """The hypotheses centred on ``modules`` and their log-likelihoods (V,): Gaussian on
+    every module but ``masked`` and ``light`` ones; on a ``light`` module (a light part's)
+    the reading may exceed the footprint's prediction (a light part adds load there, at no
+    cost) but not fall short of it."""
     t = _templates(layout.pitch_m, params, model)
-    g = _group(layout, tuple(modules), params, model)
-    grid, weight = _padded(increments_pa, layout, t.radius, masked, params)
+    g = _group(layout, modules, params, model)
+    grid, weight = _padded(increments_pa, layout, t.radius, masked | set(light), params)
     d, w = grid[g.window], weight[g.window]  # (C, W) each
     wd = w * d
     # sum w d g and sum w g^2 of every hypothesis on the pad (V,)
@@ -374,9 +463,52 @@ def estimate(
     a = (w[:, g.used] @ g.shares[1]).ravel()[g.flat]
     scale = np.divide(np.clip(b, 0.0, None), a, out=np.zeros_like(a), where=a > 0)
     loglik = -0.5 * ((wd * d).sum(axis=1)[g.module] - 2 * scale * b + scale**2 * a)
-    keep = np.flatnonzero(loglik > loglik.max() - params.log_floor)
-    p = np.exp(loglik[keep] - loglik[keep].max())
-    return Posterior(g.centres[keep], g.halves[keep], g.yaws[keep], p / p.sum())
+    if light:
+        loglik -= _shortfall(increments_pa, scale, layout, modules, params, model, light)
+    return g, loglik
+
+
+def _shortfall(
+    increments_pa: Array,
+    scale: Array,
+    layout: PadLayout,
+    modules: tuple[int, ...],
+    params: ModelBasedParams,
+    model: PadModel,
+    light: tuple[int, ...],
+) -> Array:
+    """Minus the log-likelihood (V,) of the ``light`` modules' readings where each
+    hypothesis centred on ``modules`` (its footprint at its fitted ``scale``) predicts more
+    than they read."""
+    shares = _light_shares(layout, modules, params, model, light)  # (L, V)
+    d = np.asarray(increments_pa, dtype=float).ravel()[np.array(light) - 1][:, None]
+    var = params.noise_pa**2 + (params.model_error * d) ** 2
+    over = np.clip(scale * shares - d, 0.0, None)
+    return np.asarray(0.5 * (over**2 / var).sum(axis=0))
+
+
+@lru_cache(maxsize=32)
+def _light_shares(
+    layout: PadLayout,
+    modules: tuple[int, ...],
+    params: ModelBasedParams,
+    model: PadModel,
+    light: tuple[int, ...],
+) -> Array:
+    """Each hypothesis's (centred on ``modules``) share of the load, response-weighted, on
+    each ``light`` module (L, V): 0 where its window does not reach the module."""
+    g = _group(layout, modules, params, model)
+    radius = _templates(layout.pitch_m, params, model).radius
+    tn = g.shares.shape[2]
+    col = g.flat % tn
+    out = []
+    for m in light:
+        row, c = layout.row_col(m)
+        r = layout.rows - 1 - row + radius
+        at = (g.window[0][:, g.used] == r) & (g.window[1][:, g.used] == c + radius)  # (C, K)
+        k = np.where(at.any(axis=1), at.argmax(axis=1), -1)[g.module]  # (V,)
+        out.append(np.where(k >= 0, g.shares[0][np.maximum(k, 0), col], 0.0))
+    return _frozen(np.array(out))
 
 
 @dataclass(frozen=True)
@@ -545,19 +677,43 @@ def _offsets(
     return dx * ux + dy * uy, dy * ux - dx * uy, c, s
 
 
-def _half_extents(post: Posterior, c: Array, s: Array, extents: Array) -> tuple[Array, Array]:
+def _half_extents(post: Posterior, c: Array, s: Array, shapes: _Shapes) -> tuple[Array, Array]:
     """Half extents of the object along and across the closing direction for each shape
-    (``extents`` (S, 2): the object's extent over its footprint along the footprint's length
-    and across it): (S, G, H) each."""
-    hl = extents[:, 0, None, None] * post.halves[None, None, :, 0]
-    hw = extents[:, 1, None, None] * post.halves[None, None, :, 1]
+    (:class:`_Shapes`: the object's extent over its footprint along the footprint's length
+    and across it, and the least it spans): (S, G, H) each."""
+    ext, least = shapes.extents, shapes.least / 2
+    hl = np.maximum(ext[:, 0, None, None] * post.halves[None, None, :, 0], least[:, 0, None, None])
+    hw = np.maximum(ext[:, 1, None, None] * post.halves[None, None, :, 1], least[:, 1, None, None])
     return hl * c + hw * s, hl * s + hw * c
 
 
-def _shapes(params: ModelBasedParams) -> tuple[Array, Array]:
-    """The shapes' extents (S, 2) and prior weights (S,) summing to 1."""
+@dataclass(frozen=True)
+class _Shapes:
+    """The shapes the pad cannot tell apart (S of them): the object's extent over its
+    footprint along the footprint's length and across it (S, 2), the least extent it spans
+    each way (S, 2), module units, and the prior weights (S,) summing to 1."""
+
+    extents: Array
+    least: Array
+    weights: Array
+
+
+@lru_cache(maxsize=16)
+def _shapes(params: ModelBasedParams, pitch_m: float, opening_m: float) -> _Shapes:
+    """:class:`_Shapes` of ``params`` on a pad of ``pitch_m`` for jaws opening ``opening_m``:
+    each curved shape (an extent over 1) once per diameter of ``curved_diameters``, spanning
+    at least that diameter where it is curved, its weight shared evenly among them."""
     w = np.asarray(params.shape_weights, dtype=float)
-    return np.asarray(params.shape_extents, dtype=float), w / w.sum()
+    extents, least, weights = [], [], []
+    diameters = [d * opening_m / pitch_m for d in params.curved_diameters]
+    for e, wi in zip(params.shape_extents, w / w.sum(), strict=True):
+        curved = [v > 1.0 for v in e]
+        spans = diameters if any(curved) and diameters else [0.0]
+        for dia in spans:
+            extents.append(e)
+            least.append([dia if k else 0.0 for k in curved])
+            weights.append(wi / len(spans))
+    return _Shapes(*(_frozen(np.asarray(a, dtype=float)) for a in (extents, least, weights)))
 
 
 def edge_scale(params: ModelBasedParams) -> float:
@@ -586,7 +742,7 @@ def _landing_terms(
     half_open = (gripper.max_width_m / 2 - params.clearance_m) / layout.pitch_m
     narrow = gripper.min_width_m / layout.pitch_m
     m_u, m_n, c, s = _offsets(post, centres, thetas)
-    e_u, e_n = _half_extents(post, c, s, _shapes(params)[0])
+    e_u, e_n = _half_extents(post, c, s, _shapes(params, layout.pitch_m, gripper.max_width_m))
     b = edge_scale(params)
     clear = _clear(half_open - m_u - e_u, b) * _clear(half_open + m_u - e_u, b)
     hold = (2 * e_u > narrow) & (np.abs(m_n) < params.centre_band * e_n)
@@ -605,7 +761,8 @@ def landing_chance(
     estimated footprints (the posterior), the shapes they may be of, and the uncertainty of
     where the object's edge lies (:func:`edge_scale`)."""
     clear, _ = _landing_terms(post, centres, thetas, gripper, layout, params)
-    return 1.0 - np.einsum("s,sgh,h->g", _shapes(params)[1], clear, post.probs)
+    weights = _shapes(params, layout.pitch_m, gripper.max_width_m).weights
+    return 1.0 - np.einsum("s,sgh,h->g", weights, clear, post.probs)
 
 
 def fit_chance(
@@ -620,7 +777,8 @@ def fit_chance(
     landing term, :func:`landing_chance`), close on it and hold it balanced, every shape of
     ``params.shape_extents`` counting with its weight."""
     clear, hold = _landing_terms(post, centres, thetas, gripper, layout, params)
-    return np.einsum("s,sgh,h->g", _shapes(params)[1], clear * hold, post.probs)
+    weights = _shapes(params, layout.pitch_m, gripper.max_width_m).weights
+    return np.einsum("s,sgh,h->g", weights, clear * hold, post.probs)
 
 
 def predicted_success(
@@ -680,8 +838,9 @@ def grid_success(
     half_open = (gripper.max_width_m / 2 - params.clearance_m) / layout.pitch_m
     narrow = gripper.min_width_m / layout.pitch_m
     m_u, m_n, c, s = _offsets(post, grid.base[None], grid.thetas, grid.thetas.size)  # (D, H)
-    extents, weights = _shapes(params)
-    e_u, e_n = _half_extents(post, c, s, extents)  # (S, D, H)
+    shapes = _shapes(params, layout.pitch_m, gripper.max_width_m)
+    weights = shapes.weights
+    e_u, e_n = _half_extents(post, c, s, shapes)  # (S, D, H)
     m_u = m_u[None] - grid.along[:, None, None]  # (A, D, H)
     b = edge_scale(params)
     e_u4 = e_u[:, None]
@@ -730,8 +889,9 @@ def landing_likelihood(
     half_open = gripper.max_width_m / 2 / layout.pitch_m
     tip_half = gripper.tip_width_m / 2 / layout.pitch_m
     m_u, m_n, c, s = _offsets(post, centre, theta)  # (1, H) each
-    extents, weights = _shapes(params)
-    e_u, e_n = (a[:, 0] for a in _half_extents(post, c, s, extents))  # (S, H)
+    shapes = _shapes(params, layout.pitch_m, gripper.max_width_m)
+    weights = shapes.weights
+    e_u, e_n = (a[:, 0] for a in _half_extents(post, c, s, shapes))  # (S, H)
     under = np.abs(m_n) < e_n + tip_half
     plus, minus = under & (m_u + e_u > half_open), under & (m_u - e_u < -half_open)
     hit = {1: plus, -1: minus}.get(side, plus | minus)
