@@ -28,8 +28,10 @@ ext: venv
 	        src/softpad/box/_fastsim.c -o "src/softpad/box/_fastsim$$($(call PYINFO,EXT_SUFFIX))"; \
 	else echo "ext: no C compiler: the compiled guard and solve are not built (their tests are skipped)"; fi
 
+# PYTHONDONTWRITEBYTECODE cleared as for the tests (below): the demo's processes (the command,
+# its trial workers, the reference plans' process) compile the sources once, not each time.
 demo: venv
-	MPLBACKEND=Agg $(BIN)/softpad demo --out report --force
+	MPLBACKEND=Agg PYTHONDONTWRITEBYTECODE= $(BIN)/softpad demo --out report --force
 
 lint: venv
 	$(BIN)/ruff check src tests examples
