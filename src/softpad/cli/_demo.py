@@ -61,7 +61,8 @@ def run(args: argparse.Namespace) -> int:
     # the thesis's Fig. 6.8 shows an object on modules 1 and 4: object 4 lies there
     trace_object = "object-4" if any(s.name == "object-4" for s in specs) else specs[0].name
     # the planner on the thesis's reference increments (no physics; about 3 CPU s of figures)
-    # drawn by a process of its own while the trials run, not before them (issue 50)
+    # drawn by a process of its own while the trials run, not before them, and the report's
+    # column-wide figures there while this process draws the others (issue 50)
     with _beside() as side:
         plans = side.submit(_reference_plans, out)
         exp, trace = run_with_progress(
@@ -75,14 +76,15 @@ def run(args: argparse.Namespace) -> int:
             record=args.record,
         )
         plans.result()
-    say(exp.to_text(), args.json)
-    paths = write_report(
-        out,
-        exp,
-        {s.name: s for s in specs},
-        trace,
-        trace_title=f"{trace_object}, trial 1 (seed {args.seeds})",
-    )
+        say(exp.to_text(), args.json)
+        paths = write_report(
+            out,
+            exp,
+            {s.name: s for s in specs},
+            trace,
+            trace_title=f"{trace_object}, trial 1 (seed {args.seeds})",
+            beside=side,  # the column-wide figures drawn there
+        )
     names = ", ".join(p.name for p in paths if p.parent == out)
     say(
         f"\n{len(exp.trials)} trials in {exp.wall_time_s:.1f} s on {exp.workers} workers; "
