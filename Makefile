@@ -81,9 +81,15 @@ ros2-interfaces: venv
 # cleared: where the environment sets it, every worker and every command a test starts compiled
 # (and pytest re-wrote) the sources anew: collection 6.9 -> 3.2 CPU s, `softpad run` 0.9 ->
 # 0.7 CPU s (the __pycache__ folders are git-ignored).
+# TEST_WORKERS: `make test` runs 3 workers on the 2 cores: about a third of its wall time on
+# a quiet machine was cores idle while tests waited on the processes they start (ROS 1 masters
+# and nodes paced at real time, docs servers, link timeouts: 279 s wall for 360 CPU s); a
+# third worker computes while one waits (issue 50). `make test TEST_WORKERS=2` as before.
+# tests/conftest.py deals the heaviest files first, one per worker.
 TEST_ENV := MPLBACKEND=Agg PYTHONDONTWRITEBYTECODE=
+TEST_WORKERS ?= 3
 test: lint typecheck ros-deps ros2-interfaces ext
-	$(TEST_ENV) $(BIN)/pytest -n 2 --dist worksteal -q -m "not slow" --durations=10
+	$(TEST_ENV) $(BIN)/pytest -n $(TEST_WORKERS) --dist worksteal -q -m "not slow" --durations=10
 
 test-slow: venv ros-deps ros2-interfaces ext
 	$(TEST_ENV) $(BIN)/pytest -n 2 --dist worksteal -q -m slow --durations=10
