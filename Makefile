@@ -28,8 +28,10 @@ ext: venv
 	        src/softpad/box/_fastsim.c -o "src/softpad/box/_fastsim$$($(call PYINFO,EXT_SUFFIX))"; \
 	else echo "ext: no C compiler: the compiled guard and solve are not built (their tests are skipped)"; fi
 
+# PYTHONDONTWRITEBYTECODE cleared as for the tests (below): the demo's processes (the command,
+# its trial workers, the reference plans' process) compile the sources once, not each time.
 demo: venv
-	MPLBACKEND=Agg $(BIN)/softpad demo --out report --force
+	MPLBACKEND=Agg PYTHONDONTWRITEBYTECODE= $(BIN)/softpad demo --out report --force
 
 lint: venv
 	$(BIN)/ruff check src tests examples
@@ -79,9 +81,15 @@ ros2-interfaces: venv
 # cleared: where the environment sets it, every worker and every command a test starts compiled
 # (and pytest re-wrote) the sources anew: collection 6.9 -> 3.2 CPU s, `softpad run` 0.9 ->
 # 0.7 CPU s (the __pycache__ folders are git-ignored).
+# TEST_WORKERS: `make test` runs 3 workers on the 2 cores: about a third of its wall time on
+# a quiet machine was cores idle while tests waited on the processes they start (ROS 1 masters
+# and nodes paced at real time, docs servers, link timeouts: 279 s wall for 360 CPU s); a
+# third worker computes while one waits (issue 50). `make test TEST_WORKERS=2` as before.
+# tests/conftest.py deals the heaviest files first, one per worker.
 TEST_ENV := MPLBACKEND=Agg PYTHONDONTWRITEBYTECODE=
+TEST_WORKERS ?= 3
 test: lint typecheck ros-deps ros2-interfaces ext
-	$(TEST_ENV) $(BIN)/pytest -n 2 --dist worksteal -q -m "not slow" --durations=10
+	$(TEST_ENV) $(BIN)/pytest -n $(TEST_WORKERS) --dist worksteal -q -m "not slow" --durations=10
 
 test-slow: venv ros-deps ros2-interfaces ext
 	$(TEST_ENV) $(BIN)/pytest -n 2 --dist worksteal -q -m slow --durations=10

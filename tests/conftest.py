@@ -4,6 +4,7 @@ installation file with a non-zero pad pose."""
 from __future__ import annotations
 
 import math
+import os
 import resource
 import socket
 import time
@@ -73,6 +74,93 @@ def pytest_terminal_summary(terminalreporter: Any, config: pytest.Config) -> Non
     for nodeid, cpu in sorted(_cpu_by_test.items(), key=lambda kv: -kv[1])[: n or None]:
         terminalreporter.write_line(f"{cpu:8.2f}s  {nodeid}")
     terminalreporter.write_line(f"{total:8.2f}s  total over {len(_cpu_by_test)} tests")
+
+
+#: Seconds a test file takes on a quiet 2-core machine (estimates: 2026-11-28, issue 50; the
+#: ROS 1 and docs files wait on processes, masters and servers more than they compute). Under
+#: pytest-xdist the heaviest files start first, spread over the workers (below); a file not
+#: listed counts 0.05 s a test. Only the order changes, never what runs.
+FILE_SECONDS = {
+    "tests/ros/test_ros.py": 85.0,
+    "tests/test_docs.py": 45.0,
+    "tests/trials/test_calibrate.py": 11.0,
+    "tests/test_examples.py": 11.0,
+    "tests/cli/test_signals.py": 7.0,
+    "tests/control/test_faults_safe_state.py": 8.0,
+    "tests/ros2/test_ros2_node.py": 6.0,
+    "tests/trials/test_no_oracle_pairs.py": 7.0,
+    "tests/control/test_table_6_1_loop.py": 6.5,
+    "tests/sensing/test_adaptive.py": 6.5,
+    "tests/control/test_execution.py": 6.5,
+    "tests/box/test_security.py": 4.0,
+    "tests/design/test_evaluate.py": 6.0,
+    "tests/trials/test_hold_coast_equivalence.py": 6.0,
+    "tests/control/test_fault_campaign.py": 6.0,
+    "tests/fem/test_cast.py": 6.0,
+    "tests/cli/test_fuzz.py": 6.0,
+    "tests/design/test_density_response.py": 6.0,
+    "tests/control/test_inflation.py": 5.5,
+    "tests/fem/test_cli.py": 5.5,
+    "tests/cli/test_run_box_cli.py": 5.5,
+    "tests/trials/test_column_figures.py": 4.0,
+    "tests/harness/test_remote.py": 4.0,
+    "tests/trials/test_catalogue_trials.py": 4.0,
+    "tests/trials/test_still_valve_check.py": 4.0,
+    "tests/test_misuse.py": 4.0,
+    "tests/ros/test_adapters.py": 3.5,
+    "tests/trials/test_trial_recording.py": 3.0,
+    "tests/fem/test_fitting.py": 3.0,
+    "tests/sim/test_hold_coast.py": 3.0,
+    "tests/test_fuzz_campaign.py": 3.0,
+    "tests/box/test_box_safety.py": 3.0,
+}
+
+
+def _file_of(item: pytest.Item) -> str:
+    return item.nodeid.split("::", 1)[0]
+
+
+def _bins(files: dict[str, list[pytest.Item]], sizes: list[int]) -> list[list[str]]:
+    """The files dealt to workers that take ``sizes`` tests each, heaviest first, each to the
+    worker with the least work so far that has room for it; a file that fits nowhere is
+    split (its module fixtures then start on both workers)."""
+    weight = {f: FILE_SECONDS.get(f, 0.05 * len(its)) for f, its in files.items()}
+    load, room = [0.0] * len(sizes), list(sizes)
+    bins: list[list[str]] = [[] for _ in sizes]
+    for f in sorted(files, key=lambda f: -weight[f]):  # stable: ties in collection order
+        n = len(files[f])
+        fits = [b for b in range(len(sizes)) if room[b] >= n]
+        b = (
+            min(fits, key=lambda b: load[b])
+            if fits
+            else max(range(len(sizes)), key=room.__getitem__)
+        )
+        bins[b].append(f)
+        load[b] += weight[f]
+        room[b] -= n
+    return bins
+
+
+@pytest.hookimpl(trylast=True)  # after -m and -k deselected what does not run
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    """Under pytest-xdist (``make test``: three workers, ``--dist worksteal``), the order that
+    balances the workers: worksteal gives each worker a contiguous share of the collection
+    (the first ``n // k`` tests to one, and so on) and an idle worker takes tests from the
+    end of another's queue; so each share starts with its heaviest files (FILE_SECONDS) and
+    the long ROS 1 and docs files no longer share one worker (issue 50)."""
+    k = int(os.environ.get("PYTEST_XDIST_WORKER_COUNT", "1"))
+    if k < 2 or len(items) < 2 * k:
+        return
+    files: dict[str, list[pytest.Item]] = {}
+    for item in items:
+        files.setdefault(_file_of(item), []).append(item)
+    sizes, left = [], len(items)
+    for i in range(k):  # worksteal's first deal: len(pending) // nodes_remaining each
+        sizes.append(left // (k - i))
+        left -= sizes[-1]
+    order = [it for b in _bins(files, sizes) for f in b for it in files[f]]
+    assert len(order) == len(items)
+    items[:] = order
 
 
 #: Client timeout on the links to ``served`` daemons, seconds.

@@ -81,9 +81,11 @@ class Command:
             self.proc.wait(timeout=DEADLINE_S)
 
 
-@pytest.fixture
+@pytest.fixture(scope="module")
 def served(free_port):  # type: ignore[no-untyped-def]
-    """A simulated box served on a free loopback port: (its zenoh URL, its first line)."""
+    """A simulated box served on a free loopback port: (its zenoh URL, its first line); one
+    server for the module's monitors (each a client of its own: the server is not what they
+    check, and its start-up is a process's)."""
     port = free_port()
     serve = Command("box", "serve", "--sim", "--port", str(port))
     try:
@@ -177,6 +179,18 @@ def test_run_stops_on_a_signal(signum: int, code: int) -> None:
         run.kill()
 
 
+@pytest.fixture(scope="module")
+def ros_master(free_port):  # type: ignore[no-untyped-def]
+    """The environment of the clients of a ROS 1 master on a free loopback port, up; one
+    master for the module's nodes (each node registers and leaves on its signal)."""
+    core, env = _roscore(free_port)
+    try:
+        yield env
+    finally:
+        os.killpg(core.pid, signal.SIGINT)
+        core.wait(timeout=DEADLINE_S)
+
+
 def _roscore(free_port) -> tuple[subprocess.Popen[bytes], dict[str, str]]:  # type: ignore[no-untyped-def]
     """A ROS 1 master on a free loopback port, up, and the environment of its clients."""
     from softpad.ros import rospy_available
@@ -209,14 +223,11 @@ def _roscore(free_port) -> tuple[subprocess.Popen[bytes], dict[str, str]]:  # ty
 
 
 @pytest.mark.parametrize(("signum", "code"), SIGNALS)
-def test_ros_node_stops_on_a_signal(free_port, signum: int, code: int) -> None:
-    core, env = _roscore(free_port)
-    node = Command("ros", "node", "--box", "sim://", "--place", "object-5", env=env)
+def test_ros_node_stops_on_a_signal(ros_master, signum: int, code: int) -> None:  # type: ignore[no-untyped-def]
+    node = Command("ros", "node", "--box", "sim://", "--place", "object-5", env=ros_master)
     try:
         first = node.line()
         assert first.startswith("softpad ros node: box sim://"), first
         assert node.stop(signum) == code
     finally:
         node.kill()
-        os.killpg(core.pid, signal.SIGINT)
-        core.wait(timeout=DEADLINE_S)

@@ -14,6 +14,7 @@ import shutil
 import signal
 import subprocess
 import sys
+import threading
 import time
 from collections.abc import Iterator
 from pathlib import Path
@@ -58,15 +59,40 @@ class _Procs:
             args, env=self.env, capture_output=True, text=True, timeout=timeout_s, check=False
         )
 
+    def spawn(self, *args: str) -> subprocess.Popen[str]:
+        """``args`` started with its output captured, for :meth:`finish` (commands that
+        probe the node side by side: none changes what another sees)."""
+        p = subprocess.Popen(
+            args, env=self.env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+        )
+        self.procs.append(p)  # type: ignore[arg-type]
+        return p
+
+    def finish(
+        self, p: subprocess.Popen[str], timeout_s: float = 30.0
+    ) -> subprocess.CompletedProcess[str]:
+        """What a :meth:`spawn`-ed command printed once it ended (as :meth:`run` returns it);
+        one still running after ``timeout_s`` is killed and raises ``TimeoutExpired``."""
+        try:
+            out, err = p.communicate(timeout=timeout_s)
+        except subprocess.TimeoutExpired:
+            p.kill()
+            p.communicate()
+            raise
+        return subprocess.CompletedProcess(p.args, p.returncode, out, err)
+
     def close(self) -> None:
-        for p in reversed(self.procs):
-            if p.poll() is None:
-                p.send_signal(signal.SIGINT)
-                try:
-                    p.wait(5)
-                except subprocess.TimeoutExpired:
-                    p.kill()
-                    p.wait(5)
+        """SIGINT to every process still running, at once (they stop side by side, not one
+        after another: issue 50), then 5 s for each before SIGKILL."""
+        running = [p for p in reversed(self.procs) if p.poll() is None]
+        for p in running:
+            p.send_signal(signal.SIGINT)
+        for p in running:
+            try:
+                p.wait(5)
+            except subprocess.TimeoutExpired:
+                p.kill()
+                p.wait(5)
 
 
 @pytest.fixture(scope="module")
@@ -127,6 +153,43 @@ def _echo(procs: _Procs, topic: str) -> str:
     return r.stdout
 
 
+def _rates(procs: _Procs, topic: str, reports: int = 3) -> tuple[list[float], str]:
+    """The average rates ``rostopic hz -w 100`` reports for ``topic`` (Hz), read line by line
+    until it has reported ``reports`` times (once a second: the last over a full window of
+    100 messages at 100 Hz), then stopped; and what it printed. Was a fixed 8 s under
+    ``timeout``: the same estimate, without waiting out the seconds after it (issue 50)."""
+    p = subprocess.Popen(
+        ["rostopic", "hz", "-w", "100", topic],
+        env={**procs.env, "PYTHONUNBUFFERED": "1"},  # each report as it is printed
+        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+    )  # fmt: skip
+    procs.procs.append(p)
+    lines: list[str] = []
+    rates: list[float] = []
+    bound = threading.Timer(60.0, p.kill)  # a bound on a hang: it ends the read below
+    bound.start()
+    try:
+        assert p.stdout is not None
+        for line in p.stdout:
+            lines.append(line)
+            rates += [float(v) for v in re.findall(r"average rate: ([0-9.]+)", line)]
+            if len(rates) >= reports:
+                break
+    finally:
+        bound.cancel()
+        p.send_signal(signal.SIGINT)
+        p.wait(10)
+    return rates, "".join(lines)
+
+
+def _echoed(procs: _Procs, p: subprocess.Popen[str]) -> str:
+    """:func:`_echo` of a ``rostopic echo -n 1`` started by :meth:`_Procs.spawn`."""
+    try:
+        return procs.finish(p, timeout_s=30).stdout
+    except subprocess.TimeoutExpired:
+        return ""
+
+
 def _floats(text: str, key: str) -> list[float]:
     return [float(v) for v in re.findall(rf"^\s*{key}: (\S+)$", text, re.M)]
 
@@ -150,31 +213,39 @@ def test_node_publishes_pressures_diagnostics_and_the_plan(procs: _Procs) -> Non
     assert y == pytest.approx(0.0675, abs=1e-9) and 0.045 < x < 0.0675
     assert yaw == pytest.approx(math.pi / 2, abs=1e-9)
 
-    hz = procs.run(
-        "timeout", "-s", "INT", "8", "rostopic", "hz", "-w", "100", "/softpad/module_1/pressure"
-    )
-    rates = [float(v) for v in re.findall(r"average rate: ([0-9.]+)", hz.stdout)]
-    assert rates, hz.stdout + hz.stderr
+    # the probes side by side, each its own process (none changes what another sees): the
+    # rate, diagnostics, a pressure, both services, the contact and /tf_static
+    echo = ("rostopic", "echo", "-n", "1")
+    probes = [
+        procs.spawn(*echo, "/diagnostics"),
+        procs.spawn(*echo, "/softpad/module_1/pressure"),
+        procs.spawn("rosservice", "call", "/softpad/plan"),
+        procs.spawn("rosservice", "call", "/softpad/grasp"),  # a node without a robot
+        procs.spawn(*echo, "/softpad/contact"),
+        procs.spawn(*echo, "/tf_static"),
+    ]
+    rates, hz = _rates(procs, "/softpad/module_1/pressure")
+    assert rates, hz
     # paced to the box clock: never faster than the box's 100 Hz (5 % for the estimate)
     assert 0 < rates[-1] <= 105.0
-    diag = _echo(procs, "/diagnostics")
+    diag = _echoed(procs, probes[0])
     levels = [int(v) for v in re.findall(r"level: (\d+)", diag)]
     names = re.findall(r'name: "([^"]+)"', diag)
     assert "softpad: link" in names and "softpad: channel 6" in names
     assert levels[names.index("softpad: link")] == 0
     assert all(levels[names.index(f"softpad: channel {k}")] == 0 for k in range(1, 7))
-    pressure = _echo(procs, "/softpad/module_1/pressure")
+    pressure = _echoed(procs, probes[1])
     assert 'frame_id: "softpad_module_1"' in pressure
     # absolute: p0 = 1.1 kPa gauge over the standard atmosphere (101.325 kPa), Pa
     assert 102325.0 < _floats(pressure, "fluid_pressure")[0] < 102625.0
     assert _floats(pressure, "variance")[0] == pytest.approx(73.5, abs=0.1)  # sensor model
-    r = procs.run("rosservice", "call", "/softpad/plan")
+    r = procs.finish(probes[2])
     assert "success: True" in r.stdout, r.stdout + r.stderr
     assert "n3-row" in r.stdout
-    r = procs.run("rosservice", "call", "/softpad/grasp")  # a node without a robot
+    r = procs.finish(probes[3])  # a node without a robot
     assert "success: False" in r.stdout and "the node has no robot" in r.stdout, r.stdout
-    assert "data: False" in _echo(procs, "/softpad/contact")  # nothing touches the pad
-    tf = _echo(procs, "/tf_static")
+    assert "data: False" in _echoed(procs, probes[4])  # nothing touches the pad
+    tf = _echoed(procs, probes[5])
     assert 'child_frame_id: "softpad"' in tf and 'child_frame_id: "softpad_module_6"' in tf
 
 
@@ -193,10 +264,12 @@ def test_node_plans_with_the_registered_parts_by_name(procs: _Procs) -> None:
         return text if "position" in text else ""
 
     _wait(settled, 90.0, "object 5 planned on /softpad/plan/grasps")
-    r = procs.run("rosservice", "call", "/softpad/plan")
+    plan = procs.spawn("rosservice", "call", "/softpad/plan")  # side by side with the echo
+    contact = procs.spawn("rostopic", "echo", "-n", "1", "/softpad/contact")
+    r = procs.finish(plan)
     assert "success: True" in r.stdout and "model-based" in r.stdout, r.stdout + r.stderr
     assert "[1, 2, 3]" in r.stdout
-    assert "data: False" in _echo(procs, "/softpad/contact")
+    assert "data: False" in _echoed(procs, contact)
 
 
 def _arm(procs: _Procs, *extra: str) -> tuple[subprocess.Popen[bytes], Path, str]:
@@ -212,10 +285,11 @@ def _arm(procs: _Procs, *extra: str) -> tuple[subprocess.Popen[bytes], Path, str
 def test_run_with_the_arm_in_ros_holds_object_5_with_the_simulated_plan(procs: _Procs) -> None:
     _, _, url = _arm(procs)
     args = ("run", "--objects", "object-5", "--hold-s", "1", "--json")
+    alone = procs.spawn(SOFTPAD, *args)  # the simulated run, side by side with the ROS one
     r = procs.run(SOFTPAD, *args, "--robot", "ros1://", "--box", url, timeout_s=90)
     assert r.returncode == 0, r.stderr
     ros = json.loads(r.stdout)
-    sim = json.loads(procs.run(SOFTPAD, *args, timeout_s=90).stdout)
+    sim = json.loads(procs.finish(alone, timeout_s=90).stdout)
     assert ros["outcome"] == "held"
     # The arm node's daemon samples on the wall clock, so valve commands land a frame or two
     # apart from the in-process run: the same plan, its PCOM and COG (object 5's COG is its

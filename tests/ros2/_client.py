@@ -9,7 +9,9 @@ Modes (each prints one JSON object on stdout):
   result and the final status.
 - ``cancel``: send one goal, cancel it at the first ``descend`` feedback; report the same and
   every /softpad/events kind with the safe state's data.
-- ``topics``: every topic name and type seen after SECONDS.
+- ``topics``: every topic name and type seen after SECONDS; with NAMES after SECONDS
+  (``topics SECONDS NAME...``), seen once every one of NAMES is and a second more, SECONDS
+  at most (issue 50: a node's topics are discovered within a second or two of each other).
 
 The test process never imports rclpy itself (one process speaks ROS 1 or ROS 2).
 """
@@ -132,9 +134,18 @@ def grasp(node: Any, cancel_at: str | None, timeout_s: float) -> dict[str, Any]:
     }
 
 
-def topics(node: Any, seconds: float) -> dict[str, Any]:
-    _spin_until(node, lambda: False, seconds)
+def topics(node: Any, seconds: float, names: list[str] | None = None) -> dict[str, Any]:
+    if names:  # until every one is seen, then a second more for any other the node makes
+        t_end = time.monotonic() + seconds
+        _spin_until(node, lambda: set(names) <= set(_names(node)), seconds)
+        _spin_until(node, lambda: False, min(1.0, max(0.0, t_end - time.monotonic())))
+    else:
+        _spin_until(node, lambda: False, seconds)
     return {"topics": {n: t for n, t in node.get_topic_names_and_types()}}
+
+
+def _names(node: Any) -> list[str]:
+    return [n for n, _ in node.get_topic_names_and_types()]
 
 
 def main() -> None:
@@ -147,7 +158,7 @@ def main() -> None:
         if mode == "watch":
             out = watch(node, seconds)
         elif mode == "topics":
-            out = topics(node, seconds)
+            out = topics(node, seconds, sys.argv[3:])
         else:
             out = grasp(node, "descend" if mode == "cancel" else None, seconds)
     finally:

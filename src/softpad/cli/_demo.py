@@ -58,28 +58,33 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(f"--out {args.out!r}: cannot create the folder: {exc.strerror}") from None
     specs = [get_object(n) for n in object_names()]
     check_trial_recordings(args.record, specs, args.trials, args.force)
-    # the planner on the thesis's reference increments first (instant), then the experiment
-    _reference_plans(out)
     # the thesis's Fig. 6.8 shows an object on modules 1 and 4: object 4 lies there
     trace_object = "object-4" if any(s.name == "object-4" for s in specs) else specs[0].name
-    exp, trace = run_with_progress(
-        specs,
-        args.trials,
-        not args.no_progress,
-        desc="grasp trials",
-        seed=args.seeds,
-        workers=args.workers,
-        trace_object=trace_object,
-        record=args.record,
-    )
-    say(exp.to_text(), args.json)
-    paths = write_report(
-        out,
-        exp,
-        {s.name: s for s in specs},
-        trace,
-        trace_title=f"{trace_object}, trial 1 (seed {args.seeds})",
-    )
+    # the planner on the thesis's reference increments (no physics; about 3 CPU s of figures)
+    # drawn by a process of its own while the trials run, not before them, and the report's
+    # column-wide figures there while this process draws the others (issue 50)
+    with _beside() as side:
+        plans = side.submit(_reference_plans, out)
+        exp, trace = run_with_progress(
+            specs,
+            args.trials,
+            not args.no_progress,
+            desc="grasp trials",
+            seed=args.seeds,
+            workers=args.workers,
+            trace_object=trace_object,
+            record=args.record,
+        )
+        plans.result()
+        say(exp.to_text(), args.json)
+        paths = write_report(
+            out,
+            exp,
+            {s.name: s for s in specs},
+            trace,
+            trace_title=f"{trace_object}, trial 1 (seed {args.seeds})",
+            beside=side,  # the column-wide figures drawn there
+        )
     names = ", ".join(p.name for p in paths if p.parent == out)
     say(
         f"\n{len(exp.trials)} trials in {exp.wall_time_s:.1f} s on {exp.workers} workers; "
@@ -89,6 +94,15 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         emit({"report": str(out), "files": [str(p) for p in paths], **exp.to_dict()})
     return trial_errors_exit(errored_records(exp.trials), "demo")
+
+
+def _beside() -> Any:
+    """An executor of one process for the work beside the trials: started (forked) before
+    the trials' workers and before any thread, so that it shares no lock or import state
+    with them; its errors come back through its futures."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    return ProcessPoolExecutor(max_workers=1)
 
 
 def _reference_plans(out: Path) -> None:

@@ -18,17 +18,23 @@ def write_report(
     tip_thickness_m: float | None = None,
     tip_width_m: float | None = None,
     line_width_m: float | None = None,
+    beside: Any | None = None,
 ) -> list[Path]:
     """Write the experiment to ``out``: ``table.md``, ``table.csv``, ``results.json``,
     ``grasps.png`` (every planned grasp over the pad, like Fig. 6.10) and its column-wide
     figures in ``column/``, ``trace.png`` (pressure
     traces of one trial, like Fig. 6.8) and ``README.md`` (the summary); return the paths.
     Fingertip and line sizes (metres) default to the MuJoCo world's (see
-    :func:`softpad.trials._plots.plot_grasps`)."""
+    :func:`softpad.trials._plots.plot_grasps`). ``beside``: a
+    :class:`concurrent.futures.ProcessPoolExecutor` that draws the column-wide figures while
+    this process draws the others (the same files; ``softpad demo``'s second core)."""
     from softpad.trials._plots import plot_grasp_columns, plot_grasps
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
+    sizes = (tip_thickness_m, tip_width_m, line_width_m)
+    columns = (result, specs, out / "column")
+    later = None if beside is None else beside.submit(plot_grasp_columns, *columns, sizes_m=sizes)
     paths = []
     md = result.to_markdown()
     (out / "table.md").write_text(md)
@@ -44,11 +50,10 @@ def write_report(
         line_width_m=line_width_m,
     )
     paths.append(out / "grasps.png")
-    sizes = (tip_thickness_m, tip_width_m, line_width_m)
-    paths += plot_grasp_columns(result, specs, out / "column", sizes_m=sizes)
     if trace is not None:
         trace.plot(out / "trace.png", title=trace_title)
-        paths.append(out / "trace.png")
+    column_paths = plot_grasp_columns(*columns, sizes_m=sizes) if later is None else later.result()
+    paths += column_paths + ([out / "trace.png"] if trace is not None else [])
     (out / "README.md").write_text(_summary(result, md, trace is not None, trace_title))
     paths.append(out / "README.md")
     return paths
