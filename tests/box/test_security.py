@@ -394,8 +394,13 @@ def test_mutual_tls_box_refuses_clients_without_a_certificate(tmp_path: Path, fr
             box.set_valve(1, "deflate")
             assert daemon.box.valves[0] is ValveCommand.DEFLATE
         # no certificate, a rogue CA's, plain tcp on the TLS port: each client waits out its
-        # 3 s timeout, so the three wait side by side (issue 50; was one after another)
-        refused = [url + str(no_cert), url + str(rogue), f"zenoh://127.0.0.1:{port}?timeout_s=3"]
+        # connect timeout (1 s: a loopback handshake takes milliseconds), side by side
+        short = url.replace("timeout_s=3", "timeout_s=1")
+        refused = [
+            short + str(no_cert),
+            short + str(rogue),
+            f"zenoh://127.0.0.1:{port}?timeout_s=1",
+        ]
         with ThreadPoolExecutor(len(refused)) as pool:
             errors = list(pool.map(_refusal, refused))
         assert all(isinstance(e, ConnectionLost) for e in errors), errors
@@ -427,13 +432,14 @@ def test_user_password_box_refuses_clients_without_credentials(
         monkeypatch.setenv("SOFTPAD_BOX_PASSWORD", "s3cret-pw")
         with open_box(url) as box:
             box.read()
+        refused = url.replace("timeout_s=3", "timeout_s=1")  # waits out its connect timeout
         monkeypatch.setenv("SOFTPAD_BOX_PASSWORD", "wrong")
         with pytest.raises(ConnectionLost):
-            open_box(url)
+            open_box(refused)
         monkeypatch.delenv("SOFTPAD_BOX_USER")
         monkeypatch.delenv("SOFTPAD_BOX_PASSWORD")
         with pytest.raises(ConnectionLost):
-            open_box(url)
+            open_box(refused)
     from softpad.errors import InputError
 
     with pytest.raises(InputError, match="never carries credentials"):

@@ -79,7 +79,7 @@ def test_link_fault_exits_3_with_json(capsys) -> None:
     port = s.getsockname()[1]
     s.close()
     code, data, _ = _json(
-        capsys, "box", "inflate", "--box", f"zenoh://127.0.0.1:{port}?timeout_s=1", "--json"
+        capsys, "box", "inflate", "--box", f"zenoh://127.0.0.1:{port}?timeout_s=0.2", "--json"
     )
     assert code == 3 and data["error"]["kind"] == "hardware"
 
@@ -100,7 +100,7 @@ def test_internal_error_exits_4_naming_where_to_report(capsys, monkeypatch) -> N
 
 def test_streaming_json_ends_with_the_error_line(capsys) -> None:
     code = main(
-        ["box", "read", "--box", "zenoh://127.0.0.1:1?timeout_s=1", "--count", "2", "--json"]
+        ["box", "read", "--box", "zenoh://127.0.0.1:1?timeout_s=0.2", "--count", "2", "--json"]
     )
     lines = capsys.readouterr().out.strip().splitlines()
     assert code == 3 and json.loads(lines[-1])["error"]["kind"] == "hardware"

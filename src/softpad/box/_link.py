@@ -51,6 +51,13 @@ MAX_PAYLOAD_DEPTH = 8
 #: Default key prefix of a box.
 DEFAULT_PREFIX = "softpad/box"
 
+#: A client's longest wait for its endpoint to accept the connection, seconds (zenoh's
+#: ``connect/timeout_ms``) when the caller gives none.
+DEFAULT_CONNECT_TIMEOUT_S = 3.0
+
+#: Longest connect timeout accepted, seconds (as a ``zenoh://`` URL's ``timeout_s``).
+MAX_CONNECT_TIMEOUT_S = 3600.0
+
 _HEAD = struct.Struct("<QddHH")  # seq, mono_s, t_s, channels, reserved; then supply + channels
 _MAGIC = 0x5350  # "SP"
 
@@ -161,6 +168,7 @@ def session_config(
     password: str | None = None,
     dictionary_file: str | None = None,
     tls: dict[str, str] | None = None,
+    connect_timeout_s: float = DEFAULT_CONNECT_TIMEOUT_S,
 ) -> Any:
     """A :class:`zenoh.Config` with multicast scouting and gossip off and explicit endpoints.
 
@@ -176,7 +184,18 @@ def session_config(
         (``user:password`` lines). See :mod:`softpad.box._credentials`.
     tls
         ``transport/link/tls`` settings (certificate, private key, root CA, ``enable_mtls``).
+    connect_timeout_s
+        A client's longest wait for its endpoints to accept the connection, seconds (zenoh's
+        ``connect/timeout_ms``); more than 0 and at most :data:`MAX_CONNECT_TIMEOUT_S`.
+        Unused by a peer.
+
+    Raises
+    ------
+    InputError
+        ``connect_timeout_s`` not a number in (0, 3600] s, a user without a password or the
+        reverse, or zenoh not installed.
     """
+    connect_ms = _connect_timeout_ms(connect_timeout_s)
     try:
         import zenoh
     except ImportError:
@@ -189,19 +208,40 @@ def session_config(
     c.insert_json5("listen/endpoints", json.dumps(list(listen)))
     c.insert_json5("connect/endpoints", json.dumps(list(connect)))
     if mode == "client":
-        c.insert_json5("connect/timeout_ms", "3000")
-    auth: dict[str, str] = {}
-    if (user is None) != (password is None):  # zenoh rejects one without the other
-        raise InputError("zenoh user/password authentication needs both a user and a password")
-    if user is not None and password is not None:
-        auth.update(user=user, password=password)
-    if dictionary_file is not None:
-        auth["dictionary_file"] = dictionary_file
+        c.insert_json5("connect/timeout_ms", str(connect_ms))
+    auth = _usrpwd(user, password, dictionary_file)
     if auth:
         c.insert_json5("transport/auth/usrpwd", json.dumps(auth))
     if tls:
         c.insert_json5("transport/link/tls", json.dumps(tls))
     return c
+
+
+def _usrpwd(user: str | None, password: str | None, dictionary_file: str | None) -> dict[str, str]:
+    """``transport/auth/usrpwd`` settings (empty: none); InputError on a user without a
+    password or the reverse (zenoh rejects one without the other)."""
+    if (user is None) != (password is None):
+        raise InputError("zenoh user/password authentication needs both a user and a password")
+    auth: dict[str, str] = {}
+    if user is not None and password is not None:
+        auth.update(user=user, password=password)
+    if dictionary_file is not None:
+        auth["dictionary_file"] = dictionary_file
+    return auth
+
+
+def _connect_timeout_ms(timeout_s: float) -> int:
+    """``timeout_s`` in whole milliseconds (at least 1); InputError naming it and the limit."""
+    if (
+        isinstance(timeout_s, bool)
+        or not isinstance(timeout_s, int | float)
+        or not 0.0 < timeout_s <= MAX_CONNECT_TIMEOUT_S  # NaN fails too
+    ):
+        raise InputError(
+            f"zenoh connect timeout must be more than 0 s and at most "
+            f"{MAX_CONNECT_TIMEOUT_S:g} s, got {timeout_s!r}"
+        )
+    return max(1, math.ceil(timeout_s * 1000.0))
 
 
 def check_number(msg: dict[str, Any], key: str) -> float:

@@ -22,6 +22,7 @@ from softpad.box._auth import Sealer, split_frame, tag_ok
 from softpad.box._base import WORLD_SERVICES, Box, ConnectionLost, PressureFrame, ValveCommand
 from softpad.box._daemon import new_client_id
 from softpad.box._link import (
+    DEFAULT_CONNECT_TIMEOUT_S,
     DEFAULT_PREFIX,
     StampedFrame,
     decode_frame,
@@ -74,7 +75,9 @@ class ZenohBox(Box):
     key_prefix
         The daemon's key prefix (``softpad/box``).
     timeout_s
-        Longest wait for a frame or a reply, seconds.
+        Longest wait for a frame or a reply, seconds; the wait for the endpoint to accept the
+        connection is the shorter of this and
+        :data:`~softpad.box._link.DEFAULT_CONNECT_TIMEOUT_S` (3 s).
     queue_frames
         Frames kept while nobody reads; older ones are dropped (counted in :attr:`dropped`).
     auth
@@ -86,7 +89,8 @@ class ZenohBox(Box):
     Raises
     ------
     ConnectionLost
-        Nobody answers at the endpoint within ``timeout_s``.
+        Nobody accepts the connection at the endpoint within ``min(timeout_s, 3 s)`` or the
+        box does not answer within ``timeout_s``.
     """
 
     def __init__(
@@ -143,7 +147,12 @@ class ZenohBox(Box):
 
     def _connect(self, auth: dict[str, Any] | None) -> None:
         """Open the session, pin the box by its ``info`` answer, subscribe to its frames."""
-        config = session_config("client", connect=(self.endpoint,), **(auth or {}))
+        config = session_config(
+            "client",
+            connect=(self.endpoint,),
+            connect_timeout_s=min(self.timeout_s, DEFAULT_CONNECT_TIMEOUT_S),
+            **(auth or {}),
+        )
         import zenoh
 
         try:
