@@ -195,3 +195,23 @@ def test_layers_passing_frames_on_are_skipped_without_a_difference(
     assert any(isinstance(x, str) and "stopped answering" in x for x in fast)  # link lost
     assert any(isinstance(x, tuple) and np.isnan(np.frombuffer(x[1])[1]) for x in fast)  # nan
     assert fast[-1]  # the guard tripped channels: the comparison covers vents
+
+
+def test_a_read_set_on_the_outer_layer_by_a_wrapper_is_kept() -> None:
+    """The layers' shortcut (the outermost layer reads straight from the plain box while
+    every layer passes frames on) must not replace a ``read`` that somebody else set on the
+    layer: a wrapper that counts or limits reads (the fuzz campaign's) saw only the first
+    frame and then none, and ``box read --count`` ran past its bound."""
+    box = open_box("sim://")
+    own = box.read
+    calls = []
+
+    def counted() -> object:
+        calls.append(1)
+        return own()
+
+    box.read = counted  # type: ignore[method-assign]
+    for _ in range(5):
+        box.read()
+    assert len(calls) == 5
+    assert box.read is counted

@@ -82,7 +82,8 @@ class SimLayer(BoxWrapper):
         passing) until a fault is injected into a layer; a layer that stops passing frames on
         (its faults waiting or started) never passes them on again, so ``_blocked`` stays.
         Meanwhile this layer's ``read`` is the plain box's own (an attribute of this layer,
-        removed with ``_passed_by``: no call through this method on every frame)."""
+        removed with ``_passed_by``: no call through this method on every frame), unless
+        ``read`` was set on this layer by someone else (a wrapper's): that one is kept."""
         plain = self._plain
         if plain._passed_by is self:
             return plain.read()
@@ -90,15 +91,15 @@ class SimLayer(BoxWrapper):
             self._blocked = True
             return super().read()
         plain._passed_by = self
-        self.__dict__["read"] = plain.read
+        self.__dict__.setdefault("read", plain.read)
         return plain.read()
 
     def _stop_passing(self) -> None:
         """A fault was injected into a layer: the layers read the frames again."""
         plain = self._plain
         passed_by = plain._passed_by
-        if isinstance(passed_by, SimLayer):
-            passed_by.__dict__.pop("read", None)
+        if isinstance(passed_by, SimLayer) and passed_by.__dict__.get("read") == plain.read:
+            del passed_by.__dict__["read"]
         plain._passed_by = None
 
     def _passes_through(self) -> bool:
