@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from mujoco_steps import move_to, settle
 
 from softpad.errors import InputError
 from softpad.layout import PadLayout
@@ -35,27 +36,6 @@ REST_HEIGHT_M = 15e-6
 #: 0.23 mm measured at 3 ms, 0.36 mm at 4 ms); a step beyond the servo's stability would ram
 #: the jaws deeper.
 SQUEEZE_DEPTH_M = 0.3e-3
-
-
-def _settle(world: MujocoWorld, seconds: float) -> None:
-    for _ in range(round(seconds / 1e-3)):
-        world.step(1e-3)
-
-
-def _move_to(world: MujocoWorld, target: GripperState, speed_m_s: float, rest_s: float) -> None:
-    """Command the hand, step until it has arrived (at most 5 s), then ``rest_s`` more."""
-    world.command_gripper(target, speed_m_s)
-    for _ in range(5000):
-        now = world.gripper_state()
-        if (
-            max(abs(now.x_m - target.x_m), abs(now.y_m - target.y_m), abs(now.z_m - target.z_m))
-            < 1e-6
-        ):
-            break
-        world.step(1e-3)
-    else:
-        raise AssertionError(f"the hand did not reach {target} in 5 s")
-    _settle(world, rest_s)
 
 
 def _rested(name: str, timestep_s: float) -> tuple[float, float, float]:
@@ -90,14 +70,14 @@ def _squeezed_and_lifted(timestep_s: float) -> tuple[float, float, bool]:
     # a 50 g Duplo-sized brick, 31 mm cube
     brick = ObjectModel("brick", (ObjectPart("box", 0.05, (0, 0, 0.0155), size_m=(0.031,) * 3),))
     world.place_object(brick, Placement(x, y, 0.0))
-    _settle(world, 1.0)
-    _move_to(world, GripperState(x, y, 0.02, 0.0, 0.05), 0.2, 0.2)
-    _move_to(world, GripperState(x, y, 0.009, 0.0, 0.05), 0.05, 0.2)
-    _move_to(world, GripperState(x, y, 0.009, 0.0, 0.0), 0.05, 0.8)
+    settle(world, 1.0)
+    move_to(world, GripperState(x, y, 0.02, 0.0, 0.05), 0.2, 0.2)
+    move_to(world, GripperState(x, y, 0.009, 0.0, 0.05), 0.05, 0.2)
+    move_to(world, GripperState(x, y, 0.009, 0.0, 0.0), 0.05, 0.8)
     d = world.scene.data
     depth = -min(float(d.contact.dist[i]) for i in range(d.ncon))
     z0 = world.object_pose("brick").z_m
-    _move_to(world, GripperState(x, y, 0.06, 0.0, world.gripper_state().width_m), 0.1, 1.0)
+    move_to(world, GripperState(x, y, 0.06, 0.0, world.gripper_state().width_m), 0.1, 1.0)
     return depth, world.object_pose("brick").z_m - z0, world.holding()
 
 

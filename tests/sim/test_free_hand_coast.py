@@ -9,28 +9,14 @@ import math
 
 import numpy as np
 import pytest
+from mujoco_steps import At, X, Y, run
 
-from softpad.layout import PadLayout
 from softpad.sim import GripperState
 from softpad.sim._mujoco_clearance import CLEARANCE_MARGIN_M
 from softpad.sim._mujoco_model import MujocoGripper, ObjectModel, ObjectPart
 from softpad.sim._mujoco_world import MujocoWorld
 
 pytestmark = pytest.mark.mujoco
-
-PITCH = PadLayout().pitch_m
-X = Y = 1.5 * PITCH
-DT = 1e-2  # the box's sample period at 100 Hz
-
-
-class _At:
-    def __init__(self, x_m: float, y_m: float) -> None:
-        self.x_m, self.y_m, self.yaw_rad = x_m, y_m, 0.0
-
-
-def run(world: MujocoWorld, seconds: float) -> None:
-    for _ in range(round(seconds / DT)):
-        world.step(DT)
 
 
 def brick_on_pad(brick: bool = True) -> MujocoWorld:
@@ -39,7 +25,7 @@ def brick_on_pad(brick: bool = True) -> MujocoWorld:
     world = MujocoWorld(gripper=MujocoGripper(mounting="6/2"))
     if brick:
         part = ObjectPart("box", 0.05, (0, 0, 0.0155), size_m=(0.031,) * 3)
-        world.place_object(ObjectModel("brick", (part,)), _At(X, Y))
+        world.place_object(ObjectModel("brick", (part,)), At(X, Y))
     world.command_gripper(GripperState(X, Y, 0.06, 0.0, 0.06), 0.2)
     run(world, 2.0)
     return world

@@ -5,28 +5,14 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from mujoco_steps import DT, At, X, Y, run
 
-from softpad.layout import PadLayout
 from softpad.sim import GripperState
 from softpad.sim._mujoco_coast import COAST_STEPS, HoldCoast
 from softpad.sim._mujoco_model import MujocoGripper, ObjectModel, ObjectPart
 from softpad.sim._mujoco_world import MujocoWorld
 
 pytestmark = pytest.mark.mujoco
-
-PITCH = PadLayout().pitch_m
-X = Y = 1.5 * PITCH
-DT = 1e-2  # the box's sample period at 100 Hz
-
-
-class _At:
-    def __init__(self, x_m: float, y_m: float) -> None:
-        self.x_m, self.y_m, self.yaw_rad = x_m, y_m, 0.0
-
-
-def run(world: MujocoWorld, seconds: float) -> None:
-    for _ in range(round(seconds / DT)):
-        world.step(DT)
 
 
 def move(world: MujocoWorld, z_m: float, width_m: float, speed_m_s: float, rest_s: float) -> None:
@@ -39,7 +25,7 @@ def lifted_brick() -> MujocoWorld:
     test_mujoco_world's holding test), at the start of its hold."""
     world = MujocoWorld(gripper=MujocoGripper(mounting="6/2"))
     part = ObjectPart("box", 0.05, (0, 0, 0.0155), size_m=(0.031,) * 3)
-    world.place_object(ObjectModel("brick", (part,)), _At(X, Y))
+    world.place_object(ObjectModel("brick", (part,)), At(X, Y))
     run(world, 1.0)
     move(world, 0.02, 0.05, 0.2, 0.0)
     move(world, 0.009, 0.05, 0.05, 0.0)

@@ -6,6 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import pytest
+from mujoco_steps import move_to, settle
 
 from softpad.errors import InputError
 from softpad.layout import PadLayout
@@ -29,11 +30,6 @@ PITCH = PadLayout().pitch_m
 def brick(name: str = "brick", mass_kg: float = 0.0126) -> ObjectModel:
     """A Lego Duplo 2x2 brick, 31 x 31 x 31 mm (thesis: 12.6 g, 42 x 31 x 31 mm for a 2x4)."""
     return ObjectModel(name, (ObjectPart("box", mass_kg, (0, 0, 0.0155), size_m=(0.031,) * 3),))
-
-
-def settle(world: MujocoWorld, seconds: float = 0.5) -> None:
-    for _ in range(round(seconds / 1e-3)):
-        world.step(1e-3)
 
 
 def test_is_a_world() -> None:
@@ -192,22 +188,6 @@ def test_simulated_box_on_mujoco_world_conforms() -> None:
     from softpad.box import SimBox, check_conformance
 
     check_conformance(SimBox(MujocoWorld(), seed=1, initial_pressure_pa=1100.0))
-
-
-def move_to(world: MujocoWorld, target: GripperState, speed_m_s: float, rest_s: float) -> None:
-    """Command the hand and step until it has arrived (at most 5 s), then ``rest_s`` more."""
-    world.command_gripper(target, speed_m_s)
-    for _ in range(5000):
-        now = world.gripper_state()
-        if (
-            max(abs(now.x_m - target.x_m), abs(now.y_m - target.y_m), abs(now.z_m - target.z_m))
-            < 1e-6
-        ):
-            break
-        world.step(1e-3)
-    else:
-        raise AssertionError(f"the hand did not reach {target} in 5 s")
-    settle(world, rest_s)
 
 
 @pytest.mark.parametrize("tip_width_m", [0.010, 0.016], ids=["tip-10mm", "tip-16mm"])
