@@ -166,3 +166,33 @@ def test_trials_with_a_catalogue_recognise_its_object(
     (again,) = json.loads(capsys.readouterr().out)["trials"]
     assert again["rule"].startswith("catalogue: object-5 (d=0.00)")
     assert again["cog"] == pytest.approx(grasp[:2], abs=1e-5)
+
+
+def test_learn_takes_a_stated_acceptance_alpha(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """``--acceptance-alpha`` reaches the learning's parameters (the catalogue's tolerances
+    then narrow, tests/planning/test_catalogue_acceptance.py); outside 0.001..0.5 it is
+    refused by name before any recording is read; without it, no narrowing."""
+    import softpad.record
+    from softpad.planning import LearnedTrial, learn_catalogue
+    from softpad.record import Learned
+
+    seen: list[Any] = []
+
+    def fake(paths: Any, params: Any = None) -> Learned:
+        seen.append(params)
+        trial = LearnedTrial("toy", (1.0,) * 6, (1, 1, 0), True)
+        return Learned(learn_catalogue([trial], 1.0, params), (trial,), 0, 1.0)
+
+    monkeypatch.setattr(softpad.record, "learn_from_recordings", fake)
+    out = str(tmp_path / "c.toml")
+    assert main(["learn", "a.mcap", "--out", out, "--acceptance-alpha", "0.05"]) == 0
+    assert main(["learn", "a.mcap", "--out", out, "--force"]) == 0
+    assert [p.acceptance_alpha for p in seen] == [0.05, None]
+    capsys.readouterr()
+    for bad in ("0", "0.7", "nan", "x"):
+        assert main(["learn", "a.mcap", "--out", out, "--force", "--acceptance-alpha", bad]) == 2
+        err = capsys.readouterr().err
+        assert "--acceptance-alpha" in err and "Traceback" not in err
+    assert len(seen) == 2
