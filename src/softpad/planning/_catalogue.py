@@ -512,11 +512,17 @@ class CataloguePlanner:
         The known objects (an empty one: every object is unknown).
     fallback
         The planner of unknown objects (and of pads with more than one object on them).
+    split_pads
+        Recognise a pad the detector split into several objects by its whole reading (a
+        banana on its two ends reads as two one-module objects): a known object's grasp is
+        then the one plan, over all the groups' modules; False: such a pad always goes to
+        ``fallback``.
     """
 
-    def __init__(self, catalogue: Catalogue, fallback: Planner) -> None:
+    def __init__(self, catalogue: Catalogue, fallback: Planner, split_pads: bool = True) -> None:
         self.catalogue = catalogue
         self.fallback = fallback
+        self.split_pads = split_pads
         #: Name of the object recognised in the last plan, None for an unknown one.
         self.last_known: str | None = None
 
@@ -526,24 +532,18 @@ class CataloguePlanner:
         """One plan per object (see :class:`~softpad.planning.Planner`)."""
         r = np.asarray(increments_pa, dtype=float)
         known, d, k = (None, math.inf, -1)
-        if len(objects) == 1 and layout.n_modules == self.catalogue.modules:
+        one = len(objects) == 1 or (self.split_pads and len(objects) > 1)
+        if one and layout.n_modules == self.catalogue.modules:
             known, d, k = self.catalogue.recognise(r)
         self.last_known = None if known is None else known.name
         if known is None:
             plans = self.fallback.plan(increments_pa, objects, layout)
             return [replace(p, rule=UNKNOWN_RULE + p.rule) for p in plans]
         x, y, theta = known.grasp(r, k, layout.center_table)
-        mods = objects[0]
-        return [
-            GraspPlan(
-                mods,
-                pcom(r, mods, layout),
-                (x, y),
-                theta,
-                f"{KNOWN_RULE}{known.name} (d={d:.2f})",
-                mods,
-            )
-        ]
+        mods = tuple(sorted({m for group in objects for m in group}))
+        split = ", split pad" if len(objects) > 1 else ""
+        rule = f"{KNOWN_RULE}{known.name} (d={d:.2f}{split})"
+        return [GraspPlan(mods, pcom(r, mods, layout), (x, y), theta, rule, mods)]
 
     def retry(self, plan: GraspPlan, *args: Any, **kwargs: Any) -> GraspPlan | None:
         """The fallback's retry, for a known object's grasp too: after the jaws landed on
