@@ -158,24 +158,40 @@ def test_a_known_object_is_grasped_where_its_nearest_held_trial_was(
 
 
 @pytest.mark.parametrize(
-    ("reading", "objects"),
+    ("reading", "objects", "split_pads"),
     [
-        ([0, 400, 0, 0, 400, 0], [(2, 5)]),
-        ([250, 180, 130, 0, 0, 0], [(1, 2, 3), (5,)]),
+        ([0, 400, 0, 0, 400, 0], [(2, 5)], True),
+        ([0, 400, 0, 0, 400, 0], [(2,), (5,)], True),
+        ([250, 180, 130, 0, 0, 0], [(1, 2, 3), (5,)], False),
     ],
-    ids=["unknown", "two-objects"],
+    ids=["unknown", "unknown-split", "two-objects-not-split"],
 )
 def test_unknown_objects_and_crowded_pads_go_to_the_fallback(
-    catalogue: Catalogue, reading: list[float], objects: list[tuple[int, ...]]
+    catalogue: Catalogue, reading: list[float], objects: list[tuple[int, ...]], split_pads: bool
 ) -> None:
     fallback = _Fallback()
-    planner = CataloguePlanner(catalogue, fallback)
+    planner = CataloguePlanner(catalogue, fallback, split_pads=split_pads)
     (plan,) = planner.plan(reading, objects, LAYOUT)
     assert plan.rule == "unknown -> fallback" and planner.last_known is None
     assert known_name(plan.rule) is None
     # the fallback retries its own plan (its rule without the catalogue's prefix)
     assert planner.retry(plan, reading, LAYOUT, reading) == replace(plan, rule="fallback")
     assert fallback.calls == ["plan", "retry"]
+
+
+def test_a_split_pad_whose_whole_reading_is_known_gets_that_objects_one_grasp(
+    catalogue: Catalogue,
+) -> None:
+    """The banana's reading split by the detector into two objects (modules 1 and 2-3, as a
+    banana on its ends reads): one plan, the banana's grasp over both groups' modules, the
+    same grasp as for the unsplit pad; the rule says the pad was split."""
+    reading = [250.0, 180.0, 130.0, 0.0, 0.0, 0.0]
+    planner = CataloguePlanner(catalogue, _Fallback())
+    (whole,) = planner.plan(reading, [(1, 2, 3)], LAYOUT)
+    (split,) = planner.plan(reading, [(1,), (2, 3)], LAYOUT)
+    assert split.modules == (1, 2, 3) and (split.cog, split.theta) == (whole.cog, whole.theta)
+    assert split.rule.endswith(", split pad)") and known_name(split.rule) == "banana"
+    assert planner.last_known == "banana"
 
 
 def test_without_a_catalogue_the_planner_is_the_model_based_one() -> None:

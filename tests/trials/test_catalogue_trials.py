@@ -118,3 +118,81 @@ def test_the_preregistered_report_parses_as_written(
     assert all(s["pairs"] == [("catalogue", "adaptive")] for s in seen)
     assert [len(s["specs"]) for s in seen] == [11, 10]
     assert all(s["config"].randomize and s["config"].catalogue for s in seen)
+
+
+def test_trials_takes_a_catalogue_only_for_the_catalogue_planner_and_reads_it_first(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    import softpad.trials
+
+    def never(*args: object, **kwargs: object) -> None:
+        raise AssertionError("the trials started before --catalogue was checked")
+
+    monkeypatch.setattr(softpad.trials, "run_experiments", never)
+    argv = ["trials", "--seeds", "0", "--trials", "1", "--objects", "object-5"]
+    missing = str(tmp_path / "none.toml")
+    assert main([*argv, "--planner", "catalogue", "--catalogue", missing]) == 2
+    err = capsys.readouterr().err
+    assert "none.toml" in err and "not found" in err and "Traceback" not in err
+    bad = tmp_path / "bad.toml"
+    bad.write_text('schema = "softpad-catalogue/3"\nmodules = 6\n')
+    assert main([*argv, "--planner", "catalogue", "--catalogue", str(bad)]) == 2
+    assert "malformed" in capsys.readouterr().err
+    assert main([*argv, "--planner", "model-based", "--catalogue", str(bad)]) == 2
+    assert "--catalogue is for --planner catalogue" in capsys.readouterr().err
+
+
+@pytest.mark.mujoco
+def test_trials_with_a_catalogue_recognise_its_object(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """``softpad trials --planner catalogue``: without ``--catalogue`` object 5 is unknown
+    (handed on); with a catalogue learned from that trial's own reading it is recognised and
+    grasped by the catalogue's grasp, which the trial record carries."""
+    import json
+
+    from softpad.planning import LearnedTrial, learn_catalogue
+
+    argv = ["trials", "--seeds", "0", "--trials", "1", "--objects", "object-5", "--workers", "1"]
+    argv += ["--planner", "catalogue", "--detector", "thesis", "--no-progress", "--json"]
+    assert main(argv) == 0
+    (first,) = json.loads(capsys.readouterr().out)["trials"]
+    assert first["rule"].startswith("unknown -> ")
+    grasp = (first["cog"][0] + 0.05, first["cog"][1], first["theta"])
+    taught = LearnedTrial("object-5", tuple(first["increments_pa"]), grasp, True)
+    path = tmp_path / "c.toml"
+    path.write_text(learn_catalogue([taught], 30.0).to_toml())
+    assert main([*argv, "--catalogue", str(path)]) == 0
+    (again,) = json.loads(capsys.readouterr().out)["trials"]
+    assert again["rule"].startswith("catalogue: object-5 (d=0.00)")
+    assert again["cog"] == pytest.approx(grasp[:2], abs=1e-5)
+
+
+def test_learn_takes_a_stated_acceptance_alpha(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """``--acceptance-alpha`` reaches the learning's parameters (the catalogue's tolerances
+    then narrow, tests/planning/test_catalogue_acceptance.py); outside 0.001..0.5 it is
+    refused by name before any recording is read; without it, no narrowing."""
+    import softpad.record
+    from softpad.planning import LearnedTrial, learn_catalogue
+    from softpad.record import Learned
+
+    seen: list[Any] = []
+
+    def fake(paths: Any, params: Any = None) -> Learned:
+        seen.append(params)
+        trial = LearnedTrial("toy", (1.0,) * 6, (1, 1, 0), True)
+        return Learned(learn_catalogue([trial], 1.0, params), (trial,), 0, 1.0)
+
+    monkeypatch.setattr(softpad.record, "learn_from_recordings", fake)
+    out = str(tmp_path / "c.toml")
+    assert main(["learn", "a.mcap", "--out", out, "--acceptance-alpha", "0.05"]) == 0
+    assert main(["learn", "a.mcap", "--out", out, "--force"]) == 0
+    assert [p.acceptance_alpha for p in seen] == [0.05, None]
+    capsys.readouterr()
+    for bad in ("0", "0.7", "nan", "x"):
+        assert main(["learn", "a.mcap", "--out", out, "--force", "--acceptance-alpha", bad]) == 2
+        err = capsys.readouterr().err
+        assert "--acceptance-alpha" in err and "Traceback" not in err
+    assert len(seen) == 2

@@ -5,12 +5,13 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from softpad.cli._args import add_command
+from softpad.cli._args import add_command, add_number
 
 _EPILOG = """examples:
   softpad trials --seeds 0 --record train.mcap          record 55 trials (one file each)
   softpad learn train-*.mcap --out catalogue.toml       learn the objects held in them
   softpad compare --pair catalogue:adaptive --catalogue catalogue.toml --seeds 2-3 --randomize
+  softpad trials --planner catalogue --detector adaptive --catalogue catalogue.toml --seeds 2 --json
 
 Each recording is one trial of one object (softpad trials --record; one without a plan of
 one object or an outcome is skipped and counted): its first plan's
@@ -37,17 +38,29 @@ def register(sub: Any) -> None:
     )
     p.add_argument("recordings", nargs="+", metavar="REC.mcap", help="trial recordings")
     p.add_argument("--out", required=True, metavar="FILE.toml", help="catalogue to write")
+    add_number(
+        p,
+        "--acceptance-alpha",
+        "narrow each object's tolerances to the conformal 1-ALPHA quantile of its own held "
+        "readings' spread, 0.001..0.5 (default: the shared tolerances for every object; "
+        "docs/planner.md)",
+        None,
+        lo=0.001,
+        hi=0.5,
+    )
     p.set_defaults(handler=run)
 
 
 def run(args: argparse.Namespace) -> int:
     from softpad.cli._output import emit, say
     from softpad.cli._paths import check_output
+    from softpad.planning import CatalogueParams
     from softpad.record import learn_from_recordings
 
     out = check_output(args.out, "--out", force=args.force, suffix=".toml")
     assert out is not None
-    learned = learn_from_recordings(args.recordings)
+    params = CatalogueParams(acceptance_alpha=args.acceptance_alpha)
+    learned = learn_from_recordings(args.recordings, params)
     catalogue, trials = learned.catalogue, learned.trials
     out.write_text(catalogue.to_toml(), encoding="utf-8")
     held = sum(t.held for t in trials)

@@ -61,6 +61,12 @@ def register(sub: Any) -> None:
         "--hold-s", type=float, default=thesis.HOLD_S, help="hold time in s (default %(default)g)"
     )
     add_record_option(p, per_trial=True)
+    p.add_argument(
+        "--catalogue",
+        metavar="FILE.toml",
+        help="known objects (softpad learn) for --planner catalogue (without it no object is "
+        "known and every one goes to the model-based planner)",
+    )
     p.set_defaults(handler=run)
 
 
@@ -200,12 +206,27 @@ def run(args: argparse.Namespace) -> int:
     seeds = int_ranges(args.seeds, "--seeds", lo=0, hi=2**32 - 1)
     check_campaign(seeds, args.seeds, args.hold_s, args.record)
     check_trial_recordings(args.record, specs, args.trials, args.force)
+    check_catalogue_option(args.catalogue, [args.planner])
 
     finished: list[dict[str, Any]] = []
     args.partial = {"seeds": seeds, "completed_seeds": [], "finished_trials": finished}
     if getattr(args, "scheduler", None) is not None:
         return _run_on_dask(args, specs, seeds)
     return _pooled(args, _run_here(args, specs, seeds, finished), "workers")
+
+
+def check_catalogue_option(path: str | None, planners: list[str]) -> None:
+    """``--catalogue``: read (a bad file is named before any trial) and only beside the
+    ``catalogue`` planner, which is the one that uses it (InputError otherwise)."""
+    if path is None:
+        return
+    if "catalogue" not in planners:
+        raise InputError(
+            f"--catalogue is for --planner catalogue (the planner here: {', '.join(planners)})"
+        )
+    from softpad.planning import load_catalogue
+
+    load_catalogue(path)
 
 
 def _pooled(args: argparse.Namespace, experiments: list[Any], workers: str) -> int:
@@ -293,6 +314,7 @@ def _config(args: argparse.Namespace) -> Any:
         detector=args.detector,
         randomize=args.randomize,
         mounting=args.mounting,
+        catalogue=getattr(args, "catalogue", None),
     )
 
 

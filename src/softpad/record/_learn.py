@@ -110,7 +110,7 @@ class Learned:
     variance_pa2: float
 
 
-def learn_from_recordings(paths: Sequence[str]) -> Learned:
+def learn_from_recordings(paths: Sequence[str], params: Any = None) -> Learned:
     """Learn the catalogue of known objects from the recorded trials ``paths``
     (:func:`softpad.planning.learn_catalogue`).
 
@@ -118,6 +118,8 @@ def learn_from_recordings(paths: Sequence[str]) -> Learned:
     ----------
     paths
         Recordings (.mcap) of trials of one object each.
+    params
+        The :class:`~softpad.planning.CatalogueParams` (None: the defaults).
     """
     from softpad.planning import learn_catalogue
 
@@ -129,7 +131,7 @@ def learn_from_recordings(paths: Sequence[str]) -> Learned:
     variance = statistics.median(v for _, v in pairs)
     if not variance > 0:
         raise InputError("the recordings carry no sensor noise (pressure_variance_pa2)")
-    catalogue = learn_catalogue(trials, variance)
+    catalogue = learn_catalogue(trials, variance, params)
     return Learned(catalogue, trials, len(learned) - len(pairs), variance)
 
 
