@@ -293,3 +293,9 @@ def site(tmp_path: Path) -> Site:
     """``site.path``: ``tmp_path/site.toml`` with a non-zero ``[pad.pose]``; ``site.xyz_m``,
     ``site.yaw_rad``, ``site.quaternion`` and ``site.check_pad_transform(...)`` to check it."""
     return Site(tmp_path / "site.toml")
+
+
+@pytest.fixture(scope="module")
+def module_site(tmp_path_factory: pytest.TempPathFactory) -> Site:
+    """:func:`site` once for a test module (its module-scoped fixtures)."""
+    return Site(tmp_path_factory.mktemp("site") / "site.toml")
