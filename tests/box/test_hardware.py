@@ -21,7 +21,13 @@ def _fake_iio(root: Path, counts: list[int]) -> None:
     (dev / "in_voltage_scale").write_text("0.439453125\n")
 
 
-def _settings(root: Path, n: int = 3, supply: bool = True, deflate: str = "normally_closed"):
+def _settings(
+    root: Path,
+    n: int = 3,
+    supply: bool = True,
+    deflate: str = "normally_closed",
+    rate_hz: float = 1000.0,
+):
     chans = [
         {
             "gpiochip": "/dev/gpiochip9",
@@ -38,7 +44,7 @@ def _settings(root: Path, n: int = 3, supply: bool = True, deflate: str = "norma
     box: dict = {
         "channel": chans,
         "iio_root": str(root),
-        "sample_rate_hz": 1000.0,
+        "sample_rate_hz": rate_hz,
         "inflate_valves": "normally_closed",
         "deflate_valves": deflate,
     }
@@ -91,7 +97,9 @@ def test_calibration_and_valve_lines(tmp_path: Path) -> None:
 
 def test_hardware_box_passes_conformance_and_stamps_monotonic_frames(tmp_path: Path) -> None:
     _fake_iio(tmp_path, [1100, 1200, 1300, 50])
-    s = _settings(tmp_path)
+    # 50 Hz: the median period must be within 20 % (conformance), which a 1 ms period does not
+    # survive on a loaded two-core machine (the suite's own workers); 4 ms of lateness here does
+    s = _settings(tmp_path, rate_hz=50.0)
     box = HardwareBox(s, lines=_lines(s))
     stamps = [box.read().t_s for _ in range(5)]
     assert np.all(np.diff(stamps) > 0)
