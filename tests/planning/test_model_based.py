@@ -410,6 +410,30 @@ def test_grid_scoring_equals_scoring_grasp_by_grasp(box):
         assert score.max() > 0  # not a comparison of zeros
 
 
+@pytest.mark.parametrize("box", BOXES)
+@pytest.mark.parametrize("ratio", [0.4, 1.3, 3.0])
+def test_best_on_grid_is_the_argmax_of_the_grid(box, ratio):
+    """The planner looks fingertips up only where they may decide (the sensed share is at
+    most 1); its choice is the first maximum of the full grid's scores, at sensing ratios
+    where few and where many fingertips fall short."""
+    from softpad.planning._model_based import (
+        best_on_grid,
+        candidate_grid,
+        grid_success,
+        refined_grid,
+    )
+
+    params, model = ModelBasedParams(), packaged_pad_model()
+    post = _posterior(box, params)
+    for grid in (candidate_grid(post, params), refined_grid(np.array([1.4, 1.1]), 0.3, params)):
+        score, centres, thetas = grid_success(post, grid, WIDE, LAYOUT, model, params, ratio)
+        i = np.unravel_index(int(np.argmax(score)), score.shape)
+        best, centre, theta = best_on_grid(post, grid, WIDE, LAYOUT, model, params, ratio)
+        assert best == score[i]
+        np.testing.assert_array_equal(centre, centres[i])
+        assert theta == thetas[i]
+
+
 #: The two-part hypotheses on (light modules under 0.3 of the largest increment).
 PARTS = ModelBasedParams(light_share=0.3)
 

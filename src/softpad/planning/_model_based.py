@@ -824,16 +824,10 @@ class Grid:
         return centres, np.broadcast_to(self.thetas, shape)
 
 
-def grid_success(
-    post: Posterior,
-    grid: Grid,
-    gripper: GripperSpec,
-    layout: PadLayout,
-    model: PadModel,
-    params: ModelBasedParams,
-    sensing_ratio: float,
+def grid_fit(
+    post: Posterior, grid: Grid, gripper: GripperSpec, layout: PadLayout, params: ModelBasedParams
 ) -> tuple[Array, Array, Array]:
-    """:func:`predicted_success` of every grasp of ``grid``, (A, B, D), with the grasps
+    """:func:`fit_chance` of every grasp of ``grid``, (A, B, D), with the grasps
     (:meth:`Grid.grasps`)."""
     half_open = (gripper.max_width_m / 2 - params.clearance_m) / layout.pitch_m
     narrow = gripper.min_width_m / layout.pitch_m
@@ -852,9 +846,58 @@ def grid_success(
     lhs = (clear * (weights[:, None, None, None] * post.probs)).transpose(0, 2, 1, 3)
     fit = (lhs @ hold.astype(float).transpose(0, 2, 3, 1)).sum(axis=0).transpose(1, 2, 0)
     centres, thetas = grid.grasps()
+    return fit, centres, thetas
+
+
+def grid_success(
+    post: Posterior,
+    grid: Grid,
+    gripper: GripperSpec,
+    layout: PadLayout,
+    model: PadModel,
+    params: ModelBasedParams,
+    sensing_ratio: float,
+) -> tuple[Array, Array, Array]:
+    """:func:`predicted_success` of every grasp of ``grid``, (A, B, D), with the grasps
+    (:meth:`Grid.grasps`)."""
+    fit, centres, thetas = grid_fit(post, grid, gripper, layout, params)
     tip = tip_response(centres.reshape(-1, 2), thetas.ravel(), gripper, layout, model)
     need = params.needed_share * sensing_ratio
     return np.clip(tip.reshape(fit.shape) / need, 0.0, 1.0) * fit, centres, thetas
+
+
+def best_on_grid(
+    post: Posterior,
+    grid: Grid,
+    gripper: GripperSpec,
+    layout: PadLayout,
+    model: PadModel,
+    params: ModelBasedParams,
+    sensing_ratio: float,
+) -> tuple[float, Array, float]:
+    """The grasp of ``grid`` with the highest :func:`predicted_success` (the first of
+    equals, as ``argmax`` of :func:`grid_success` finds it): its success, centre (2,) and
+    direction. The fingertips are looked up only where they may decide: the sensed share is
+    at most 1, so a grasp whose fit is below the best success found cannot beat it; the
+    grasps are scored in batches of falling fit until the next fit is below that."""
+    fit, centres, thetas = grid_fit(post, grid, gripper, layout, params)
+    flat, order = fit.ravel(), np.argsort(-fit.ravel(), kind="stable")
+    need = params.needed_share * sensing_ratio
+    points, directions = centres.reshape(-1, 2), thetas.ravel()
+    best, best_i, done, batch = -1.0, 0, 0, _FIRST_BATCH
+    while done < flat.size and flat[order[done]] >= best:
+        idx = np.sort(order[done : done + batch])
+        tip = tip_response(points[idx], directions[idx], gripper, layout, model)
+        score = np.clip(tip / need, 0.0, 1.0) * flat[idx]
+        k = int(np.argmax(score))
+        if score[k] > best or (score[k] == best and idx[k] < best_i):
+            best, best_i = float(score[k]), int(idx[k])
+        done, batch = done + batch, 2 * batch
+    return best, points[best_i], float(directions[best_i])
+
+
+#: Grasps whose fingertips are looked up in :func:`best_on_grid`'s first batch (doubling).
+_FIRST_BATCH = 8
 
 
 def refined(centre: Array, theta: float, params: ModelBasedParams) -> tuple[Array, Array]:
@@ -1004,20 +1047,16 @@ class ModelBasedPlanner:
             )
         post = post.sample(self.params.kept_hypotheses)
         args = (self.gripper, layout, self.model, self.params, self.sensing_ratio)
-        grid = candidate_grid(post, self.params)
-        score, centres, thetas = grid_success(post, grid, *args)
-        i = np.unravel_index(int(np.argmax(score)), score.shape)
+        score, best, t = best_on_grid(post, candidate_grid(post, self.params), *args)
         if self.params.refine_steps:
-            grid = refined_grid(centres[i], float(thetas[i]), self.params)
-            score, centres, thetas = grid_success(post, grid, *args)
             # the coarse best is the grid's centre: never worse
-            i = np.unravel_index(int(np.argmax(score)), score.shape)
-        centre = (float(centres[i][0]), float(centres[i][1]))
-        t = float(thetas[i]) % math.pi
+            score, best, t = best_on_grid(post, refined_grid(best, t, self.params), *args)
+        centre = (float(best[0]), float(best[1]))
+        t %= math.pi
         theta = t - (math.pi if t > math.pi / 2 + 1e-12 else 0.0)
-        rule = f"model-based p={score[i]:.2f}"
+        rule = f"model-based p={score:.2f}"
         plan = GraspPlan(modules, pcom(d, modules, layout), centre, theta, rule, modules)
-        return plan, float(score[i])
+        return plan, score
 
 
 def _pressed_side(plan: GraspPlan, layout: PadLayout, rise: Array, share: float) -> int:
