@@ -63,8 +63,9 @@ class ModelBasedParams:
     #: Relative rms error of the even-load model of a module's increment (uneven weight,
     #: the characteristic's curvature, tilt); an assumption, set before any trial ran.
     model_error: float = 0.3
-    #: Sub-positions per module side of the hypotheses' centres (4: an 11 mm grid).
-    centre_steps: int = 4
+    #: Sub-positions per module side of the hypotheses' centres (6: a 7.5 mm grid on the
+    #: 45 mm pad; 4, an 11 mm grid, before issue 47's tight fits: docs/planner.md).
+    centre_steps: int = 6
     #: Footprint sides tried, mm (the length and the width take every pair of them).
     sizes_mm: tuple[float, ...] = (12.0, 24.0, 40.0, 60.0, 90.0, 125.0)
     #: Footprint yaws tried, in [0, pi) (6: 30 degree steps).
@@ -109,6 +110,17 @@ class ModelBasedParams:
     #: Shift step of the finer search, as a share of the hypotheses' centre step (0.25:
     #: 2.8 mm on the 45 mm pad; the grid reaches half-way to the next centre tried).
     refine_shift: float = 0.25
+    #: Room a side between the open jaws (less ``clearance_m``) and the estimated footprint
+    #: along the chosen grasp (posterior mean, the nearer jaw's) under which the fit is
+    #: tight and the finer search goes on (:func:`tight_search`), m; 0: never.
+    tight_room_m: float = 0.0
+    #: Best coarse candidates the tight-fit search starts from, in directions more than the
+    #: finer search's reach apart (1: the best only).
+    tight_starts: int = 1
+    #: Rounds of the tight-fit search after the finer search (which runs at twice the
+    #: density there): each a 3 x 3 x 3 grid of direction, shift along and across around
+    #: the best so far (:func:`polished`).
+    tight_rounds: int = 1
     #: Mean response under a fingertip's sole, as a share of the centre's, at which the
     #: thesis's contact detector senses it (scaled by the detector's sensing ratio).
     needed_share: float = 0.5
@@ -146,12 +158,13 @@ class ModelBasedParams:
             "outline_threshold_pa",
             "light_share",
             "part_cost",
+            "tight_room_m",
         ):
             v = getattr(self, name)
             if not (isinstance(v, int | float) and math.isfinite(v) and v >= 0):
                 raise InputError(f"model-based parameter {name} must be a number >= 0, got {v!r}")
-        counts = ("centre_steps", "yaw_steps", "kept_hypotheses", "directions")
-        for name in (*counts, "refine_steps", "max_light_modules"):
+        counts = ("centre_steps", "yaw_steps", "kept_hypotheses", "directions", "tight_starts")
+        for name in (*counts, "refine_steps", "max_light_modules", "tight_rounds"):
             v = getattr(self, name)
             if not (isinstance(v, int) and (1 if name in counts else 0) <= v <= 64):
                 raise InputError(
@@ -609,12 +622,79 @@ def candidate_grid(post: Posterior, params: ModelBasedParams) -> Grid:
     return Grid(np.asarray(post.mean_centre()), thetas, np.zeros(1), across)
 
 
-def refined_grid(centre: Array, theta: float, params: ModelBasedParams) -> Grid:
-    """:func:`refined` as a :class:`Grid`."""
-    k = np.arange(-params.refine_steps, params.refine_steps + 1)
+def refined_grid(centre: Array, theta: float, params: ModelBasedParams, density: int = 1) -> Grid:
+    """:func:`refined` as a :class:`Grid`; ``density`` times as many steps each way, each
+    ``density`` times shorter (the same reach)."""
+    n = params.refine_steps * density
+    k = np.arange(-n, n + 1) / density
     thetas = theta + k * params.refine_turn * math.pi / params.directions
     shift = k * params.refine_shift / params.centre_steps
     return Grid(np.asarray(centre, dtype=float), thetas, shift, shift)
+
+
+#: A grasp found: its predicted success, centre (2,) in module units and direction, rad.
+Found = tuple[float, Array, float]
+
+
+def tight_search(
+    post: Posterior,
+    coarse: Grid,
+    found: Found,
+    gripper: GripperSpec,
+    layout: PadLayout,
+    model: PadModel,
+    params: ModelBasedParams,
+    sensing_ratio: float,
+) -> Found:
+    """The finer search near a tight fit: from ``found`` (the finer search's best) and from
+    the best candidates of ``coarse`` in other directions (``tight_starts`` in all, each
+    more than the finer search's reach from the others, searched as it is), a pattern
+    search of ``tight_rounds`` rounds on the predicted success (:func:`polished`). The best
+    grasp found; ``found`` unless another scores higher."""
+    args = (gripper, layout, model, params, sensing_ratio)
+    reach = params.refine_steps * params.refine_turn * math.pi / params.directions
+    starts, best = [found[2]], polished(post, found, *args)
+    for _ in range(params.tight_starts - 1):
+        gap = np.remainder(coarse.thetas[:, None] - np.array(starts)[None] + math.pi / 2, math.pi)
+        far = (np.abs(gap - math.pi / 2) > reach + 1e-9).all(axis=1)
+        if not far.any():
+            break
+        _, centre, theta = best_on_grid(post, replace(coarse, thetas=coarse.thetas[far]), *args)
+        starts.append(theta)
+        fine = refined_grid(centre, theta, params, 2)
+        other = polished(post, best_on_grid(post, fine, *args), *args)
+        if other[0] > best[0]:
+            best = other
+    return best
+
+
+def polished(
+    post: Posterior,
+    found: Found,
+    gripper: GripperSpec,
+    layout: PadLayout,
+    model: PadModel,
+    params: ModelBasedParams,
+    sensing_ratio: float,
+) -> Found:
+    """``tight_rounds`` rounds of a pattern search from ``found`` on the predicted success:
+    each a 3 x 3 x 3 grid of direction, shift along and shift across the closing direction
+    around the best so far (it included), its steps a quarter of the finer search's at
+    first (half those of its tight-fit grid, :func:`refined_grid` at density 2), halved
+    after every round whose best stays where it was."""
+    args = (gripper, layout, model, params, sensing_ratio)
+    turn = params.refine_turn * math.pi / params.directions / 4
+    shift = params.refine_shift / params.centre_steps / 4
+    k = np.array([-1.0, 0.0, 1.0])
+    score, centre, theta = found
+    for _ in range(params.tight_rounds):
+        grid = Grid(np.asarray(centre, dtype=float), theta + k * turn, k * shift, k * shift)
+        s, c, t = best_on_grid(post, grid, *args)
+        if s > score:
+            score, centre, theta = s, c, t
+        else:
+            turn, shift = turn / 2, shift / 2
+    return score, centre, theta
 
 
 def candidates(post: Posterior, params: ModelBasedParams) -> tuple[Array, Array]:
@@ -646,14 +726,19 @@ def tip_response(
     """Mean relative response under the better-placed of the two open fingertips of each
     grasp (G,): what the contact detector has to sense."""
     cos, sin = np.cos(thetas), np.sin(thetas)
-    u, n = np.stack([cos, sin], axis=1), np.stack([-sin, cos], axis=1)
     reach = (gripper.max_width_m + gripper.tip_thickness_m) / 2 / layout.pitch_m
-    sole = (
-        _SOLE[:, 0, None, None] * gripper.tip_thickness_m * u[None]
-        + _SOLE[:, 1, None, None] * gripper.tip_width_m * n[None]
-    ) / layout.pitch_m  # (S, G, 2)
-    ends = np.array([1.0, -1.0])[:, None, None, None] * reach  # the two fingertips
-    mean = model.on_pad(centres + ends * u + sole, layout).mean(axis=1)  # (2, G)
+    a = _SOLE[:, 0, None] * gripper.tip_thickness_m  # (S, 1) along the closing direction
+    b = _SOLE[:, 1, None] * gripper.tip_width_m  # across it
+    ends = np.array([1.0, -1.0])[:, None, None] * reach  # the two fingertips (2, 1, 1)
+    # the sole's points (2, S, G) per coordinate, in the order PadModel.on_pad reads them
+    x = (centres[:, 0] + ends * cos) + (a * cos + b * -sin) / layout.pitch_m
+    y = (centres[:, 1] + ends * sin) + (a * sin + b * cos) / layout.pitch_m
+    fx, fy = np.floor(x), np.floor(y)
+    inside = (fx >= 0) & (fx < layout.cols) & (fy >= 0) & (fy < layout.rows)
+    # PadModel.response of the point's offset from its module's centre, in [-0.5, 0.5)
+    ix = np.rint((x - fx - 0.5 + 0.5) * (_LOOKUP - 1)).astype(np.int64)
+    iy = np.rint((y - fy - 0.5 + 0.5) * (_LOOKUP - 1)).astype(np.int64)
+    mean = np.where(inside, model.table.ravel()[ix * _LOOKUP + iy], 0.0).mean(axis=1)
     return np.maximum(np.maximum(0.0, mean[0]), mean[1])
 
 
@@ -749,6 +834,23 @@ def _landing_terms(
     return clear, hold
 
 
+def footprint_room(
+    post: Posterior,
+    centre: Array,
+    theta: float,
+    gripper: GripperSpec,
+    layout: PadLayout,
+    params: ModelBasedParams,
+) -> float:
+    """Posterior mean room between the nearer open jaw (less ``clearance_m``) and the
+    estimated footprint itself (not the shapes it may belong to) for the grasp at ``centre``
+    (2,), module units, closing along ``theta``, m: under 0 the footprint reaches the jaw."""
+    half_open = gripper.max_width_m / 2 - params.clearance_m
+    m_u, _, c, s = _offsets(post, np.asarray(centre, dtype=float)[None], np.array([theta]), 1)
+    e_u = post.halves[:, 0] * c[0] + post.halves[:, 1] * s[0]
+    return float(post.probs @ (half_open - (np.abs(m_u[0]) + e_u) * layout.pitch_m))
+
+
 def landing_chance(
     post: Posterior,
     centres: Array,
@@ -823,12 +925,21 @@ class Grid:
         shape = (self.along.size, self.across.size, self.thetas.size)
         return centres, np.broadcast_to(self.thetas, shape)
 
+    def grasp(self, flat: NDArray[np.int64]) -> tuple[Array, Array]:
+        """Centres (G, 2) and directions (G,) of the grasps at indices ``flat`` of the
+        raveled grid (the same figures as :meth:`grasps`)."""
+        rest, d = np.divmod(flat, self.thetas.size)
+        a, b = np.divmod(rest, self.across.size)
+        t = self.thetas[d]
+        cos, sin = np.cos(t), np.sin(t)
+        u, n = np.stack([cos, sin], axis=1), np.stack([-sin, cos], axis=1)
+        return self.base + self.along[a, None] * u + self.across[b, None] * n, t
+
 
 def grid_fit(
     post: Posterior, grid: Grid, gripper: GripperSpec, layout: PadLayout, params: ModelBasedParams
-) -> tuple[Array, Array, Array]:
-    """:func:`fit_chance` of every grasp of ``grid``, (A, B, D), with the grasps
-    (:meth:`Grid.grasps`)."""
+) -> Array:
+    """:func:`fit_chance` of every grasp of ``grid``, (A, B, D) (:meth:`Grid.grasps`)."""
     half_open = (gripper.max_width_m / 2 - params.clearance_m) / layout.pitch_m
     narrow = gripper.min_width_m / layout.pitch_m
     m_u, m_n, c, s = _offsets(post, grid.base[None], grid.thetas, grid.thetas.size)  # (D, H)
@@ -844,9 +955,7 @@ def grid_fit(
     # sum over shapes and hypotheses of w_s p_h clear[s,a,d,h] hold[s,b,d,h], as (S, D) matrix
     # products (a 4-operand einsum is several times slower)
     lhs = (clear * (weights[:, None, None, None] * post.probs)).transpose(0, 2, 1, 3)
-    fit = (lhs @ hold.astype(float).transpose(0, 2, 3, 1)).sum(axis=0).transpose(1, 2, 0)
-    centres, thetas = grid.grasps()
-    return fit, centres, thetas
+    return (lhs @ hold.astype(float).transpose(0, 2, 3, 1)).sum(axis=0).transpose(1, 2, 0)
 
 
 def grid_success(
@@ -860,7 +969,8 @@ def grid_success(
 ) -> tuple[Array, Array, Array]:
     """:func:`predicted_success` of every grasp of ``grid``, (A, B, D), with the grasps
     (:meth:`Grid.grasps`)."""
-    fit, centres, thetas = grid_fit(post, grid, gripper, layout, params)
+    fit = grid_fit(post, grid, gripper, layout, params)
+    centres, thetas = grid.grasps()
     tip = tip_response(centres.reshape(-1, 2), thetas.ravel(), gripper, layout, model)
     need = params.needed_share * sensing_ratio
     return np.clip(tip.reshape(fit.shape) / need, 0.0, 1.0) * fit, centres, thetas
@@ -880,24 +990,26 @@ def best_on_grid(
     direction. The fingertips are looked up only where they may decide: the sensed share is
     at most 1, so a grasp whose fit is below the best success found cannot beat it; the
     grasps are scored in batches of falling fit until the next fit is below that."""
-    fit, centres, thetas = grid_fit(post, grid, gripper, layout, params)
+    fit = grid_fit(post, grid, gripper, layout, params)
     flat, order = fit.ravel(), np.argsort(-fit.ravel(), kind="stable")
     need = params.needed_share * sensing_ratio
-    points, directions = centres.reshape(-1, 2), thetas.ravel()
     best, best_i, done, batch = -1.0, 0, 0, _FIRST_BATCH
+    centre, theta = np.zeros(2), 0.0
     while done < flat.size and flat[order[done]] >= best:
         idx = np.sort(order[done : done + batch])
-        tip = tip_response(points[idx], directions[idx], gripper, layout, model)
+        points, directions = grid.grasp(idx)
+        tip = tip_response(points, directions, gripper, layout, model)
         score = np.clip(tip / need, 0.0, 1.0) * flat[idx]
         k = int(np.argmax(score))
         if score[k] > best or (score[k] == best and idx[k] < best_i):
             best, best_i = float(score[k]), int(idx[k])
+            centre, theta = points[k], float(directions[k])
         done, batch = done + batch, 2 * batch
-    return best, points[best_i], float(directions[best_i])
+    return best, centre, theta
 
 
 #: Grasps whose fingertips are looked up in :func:`best_on_grid`'s first batch (doubling).
-_FIRST_BATCH = 8
+_FIRST_BATCH = 32
 
 
 def refined(centre: Array, theta: float, params: ModelBasedParams) -> tuple[Array, Array]:
@@ -1047,16 +1159,30 @@ class ModelBasedPlanner:
             )
         post = post.sample(self.params.kept_hypotheses)
         args = (self.gripper, layout, self.model, self.params, self.sensing_ratio)
-        score, best, t = best_on_grid(post, candidate_grid(post, self.params), *args)
+        coarse = candidate_grid(post, self.params)
+        found = best_on_grid(post, coarse, *args)
+        tight = self._tight(post, found, layout)
         if self.params.refine_steps:
-            # the coarse best is the grid's centre: never worse
-            score, best, t = best_on_grid(post, refined_grid(best, t, self.params), *args)
+            # the coarse best is the grid's centre: never worse; twice as fine where tight
+            fine = refined_grid(found[1], found[2], self.params, 2 if tight else 1)
+            found = best_on_grid(post, fine, *args)
+        if tight:
+            found = tight_search(post, coarse, found, *args)
+        score, best, t = found
         centre = (float(best[0]), float(best[1]))
         t %= math.pi
         theta = t - (math.pi if t > math.pi / 2 + 1e-12 else 0.0)
         rule = f"model-based p={score:.2f}"
         plan = GraspPlan(modules, pcom(d, modules, layout), centre, theta, rule, modules)
         return plan, score
+
+    def _tight(self, post: Posterior, found: Found, layout: PadLayout) -> bool:
+        """Whether ``found`` leaves the estimated footprint less than ``tight_room_m`` a side
+        (:func:`footprint_room`)."""
+        if self.params.tight_room_m <= 0:
+            return False
+        room = footprint_room(post, found[1], found[2], self.gripper, layout, self.params)
+        return room < self.params.tight_room_m
 
 
 def _pressed_side(plan: GraspPlan, layout: PadLayout, rise: Array, share: float) -> int:
