@@ -421,12 +421,14 @@ def estimate(
     object's heavier modules, and a light part of unknown shape on its light modules, which
     adds a load >= 0 there (a cable, a stem, a light end); each light module costs
     ``part_cost`` nats of prior odds. ``Posterior.parts`` says which is which."""
-    parts = [(*_loglik(increments_pa, tuple(modules), layout, model, params, masked, ()), 0.0)]
+    g, b, a, const = _sums(increments_pa, tuple(modules), layout, model, params, masked)
+    parts = [(g, _gaussian(b, a, const)[1], 0.0)]
     light = light_modules(increments_pa, modules, layout, params)
     if light:
         heavy = tuple(m for m in modules if m not in light)
-        g, ll = _loglik(increments_pa, heavy, layout, model, params, masked, light)
-        parts.append((g, ll - params.part_cost * len(light), 1.0))
+        groups = (tuple(modules), heavy, light, masked)
+        gh, ll = _two_part(increments_pa, groups, (b, a), layout, model, params)
+        parts.append((gh, ll - params.part_cost * len(light), 1.0))
     top = max(float(ll.max()) for _, ll, _ in parts)
     kept = [(g, ll, extra, np.flatnonzero(ll > top - params.log_floor)) for g, ll, extra in parts]
     p = np.exp(np.concatenate([ll[k] for _, ll, _, k in kept]) - top)
@@ -453,32 +455,78 @@ def light_modules(
     return light
 
 
-def _loglik(
+def _sums(
     increments_pa: Array,
     modules: tuple[int, ...],
     layout: PadLayout,
     model: PadModel,
     params: ModelBasedParams,
     masked: frozenset[int],
-    light: tuple[int, ...],
-) -> tuple[_Group, Array]:
-    """The hypotheses centred on ``modules`` and their log-likelihoods (V,): Gaussian on
-    every module but ``masked`` and ``light`` ones; on a ``light`` module (a light part's)
-    the reading may exceed the footprint's prediction (a light part adds load there, at no
-    cost) but not fall short of it."""
+) -> tuple[_Group, Array, Array, Array]:
+    """The hypotheses centred on ``modules`` and the likelihood's sums over each one's
+    window (V,) each, every module but ``masked`` weighed by 1 / its variance (w): sum w d g,
+    sum w g^2 (g the footprint's share of the load, d the increment) and sum w d^2."""
     t = _templates(layout.pitch_m, params, model)
     g = _group(layout, modules, params, model)
-    grid, weight = _padded(increments_pa, layout, t.radius, masked | set(light), params)
+    grid, weight = _padded(increments_pa, layout, t.radius, masked, params)
     d, w = grid[g.window], weight[g.window]  # (C, W) each
     wd = w * d
-    # sum w d g and sum w g^2 of every hypothesis on the pad (V,)
     b = (wd[:, g.used] @ g.shares[0]).ravel()[g.flat]
     a = (w[:, g.used] @ g.shares[1]).ravel()[g.flat]
-    scale = np.divide(np.clip(b, 0.0, None), a, out=np.zeros_like(a), where=a > 0)
-    loglik = -0.5 * ((wd * d).sum(axis=1)[g.module] - 2 * scale * b + scale**2 * a)
-    if light:
-        loglik -= _shortfall(increments_pa, scale, layout, modules, params, model, light)
-    return g, loglik
+    return g, b, a, (wd * d).sum(axis=1)[g.module]
+
+
+def _gaussian(b: Array, a: Array, const: Array) -> tuple[Array, Array]:
+    """Each hypothesis's weight fitted in closed form (>= 0) and its log-likelihood, from
+    :func:`_sums`."""
+    # a = 0 only where every share is 0, so b = 0 too; with s = max(b, 0) / a the Gaussian's
+    # -(const - 2 s b + s^2 a) / 2 is (s max(b, 0) - const) / 2
+    positive = np.maximum(b, 0.0)
+    scale = positive / np.maximum(a, np.finfo(float).tiny)
+    return scale, 0.5 * (scale * positive - const)
+
+
+def _two_part(
+    increments_pa: Array,
+    groups: tuple[tuple[int, ...], tuple[int, ...], tuple[int, ...], frozenset[int]],
+    sums: tuple[Array, Array],
+    layout: PadLayout,
+    model: PadModel,
+    params: ModelBasedParams,
+) -> tuple[_Group, Array]:
+    """The two-part hypotheses (centred on the ``heavy`` modules of ``groups``: the object's
+    modules, the heavy ones, the light ones, the masked ones of other objects) and their
+    log-likelihoods: Gaussian on every module but ``masked`` and ``light`` ones; on a
+    light module the reading
+    may exceed the footprint's prediction (a light part adds load there, at no cost) but not
+    fall short of it. The sums are the one-part hypotheses' (``sums``: sum w d g and
+    sum w g^2 over all of ``modules``) less the light modules' terms: no second product."""
+    modules, heavy, light, masked = groups
+    t, gh = _templates(layout.pitch_m, params, model), _group(layout, heavy, params, model)
+    sel = _subset(layout, modules, heavy, params, model)
+    shares = _light_shares(layout, heavy, params, model, light)  # (L, V')
+    d = np.asarray(increments_pa, dtype=float).ravel()[np.array(light) - 1]
+    w = 1.0 / (params.noise_pa**2 + (params.model_error * d) ** 2)
+    b, a = sums[0][sel] - (w * d) @ shares, sums[1][sel] - w @ shares**2
+    grid, weight = _padded(increments_pa, layout, t.radius, masked | set(light), params)
+    dd, ww = grid[gh.window], weight[gh.window]
+    scale, loglik = _gaussian(b, a, (ww * dd * dd).sum(axis=1)[gh.module])
+    return gh, loglik - _shortfall(increments_pa, scale, layout, heavy, params, model, light)
+
+
+@lru_cache(maxsize=32)
+def _subset(
+    layout: PadLayout,
+    modules: tuple[int, ...],
+    heavy: tuple[int, ...],
+    params: ModelBasedParams,
+    model: PadModel,
+) -> NDArray[np.int64]:
+    """Where the hypotheses centred on ``heavy`` (a subset of ``modules``) lie among those
+    centred on ``modules``, in their order (the test of the pad's edge is per hypothesis)."""
+    g = _group(layout, modules, params, model)
+    ids = np.asarray(modules)[g.module]
+    return _frozen(np.flatnonzero(np.isin(ids, heavy)))
 
 
 def _shortfall(
