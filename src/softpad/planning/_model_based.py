@@ -63,9 +63,9 @@ class ModelBasedParams:
     #: Relative rms error of the even-load model of a module's increment (uneven weight,
     #: the characteristic's curvature, tilt); an assumption, set before any trial ran.
     model_error: float = 0.3
-    #: Sub-positions per module side of the hypotheses' centres (6: a 7.5 mm grid on the
-    #: 45 mm pad; 4, an 11 mm grid, before issue 47's tight fits: docs/planner.md).
-    centre_steps: int = 6
+    #: Sub-positions per module side of the hypotheses' centres (4: an 11 mm grid; 6, a
+    #: 7.5 mm grid, held fewer development trials in MuJoCo: docs/planner.md).
+    centre_steps: int = 4
     #: Footprint sides tried, mm (the length and the width take every pair of them).
     sizes_mm: tuple[float, ...] = (12.0, 24.0, 40.0, 60.0, 90.0, 125.0)
     #: Footprint yaws tried, in [0, pi) (6: 30 degree steps).
