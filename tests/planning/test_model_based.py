@@ -305,7 +305,7 @@ def test_landing_term_is_soft_near_the_edge():
     planner prefers room to spare over a grasp that just fits."""
     from softpad.planning._model_based import Posterior, edge_scale, landing_chance
 
-    params = ModelBasedParams(shape_weights=(1.0, 0.0, 0.0))
+    params = ModelBasedParams(shape_weights=(1.0, 0.0, 0.0), centre_steps=4)
     post = Posterior(np.array([[1.5, 1.0]]), np.array([[0.5, 0.2]]), np.zeros(1), np.ones(1))
     # jaws along x open to 100 mm less 2 mm clearance each side; the footprint 45 mm long
     half_open_mm = 100.0 / 2 - 2.0
@@ -408,6 +408,95 @@ def test_grid_scoring_equals_scoring_grasp_by_grasp(box):
         )
         np.testing.assert_allclose(score.ravel(), one_by_one, rtol=1e-9, atol=1e-12)
         assert score.max() > 0  # not a comparison of zeros
+
+
+@pytest.mark.parametrize("box", BOXES)
+@pytest.mark.parametrize("ratio", [0.4, 1.3, 3.0])
+def test_best_on_grid_is_the_argmax_of_the_grid(box, ratio):
+    """The planner looks fingertips up only where they may decide (the sensed share is at
+    most 1); its choice is the first maximum of the full grid's scores, at sensing ratios
+    where few and where many fingertips fall short."""
+    from softpad.planning._model_based import (
+        best_on_grid,
+        candidate_grid,
+        grid_success,
+        refined_grid,
+    )
+
+    params, model = ModelBasedParams(), packaged_pad_model()
+    post = _posterior(box, params)
+    for grid in (candidate_grid(post, params), refined_grid(np.array([1.4, 1.1]), 0.3, params)):
+        score, centres, thetas = grid_success(post, grid, WIDE, LAYOUT, model, params, ratio)
+        i = np.unravel_index(int(np.argmax(score)), score.shape)
+        best, centre, theta = best_on_grid(post, grid, WIDE, LAYOUT, model, params, ratio)
+        assert best == score[i]
+        np.testing.assert_array_equal(centre, centres[i])
+        assert theta == thetas[i]
+
+
+def test_footprint_room_is_the_gap_to_the_nearer_jaw():
+    """One 45 x 18 mm footprint, jaws along it: the room a side is half the opening less the
+    clearance, the shift of the centre and half the footprint (m)."""
+    from softpad.planning._model_based import Posterior, footprint_room
+
+    params = ModelBasedParams()
+    post = Posterior(np.array([[1.5, 1.0]]), np.array([[0.5, 0.2]]), np.zeros(1), np.ones(1))
+    for shift_mm in (0.0, 4.5, -9.0):
+        centre = np.array([1.5 + shift_mm / 45.0, 1.0])
+        room = footprint_room(post, centre, 0.0, WIDE, LAYOUT, params)
+        assert room == pytest.approx((50.0 - 2.0 - abs(shift_mm) - 22.5) * 1e-3, abs=1e-9)
+    across = footprint_room(post, np.array([1.5, 1.0]), math.pi / 2, WIDE, LAYOUT, params)
+    assert across == pytest.approx((50.0 - 2.0 - 9.0) * 1e-3, abs=1e-9)
+
+
+#: A box whose short side nearly fills the 6/2 jaws' 60 mm opening, and one with room in
+#: the 10/4 jaws' 100 mm.
+TIGHT_BOX = ((50.0, 40.0), (60.0, 45.0), 20.0, 120.0)
+LOOSE_BOX = ((67.5, 45.0), (30.0, 20.0), 10.0, 60.0)
+
+
+@pytest.mark.parametrize("starts", [1, 2])
+def test_tight_search_runs_where_the_fit_is_tight_and_never_scores_worse(starts):
+    """With the tight-fit search on (``tight_room_m``), a box that nearly fills the opening
+    is searched further: the chosen grasp's predicted success is at least the one found
+    without the search; a box with room is planned exactly as without it."""
+    from dataclasses import replace
+
+    off = ModelBasedParams()
+    on = replace(off, tight_room_m=10e-3, tight_rounds=2, tight_starts=starts)
+    for box, tight, jaws in ((TIGHT_BOX, True, "6/2"), (LOOSE_BOX, False, "10/4")):
+        gripper = GripperSpec.from_mounting(jaws)
+        d = _increments(*box)
+        objs = detect_objects(d, LAYOUT)
+        plans, scores = [], []
+        for params in (off, on):
+            planner = ModelBasedPlanner(gripper, params)
+            plans.append(planner.plan(d, objs, LAYOUT)[0])
+            scores.append(planner.mounting_success(d, objs, LAYOUT, gripper))
+        if tight:
+            assert scores[1] >= scores[0] > 0
+            assert plans[1] != plans[0]  # the search moved the grasp
+        else:
+            assert plans[1] == plans[0] and scores[1] == scores[0]
+
+
+def test_polished_climbs_the_predicted_success():
+    """The pattern search from a grasp off the best: each round keeps the best so far, so
+    its result scores at least the start and the finer search's own best near it."""
+    from dataclasses import replace
+
+    from softpad.planning._model_based import best_on_grid, polished, refined_grid
+
+    params = replace(ModelBasedParams(), tight_rounds=4)
+    model, narrow = packaged_pad_model(), GripperSpec.from_mounting("6/2")
+    post = _posterior(TIGHT_BOX, params)
+    start = np.asarray(post.mean_centre()) + np.array([0.05, -0.04])
+    args = (narrow, LAYOUT, model, params, 1.0)
+    found = best_on_grid(post, refined_grid(start, 0.3, params), *args)
+    score, centre, theta = polished(post, found, *args)
+    assert score >= found[0]
+    again = best_on_grid(post, refined_grid(centre, theta, params, 2), *args)
+    assert score >= again[0] - 0.05  # a local optimum, up to the finer grid's step
 
 
 #: The two-part hypotheses on (light modules under 0.3 of the largest increment).

@@ -63,7 +63,8 @@ class ModelBasedParams:
     #: Relative rms error of the even-load model of a module's increment (uneven weight,
     #: the characteristic's curvature, tilt); an assumption, set before any trial ran.
     model_error: float = 0.3
-    #: Sub-positions per module side of the hypotheses' centres (4: an 11 mm grid).
+    #: Sub-positions per module side of the hypotheses' centres (4: an 11 mm grid; 6, a
+    #: 7.5 mm grid, held fewer development trials in MuJoCo: docs/planner.md).
     centre_steps: int = 4
     #: Footprint sides tried, mm (the length and the width take every pair of them).
     sizes_mm: tuple[float, ...] = (12.0, 24.0, 40.0, 60.0, 90.0, 125.0)
@@ -109,6 +110,17 @@ class ModelBasedParams:
     #: Shift step of the finer search, as a share of the hypotheses' centre step (0.25:
     #: 2.8 mm on the 45 mm pad; the grid reaches half-way to the next centre tried).
     refine_shift: float = 0.25
+    #: Room a side between the open jaws (less ``clearance_m``) and the estimated footprint
+    #: along the chosen grasp (posterior mean, the nearer jaw's) under which the fit is
+    #: tight and the finer search goes on (:func:`tight_search`), m; 0: never.
+    tight_room_m: float = 0.0
+    #: Best coarse candidates the tight-fit search starts from, in directions more than the
+    #: finer search's reach apart (1: the best only).
+    tight_starts: int = 1
+    #: Rounds of the tight-fit search after the finer search (which runs at twice the
+    #: density there): each a 3 x 3 x 3 grid of direction, shift along and across around
+    #: the best so far (:func:`polished`).
+    tight_rounds: int = 1
     #: Mean response under a fingertip's sole, as a share of the centre's, at which the
     #: thesis's contact detector senses it (scaled by the detector's sensing ratio).
     needed_share: float = 0.5
@@ -146,12 +158,13 @@ class ModelBasedParams:
             "outline_threshold_pa",
             "light_share",
             "part_cost",
+            "tight_room_m",
         ):
             v = getattr(self, name)
             if not (isinstance(v, int | float) and math.isfinite(v) and v >= 0):
                 raise InputError(f"model-based parameter {name} must be a number >= 0, got {v!r}")
-        counts = ("centre_steps", "yaw_steps", "kept_hypotheses", "directions")
-        for name in (*counts, "refine_steps", "max_light_modules"):
+        counts = ("centre_steps", "yaw_steps", "kept_hypotheses", "directions", "tight_starts")
+        for name in (*counts, "refine_steps", "max_light_modules", "tight_rounds"):
             v = getattr(self, name)
             if not (isinstance(v, int) and (1 if name in counts else 0) <= v <= 64):
                 raise InputError(
@@ -408,12 +421,14 @@ def estimate(
     object's heavier modules, and a light part of unknown shape on its light modules, which
     adds a load >= 0 there (a cable, a stem, a light end); each light module costs
     ``part_cost`` nats of prior odds. ``Posterior.parts`` says which is which."""
-    parts = [(*_loglik(increments_pa, tuple(modules), layout, model, params, masked, ()), 0.0)]
+    g, b, a, const = _sums(increments_pa, tuple(modules), layout, model, params, masked)
+    parts = [(g, _gaussian(b, a, const)[1], 0.0)]
     light = light_modules(increments_pa, modules, layout, params)
     if light:
         heavy = tuple(m for m in modules if m not in light)
-        g, ll = _loglik(increments_pa, heavy, layout, model, params, masked, light)
-        parts.append((g, ll - params.part_cost * len(light), 1.0))
+        groups = (tuple(modules), heavy, light, masked)
+        gh, ll = _two_part(increments_pa, groups, (b, a), layout, model, params)
+        parts.append((gh, ll - params.part_cost * len(light), 1.0))
     top = max(float(ll.max()) for _, ll, _ in parts)
     kept = [(g, ll, extra, np.flatnonzero(ll > top - params.log_floor)) for g, ll, extra in parts]
     p = np.exp(np.concatenate([ll[k] for _, ll, _, k in kept]) - top)
@@ -440,32 +455,78 @@ def light_modules(
     return light
 
 
-def _loglik(
+def _sums(
     increments_pa: Array,
     modules: tuple[int, ...],
     layout: PadLayout,
     model: PadModel,
     params: ModelBasedParams,
     masked: frozenset[int],
-    light: tuple[int, ...],
-) -> tuple[_Group, Array]:
-    """The hypotheses centred on ``modules`` and their log-likelihoods (V,): Gaussian on
-    every module but ``masked`` and ``light`` ones; on a ``light`` module (a light part's)
-    the reading may exceed the footprint's prediction (a light part adds load there, at no
-    cost) but not fall short of it."""
+) -> tuple[_Group, Array, Array, Array]:
+    """The hypotheses centred on ``modules`` and the likelihood's sums over each one's
+    window (V,) each, every module but ``masked`` weighed by 1 / its variance (w): sum w d g,
+    sum w g^2 (g the footprint's share of the load, d the increment) and sum w d^2."""
     t = _templates(layout.pitch_m, params, model)
     g = _group(layout, modules, params, model)
-    grid, weight = _padded(increments_pa, layout, t.radius, masked | set(light), params)
+    grid, weight = _padded(increments_pa, layout, t.radius, masked, params)
     d, w = grid[g.window], weight[g.window]  # (C, W) each
     wd = w * d
-    # sum w d g and sum w g^2 of every hypothesis on the pad (V,)
     b = (wd[:, g.used] @ g.shares[0]).ravel()[g.flat]
     a = (w[:, g.used] @ g.shares[1]).ravel()[g.flat]
-    scale = np.divide(np.clip(b, 0.0, None), a, out=np.zeros_like(a), where=a > 0)
-    loglik = -0.5 * ((wd * d).sum(axis=1)[g.module] - 2 * scale * b + scale**2 * a)
-    if light:
-        loglik -= _shortfall(increments_pa, scale, layout, modules, params, model, light)
-    return g, loglik
+    return g, b, a, (wd * d).sum(axis=1)[g.module]
+
+
+def _gaussian(b: Array, a: Array, const: Array) -> tuple[Array, Array]:
+    """Each hypothesis's weight fitted in closed form (>= 0) and its log-likelihood, from
+    :func:`_sums`."""
+    # a = 0 only where every share is 0, so b = 0 too; with s = max(b, 0) / a the Gaussian's
+    # -(const - 2 s b + s^2 a) / 2 is (s max(b, 0) - const) / 2
+    positive = np.maximum(b, 0.0)
+    scale = positive / np.maximum(a, np.finfo(float).tiny)
+    return scale, 0.5 * (scale * positive - const)
+
+
+def _two_part(
+    increments_pa: Array,
+    groups: tuple[tuple[int, ...], tuple[int, ...], tuple[int, ...], frozenset[int]],
+    sums: tuple[Array, Array],
+    layout: PadLayout,
+    model: PadModel,
+    params: ModelBasedParams,
+) -> tuple[_Group, Array]:
+    """The two-part hypotheses (centred on the ``heavy`` modules of ``groups``: the object's
+    modules, the heavy ones, the light ones, the masked ones of other objects) and their
+    log-likelihoods: Gaussian on every module but ``masked`` and ``light`` ones; on a
+    light module the reading
+    may exceed the footprint's prediction (a light part adds load there, at no cost) but not
+    fall short of it. The sums are the one-part hypotheses' (``sums``: sum w d g and
+    sum w g^2 over all of ``modules``) less the light modules' terms: no second product."""
+    modules, heavy, light, masked = groups
+    t, gh = _templates(layout.pitch_m, params, model), _group(layout, heavy, params, model)
+    sel = _subset(layout, modules, heavy, params, model)
+    shares = _light_shares(layout, heavy, params, model, light)  # (L, V')
+    d = np.asarray(increments_pa, dtype=float).ravel()[np.array(light) - 1]
+    w = 1.0 / (params.noise_pa**2 + (params.model_error * d) ** 2)
+    b, a = sums[0][sel] - (w * d) @ shares, sums[1][sel] - w @ shares**2
+    grid, weight = _padded(increments_pa, layout, t.radius, masked | set(light), params)
+    dd, ww = grid[gh.window], weight[gh.window]
+    scale, loglik = _gaussian(b, a, (ww * dd * dd).sum(axis=1)[gh.module])
+    return gh, loglik - _shortfall(increments_pa, scale, layout, heavy, params, model, light)
+
+
+@lru_cache(maxsize=32)
+def _subset(
+    layout: PadLayout,
+    modules: tuple[int, ...],
+    heavy: tuple[int, ...],
+    params: ModelBasedParams,
+    model: PadModel,
+) -> NDArray[np.int64]:
+    """Where the hypotheses centred on ``heavy`` (a subset of ``modules``) lie among those
+    centred on ``modules``, in their order (the test of the pad's edge is per hypothesis)."""
+    g = _group(layout, modules, params, model)
+    ids = np.asarray(modules)[g.module]
+    return _frozen(np.flatnonzero(np.isin(ids, heavy)))
 
 
 def _shortfall(
@@ -609,12 +670,79 @@ def candidate_grid(post: Posterior, params: ModelBasedParams) -> Grid:
     return Grid(np.asarray(post.mean_centre()), thetas, np.zeros(1), across)
 
 
-def refined_grid(centre: Array, theta: float, params: ModelBasedParams) -> Grid:
-    """:func:`refined` as a :class:`Grid`."""
-    k = np.arange(-params.refine_steps, params.refine_steps + 1)
+def refined_grid(centre: Array, theta: float, params: ModelBasedParams, density: int = 1) -> Grid:
+    """:func:`refined` as a :class:`Grid`; ``density`` times as many steps each way, each
+    ``density`` times shorter (the same reach)."""
+    n = params.refine_steps * density
+    k = np.arange(-n, n + 1) / density
     thetas = theta + k * params.refine_turn * math.pi / params.directions
     shift = k * params.refine_shift / params.centre_steps
     return Grid(np.asarray(centre, dtype=float), thetas, shift, shift)
+
+
+#: A grasp found: its predicted success, centre (2,) in module units and direction, rad.
+Found = tuple[float, Array, float]
+
+
+def tight_search(
+    post: Posterior,
+    coarse: Grid,
+    found: Found,
+    gripper: GripperSpec,
+    layout: PadLayout,
+    model: PadModel,
+    params: ModelBasedParams,
+    sensing_ratio: float,
+) -> Found:
+    """The finer search near a tight fit: from ``found`` (the finer search's best) and from
+    the best candidates of ``coarse`` in other directions (``tight_starts`` in all, each
+    more than the finer search's reach from the others, searched as it is), a pattern
+    search of ``tight_rounds`` rounds on the predicted success (:func:`polished`). The best
+    grasp found; ``found`` unless another scores higher."""
+    args = (gripper, layout, model, params, sensing_ratio)
+    reach = params.refine_steps * params.refine_turn * math.pi / params.directions
+    starts, best = [found[2]], polished(post, found, *args)
+    for _ in range(params.tight_starts - 1):
+        gap = np.remainder(coarse.thetas[:, None] - np.array(starts)[None] + math.pi / 2, math.pi)
+        far = (np.abs(gap - math.pi / 2) > reach + 1e-9).all(axis=1)
+        if not far.any():
+            break
+        _, centre, theta = best_on_grid(post, replace(coarse, thetas=coarse.thetas[far]), *args)
+        starts.append(theta)
+        fine = refined_grid(centre, theta, params, 2)
+        other = polished(post, best_on_grid(post, fine, *args), *args)
+        if other[0] > best[0]:
+            best = other
+    return best
+
+
+def polished(
+    post: Posterior,
+    found: Found,
+    gripper: GripperSpec,
+    layout: PadLayout,
+    model: PadModel,
+    params: ModelBasedParams,
+    sensing_ratio: float,
+) -> Found:
+    """``tight_rounds`` rounds of a pattern search from ``found`` on the predicted success:
+    each a 3 x 3 x 3 grid of direction, shift along and shift across the closing direction
+    around the best so far (it included), its steps a quarter of the finer search's at
+    first (half those of its tight-fit grid, :func:`refined_grid` at density 2), halved
+    after every round whose best stays where it was."""
+    args = (gripper, layout, model, params, sensing_ratio)
+    turn = params.refine_turn * math.pi / params.directions / 4
+    shift = params.refine_shift / params.centre_steps / 4
+    k = np.array([-1.0, 0.0, 1.0])
+    score, centre, theta = found
+    for _ in range(params.tight_rounds):
+        grid = Grid(np.asarray(centre, dtype=float), theta + k * turn, k * shift, k * shift)
+        s, c, t = best_on_grid(post, grid, *args)
+        if s > score:
+            score, centre, theta = s, c, t
+        else:
+            turn, shift = turn / 2, shift / 2
+    return score, centre, theta
 
 
 def candidates(post: Posterior, params: ModelBasedParams) -> tuple[Array, Array]:
@@ -646,14 +774,19 @@ def tip_response(
     """Mean relative response under the better-placed of the two open fingertips of each
     grasp (G,): what the contact detector has to sense."""
     cos, sin = np.cos(thetas), np.sin(thetas)
-    u, n = np.stack([cos, sin], axis=1), np.stack([-sin, cos], axis=1)
     reach = (gripper.max_width_m + gripper.tip_thickness_m) / 2 / layout.pitch_m
-    sole = (
-        _SOLE[:, 0, None, None] * gripper.tip_thickness_m * u[None]
-        + _SOLE[:, 1, None, None] * gripper.tip_width_m * n[None]
-    ) / layout.pitch_m  # (S, G, 2)
-    ends = np.array([1.0, -1.0])[:, None, None, None] * reach  # the two fingertips
-    mean = model.on_pad(centres + ends * u + sole, layout).mean(axis=1)  # (2, G)
+    a = _SOLE[:, 0, None] * gripper.tip_thickness_m  # (S, 1) along the closing direction
+    b = _SOLE[:, 1, None] * gripper.tip_width_m  # across it
+    ends = np.array([1.0, -1.0])[:, None, None] * reach  # the two fingertips (2, 1, 1)
+    # the sole's points (2, S, G) per coordinate, in the order PadModel.on_pad reads them
+    x = (centres[:, 0] + ends * cos) + (a * cos + b * -sin) / layout.pitch_m
+    y = (centres[:, 1] + ends * sin) + (a * sin + b * cos) / layout.pitch_m
+    fx, fy = np.floor(x), np.floor(y)
+    inside = (fx >= 0) & (fx < layout.cols) & (fy >= 0) & (fy < layout.rows)
+    # PadModel.response of the point's offset from its module's centre, in [-0.5, 0.5)
+    ix = np.rint((x - fx - 0.5 + 0.5) * (_LOOKUP - 1)).astype(np.int64)
+    iy = np.rint((y - fy - 0.5 + 0.5) * (_LOOKUP - 1)).astype(np.int64)
+    mean = np.where(inside, model.table.ravel()[ix * _LOOKUP + iy], 0.0).mean(axis=1)
     return np.maximum(np.maximum(0.0, mean[0]), mean[1])
 
 
@@ -749,6 +882,23 @@ def _landing_terms(
     return clear, hold
 
 
+def footprint_room(
+    post: Posterior,
+    centre: Array,
+    theta: float,
+    gripper: GripperSpec,
+    layout: PadLayout,
+    params: ModelBasedParams,
+) -> float:
+    """Posterior mean room between the nearer open jaw (less ``clearance_m``) and the
+    estimated footprint itself (not the shapes it may belong to) for the grasp at ``centre``
+    (2,), module units, closing along ``theta``, m: under 0 the footprint reaches the jaw."""
+    half_open = gripper.max_width_m / 2 - params.clearance_m
+    m_u, _, c, s = _offsets(post, np.asarray(centre, dtype=float)[None], np.array([theta]), 1)
+    e_u = post.halves[:, 0] * c[0] + post.halves[:, 1] * s[0]
+    return float(post.probs @ (half_open - (np.abs(m_u[0]) + e_u) * layout.pitch_m))
+
+
 def landing_chance(
     post: Posterior,
     centres: Array,
@@ -823,18 +973,21 @@ class Grid:
         shape = (self.along.size, self.across.size, self.thetas.size)
         return centres, np.broadcast_to(self.thetas, shape)
 
+    def grasp(self, flat: NDArray[np.int64]) -> tuple[Array, Array]:
+        """Centres (G, 2) and directions (G,) of the grasps at indices ``flat`` of the
+        raveled grid (the same figures as :meth:`grasps`)."""
+        rest, d = np.divmod(flat, self.thetas.size)
+        a, b = np.divmod(rest, self.across.size)
+        t = self.thetas[d]
+        cos, sin = np.cos(t), np.sin(t)
+        u, n = np.stack([cos, sin], axis=1), np.stack([-sin, cos], axis=1)
+        return self.base + self.along[a, None] * u + self.across[b, None] * n, t
 
-def grid_success(
-    post: Posterior,
-    grid: Grid,
-    gripper: GripperSpec,
-    layout: PadLayout,
-    model: PadModel,
-    params: ModelBasedParams,
-    sensing_ratio: float,
-) -> tuple[Array, Array, Array]:
-    """:func:`predicted_success` of every grasp of ``grid``, (A, B, D), with the grasps
-    (:meth:`Grid.grasps`)."""
+
+def grid_fit(
+    post: Posterior, grid: Grid, gripper: GripperSpec, layout: PadLayout, params: ModelBasedParams
+) -> Array:
+    """:func:`fit_chance` of every grasp of ``grid``, (A, B, D) (:meth:`Grid.grasps`)."""
     half_open = (gripper.max_width_m / 2 - params.clearance_m) / layout.pitch_m
     narrow = gripper.min_width_m / layout.pitch_m
     m_u, m_n, c, s = _offsets(post, grid.base[None], grid.thetas, grid.thetas.size)  # (D, H)
@@ -850,11 +1003,61 @@ def grid_success(
     # sum over shapes and hypotheses of w_s p_h clear[s,a,d,h] hold[s,b,d,h], as (S, D) matrix
     # products (a 4-operand einsum is several times slower)
     lhs = (clear * (weights[:, None, None, None] * post.probs)).transpose(0, 2, 1, 3)
-    fit = (lhs @ hold.astype(float).transpose(0, 2, 3, 1)).sum(axis=0).transpose(1, 2, 0)
+    return (lhs @ hold.astype(float).transpose(0, 2, 3, 1)).sum(axis=0).transpose(1, 2, 0)
+
+
+def grid_success(
+    post: Posterior,
+    grid: Grid,
+    gripper: GripperSpec,
+    layout: PadLayout,
+    model: PadModel,
+    params: ModelBasedParams,
+    sensing_ratio: float,
+) -> tuple[Array, Array, Array]:
+    """:func:`predicted_success` of every grasp of ``grid``, (A, B, D), with the grasps
+    (:meth:`Grid.grasps`)."""
+    fit = grid_fit(post, grid, gripper, layout, params)
     centres, thetas = grid.grasps()
     tip = tip_response(centres.reshape(-1, 2), thetas.ravel(), gripper, layout, model)
     need = params.needed_share * sensing_ratio
     return np.clip(tip.reshape(fit.shape) / need, 0.0, 1.0) * fit, centres, thetas
+
+
+def best_on_grid(
+    post: Posterior,
+    grid: Grid,
+    gripper: GripperSpec,
+    layout: PadLayout,
+    model: PadModel,
+    params: ModelBasedParams,
+    sensing_ratio: float,
+) -> tuple[float, Array, float]:
+    """The grasp of ``grid`` with the highest :func:`predicted_success` (the first of
+    equals, as ``argmax`` of :func:`grid_success` finds it): its success, centre (2,) and
+    direction. The fingertips are looked up only where they may decide: the sensed share is
+    at most 1, so a grasp whose fit is below the best success found cannot beat it; the
+    grasps are scored in batches of falling fit until the next fit is below that."""
+    fit = grid_fit(post, grid, gripper, layout, params)
+    flat, order = fit.ravel(), np.argsort(-fit.ravel(), kind="stable")
+    need = params.needed_share * sensing_ratio
+    best, best_i, done, batch = -1.0, 0, 0, _FIRST_BATCH
+    centre, theta = np.zeros(2), 0.0
+    while done < flat.size and flat[order[done]] >= best:
+        idx = np.sort(order[done : done + batch])
+        points, directions = grid.grasp(idx)
+        tip = tip_response(points, directions, gripper, layout, model)
+        score = np.clip(tip / need, 0.0, 1.0) * flat[idx]
+        k = int(np.argmax(score))
+        if score[k] > best or (score[k] == best and idx[k] < best_i):
+            best, best_i = float(score[k]), int(idx[k])
+            centre, theta = points[k], float(directions[k])
+        done, batch = done + batch, 2 * batch
+    return best, centre, theta
+
+
+#: Grasps whose fingertips are looked up in :func:`best_on_grid`'s first batch (doubling).
+_FIRST_BATCH = 32
 
 
 def refined(centre: Array, theta: float, params: ModelBasedParams) -> tuple[Array, Array]:
@@ -1004,20 +1207,30 @@ class ModelBasedPlanner:
             )
         post = post.sample(self.params.kept_hypotheses)
         args = (self.gripper, layout, self.model, self.params, self.sensing_ratio)
-        grid = candidate_grid(post, self.params)
-        score, centres, thetas = grid_success(post, grid, *args)
-        i = np.unravel_index(int(np.argmax(score)), score.shape)
+        coarse = candidate_grid(post, self.params)
+        found = best_on_grid(post, coarse, *args)
+        tight = self._tight(post, found, layout)
         if self.params.refine_steps:
-            grid = refined_grid(centres[i], float(thetas[i]), self.params)
-            score, centres, thetas = grid_success(post, grid, *args)
-            # the coarse best is the grid's centre: never worse
-            i = np.unravel_index(int(np.argmax(score)), score.shape)
-        centre = (float(centres[i][0]), float(centres[i][1]))
-        t = float(thetas[i]) % math.pi
+            # the coarse best is the grid's centre: never worse; twice as fine where tight
+            fine = refined_grid(found[1], found[2], self.params, 2 if tight else 1)
+            found = best_on_grid(post, fine, *args)
+        if tight:
+            found = tight_search(post, coarse, found, *args)
+        score, best, t = found
+        centre = (float(best[0]), float(best[1]))
+        t %= math.pi
         theta = t - (math.pi if t > math.pi / 2 + 1e-12 else 0.0)
-        rule = f"model-based p={score[i]:.2f}"
+        rule = f"model-based p={score:.2f}"
         plan = GraspPlan(modules, pcom(d, modules, layout), centre, theta, rule, modules)
-        return plan, float(score[i])
+        return plan, score
+
+    def _tight(self, post: Posterior, found: Found, layout: PadLayout) -> bool:
+        """Whether ``found`` leaves the estimated footprint less than ``tight_room_m`` a side
+        (:func:`footprint_room`)."""
+        if self.params.tight_room_m <= 0:
+            return False
+        room = footprint_room(post, found[1], found[2], self.gripper, layout, self.params)
+        return room < self.params.tight_room_m
 
 
 def _pressed_side(plan: GraspPlan, layout: PadLayout, rise: Array, share: float) -> int:
