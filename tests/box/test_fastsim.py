@@ -234,7 +234,9 @@ class _General(SimBox):
         return unchecked_frame(t, values, supply)
 
 
-@pytest.mark.parametrize(("seed", "rate_hz"), [(0, 1000.0), (1, 1000.0), (2, 100.0), (3, 100.0)])
+@pytest.mark.parametrize(
+    ("seed", "rate_hz"), [(0, 1000.0), (1, 1000.0), (2, 100.0), (3, 100.0), (4, 1000.0)]
+)
 def test_the_hot_path_of_a_frame_is_the_general_path(
     seed: int, rate_hz: float, monkeypatch: pytest.MonkeyPatch
 ) -> None:
@@ -247,7 +249,7 @@ def test_the_hot_path_of_a_frame_is_the_general_path(
     events = _schedule(seed, frames)
     events[0] = ("valves", [ValveCommand.INFLATE] * 8)  # up to the guard's trips
     runs: list[tuple[list[bytes], list[tuple[float, int, str]], tuple[ValveCommand, ...]]] = []
-    general = [0, 0]
+    general, fused = [0, 0], [0]
     for cls in (_General, SimBox):
         box = cls(
             AnalyticWorld(),
@@ -264,6 +266,7 @@ def test_the_hot_path_of_a_frame_is_the_general_path(
             return sense(changed)
 
         monkeypatch.setattr(box, "_sense", counted)
+        monkeypatch.setattr(box, "_new_frames", _counting_frames(box, fused))
         layered = compose_sim_box(box)
         out = _run(box, events, frames, reader=layered)
         runs.append((out, box.safety.trips, box.valves))
@@ -271,6 +274,162 @@ def test_the_hot_path_of_a_frame_is_the_general_path(
     assert len(runs[0][1]) > 0  # the guard tripped on the way
     assert general[0] == frames  # the reference: every frame on the general path
     assert general[1] < (0.2 if rate_hz == 1000.0 else 0.7) * frames  # ours: stretch starts
+    # ours: most frames along a stretch in the one compiled call (the reference: none)
+    if rate_hz == 1000.0 and not seed % 2:  # 100 Hz: ramps too short for the guard's spans;
+        # the disturbances' zero-shift layer changes every frame, so it reads the plain box's
+        assert fused[0] > 0.25 * frames, fused  # (before the guard trips; then the Python path)
+
+
+class _Counted:
+    """A compiled frame cursor counting the frames it gave (the Python path ran the rest)."""
+
+    def __init__(self, frames: object, count: list[int]) -> None:
+        self.frames, self.count = frames, count
+
+    def next(self, *args: object) -> object:
+        frame = self.frames.next(*args)  # type: ignore[attr-defined]
+        self.count[0] += frame is not None
+        return frame
+
+
+def _counting_frames(box: SimBox, count: list[int]) -> Callable[[object], object]:
+    make = box._new_frames
+
+    def counting(guard: object) -> object:
+        frames = make(guard)  # type: ignore[arg-type]
+        return None if frames is None else _Counted(frames, count)
+
+    return counting
+
+
+def _on_a_stretch(frames: int = 45, trip_pa: float | None = None, fused: bool = True) -> SimBox:
+    """A 1 kHz box with every valve open, ``frames`` frames read (the compiled cursor's usual
+    frame next), its guard's trip level ``trip_pa`` (None: as it is) from then on; the
+    compiled cursor not made where not ``fused``."""
+    box = SimBox(AnalyticWorld(), sample_rate_hz=1000.0, seed=0, initial_pressure_pa=500.0)
+    if not fused:
+        box._new_frames = lambda guard: None  # type: ignore[method-assign]
+    box.set_valves(["inflate"] * 8)
+    for _ in range(frames):
+        box.read()
+    if trip_pa is not None:
+        box.safety._trip_pa = trip_pa
+    return box
+
+
+def _boundary(frames: int, exact: bool) -> tuple[float, float]:
+    """The trip levels (lo, hi), adjacent doubles, between which the Python path's next frame
+    changes from tripping a channel (``exact``: from running the guard's exact per-channel
+    test) at lo to not at hi."""
+    lo, hi = 0.0, 9000.0
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        box = _on_a_stretch(frames, mid, fused=False)
+        calls: list[int] = []
+        full_test = box.safety._check_arrays
+
+        def counted(
+            *args: object, full_test: Callable[..., list[int]] = full_test, calls: list[int] = calls
+        ) -> list[int]:
+            calls.append(1)
+            return full_test(*args)
+
+        box.safety._check_arrays = counted  # type: ignore[method-assign]
+        box.read()
+        turned = bool(calls) if exact else bool(box.safety.trips)
+        lo, hi = (mid, hi) if turned else (lo, mid)
+    assert 500.0 < hi < 3000.0 and np.nextafter(lo, hi) == hi
+    return lo, hi
+
+
+@pytest.mark.parametrize("frames", [3, 6, 45])
+def test_the_compiled_frame_trips_where_the_guard_does(frames: int) -> None:
+    """Around the trip level where the guard's exact test trips a channel, and where its
+    usual decision (the highest reading plus the window's rise) gives way to that test (both
+    found by bisection on the Python path), the compiled frame's box trips the same channels
+    with the same frames, and takes the usual frame itself exactly where the Python path
+    does; the window not yet full (3, 6 frames) and full (45)."""
+    trip_lo, trip_hi = _boundary(frames, exact=False)
+    exact_lo, exact_hi = _boundary(frames, exact=True)
+    assert trip_hi <= exact_hi
+    for level in (trip_lo, trip_hi, trip_hi - 1.0, exact_lo, exact_hi, exact_hi + 1.0):
+        got, count = [], [0]
+        for fused in (False, True):
+            box = _on_a_stretch(frames, level, fused)
+            box._frames_for = None  # made again by the next read, counted
+            box._new_frames = _counting_frames(box, count)  # type: ignore[method-assign]
+            frame = box.read()
+            got.append((box.safety.trips, frame.pressures_pa.tobytes(), frame.supply_pa))
+        assert got[0] == got[1], level
+        assert bool(got[0][0]) is (level <= trip_lo)
+        assert count[0] == (level >= exact_hi), level  # the compiled frame: the usual one
+
+
+def _state(box: SimBox) -> bytes:
+    """Everything the compiled frame reads or writes, as bytes (repr)."""
+    ch, se, g = box.chambers, box.sensors, box.safety
+    keys = ("_pos", "solved", "_valve_key", "_supply", "_stretch_dt", "solve_count")
+    skeys = ("_i", "_ramp_next", "_ramp_key", "_ramp_end", "_ramp_start", "_same")
+    return repr(
+        [getattr(ch, k) for k in keys]
+        + [getattr(se, k) for k in skeys]
+        + [list(g._times), list(g._lows), len(g._history), g._any_tripped, box._t]
+    ).encode()
+
+
+@pytest.mark.parametrize(
+    "change",
+    ["supply", "valves", "dt", "time_again", "tripped", "over_range", "no_spans", "block_end"],
+)
+def test_the_compiled_frame_declines_what_is_not_its_usual_frame(change: str) -> None:
+    """Frames.next returns None and changes nothing wherever the hold, the ramp or the
+    guard's usual decision would not be taken; on its usual frame it changes what they
+    change."""
+    box = _on_a_stretch()
+    frames = box._frames
+    assert frames is not None
+    t, dt = box._t + box._dt, box._dt
+    args: list[object] = [t, dt, box._valve_count, box._supply_true]
+    guard, sensors = box.safety, box.sensors
+    if change == "supply":
+        args[3] = box._supply_true - 1.0
+    elif change == "valves":
+        args[2] = box._valve_count + 1
+    elif change == "dt":
+        args[1] = dt * 2
+    elif change == "time_again":
+        args[0] = guard._times[-1]
+    elif change == "tripped":
+        guard._any_tripped = True
+    elif change == "over_range":
+        guard._max_pa = -1e9
+    elif change == "no_spans":
+        sensors._ramp_lo = None
+    elif change == "block_end":
+        sensors._ramp_end = sensors._i
+    before = _state(box)
+    assert frames.next(*args) is None
+    assert _state(box) == before
+    # the usual frame, from a fresh box: the steps' changes and the frame
+    box = _on_a_stretch()
+    t = box._t + box._dt
+    want_row = box.sensors._ramp[box.sensors._i - box.sensors._ramp_start]
+    frame = box._frames.next(t, box._dt, box._valve_count, box._supply_true)
+    assert isinstance(frame, PressureFrame) and frame.t_s == t
+    assert frame.pressures_pa.tobytes() == want_row.tobytes()
+    assert box.safety._history[-1] is frame.pressures_pa and box.safety._times[-1] == t
+    assert box.sensors.span is not None and box.sensors.span[0] is frame.pressures_pa
+
+
+def test_the_compiled_frame_refuses_objects_it_cannot_read() -> None:
+    box = _on_a_stretch()
+    slots = [PressureFrame.__dict__[n] for n in ("t_s", "pressures_pa", "supply_pa")]
+    with pytest.raises(TypeError):
+        fastsim.Frames(box.chambers, box.sensors, box.safety, PressureFrame, 1, 2, 3)
+    with pytest.raises(AttributeError):
+        fastsim.Frames(box.chambers, 7, box.safety, PressureFrame, *slots)  # no __dict__
+    with pytest.raises(TypeError):
+        box._frames.next(1.0, 2.0)
 
 
 def test_the_load_columns_on_random_loads() -> None:

@@ -523,6 +523,312 @@ done:
     return result;
 }
 
+/* ---- Frames: a frame along the current stretch, in one call (issue 50, item 4) ----------
+ *
+ * SimBox.read's usual frame while a valve is open: a step along the current stretch of the
+ * gas physics (ChamberBank.hold), the next reading of the ramp the sensors computed for it
+ * (SensorBank.next_on_ramp), the frame, and the guard's usual decision on it
+ * (SafetyGuard.check_span: nothing tripped, every reading within the sensor's range, the
+ * highest plus the window's rise below the trip level). Every piece of state stays in the
+ * Python objects (their instance dicts, read and written here as their methods do), so every
+ * other path sees what it would have seen. Frames.next decides before it changes anything:
+ * None (nothing changed) wherever one of the four would not take its usual path; the caller
+ * then runs the Python path, which decides the same (tests/box/test_fastsim.py). */
+
+typedef struct {
+    PyObject_HEAD
+    PyObject *ch, *se, *gu;          /* the instance dicts of the chambers, sensors and guard */
+    PyObject *guard;                 /* the guard itself (the caller checks it is the box's) */
+    PyObject *frame_type, *set_t, *set_p, *set_s; /* PressureFrame and its slots */
+    Py_ssize_t window;               /* the guard's deques' maxlen */
+} Frames;
+
+static PyObject *k_path, *k_pos, *k_valve_key, *k_supply, *k_stretch_dt, *k_solved,
+    *k_solve_count, *k_i, *k_ramp_next, *k_ramp_key, *k_ramp_end, *k_ramp, *k_ramp_start,
+    *k_ramp_lo, *k_ramp_hi, *k_supply_noise, *k_same, *k_span, *k_times, *k_lows, *k_history,
+    *k_any_tripped, *k_min_pa, *k_max_pa, *k_trip_pa, *k_append;
+
+static int intern_keys(void)
+{
+#define K(var, text)                                   \
+    if ((var = PyUnicode_InternFromString(text)) == NULL) \
+        return -1;
+    K(k_path, "_path") K(k_pos, "_pos") K(k_valve_key, "_valve_key") K(k_supply, "_supply")
+    K(k_stretch_dt, "_stretch_dt") K(k_solved, "solved") K(k_solve_count, "solve_count")
+    K(k_i, "_i") K(k_ramp_next, "_ramp_next") K(k_ramp_key, "_ramp_key")
+    K(k_ramp_end, "_ramp_end") K(k_ramp, "_ramp") K(k_ramp_start, "_ramp_start")
+    K(k_ramp_lo, "_ramp_lo") K(k_ramp_hi, "_ramp_hi") K(k_supply_noise, "_supply_noise")
+    K(k_same, "_same") K(k_span, "span") K(k_times, "_times") K(k_lows, "_lows")
+    K(k_history, "_history") K(k_any_tripped, "_any_tripped") K(k_min_pa, "_min_pa")
+    K(k_max_pa, "_max_pa") K(k_trip_pa, "_trip_pa") K(k_append, "append")
+#undef K
+    return 0;
+}
+
+static void frames_dealloc(Frames *f)
+{
+    Py_XDECREF(f->ch);
+    Py_XDECREF(f->se);
+    Py_XDECREF(f->gu);
+    Py_XDECREF(f->guard);
+    Py_XDECREF(f->frame_type);
+    Py_XDECREF(f->set_t);
+    Py_XDECREF(f->set_p);
+    Py_XDECREF(f->set_s);
+    Py_TYPE(f)->tp_free((PyObject *)f);
+}
+
+static PyObject *instance_dict(PyObject *obj)
+{
+    PyObject *d = PyObject_GenericGetDict(obj, NULL);
+    if (d != NULL && !PyDict_CheckExact(d)) {
+        Py_DECREF(d);
+        PyErr_SetString(PyExc_TypeError, "Frames: an object without a plain instance dict");
+        return NULL;
+    }
+    return d;
+}
+
+/* Frames(chambers, sensors, guard, frame_type, t_slot, pressures_slot, supply_slot) */
+static PyObject *frames_new(PyTypeObject *type, PyObject *args, PyObject *kw)
+{
+    PyObject *ch, *se, *gu, *ft, *st, *sp, *ss;
+    if (!PyArg_ParseTuple(args, "OOOOOOO", &ch, &se, &gu, &ft, &st, &sp, &ss))
+        return NULL;
+    if (!PyType_Check(ft) || Py_TYPE(st)->tp_descr_set == NULL ||
+        Py_TYPE(sp)->tp_descr_set == NULL || Py_TYPE(ss)->tp_descr_set == NULL) {
+        PyErr_SetString(PyExc_TypeError, "Frames: a frame type and three settable slots");
+        return NULL;
+    }
+    Frames *f = (Frames *)type->tp_alloc(type, 0);
+    if (f == NULL)
+        return NULL;
+    f->ch = instance_dict(ch);
+    f->se = f->ch ? instance_dict(se) : NULL;
+    f->gu = f->se ? instance_dict(gu) : NULL;
+    if (f->gu == NULL) {
+        Py_DECREF(f);
+        return NULL;
+    }
+    f->guard = Py_NewRef(gu);
+    f->frame_type = Py_NewRef(ft);
+    f->set_t = Py_NewRef(st);
+    f->set_p = Py_NewRef(sp);
+    f->set_s = Py_NewRef(ss);
+    PyObject *times = PyDict_GetItemWithError(f->gu, k_times);
+    PyObject *maxlen = times ? PyObject_GetAttrString(times, "maxlen") : NULL;
+    f->window = maxlen && maxlen != Py_None ? PyLong_AsSsize_t(maxlen) : -1;
+    Py_XDECREF(maxlen);
+    if (f->window < 2) {
+        if (!PyErr_Occurred())
+            PyErr_SetString(PyExc_ValueError, "Frames: the guard's window must hold >= 2");
+        Py_DECREF(f);
+        return NULL;
+    }
+    return (PyObject *)f;
+}
+
+/* A Python int attribute as a C integer; 0 (with *ok cleared) where it is none. */
+static Py_ssize_t int_of(PyObject *d, PyObject *key, int *ok)
+{
+    PyObject *v = PyDict_GetItemWithError(d, key);
+    if (v == NULL || !PyLong_CheckExact(v)) {
+        *ok = 0;
+        return 0;
+    }
+    Py_ssize_t x = PyLong_AsSsize_t(v);
+    if (x == -1 && PyErr_Occurred()) {
+        PyErr_Clear();
+        *ok = 0;
+    }
+    return x;
+}
+
+/* A float attribute (a Python float or int) as a double; *ok cleared where it is neither. */
+static double float_of(PyObject *v, int *ok)
+{
+    if (v != NULL && PyFloat_Check(v))
+        return PyFloat_AS_DOUBLE(v);
+    if (v != NULL && PyLong_CheckExact(v)) {
+        double x = PyLong_AsDouble(v);
+        if (!(x == -1.0 && PyErr_Occurred()))
+            return x;
+        PyErr_Clear();
+    }
+    *ok = 0;
+    return 0.0;
+}
+
+/* Whether a != b as Python says (1), they are equal (0), or the comparison failed (-1). */
+static int differ(PyObject *a, PyObject *b)
+{
+    if (b == NULL)
+        return -1;
+    return PyObject_RichCompareBool(a, b, Py_NE);
+}
+
+static int set_int(PyObject *d, PyObject *key, Py_ssize_t x)
+{
+    PyObject *v = PyLong_FromSsize_t(x);
+    int r = v ? PyDict_SetItem(d, key, v) : -1;
+    Py_XDECREF(v);
+    return r;
+}
+
+/* The guard's usual frame (SafetyGuard.check_span's inline path), decided before the frame
+ * joins the window (its oldest low and time once it has: the deques' maxlen drops one): 1
+ * when it passes the frame (nothing trips), 0 when the guard must decide in Python, -1 on an
+ * error. */
+static int guard_passes(Frames *f, PyObject *t, double low, double high)
+{
+    PyObject *times = PyDict_GetItemWithError(f->gu, k_times);
+    PyObject *lows = PyDict_GetItemWithError(f->gu, k_lows);
+    PyObject *tripped = PyDict_GetItemWithError(f->gu, k_any_tripped);
+    if (times == NULL || lows == NULL || tripped != Py_False)
+        return 0;
+    int ok = 1;
+    double tt = float_of(t, &ok);
+    double min_pa = float_of(PyDict_GetItemWithError(f->gu, k_min_pa), &ok);
+    double max_pa = float_of(PyDict_GetItemWithError(f->gu, k_max_pa), &ok);
+    double trip_pa = float_of(PyDict_GetItemWithError(f->gu, k_trip_pa), &ok);
+    Py_ssize_t n = PyObject_Length(times);
+    if (!ok || n < 0 || PyObject_Length(lows) != n || !(low > min_pa && high < max_pa))
+        return PyErr_Occurred() ? -1 : 0;
+    double first_low = low, first_t = tt;
+    Py_ssize_t count = n + 1;
+    if (n > 0) {
+        PyObject *last = PySequence_GetItem(times, n - 1);
+        double last_t = float_of(last, &ok);
+        Py_XDECREF(last);
+        if (!ok || tt == last_t) /* the same frame again: the guard's own answer */
+            return PyErr_Occurred() ? -1 : 0;
+        Py_ssize_t k = n == f->window ? 1 : 0; /* full: the oldest drops out */
+        count = n == f->window ? n : n + 1;
+        if (k < n) {
+            PyObject *a = PySequence_GetItem(lows, k), *b = PySequence_GetItem(times, k);
+            first_low = float_of(a, &ok);
+            first_t = float_of(b, &ok);
+            Py_XDECREF(a);
+            Py_XDECREF(b);
+            if (!ok)
+                return PyErr_Occurred() ? -1 : 0;
+        }
+    }
+    double rise = tt > first_t ? (high - first_low) / (double)(count - 1) : 0.0;
+    if (!(rise <= 0.0)) /* a NaN rise (a NaN low in the window) fails the test below */
+        high += rise;
+    return high <= trip_pa;
+}
+
+static int append_to(PyObject *d, PyObject *key, PyObject *x)
+{
+    PyObject *q = PyDict_GetItemWithError(d, key);
+    if (q == NULL)
+        return -1;
+    PyObject *r = PyObject_CallMethodOneArg(q, k_append, x);
+    Py_XDECREF(r);
+    return r ? 0 : -1;
+}
+
+/* next(t, valve_key, supply) -> the frame, or None where the Python path must run. */
+static PyObject *frames_next(Frames *f, PyObject *const *args, Py_ssize_t nargs)
+{
+    if (nargs != 4) {
+        PyErr_SetString(PyExc_TypeError, "next(t, dt, valve_key, supply)");
+        return NULL;
+    }
+    PyObject *t = args[0], *dt = args[1], *valve_key = args[2], *supply = args[3];
+    PyObject *ch = f->ch, *se = f->se;
+    int ok = 1;
+    /* ChamberBank.hold: a stretch runs with these valves, supply and step, a row left */
+    PyObject *path = PyDict_GetItemWithError(ch, k_path);
+    if (path == NULL || path == Py_None)
+        goto none;
+    Py_ssize_t rows = PyObject_Length(path), pos = int_of(ch, k_pos, &ok);
+    if (rows < 0 || !ok || pos >= rows)
+        goto none;
+    if (differ(valve_key, PyDict_GetItemWithError(ch, k_valve_key)) != 0 ||
+        differ(supply, PyDict_GetItemWithError(ch, k_supply)) != 0 ||
+        differ(dt, PyDict_GetItemWithError(ch, k_stretch_dt)) != 0)
+        goto none;
+    /* SensorBank.next_on_ramp: the next reading of the ramp of this stretch, with its span */
+    Py_ssize_t key = int_of(ch, k_solve_count, &ok), i = int_of(se, k_i, &ok);
+    Py_ssize_t next = int_of(se, k_ramp_next, &ok), ramp_key = int_of(se, k_ramp_key, &ok);
+    Py_ssize_t end = int_of(se, k_ramp_end, &ok), start = int_of(se, k_ramp_start, &ok);
+    if (!ok || i != next || key != ramp_key || i >= end || i < start)
+        goto none;
+    PyObject *ramp = PyDict_GetItemWithError(se, k_ramp);
+    PyObject *lo = PyDict_GetItemWithError(se, k_ramp_lo);
+    PyObject *hi = PyDict_GetItemWithError(se, k_ramp_hi);
+    PyObject *noise = PyDict_GetItemWithError(se, k_supply_noise);
+    Py_ssize_t j = i - start;
+    if (ramp == NULL || ramp == Py_None || lo == NULL || !PyList_CheckExact(lo) || hi == NULL ||
+        !PyList_CheckExact(hi) || noise == NULL || !PyList_CheckExact(noise) ||
+        j >= PyList_GET_SIZE(lo) || j >= PyList_GET_SIZE(hi) || i >= PyList_GET_SIZE(noise))
+        goto none;
+    PyObject *low = PyList_GET_ITEM(lo, j), *high = PyList_GET_ITEM(hi, j);
+    double s = float_of(supply, &ok) + float_of(PyList_GET_ITEM(noise, i), &ok);
+    double lv = float_of(low, &ok), hv = float_of(high, &ok);
+    if (!ok)
+        goto none;
+    int passes = guard_passes(f, t, lv, hv);
+    if (passes <= 0)
+        return passes < 0 ? NULL : Py_NewRef(Py_None);
+    /* every test passed: the four steps' changes, in Python's order */
+    PyObject *row = PySequence_GetItem(ramp, j);
+    PyObject *sup = PyFloat_FromDouble(s);
+    PyObject *span = row ? PyTuple_Pack(3, row, low, high) : NULL;
+    PyObject *frame = NULL;
+    if (sup == NULL || span == NULL || set_int(ch, k_pos, pos + 1) < 0 ||
+        PyDict_SetItem(ch, k_solved, Py_False) < 0 || set_int(se, k_i, i + 1) < 0 ||
+        PyDict_SetItem(se, k_ramp_next, PyDict_GetItem(se, k_i)) < 0 ||
+        set_int(se, k_same, 0) < 0 || PyDict_SetItem(se, k_span, span) < 0 ||
+        append_to(f->gu, k_history, row) < 0 || append_to(f->gu, k_lows, low) < 0 ||
+        append_to(f->gu, k_times, t) < 0)
+        goto out;
+    PyTypeObject *tp = (PyTypeObject *)f->frame_type;
+    frame = tp->tp_alloc(tp, 0);
+    if (frame == NULL || Py_TYPE(f->set_t)->tp_descr_set(f->set_t, frame, t) < 0 ||
+        Py_TYPE(f->set_p)->tp_descr_set(f->set_p, frame, row) < 0 ||
+        Py_TYPE(f->set_s)->tp_descr_set(f->set_s, frame, sup) < 0)
+        Py_CLEAR(frame);
+out:
+    Py_XDECREF(row);
+    Py_XDECREF(sup);
+    Py_XDECREF(span);
+    return frame;
+none:
+    if (PyErr_Occurred())
+        return NULL;
+    return Py_NewRef(Py_None);
+}
+
+static PyObject *frames_guard(Frames *f, void *closure) { return Py_NewRef(f->guard); }
+
+static PyMethodDef frames_methods[] = {
+    {"next", (PyCFunction)(void (*)(void))frames_next, METH_FASTCALL,
+     "next(t, dt, valve_key, supply) -> the frame along the current stretch with the guard's "
+     "usual decision taken, or None (nothing changed: run the Python path)."},
+    {NULL, NULL, 0, NULL},
+};
+
+static PyGetSetDef frames_getset[] = {
+    {"guard", (getter)frames_guard, NULL, "The guard whose window this cursor fills.", NULL},
+    {NULL, NULL, NULL, NULL, NULL},
+};
+
+static PyTypeObject FramesType = {
+    PyVarObject_HEAD_INIT(NULL, 0).tp_name = "softpad.box._fastsim.Frames",
+    .tp_basicsize = sizeof(Frames),
+    .tp_dealloc = (destructor)frames_dealloc,
+    .tp_flags = Py_TPFLAGS_DEFAULT,
+    .tp_doc = "Frames(chambers, sensors, guard, frame_type, t_slot, pressures_slot, "
+              "supply_slot): the simulated box's frame along a stretch in one call.",
+    .tp_methods = frames_methods,
+    .tp_getset = frames_getset,
+    .tp_new = frames_new,
+};
+
 static PyMethodDef methods[] = {
     {"solve", solve, METH_VARARGS,
      "solve(p, amount, cols, slopes, grid, drop, creep, patm, vt, p_out, dn_dp_out) -> bool: "
@@ -555,4 +861,12 @@ static struct PyModuleDef module = {
     methods,
 };
 
-PyMODINIT_FUNC PyInit__fastsim(void) { return PyModule_Create(&module); }
+PyMODINIT_FUNC PyInit__fastsim(void)
+{
+    if (intern_keys() < 0 || PyType_Ready(&FramesType) < 0)
+        return NULL;
+    PyObject *m = PyModule_Create(&module);
+    if (m != NULL && PyModule_AddObjectRef(m, "Frames", (PyObject *)&FramesType) < 0)
+        Py_CLEAR(m);
+    return m;
+}

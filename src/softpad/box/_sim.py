@@ -27,6 +27,7 @@ from softpad.box._base import (
     ValveCommand,
     unchecked_frame,
 )
+from softpad.box._safety import SafetyGuard
 from softpad.box._sim_faults import (
     DEFAULT_LEAK_M2,
     FAULT_KINDS,
@@ -383,6 +384,11 @@ class SimBox(Box):
         #: The outermost layer around this box found passing every frame on unchanged (it
         #: then lets this box read and check the frames itself; softpad.box._sim_layers).
         self._passed_by: object = None
+        #: The compiled kernels (None: not built), and the frame along a stretch in one call
+        #: for the current guard (made by the first read; None: the Python path alone).
+        self._kernel = _fastsim
+        self._frames: Any = None
+        self._frames_for: SafetyGuard | None = None
 
     def _start_inflated(self, pressure_pa: float) -> None:
         """Every module at ``pressure_pa`` under the world's loads (0..5 kPa)."""
@@ -460,8 +466,32 @@ class SimBox(Box):
         highest value where the sensors computed them for a block of frames at once."""
         if self._closed:
             self._check_open()  # raises
-        frame = self._read()
         guard = self._guard if self._guard is not None else self.safety
+        if self._frames_for is not guard:  # the first read, or a new guard (new limits)
+            self._frames_for, self._frames = guard, self._new_frames(guard)
+        frames = self._frames
+        if frames is None:
+            return self._checked(self._read(), guard)
+        dt = self._dt
+        t = self._t + dt
+        self._t = t
+        if t >= self._faults.next_s:
+            self._activate_faults()
+        world = self.world
+        world.step(dt, self._heights)
+        loads = world.module_loads_n()
+        key = loads.tobytes()
+        dist = self.disturbances
+        if key == self._loads_key and (dist is None or t < dist.next_s):
+            # a step along the stretch, its reading, the frame and the guard's usual decision
+            # in one compiled call; None: not the usual frame, nothing changed
+            frame = frames.next(t, dt, self._valve_count, self._supply_true)
+            if frame is not None:
+                return frame  # type: ignore[no-any-return]
+        return self._checked(self._after_step(t, dt, loads, key), guard)
+
+    def _checked(self, frame: PressureFrame, guard: SafetyGuard) -> PressureFrame:
+        """``frame`` after the guard's check (the channels it trips vented)."""
         span = self.sensors.span
         if span is not None and span[0] is frame.pressures_pa:  # not replaced by a layer
             new = guard.check_span(frame.t_s, span[0], span[1], span[2])
@@ -470,6 +500,15 @@ class SimBox(Box):
         for ch in new:
             self._vent(ch)
         return frame
+
+    def _new_frames(self, guard: SafetyGuard) -> Any:
+        """The compiled frame along a stretch (:class:`softpad.box._fastsim.Frames`) for
+        ``guard``; None without the kernel, or where a subclass reads its own way."""
+        kernel = getattr(self._kernel, "Frames", None)
+        if kernel is None or type(self)._read is not SimBox._read:
+            return None
+        slots = (PressureFrame.__dict__[n] for n in ("t_s", "pressures_pa", "supply_pa"))
+        return kernel(self.chambers, self.sensors, guard, PressureFrame, *slots)
 
     def _read(self) -> PressureFrame:
         dt = self._dt
@@ -480,9 +519,14 @@ class SimBox(Box):
         world = self.world
         world.step(dt, self._heights)
         loads = world.module_loads_n()
+        return self._after_step(t, dt, loads, loads.tobytes())
+
+    def _after_step(
+        self, t: float, dt: float, loads: NDArray[np.float64], key: bytes
+    ) -> PressureFrame:
+        """The frame at ``t`` once the world has stepped (its ``loads``, their bytes ``key``)."""
         # the loads equal those of the last step (the chambers' loads_n) iff their bytes do;
         # far cheaper than np.array_equal on the hot path
-        key = loads.tobytes()
         dist = self.disturbances
         chambers = self.chambers
         if (
