@@ -302,29 +302,43 @@ def _counting_frames(box: SimBox, count: list[int]) -> Callable[[object], object
     return counting
 
 
-def _on_a_stretch(frames: int = 45, trip_pa: float | None = None, fused: bool = True) -> SimBox:
+def _on_a_stretch(
+    frames: int = 45,
+    level: float | None = None,
+    fused: bool = True,
+    what: str = "trip",
+    held: int | None = None,
+) -> SimBox:
     """A 1 kHz box with every valve open, ``frames`` frames read (the compiled cursor's usual
-    frame next), its guard's trip level ``trip_pa`` (None: as it is) from then on; the
-    compiled cursor not made where not ``fused``."""
+    frame next); then channel index ``held`` tripped (None: none) and the guard's ``what``
+    level (trip or release) at ``level`` (None: as it is); the compiled cursor not made where
+    not ``fused``."""
     box = SimBox(AnalyticWorld(), sample_rate_hz=1000.0, seed=0, initial_pressure_pa=500.0)
     if not fused:
         box._new_frames = lambda guard: None  # type: ignore[method-assign]
     box.set_valves(["inflate"] * 8)
     for _ in range(frames):
         box.read()
-    if trip_pa is not None:
-        box.safety._trip_pa = trip_pa
+    guard = box.safety
+    if held is not None:
+        guard.tripped[held] = True
+        guard._held = guard.tripped.tolist()
+        guard._free = [not x for x in guard._held]
+        guard._any_tripped = True
+        guard._release_pa = 100.0 if what == "trip" else guard._release_pa  # stays tripped
+    if level is not None:
+        setattr(guard, f"_{what}_pa", level)
     return box
 
 
-def _boundary(frames: int, exact: bool) -> tuple[float, float]:
-    """The trip levels (lo, hi), adjacent doubles, between which the Python path's next frame
+def _boundary(frames: int, exact: bool, what: str, held: int | None) -> tuple[float, float]:
+    """The levels (lo, hi), adjacent doubles, between which the Python path's next frame
     changes from tripping a channel (``exact``: from running the guard's exact per-channel
-    test) at lo to not at hi."""
+    test) to not (trip levels: at lo, not at hi; release levels: at hi, not at lo)."""
     lo, hi = 0.0, 9000.0
     for _ in range(80):
         mid = 0.5 * (lo + hi)
-        box = _on_a_stretch(frames, mid, fused=False)
+        box = _on_a_stretch(frames, mid, False, what, held)
         calls: list[int] = []
         full_test = box.safety._check_arrays
 
@@ -337,32 +351,74 @@ def _boundary(frames: int, exact: bool) -> tuple[float, float]:
         box.safety._check_arrays = counted  # type: ignore[method-assign]
         box.read()
         turned = bool(calls) if exact else bool(box.safety.trips)
-        lo, hi = (mid, hi) if turned else (lo, mid)
-    assert 500.0 < hi < 3000.0 and np.nextafter(lo, hi) == hi
+        lo, hi = (mid, hi) if turned is (what == "trip") else (lo, mid)
+    assert 0.0 < lo and hi < 9000.0 and np.nextafter(lo, hi) == hi
     return lo, hi
 
 
-@pytest.mark.parametrize("frames", [3, 6, 45])
-def test_the_compiled_frame_trips_where_the_guard_does(frames: int) -> None:
-    """Around the trip level where the guard's exact test trips a channel, and where its
-    usual decision (the highest reading plus the window's rise) gives way to that test (both
-    found by bisection on the Python path), the compiled frame's box trips the same channels
-    with the same frames, and takes the usual frame itself exactly where the Python path
-    does; the window not yet full (3, 6 frames) and full (45)."""
-    trip_lo, trip_hi = _boundary(frames, exact=False)
-    exact_lo, exact_hi = _boundary(frames, exact=True)
-    assert trip_hi <= exact_hi
-    for level in (trip_lo, trip_hi, trip_hi - 1.0, exact_lo, exact_hi, exact_hi + 1.0):
+@pytest.mark.parametrize(
+    ("frames", "what", "held"),
+    [(3, "trip", None), (4, "trip", None), (6, "trip", None), (8, "trip", None),
+     (18, "trip", None), (45, "trip", None), (45, "trip", 2), (6, "release", 2),
+     (45, "release", 0)],
+)  # fmt: skip
+def test_the_compiled_frame_trips_where_the_guard_does(
+    frames: int, what: str, held: int | None
+) -> None:
+    """Around the level where the guard's exact test trips (or releases) a channel, and where
+    its quick bound (no tripped channel below the release level, the highest reading of an
+    untripped one plus the window's rise below the trip level) gives way to that test (both
+    found by bisection on the Python path), the compiled frame's box trips and releases the
+    same channels with the same frames, and takes the frame itself exactly where nothing
+    trips or is released; the window not yet full (3, 6 frames) and full (45), a channel
+    tripped or not."""
+    exact_lo, exact_hi = _boundary(frames, True, what, held)
+    levels = [exact_lo, exact_hi, exact_hi + 1.0, exact_lo - 1.0]
+    if what == "trip":
+        trip_lo, trip_hi = _boundary(frames, False, what, held)
+        assert trip_hi <= exact_hi
+        levels += [trip_lo, trip_hi, trip_hi - 1.0]
+    for level in levels:
         got, count = [], [0]
         for fused in (False, True):
-            box = _on_a_stretch(frames, level, fused)
+            box = _on_a_stretch(frames, level, fused, what, held)
             box._frames_for = None  # made again by the next read, counted
             box._new_frames = _counting_frames(box, count)  # type: ignore[method-assign]
             frame = box.read()
-            got.append((box.safety.trips, frame.pressures_pa.tobytes(), frame.supply_pa))
+            guard = box.safety
+            got.append((guard.trips, guard._held, frame.pressures_pa.tobytes(), frame.supply_pa))
         assert got[0] == got[1], level
-        assert bool(got[0][0]) is (level <= trip_lo)
-        assert count[0] == (level >= exact_hi), level  # the compiled frame: the usual one
+        # the compiled frame wherever the guard trips and releases nothing
+        usual = level >= trip_hi if what == "trip" else level <= exact_lo
+        assert count[0] == usual, level
+        if what == "trip":
+            assert bool(got[0][0]) is (level <= trip_lo)
+        else:  # released at and above exact_hi (the held channel untripped)
+            assert got[0][1][held] is (level <= exact_lo)  # type: ignore[index]
+
+
+def test_the_exact_test_rounds_as_the_guard() -> None:
+    """The exact per-channel test's rise (the window's change times 1 / (frames - 1), as
+    SafetyGuard._check_arrays; its quick bound divides by frames - 1) puts the trip level
+    where the guard's does: with the window's oldest readings all at a level c for which the
+    two roundings differ in the frame's highest reading plus its rise, the compiled frame at
+    that trip level, the Python path's trip one ulp below it."""
+    box = _on_a_stretch(45)
+    sensors = box.sensors
+    v = sensors._ramp[sensors._i - sensors._ramp_start].tolist()
+    top = max(v)
+    c = next(x for x in np.linspace(-1900.0, -100.0, 1801).tolist()
+             if top + (top - x) / 9 > top + (top - x) * (1.0 / 9))  # fmt: skip
+    level = top + (top - c) * (1.0 / 9)
+    for trip_pa, compiled in ((level, True), (np.nextafter(level, 0.0), False)):
+        count = [0]
+        b = _on_a_stretch(45, trip_pa)
+        b.safety._history[1] = [c] * 8  # the window's oldest with the next frame
+        b.safety._lows[1] = c
+        b._frames_for = None
+        b._new_frames = _counting_frames(b, count)  # type: ignore[method-assign]
+        b.read()
+        assert count[0] == compiled and bool(b.safety.trips) is not compiled, trip_pa
 
 
 def _state(box: SimBox) -> bytes:
@@ -379,7 +435,7 @@ def _state(box: SimBox) -> bytes:
 
 @pytest.mark.parametrize(
     "change",
-    ["supply", "valves", "dt", "time_again", "tripped", "over_range", "no_spans", "block_end"],
+    ["supply", "valves", "dt", "time_again", "released", "over_range", "no_spans", "block_end"],
 )
 def test_the_compiled_frame_declines_what_is_not_its_usual_frame(change: str) -> None:
     """Frames.next returns None and changes nothing wherever the hold, the ramp or the
@@ -399,8 +455,8 @@ def test_the_compiled_frame_declines_what_is_not_its_usual_frame(change: str) ->
         args[1] = dt * 2
     elif change == "time_again":
         args[0] = guard._times[-1]
-    elif change == "tripped":
-        guard._any_tripped = True
+    elif change == "released":  # a tripped channel reads below its release level
+        guard._any_tripped, guard._held = True, [True] + [False] * 7
     elif change == "over_range":
         guard._max_pa = -1e9
     elif change == "no_spans":

@@ -528,8 +528,9 @@ done:
  * SimBox.read's usual frame while a valve is open: a step along the current stretch of the
  * gas physics (ChamberBank.hold), the next reading of the ramp the sensors computed for it
  * (SensorBank.next_on_ramp), the frame, and the guard's usual decision on it
- * (SafetyGuard.check_span: nothing tripped, every reading within the sensor's range, the
- * highest plus the window's rise below the trip level). Every piece of state stays in the
+ * (SafetyGuard.check_span and _update: every reading within the sensor's range, no tripped
+ * channel below its release level, the highest reading of an untripped channel plus the
+ * window's rise below the trip level). Every piece of state stays in the
  * Python objects (their instance dicts, read and written here as their methods do), so every
  * other path sees what it would have seen. Frames.next decides before it changes anything:
  * None (nothing changed) wherever one of the four would not take its usual path; the caller
@@ -546,7 +547,7 @@ typedef struct {
 static PyObject *k_path, *k_pos, *k_valve_key, *k_supply, *k_stretch_dt, *k_solved,
     *k_solve_count, *k_i, *k_ramp_next, *k_ramp_key, *k_ramp_end, *k_ramp, *k_ramp_start,
     *k_ramp_lo, *k_ramp_hi, *k_supply_noise, *k_same, *k_span, *k_times, *k_lows, *k_history,
-    *k_any_tripped, *k_min_pa, *k_max_pa, *k_trip_pa, *k_append;
+    *k_any_tripped, *k_min_pa, *k_max_pa, *k_trip_pa, *k_append, *k_held, *k_release_pa, *k_tripped;
 
 static int intern_keys(void)
 {
@@ -560,7 +561,8 @@ static int intern_keys(void)
     K(k_ramp_lo, "_ramp_lo") K(k_ramp_hi, "_ramp_hi") K(k_supply_noise, "_supply_noise")
     K(k_same, "_same") K(k_span, "span") K(k_times, "_times") K(k_lows, "_lows")
     K(k_history, "_history") K(k_any_tripped, "_any_tripped") K(k_min_pa, "_min_pa")
-    K(k_max_pa, "_max_pa") K(k_trip_pa, "_trip_pa") K(k_append, "append")
+    K(k_max_pa, "_max_pa") K(k_trip_pa, "_trip_pa") K(k_append, "append") K(k_held, "_held")
+    K(k_release_pa, "_release_pa") K(k_tripped, "tripped")
 #undef K
     return 0;
 }
@@ -675,16 +677,128 @@ static int set_int(PyObject *d, PyObject *key, Py_ssize_t x)
     return r;
 }
 
+#define MAX_CHANNELS 256
+
+/* The values of a row (a float64 buffer, or a list of floats) into x (at most MAX_CHANNELS):
+ * their number, or -1 where the row is neither (no exception set). */
+static Py_ssize_t values_of(PyObject *row, double *x)
+{
+    if (PyList_CheckExact(row)) {
+        Py_ssize_t n = PyList_GET_SIZE(row);
+        if (n > MAX_CHANNELS)
+            return -1;
+        for (Py_ssize_t k = 0; k < n; k++) {
+            PyObject *v = PyList_GET_ITEM(row, k);
+            if (!PyFloat_Check(v))
+                return -1;
+            x[k] = PyFloat_AS_DOUBLE(v);
+        }
+        return n;
+    }
+    Py_buffer v;
+    if (PyObject_GetBuffer(row, &v, PyBUF_C_CONTIGUOUS | PyBUF_FORMAT) < 0) {
+        PyErr_Clear();
+        return -1;
+    }
+    const char *fmt = v.format;
+    Py_ssize_t n = v.len / 8;
+    int ok = v.itemsize == 8 && fmt != NULL && (fmt[0] == 'd' || (fmt[0] == '<' && fmt[1] == 'd'))
+             && n <= MAX_CHANNELS;
+    if (ok)
+        memcpy(x, v.buf, n * sizeof(double));
+    PyBuffer_Release(&v);
+    return ok ? n : -1;
+}
+
+/* SafetyGuard._check_arrays on the frame ``row`` with the window's oldest row ``first``
+ * (``count`` frames spanning ``span`` seconds once the frame is in; limits: the sensor's
+ * range and the trip level): 1 where no channel trips or is released (the test changes
+ * nothing), 0 otherwise or where the state is not as expected, -1 on an error. */
+static int exact_passes(Frames *f, PyObject *row, PyObject *first, Py_ssize_t count, double span,
+                        const double *limits)
+{
+    double x[MAX_CHANNELS], x0[MAX_CHANNELS];
+    Py_ssize_t n = values_of(row, x);
+    if (n < 0 || values_of(first, x0) != n)
+        return 0;
+    PyObject *tripped = PyDict_GetItemWithError(f->gu, k_tripped);
+    PyObject *release = PyDict_GetItemWithError(f->gu, k_release_pa);
+    int ok = 1;
+    double release_pa = float_of(release, &ok);
+    Py_buffer b;
+    if (!ok || tripped == NULL || PyObject_GetBuffer(tripped, &b, PyBUF_C_CONTIGUOUS | PyBUF_FORMAT) < 0) {
+        PyErr_Clear();
+        return 0;
+    }
+    int r = b.itemsize == 1 && b.format != NULL && strcmp(b.format, "?") == 0 && b.len == n;
+    const unsigned char *held = (const unsigned char *)b.buf;
+    double per_frame = count >= 2 && span > 0 ? 1.0 / (double)(count - 1) : 0.0;
+    for (Py_ssize_t k = 0; r && k < n; k++) {
+        double v = x[k];
+        int invalid = !isfinite(v) || v <= limits[0] || v >= limits[1];
+        double rise = (v - x0[k]) * per_frame; /* the window's mean rise per frame */
+        rise = isfinite(rise) && rise > 0.0 ? rise : 0.0;
+        if (held[k] && v < release_pa && !invalid)
+            r = 0; /* released */
+        else if ((invalid || v + rise > limits[2]) && !held[k])
+            r = 0; /* tripped */
+    }
+    PyBuffer_Release(&b);
+    return r;
+}
+
+/* SafetyGuard._update's frame with a channel tripped (every reading within the sensor's
+ * range, so finite): 1 with *high the highest reading of the untripped channels (-inf: none)
+ * where no tripped channel reads below the release level, 0 where one does (the exact test
+ * releases it) or the state is not as expected, -1 on an error. */
+static int untripped_high(Frames *f, PyObject *row, double *high)
+{
+    PyObject *held = PyDict_GetItemWithError(f->gu, k_held);
+    PyObject *release = PyDict_GetItemWithError(f->gu, k_release_pa);
+    if (held == NULL || !PyList_CheckExact(held) || release == NULL)
+        return PyErr_Occurred() ? -1 : 0;
+    int ok = 1;
+    double release_pa = float_of(release, &ok);
+    Py_buffer v;
+    if (!ok || PyObject_GetBuffer(row, &v, PyBUF_C_CONTIGUOUS | PyBUF_FORMAT) < 0) {
+        PyErr_Clear();
+        return 0;
+    }
+    const char *fmt = v.format;
+    Py_ssize_t n = v.len / 8;
+    int r = 0;
+    if (v.itemsize == 8 && fmt != NULL && (fmt[0] == 'd' || (fmt[0] == '<' && fmt[1] == 'd')) &&
+        PyList_GET_SIZE(held) == n) {
+        const double *x = (const double *)v.buf;
+        double top = -INFINITY;
+        r = 1;
+        for (Py_ssize_t k = 0; k < n; k++) {
+            PyObject *h = PyList_GET_ITEM(held, k);
+            if (h == Py_True) {
+                if (x[k] < release_pa)
+                    r = 0; /* released by the exact test */
+            } else if (h == Py_False) {
+                top = x[k] > top ? x[k] : top;
+            } else {
+                r = 0;
+            }
+        }
+        *high = top;
+    }
+    PyBuffer_Release(&v);
+    return r;
+}
+
 /* The guard's usual frame (SafetyGuard.check_span's inline path), decided before the frame
  * joins the window (its oldest low and time once it has: the deques' maxlen drops one): 1
  * when it passes the frame (nothing trips), 0 when the guard must decide in Python, -1 on an
  * error. */
-static int guard_passes(Frames *f, PyObject *t, double low, double high)
+static int guard_passes(Frames *f, PyObject *t, PyObject *row, double low, double high)
 {
     PyObject *times = PyDict_GetItemWithError(f->gu, k_times);
     PyObject *lows = PyDict_GetItemWithError(f->gu, k_lows);
     PyObject *tripped = PyDict_GetItemWithError(f->gu, k_any_tripped);
-    if (times == NULL || lows == NULL || tripped != Py_False)
+    if (times == NULL || lows == NULL || (tripped != Py_False && tripped != Py_True))
         return 0;
     int ok = 1;
     double tt = float_of(t, &ok);
@@ -694,6 +808,11 @@ static int guard_passes(Frames *f, PyObject *t, double low, double high)
     Py_ssize_t n = PyObject_Length(times);
     if (!ok || n < 0 || PyObject_Length(lows) != n || !(low > min_pa && high < max_pa))
         return PyErr_Occurred() ? -1 : 0;
+    if (tripped == Py_True) { /* _update's test: no tripped channel released, the others' high */
+        int r = untripped_high(f, row, &high);
+        if (r <= 0)
+            return r;
+    }
     double first_low = low, first_t = tt;
     Py_ssize_t count = n + 1;
     if (n > 0) {
@@ -717,7 +836,20 @@ static int guard_passes(Frames *f, PyObject *t, double low, double high)
     double rise = tt > first_t ? (high - first_low) / (double)(count - 1) : 0.0;
     if (!(rise <= 0.0)) /* a NaN rise (a NaN low in the window) fails the test below */
         high += rise;
-    return high <= trip_pa;
+    if (high <= trip_pa)
+        return 1;
+    /* the bound does not clear the frame: the exact per-channel test, which passes it where
+     * it trips and releases nothing (SafetyGuard._check_arrays then changes nothing) */
+    PyObject *history = PyDict_GetItemWithError(f->gu, k_history);
+    if (history == NULL || PyObject_Length(history) != n)
+        return PyErr_Occurred() ? -1 : 0;
+    PyObject *first = n == 0 ? Py_NewRef(row) : PySequence_GetItem(history, n == f->window);
+    if (first == NULL)
+        return -1;
+    double limits[4] = {min_pa, max_pa, trip_pa, 0.0};
+    int r = exact_passes(f, row, first, count, tt - first_t, limits);
+    Py_DECREF(first);
+    return r;
 }
 
 static int append_to(PyObject *d, PyObject *key, PyObject *x)
@@ -771,13 +903,17 @@ static PyObject *frames_next(Frames *f, PyObject *const *args, Py_ssize_t nargs)
     double lv = float_of(low, &ok), hv = float_of(high, &ok);
     if (!ok)
         goto none;
-    int passes = guard_passes(f, t, lv, hv);
-    if (passes <= 0)
-        return passes < 0 ? NULL : Py_NewRef(Py_None);
-    /* every test passed: the four steps' changes, in Python's order */
     PyObject *row = PySequence_GetItem(ramp, j);
+    if (row == NULL)
+        return NULL;
+    int passes = guard_passes(f, t, row, lv, hv);
+    if (passes <= 0) {
+        Py_DECREF(row);
+        return passes < 0 ? NULL : Py_NewRef(Py_None);
+    }
+    /* every test passed: the four steps' changes, in Python's order */
     PyObject *sup = PyFloat_FromDouble(s);
-    PyObject *span = row ? PyTuple_Pack(3, row, low, high) : NULL;
+    PyObject *span = PyTuple_Pack(3, row, low, high);
     PyObject *frame = NULL;
     if (sup == NULL || span == NULL || set_int(ch, k_pos, pos + 1) < 0 ||
         PyDict_SetItem(ch, k_solved, Py_False) < 0 || set_int(se, k_i, i + 1) < 0 ||
