@@ -199,6 +199,50 @@ def test_crossings_and_readings_on_random_arrays() -> None:
     assert fastsim.readings(true, noise, 2.44, 1 / 2.44, -2e3, 1e4, out) is None
 
 
+def test_one_reading_against_the_sensor_bank() -> None:
+    """``reading`` (a changed box's sample) against SensorBank._quantise on random rows, and
+    what it leaves to it (not finite, a zero bound, arrays not as expected)."""
+    from softpad.sim import SensorBank, SensorParams
+
+    rng = np.random.default_rng(4)
+    for q, lo, hi in ((2.44, -2e3, 10e3), (0.0, -2e3, 10e3), (2.44, -5.0, 7.0)):
+        bank = SensorBank(8, 0.01, SensorParams(quantization_pa=q, range_min_pa=lo,
+                                                range_max_pa=hi), rng)  # fmt: skip
+        noise = rng.normal(0, 3, (50, 8))
+        for i in range(50):
+            true = rng.normal(0, 30, 8).round(rng.integers(0, 3))
+            out = np.empty(8)
+            assert fastsim.reading(true, noise, i, bank._q, bank._inv_q, lo, hi, out)
+            assert out.tobytes() == bank._quantise(true + noise[i]).tobytes()
+    true, out = np.zeros(8), np.empty(8)
+    assert not fastsim.reading(true, noise, 2, 2.44, 1 / 2.44, 0.0, 1e4, out)  # a zero bound
+    assert not fastsim.reading(true, noise, 50, 2.44, 1 / 2.44, -2e3, 1e4, out)  # no row 50
+    assert not fastsim.reading(true[:7], noise, 2, 2.44, 1 / 2.44, -2e3, 1e4, out)
+    assert not fastsim.reading(true.astype(np.float32), noise, 2, 2.44, 0.4, -2e3, 1e4, out)
+    true[3] = np.inf
+    assert not fastsim.reading(true, noise, 2, 2.44, 1 / 2.44, -2e3, 1e4, out)
+
+
+@pytest.mark.parametrize("seed", range(2))
+def test_sealed_modules_under_changing_loads_give_the_reference_bits(
+    seed: int, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Every valve closed, presses changing every few frames (a held object's loads): each
+    load change's reading from ``reading``, the reference's bits (as the trials' hold)."""
+    frames = 500
+    rng = np.random.default_rng(50 + seed)
+    events: dict[int, tuple[str, object]] = {}
+    for f in range(0, frames, int(rng.integers(1, 4))):
+        centre = (float(rng.uniform(0.0, 0.135)), float(rng.uniform(0.0, 0.09)))
+        events[f] = ("press", (centre, (0.04, 0.04), float(rng.uniform(0.0, 3.0))))
+    calls = dict.fromkeys(["reading"], 0)
+    ref = _run(_box(seed, False, monkeypatch, initial_pressure_pa=1100.0), events, frames)
+    monkeypatch.setattr(sim_module._fastsim, "reading", _counted(calls, "reading"))
+    got = _run(_box(seed, True, monkeypatch, initial_pressure_pa=1100.0), events, frames)
+    assert calls["reading"] > 100, calls
+    assert ref == got
+
+
 def test_bad_arrays_are_refused() -> None:
     out = np.empty(2)
     with pytest.raises(TypeError, match="float64"):

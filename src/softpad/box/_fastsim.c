@@ -446,6 +446,48 @@ done:
     return result;
 }
 
+/* reading(true, noise, i, q, inv_q, lo, hi, out) -> bool: one reading of every channel, as
+ * SensorBank.sample's (true + noise row i, times 1/q, rounded half to even, times q, clipped
+ * to [lo, hi]; q = 0: not quantised) into out. False (out not to be used) where an array is
+ * not a float64 one of the expected size (C-contiguous; noise: rows of the channels), i is
+ * not a row of it, a value is not finite or a bound is zero: the reference's then. */
+static PyObject *reading(PyObject *self, PyObject *args)
+{
+    PyObject *o[3];
+    Py_ssize_t i;
+    double q, inv_q, lo, hi;
+    if (!PyArg_ParseTuple(args, "OOnddddO", &o[0], &o[1], &i, &q, &inv_q, &lo, &hi, &o[2]))
+        return NULL;
+    Buf b[3];
+    memset(b, 0, sizeof b);
+    int ok = take(o[0], &b[0], -1, 0, 0, "true") == 0;
+    Py_ssize_t n = ok ? b[0].view.len / 8 : 0;
+    ok = ok && n > 0 && take(o[1], &b[1], -1, 0, 0, "noise") == 0 &&
+         take(o[2], &b[2], n, 1, 0, "out") == 0 && b[1].view.len % (n * 8) == 0 && i >= 0 &&
+         i < b[1].view.len / (n * 8);
+    if (!ok)
+        PyErr_Clear();
+    ok = ok && isfinite(q) && isfinite(inv_q) && !isnan(lo) && !isnan(hi) && lo != 0.0 &&
+         hi != 0.0;
+    if (ok) {
+        const double *tp = data(&b[0]), *np_ = data(&b[1]) + i * n;
+        double *out = data(&b[2]);
+        for (Py_ssize_t j = 0; ok && j < n; j++) {
+            double x = tp[j] + np_[j];
+            if (q != 0.0) {
+                x = x * inv_q;
+                x = nearbyint(x);
+                x *= q;
+            }
+            ok = isfinite(x);
+            x = x >= lo ? x : lo;
+            out[j] = x <= hi ? x : hi;
+        }
+    }
+    release(b, 3);
+    return PyBool_FromLong(ok);
+}
+
 /* Where load f lies on the load grid (TabulatedCharacteristic._locate, not extrapolating):
  * the column j and the fraction u towards column j + 1 (numpy.maximum/minimum's values). */
 static void locate(const double *grid, Py_ssize_t n, double f, Py_ssize_t *j, double *u)
@@ -984,6 +1026,9 @@ static PyMethodDef methods[] = {
     {"readings", readings, METH_VARARGS,
      "readings(true, noise, q, inv_q, lo, hi, out) -> (lows, highs) or None: quantised, "
      "clipped readings into out and each row's lowest and highest."},
+    {"reading", reading, METH_VARARGS,
+     "reading(true, noise, i, q, inv_q, lo, hi, out) -> bool: one quantised, clipped reading "
+     "of every channel into out; False: not decided here (the reference's)."},
     {"columns", columns, METH_VARARGS,
      "columns(f, loads, table, grid, area, cols_out, slopes_out, drop_out) -> 0, 1, 2: the "
      "table's columns at the loads f and their slopes (TabulatedCharacteristic._load_columns); "
