@@ -1,5 +1,6 @@
-"""The compiled parts: the box's over-pressure guard (src/softpad/box/_fastguard.c) and the
-simulated box's exact pressure solve (src/softpad/box/_fastsim.c).
+"""The compiled parts: the box's over-pressure guard (src/softpad/box/_fastguard.c), the
+simulated box's exact pressure solve (src/softpad/box/_fastsim.c) and the fault monitor's
+steady-rise rates (src/softpad/control/_fastmonitor.c).
 
 Everything else is in pyproject.toml. ``optional=True``: without a C compiler the package
 still installs, the box daemon runs its guard in Python only (it says so when it starts) and
@@ -20,6 +21,12 @@ setup(
         Extension(
             "softpad.box._fastsim",
             ["src/softpad/box/_fastsim.c"],
+            extra_compile_args=["-O2", "-std=c11", "-ffp-contract=off"],
+            optional=True,
+        ),
+        Extension(
+            "softpad.control._fastmonitor",
+            ["src/softpad/control/_fastmonitor.c"],
             extra_compile_args=["-O2", "-std=c11", "-ffp-contract=off"],
             optional=True,
         ),

@@ -68,3 +68,32 @@ def test_refill_between_samples_draws_the_same_readings() -> None:
             refills += banks[1].refill_if_due()
         assert out[0] == out[1]
         assert refills == 200 // 16  # once per used-up block, never a block early
+
+
+def test_a_still_box_reads_as_each_sample_alone() -> None:
+    """An unchanged box's readings, computed several samples at a time (32, then twice as many
+    each time, to the block's end), are each sample's own: the true pressures plus that
+    sample's noise row, quantised and clipped, bit for bit, with the row's lowest and highest
+    (as numbers) for the guard; over still periods of 1 to 400 samples, across blocks."""
+    rng = np.random.default_rng(7)
+    bank = SensorBank(8, 0.01, SensorParams(), np.random.default_rng(3), block=300)
+    true = np.full(8, 1100.0)
+    computed = still = 0
+    for _ in range(60):
+        if rng.random() < 0.5:  # a change: a new true pressure, then a still period
+            true = rng.normal(1100.0, 300.0, 8)
+            bank.sample(true, 1e4, changed=True)
+        for _ in range(int(rng.choice([1, 3, 30, 33, 100, 400]))):
+            noise_row = bank._noise[bank._i if bank._i < bank.block else 0].copy()
+            reading, _ = bank.sample(true, 1e4, changed=False)
+            if bank._i == 1:  # a new block was drawn for this sample: its first row
+                noise_row = bank._noise[0].copy()
+            want = bank._quantise(true + noise_row)
+            assert reading.tobytes() == want.tobytes()
+            still += 1
+            if bank.span is not None:
+                computed += 1
+                assert bank.span[0] is reading
+                assert (bank.span[1], bank.span[2]) == (want.min(), want.max())
+    assert computed > 0.8 * still  # most still samples from the rows computed ahead
+    assert bank._static is None or bank._static.shape[0] <= bank.block

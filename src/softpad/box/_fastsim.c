@@ -446,6 +446,48 @@ done:
     return result;
 }
 
+/* reading(true, noise, i, q, inv_q, lo, hi, out) -> bool: one reading of every channel, as
+ * SensorBank.sample's (true + noise row i, times 1/q, rounded half to even, times q, clipped
+ * to [lo, hi]; q = 0: not quantised) into out. False (out not to be used) where an array is
+ * not a float64 one of the expected size (C-contiguous; noise: rows of the channels), i is
+ * not a row of it, a value is not finite or a bound is zero: the reference's then. */
+static PyObject *reading(PyObject *self, PyObject *args)
+{
+    PyObject *o[3];
+    Py_ssize_t i;
+    double q, inv_q, lo, hi;
+    if (!PyArg_ParseTuple(args, "OOnddddO", &o[0], &o[1], &i, &q, &inv_q, &lo, &hi, &o[2]))
+        return NULL;
+    Buf b[3];
+    memset(b, 0, sizeof b);
+    int ok = take(o[0], &b[0], -1, 0, 0, "true") == 0;
+    Py_ssize_t n = ok ? b[0].view.len / 8 : 0;
+    ok = ok && n > 0 && take(o[1], &b[1], -1, 0, 0, "noise") == 0 &&
+         take(o[2], &b[2], n, 1, 0, "out") == 0 && b[1].view.len % (n * 8) == 0 && i >= 0 &&
+         i < b[1].view.len / (n * 8);
+    if (!ok)
+        PyErr_Clear();
+    ok = ok && isfinite(q) && isfinite(inv_q) && !isnan(lo) && !isnan(hi) && lo != 0.0 &&
+         hi != 0.0;
+    if (ok) {
+        const double *tp = data(&b[0]), *np_ = data(&b[1]) + i * n;
+        double *out = data(&b[2]);
+        for (Py_ssize_t j = 0; ok && j < n; j++) {
+            double x = tp[j] + np_[j];
+            if (q != 0.0) {
+                x = x * inv_q;
+                x = nearbyint(x);
+                x *= q;
+            }
+            ok = isfinite(x);
+            x = x >= lo ? x : lo;
+            out[j] = x <= hi ? x : hi;
+        }
+    }
+    release(b, 3);
+    return PyBool_FromLong(ok);
+}
+
 /* Where load f lies on the load grid (TabulatedCharacteristic._locate, not extrapolating):
  * the column j and the fraction u towards column j + 1 (numpy.maximum/minimum's values). */
 static void locate(const double *grid, Py_ssize_t n, double f, Py_ssize_t *j, double *u)
@@ -523,6 +565,448 @@ done:
     return result;
 }
 
+/* ---- Frames: a frame along the current stretch, in one call (issue 50, item 4) ----------
+ *
+ * SimBox.read's usual frame while a valve is open: a step along the current stretch of the
+ * gas physics (ChamberBank.hold), the next reading of the ramp the sensors computed for it
+ * (SensorBank.next_on_ramp), the frame, and the guard's usual decision on it
+ * (SafetyGuard.check_span and _update: every reading within the sensor's range, no tripped
+ * channel below its release level, the highest reading of an untripped channel plus the
+ * window's rise below the trip level). Every piece of state stays in the
+ * Python objects (their instance dicts, read and written here as their methods do), so every
+ * other path sees what it would have seen. Frames.next decides before it changes anything:
+ * None (nothing changed) wherever one of the four would not take its usual path; the caller
+ * then runs the Python path, which decides the same (tests/box/test_fastsim.py). */
+
+typedef struct {
+    PyObject_HEAD
+    PyObject *ch, *se, *gu;          /* the instance dicts of the chambers, sensors and guard */
+    PyObject *guard;                 /* the guard itself (the caller checks it is the box's) */
+    PyObject *frame_type, *set_t, *set_p, *set_s; /* PressureFrame and its slots */
+    Py_ssize_t window;               /* the guard's deques' maxlen */
+} Frames;
+
+static PyObject *k_path, *k_pos, *k_valve_key, *k_supply, *k_stretch_dt, *k_solved,
+    *k_solve_count, *k_i, *k_ramp_next, *k_ramp_key, *k_ramp_end, *k_ramp, *k_ramp_start,
+    *k_ramp_lo, *k_ramp_hi, *k_supply_noise, *k_same, *k_span, *k_times, *k_lows, *k_history,
+    *k_any_tripped, *k_min_pa, *k_max_pa, *k_trip_pa, *k_append, *k_held, *k_release_pa, *k_tripped;
+
+static int intern_keys(void)
+{
+#define K(var, text)                                   \
+    if ((var = PyUnicode_InternFromString(text)) == NULL) \
+        return -1;
+    K(k_path, "_path") K(k_pos, "_pos") K(k_valve_key, "_valve_key") K(k_supply, "_supply")
+    K(k_stretch_dt, "_stretch_dt") K(k_solved, "solved") K(k_solve_count, "solve_count")
+    K(k_i, "_i") K(k_ramp_next, "_ramp_next") K(k_ramp_key, "_ramp_key")
+    K(k_ramp_end, "_ramp_end") K(k_ramp, "_ramp") K(k_ramp_start, "_ramp_start")
+    K(k_ramp_lo, "_ramp_lo") K(k_ramp_hi, "_ramp_hi") K(k_supply_noise, "_supply_noise")
+    K(k_same, "_same") K(k_span, "span") K(k_times, "_times") K(k_lows, "_lows")
+    K(k_history, "_history") K(k_any_tripped, "_any_tripped") K(k_min_pa, "_min_pa")
+    K(k_max_pa, "_max_pa") K(k_trip_pa, "_trip_pa") K(k_append, "append") K(k_held, "_held")
+    K(k_release_pa, "_release_pa") K(k_tripped, "tripped")
+#undef K
+    return 0;
+}
+
+static void frames_dealloc(Frames *f)
+{
+    Py_XDECREF(f->ch);
+    Py_XDECREF(f->se);
+    Py_XDECREF(f->gu);
+    Py_XDECREF(f->guard);
+    Py_XDECREF(f->frame_type);
+    Py_XDECREF(f->set_t);
+    Py_XDECREF(f->set_p);
+    Py_XDECREF(f->set_s);
+    Py_TYPE(f)->tp_free((PyObject *)f);
+}
+
+static PyObject *instance_dict(PyObject *obj)
+{
+    PyObject *d = PyObject_GenericGetDict(obj, NULL);
+    if (d != NULL && !PyDict_CheckExact(d)) {
+        Py_DECREF(d);
+        PyErr_SetString(PyExc_TypeError, "Frames: an object without a plain instance dict");
+        return NULL;
+    }
+    return d;
+}
+
+/* Frames(chambers, sensors, guard, frame_type, t_slot, pressures_slot, supply_slot) */
+static PyObject *frames_new(PyTypeObject *type, PyObject *args, PyObject *kw)
+{
+    PyObject *ch, *se, *gu, *ft, *st, *sp, *ss;
+    if (!PyArg_ParseTuple(args, "OOOOOOO", &ch, &se, &gu, &ft, &st, &sp, &ss))
+        return NULL;
+    if (!PyType_Check(ft) || Py_TYPE(st)->tp_descr_set == NULL ||
+        Py_TYPE(sp)->tp_descr_set == NULL || Py_TYPE(ss)->tp_descr_set == NULL) {
+        PyErr_SetString(PyExc_TypeError, "Frames: a frame type and three settable slots");
+        return NULL;
+    }
+    Frames *f = (Frames *)type->tp_alloc(type, 0);
+    if (f == NULL)
+        return NULL;
+    f->ch = instance_dict(ch);
+    f->se = f->ch ? instance_dict(se) : NULL;
+    f->gu = f->se ? instance_dict(gu) : NULL;
+    if (f->gu == NULL) {
+        Py_DECREF(f);
+        return NULL;
+    }
+    f->guard = Py_NewRef(gu);
+    f->frame_type = Py_NewRef(ft);
+    f->set_t = Py_NewRef(st);
+    f->set_p = Py_NewRef(sp);
+    f->set_s = Py_NewRef(ss);
+    PyObject *times = PyDict_GetItemWithError(f->gu, k_times);
+    PyObject *maxlen = times ? PyObject_GetAttrString(times, "maxlen") : NULL;
+    f->window = maxlen && maxlen != Py_None ? PyLong_AsSsize_t(maxlen) : -1;
+    Py_XDECREF(maxlen);
+    if (f->window < 2) {
+        if (!PyErr_Occurred())
+            PyErr_SetString(PyExc_ValueError, "Frames: the guard's window must hold >= 2");
+        Py_DECREF(f);
+        return NULL;
+    }
+    return (PyObject *)f;
+}
+
+/* A Python int attribute as a C integer; 0 (with *ok cleared) where it is none. */
+static Py_ssize_t int_of(PyObject *d, PyObject *key, int *ok)
+{
+    PyObject *v = PyDict_GetItemWithError(d, key);
+    if (v == NULL || !PyLong_CheckExact(v)) {
+        *ok = 0;
+        return 0;
+    }
+    Py_ssize_t x = PyLong_AsSsize_t(v);
+    if (x == -1 && PyErr_Occurred()) {
+        PyErr_Clear();
+        *ok = 0;
+    }
+    return x;
+}
+
+/* A float attribute (a Python float or int) as a double; *ok cleared where it is neither. */
+static double float_of(PyObject *v, int *ok)
+{
+    if (v != NULL && PyFloat_Check(v))
+        return PyFloat_AS_DOUBLE(v);
+    if (v != NULL && PyLong_CheckExact(v)) {
+        double x = PyLong_AsDouble(v);
+        if (!(x == -1.0 && PyErr_Occurred()))
+            return x;
+        PyErr_Clear();
+    }
+    *ok = 0;
+    return 0.0;
+}
+
+/* Whether a != b as Python says (1), they are equal (0), or the comparison failed (-1). */
+static int differ(PyObject *a, PyObject *b)
+{
+    if (b == NULL)
+        return -1;
+    return PyObject_RichCompareBool(a, b, Py_NE);
+}
+
+static int set_int(PyObject *d, PyObject *key, Py_ssize_t x)
+{
+    PyObject *v = PyLong_FromSsize_t(x);
+    int r = v ? PyDict_SetItem(d, key, v) : -1;
+    Py_XDECREF(v);
+    return r;
+}
+
+#define MAX_CHANNELS 256
+
+/* The values of a row (a float64 buffer, or a list of floats) into x (at most MAX_CHANNELS):
+ * their number, or -1 where the row is neither (no exception set). */
+static Py_ssize_t values_of(PyObject *row, double *x)
+{
+    if (PyList_CheckExact(row)) {
+        Py_ssize_t n = PyList_GET_SIZE(row);
+        if (n > MAX_CHANNELS)
+            return -1;
+        for (Py_ssize_t k = 0; k < n; k++) {
+            PyObject *v = PyList_GET_ITEM(row, k);
+            if (!PyFloat_Check(v))
+                return -1;
+            x[k] = PyFloat_AS_DOUBLE(v);
+        }
+        return n;
+    }
+    Py_buffer v;
+    if (PyObject_GetBuffer(row, &v, PyBUF_C_CONTIGUOUS | PyBUF_FORMAT) < 0) {
+        PyErr_Clear();
+        return -1;
+    }
+    const char *fmt = v.format;
+    Py_ssize_t n = v.len / 8;
+    int ok = v.itemsize == 8 && fmt != NULL && (fmt[0] == 'd' || (fmt[0] == '<' && fmt[1] == 'd'))
+             && n <= MAX_CHANNELS;
+    if (ok)
+        memcpy(x, v.buf, n * sizeof(double));
+    PyBuffer_Release(&v);
+    return ok ? n : -1;
+}
+
+/* SafetyGuard._check_arrays on the frame ``row`` with the window's oldest row ``first``
+ * (``count`` frames spanning ``span`` seconds once the frame is in; limits: the sensor's
+ * range and the trip level): 1 where no channel trips or is released (the test changes
+ * nothing), 0 otherwise or where the state is not as expected, -1 on an error. */
+static int exact_passes(Frames *f, PyObject *row, PyObject *first, Py_ssize_t count, double span,
+                        const double *limits)
+{
+    double x[MAX_CHANNELS], x0[MAX_CHANNELS];
+    Py_ssize_t n = values_of(row, x);
+    if (n < 0 || values_of(first, x0) != n)
+        return 0;
+    PyObject *tripped = PyDict_GetItemWithError(f->gu, k_tripped);
+    PyObject *release = PyDict_GetItemWithError(f->gu, k_release_pa);
+    int ok = 1;
+    double release_pa = float_of(release, &ok);
+    Py_buffer b;
+    if (!ok || tripped == NULL || PyObject_GetBuffer(tripped, &b, PyBUF_C_CONTIGUOUS | PyBUF_FORMAT) < 0) {
+        PyErr_Clear();
+        return 0;
+    }
+    int r = b.itemsize == 1 && b.format != NULL && strcmp(b.format, "?") == 0 && b.len == n;
+    const unsigned char *held = (const unsigned char *)b.buf;
+    double per_frame = count >= 2 && span > 0 ? 1.0 / (double)(count - 1) : 0.0;
+    for (Py_ssize_t k = 0; r && k < n; k++) {
+        double v = x[k];
+        int invalid = !isfinite(v) || v <= limits[0] || v >= limits[1];
+        double rise = (v - x0[k]) * per_frame; /* the window's mean rise per frame */
+        rise = isfinite(rise) && rise > 0.0 ? rise : 0.0;
+        if (held[k] && v < release_pa && !invalid)
+            r = 0; /* released */
+        else if ((invalid || v + rise > limits[2]) && !held[k])
+            r = 0; /* tripped */
+    }
+    PyBuffer_Release(&b);
+    return r;
+}
+
+/* SafetyGuard._update's frame with a channel tripped (every reading within the sensor's
+ * range, so finite): 1 with *high the highest reading of the untripped channels (-inf: none)
+ * where no tripped channel reads below the release level, 0 where one does (the exact test
+ * releases it) or the state is not as expected, -1 on an error. */
+static int untripped_high(Frames *f, PyObject *row, double *high)
+{
+    PyObject *held = PyDict_GetItemWithError(f->gu, k_held);
+    PyObject *release = PyDict_GetItemWithError(f->gu, k_release_pa);
+    if (held == NULL || !PyList_CheckExact(held) || release == NULL)
+        return PyErr_Occurred() ? -1 : 0;
+    int ok = 1;
+    double release_pa = float_of(release, &ok);
+    Py_buffer v;
+    if (!ok || PyObject_GetBuffer(row, &v, PyBUF_C_CONTIGUOUS | PyBUF_FORMAT) < 0) {
+        PyErr_Clear();
+        return 0;
+    }
+    const char *fmt = v.format;
+    Py_ssize_t n = v.len / 8;
+    int r = 0;
+    if (v.itemsize == 8 && fmt != NULL && (fmt[0] == 'd' || (fmt[0] == '<' && fmt[1] == 'd')) &&
+        PyList_GET_SIZE(held) == n) {
+        const double *x = (const double *)v.buf;
+        double top = -INFINITY;
+        r = 1;
+        for (Py_ssize_t k = 0; k < n; k++) {
+            PyObject *h = PyList_GET_ITEM(held, k);
+            if (h == Py_True) {
+                if (x[k] < release_pa)
+                    r = 0; /* released by the exact test */
+            } else if (h == Py_False) {
+                top = x[k] > top ? x[k] : top;
+            } else {
+                r = 0;
+            }
+        }
+        *high = top;
+    }
+    PyBuffer_Release(&v);
+    return r;
+}
+
+/* The guard's usual frame (SafetyGuard.check_span's inline path), decided before the frame
+ * joins the window (its oldest low and time once it has: the deques' maxlen drops one): 1
+ * when it passes the frame (nothing trips), 0 when the guard must decide in Python, -1 on an
+ * error. */
+static int guard_passes(Frames *f, PyObject *t, PyObject *row, double low, double high)
+{
+    PyObject *times = PyDict_GetItemWithError(f->gu, k_times);
+    PyObject *lows = PyDict_GetItemWithError(f->gu, k_lows);
+    PyObject *tripped = PyDict_GetItemWithError(f->gu, k_any_tripped);
+    if (times == NULL || lows == NULL || (tripped != Py_False && tripped != Py_True))
+        return 0;
+    int ok = 1;
+    double tt = float_of(t, &ok);
+    double min_pa = float_of(PyDict_GetItemWithError(f->gu, k_min_pa), &ok);
+    double max_pa = float_of(PyDict_GetItemWithError(f->gu, k_max_pa), &ok);
+    double trip_pa = float_of(PyDict_GetItemWithError(f->gu, k_trip_pa), &ok);
+    Py_ssize_t n = PyObject_Length(times);
+    if (!ok || n < 0 || PyObject_Length(lows) != n || !(low > min_pa && high < max_pa))
+        return PyErr_Occurred() ? -1 : 0;
+    if (tripped == Py_True) { /* _update's test: no tripped channel released, the others' high */
+        int r = untripped_high(f, row, &high);
+        if (r <= 0)
+            return r;
+    }
+    double first_low = low, first_t = tt;
+    Py_ssize_t count = n + 1;
+    if (n > 0) {
+        PyObject *last = PySequence_GetItem(times, n - 1);
+        double last_t = float_of(last, &ok);
+        Py_XDECREF(last);
+        if (!ok || tt == last_t) /* the same frame again: the guard's own answer */
+            return PyErr_Occurred() ? -1 : 0;
+        Py_ssize_t k = n == f->window ? 1 : 0; /* full: the oldest drops out */
+        count = n == f->window ? n : n + 1;
+        if (k < n) {
+            PyObject *a = PySequence_GetItem(lows, k), *b = PySequence_GetItem(times, k);
+            first_low = float_of(a, &ok);
+            first_t = float_of(b, &ok);
+            Py_XDECREF(a);
+            Py_XDECREF(b);
+            if (!ok)
+                return PyErr_Occurred() ? -1 : 0;
+        }
+    }
+    double rise = tt > first_t ? (high - first_low) / (double)(count - 1) : 0.0;
+    if (!(rise <= 0.0)) /* a NaN rise (a NaN low in the window) fails the test below */
+        high += rise;
+    if (high <= trip_pa)
+        return 1;
+    /* the bound does not clear the frame: the exact per-channel test, which passes it where
+     * it trips and releases nothing (SafetyGuard._check_arrays then changes nothing) */
+    PyObject *history = PyDict_GetItemWithError(f->gu, k_history);
+    if (history == NULL || PyObject_Length(history) != n)
+        return PyErr_Occurred() ? -1 : 0;
+    PyObject *first = n == 0 ? Py_NewRef(row) : PySequence_GetItem(history, n == f->window);
+    if (first == NULL)
+        return -1;
+    double limits[4] = {min_pa, max_pa, trip_pa, 0.0};
+    int r = exact_passes(f, row, first, count, tt - first_t, limits);
+    Py_DECREF(first);
+    return r;
+}
+
+static int append_to(PyObject *d, PyObject *key, PyObject *x)
+{
+    PyObject *q = PyDict_GetItemWithError(d, key);
+    if (q == NULL)
+        return -1;
+    PyObject *r = PyObject_CallMethodOneArg(q, k_append, x);
+    Py_XDECREF(r);
+    return r ? 0 : -1;
+}
+
+/* next(t, valve_key, supply) -> the frame, or None where the Python path must run. */
+static PyObject *frames_next(Frames *f, PyObject *const *args, Py_ssize_t nargs)
+{
+    if (nargs != 4) {
+        PyErr_SetString(PyExc_TypeError, "next(t, dt, valve_key, supply)");
+        return NULL;
+    }
+    PyObject *t = args[0], *dt = args[1], *valve_key = args[2], *supply = args[3];
+    PyObject *ch = f->ch, *se = f->se;
+    int ok = 1;
+    /* ChamberBank.hold: a stretch runs with these valves, supply and step, a row left */
+    PyObject *path = PyDict_GetItemWithError(ch, k_path);
+    if (path == NULL || path == Py_None)
+        goto none;
+    Py_ssize_t rows = PyObject_Length(path), pos = int_of(ch, k_pos, &ok);
+    if (rows < 0 || !ok || pos >= rows)
+        goto none;
+    if (differ(valve_key, PyDict_GetItemWithError(ch, k_valve_key)) != 0 ||
+        differ(supply, PyDict_GetItemWithError(ch, k_supply)) != 0 ||
+        differ(dt, PyDict_GetItemWithError(ch, k_stretch_dt)) != 0)
+        goto none;
+    /* SensorBank.next_on_ramp: the next reading of the ramp of this stretch, with its span */
+    Py_ssize_t key = int_of(ch, k_solve_count, &ok), i = int_of(se, k_i, &ok);
+    Py_ssize_t next = int_of(se, k_ramp_next, &ok), ramp_key = int_of(se, k_ramp_key, &ok);
+    Py_ssize_t end = int_of(se, k_ramp_end, &ok), start = int_of(se, k_ramp_start, &ok);
+    if (!ok || i != next || key != ramp_key || i >= end || i < start)
+        goto none;
+    PyObject *ramp = PyDict_GetItemWithError(se, k_ramp);
+    PyObject *lo = PyDict_GetItemWithError(se, k_ramp_lo);
+    PyObject *hi = PyDict_GetItemWithError(se, k_ramp_hi);
+    PyObject *noise = PyDict_GetItemWithError(se, k_supply_noise);
+    Py_ssize_t j = i - start;
+    if (ramp == NULL || ramp == Py_None || lo == NULL || !PyList_CheckExact(lo) || hi == NULL ||
+        !PyList_CheckExact(hi) || noise == NULL || !PyList_CheckExact(noise) ||
+        j >= PyList_GET_SIZE(lo) || j >= PyList_GET_SIZE(hi) || i >= PyList_GET_SIZE(noise))
+        goto none;
+    PyObject *low = PyList_GET_ITEM(lo, j), *high = PyList_GET_ITEM(hi, j);
+    double s = float_of(supply, &ok) + float_of(PyList_GET_ITEM(noise, i), &ok);
+    double lv = float_of(low, &ok), hv = float_of(high, &ok);
+    if (!ok)
+        goto none;
+    PyObject *row = PySequence_GetItem(ramp, j);
+    if (row == NULL)
+        return NULL;
+    int passes = guard_passes(f, t, row, lv, hv);
+    if (passes <= 0) {
+        Py_DECREF(row);
+        return passes < 0 ? NULL : Py_NewRef(Py_None);
+    }
+    /* every test passed: the four steps' changes, in Python's order */
+    PyObject *sup = PyFloat_FromDouble(s);
+    PyObject *span = PyTuple_Pack(3, row, low, high);
+    PyObject *frame = NULL;
+    if (sup == NULL || span == NULL || set_int(ch, k_pos, pos + 1) < 0 ||
+        PyDict_SetItem(ch, k_solved, Py_False) < 0 || set_int(se, k_i, i + 1) < 0 ||
+        PyDict_SetItem(se, k_ramp_next, PyDict_GetItem(se, k_i)) < 0 ||
+        set_int(se, k_same, 0) < 0 || PyDict_SetItem(se, k_span, span) < 0 ||
+        append_to(f->gu, k_history, row) < 0 || append_to(f->gu, k_lows, low) < 0 ||
+        append_to(f->gu, k_times, t) < 0)
+        goto out;
+    PyTypeObject *tp = (PyTypeObject *)f->frame_type;
+    frame = tp->tp_alloc(tp, 0);
+    if (frame == NULL || Py_TYPE(f->set_t)->tp_descr_set(f->set_t, frame, t) < 0 ||
+        Py_TYPE(f->set_p)->tp_descr_set(f->set_p, frame, row) < 0 ||
+        Py_TYPE(f->set_s)->tp_descr_set(f->set_s, frame, sup) < 0)
+        Py_CLEAR(frame);
+out:
+    Py_XDECREF(row);
+    Py_XDECREF(sup);
+    Py_XDECREF(span);
+    return frame;
+none:
+    if (PyErr_Occurred())
+        return NULL;
+    return Py_NewRef(Py_None);
+}
+
+static PyObject *frames_guard(Frames *f, void *closure) { return Py_NewRef(f->guard); }
+
+static PyMethodDef frames_methods[] = {
+    {"next", (PyCFunction)(void (*)(void))frames_next, METH_FASTCALL,
+     "next(t, dt, valve_key, supply) -> the frame along the current stretch with the guard's "
+     "usual decision taken, or None (nothing changed: run the Python path)."},
+    {NULL, NULL, 0, NULL},
+};
+
+static PyGetSetDef frames_getset[] = {
+    {"guard", (getter)frames_guard, NULL, "The guard whose window this cursor fills.", NULL},
+    {NULL, NULL, NULL, NULL, NULL},
+};
+
+static PyTypeObject FramesType = {
+    PyVarObject_HEAD_INIT(NULL, 0).tp_name = "softpad.box._fastsim.Frames",
+    .tp_basicsize = sizeof(Frames),
+    .tp_dealloc = (destructor)frames_dealloc,
+    .tp_flags = Py_TPFLAGS_DEFAULT,
+    .tp_doc = "Frames(chambers, sensors, guard, frame_type, t_slot, pressures_slot, "
+              "supply_slot): the simulated box's frame along a stretch in one call.",
+    .tp_methods = frames_methods,
+    .tp_getset = frames_getset,
+    .tp_new = frames_new,
+};
+
 static PyMethodDef methods[] = {
     {"solve", solve, METH_VARARGS,
      "solve(p, amount, cols, slopes, grid, drop, creep, patm, vt, p_out, dn_dp_out) -> bool: "
@@ -542,6 +1026,9 @@ static PyMethodDef methods[] = {
     {"readings", readings, METH_VARARGS,
      "readings(true, noise, q, inv_q, lo, hi, out) -> (lows, highs) or None: quantised, "
      "clipped readings into out and each row's lowest and highest."},
+    {"reading", reading, METH_VARARGS,
+     "reading(true, noise, i, q, inv_q, lo, hi, out) -> bool: one quantised, clipped reading "
+     "of every channel into out; False: not decided here (the reference's)."},
     {"columns", columns, METH_VARARGS,
      "columns(f, loads, table, grid, area, cols_out, slopes_out, drop_out) -> 0, 1, 2: the "
      "table's columns at the loads f and their slopes (TabulatedCharacteristic._load_columns); "
@@ -555,4 +1042,12 @@ static struct PyModuleDef module = {
     methods,
 };
 
-PyMODINIT_FUNC PyInit__fastsim(void) { return PyModule_Create(&module); }
+PyMODINIT_FUNC PyInit__fastsim(void)
+{
+    if (intern_keys() < 0 || PyType_Ready(&FramesType) < 0)
+        return NULL;
+    PyObject *m = PyModule_Create(&module);
+    if (m != NULL && PyModule_AddObjectRef(m, "Frames", (PyObject *)&FramesType) < 0)
+        Py_CLEAR(m);
+    return m;
+}

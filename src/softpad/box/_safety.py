@@ -143,6 +143,7 @@ class SafetyGuard:
         self._trip_pa, self._release_pa = lim.trip_pa, lim.release_pa
         self._min_pa, self._max_pa = lim.sensor_min_pa, lim.sensor_max_pa
         self._free, self._held = [True] * self.channels, [False] * self.channels
+        self._any_tripped = False  # in the instance's dict (the compiled frame reads it there)
 
     def check(self, t_s: float, pressures_pa: NDArray[np.float64]) -> list[int]:
         """Update with one frame; return the 1-based channels newly tripped (to vent now)."""

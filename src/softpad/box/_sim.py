@@ -27,6 +27,7 @@ from softpad.box._base import (
     ValveCommand,
     unchecked_frame,
 )
+from softpad.box._safety import SafetyGuard
 from softpad.box._sim_faults import (
     DEFAULT_LEAK_M2,
     FAULT_KINDS,
@@ -262,6 +263,29 @@ class CompiledSensors(SensorBank):
         super().__init__(n_channels, dt_s, params, rng)
         self._kernel = _fastsim
 
+    def sample(
+        self, true_pa: NDArray[np.float64], supply_pa: float, changed: bool = True
+    ) -> tuple[NDArray[np.float64], float]:
+        """:meth:`SensorBank.sample`, the reading of changed pressures from the kernel (the
+        same bits; an unchanged box's block of readings as the reference computes it)."""
+        reading = getattr(self._kernel, "reading", None)  # None: a module built before it
+        if not changed or reading is None:
+            return super().sample(true_pa, supply_pa, changed)
+        if self._i >= self.block:
+            self._refill()
+            self._static = None
+        i = self._i
+        out = np.empty(self.n)
+        if not reading(true_pa, self._noise, i, self._q, self._inv_q, self._lo, self._hi, out):
+            return super().sample(true_pa, supply_pa, changed)  # the same block, row i
+        self._i = i + 1
+        self._ramp = None
+        self._ramp_end = -1
+        self._same = 0
+        self._static = None
+        self.span = None
+        return out, supply_pa + self._supply_noise[i]
+
     def sample_path(
         self, path: NDArray[np.float64], row: int, key: int, supply_pa: float
     ) -> tuple[NDArray[np.float64], float]:
@@ -383,6 +407,11 @@ class SimBox(Box):
         #: The outermost layer around this box found passing every frame on unchanged (it
         #: then lets this box read and check the frames itself; softpad.box._sim_layers).
         self._passed_by: object = None
+        #: The compiled kernels (None: not built), and the frame along a stretch in one call
+        #: for the current guard (made by the first read; None: the Python path alone).
+        self._kernel = _fastsim
+        self._frames: Any = None
+        self._frames_for: SafetyGuard | None = None
 
     def _start_inflated(self, pressure_pa: float) -> None:
         """Every module at ``pressure_pa`` under the world's loads (0..5 kPa)."""
@@ -460,8 +489,32 @@ class SimBox(Box):
         highest value where the sensors computed them for a block of frames at once."""
         if self._closed:
             self._check_open()  # raises
-        frame = self._read()
         guard = self._guard if self._guard is not None else self.safety
+        if self._frames_for is not guard:  # the first read, or a new guard (new limits)
+            self._frames_for, self._frames = guard, self._new_frames(guard)
+        frames = self._frames
+        if frames is None:
+            return self._checked(self._read(), guard)
+        dt = self._dt
+        t = self._t + dt
+        self._t = t
+        if t >= self._faults.next_s:
+            self._activate_faults()
+        world = self.world
+        world.step(dt, self._heights)
+        loads = world.module_loads_n()
+        key = loads.tobytes()
+        dist = self.disturbances
+        if key == self._loads_key and (dist is None or t < dist.next_s):
+            # a step along the stretch, its reading, the frame and the guard's usual decision
+            # in one compiled call; None: not the usual frame, nothing changed
+            frame = frames.next(t, dt, self._valve_count, self._supply_true)
+            if frame is not None:
+                return frame  # type: ignore[no-any-return]
+        return self._checked(self._after_step(t, dt, loads, key), guard)
+
+    def _checked(self, frame: PressureFrame, guard: SafetyGuard) -> PressureFrame:
+        """``frame`` after the guard's check (the channels it trips vented)."""
         span = self.sensors.span
         if span is not None and span[0] is frame.pressures_pa:  # not replaced by a layer
             new = guard.check_span(frame.t_s, span[0], span[1], span[2])
@@ -470,6 +523,15 @@ class SimBox(Box):
         for ch in new:
             self._vent(ch)
         return frame
+
+    def _new_frames(self, guard: SafetyGuard) -> Any:
+        """The compiled frame along a stretch (:class:`softpad.box._fastsim.Frames`) for
+        ``guard``; None without the kernel, or where a subclass reads its own way."""
+        kernel = getattr(self._kernel, "Frames", None)
+        if kernel is None or type(self)._read is not SimBox._read:
+            return None
+        slots = (PressureFrame.__dict__[n] for n in ("t_s", "pressures_pa", "supply_pa"))
+        return kernel(self.chambers, self.sensors, guard, PressureFrame, *slots)
 
     def _read(self) -> PressureFrame:
         dt = self._dt
@@ -480,9 +542,14 @@ class SimBox(Box):
         world = self.world
         world.step(dt, self._heights)
         loads = world.module_loads_n()
+        return self._after_step(t, dt, loads, loads.tobytes())
+
+    def _after_step(
+        self, t: float, dt: float, loads: NDArray[np.float64], key: bytes
+    ) -> PressureFrame:
+        """The frame at ``t`` once the world has stepped (its ``loads``, their bytes ``key``)."""
         # the loads equal those of the last step (the chambers' loads_n) iff their bytes do;
         # far cheaper than np.array_equal on the hot path
-        key = loads.tobytes()
         dist = self.disturbances
         chambers = self.chambers
         if (

@@ -33,6 +33,11 @@ from softpad.errors import (
     check_range,
 )
 
+try:  # the steady-rise rates in compiled code (src/softpad/control/_fastmonitor.c; make ext)
+    import softpad.control._fastmonitor as _fastmonitor
+except ImportError:  # pragma: no cover - no C compiler: the NumPy reference alone
+    _fastmonitor = None  # type: ignore[assignment]
+
 
 @dataclass(frozen=True)
 class DetectedFault:
@@ -355,6 +360,9 @@ class _SteadyRise:
         self._t_seen = -np.inf  # and its time
         # the half-window edges back from the newest frame, seconds
         self._offsets = 0.5 * window_s * np.arange(2 * count + 3)
+        #: The compiled rates (:func:`softpad.control._fastmonitor.rates`; None: not built,
+        #: or too many windows for it: the NumPy reference).
+        self._kernel = _fastmonitor.rates if _fastmonitor is not None and count < 30 else None
 
     def _append(self, t: float) -> None:
         if self._hi == len(self._t):  # full: move what is kept to the front, or grow
@@ -395,6 +403,21 @@ class _SteadyRise:
         # ufunc reductions: the values of .min() and .all(), without their Python wrappers
         if self._from_min > t - span:
             return None  # no channel sealed throughout (see ``old`` below)
+        kernel = self._kernel
+        if kernel is not None:  # the rates below in one compiled call (the same bits)
+            n = self._total.shape[0]
+            between, within = np.empty((self.count, n)), np.empty((self.count + 1, n))
+            done = kernel(
+                times, self._sum, self._lo, self._hi, t, self._offsets, self._sealed_from,
+                self.window_s, between, within,
+            )  # fmt: skip
+            if done >= 0:
+                return (between, within) if done else None
+        return self._rates(t)
+
+    def _rates(self, t: float) -> tuple[NDArray[np.float64], NDArray[np.float64]] | None:
+        """The rates of :meth:`update` at ``t`` (the reference of the compiled kernel)."""
+        times = self._t
         half = 0.5 * self.window_s
         kept = times[self._lo : self._hi]
         edges = np.searchsorted(kept, t - self._offsets, side="right") - 1

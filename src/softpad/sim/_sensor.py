@@ -77,6 +77,12 @@ class SensorParams(CheckedFields, what="sensor"):
 SPAN_ROWS = 8
 
 
+#: An unchanged box's readings are computed this many samples at a time at first, then twice
+#: as many each time they are used up (a box often changes again within a few samples: the
+#: rest of a 4096-sample block, with its rows' spans, cost about 1 ms).
+STILL_ROWS = 32
+
+
 #: A sensor bank whose noise block lasts less than this (simulated seconds) filters the drift
 #: with scipy's lfilter; longer blocks (100 Hz: 41 s) use :func:`drift_recursion`.
 LFILTER_BELOW_S = 10.0
@@ -222,8 +228,9 @@ class SensorBank:
         """One reading of every channel and of the supply, pascals.
 
         ``changed=False`` promises that ``true_pa`` equals the previous call's: after two such
-        calls the readings of the rest of the noise block are computed at once (the hot path
-        of an idle box). The returned array must not be modified (copy it first).
+        calls the readings of the next samples are computed at once (:data:`STILL_ROWS`, then
+        twice as many each time, to the end of the noise block: the hot path of an idle box).
+        The returned array must not be modified (copy it first).
         """
         if self._i >= self.block:
             self._refill()
@@ -238,17 +245,26 @@ class SensorBank:
         else:
             self._same += 1
             if self._static is None and self._same >= 2:
-                self._static = self._quantise(true_pa + self._noise[i:])
-                self._static.flags.writeable = False
-                self._static_start = i
-                self._static_lo, self._static_hi = _row_spans(self._static)
+                self._still_rows(true_pa, i, STILL_ROWS)
             if self._static is not None:
                 j = i - self._static_start
+                if j >= self._static.shape[0]:  # the rows computed so far used: twice as many
+                    self._still_rows(true_pa, i, 2 * self._static.shape[0])
+                    j = 0
                 row = self._static[j]
                 self.span = (row, self._static_lo[j], self._static_hi[j])
                 return row, supply_pa + self._supply_noise[i]
         self.span = None
         return self._quantise(true_pa + self._noise[i]), supply_pa + self._supply_noise[i]
+
+    def _still_rows(self, true_pa: NDArray[np.float64], i: int, rows: int) -> None:
+        """The readings of an unchanged box from sample ``i`` on, ``rows`` of them (to the
+        end of the noise block at most), with each row's lowest and highest: each row the
+        same as a sample computed alone, however many are computed at once."""
+        self._static = self._quantise(true_pa + self._noise[i : i + rows])
+        self._static.flags.writeable = False
+        self._static_start = i
+        self._static_lo, self._static_hi = _row_spans(self._static)
 
     def sample_path(
         self, path: NDArray[np.float64], row: int, key: int, supply_pa: float
