@@ -26,7 +26,10 @@ ext: venv
 	        -o "src/softpad/box/_fastguard$$($(call PYINFO,EXT_SUFFIX))" -lpthread; \
 	    cc -O2 -std=c11 -Wall -ffp-contract=off -shared -fPIC -I"$$($(call PYINFO,INCLUDEPY))" \
 	        src/softpad/box/_fastsim.c -o "src/softpad/box/_fastsim$$($(call PYINFO,EXT_SUFFIX))"; \
-	else echo "ext: no C compiler: the compiled guard and solve are not built (their tests are skipped)"; fi
+	    cc -O2 -std=c11 -Wall -ffp-contract=off -shared -fPIC -I"$$($(call PYINFO,INCLUDEPY))" \
+	        -I"$$($(BIN)/python -c 'import mujoco, os; print(os.path.dirname(mujoco.__file__))')/include" \
+	        src/softpad/sim/_fastworld.c -o "src/softpad/sim/_fastworld$$($(call PYINFO,EXT_SUFFIX))"; \
+	else echo "ext: no C compiler: the compiled guard, solve and world steps are not built (their tests are skipped)"; fi
 
 # PYTHONDONTWRITEBYTECODE cleared as for the tests (below): the demo's processes (the command,
 # its trial workers, the reference plans' process) compile the sources once, not each time.

@@ -112,6 +112,16 @@ class KinematicArm:
             and self.hand.tobytes() == g[:4].tobytes()
         )
 
+    def snapshot(self) -> tuple[NDArray[np.float64], float, float]:
+        """What :meth:`move` changes (hand pose, hand speed, jaw setpoint), for :meth:`restore`."""
+        return self.hand.copy(), self._hand_speed, self.width_setpoint
+
+    def restore(self, state: tuple[NDArray[np.float64], float, float]) -> None:
+        """Put back what :meth:`move` changed since ``state`` (:meth:`snapshot`); the hand's
+        array is written in place."""
+        hand, self._hand_speed, self.width_setpoint = state
+        self.hand[:] = hand
+
     def jaws_at_rest(self) -> bool:
         """True when the jaw setpoint stands at its goal (the hand may move)."""
         return self.width_setpoint == self.goal[4]

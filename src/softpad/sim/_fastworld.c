@@ -1,0 +1,281 @@
+/* The MuJoCo world's steps between two box frames in compiled code (issue 50, item 1).
+ *
+ * One call runs up to n steps of softpad.sim._mujoco_world.MujocoWorld._mj_step: the module
+ * springs follow the box's heights (low-passed), the hand is put where the kinematic arm has it
+ * (its pose for each step worked out by the caller, which moves the arm), the jaw servos get
+ * their setpoint, mj_step runs through MuJoCo's C API, the hand is put back, the contacts on
+ * the module tops are read (module, normal force, point: what ContactSensing.update records, as
+ * the same Python lists) and the hold's coasting watches the velocities (HoldCoast.observe).
+ * The same arithmetic in the same order as the Python path: every operation is one IEEE-754
+ * double operation (+, -, *, /, fabs, comparisons), which NumPy's element-wise loops compute
+ * identically; built with -ffp-contract=off (no fused multiply-add).
+ *
+ * Objects being lowered onto the pad have their vertical velocity clamped as there.
+ * Coasted steps (HoldCoast.coasts: mj_integratePos at the window's velocities) and steps held
+ * still (MujocoWorld.rest_while_still) run here too. The loop stops early when the Python path
+ * must take over: after a step with a contact of a sole or a finger while the first-touch
+ * records are watched (the caller runs ContactSensing's record for that step), and before a
+ * step in a coasting window while the arm moves (the caller asks HandClearance).
+ *
+ * No MuJoCo link: the caller passes mj_step's address (from the mujoco wheel's library) and the
+ * mjModel / mjData addresses (their ``_address``); the arrays come as addresses of NumPy arrays
+ * the caller keeps alive (softpad.sim._mujoco_fast). Headers: the mujoco wheel's include/.
+ */
+#define PY_SSIZE_T_CLEAN
+#include <Python.h>
+
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <mujoco/mujoco.h>
+
+/* softpad.sim._mujoco_coast.STEADY_DV and ANCHOR_DV. */
+#define STEADY_DV 1e-5
+#define ANCHOR_DV 3e-5
+
+typedef void (*step_fn)(const mjModel *, mjData *);
+typedef void (*integrate_fn)(const mjModel *, mjtNum *, const mjtNum *, mjtNum);
+
+/* The largest |a[dofs[j]] - b[j]| over j; NaN (returned as -1) when any difference is NaN. */
+static double max_change(const double *qvel, const int64_t *dofs, Py_ssize_t n,
+                         const double *ref)
+{
+    double m = 0.0;
+    for (Py_ssize_t j = 0; j < n; j++) {
+        double d = fabs(qvel[dofs[j]] - ref[j]);
+        if (isnan(d))
+            return -1.0;
+        if (d > m)
+            m = d;
+    }
+    return m;
+}
+
+typedef struct {
+    const int64_t *dofs;
+    Py_ssize_t ndofs;
+    double *v0, *anchor, *coast_qvel;
+    int64_t *state; /* has_v0, count, has_anchor, left, steps coasted, new velocities */
+    int64_t verify, coast_steps, nv;
+} Coast;
+
+/* HoldCoast.observe after a real step (``ok``: coasting allowed now and the arm still). */
+static void observe(Coast *c, const double *qvel, int ok)
+{
+    int64_t *st = c->state;
+    if (!ok) {
+        if (st[0] || st[2]) {
+            st[0] = 0; st[1] = 0; st[2] = 0; st[3] = 0;
+        }
+        return;
+    }
+    if (!st[0]) {
+        for (Py_ssize_t j = 0; j < c->ndofs; j++)
+            c->v0[j] = qvel[c->dofs[j]];
+        st[0] = 1;
+        st[1] = 0;
+        return;
+    }
+    st[1] += 1;
+    if (st[1] < c->verify)
+        return;
+    double dv = max_change(qvel, c->dofs, c->ndofs, c->v0);
+    int steady = dv >= 0.0 && dv <= STEADY_DV;
+    int anchored = 1;
+    if (steady && st[2]) {
+        double da = max_change(qvel, c->dofs, c->ndofs, c->anchor);
+        anchored = da >= 0.0 && da <= ANCHOR_DV;
+    }
+    if (steady && anchored) {
+        if (!st[2]) {
+            for (Py_ssize_t j = 0; j < c->ndofs; j++)
+                c->anchor[j] = qvel[c->dofs[j]];
+            st[2] = 1;
+        }
+        memset(c->coast_qvel, 0, (size_t)c->nv * sizeof(double));
+        for (Py_ssize_t j = 0; j < c->ndofs; j++)
+            c->coast_qvel[c->dofs[j]] = qvel[c->dofs[j]];
+        st[3] = c->coast_steps;
+        st[0] = 0;
+        st[5] = 1; /* the window's velocities are new */
+        return;
+    }
+    st[2] = 0;
+    for (Py_ssize_t j = 0; j < c->ndofs; j++)
+        c->v0[j] = qvel[c->dofs[j]];
+    st[1] = 0;
+}
+
+/* The module contacts of the step just taken, as ContactSensing.update records them:
+ * (modules, |normal force|, [x, y] points); *near: a sole's or finger's contact among them.
+ * Returns a new tuple, Py_None (new reference) when no contact is on a module, NULL on error. */
+static PyObject *read_contacts(const mjData *d, const int64_t *gm, const uint8_t *grip, int watch,
+                               int *near)
+{
+    int n = d->ncon;
+    PyObject *ks = NULL, *fs = NULL, *xy = NULL;
+    for (int i = 0; i < n; i++) {
+        const mjContact *c = d->contact + i;
+        int a = c->geom1, b = c->geom2;
+        int64_t k = gm[a] >= 0 ? gm[a] : gm[b];
+        if (watch && (grip[a] || grip[b]))
+            *near = 1;
+        if (k < 0)
+            continue;
+        if (ks == NULL && !((ks = PyList_New(0)) && (fs = PyList_New(0)) && (xy = PyList_New(0))))
+            goto fail;
+        int adr = c->efc_address;
+        PyObject *kk = PyLong_FromLongLong(k);
+        PyObject *ff = PyFloat_FromDouble(adr >= 0 ? fabs(d->efc_force[adr]) : 0.0);
+        PyObject *pt = Py_BuildValue("[dd]", c->pos[0], c->pos[1]);
+        int bad = !kk || !ff || !pt || PyList_Append(ks, kk) || PyList_Append(fs, ff) ||
+                  PyList_Append(xy, pt);
+        Py_XDECREF(kk);
+        Py_XDECREF(ff);
+        Py_XDECREF(pt);
+        if (bad)
+            goto fail;
+    }
+    if (ks == NULL)
+        Py_RETURN_NONE;
+    return Py_BuildValue("(NNN)", ks, fs, xy);
+fail:
+    Py_XDECREF(ks);
+    Py_XDECREF(fs);
+    Py_XDECREF(xy);
+    return NULL;
+}
+
+static PyObject *steps(PyObject *self, PyObject *args)
+{
+    unsigned long long m_adr, d_adr, fn_adr, int_adr, hands_adr, ctrl_adr, still_adr, ok_adr,
+        watch_adr, hq_adr, hv_adr, spring_adr, heights_adr, gm_adr, grip_adr, dofs_adr, v0_adr,
+        anchor_adr, state_adr, cq_adr, clamp_adr;
+    Py_ssize_t n, nmod, ndofs, nclamp;
+    double alpha, ts, lower;
+    int heights_given, do_observe, time_ok, resting;
+    long long verify, coast_steps;
+    PyObject *pending;
+    if (!PyArg_ParseTuple(args, "KKKKnKKKKKKKdKKnpKKdpppKnKKKLLKKndO!", &m_adr, &d_adr, &fn_adr,
+                          &int_adr, &n, &hands_adr, &ctrl_adr, &still_adr, &ok_adr, &watch_adr,
+                          &hq_adr, &hv_adr, &ts, &spring_adr, &heights_adr, &nmod,
+                          &heights_given, &gm_adr, &grip_adr, &alpha, &do_observe, &time_ok,
+                          &resting, &dofs_adr, &ndofs, &v0_adr, &anchor_adr, &state_adr,
+                          &verify, &coast_steps, &cq_adr, &clamp_adr, &nclamp, &lower,
+                          &PyList_Type, &pending))
+        return NULL;
+    integrate_fn mj_integratePos = (integrate_fn)(uintptr_t)int_adr;
+    const uint8_t *still = (const uint8_t *)(uintptr_t)still_adr;
+    const int64_t *clamp = (const int64_t *)(uintptr_t)clamp_adr;
+    const mjModel *m = (const mjModel *)(uintptr_t)m_adr;
+    mjData *d = (mjData *)(uintptr_t)d_adr;
+    step_fn mj_step = (step_fn)(uintptr_t)fn_adr;
+    const double *hands = (const double *)(uintptr_t)hands_adr;
+    const double *ctrl = (const double *)(uintptr_t)ctrl_adr;
+    const uint8_t *ok = (const uint8_t *)(uintptr_t)ok_adr;
+    const uint8_t *watch = (const uint8_t *)(uintptr_t)watch_adr;
+    const int64_t *hq = (const int64_t *)(uintptr_t)hq_adr;
+    const int64_t *hv = (const int64_t *)(uintptr_t)hv_adr;
+    double *spring = (double *)(uintptr_t)spring_adr;
+    const double *heights = (const double *)(uintptr_t)heights_adr;
+    const int64_t *gm = (const int64_t *)(uintptr_t)gm_adr;
+    const uint8_t *grip = (const uint8_t *)(uintptr_t)grip_adr;
+    Coast coast = {(const int64_t *)(uintptr_t)dofs_adr, ndofs, (double *)(uintptr_t)v0_adr,
+                   (double *)(uintptr_t)anchor_adr, (double *)(uintptr_t)cq_adr,
+                   (int64_t *)(uintptr_t)state_adr, verify, coast_steps, m->nv};
+    double *qpos = d->qpos, *qvel = d->qvel;
+    int last = -1; /* the last real step had module contacts (1) or not (0); -1: no real step */
+    Py_ssize_t done = 0, real = 0;
+    int stop = 0;
+    int64_t *st = coast.state;
+    while (done < n && !stop) {
+        const double *hand = hands + 4 * done;
+        int mode = 0; /* 0: a real step, 1: coasted (HoldCoast.coasts), 2: held still */
+        if (st[3] > 0) { /* a coasting window: the world coasts while the arm stands */
+            if (!still[done])
+                break; /* Python asks whether the hand is clear (HandClearance) */
+            if (time_ok) {
+                st[3] -= 1;
+                st[4] += 1;
+                mode = 1;
+            } else {
+                st[0] = 0; st[1] = 0; st[2] = 0; st[3] = 0;
+            }
+        }
+        if (mode == 0 && resting && still[done])
+            mode = 2;
+        if (heights_given) { /* _follow_heights: buf = h - spring; buf *= alpha; spring += buf */
+            for (Py_ssize_t k = 0; k < nmod; k++) {
+                double buf = heights[k] - spring[k];
+                buf *= alpha;
+                spring[k] += buf;
+            }
+        }
+        if (mode) { /* _coast_step / _rest_step */
+            if (mode == 1) {
+                mj_integratePos(m, qpos, coast.coast_qvel, ts);
+                for (int j = 0; j < 4; j++)
+                    qpos[hq[j]] = hand[j];
+            }
+            d->time += ts;
+            done++;
+            continue;
+        }
+        for (int j = 0; j < 4; j++) {
+            qvel[hv[j]] = (hand[j] - qpos[hq[j]]) / ts;
+            qpos[hq[j]] = hand[j];
+        }
+        for (int j = 0; j < m->nu; j++)
+            d->ctrl[j] = ctrl[done];
+        mj_step(m, d);
+        for (int j = 0; j < 4; j++)
+            qpos[hq[j]] = hand[j];
+        for (Py_ssize_t j = 0; j < nclamp; j++) /* objects being lowered: max(v_z, -lower) */
+            if (-lower > qvel[clamp[j]])
+                qvel[clamp[j]] = -lower;
+        int near = 0;
+        PyObject *rec = d->ncon ? read_contacts(d, gm, grip, watch[done], &near) : Py_None;
+        if (rec == NULL)
+            return NULL;
+        if (rec != Py_None) {
+            int bad = PyList_Append(pending, rec);
+            Py_DECREF(rec);
+            if (bad)
+                return NULL;
+            last = 1;
+        } else {
+            if (d->ncon)
+                Py_DECREF(rec);
+            last = 0;
+        }
+        real++;
+        if (near)
+            stop = 1;
+        if (do_observe)
+            observe(&coast, qvel, ok[done]);
+        done++;
+    }
+    /* (steps done, real steps among them, why it stopped: 0 all done or the arm moves in a
+     * coasting window, 1 a contact to record; whether the last real step had module contacts) */
+    return Py_BuildValue("(nnii)", done, real, stop, last);
+}
+
+static PyMethodDef methods[] = {
+    {"steps", steps, METH_VARARGS,
+     "steps(model, data, mj_step, mj_integratePos, n, hands, ctrl, still, ok, watch, hand_q, "
+     "hand_v, ts, spring, heights, n_modules, heights_given, geom_module, grip, alpha, observe, "
+     "time_ok, resting, dofs, n_dofs, v0, anchor, state, verify_steps, coast_steps, coast_qvel, "
+     "clamp, n_clamp, lower, pending) -> (done, stop, last): up "
+     "to n MuJoCo steps of the world (addresses of the caller's arrays; "
+     "softpad.sim._mujoco_fast)."},
+    {NULL, NULL, 0, NULL},
+};
+
+static struct PyModuleDef module = {
+    PyModuleDef_HEAD_INIT, "_fastworld",
+    "The MuJoCo world's steps between two box frames in compiled code (same bits as Python).",
+    -1, methods,
+};
+
+PyMODINIT_FUNC PyInit__fastworld(void) { return PyModule_Create(&module); }

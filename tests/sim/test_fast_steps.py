@@ -1,0 +1,137 @@
+"""The MuJoCo world's compiled steps (src/softpad/sim/_fastworld.c, softpad.sim._mujoco_fast)
+give the same world as the Python path, bit for bit, step by step through a grasp: placing,
+descending (first touch), closing, lifting, a coasted hold, releasing and resting still, with
+the box's heights and pressure changing every sample."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from mujoco_steps import DT, At, X, Y
+
+import softpad.sim._mujoco_world as mujoco_world
+from softpad.sim import GripperState
+from softpad.sim._mujoco_model import MujocoGripper, ObjectModel, ObjectPart
+from softpad.sim._mujoco_world import MujocoWorld
+from softpad.trials import run_trial
+
+pytestmark = pytest.mark.mujoco
+fast = pytest.importorskip("softpad.sim._fastworld", reason="not built (make ext)")
+
+
+def state(world: MujocoWorld) -> list[bytes]:
+    """Everything the world's steps change, as bytes (bit-for-bit comparison)."""
+    s, c = world.scene, world.coast
+    d = s.data
+    arrays = [d.qpos, d.qvel, d.act, d.qacc_warmstart, s.model.qpos_spring, world.module_loads_n()]
+    out = [np.asarray(a, dtype=float).tobytes() for a in arrays]
+    out.append(np.array([d.time, world.time_s, c.coasted_steps, c.armed]).tobytes())
+    touch = (world.first_touch_s, world.first_touch_z_m, world.tip_hit_object)
+    out.append(repr((touch, world.gripper_state(), world.holding())).encode())
+    return out
+
+
+class Box:
+    """Heights and pressure as a box hands them over, changing every sample."""
+
+    def __init__(self) -> None:
+        self.k = 0
+        self.changing = True
+
+    def step(self, world: MujocoWorld, seconds: float) -> None:
+        for _ in range(round(seconds / DT)):
+            self.k += 1 if self.changing else 0
+            heights = 0.012 + 0.001 * np.sin(0.05 * self.k + np.arange(6))
+            world.set_operating_pressure(2000.0 + 500.0 * math.sin(0.03 * self.k))
+            world.step(DT, heights)
+
+
+def grasp(world: MujocoWorld, seconds_per_move: float = 1.5) -> list[list[bytes]]:
+    """A grasp of a brick in the pad's middle; the world's state after every sample."""
+    box, states = Box(), []
+
+    def move(z_m: float, width_m: float, speed_m_s: float, seconds: float) -> None:
+        world.command_gripper(GripperState(X, Y, z_m, 0.0, width_m), speed_m_s)
+        for _ in range(round(seconds / DT)):
+            box.step(world, DT)
+            states.append(state(world))
+
+    part = ObjectPart("box", 0.05, (0, 0, 0.0155), size_m=(0.031,) * 3)
+    world.place_object(ObjectModel("brick", (part,)), At(X, Y))
+    world.coast_free_hand(True)
+    world.coast_settled_until(1e9)
+    move(0.06, 0.05, 0.2, 1.5)  # lowered onto the pad, then the hand comes over it
+    world.reset_touch()
+    move(0.009, 0.05, 0.05, seconds_per_move)  # the descent: a tip's first touch
+    box.changing = False  # the box's heights settle (the hold can coast)
+    move(0.009, 0.0, 0.05, seconds_per_move)  # closing on the brick
+    move(0.06, world.gripper_state().width_m, 0.1, seconds_per_move)  # the lift
+    move(0.06, world.gripper_state().width_m, 0.1, 4.0)  # the hold: coasted windows
+    world.coast_settled_until(None)
+    move(0.009, 0.05, 0.05, seconds_per_move)  # set down and released
+    world.rest_while_still(True)
+    move(0.009, 0.05, 0.05, 0.5)  # held still (a trial's valve check)
+    return states
+
+
+def test_the_compiled_steps_give_the_python_worlds_state_bit_for_bit() -> None:
+    py = MujocoWorld(gripper=MujocoGripper(mounting="6/2"))
+    py.compiled_steps(False)
+    compiled = MujocoWorld(gripper=MujocoGripper(mounting="6/2"))
+    assert compiled._fast is not None and py._fast is None
+    a, b = grasp(py), grasp(compiled)
+    assert len(a) == len(b) > 500
+    for k, (sa, sb) in enumerate(zip(a, b, strict=True)):
+        assert sa == sb, f"the worlds differ after sample {k}"
+    # the scene went through what the compiled loop hands back to Python
+    assert compiled.first_touch_s is not None and compiled.coast.coasted_steps > 100
+    assert compiled.holding() is False
+
+
+def test_the_compiled_steps_run_most_steps(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The Python step is not taken where the compiled loop can run (a world that falls back
+    to Python everywhere would pass the equality test above)."""
+    world = MujocoWorld(gripper=MujocoGripper(mounting="6/2"))
+    calls: list[int] = []
+    real = MujocoWorld._mj_step
+
+    def counted(self: MujocoWorld, ts: float, arm_still: bool) -> None:
+        calls.append(1)
+        real(self, ts, arm_still)
+
+    monkeypatch.setattr(MujocoWorld, "_mj_step", counted)
+    grasp(world, seconds_per_move=1.0)
+    total = round(world.time_s / world.timestep_s)
+    assert len(calls) < 0.15 * total, (len(calls), total)
+
+
+def test_a_trial_is_the_same_with_and_without_the_compiled_steps(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A whole simulated trial (object-3, seed 0 trial 0) gives the same result in every field."""
+    from softpad.sim import get_object
+    from softpad.trials._runner import trial_seed
+
+    seed = trial_seed(0, "object-3", 0)
+    on, _ = run_trial(get_object("object-3"), 0, seed)
+    monkeypatch.setattr(mujoco_world, "FAST_STEPS_BUILT", False)
+    off, _ = run_trial(get_object("object-3"), 0, seed)
+    assert on.success is not None
+    fields = [f for f in vars(on) if f != "wall_time_s"]
+    assert [repr(getattr(on, f)) for f in fields] == [repr(getattr(off, f)) for f in fields]
+
+
+def test_the_compiled_steps_can_be_switched_off_and_named_when_missing(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    world = MujocoWorld()
+    world.compiled_steps(False)
+    assert world._fast is None
+    world.compiled_steps(True)
+    assert world._fast is not None
+    monkeypatch.setattr(mujoco_world, "FAST_STEPS_BUILT", False)
+    with pytest.raises(Exception, match="make ext"):
+        world.compiled_steps(True)
+    assert MujocoWorld()._fast is None
