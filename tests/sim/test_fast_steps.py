@@ -110,13 +110,16 @@ def test_the_compiled_steps_run_most_steps(monkeypatch: pytest.MonkeyPatch) -> N
 def test_a_trial_is_the_same_with_and_without_the_compiled_steps(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
-    """A whole simulated trial (object-3, seed 0 trial 0) gives the same result in every field."""
+    """A whole simulated trial (object-3, seed 0 trial 0) gives the same result in every field
+    with the compiled steps and weighting as with Python and NumPy only."""
+    import softpad.sim._response as response
     from softpad.sim import get_object
     from softpad.trials._runner import trial_seed
 
     seed = trial_seed(0, "object-3", 0)
     on, _ = run_trial(get_object("object-3"), 0, seed)
     monkeypatch.setattr(mujoco_world, "FAST_STEPS_BUILT", False)
+    monkeypatch.setattr(response, "_fastworld", None)
     off, _ = run_trial(get_object("object-3"), 0, seed)
     assert on.success is not None
     fields = [f for f in vars(on) if f != "wall_time_s"]
@@ -135,3 +138,31 @@ def test_the_compiled_steps_can_be_switched_off_and_named_when_missing(
     with pytest.raises(Exception, match="make ext"):
         world.compiled_steps(True)
     assert MujocoWorld()._fast is None
+
+
+@pytest.mark.parametrize(
+    "kwargs",
+    [{}, {"line_gain": 1.0}, {"seam_width_m": 0.0}, {"seam_width_m": 0.01, "line_gain": 2.5}],
+)
+def test_the_compiled_cast_weighting_gives_numpys_factors_bit_for_bit(kwargs: dict) -> None:
+    """The cast pad's equivalent-load factors (PadResponse.point_factors) in compiled code
+    equal NumPy's, bit for bit: random points over and off the pad, the table's nodes and its
+    edges, the chambers' borders, at pressures inside, between and beyond the table's."""
+    from softpad.sim._response import PadResponse
+
+    r = PadResponse(**kwargs)
+    assert r.pad_model == "cast" and r.cast is not None
+    rng = np.random.default_rng(7)
+    pts = rng.uniform(-0.01, 0.145, size=(1500, 2))
+    scale = r.layout.pitch_m / r.cast.pitch_m
+    nodes = np.stack(np.meshgrid(r.cast.x_axis_m, r.cast.y_axis_m[::7]), axis=-1).reshape(-1, 2)
+    borders = r.module_centers_m() + 0.5 * r.chamber_side_m
+    pts = np.concatenate([pts, nodes * scale, borders, [[0.0, 0.0], [np.nextafter(0, -1), 0.0]]])
+    modules = rng.integers(0, r.layout.n_modules, size=len(pts))
+    for pressure in (0.0, 1234.5, 2000.0, 1e5):
+        r.compiled = False
+        want = r.point_factors(modules, pts, pressure)
+        r.compiled = True
+        got = r.point_factors(modules, pts, pressure)
+        assert got.tobytes() == want.tobytes(), pressure
+        assert np.count_nonzero(want) > 0.5 * want.size

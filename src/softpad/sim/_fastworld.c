@@ -261,7 +261,99 @@ static PyObject *steps(PyObject *self, PyObject *args)
     return Py_BuildValue("(nnii)", done, real, stop, last);
 }
 
+/* The index of the cell of a sorted axis that holds x, as numpy's
+ * clip(searchsorted(axis, x, side="right") - 1, 0, n - 2). */
+static Py_ssize_t cell_of(const double *axis, Py_ssize_t n, double x)
+{
+    Py_ssize_t lo = 0, hi = n; /* the first element > x */
+    while (lo < hi) {
+        Py_ssize_t mid = lo + (hi - lo) / 2;
+        if (axis[mid] <= x)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    Py_ssize_t i = lo - 1;
+    if (i < 0)
+        i = 0;
+    if (i > n - 2)
+        i = n - 2;
+    return i;
+}
+
+/* NumPy's maximum and minimum of two doubles (NaN propagates; of equal values the first). */
+static double np_max(double a, double b) { return (a >= b || isnan(a)) ? a : b; }
+static double np_min(double a, double b) { return (a <= b || isnan(a)) ? a : b; }
+
+static double clamp01(double t) { return np_min(np_max(0.0, t), 1.0); }
+
+/* One pad-frame coordinate in the cast model's frame (PadResponse._to_cast_frame, seam
+ * branch): k = [pitch, model_pitch, h, hm, hm / h, c1, c2] as the Python path computes them. */
+static double to_cast(double p, const double *k, int inner_full)
+{
+    double cell = floor(p / k[0]);
+    double u = p - (cell + 0.5) * k[0];
+    double a = fabs(u);
+    double inner = inner_full ? k[3] : a * k[4];
+    double outer = k[3] + (a - k[2]) * k[5] / k[6];
+    double sign = u > 0.0 ? 1.0 : (u < 0.0 ? -1.0 : (isnan(u) ? u : 0.0));
+    return (cell + 0.5) * k[1] + sign * (a <= k[2] ? inner : outer);
+}
+
+static PyObject *cast_factors(PyObject *self, PyObject *args)
+{
+    (void)self;
+    unsigned long long pts_adr, table_adr, ax_adr, ay_adr, centres_adr, ref_adr, out_adr;
+    Py_ssize_t n, nx, ny, nk;
+    int seam, inner_full;
+    double scale, pitch, model_pitch, h, hm, hm_h, c1, c2, half_side, gain1, band;
+    if (!PyArg_ParseTuple(args, "nKKnnnKKpdddddddpddddKKK", &n, &pts_adr, &table_adr, &nx, &ny,
+                          &nk, &ax_adr, &ay_adr, &seam, &scale, &pitch, &model_pitch, &h, &hm,
+                          &hm_h, &c1, &inner_full, &c2, &half_side, &gain1, &band, &centres_adr,
+                          &ref_adr, &out_adr))
+        return NULL;
+    const double *pts = (const double *)(uintptr_t)pts_adr;
+    const double *table = (const double *)(uintptr_t)table_adr;
+    const double *ax = (const double *)(uintptr_t)ax_adr, *ay = (const double *)(uintptr_t)ay_adr;
+    const double *centres = (const double *)(uintptr_t)centres_adr;
+    const double *ref = (const double *)(uintptr_t)ref_adr;
+    double *out = (double *)(uintptr_t)out_adr;
+    double k[7] = {pitch, model_pitch, h, hm, hm_h, c1, c2};
+    for (Py_ssize_t r = 0; r < n; r++) {
+        double px = pts[2 * r], py = pts[2 * r + 1], x, y;
+        if (seam) {
+            x = to_cast(px, k, inner_full);
+            y = to_cast(py, k, inner_full);
+        } else {
+            x = px * scale;
+            y = py * scale;
+        }
+        Py_ssize_t i = cell_of(ax, nx, x), j = cell_of(ay, ny, y);
+        double tx = clamp01((x - ax[i]) / (ax[i + 1] - ax[i]));
+        double ty = clamp01((y - ay[j]) / (ay[j + 1] - ay[j]));
+        double sx = 1 - tx, sy = 1 - ty;
+        int on = x >= ax[0] && x <= ax[nx - 1] && y >= ay[0] && y <= ay[ny - 1];
+        const double *t00 = table + (i * ny + j) * nk, *t10 = table + ((i + 1) * ny + j) * nk;
+        const double *t01 = t00 + nk, *t11 = t10 + nk;
+        for (Py_ssize_t m = 0; m < nk; m++) {
+            double v = t00[m] * sx * sy + t10[m] * tx * sy + t01[m] * sx * ty + t11[m] * tx * ty;
+            double s = on ? v : 0.0;
+            /* PadResponse._line_factor and influences: the gain near the chamber's border */
+            double rx = fabs(px - centres[2 * m]), ry = fabs(py - centres[2 * m + 1]);
+            double d = np_max(half_side - np_max(rx, ry), 0.0);
+            double lf = 1.0 + gain1 * np_max(1.0 - d / band, 0.0);
+            out[r * nk + m] = (s + (lf - 1.0) * np_max(s, 0.0)) / ref[m];
+        }
+    }
+    Py_RETURN_NONE;
+}
+
 static PyMethodDef methods[] = {
+    {"cast_factors", cast_factors, METH_VARARGS,
+     "cast_factors(n, points, table, nx, ny, k, x_axis, y_axis, seam, scale, pitch, "
+     "model_pitch, h, hm, hm_h, c1, inner_full, c2, half_side, gain_1, band, centres, ref, out): "
+     "PadResponse.factors of the cast pad at n points into out (n, k) (addresses of the "
+     "caller's arrays)."},
     {"steps", steps, METH_VARARGS,
      "steps(model, data, mj_step, mj_integratePos, n, hands, ctrl, still, ok, watch, hand_q, "
      "hand_v, ts, spring, heights, n_modules, heights_given, geom_module, grip, alpha, observe, "
