@@ -300,60 +300,145 @@ static double to_cast(double p, const double *k, int inner_full)
     return (cell + 0.5) * k[1] + sign * (a <= k[2] ? inner : outer);
 }
 
+/* The cast pad's response at one pressure (PadResponse._cast_factors_compiled's tuple). */
+typedef struct {
+    const double *table, *ax, *ay, *centres, *ref;
+    Py_ssize_t nx, ny, nk;
+    int seam, inner_full;
+    double scale, k[7], half_side, gain1, band;
+} CastPad;
+
+#define MAX_CHAMBERS 64
+
+static int parse_pad(PyObject *params, CastPad *c)
+{
+    unsigned long long table, ax, ay, centres, ref;
+    double pitch, model_pitch, h, hm, hm_h, c1, c2;
+    if (!PyArg_ParseTuple(params, "KnnnKKpdddddddpddddKK", &table, &c->nx, &c->ny, &c->nk, &ax,
+                          &ay, &c->seam, &c->scale, &pitch, &model_pitch, &h, &hm, &hm_h, &c1,
+                          &c->inner_full, &c2, &c->half_side, &c->gain1, &c->band, &centres,
+                          &ref))
+        return -1;
+    if (c->nk < 1 || c->nk > MAX_CHAMBERS || c->nx < 2 || c->ny < 2) {
+        PyErr_SetString(PyExc_ValueError, "cast table: 1-64 chambers and 2+ nodes a side");
+        return -1;
+    }
+    c->table = (const double *)(uintptr_t)table;
+    c->ax = (const double *)(uintptr_t)ax;
+    c->ay = (const double *)(uintptr_t)ay;
+    c->centres = (const double *)(uintptr_t)centres;
+    c->ref = (const double *)(uintptr_t)ref;
+    double k[7] = {pitch, model_pitch, h, hm, hm_h, c1, c2};
+    memcpy(c->k, k, sizeof k);
+    return 0;
+}
+
+/* PadResponse.factors of the cast pad at one pad-frame point, into out[nk]. */
+static void factor_row(const CastPad *c, double px, double py, double *out)
+{
+    const double *ax = c->ax, *ay = c->ay;
+    Py_ssize_t nx = c->nx, ny = c->ny, nk = c->nk;
+    double x, y;
+    if (c->seam) {
+        x = to_cast(px, c->k, c->inner_full);
+        y = to_cast(py, c->k, c->inner_full);
+    } else {
+        x = px * c->scale;
+        y = py * c->scale;
+    }
+    Py_ssize_t i = cell_of(ax, nx, x), j = cell_of(ay, ny, y);
+    double tx = clamp01((x - ax[i]) / (ax[i + 1] - ax[i]));
+    double ty = clamp01((y - ay[j]) / (ay[j + 1] - ay[j]));
+    double sx = 1 - tx, sy = 1 - ty;
+    int on = x >= ax[0] && x <= ax[nx - 1] && y >= ay[0] && y <= ay[ny - 1];
+    const double *t00 = c->table + (i * ny + j) * nk, *t10 = c->table + ((i + 1) * ny + j) * nk;
+    const double *t01 = t00 + nk, *t11 = t10 + nk;
+    for (Py_ssize_t m = 0; m < nk; m++) {
+        double v = t00[m] * sx * sy + t10[m] * tx * sy + t01[m] * sx * ty + t11[m] * tx * ty;
+        double s = on ? v : 0.0;
+        /* PadResponse._line_factor and influences: the gain near the chamber's border */
+        double rx = fabs(px - c->centres[2 * m]), ry = fabs(py - c->centres[2 * m + 1]);
+        double d = np_max(c->half_side - np_max(rx, ry), 0.0);
+        double lf = 1.0 + c->gain1 * np_max(1.0 - d / c->band, 0.0);
+        out[m] = (s + (lf - 1.0) * np_max(s, 0.0)) / c->ref[m];
+    }
+}
+
 static PyObject *cast_factors(PyObject *self, PyObject *args)
 {
     (void)self;
-    unsigned long long pts_adr, table_adr, ax_adr, ay_adr, centres_adr, ref_adr, out_adr;
-    Py_ssize_t n, nx, ny, nk;
-    int seam, inner_full;
-    double scale, pitch, model_pitch, h, hm, hm_h, c1, c2, half_side, gain1, band;
-    if (!PyArg_ParseTuple(args, "nKKnnnKKpdddddddpddddKKK", &n, &pts_adr, &table_adr, &nx, &ny,
-                          &nk, &ax_adr, &ay_adr, &seam, &scale, &pitch, &model_pitch, &h, &hm,
-                          &hm_h, &c1, &inner_full, &c2, &half_side, &gain1, &band, &centres_adr,
-                          &ref_adr, &out_adr))
+    PyObject *params;
+    Py_ssize_t n;
+    unsigned long long pts_adr, out_adr;
+    CastPad c;
+    if (!PyArg_ParseTuple(args, "O!nKK", &PyTuple_Type, &params, &n, &pts_adr, &out_adr) ||
+        parse_pad(params, &c) < 0)
         return NULL;
     const double *pts = (const double *)(uintptr_t)pts_adr;
-    const double *table = (const double *)(uintptr_t)table_adr;
-    const double *ax = (const double *)(uintptr_t)ax_adr, *ay = (const double *)(uintptr_t)ay_adr;
-    const double *centres = (const double *)(uintptr_t)centres_adr;
-    const double *ref = (const double *)(uintptr_t)ref_adr;
     double *out = (double *)(uintptr_t)out_adr;
-    double k[7] = {pitch, model_pitch, h, hm, hm_h, c1, c2};
-    for (Py_ssize_t r = 0; r < n; r++) {
-        double px = pts[2 * r], py = pts[2 * r + 1], x, y;
-        if (seam) {
-            x = to_cast(px, k, inner_full);
-            y = to_cast(py, k, inner_full);
-        } else {
-            x = px * scale;
-            y = py * scale;
+    for (Py_ssize_t r = 0; r < n; r++)
+        factor_row(&c, pts[2 * r], pts[2 * r + 1], out + r * c.nk);
+    Py_RETURN_NONE;
+}
+
+/* ContactSensing._flush of the cast pad: for every step's record (modules, forces, points),
+ * shares = factors * f, summed over the step's contacts in order (NumPy's sum over axis 0:
+ * row after row from the first), added to total. */
+static PyObject *cast_weigh(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *params, *pending;
+    unsigned long long total_adr;
+    CastPad c;
+    if (!PyArg_ParseTuple(args, "O!O!K", &PyTuple_Type, &params, &PyList_Type, &pending,
+                          &total_adr) ||
+        parse_pad(params, &c) < 0)
+        return NULL;
+    double *total = (double *)(uintptr_t)total_adr;
+    double row[MAX_CHAMBERS], acc[MAX_CHAMBERS];
+    for (Py_ssize_t r = 0; r < PyList_GET_SIZE(pending); r++) {
+        PyObject *rec = PyList_GET_ITEM(pending, r);
+        if (!PyTuple_Check(rec) || PyTuple_GET_SIZE(rec) != 3 ||
+            !PyList_Check(PyTuple_GET_ITEM(rec, 1)) || !PyList_Check(PyTuple_GET_ITEM(rec, 2))) {
+            PyErr_SetString(PyExc_TypeError, "a step's record must be (modules, forces, points)");
+            return NULL;
         }
-        Py_ssize_t i = cell_of(ax, nx, x), j = cell_of(ay, ny, y);
-        double tx = clamp01((x - ax[i]) / (ax[i + 1] - ax[i]));
-        double ty = clamp01((y - ay[j]) / (ay[j + 1] - ay[j]));
-        double sx = 1 - tx, sy = 1 - ty;
-        int on = x >= ax[0] && x <= ax[nx - 1] && y >= ay[0] && y <= ay[ny - 1];
-        const double *t00 = table + (i * ny + j) * nk, *t10 = table + ((i + 1) * ny + j) * nk;
-        const double *t01 = t00 + nk, *t11 = t10 + nk;
-        for (Py_ssize_t m = 0; m < nk; m++) {
-            double v = t00[m] * sx * sy + t10[m] * tx * sy + t01[m] * sx * ty + t11[m] * tx * ty;
-            double s = on ? v : 0.0;
-            /* PadResponse._line_factor and influences: the gain near the chamber's border */
-            double rx = fabs(px - centres[2 * m]), ry = fabs(py - centres[2 * m + 1]);
-            double d = np_max(half_side - np_max(rx, ry), 0.0);
-            double lf = 1.0 + gain1 * np_max(1.0 - d / band, 0.0);
-            out[r * nk + m] = (s + (lf - 1.0) * np_max(s, 0.0)) / ref[m];
+        PyObject *fs = PyTuple_GET_ITEM(rec, 1), *xy = PyTuple_GET_ITEM(rec, 2);
+        Py_ssize_t n = PyList_GET_SIZE(fs);
+        if (n == 0 || PyList_GET_SIZE(xy) != n) {
+            PyErr_SetString(PyExc_ValueError, "a step's record has no or unequal contacts");
+            return NULL;
         }
+        for (Py_ssize_t i = 0; i < n; i++) {
+            PyObject *pt = PyList_GET_ITEM(xy, i);
+            double f = PyFloat_AsDouble(PyList_GET_ITEM(fs, i));
+            PyObject *px = PySequence_GetItem(pt, 0), *py = PySequence_GetItem(pt, 1);
+            double x = px ? PyFloat_AsDouble(px) : -1.0, y = py ? PyFloat_AsDouble(py) : -1.0;
+            Py_XDECREF(px);
+            Py_XDECREF(py);
+            if (PyErr_Occurred())
+                return NULL;
+            factor_row(&c, x, y, row);
+            for (Py_ssize_t m = 0; m < c.nk; m++) {
+                double share = row[m] * f;
+                acc[m] = i ? acc[m] + share : share;
+            }
+        }
+        for (Py_ssize_t m = 0; m < c.nk; m++)
+            total[m] += acc[m];
     }
     Py_RETURN_NONE;
 }
 
 static PyMethodDef methods[] = {
     {"cast_factors", cast_factors, METH_VARARGS,
-     "cast_factors(n, points, table, nx, ny, k, x_axis, y_axis, seam, scale, pitch, "
-     "model_pitch, h, hm, hm_h, c1, inner_full, c2, half_side, gain_1, band, centres, ref, out): "
-     "PadResponse.factors of the cast pad at n points into out (n, k) (addresses of the "
-     "caller's arrays)."},
+     "cast_factors(pad, n, points, out): PadResponse.factors of the cast pad at n points into "
+     "out (n, k); pad: (table, nx, ny, k, x_axis, y_axis, seam, scale, pitch, model_pitch, h, "
+     "hm, hm_h, c1, inner_full, c2, half_side, gain_1, band, centres, ref), addresses of the "
+     "caller's arrays (softpad.sim._response)."},
+    {"cast_weigh", cast_weigh, METH_VARARGS,
+     "cast_weigh(pad, pending, total): ContactSensing._flush of the cast pad: each step's "
+     "equivalent loads (shares summed in contact order) added to total (k)."},
     {"steps", steps, METH_VARARGS,
      "steps(model, data, mj_step, mj_integratePos, n, hands, ctrl, still, ok, watch, hand_q, "
      "hand_v, ts, spring, heights, n_modules, heights_given, geom_module, grip, alpha, observe, "

@@ -344,23 +344,47 @@ class PadResponse:
     ) -> NDArray[np.float64]:
         """:meth:`factors` of the cast pad in compiled code (:mod:`softpad.sim._fastworld`):
         the same operations in the same order, one call instead of some forty NumPy ones."""
+        assert _fastworld is not None
+        pad = self._compiled_pad(pressure_pa)
+        pts = np.ascontiguousarray(pts)
+        out = np.empty((len(pts), pad[3]))
+        _fastworld.cast_factors(pad, len(pts), pts.ctypes.data, out.ctypes.data)
+        return out
+
+    def weigh_steps(
+        self,
+        steps: list[tuple[list[int], list[float], list[list[float]]]],
+        pressure_pa: float,
+        total: NDArray[np.float64],
+    ) -> bool:
+        """Add each step's equivalent loads to ``total`` (n_modules), as
+        :class:`~softpad.sim._mujoco_contacts.ContactSensing` weighs a sample period's steps
+        (modules, normal forces, points per step: the forces times :meth:`point_factors`,
+        summed over a step's contacts in order), in compiled code; False (nothing added) where
+        it does not run (the clamped pad, not built, switched off)."""
+        if self.cast is None or _fastworld is None or not self.compiled:
+            return False
+        assert total.flags.c_contiguous and total.dtype == np.float64
+        _fastworld.cast_weigh(self._compiled_pad(pressure_pa), steps, total.ctypes.data)
+        return True
+
+    def _compiled_pad(self, pressure_pa: float) -> tuple[Any, ...]:
+        """The cast pad at ``pressure_pa`` as the compiled code takes it (the table and the
+        reference influences at that pressure, the constants; arrays by address, kept alive
+        by the caches)."""
         cast = self.cast
-        assert cast is not None and _fastworld is not None
+        assert cast is not None
         if self._compiled_consts is None:
             self._compiled_consts = self._cast_constants(cast)
         consts, centres = self._compiled_consts
         table = cast.influence_table(pressure_pa)
-        ref = np.ascontiguousarray(self.reference_influences(pressure_pa), dtype=float)
-        pts = np.ascontiguousarray(pts)
-        nx, ny, nk = table.shape
-        out = np.empty((len(pts), nk))
+        ref = np.asarray(self.reference_influences(pressure_pa), dtype=float)
         ax, ay = cast.x_axis_m, cast.y_axis_m
-        assert ax.flags.c_contiguous and ay.flags.c_contiguous
-        _fastworld.cast_factors(
-            len(pts), pts.ctypes.data, table.ctypes.data, nx, ny, nk, ax.ctypes.data,
-            ay.ctypes.data, *consts, centres.ctypes.data, ref.ctypes.data, out.ctypes.data,
-        )  # fmt: skip
-        return out
+        arrays = (table, ax, ay, centres, ref)
+        assert all(a.flags.c_contiguous and a.dtype == np.float64 for a in arrays)
+        nx, ny, nk = table.shape
+        head = (table.ctypes.data, nx, ny, nk, ax.ctypes.data, ay.ctypes.data)
+        return (*head, *consts, centres.ctypes.data, ref.ctypes.data)
 
     def _cast_constants(self, cast: CastPadResponse) -> tuple[tuple[Any, ...], NDArray[np.float64]]:
         """The scalars of :meth:`_to_cast_frame` and :meth:`_line_factor`, computed as there,
