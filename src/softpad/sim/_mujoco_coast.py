@@ -105,7 +105,7 @@ class HoldCoast:
     ) -> None:
         """Take the window's state back from :meth:`save_state`'s arrays, as the compiled steps
         left them."""
-        has_v0, count, has_anchor, left, coasted, new = (int(x) for x in state)
+        has_v0, count, has_anchor, left, coasted, new = state.tolist()
         self._v0 = v0.copy() if has_v0 else None
         self._anchor = anchor.copy() if has_anchor else None
         self._count, self._left = count, left

@@ -195,6 +195,7 @@ class PadResponse:
         #: False: NumPy only).
         self.compiled = True
         self._compiled_consts: tuple[tuple[Any, ...], NDArray[np.float64]] | None = None
+        self._compiled_pads: dict[float, tuple[tuple[Any, ...], tuple[Any, ...]]] = {}
 
     @property
     def pad_model(self) -> str:
@@ -372,6 +373,10 @@ class PadResponse:
         """The cast pad at ``pressure_pa`` as the compiled code takes it (the table and the
         reference influences at that pressure, the constants; arrays by address, kept alive
         by the caches)."""
+        key = round(float(pressure_pa), 3)  # the table's and the references' cache key
+        kept = self._compiled_pads.get(key)
+        if kept is not None:
+            return kept[0]
         cast = self.cast
         assert cast is not None
         if self._compiled_consts is None:
@@ -384,7 +389,9 @@ class PadResponse:
         assert all(a.flags.c_contiguous and a.dtype == np.float64 for a in arrays)
         nx, ny, nk = table.shape
         head = (table.ctypes.data, nx, ny, nk, ax.ctypes.data, ay.ctypes.data)
-        return (*head, *consts, centres.ctypes.data, ref.ctypes.data)
+        pad = (*head, *consts, centres.ctypes.data, ref.ctypes.data)
+        self._compiled_pads[key] = (pad, arrays)  # the arrays kept alive with their addresses
+        return pad
 
     def _cast_constants(self, cast: CastPadResponse) -> tuple[tuple[Any, ...], NDArray[np.float64]]:
         """The scalars of :meth:`_to_cast_frame` and :meth:`_line_factor`, computed as there,
