@@ -26,9 +26,11 @@ ext: venv
 	        -o "src/softpad/box/_fastguard$$($(call PYINFO,EXT_SUFFIX))" -lpthread; \
 	    cc -O2 -std=c11 -Wall -ffp-contract=off -shared -fPIC -I"$$($(call PYINFO,INCLUDEPY))" \
 	        src/softpad/box/_fastsim.c -o "src/softpad/box/_fastsim$$($(call PYINFO,EXT_SUFFIX))"; \
-	    cc -O2 -std=c11 -Wall -ffp-contract=off -shared -fPIC -I"$$($(call PYINFO,INCLUDEPY))" \
-	        -I"$$($(BIN)/python -c 'import mujoco, os; print(os.path.dirname(mujoco.__file__))')/include" \
-	        src/softpad/sim/_fastworld.c -o "src/softpad/sim/_fastworld$$($(call PYINFO,EXT_SUFFIX))"; \
+	    mj="$$($(BIN)/python -c 'import mujoco, os; print(os.path.dirname(mujoco.__file__))' 2>/dev/null)"; \
+	    if [ -n "$$mj" ]; then cc -O2 -std=c11 -Wall -ffp-contract=off -shared -fPIC \
+	        -I"$$($(call PYINFO,INCLUDEPY))" -I"$$mj/include" src/softpad/sim/_fastworld.c \
+	        -o "src/softpad/sim/_fastworld$$($(call PYINFO,EXT_SUFFIX))"; \
+	    else echo "ext: no mujoco: the compiled world steps are not built"; fi; \
 	else echo "ext: no C compiler: the compiled guard, solve and world steps are not built (their tests are skipped)"; fi
 
 # PYTHONDONTWRITEBYTECODE cleared as for the tests (below): the demo's processes (the command,
