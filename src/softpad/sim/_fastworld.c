@@ -397,33 +397,43 @@ static PyObject *cast_weigh(PyObject *self, PyObject *args)
     double *total = (double *)(uintptr_t)total_adr;
     double row[MAX_CHAMBERS], acc[MAX_CHAMBERS];
     for (Py_ssize_t r = 0; r < PyList_GET_SIZE(pending); r++) {
-        PyObject *rec = PyList_GET_ITEM(pending, r);
-        if (!PyTuple_Check(rec) || PyTuple_GET_SIZE(rec) != 3 ||
-            !PyList_Check(PyTuple_GET_ITEM(rec, 1)) || !PyList_Check(PyTuple_GET_ITEM(rec, 2))) {
-            PyErr_SetString(PyExc_TypeError, "a step's record must be (modules, forces, points)");
+        /* a record's parts as sequences (the steps' lists, or arrays) */
+        PyObject *rec = PySequence_Fast(PyList_GET_ITEM(pending, r), "a step's record");
+        if (rec == NULL)
             return NULL;
-        }
-        PyObject *fs = PyTuple_GET_ITEM(rec, 1), *xy = PyTuple_GET_ITEM(rec, 2);
-        Py_ssize_t n = PyList_GET_SIZE(fs);
-        if (n == 0 || PyList_GET_SIZE(xy) != n) {
+        PyObject *fs = NULL, *xy = NULL;
+        int ok = PySequence_Fast_GET_SIZE(rec) == 3 &&
+                 (fs = PySequence_Fast(PySequence_Fast_GET_ITEM(rec, 1), "forces")) != NULL &&
+                 (xy = PySequence_Fast(PySequence_Fast_GET_ITEM(rec, 2), "points")) != NULL;
+        Py_ssize_t n = ok ? PySequence_Fast_GET_SIZE(fs) : 0;
+        if (ok && (n == 0 || PySequence_Fast_GET_SIZE(xy) != n)) {
             PyErr_SetString(PyExc_ValueError, "a step's record has no or unequal contacts");
-            return NULL;
+            ok = 0;
+        } else if (!ok && !PyErr_Occurred()) {
+            PyErr_SetString(PyExc_TypeError, "a step's record must be (modules, forces, points)");
         }
-        for (Py_ssize_t i = 0; i < n; i++) {
-            PyObject *pt = PyList_GET_ITEM(xy, i);
-            double f = PyFloat_AsDouble(PyList_GET_ITEM(fs, i));
+        for (Py_ssize_t i = 0; ok && i < n; i++) {
+            PyObject *pt = PySequence_Fast_GET_ITEM(xy, i);
+            double f = PyFloat_AsDouble(PySequence_Fast_GET_ITEM(fs, i));
             PyObject *px = PySequence_GetItem(pt, 0), *py = PySequence_GetItem(pt, 1);
             double x = px ? PyFloat_AsDouble(px) : -1.0, y = py ? PyFloat_AsDouble(py) : -1.0;
             Py_XDECREF(px);
             Py_XDECREF(py);
-            if (PyErr_Occurred())
-                return NULL;
+            if (PyErr_Occurred()) {
+                ok = 0;
+                break;
+            }
             factor_row(&c, x, y, row);
             for (Py_ssize_t m = 0; m < c.nk; m++) {
                 double share = row[m] * f;
                 acc[m] = i ? acc[m] + share : share;
             }
         }
+        Py_XDECREF(fs);
+        Py_XDECREF(xy);
+        Py_DECREF(rec);
+        if (!ok)
+            return NULL;
         for (Py_ssize_t m = 0; m < c.nk; m++)
             total[m] += acc[m];
     }
