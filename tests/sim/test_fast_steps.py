@@ -27,7 +27,9 @@ def state(world: MujocoWorld) -> list[bytes]:
     d = s.data
     arrays = [d.qpos, d.qvel, d.act, d.qacc_warmstart, s.model.qpos_spring, world.module_loads_n()]
     out = [np.asarray(a, dtype=float).tobytes() for a in arrays]
-    out.append(np.array([d.time, world.time_s, c.coasted_steps, c.armed]).tobytes())
+    out.append(
+        np.array([d.time, world.time_s, c.coasted_steps, c.armed, world.rested_steps]).tobytes()
+    )
     touch = (world.first_touch_s, world.first_touch_z_m, world.tip_hit_object)
     out.append(repr((touch, world.gripper_state(), world.holding())).encode())
     return out
@@ -87,7 +89,7 @@ def test_the_compiled_steps_give_the_python_worlds_state_bit_for_bit() -> None:
         assert sa == sb, f"the worlds differ after sample {k}"
     # the scene went through what the compiled loop hands back to Python
     assert compiled.first_touch_s is not None and compiled.coast.coasted_steps > 100
-    assert compiled.holding() is False
+    assert compiled.holding() is False and compiled.rested_steps > 100
 
 
 def test_the_compiled_steps_run_most_steps(monkeypatch: pytest.MonkeyPatch) -> None:

@@ -186,7 +186,7 @@ static PyObject *steps(PyObject *self, PyObject *args)
                    (int64_t *)(uintptr_t)state_adr, verify, coast_steps, m->nv};
     double *qpos = d->qpos, *qvel = d->qvel;
     int last = -1; /* the last real step had module contacts (1) or not (0); -1: no real step */
-    Py_ssize_t done = 0, real = 0;
+    Py_ssize_t done = 0, real = 0, rested = 0;
     int stop = 0;
     int64_t *st = coast.state;
     while (done < n && !stop) {
@@ -217,6 +217,8 @@ static PyObject *steps(PyObject *self, PyObject *args)
                 mj_integratePos(m, qpos, coast.coast_qvel, ts);
                 for (int j = 0; j < 4; j++)
                     qpos[hq[j]] = hand[j];
+            } else {
+                rested++;
             }
             d->time += ts;
             done++;
@@ -257,8 +259,9 @@ static PyObject *steps(PyObject *self, PyObject *args)
         done++;
     }
     /* (steps done, real steps among them, why it stopped: 0 all done or the arm moves in a
-     * coasting window, 1 a contact to record; whether the last real step had module contacts) */
-    return Py_BuildValue("(nnii)", done, real, stop, last);
+     * coasting window, 1 a contact to record; whether the last real step had module contacts;
+     * steps held still among them) */
+    return Py_BuildValue("(nniin)", done, real, stop, last, rested);
 }
 
 /* The index of the cell of a sorted axis that holds x, as numpy's
@@ -453,7 +456,7 @@ static PyMethodDef methods[] = {
      "steps(model, data, mj_step, mj_integratePos, n, hands, ctrl, still, ok, watch, hand_q, "
      "hand_v, ts, spring, heights, n_modules, heights_given, geom_module, grip, alpha, observe, "
      "time_ok, resting, dofs, n_dofs, v0, anchor, state, verify_steps, coast_steps, coast_qvel, "
-     "clamp, n_clamp, lower, pending) -> (done, stop, last): up "
+     "clamp, n_clamp, lower, pending) -> (done, real, stop, last, rested): up "
      "to n MuJoCo steps of the world (addresses of the caller's arrays; "
      "softpad.sim._mujoco_fast)."},
     {NULL, NULL, 0, NULL},

@@ -139,6 +139,8 @@ class MujocoWorld(PadWorld):
         self._free_hand: HandClearance | None = None
         self._fast: FastSteps | None = None
         self._fast_on = FAST_STEPS_BUILT
+        #: MuJoCo steps held still so far (:meth:`rest_while_still`; diagnostics).
+        self.rested_steps = 0
         self._build(tuple(objects))
 
     def _build(self, objects: tuple[ObjectModel, ...]) -> None:
@@ -515,6 +517,7 @@ class MujocoWorld(PadWorld):
         (as in every step), nothing else moves."""
         self._follow_heights(ts)
         self.scene.data.time += ts
+        self.rested_steps += 1
 
     def coast_free_hand(self, on: bool) -> None:
         """Let the world coast (:meth:`coast_settled_until`) also while the hand moves, as long
