@@ -132,7 +132,8 @@ class KinematicArm:
         if self.at_rest():  # nothing to advance (the hold, the waits: half of a trial's steps)
             return True
         delta = self.goal[:3] - self.hand[:3]
-        dist = float(np.linalg.norm(delta))
+        # np.linalg.norm's own computation of a 1-D vector's norm, without its Python wrapper
+        dist = math.sqrt(float(delta.dot(delta)))
         # the arm accelerates and brakes at ARM_ACCELERATION_M_S2 (a kinematic jump to the
         # lift speed would ask friction for 100 m/s^2 on the object)
         a = ARM_ACCELERATION_M_S2

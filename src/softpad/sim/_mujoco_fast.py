@@ -202,12 +202,13 @@ class FastSteps:
         if observe:
             coast.save_state(self._v0, self._anchor, self._state, self._coast_qvel)
         records: list[tuple[list[int], list[float], list[list[float]]]] = []
+        clamp_address = _addr(self._clamp) if self._clamp.size else 0  # none read when empty
         done, real, stop, last, rested = _fastworld.steps(
             self._m, self._d, self._fn, self._integrate, n, *self._adr_steps, ts,
             self._adr_spring, world._heights_address, self._spring.size, world._heights_given,
             self._adr_gm, self._adr_grip, alpha, observe, time_ok,
             world._resting, *self._adr_coast, coast.verify_steps, coast.coast_steps,
-            self._adr_qvel, _addr(self._clamp), self._clamp.size, world._LOWER_M_S, records,
+            self._adr_qvel, clamp_address, self._clamp.size, world._LOWER_M_S, records,
         )  # fmt: skip
         world.rested_steps += rested
         if observe:
