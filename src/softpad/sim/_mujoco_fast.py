@@ -101,6 +101,7 @@ class FastSteps:
             _addr(a) for a in (spring, self._gm, self._grip)
         )
         self._adr_qvel = _addr(self._coast_qvel)
+        self._plans: dict[tuple[float, float, float], tuple[list[float], list[float]]] = {}
         self._grow(8)
 
     def _grow(self, n: int) -> None:
@@ -135,18 +136,10 @@ class FastSteps:
         time + ts)``, as the Python path computes it); ``clamp``: the vertical velocities of
         the objects being lowered onto the pad."""
         start = arm.snapshot()
-        chunks: list[float] = []
-        left = [remaining]
-        pending = world._pending_s
         until = coast.until_s
         time_ok = until is not None and world._time_s < until
         resting = arm.at_rest()  # then every move of the frame leaves the arm as it is
-        while pending + remaining >= ts * (1 - 1e-9):
-            chunk = max(ts - pending, 0.0)
-            remaining -= chunk
-            pending = 0.0
-            chunks.append(chunk)
-            left.append(remaining)
+        chunks, left = self._chunks(world._pending_s, remaining, ts)
         n = len(chunks)
         if n > self._cap:
             self._grow(max(n, 2 * self._cap))
@@ -167,6 +160,28 @@ class FastSteps:
         return self._call(
             world, arm, sensing, coast, (ts, alpha, time_ok), (start, chunks, left, widths)
         )
+
+    def _chunks(
+        self, pending: float, remaining: float, ts: float
+    ) -> tuple[list[float], list[float]]:
+        """The frame's steps as the world's step loop counts them: each step's arm move and
+        the time left of the frame before the first and after each (the same arithmetic;
+        cached, as most frames start alike)."""
+        key = (pending, remaining, ts)
+        plan = self._plans.get(key)
+        if plan is None:
+            chunks: list[float] = []
+            left = [remaining]
+            while pending + remaining >= ts * (1 - 1e-9):
+                chunk = max(ts - pending, 0.0)
+                remaining -= chunk
+                pending = 0.0
+                chunks.append(chunk)
+                left.append(remaining)
+            if len(self._plans) < 64:
+                self._plans[key] = (chunks, left)
+            plan = (chunks, left)
+        return plan
 
     def _moves(
         self, arm: KinematicArm, sensing: ContactSensing, chunks: list[float], free: bool
