@@ -28,11 +28,16 @@ ext: venv
 	        src/softpad/box/_fastsim.c -o "src/softpad/box/_fastsim$$($(call PYINFO,EXT_SUFFIX))"; \
 	    cc -O2 -std=c11 -Wall -ffp-contract=off -shared -fPIC -I"$$($(call PYINFO,INCLUDEPY))" \
 	        src/softpad/control/_fastmonitor.c -o "src/softpad/control/_fastmonitor$$($(call PYINFO,EXT_SUFFIX))"; \
-	else echo "ext: no C compiler: the compiled guard, solve and monitor rates are not built (their tests are skipped)"; fi
+	    mj="$$($(BIN)/python -c 'import mujoco, os; print(os.path.dirname(mujoco.__file__))' 2>/dev/null)"; \
+	    if [ -n "$$mj" ]; then cc -O2 -std=c11 -Wall -ffp-contract=off -shared -fPIC \
+	        -I"$$($(call PYINFO,INCLUDEPY))" -I"$$mj/include" src/softpad/sim/_fastworld.c \
+	        -o "src/softpad/sim/_fastworld$$($(call PYINFO,EXT_SUFFIX))"; \
+	    else echo "ext: no mujoco: the compiled world steps are not built"; fi; \
+	else echo "ext: no C compiler: the compiled guard, solve, monitor rates and world steps are not built (their tests are skipped)"; fi
 
 # PYTHONDONTWRITEBYTECODE cleared as for the tests (below): the demo's processes (the command,
 # its trial workers, the reference plans' process) compile the sources once, not each time.
-demo: venv
+demo: ext
 	MPLBACKEND=Agg PYTHONDONTWRITEBYTECODE= $(BIN)/softpad demo --out report --force
 
 lint: venv
@@ -96,12 +101,12 @@ test: lint typecheck ros-deps ros2-interfaces ext
 test-slow: venv ros-deps ros2-interfaces ext
 	$(TEST_ENV) $(BIN)/pytest -n 2 --dist worksteal -q -m slow --durations=10
 
-bench: venv
+bench: ext
 	MPLBACKEND=Agg $(BIN)/softpad bench
 
 # Every result the docs quote, rerun at this commit into docs/results.md (about 30 min on 2
 # cores: seeds 0-1 for the trials; `softpad results --full --force` for the docs' seeds).
-results: venv
+results: ext
 	MPLBACKEND=Agg $(BIN)/softpad results --force
 
 clean:

@@ -47,6 +47,9 @@ def _reference_loads(sensing: ContactSensing, scene) -> tuple[np.ndarray, np.nda
 @pytest.mark.parametrize("name", ["charger", "banana"])
 def test_period_loads_equal_the_per_step_computation(name: str, monkeypatch) -> None:
     world = MujocoWorld()
+    # the Python steps, whose update is checked step by step here (the compiled steps give the
+    # same world: tests/sim/test_fast_steps.py)
+    world.compiled_steps(False)
     spec = get_object(name)
     world.place_object(spec, Placement(spec.placement.x_m, spec.placement.y_m))
     steps: list[np.ndarray] = []

@@ -70,6 +70,7 @@ def test_a_one_step_contact_peak_reaches_the_chamber_as_its_share_of_the_period(
         x, y = PadLayout().to_metres(PadLayout().center(2))
         world.place_object(brick(), Placement(x, y))
         settle(world)
+        world.compiled_steps(False)  # the Python steps' update (same world: test_fast_steps.py)
         sensing = world._sensing
         update, steps = sensing.update, []
 

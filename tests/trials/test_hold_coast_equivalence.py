@@ -50,19 +50,27 @@ def _fields(name: str, seed: int, trial: int, coast: bool, randomize: bool) -> d
     return d
 
 
-def _coasted(monkeypatch: pytest.MonkeyPatch) -> list[int]:
-    """Counts the coasted steps of the trials run after it (one entry per step)."""
-    steps: list[int] = []
-    original = coast_module.HoldCoast.coasts
+class _Coasted:
+    """The coasted steps of the trials run after it was made (every world's ``HoldCoast``
+    counts its own, in the Python steps and the compiled ones alike)."""
 
-    def counting(self: coast_module.HoldCoast, time_s: float, still: bool) -> bool:
-        c = original(self, time_s, still)
-        if c:
-            steps.append(1)
-        return c
+    def __init__(self, monkeypatch: pytest.MonkeyPatch) -> None:
+        self.coasts: list[coast_module.HoldCoast] = []
+        original = coast_module.HoldCoast.__init__
 
-    monkeypatch.setattr(coast_module.HoldCoast, "coasts", counting)
-    return steps
+        def kept(c: coast_module.HoldCoast, *args: Any, **kwargs: Any) -> None:
+            original(c, *args, **kwargs)
+            self.coasts.append(c)
+
+        monkeypatch.setattr(coast_module.HoldCoast, "__init__", kept)
+
+    def __len__(self) -> int:
+        return sum(c.coasted_steps for c in self.coasts)
+
+
+def _coasted(monkeypatch: pytest.MonkeyPatch) -> _Coasted:
+    """Counts the coasted steps of the trials run after it."""
+    return _Coasted(monkeypatch)
 
 
 def _assert_equivalent(name: str, seed: int, trials: range, randomize: bool = False) -> None:

@@ -28,17 +28,19 @@ def _fields(name: str, still: bool) -> dict[str, Any]:
 def test_a_still_valve_check_changes_no_trial_result(
     name: str, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    rested: list[int] = []
-    original = MujocoWorld._rest_step
+    worlds: list[MujocoWorld] = []
+    original = MujocoWorld.__init__
 
-    def counting(self: MujocoWorld, ts: float) -> None:
-        rested.append(1)
-        original(self, ts)
+    def kept(self: MujocoWorld, *args: Any, **kwargs: Any) -> None:
+        original(self, *args, **kwargs)
+        worlds.append(self)
 
-    monkeypatch.setattr(MujocoWorld, "_rest_step", counting)
+    # each world counts its steps held still (the Python steps and the compiled ones alike)
+    monkeypatch.setattr(MujocoWorld, "__init__", kept)
     stepped = _fields(name, False)
-    assert not rested
+    assert worlds and not sum(w.rested_steps for w in worlds)
+    worlds.clear()
     still = _fields(name, True)
     assert still == stepped
     # the valve check's pulses and sealed watch: about 3.5 s of 2 ms steps held still
-    assert len(rested) > 1000
+    assert sum(w.rested_steps for w in worlds) > 1000

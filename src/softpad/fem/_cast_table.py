@@ -147,11 +147,7 @@ class CastPadResponse:
         """``s_k`` of a point force at pad-frame points (n, 2), (n, K), m^3/N: bilinear between
         the nodes, linear in pressure; zero off the pad."""
         pts = np.asarray(points_m, dtype=float).reshape(-1, 2)
-        key = round(float(pressure_pa), 3)
-        table = self._cache.get(key)
-        if table is None:  # (x, y, K): a point's K values side by side (one gather a corner)
-            at = np.asarray(self.along_pressure(self.influence_m3_n, float(pressure_pa)))
-            table = self._cache[key] = np.ascontiguousarray(np.moveaxis(at, 0, -1))
+        table = self.influence_table(pressure_pa)
         ax, ay = self.x_axis_m, self.y_axis_m
         x, y = pts[:, 0], pts[:, 1]
         # np.clip's values without its Python wrapper (a simulated trial's hot path)
@@ -170,6 +166,16 @@ class CastPadResponse:
         on = (x >= ax[0]) & (x <= ax[-1]) & (y >= ay[0])
         on &= y <= ay[-1]
         return np.where(on[:, None], v, 0.0)
+
+    def influence_table(self, pressure_pa: float) -> NDArray[np.float64]:
+        """``s_k`` at every node at ``pressure_pa`` (linear, clamped), (Nx, Ny, K), C-contiguous:
+        a node's K values side by side (cached per pressure, rounded to 1 mPa)."""
+        key = round(float(pressure_pa), 3)
+        table = self._cache.get(key)
+        if table is None:  # (x, y, K): a point's K values side by side (one gather a corner)
+            at = np.asarray(self.along_pressure(self.influence_m3_n, float(pressure_pa)))
+            table = self._cache[key] = np.ascontiguousarray(np.moveaxis(at, 0, -1))
+        return np.asarray(table)
 
     def compliance(self, pressure_pa: float) -> NDArray[np.float64]:
         """``dV_k/dp_l`` at ``pressure_pa``, (K, K), m^3/Pa."""

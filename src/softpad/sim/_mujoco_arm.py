@@ -112,6 +112,16 @@ class KinematicArm:
             and self.hand.tobytes() == g[:4].tobytes()
         )
 
+    def snapshot(self) -> tuple[NDArray[np.float64], float, float]:
+        """What :meth:`move` changes (hand pose, hand speed, jaw setpoint), for :meth:`restore`."""
+        return self.hand.copy(), self._hand_speed, self.width_setpoint
+
+    def restore(self, state: tuple[NDArray[np.float64], float, float]) -> None:
+        """Put back what :meth:`move` changed since ``state`` (:meth:`snapshot`); the hand's
+        array is written in place."""
+        hand, self._hand_speed, self.width_setpoint = state
+        self.hand[:] = hand
+
     def jaws_at_rest(self) -> bool:
         """True when the jaw setpoint stands at its goal (the hand may move)."""
         return self.width_setpoint == self.goal[4]
@@ -122,7 +132,8 @@ class KinematicArm:
         if self.at_rest():  # nothing to advance (the hold, the waits: half of a trial's steps)
             return True
         delta = self.goal[:3] - self.hand[:3]
-        dist = float(np.linalg.norm(delta))
+        # np.linalg.norm's own computation of a 1-D vector's norm, without its Python wrapper
+        dist = math.sqrt(float(delta.dot(delta)))
         # the arm accelerates and brakes at ARM_ACCELERATION_M_S2 (a kinematic jump to the
         # lift speed would ask friction for 100 m/s^2 on the object)
         a = ARM_ACCELERATION_M_S2

@@ -77,6 +77,42 @@ class HoldCoast:
     def _reset(self) -> None:
         self._v0, self._count, self._anchor, self._left = None, 0, None, 0
 
+    def save_state(
+        self,
+        v0: NDArray[np.float64],
+        anchor: NDArray[np.float64],
+        state: NDArray[np.int64],
+        qvel: NDArray[np.float64],
+    ) -> None:
+        """Write the window's state into arrays (the compiled steps' copy,
+        :mod:`softpad.sim._mujoco_fast`): ``v0`` and ``anchor`` (one per watched dof),
+        ``state`` (whether v0 is set, the count, whether the anchor is set, steps left, steps
+        coasted there, whether ``qvel`` is new) and ``qvel`` (the velocities coasted with)."""
+        state[:] = (self._v0 is not None, self._count, self._anchor is not None, self._left, 0, 0)
+        if self._v0 is not None:
+            v0[:] = self._v0
+        if self._anchor is not None:
+            anchor[:] = self._anchor
+        if self.qvel is not None:
+            qvel[:] = self.qvel
+
+    def load_state(
+        self,
+        v0: NDArray[np.float64],
+        anchor: NDArray[np.float64],
+        state: NDArray[np.int64],
+        qvel: NDArray[np.float64],
+    ) -> None:
+        """Take the window's state back from :meth:`save_state`'s arrays, as the compiled steps
+        left them."""
+        has_v0, count, has_anchor, left, coasted, new = state.tolist()
+        self._v0 = v0.copy() if has_v0 else None
+        self._anchor = anchor.copy() if has_anchor else None
+        self._count, self._left = count, left
+        self.coasted_steps += coasted
+        if new:
+            self.qvel = qvel.copy()
+
     @property
     def armed(self) -> bool:
         """True when steps are left of a coasting window (:meth:`coasts` may say True): the

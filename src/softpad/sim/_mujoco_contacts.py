@@ -148,6 +148,40 @@ class ContactSensing:
         for i in near:
             self._watch(s, time_s, tip_z_m, width_m, i, g1[i], g2[i], gm)
 
+    def add_steps(
+        self,
+        records: list[tuple[list[int], list[float], list[list[float]]]],
+        n_steps: int,
+        last: int,
+    ) -> None:
+        """Take ``n_steps`` (> 0) steps' module contacts read elsewhere (the compiled steps,
+        :mod:`softpad.sim._mujoco_fast`), as :meth:`update` records them: ``records`` one per
+        step with a module contact, in step order; ``last``: the last step had one (1) or
+        not (0)."""
+        if records:
+            # the pressure is the same for every step of a call (the box sets it between)
+            self._flush_if_pressure_changed()
+            self._pending.extend(records)
+        self._last = (records[-1][0], records[-1][1]) if last == 1 else ([], [])
+        self._steps += n_steps
+
+    def record_touches(self, s: MujocoScene, time_s: float, tip_z_m: float, width_m: float) -> None:
+        """The first-touch records of the step just taken, as :meth:`update` keeps them (for a
+        step whose contacts were read elsewhere, with the records watched)."""
+        gm = self._geom_modules(s)
+        con = s.data.contact
+        g1, g2 = con.geom1.tolist(), con.geom2.tolist()
+        grip = self._grip
+        near = [i for i, (a, b) in enumerate(zip(g1, g2, strict=True)) if a in grip or b in grip]
+        for i in near:
+            self._watch(s, time_s, tip_z_m, width_m, i, g1[i], g2[i], gm)
+
+    def watching(self, width_m: float) -> bool:
+        """Whether a step with jaw setpoint ``width_m`` can change a first-touch record."""
+        return self.first_touch_s is None or (
+            self.tip_hit_object is None and width_m >= self.open_width_m
+        )
+
     def _geom_modules(self, s: MujocoScene) -> list[int]:
         """The scene's geom -> module table as a list (read per contact), and the gripper's
         sole and finger geoms."""
@@ -217,6 +251,11 @@ class ContactSensing:
         pending, self._pending = self._pending, []
         if not pending:
             return
+        response = self.response
+        if response is not None and response.weigh_steps(
+            pending, self._pending_pressure, self._flushed
+        ):
+            return  # the cast pad's weighting in compiled code (the same bits)
         ks = np.array([k for p in pending for k in p[0]], dtype=np.intp)
         f = np.array([v for p in pending for v in p[1]], dtype=float)
         total, start = self._flushed, 0

@@ -23,6 +23,8 @@ from softpad.sim._mujoco_arm import ARM_ACCELERATION_M_S2, KinematicArm
 from softpad.sim._mujoco_clearance import HandClearance
 from softpad.sim._mujoco_coast import HoldCoast
 from softpad.sim._mujoco_contacts import ContactSensing, GripperContacts
+from softpad.sim._mujoco_fast import AVAILABLE as FAST_STEPS_BUILT
+from softpad.sim._mujoco_fast import FastSteps
 from softpad.sim._mujoco_model import MujocoGripper, ObjectModel, PadPhysics, parking_position
 from softpad.sim._mujoco_scene import MujocoScene
 from softpad.sim._response import ModuleResponse, PadResponse, operating_pressure
@@ -49,6 +51,7 @@ _DROP_M = 0.0
 #: which also collapse the box's module model).
 _LOWER_M_S = 0.005
 _LOWER_S = 1.0
+_NO_DOFS = np.zeros(0, dtype=np.int64)
 
 
 @dataclass(frozen=True)
@@ -117,6 +120,8 @@ class MujocoWorld(PadWorld):
         n = self._layout.n_modules
         self._pending_s = 0.0
         self._heights = np.full(n, self.pad.free_height_m)
+        #: Where ``_heights`` lies (written in place: the compiled steps read it there).
+        self._heights_address = int(self._heights.ctypes.data)
         self._heights_given = False
         self._spring_step = np.zeros(n)
         self._lowering: dict[str, float] = {}
@@ -132,6 +137,10 @@ class MujocoWorld(PadWorld):
         self._coast: HoldCoast | None = None
         self._resting = False
         self._free_hand: HandClearance | None = None
+        self._fast: FastSteps | None = None
+        self._fast_on = FAST_STEPS_BUILT
+        #: MuJoCo steps held still so far (:meth:`rest_while_still`; diagnostics).
+        self.rested_steps = 0
         self._build(tuple(objects))
 
     def _build(self, objects: tuple[ObjectModel, ...]) -> None:
@@ -153,6 +162,21 @@ class MujocoWorld(PadWorld):
         self._coast.allow(until)
         if self._free_hand is not None:
             self._free_hand = HandClearance(scene.model, scene.hand_body)
+        self._fast = None
+        if self._fast_on and scene.model.opt.cone == self._mj.mjtCone.mjCONE_ELLIPTIC:
+            self._fast = FastSteps(scene, self._coast, self.gripper.finger_length_m)
+
+    def compiled_steps(self, on: bool) -> None:
+        """Run the world's real MuJoCo steps in compiled code where it is built (``on``, the
+        default when :mod:`softpad.sim._fastworld` is built; False: in Python only). Both give
+        the same world, bit for bit (:mod:`softpad.sim._mujoco_fast`)."""
+        if on and not FAST_STEPS_BUILT:
+            raise InputError("the compiled world steps are not built (make ext)")
+        self._fast_on = bool(on)
+        s = self.scene
+        self._fast = None
+        if on and s.model.opt.cone == self._mj.mjtCone.mjCONE_ELLIPTIC:
+            self._fast = FastSteps(s, self.coast, self.gripper.finger_length_m)
 
     @property
     def scene(self) -> MujocoScene:
@@ -211,20 +235,23 @@ class MujocoWorld(PadWorld):
         if dt < 0:
             raise InputError(f"world time step must be >= 0 s, got {dt!r}")
         if module_heights_m is not None:
-            h = np.asarray(module_heights_m, dtype=float)
-            if h.shape != (self._layout.n_modules,) or not np.isfinite(h).all():
-                raise InputError(
-                    f"module heights must be {self._layout.n_modules} finite values, got {h!r}"
-                )
-            # np.clip's values without its Python wrapper (h is finite here)
-            self._heights = np.minimum(np.maximum(h, 0.0), 0.03)
-            self._heights_given = True
+            self._take_heights(module_heights_m)
         ts = self._step_s
         # the hand moves continuously (the robot sees it move on every sample, whatever the
         # sample period); MuJoCo steps each time a whole time step has elapsed
         remaining = dt
         arm, coast = self._arm, self.coast
+        fast, python_next = self._fast, False
         while self._pending_s + remaining >= ts * (1 - 1e-9):
+            clamp = None if fast is None or python_next else self._lowered_dofs()
+            if fast is not None and clamp is not None:
+                # the steps ahead in compiled code, up to where Python must take over
+                alpha = ts / (_HEIGHT_FILTER_S + ts)
+                remaining, python_next = fast.run(
+                    self, arm, self._sensing, coast, ts, remaining, alpha, clamp
+                )
+                continue
+            python_next = False
             chunk = max(ts - self._pending_s, 0.0)
             arm_still = arm.move(chunk)  # whether the arm stands, asked once a step
             remaining -= chunk
@@ -244,6 +271,17 @@ class MujocoWorld(PadWorld):
             self._arm.move(remaining)
             self._pending_s += remaining
         self._time_s += dt
+
+    def _take_heights(self, module_heights_m: ArrayLike) -> None:
+        """The box's module heights for the springs to follow (:meth:`step`)."""
+        h = np.asarray(module_heights_m, dtype=float)
+        if h.shape != (self._layout.n_modules,) or not np.isfinite(h).all():
+            raise InputError(
+                f"module heights must be {self._layout.n_modules} finite values, got {h!r}"
+            )
+        # np.clip's values without its Python wrapper (h is finite here), in place
+        np.minimum(np.maximum(h, 0.0), 0.03, out=self._heights)
+        self._heights_given = True
 
     def module_loads_n(self) -> NDArray[np.float64]:
         """Equivalent load on each module, N (>= 0), module order 1..N: every contact's normal
@@ -479,6 +517,7 @@ class MujocoWorld(PadWorld):
         (as in every step), nothing else moves."""
         self._follow_heights(ts)
         self.scene.data.time += ts
+        self.rested_steps += 1
 
     def coast_free_hand(self, on: bool) -> None:
         """Let the world coast (:meth:`coast_settled_until`) also while the hand moves, as long
@@ -510,6 +549,20 @@ class MujocoWorld(PadWorld):
     def _hand_only_moves(self) -> bool:
         """True when coasting with a moving hand is allowed and nothing but the hand moves."""
         return self._free_hand is not None and not self._lowering and self._arm.jaws_at_rest()
+
+    #: How fast a placed object may sink while it is lowered, m/s (for the compiled steps).
+    _LOWER_M_S = _LOWER_M_S
+
+    def _lowered_dofs(self) -> NDArray[np.int64] | None:
+        """The vertical velocities clamped in this frame's steps (objects being lowered), or
+        None when a lowering ends in this frame (the Python steps end it)."""
+        if not self._lowering:
+            return _NO_DOFS
+        if any(self._time_s > until for until in self._lowering.values()):
+            return None
+        s = self.scene
+        dofs = [da + 2 for name in self._lowering for _, _, da, _ in s.obj_bodies[name]]
+        return np.array(dofs, dtype=np.int64)
 
     def _coast_step(self, ts: float) -> None:
         """One coasted step of ``ts`` seconds: module springs, positions at constant velocity."""

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 from functools import lru_cache
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -38,6 +39,11 @@ from softpad.fem import (
     rect_points,
 )
 from softpad.layout import PadLayout
+
+try:  # the cast pad's weighting in compiled code (src/softpad/sim/_fastworld.c; make ext)
+    import softpad.sim._fastworld as _fastworld
+except ImportError:  # pragma: no cover - depends on the build
+    _fastworld = None  # type: ignore[assignment]
 
 #: The pad models a :class:`PadResponse` offers.
 PAD_MODELS = ("auto", "cast", "clamped")
@@ -185,6 +191,11 @@ class PadResponse:
         self.line_gain = float(line_gain)
         self.cast = _choose_cast(self.layout, pad_model, cast)
         self._refs: dict[float, NDArray[np.float64]] = {}
+        #: Weigh the cast pad's contacts in compiled code where it is built (the same bits;
+        #: False: NumPy only).
+        self.compiled = True
+        self._compiled_consts: tuple[tuple[Any, ...], NDArray[np.float64]] | None = None
+        self._compiled_pads: dict[float, tuple[tuple[Any, ...], tuple[Any, ...]]] = {}
 
     @property
     def pad_model(self) -> str:
@@ -320,12 +331,89 @@ class PadResponse:
         pts = np.asarray(points_m, dtype=float).reshape(-1, 2)
         ks = np.asarray(modules, dtype=np.int64).reshape(-1)
         if self.cast is not None:
+            if _fastworld is not None and self.compiled:
+                return self._cast_factors_compiled(pts, pressure_pa)
             return self.factors(pts, pressure_pa)
         local = (pts - self.module_centers_m()[ks]) / self.scale
         out = np.zeros((len(pts), self.layout.n_modules))
         out[np.arange(len(pts)), ks] = self.response.influence(local, pressure_pa)
         out *= self._line_factor(pts)
         return np.asarray(out / self.reference_influences(pressure_pa)[None, :])
+
+    def _cast_factors_compiled(
+        self, pts: NDArray[np.float64], pressure_pa: float
+    ) -> NDArray[np.float64]:
+        """:meth:`factors` of the cast pad in compiled code (:mod:`softpad.sim._fastworld`):
+        the same operations in the same order, one call instead of some forty NumPy ones."""
+        assert _fastworld is not None
+        pad = self._compiled_pad(pressure_pa)
+        pts = np.ascontiguousarray(pts)
+        out = np.empty((len(pts), pad[3]))
+        _fastworld.cast_factors(pad, len(pts), pts.ctypes.data, out.ctypes.data)
+        return out
+
+    def weigh_steps(
+        self,
+        steps: list[tuple[list[int], list[float], list[list[float]]]],
+        pressure_pa: float,
+        total: NDArray[np.float64],
+    ) -> bool:
+        """Add each step's equivalent loads to ``total`` (n_modules), as
+        :class:`~softpad.sim._mujoco_contacts.ContactSensing` weighs a sample period's steps
+        (modules, normal forces, points per step: the forces times :meth:`point_factors`,
+        summed over a step's contacts in order), in compiled code; False (nothing added) where
+        it does not run (the clamped pad, not built, switched off)."""
+        if self.cast is None or _fastworld is None or not self.compiled:
+            return False
+        assert total.flags.c_contiguous and total.dtype == np.float64
+        _fastworld.cast_weigh(self._compiled_pad(pressure_pa), steps, total.ctypes.data)
+        return True
+
+    def _compiled_pad(self, pressure_pa: float) -> tuple[Any, ...]:
+        """The cast pad at ``pressure_pa`` as the compiled code takes it (the table and the
+        reference influences at that pressure, the constants; arrays by address, kept alive
+        by the caches)."""
+        key = round(float(pressure_pa), 3)  # the table's and the references' cache key
+        kept = self._compiled_pads.get(key)
+        if kept is not None:
+            return kept[0]
+        cast = self.cast
+        assert cast is not None
+        if self._compiled_consts is None:
+            self._compiled_consts = self._cast_constants(cast)
+        consts, centres = self._compiled_consts
+        table = cast.influence_table(pressure_pa)
+        ref = np.asarray(self.reference_influences(pressure_pa), dtype=float)
+        ax, ay = cast.x_axis_m, cast.y_axis_m
+        arrays = (table, ax, ay, centres, ref)
+        assert all(a.flags.c_contiguous and a.dtype == np.float64 for a in arrays)
+        nx, ny, nk = table.shape
+        head = (table.ctypes.data, nx, ny, nk, ax.ctypes.data, ay.ctypes.data)
+        pad = (*head, *consts, centres.ctypes.data, ref.ctypes.data)
+        self._compiled_pads[key] = (pad, arrays)  # the arrays kept alive with their addresses
+        return pad
+
+    def _cast_constants(self, cast: CastPadResponse) -> tuple[tuple[Any, ...], NDArray[np.float64]]:
+        """The scalars of :meth:`_to_cast_frame` and :meth:`_line_factor`, computed as there,
+        and the module centres, for :meth:`_cast_factors_compiled`."""
+        pitch, model_pitch = self.layout.pitch_m, cast.pitch_m
+        h, hm = 0.5 * self.chamber_side_m, 0.5 * (model_pitch - cast.wall_width_m)
+        consts = (
+            self._seam is not None,
+            model_pitch / pitch,
+            pitch,
+            model_pitch,
+            h,
+            hm,
+            hm / h if h > 0 else 0.0,
+            0.5 * model_pitch - hm,
+            not h > 0,
+            max(0.5 * pitch - h, 1e-12),
+            0.5 * self.chamber_side_m,
+            self.line_gain - 1.0,
+            LINE_BAND_M * self.layout.pitch_m / thesis_pitch(),
+        )
+        return consts, np.ascontiguousarray(self.module_centers_m(), dtype=float)
 
     # --- loads --------------------------------------------------------------------------------
     def weights(
