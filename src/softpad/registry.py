@@ -74,7 +74,22 @@ def _installed_entry_points() -> Any:
     state = _path_state()
     if _installed[0] != state:
         _installed[:] = [state, entry_points()]
+        _by_group.clear()
     return _installed[1]
+
+
+_by_group: dict[str, dict[str, Any]] = {}  # group: {name: entry point} of _installed[1]
+
+
+def _group_entry_points(group: str) -> dict[str, Any]:
+    """The entry points of ``group`` by name (not to be changed: shared until the installed
+    ones change); building the parser asks about 20 times, and each ``select`` over every
+    installed entry point took about 0.2 ms (issue 50)."""
+    installed = _installed_entry_points()
+    found = _by_group.get(group)
+    if found is None:
+        found = _by_group[group] = {ep.name: ep for ep in installed.select(group=group)}
+    return found
 
 
 class Registry(Generic[F]):
@@ -116,7 +131,7 @@ class Registry(Generic[F]):
             raise InputError(f"a {self.kind} name must be a non-empty word, got {name!r}")
 
     def _entry_points(self) -> dict[str, Any]:
-        return {ep.name: ep for ep in _installed_entry_points().select(group=self.group)}
+        return _group_entry_points(self.group)
 
     def names(self) -> tuple[str, ...]:
         """Every name offered, registered first (in registration order), then entry points."""
