@@ -157,3 +157,34 @@ def test_without_detection_the_model_based_loop_keeps_t_o() -> None:
     assert loop.object_detector.threshold_pa == 50.0
     with pytest.raises(ExecutionError):  # the 5 g cube stays under t_o
         loop.run()
+
+
+@pytest.mark.parametrize(
+    ("size_mm", "mass_g", "at", "seen"),
+    [
+        ((16, 16), 5.0, (0.5, 1.5), True),  # a die on a module's centre: 38 Pa
+        ((16, 16), 5.0, (1.0, 1.5), False),  # the same die on the seam 1|2: 6 Pa a module
+        ((60, 90), 6.0, (1.5, 1.0), False),  # a 6 g sponge on the pad's centre: 6 Pa
+        ((60, 90), 6.0, (0.75, 1.0), False),  # the same over modules 1, 2, 4, 5: 8.5 Pa
+    ],
+    ids=["die-centre", "die-seam", "sponge-centre", "sponge-off-centre"],
+)
+def test_what_the_fem_lets_the_noise_threshold_see(
+    size_mm: tuple[int, int], mass_g: float, at: tuple[float, float], seen: bool
+) -> None:
+    """The physics behind the threshold (docs/planner.md): the project's FEM sealed rise of
+    a light object's largest module against the nominal noise threshold, and against t_o
+    (50 Pa), which none of them reaches. A 6 g sponge stays under two standard deviations
+    of the increment's noise: no threshold tells it from an empty pad."""
+    from softpad.sim import PadResponse
+
+    r = PadResponse()
+    p = r.layout.pitch_m
+    size = (size_mm[0] * 1e-3, size_mm[1] * 1e-3)
+    eq = r.rect_equivalent_loads((at[0] * p, at[1] * p), size, 9.81 * mass_g * 1e-3, 1100.0)
+    top = float(r.sealed_rise_pa(eq, 1100.0).max())
+    det = NoiseObjectDetector()
+    assert top < 50.0
+    assert (top > det.threshold_pa(6)) is seen
+    if size_mm == (60, 90):
+        assert top < 2 * det.params.increment_std_pa(det.spread_pa)
