@@ -5,7 +5,7 @@ The thesis finds an object where a module's increment exceeds t_o = 50 Pa (it "d
 stay under it: the project's FEM (``softpad.sim.PadResponse``, cast pad at p0) gives a
 16 mm cube 7.6 Pa/g on a module's centre, 1.2 Pa/g on each module of a seam and 0.24 Pa/g on
 each of four at a corner, so a 5 g die on a centre (38 Pa) or a 25 g ball on a seam (30 Pa)
-is never seen (docs/planner.md, "Light objects").
+is never seen (docs/planner.md, "Light objects: detection at the noise").
 
 :class:`NoiseObjectDetector` puts the threshold where the noise of the increment puts it
 instead: ``k`` standard deviations of the increment, ``k`` from a family-wise false-alarm
