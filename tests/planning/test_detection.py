@@ -188,3 +188,13 @@ def test_what_the_fem_lets_the_noise_threshold_see(
     assert (top > det.threshold_pa(6)) is seen
     if size_mm == (60, 90):
         assert top < 2 * det.params.increment_std_pa(det.spread_pa)
+
+
+def test_an_ideal_sensor_is_judged_at_the_converter_step() -> None:
+    """Reads without noise (a simulated ideal sensor) give a zero spread: the threshold is
+    then the converter's step, so rounding is no object but a real increment is."""
+    det = NoiseObjectDetector()
+    det.calibrate(np.full((10, 6), 1100.0))
+    assert det.threshold_pa(6) == 0.0
+    assert det.objects([2.0, 0, 0, 0, 0, 0], LAYOUT) == []
+    assert det.objects([3.0, 0, 0, 0, 0, 0], LAYOUT) == [(1,)]

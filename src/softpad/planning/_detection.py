@@ -63,6 +63,10 @@ class NoiseDetectionParams:
     #: Spread of one reading assumed until the box's own reads are seen, Pa rms (the box's
     #: published reading variance, :data:`softpad.thesis.SENSOR_VARIANCE_PA2`).
     nominal_spread_pa: float = math.sqrt(thesis.SENSOR_VARIANCE_PA2)
+    #: The threshold is never under the converter's resolution, Pa (2.44 Pa, a 12-bit
+    #: converter over 10 kPa: :data:`softpad.thesis.SENSOR_QUANTIZATION_PA`): a noiseless
+    #: (simulated ideal) sensor would otherwise find objects in rounding.
+    floor_pa: float = thesis.SENSOR_QUANTIZATION_PA
 
     def __post_init__(self) -> None:
         if not (isinstance(self.false_alarm, int | float) and 0 < self.false_alarm < 1):
@@ -71,7 +75,7 @@ class NoiseDetectionParams:
             v = getattr(self, name)
             if not (isinstance(v, int) and v >= 1):
                 raise InputError(f"{name} must be an integer >= 1, got {v!r}")
-        for name in ("drift_ratio", "nominal_spread_pa"):
+        for name in ("drift_ratio", "nominal_spread_pa", "floor_pa"):
             v = getattr(self, name)
             if not (isinstance(v, int | float) and math.isfinite(v) and v >= 0):
                 raise InputError(f"{name} must be a number >= 0, got {v!r}")
@@ -170,7 +174,7 @@ class NoiseObjectDetector:
 
     def objects(self, increments_pa: ArrayLike, layout: PadLayout) -> list[tuple[int, ...]]:
         """One sorted tuple of 1-based modules per object; empty when nothing lies there."""
-        t = max(self.threshold_pa(layout.n_modules), SMALLEST_THRESHOLD_PA)
+        t = max(self.threshold_pa(layout.n_modules), self.params.floor_pa)
         return detect_objects(increments_pa, layout, t)
 
 
@@ -186,12 +190,6 @@ def planner_detector(planner: Any) -> ObjectDetector | None:
     """
     make = getattr(planner, "object_detector", None)
     return make() if callable(make) else None
-
-
-#: A threshold is never under the converter's resolution (2.44 Pa, a 12-bit converter over
-#: 10 kPa: :data:`softpad.thesis.SENSOR_QUANTIZATION_PA`): a noiseless (simulated ideal)
-#: sensor would otherwise find objects in rounding.
-SMALLEST_THRESHOLD_PA = thesis.SENSOR_QUANTIZATION_PA
 
 
 __all__ = [
