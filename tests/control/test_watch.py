@@ -65,3 +65,23 @@ def test_plan_from_reads_plans_the_mean_increment() -> None:
     assert plan.modules == (3, 6)
     direct = ThesisPlanner().plan(delta, [(3, 6)], LAYOUT)[0]
     assert plan.cog == pytest.approx(direct.cog) and plan.theta == pytest.approx(direct.theta)
+
+
+def test_a_sighting_gone_by_the_settle_time_is_not_settled() -> None:
+    """A peak under a threshold near the noise (or an object put down and taken away) is
+    seen, but the watch waits on when the detector finds nothing at the settle time, and
+    settles on an object that stays. (The watch settled on any sighting before.)"""
+    w = _watch()
+    states = []
+    for i in range(300):
+        p = np.full(6, 1100.0)
+        if 20 <= i < 40:  # a 20-frame peak on module 1: filtered over 50 Pa, gone by 0.5 s
+            p[0] += 200.0
+        if i >= 150:  # an object on module 6 that stays
+            p[5] += 200.0
+        states.append(w.update(p, i / RATE_HZ))
+    seen = [i for i, s in enumerate(states) if s == "seen"]
+    assert seen[0] == 22 and len(seen) == 2 and seen[1] > 150
+    first_settled = states.index("settled")
+    assert first_settled == seen[1] + 50
+    assert w.objects == [(6,)]

@@ -38,7 +38,14 @@ from softpad.errors import (
     check_range,
 )
 from softpad.layout import PadLayout
-from softpad.planning import GraspPlan, Planner, PlannerParams, RetryPlanner, ThesisPlanner
+from softpad.planning import (
+    GraspPlan,
+    Planner,
+    PlannerParams,
+    RetryPlanner,
+    ThesisPlanner,
+    planner_detector,
+)
 from softpad.sensing import (
     ContactDetector,
     ObjectDetector,
@@ -354,7 +361,9 @@ class GraspExecution:
     planner
         Turns objects into grasps; :class:`~softpad.planning.ThesisPlanner` by default.
     object_detector
-        Finds objects in the filtered increments; the thesis's t_o detector by default.
+        Finds objects in the filtered increments; by default the planner's own
+        (:func:`~softpad.planning.planner_detector`: the model-based planner's threshold at
+        the noise, calibrated on the reference reads), else the thesis's t_o detector.
     contact_detector
         Senses the fingers during the descent; the thesis's t_g detector by default.
     recorder
@@ -388,8 +397,10 @@ class GraspExecution:
         self.params = p = params or ExecutionParams()
         self.recorder: Recorder = recorder if recorder is not None else _NullRecorder()
         self.planner: Planner = planner or ThesisPlanner(p.planner)
-        self.object_detector: ObjectDetector = object_detector or ThesisObjectDetector(
-            p.planner.object_threshold_pa
+        self.object_detector: ObjectDetector = (
+            object_detector
+            or planner_detector(self.planner)
+            or ThesisObjectDetector(p.planner.object_threshold_pa)
         )
         self.contact_detector: ContactDetector = contact_detector or ThesisContactDetector(
             p.contact_threshold_pa, p.filter_length
@@ -492,6 +503,9 @@ class GraspExecution:
     def _run(self) -> ExecutionResult:
         p = self.params
         adj = self._adjust()
+        calibrate = getattr(self.object_detector, "calibrate", None)
+        if calibrate is not None and adj.reference_reads_pa is not None:
+            calibrate(adj.reference_reads_pa)  # the empty pad's noise sets its threshold
         self.safety.monitor.set_reference(adj.reference_pa)
         self._reference = adj.reference_pa
         if self.adjusted is not None:

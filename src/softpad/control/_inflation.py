@@ -151,6 +151,9 @@ class AdjustmentResult:
     adjusted_at_s: float
     #: Box time when the reference was saved, seconds.
     reference_at_s: float
+    #: The reads the reference averages (one row a read, one column a module), pascals: the
+    #: empty pad's noise as the box shows it (None where not kept).
+    reference_reads_pa: NDArray[np.float64] | None = None
 
     def to_dict(self) -> dict[str, object]:
         """JSON-ready dict (SI units)."""
@@ -491,7 +494,8 @@ class InflationController:
         if len(self._reads) >= self.params.reference_reads:
             assert self.adjusted_at_s is not None
             ref = capture_reference(self._reads)
-            self.result = AdjustmentResult(ref, self.adjusted_at_s, frame.t_s)
+            reads = np.array(self._reads)
+            self.result = AdjustmentResult(ref, self.adjusted_at_s, frame.t_s, reads)
             self.state = "done"
         return []
 

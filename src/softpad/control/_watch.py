@@ -25,7 +25,9 @@ class ObjectWatch:
     Every frame: the increments over ``reference_pa`` go through a running average of
     ``filter_length`` samples; once it is full, ``object_detector`` looks for objects in them
     (:func:`~softpad.sensing.measured_change`). The first frame with an object is *seen*;
-    ``settle_s`` of box time later the watch has *settled* (the loop plans then).
+    ``settle_s`` of box time later the watch has *settled* (the loop plans then) if the
+    detector still finds an object; if not (a noise peak under a threshold set near the
+    noise, an object put down and taken away), the watch waits on as before the sighting.
 
     Parameters
     ----------
@@ -55,26 +57,39 @@ class ObjectWatch:
         self._filter = RunningAverage(filter_length)
         #: Box time of the first frame with an object, s (None until then).
         self.seen_at: float | None = None
-        #: Objects (modules of each) in the filtered increments of the last frame read
-        #: before the watch saw one; empty until the filter is full.
+        #: Objects (modules of each) in the filtered increments of the last frame judged (the
+        #: first sighting, then the settle time's); empty until the filter is full.
         self.objects: list[tuple[int, ...]] = []
         self._last = np.zeros_like(self.reference_pa)
+        self._settled = False
 
     def update(self, pressures_pa: NDArray[np.float64], t_s: float) -> str | None:
         """One frame's pressures at box time ``t_s``: ``"seen"`` on the first frame with an
-        object, ``"settled"`` on every frame from ``settle_s`` after it, else None."""
+        object, ``"settled"`` on every frame from ``settle_s`` after it (once an object is
+        still there then), else None."""
         d = self._filter.update(np.asarray(pressures_pa, dtype=float) - self.reference_pa)
         self._last = d
         if self.seen_at is not None:
-            return "settled" if t_s - self.seen_at >= self.settle_s else None
+            if t_s - self.seen_at < self.settle_s:
+                return None
+            if not self._settled and not self._find(d):
+                self.seen_at = None  # gone by the settle time (noise, a passing touch): wait on
+                return None
+            self._settled = True
+            return "settled"
         if not self._filter.full:
             return None
-        self.objects = [tuple(o) for o in self.object_detector.objects(measured_change(d),
-                                                                       self.layout)]  # fmt: skip
-        if self.objects:
+        if self._find(d):
             self.seen_at = t_s
             return "seen"
         return None
+
+    def _find(self, d: NDArray[np.float64]) -> bool:
+        """Whether the detector finds objects in the filtered increments ``d`` (kept in
+        :attr:`objects`)."""
+        self.objects = [tuple(o) for o in self.object_detector.objects(measured_change(d),
+                                                                       self.layout)]  # fmt: skip
+        return bool(self.objects)
 
     def filtered(self) -> NDArray[np.float64]:
         """The current filtered increments, Pa (as the detector sees them)."""

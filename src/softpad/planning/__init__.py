@@ -24,6 +24,12 @@ from softpad.planning._catalogue import (
     load_centre,
     own_scores,
 )
+from softpad.planning._detection import (
+    NoiseDetectionParams,
+    NoiseObjectDetector,
+    planner_detector,
+    reading_spread_pa,
+)
 from softpad.planning._gripper_aware import (
     DEFAULT_SEAM_WIDTH_M,
     GripperAwarePlanner,
@@ -98,6 +104,8 @@ __all__ = [
     "ModelBasedParams",
     "ModelBasedPlanner",
     "MountingChooser",
+    "NoiseDetectionParams",
+    "NoiseObjectDetector",
     "PadModel",
     "PlanCase",
     "Planner",
@@ -131,10 +139,12 @@ __all__ = [
     "plan_by_name",
     "plan_grasps",
     "plan_legend_handles",
+    "planner_detector",
     "planner_for",
     "plot_plan_columns",
     "plot_plans",
     "pressed_share",
+    "reading_spread_pa",
     "register_planner",
     "sensed_share",
     "table_bytes",

@@ -45,6 +45,7 @@ from numpy.typing import ArrayLike, NDArray
 from softpad import thesis
 from softpad.errors import InputError
 from softpad.layout import GripperSpec, PadLayout
+from softpad.planning._detection import NoiseDetectionParams, NoiseObjectDetector
 from softpad.planning._pcom import pcom
 from softpad.planning._records import GraspPlan
 from softpad.sensing import DEFAULT_OUTLINE_THRESHOLD_PA, check_increments, outline_objects
@@ -60,6 +61,10 @@ class ModelBasedParams:
     #: Noise of one planning increment (10-read mean minus 10-read reference, with drift),
     #: Pa rms: 5.5 Pa for the box's sensor (softpad.sensing.DEFAULT_OUTLINE_THRESHOLD_PA).
     noise_pa: float = 5.5
+    #: How the loop finds this planner's objects: at ``k`` standard deviations of the
+    #: increment's noise measured on the box's reference reads, ``k`` from a family-wise
+    #: false-alarm probability over the modules (planning._detection); None: the thesis's t_o.
+    detection: NoiseDetectionParams | None = field(default_factory=NoiseDetectionParams)
     #: Relative rms error of the even-load model of a module's increment (uneven weight,
     #: the characteristic's curvature, tilt); an assumption, set before any trial ran.
     model_error: float = 0.3
@@ -1136,6 +1141,12 @@ class ModelBasedPlanner:
             raise InputError(f"sensing ratio must be a number > 0, got {self.sensing_ratio!r}")
         if self.model is None:
             self.model = packaged_pad_model(self.params.pressure_pa)
+
+    def object_detector(self) -> NoiseObjectDetector | None:
+        """A fresh detector for a run of the loop, which finds this planner's objects with it
+        (``params.detection``; None: the loop's t_o detector)."""
+        d = self.params.detection
+        return None if d is None else NoiseObjectDetector(d)
 
     def plan(
         self, increments_pa: ArrayLike, objects: list[tuple[int, ...]], layout: PadLayout
