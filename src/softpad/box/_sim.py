@@ -495,6 +495,8 @@ class SimBox(Box):
         frames = self._frames
         if frames is None:
             return self._checked(self._read(), guard)
+        # _read's step, inlined: a shared helper costs ~2 % of the every-valve-open bench
+        # (355x -> 347x); keep the two in step
         dt = self._dt
         t = self._t + dt
         self._t = t
